@@ -1,0 +1,1 @@
+"""Shared pieces of the cocotb testbenches (runner wrapper, stimulus helpers)."""
