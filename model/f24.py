@@ -111,7 +111,8 @@ def from_float(x: npt.ArrayLike) -> U32:
 
 def add(a: npt.ArrayLike, b: npt.ArrayLike) -> U32:
     """a + b, correctly rounded."""
-    return from_float(to_float(a) + to_float(b))
+    with np.errstate(invalid="ignore"):  # Inf - Inf is NaN by design
+        return from_float(to_float(a) + to_float(b))
 
 
 def sub(a: npt.ArrayLike, b: npt.ArrayLike) -> U32:
@@ -121,7 +122,8 @@ def sub(a: npt.ArrayLike, b: npt.ArrayLike) -> U32:
 
 def mul(a: npt.ArrayLike, b: npt.ArrayLike) -> U32:
     """a * b, correctly rounded."""
-    return from_float(to_float(a) * to_float(b))
+    with np.errstate(invalid="ignore"):  # 0 * Inf is NaN by design
+        return from_float(to_float(a) * to_float(b))
 
 
 def div(a: npt.ArrayLike, b: npt.ArrayLike) -> U32:
@@ -159,3 +161,20 @@ def abs_(a: npt.ArrayLike) -> U32:
 # Conversions and approximate units: same API, own modules (re-exported).
 from .f24_conv import from_unorm, from_int, to_index  # noqa: E402,F401
 from .f24_approx import rsqrt, log2, RSQRT_MAX_ULP, LOG2_MAX_ABS_ERR  # noqa: E402,F401
+
+
+def round_value(x: npt.ArrayLike) -> F64:
+    """float64 -> the nearest f24 value, as float64: ``to_float(from_float(x))``, but fast.
+
+    The traversal's f24 engine keeps its numbers as float64 values that are always exactly
+    representable in the format, rounding after every operation with this function.
+    """
+    xa = np.asarray(x, dtype=np.float64)
+    b = xa.view(np.uint64)
+    lsb = (b >> np.uint64(36)) & np.uint64(1)
+    b = (b + np.uint64((1 << 35) - 1) + lsb) & ~np.uint64((1 << 36) - 1)  # RNE to 17 bits
+    y = b.view(np.float64)
+    mag = np.abs(y)
+    y = np.where(mag > MAX_VALUE, np.copysign(np.inf, xa), y)
+    y = np.where(mag < MIN_VALUE, np.copysign(0.0, xa), y)
+    return np.where(np.isnan(xa), np.nan, y)

@@ -3,6 +3,9 @@
 // (flush-to-zero), exponent 127 is Inf (fraction 0) or NaN; every NaN produced is F24_NAN.
 package f24_pkg;
 
+  // A package's constants serve every unit; no single unit uses all of them.
+  /* verilator lint_off UNUSEDPARAM */
+
   localparam int unsigned F24_W    = 24;  // word width
   localparam int unsigned EXP_W    = 7;   // exponent field width
   localparam int unsigned FRAC_W   = 16;  // fraction field width
@@ -16,6 +19,7 @@ package f24_pkg;
   localparam f24_t F24_POS_INF  = 24'h7f0000;
   localparam f24_t F24_ONE      = 24'h3f0000;
   localparam f24_t F24_MAX      = 24'h7effff;  // largest finite value
+  /* verilator lint_on UNUSEDPARAM */
 
   // Operand class, decoded once per operand.
   typedef struct packed {
@@ -24,6 +28,8 @@ package f24_pkg;
     logic nan;
   } f24_class_t;
 
+  // The sign bit does not affect the class.
+  /* verilator lint_off UNUSEDSIGNAL */
   function automatic f24_class_t f24_classify(input f24_t x);
     f24_class_t c;
     c.zero = (x[22:16] == 7'd0);
@@ -31,6 +37,7 @@ package f24_pkg;
     c.nan  = (x[22:16] == EXP_SPEC) && (x[15:0] != 16'd0);
     return c;
   endfunction
+  /* verilator lint_on UNUSEDSIGNAL */
 
   // A signed zero / signed Inf of the given sign.
   function automatic f24_t f24_zero(input logic s);

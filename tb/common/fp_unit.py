@@ -16,6 +16,8 @@ import numpy as np
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
+from tb.common import report
+
 #: Random seed for stimulus: printed by every test, settable with SEED=...
 def seed() -> int:
     s = int(os.environ.get("SEED", random.randrange(1 << 31)))
@@ -86,6 +88,10 @@ async def check_pipeline(dut, latency: int, inputs: Mapping[str, np.ndarray],
             mism.append(f"{name}: {what}: got 0x{int(g[b]):06x} expected 0x{int(e[b]):06x}")
         if len(bad):
             mism.append(f"{name}: {len(bad)} mismatches of {len(g)}")
+    nbad = sum(int(np.count_nonzero(np.array(got[k], dtype=np.int64) !=
+                                   np.asarray(outputs[k], dtype=np.int64)[np.array(got_idx)]))
+               for k in outputs)
+    report.record(dut._name, "RTL vs model.f24", n, nbad)
     dut._log.info("checked %d operand sets in %d clocks, latency %d", n, cyc, latency)
     if mism:
         raise AssertionError("\n".join(mism))

@@ -1,0 +1,49 @@
+// f24_from_unorm: W-bit unorm code k -> the f24 of k / (2^W - 1), correctly rounded (RNE).
+// The binary expansion of k / (2^W - 1) is 0.kkkk... (k's W bits repeated forever), so the
+// conversion is a leading-zero count, a shift of the repeated pattern, a guard bit and
+// sticky = (k != 0): the bits past the guard are never all zero for k != 0 (and k / (2^W - 1) is
+// never exactly halfway between two f24 values).  k = 2^W - 1 reads 0.111... and rounds up to
+// exactly 1.0; k = 0 gives +0.  Latency 1 enabled clock, one conversion per clock.
+// Golden model: model.f24_conv.from_unorm.
+module f24_from_unorm
+  import f24_pkg::*;
+#(
+  parameter int unsigned W = 8  // unorm width, 8 or 16
+) (
+  input  logic         clk_i,  // clock
+  input  logic         en_i,   // clock enable: the output register advances only while en_i is 1
+  input  logic [W-1:0] k_i,    // unorm code
+  output f24_t         y_o     // k_i / (2^W - 1)
+);
+
+  if (W != 8 && W != 16) begin : g_check_w
+    $error("f24_from_unorm: W must be 8 or 16");
+  end
+
+  localparam int unsigned LZ_W  = $clog2(W + 1);          // leading-zero count 0 .. W
+  localparam int unsigned REP   = (W + 17 + W - 1) / W;   // copies: lz + 1 + 17 + guard <= W + 17
+  localparam int unsigned REP_W = REP * W;
+
+  logic [LZ_W-1:0]    lz;   // leading zeros of k (W for k = 0)
+  logic [REP_W-1:0]   rep;  // k repeated, then shifted so the leading one is the top bit
+  logic signed [11:0] e;    // biased exponent: k / (2^W - 1) in [2^-(lz+1), 2^-lz)
+  f24_t               y_d, y_q;
+
+  always_comb begin
+    lz = LZ_W'(W);
+    for (int unsigned i = 0; i < W; i++) begin
+      if (k_i[i]) lz = LZ_W'(W - 1 - i);  // the highest set bit is seen last
+    end
+    rep = {REP{k_i}} << lz;
+    e   = 12'sd62 - 12'(lz);
+    if (k_i == '0) y_d = f24_zero(1'b0);
+    else y_d = f24_round_pack(1'b0, e, rep[REP_W-1 -: 17], rep[REP_W-18], 1'b1);
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (en_i) y_q <= y_d;
+  end
+
+  assign y_o = y_q;
+
+endmodule

@@ -1,0 +1,60 @@
+"""f24_to_index against model.f24.to_index: random patterns plus a directed set (specials, integers
+and half-integers around 0, values one ulp either side of integers, the +-2^(W-1) boundaries).
+
+The DUT's width W is read from the width of ``idx_o``; ``idx_o`` is compared as a W-bit two's
+complement pattern (expected idx & (2^W - 1)), ``sat_o`` as 0 / 1.
+"""
+from pathlib import Path
+
+import cocotb
+import numpy as np
+
+from model import f24, f24_vectors as vec
+from tb.common import fp_unit, runner
+
+LATENCY = 1
+
+
+def directed(rng: np.random.Generator, w: int) -> np.ndarray:
+    parts = [vec.SPECIALS]
+    # Integers, halves and quarters around 0 (exact in f24).
+    q = np.arange(-64.0, 64.25, 0.25)
+    parts.append(f24.from_float(q))
+    # One ulp either side of every integer in [-512, 512] and of random larger integers.
+    ints = np.concatenate([np.arange(-512, 513), rng.integers(-(1 << (w - 1)), 1 << (w - 1), 2048)])
+    p = f24.from_float(ints.astype(np.float64))
+    p = p[(p & 0x7F0000) != 0]  # drop zero: its neighbours are subnormal patterns
+    for d in (-2, -1, 1, 2):
+        parts.append((p.astype(np.int64) + d).astype(np.uint32))
+    # +-2^j for j around the range end, and a few ulps either side (in pattern space).
+    for j in list(range(max(w - 4, 0), w + 3)) + [0, 16, 17]:
+        base = f24.from_float(np.array([2.0 ** j, -(2.0 ** j)]))
+        for d in range(-4, 5):
+            parts.append((base.astype(np.int64) + d).astype(np.uint32))
+    # Every exponent from 2^-20 to 2^(W+4), both signs, random fractions.
+    m = 64
+    for e in range(f24.BIAS - 20, min(f24.BIAS + w + 5, 127)):
+        parts.append(f24.pack(rng.integers(0, 2, m), np.full(m, e), rng.integers(0, 1 << 16, m)))
+    return np.concatenate(parts).astype(np.uint32) & np.uint32(f24.MASK24)
+
+
+@cocotb.test()
+async def to_index_random_and_directed(dut):
+    rng = np.random.default_rng(fp_unit.seed())
+    w = len(dut.idx_o)
+    d = directed(rng, w)
+    r = vec.random_unary(rng, fp_unit.vectors())
+    a = np.concatenate([d, r])
+    idx, sat = f24.to_index(a, w)
+    exp = {"idx_o": idx & ((1 << w) - 1), "sat_o": sat.astype(np.int64)}
+    n = await fp_unit.check_pipeline(dut, LATENCY, {"a_i": a}, exp, rng)
+    dut._log.info("VECTORS f24_to_index W=%d: %d (%d directed, %d random; %d saturated), "
+                  "0 mismatches", w, n, len(d), len(r), int(sat.sum()))
+
+
+def test_f24_to_index():
+    runner.run("f24_to_index", "test_f24_to_index", Path(__file__).parent, parameters={"W": 20})
+
+
+def test_f24_to_index_w8():
+    runner.run("f24_to_index", "test_f24_to_index", Path(__file__).parent, parameters={"W": 8})
