@@ -1,0 +1,316 @@
+"""The pyramidal traversals (Park et al. 2013, sections 2-4), written once for every engine.
+
+One vectorised loop (all rays in lock-step, finished rays dropped each pass) runs every exact
+method; the methods differ only in small pluggable policies (start level, descent, level-up), and
+the arithmetic is injected (:mod:`model.arith`): the same code is the ``f64`` reference engine and
+the ``f24`` engine, the bit-accurate specification of the traverse unit (``rtl/traverse/``).
+
+Geometry (CONVENTIONS): the ray is at (u0 + du t, v0 + dv t) at depth t in [0, 1]; texel (i, j)
+covers u in [j, j+1), v in [i, i+1) and is solid from depth 1 - h[i, j] down.  A node (k, cx, cy)
+of level k covers u in [cx 2^k, (cx+1) 2^k) and likewise in v; its value H is the maximum height
+below it, so nothing in it is above depth 1 - H (its "plane").
+
+Boundaries, precisely.  The ray crosses the grid line u = b (an integer) at the time
+``T(b) = (b - u0) * (1 / du)``, computed in the engine's arithmetic with the reciprocal taken once
+per ray.  T depends only on b, never on the level, and is monotone in b; a ray on a boundary belongs
+to the cell it is entering (cells are half-open in t: [T(entry), T(exit))).  Every decision below
+is a comparison of t with such crossing times, so the traversal, at any level and in any order,
+sees the same cell sequence as the texel-by-texel walk (``tests/reference_walk.py``), and returns
+exactly its hit.  An axis with du = 0 (or 1/du not finite) never crosses; the cell is floor(u0).
+
+One iteration = one height read.  At node (k, c) with the ray at time t:
+  plane = 1 - H;  t_exit = min over axes of T(exit boundary);  t_new = max(t, plane)
+  - t_new < min(t_exit, t_map): the ray meets the node's box inside the node:
+      level 0: hit at t_new;  else descend (policy) into the child that holds the ray at t_new.
+  - else if t_map <= t_exit: the ray leaves the map first: miss.
+  - else node crossing: t = max(t, t_exit), step to the neighbour (both axes at a corner), then
+    maybe level up (policy).
+``t_map`` is the time the ray leaves the map's own extent [0, W) x [0, H) (a convex box, so it never
+comes back); the padding of the power-of-two pyramid is never entered.
+
+Termination.  t never decreases and every crossing passes at least one grid line not passed before,
+so a ray makes at most W + H + 2 crossings, at most as many level-ups, and at most n + that many
+descents: :func:`iteration_cap` bounds the iterations and the loop enforces it.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from .arith import ENGINES, Arith
+from .heightmap import Pyramid
+from .rays import Rays, TraceResult
+
+F64 = npt.NDArray[np.float64]
+I64 = npt.NDArray[np.int64]
+B = npt.NDArray[np.bool_]
+
+LEVEL_UP_POLICIES = ("none", "tevs", "drobot", "selective", "coherent")
+DESCENT_POLICIES = ("one", "multi", "xor")
+
+
+@dataclass(frozen=True)
+class Method:
+    """An exact pyramidal method: which start, descent and level-up policies it combines."""
+
+    name: str
+    start_level: bool = False  # (a) start at the lowest level where P and A share a node
+    descent: str = "one"  # "one" | "multi" (b: two levels until the first crossing) | "xor"
+    level_up: str = "none"  # "none" | "tevs" | "drobot" | "selective" (c1) | "coherent" (c2)
+    clip: bool = False  # start below the root's plane (1 - H_root) before the start decision
+    doc: str = ""
+
+
+METHODS: dict[str, Method] = {m.name: m for m in (
+    Method("oh", doc="Oh 2006: root start, one-level descent, no level-up"),
+    Method("tevs", level_up="tevs", doc="Tevs 2008: level-up when the parent changes"),
+    Method("drobot", level_up="drobot", doc="Drobot 2010: level-up on every crossing"),
+    Method("start-level", start_level=True, doc="oh + (a) start-level by XOR / leading zeros"),
+    Method("multi-down", descent="multi", doc="oh + (b) two-level descent until the first crossing"),
+    Method("selective", level_up="selective", doc="oh + (c1) selective level-up"),
+    Method("coherent", level_up="coherent", doc="oh + (c2) coherent level-up"),
+    Method("park", start_level=True, descent="multi", level_up="selective",
+           doc="a + b + c1: the hardware default"),
+    Method("park-gpu", start_level=True, descent="multi", level_up="coherent",
+           doc="a + b + c2: the GPU variant"),
+    Method("park-xor", start_level=True, descent="xor", level_up="selective", clip=True,
+           doc="beyond the paper: every descent goes straight to the lowest level whose node "
+               "holds the rest of the ray inside the current node (XOR of its two ends), and the "
+               "start is clipped to the root's plane"),
+)}
+
+#: Method names of CONVENTIONS plus ours; the hardware implements all of them.
+EXACT_METHODS: tuple[str, ...] = tuple(METHODS)
+#: Method codes the RTL's configuration register uses (index in EXACT_METHODS).
+METHOD_CODES: dict[str, int] = {m: i for i, m in enumerate(EXACT_METHODS)}
+
+
+def iteration_cap(pyr: Pyramid) -> int:
+    """An upper bound on the iterations of any ray (see the module docstring)."""
+    return 2 * (pyr.width + pyr.height + 2) + 2 * pyr.n + 8
+
+
+@dataclass
+class RaySetup:
+    """Per-ray quantities of the first mode (engine values), for the valid rays."""
+
+    u0: F64
+    v0: F64
+    du: F64
+    dv: F64
+    inv_du: F64
+    inv_dv: F64
+    sx: I64  # direction of motion along u: +1, -1, or 0 (no crossing along u)
+    sy: I64
+    t_map: F64  # time of leaving the map's extent (inf if never)
+
+
+def crossing_time(ar: Arith, b: npt.ArrayLike, p0: F64, inv: F64, s: I64) -> F64:
+    """T(b) = (b - p0) * inv for moving axes; +inf where the axis does not move."""
+    t = ar.mul(ar.sub(ar.from_int(b), p0), inv)
+    return np.where(s != 0, t, np.inf)
+
+
+def setup(pyr: Pyramid, rays: Rays, ar: Arith) -> tuple[B, RaySetup]:
+    """Quantise the rays to the engine, flag invalid ones, and compute the per-ray constants."""
+    u0, v0, du, dv = (ar.r(np.asarray(x, dtype=np.float64)) for x in (rays.u0, rays.v0, rays.du,
+                                                                     rays.dv))
+    invalid = Rays(u0, v0, du, dv).invalid(pyr.width, pyr.height)
+    ok = ~invalid
+    u0, v0, du, dv = u0[ok], v0[ok], du[ok], dv[ok]
+    one = np.ones_like(u0)
+    inv_du, inv_dv = ar.div(one, du), ar.div(one, dv)
+    sx = np.where((du != 0) & np.isfinite(inv_du), np.sign(du), 0).astype(np.int64)
+    sy = np.where((dv != 0) & np.isfinite(inv_dv), np.sign(dv), 0).astype(np.int64)
+    tmx = crossing_time(ar, np.where(sx > 0, pyr.width, 0), u0, inv_du, sx)
+    tmy = crossing_time(ar, np.where(sy > 0, pyr.height, 0), v0, inv_dv, sy)
+    return invalid, RaySetup(u0, v0, du, dv, inv_du, inv_dv, sx, sy, np.minimum(tmx, tmy))
+
+
+def position(ar: Arith, p0: F64, d: F64, t: F64) -> F64:
+    """p0 + d t (the hit-position calculation)."""
+    return ar.add(p0, ar.mul(d, t))
+
+
+def locate(ar: Arith, p0: F64, d: F64, inv: F64, s: I64, t: F64, level: I64, lo: I64,
+           hi: I64) -> I64:
+    """The cell of ``level`` that holds the ray at time t along one axis, within [lo, hi].
+
+    An estimate from the position (floor(p0 + d t) >> level) is corrected by one cell with the
+    crossing times of the estimated cell's two edges, so the answer is the exact one of the
+    crossing-time rule whenever the estimate is within one cell (always, in both engines, for
+    positions inside the map).  Axes that do not move use floor(p0).
+    """
+    p = np.where(s != 0, position(ar, p0, d, t), p0)
+    c = np.clip(ar.to_index(p) >> level, lo, hi)
+    entry = (c + (s < 0)) << level
+    exit_ = (c + (s > 0)) << level
+    t_entry = crossing_time(ar, entry, p0, inv, s)
+    t_exit = crossing_time(ar, exit_, p0, inv, s)
+    c = np.where(t_entry > t, c - s, np.where(t_exit <= t, c + s, c))
+    return np.clip(c, lo, hi)
+
+
+def _bitlen(x: I64) -> I64:
+    """Number of significant bits of non-negative integers (0 -> 0): 'levels minus leading zeros'."""
+    out = np.zeros_like(x)
+    v = x.copy()
+    while np.any(v > 0):
+        nz = v > 0
+        out += nz
+        v >>= 1
+    return out
+
+
+def _flat_levels(pyr: Pyramid) -> tuple[npt.NDArray[np.int64], I64]:
+    """All levels in one array (the memory layout's order) and each level's start index."""
+    offs = np.cumsum([0] + [lv.size for lv in pyr.levels[:-1]]).astype(np.int64)
+    flat = np.concatenate([lv.ravel() for lv in pyr.levels]).astype(np.int64)
+    return flat, offs
+
+
+def trace(pyr: Pyramid, rays: Rays, method: str | Method = "park", engine: str | Arith = "f64",
+          record: list[dict[str, Any]] | None = None) -> TraceResult:
+    """Trace rays through the pyramid with an exact method on an engine (``f64`` or ``f24``).
+
+    ``record``, when given, receives one dict per iteration of ray 0 (level, cell, t, H, action):
+    the step-by-step trace that lines up with the RTL's waves.
+    """
+    m = METHODS[method] if isinstance(method, str) else method
+    ar = ENGINES[engine] if isinstance(engine, str) else engine
+    if m.descent not in DESCENT_POLICIES or m.level_up not in LEVEL_UP_POLICIES:
+        raise ValueError(f"bad method {m}")
+    nrays = len(rays)
+    res = TraceResult.empty(nrays)
+    invalid, S = setup(pyr, rays, ar)
+    res.invalid[:] = invalid
+    vidx = np.nonzero(~invalid)[0]
+    nv = len(vidx)
+    n = pyr.n
+    N = pyr.size
+    flat, offs = _flat_levels(pyr)
+    sides = np.array([N >> k for k in range(n + 1)], dtype=np.int64)
+    one = np.ones(nv)
+    zero_i = np.zeros(nv, dtype=np.int64)
+
+    # ---- first mode: start time, start level, start cell -------------------------------------
+    t0 = np.zeros(nv)
+    if m.clip:
+        h_root = ar.from_unorm(np.array([pyr.levels[n][0, 0]]), pyr.bits)
+        t0 = np.maximum(t0, ar.sub(one, np.broadcast_to(h_root, (nv,))))
+    gone = S.t_map <= t0  # leaves the map at once (e.g. u0 = 0 moving to -u), or above the top
+    lo0, hi0 = zero_i, zero_i + (N - 1)
+    c0x = locate(ar, S.u0, S.du, S.inv_du, S.sx, t0, zero_i, lo0 - 1, hi0 + 1)
+    c0y = locate(ar, S.v0, S.dv, S.inv_dv, S.sy, t0, zero_i, lo0 - 1, hi0 + 1)
+    gone |= (c0x < 0) | (c0x >= pyr.width) | (c0y < 0) | (c0y >= pyr.height)
+    c0x, c0y = np.clip(c0x, 0, N - 1), np.clip(c0y, 0, N - 1)
+    if m.start_level:
+        t_end = np.minimum(one, S.t_map) if m.clip else one
+        ax = np.clip(ar.to_index(np.where(S.sx != 0, position(ar, S.u0, S.du, t_end), S.u0)), 0, N - 1)
+        ay = np.clip(ar.to_index(np.where(S.sy != 0, position(ar, S.v0, S.dv, t_end), S.v0)), 0, N - 1)
+        k = np.minimum(_bitlen(np.maximum(c0x ^ ax, c0y ^ ay)), n)
+    else:
+        k = zero_i + n
+    cx, cy = c0x >> k, c0y >> k
+
+    # ---- second mode: the iterative search, all rays in lock-step ----------------------------
+    t = t0.copy()
+    crossed = np.zeros(nv, dtype=bool)
+    prev_cross = np.zeros(nv, dtype=bool)
+    iters = np.zeros(nv, dtype=np.int64)
+    hit_t = np.full(nv, np.nan)
+    hit = np.zeros(nv, dtype=bool)
+    act = np.nonzero(~gone)[0]
+    cap = iteration_cap(pyr)
+    while act.size:
+        kk, xx, yy, tt = k[act], cx[act], cy[act], t[act]
+        u0, v0, du, dv = S.u0[act], S.v0[act], S.du[act], S.dv[act]
+        ix, iy, sx, sy, tmap = S.inv_du[act], S.inv_dv[act], S.sx[act], S.sy[act], S.t_map[act]
+        ones = one[: act.size]
+        code = flat[offs[kk] + yy * sides[kk] + xx]
+        iters[act] += 1
+        h = ar.from_unorm(code, pyr.bits)
+        plane = ar.sub(ones, h)
+        tx = crossing_time(ar, (xx + (sx > 0)) << kk, u0, ix, sx)
+        ty = crossing_time(ar, (yy + (sy > 0)) << kk, v0, iy, sy)
+        t_exit = np.minimum(tx, ty)
+        t_new = np.maximum(tt, plane)
+        inside = t_new < np.minimum(t_exit, tmap)
+        miss = ~inside & (tmap <= t_exit)
+        is_hit = inside & (kk == 0)
+        down = inside & (kk > 0)
+        cross = ~inside & ~miss
+
+        # Descent (policy): the new level, then the child holding the ray at t_new.
+        if m.descent == "one":
+            nk = kk - 1
+        elif m.descent == "multi":
+            nk = kk - np.where(~crossed[act] & (kk >= 2), 2, 1)
+        else:  # "xor": the lowest level whose node holds the rest of the ray inside this node
+            t_end = np.minimum(np.minimum(t_exit, tmap), ones)
+            lo, hi = xx << kk, ((xx + 1) << kk) - 1
+            a_x = np.clip(ar.to_index(np.where(sx != 0, position(ar, u0, du, t_new), u0)), lo, hi)
+            b_x = np.clip(ar.to_index(np.where(sx != 0, position(ar, u0, du, t_end), u0)), lo, hi)
+            lo, hi = yy << kk, ((yy + 1) << kk) - 1
+            a_y = np.clip(ar.to_index(np.where(sy != 0, position(ar, v0, dv, t_new), v0)), lo, hi)
+            b_y = np.clip(ar.to_index(np.where(sy != 0, position(ar, v0, dv, t_end), v0)), lo, hi)
+            step = np.where(~crossed[act] & (kk >= 2), 2, 1)  # at least the paper's (b)
+            nk = np.minimum(_bitlen(np.maximum(a_x ^ b_x, a_y ^ b_y)), kk - step)
+        nk = np.maximum(nk, 0)
+        d = kk - nk
+        dx = locate(ar, u0, du, ix, sx, t_new, nk, xx << d, ((xx + 1) << d) - 1)
+        dy = locate(ar, v0, dv, iy, sy, t_new, nk, yy << d, ((yy + 1) << d) - 1)
+
+        # Node crossing: step to the neighbour, then the level-up policy.
+        cross_x = cross & (tx == t_exit)
+        cross_y = cross & (ty == t_exit)
+        nx = xx + np.where(cross_x, sx, 0)
+        ny = yy + np.where(cross_y, sy, 0)
+        if m.level_up == "none":
+            up = np.zeros_like(cross)
+        else:
+            parent_changed = ((nx >> 1) != (xx >> 1)) | ((ny >> 1) != (yy >> 1))
+            if m.level_up == "drobot":
+                up = np.ones_like(cross)
+            elif m.level_up == "tevs":
+                up = parent_changed
+            elif m.level_up == "coherent":
+                up = parent_changed & prev_cross[act]
+            else:  # selective: stay when the plane is met in the very next node
+                p1x = ar.to_index(np.where(sx != 0, position(ar, u0, du, plane), u0)) >> kk
+                p1y = ar.to_index(np.where(sy != 0, position(ar, v0, dv, plane), v0)) >> kk
+                diff = np.maximum(np.abs(p1x - xx), np.abs(p1y - yy))
+                up = parent_changed & (diff != 1)
+            up = up & cross & (kk < n)
+
+        if record is not None and act.size and act[0] == 0:
+            action = ("hit" if is_hit[0] else "down" if down[0] else "miss" if miss[0] else
+                      "cross-up" if up[0] else "cross")
+            record.append({"iteration": int(iters[0]), "level": int(kk[0]), "cx": int(xx[0]),
+                           "cy": int(yy[0]), "t": float(tt[0]), "H": float(h[0]),
+                           "plane": float(plane[0]), "t_exit": float(t_exit[0]),
+                           "t_new": float(t_new[0]), "action": action})
+
+        # Commit the new state.
+        k[act] = np.where(down, nk, np.where(up, kk + 1, kk))
+        cx[act] = np.where(down, dx, np.where(up, nx >> 1, nx))
+        cy[act] = np.where(down, dy, np.where(up, ny >> 1, ny))
+        t[act] = np.where(down, t_new, np.where(cross, np.maximum(tt, t_exit), tt))
+        crossed[act] |= cross
+        prev_cross[act] = cross & ~up
+        hit[act] |= is_hit
+        hit_t[act] = np.where(is_hit, t_new, hit_t[act])
+        done = is_hit | miss | (iters[act] >= cap)
+        act = act[~done]
+
+    u = np.where(hit, position(ar, S.u0, S.du, np.nan_to_num(hit_t)), np.nan)
+    v = np.where(hit, position(ar, S.v0, S.dv, np.nan_to_num(hit_t)), np.nan)
+    res.t[vidx] = hit_t
+    res.u[vidx] = u
+    res.v[vidx] = v
+    res.hit[vidx] = hit
+    res.iterations[vidx] = iters
+    return res
