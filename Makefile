@@ -62,16 +62,36 @@ test-model: $(STAMP)
 test-rtl: $(STAMP)
 	@$(ENV) $(PY) -m pytest -n $(JOBS) -q -p no:cacheprovider tb
 
-# Long measurements.  Currently: the 10 M-vector soak of model/f24.py against MPFR.
+# Long measurements: model speed, the paper's study (out/study/), and the 10 M-vector soak of
+# model/f24.py against MPFR.
 bench: $(STAMP)
+	@$(ENV) $(PY) scripts/bench_model.py
+	@$(ENV) $(PY) scripts/render.py --scene rocks --angle oblique --method park --size 512 \
+	    --out out/bench/render512.png --stats out/bench/render512.json --quiet && \
+	    $(PY) -c "import json; d = json.load(open('out/bench/render512.json')); \
+	    print(f\"512x512 model render (park, f24, oblique): {d['seconds_total']:.2f} s wall\")"
+	@$(ENV) $(PY) scripts/study.py --out out/study
 	@$(ENV) F24_MODEL_VECTORS=10000000 $(PY) -m pytest -n $(JOBS) -q -p no:cacheprovider -s \
 	    tests/test_f24_model.py 2>&1 | grep -E "VECTORS|passed|failed|Error"
 
-# The render lands with the golden-model issue (model render) and the pipeline issue (RTL render).
+# The main job.  Until the pipeline RTL lands, this renders through the golden model only
+# (out/render_model.png, out/render_stats.json) and says so; SCENE, ANGLE, METHOD, SIZE select the
+# work, HEIGHTMAP (and TEXTURE) render a user's height map instead of a procedural scene.
+SCENE  ?= rocks
+ANGLE  ?= oblique
+METHOD ?= park
+SIZE   ?= 256
+ENGINE ?= f24
+HEIGHTMAP ?=
+TEXTURE   ?=
+RENDER_SRC = $(if $(HEIGHTMAP),--heightmap "$(HEIGHTMAP)" $(if $(TEXTURE),--texture "$(TEXTURE)"),--scene $(SCENE))
+
 render: $(STAMP)
-	@echo "make render: not available yet. The renderer arrives with the golden-model work;"; \
-	 echo "this tree holds the foundation (24-bit float units, model and tests): run 'make test'."; \
-	 exit 2
+	@mkdir -p out
+	@$(ENV) $(PY) scripts/render.py $(RENDER_SRC) --angle $(ANGLE) --method $(METHOD) \
+	    --size $(SIZE) --engine $(ENGINE) --out out/render_model.png --stats out/render_stats.json
+	@echo "make render: model render written to out/render_model.png and out/render_stats.json."
+	@echo "make render: the RTL render (out/render.png, identical-pixel check) arrives with the pipeline RTL."
 
 clean:
 	rm -rf build out sim_build results.xml

@@ -24,7 +24,11 @@ INDEX_W = 20
 
 
 class Arith:
-    """Operations of one engine; subclasses set :meth:`r` (the rounding after each operation)."""
+    """Operations of one engine; subclasses set :meth:`r` (the rounding after each operation).
+
+    NaN and Inf are ordinary values here (Inf - Inf = NaN by design): callers run the operations
+    under ``np.errstate(all="ignore")``.
+    """
 
     name = "abstract"
     index_lo = -(1 << 40)
@@ -34,20 +38,16 @@ class Arith:
         raise NotImplementedError
 
     def add(self, a: F64, b: F64) -> F64:
-        with np.errstate(invalid="ignore"):
-            return self.r(a + b)
+        return self.r(a + b)
 
     def sub(self, a: F64, b: F64) -> F64:
-        with np.errstate(invalid="ignore"):
-            return self.r(a - b)
+        return self.r(a - b)
 
     def mul(self, a: F64, b: F64) -> F64:
-        with np.errstate(invalid="ignore"):
-            return self.r(a * b)
+        return self.r(a * b)
 
     def div(self, a: F64, b: F64) -> F64:
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return self.r(a / b)
+        return self.r(a / b)
 
     def from_int(self, k: npt.ArrayLike) -> F64:
         return self.r(np.asarray(k, dtype=np.float64))
@@ -57,9 +57,8 @@ class Arith:
 
     def to_index(self, x: F64) -> I64:
         """floor(x), saturating (NaN gives 0), as int64."""
-        with np.errstate(invalid="ignore"):
-            f = np.floor(np.nan_to_num(x, nan=0.0, posinf=self.index_hi, neginf=self.index_lo))
-        return np.clip(f, self.index_lo, self.index_hi).astype(np.int64)
+        f = np.floor(np.clip(x, self.index_lo, self.index_hi))
+        return np.where(np.isnan(f), 0, f).astype(np.int64)
 
 
 class F64Arith(Arith):

@@ -61,15 +61,19 @@ def load(path: str | Path) -> F64:
     try:
         spec = inp.spec()
         native = spec.format.basetype
-        a = inp.read_image(0, 0, 0, 1, "float")  # first channel as float, normalised
+        is_float = native in (oiio.FLOAT, oiio.HALF, oiio.DOUBLE)
+        # Integer images are read in their own type (exact), floats as float.
+        a = inp.read_image(0, 0, 0, 1, "float" if is_float else spec.format)
     finally:
         inp.close()
-    if a is None or a.size == 0:
+    if a is None or np.size(a) == 0:
         raise HeightMapError(f"cannot read pixels of {p}")
-    a = np.asarray(a, dtype=np.float64).reshape(spec.height, spec.width, -1)[..., 0]
-    if native in (oiio.FLOAT, oiio.HALF, oiio.DOUBLE):
-        a = np.clip(np.nan_to_num(a, nan=0.0), 0.0, 1.0)
-    return a
+    a = np.asarray(a).reshape(spec.height, spec.width, -1)[..., 0]
+    if is_float:
+        return np.clip(np.nan_to_num(a.astype(np.float64), nan=0.0), 0.0, 1.0)
+    if not np.issubdtype(a.dtype, np.integer):
+        raise HeightMapError(f"{p}: unsupported pixel type {spec.format}")
+    return a.astype(np.float64) / float(np.iinfo(a.dtype).max)
 
 
 def quantize(h: F64, bits: int = 8) -> npt.NDArray[np.uint16]:

@@ -179,8 +179,13 @@ def trace(pyr: Pyramid, rays: Rays, method: str | Method = "park", engine: str |
     ``record``, when given, receives one dict per iteration of ray 0 (level, cell, t, H, action):
     the step-by-step trace that lines up with the RTL's waves.
     """
-    m = METHODS[method] if isinstance(method, str) else method
-    ar = ENGINES[engine] if isinstance(engine, str) else engine
+    with np.errstate(all="ignore"):  # Inf and NaN are values of the datapath, not errors
+        return _trace(pyr, rays, METHODS[method] if isinstance(method, str) else method,
+                      ENGINES[engine] if isinstance(engine, str) else engine, record)
+
+
+def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
+           record: list[dict[str, Any]] | None) -> TraceResult:
     if m.descent not in DESCENT_POLICIES or m.level_up not in LEVEL_UP_POLICIES:
         raise ValueError(f"bad method {m}")
     nrays = len(rays)
@@ -244,49 +249,70 @@ def trace(pyr: Pyramid, rays: Rays, method: str | Method = "park", engine: str |
         down = inside & (kk > 0)
         cross = ~inside & ~miss
 
-        # Descent (policy): the new level, then the child holding the ray at t_new.
-        if m.descent == "one":
-            nk = kk - 1
-        elif m.descent == "multi":
-            nk = kk - np.where(~crossed[act] & (kk >= 2), 2, 1)
-        else:  # "xor": the lowest level whose node holds the rest of the ray inside this node
-            t_end = np.minimum(np.minimum(t_exit, tmap), ones)
-            lo, hi = xx << kk, ((xx + 1) << kk) - 1
-            a_x = np.clip(ar.to_index(np.where(sx != 0, position(ar, u0, du, t_new), u0)), lo, hi)
-            b_x = np.clip(ar.to_index(np.where(sx != 0, position(ar, u0, du, t_end), u0)), lo, hi)
-            lo, hi = yy << kk, ((yy + 1) << kk) - 1
-            a_y = np.clip(ar.to_index(np.where(sy != 0, position(ar, v0, dv, t_new), v0)), lo, hi)
-            b_y = np.clip(ar.to_index(np.where(sy != 0, position(ar, v0, dv, t_end), v0)), lo, hi)
-            step = np.where(~crossed[act] & (kk >= 2), 2, 1)  # at least the paper's (b)
-            nk = np.minimum(_bitlen(np.maximum(a_x ^ b_x, a_y ^ b_y)), kk - step)
-        nk = np.maximum(nk, 0)
-        d = kk - nk
-        dx = locate(ar, u0, du, ix, sx, t_new, nk, xx << d, ((xx + 1) << d) - 1)
-        dy = locate(ar, v0, dv, iy, sy, t_new, nk, yy << d, ((yy + 1) << d) - 1)
+        # Descent (policy), for the rays that descend: the new level, then the child that holds
+        # the ray at t_new.
+        di = np.nonzero(down)[0]
+        if di.size:
+            dk, dxx, dyy, dt = kk[di], xx[di], yy[di], t_new[di]
+            du_, dv_, du0, dv0 = du[di], dv[di], u0[di], v0[di]
+            dix, diy, dsx, dsy = ix[di], iy[di], sx[di], sy[di]
+            if m.descent == "one":
+                nk = dk - 1
+            else:
+                step = np.where(~crossed[act[di]] & (dk >= 2), 2, 1)  # (b): two levels at first
+                nk = dk - step
+                if m.descent == "xor":  # down to the lowest node holding the rest of the ray here
+                    t_end = np.minimum(np.minimum(t_exit[di], tmap[di]), ones[: di.size])
+                    lo, hi = dxx << dk, ((dxx + 1) << dk) - 1
+                    a_x = np.clip(ar.to_index(np.where(dsx != 0, position(ar, du0, du_, dt), du0)), lo, hi)
+                    b_x = np.clip(ar.to_index(np.where(dsx != 0, position(ar, du0, du_, t_end), du0)), lo, hi)
+                    lo, hi = dyy << dk, ((dyy + 1) << dk) - 1
+                    a_y = np.clip(ar.to_index(np.where(dsy != 0, position(ar, dv0, dv_, dt), dv0)), lo, hi)
+                    b_y = np.clip(ar.to_index(np.where(dsy != 0, position(ar, dv0, dv_, t_end), dv0)), lo, hi)
+                    nk = np.minimum(_bitlen(np.maximum(a_x ^ b_x, a_y ^ b_y)), nk)
+            nk = np.maximum(nk, 0)
+            d = dk - nk
+            nxd = locate(ar, du0, du_, dix, dsx, dt, nk, dxx << d, ((dxx + 1) << d) - 1)
+            nyd = locate(ar, dv0, dv_, diy, dsy, dt, nk, dyy << d, ((dyy + 1) << d) - 1)
+            g = act[di]
+            k[g], cx[g], cy[g], t[g] = nk, nxd, nyd, dt
+            prev_cross[g] = False
 
-        # Node crossing: step to the neighbour, then the level-up policy.
-        cross_x = cross & (tx == t_exit)
-        cross_y = cross & (ty == t_exit)
-        nx = xx + np.where(cross_x, sx, 0)
-        ny = yy + np.where(cross_y, sy, 0)
-        if m.level_up == "none":
-            up = np.zeros_like(cross)
-        else:
-            parent_changed = ((nx >> 1) != (xx >> 1)) | ((ny >> 1) != (yy >> 1))
-            if m.level_up == "drobot":
-                up = np.ones_like(cross)
-            elif m.level_up == "tevs":
-                up = parent_changed
-            elif m.level_up == "coherent":
-                up = parent_changed & prev_cross[act]
-            else:  # selective: stay when the plane is met in the very next node
-                p1x = ar.to_index(np.where(sx != 0, position(ar, u0, du, plane), u0)) >> kk
-                p1y = ar.to_index(np.where(sy != 0, position(ar, v0, dv, plane), v0)) >> kk
-                diff = np.maximum(np.abs(p1x - xx), np.abs(p1y - yy))
-                up = parent_changed & (diff != 1)
-            up = up & cross & (kk < n)
+        # Node crossing, for the rays that cross: step to the neighbour, then the level-up policy.
+        ci = np.nonzero(cross)[0]
+        up = np.zeros(act.size, dtype=bool)
+        if ci.size:
+            ck, cxx, cyy, csx, csy = kk[ci], xx[ci], yy[ci], sx[ci], sy[ci]
+            te = t_exit[ci]
+            nx = cxx + np.where(tx[ci] == te, csx, 0)
+            ny = cyy + np.where(ty[ci] == te, csy, 0)
+            if m.level_up == "none":
+                cup = np.zeros(ci.size, dtype=bool)
+            else:
+                parent_changed = ((nx >> 1) != (cxx >> 1)) | ((ny >> 1) != (cyy >> 1))
+                if m.level_up == "drobot":
+                    cup = np.ones(ci.size, dtype=bool)
+                elif m.level_up == "tevs":
+                    cup = parent_changed
+                elif m.level_up == "coherent":
+                    cup = parent_changed & prev_cross[act[ci]]
+                else:  # selective: stay when the plane is met in the very next node
+                    cpl = plane[ci]
+                    p1x = ar.to_index(np.where(csx != 0, position(ar, u0[ci], du[ci], cpl), u0[ci])) >> ck
+                    p1y = ar.to_index(np.where(csy != 0, position(ar, v0[ci], dv[ci], cpl), v0[ci])) >> ck
+                    diff = np.maximum(np.abs(p1x - cxx), np.abs(p1y - cyy))
+                    cup = parent_changed & (diff != 1)
+                cup &= ck < n
+            up[ci] = cup
+            g = act[ci]
+            k[g] = ck + cup
+            cx[g] = np.where(cup, nx >> 1, nx)
+            cy[g] = np.where(cup, ny >> 1, ny)
+            t[g] = np.maximum(tt[ci], te)
+            crossed[g] = True
+            prev_cross[g] = ~cup
 
-        if record is not None and act.size and act[0] == 0:
+        if record is not None and act[0] == 0:
             action = ("hit" if is_hit[0] else "down" if down[0] else "miss" if miss[0] else
                       "cross-up" if up[0] else "cross")
             record.append({"iteration": int(iters[0]), "level": int(kk[0]), "cx": int(xx[0]),
@@ -294,13 +320,6 @@ def trace(pyr: Pyramid, rays: Rays, method: str | Method = "park", engine: str |
                            "plane": float(plane[0]), "t_exit": float(t_exit[0]),
                            "t_new": float(t_new[0]), "action": action})
 
-        # Commit the new state.
-        k[act] = np.where(down, nk, np.where(up, kk + 1, kk))
-        cx[act] = np.where(down, dx, np.where(up, nx >> 1, nx))
-        cy[act] = np.where(down, dy, np.where(up, ny >> 1, ny))
-        t[act] = np.where(down, t_new, np.where(cross, np.maximum(tt, t_exit), tt))
-        crossed[act] |= cross
-        prev_cross[act] = cross & ~up
         hit[act] |= is_hit
         hit_t[act] = np.where(is_hit, t_new, hit_t[act])
         done = is_hit | miss | (iters[act] >= cap)

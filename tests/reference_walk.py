@@ -16,6 +16,11 @@ from model.traverse import crossing_time, setup
 
 
 def walk(pyr: Pyramid, rays: Rays, engine: str = "f64") -> TraceResult:
+    with np.errstate(all="ignore"):
+        return _walk(pyr, rays, engine)
+
+
+def _walk(pyr: Pyramid, rays: Rays, engine: str) -> TraceResult:
     ar = ENGINES[engine]
     res = TraceResult.empty(len(rays))
     invalid, S = setup(pyr, rays, ar)
