@@ -61,6 +61,7 @@ class Method:
     descent: str = "one"  # "one" | "multi" (b: two levels until the first crossing) | "xor"
     level_up: str = "none"  # "none" | "tevs" | "drobot" | "selective" (c1) | "coherent" (c2)
     clip: bool = False  # start below the root's plane (1 - H_root) before the start decision
+    descent_levels: int = 2  # (b): levels per descent before the first crossing ("multi", "xor")
     doc: str = ""
 
 
@@ -77,9 +78,11 @@ METHODS: dict[str, Method] = {m.name: m for m in (
     Method("park-gpu", start_level=True, descent="multi", level_up="coherent",
            doc="a + b + c2: the GPU variant"),
     Method("park-xor", start_level=True, descent="xor", level_up="selective", clip=True,
+           descent_levels=3,
            doc="beyond the paper: every descent goes straight to the lowest level whose node "
-               "holds the rest of the ray inside the current node (XOR of its two ends), and the "
-               "start is clipped to the root's plane"),
+               "holds the rest of the ray inside the current node (XOR of its two ends), at least "
+               "three levels until the first crossing, and the start is clipped to the root's "
+               "plane"),
 )}
 
 #: Method names of CONVENTIONS plus ours; the hardware implements all of them.
@@ -173,19 +176,23 @@ def _flat_levels(pyr: Pyramid) -> tuple[npt.NDArray[np.int64], I64]:
 
 
 def trace(pyr: Pyramid, rays: Rays, method: str | Method = "park", engine: str | Arith = "f64",
-          record: list[dict[str, Any]] | None = None) -> TraceResult:
+          record: list[dict[str, Any]] | None = None,
+          stats: dict[str, int] | None = None) -> TraceResult:
     """Trace rays through the pyramid with an exact method on an engine (``f64`` or ``f24``).
 
     ``record``, when given, receives one dict per iteration of ray 0 (level, cell, t, H, action):
-    the step-by-step trace that lines up with the RTL's waves.
+    the step-by-step trace that lines up with the RTL's waves.  ``stats``, when given, gets the
+    counts of what the iterations did: ``down``, ``cross``, ``hit``, ``miss`` (one per iteration,
+    so they sum to the iterations) and ``up`` (the crossings that also went up a level).
     """
     with np.errstate(all="ignore"):  # Inf and NaN are values of the datapath, not errors
         return _trace(pyr, rays, METHODS[method] if isinstance(method, str) else method,
-                      ENGINES[engine] if isinstance(engine, str) else engine, record)
+                      ENGINES[engine] if isinstance(engine, str) else engine, record, stats)
 
 
 def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
-           record: list[dict[str, Any]] | None) -> TraceResult:
+           record: list[dict[str, Any]] | None,
+           stats: dict[str, int] | None) -> TraceResult:
     if m.descent not in DESCENT_POLICIES or m.level_up not in LEVEL_UP_POLICIES:
         raise ValueError(f"bad method {m}")
     nrays = len(rays)
@@ -259,7 +266,7 @@ def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
             if m.descent == "one":
                 nk = dk - 1
             else:
-                step = np.where(~crossed[act[di]] & (dk >= 2), 2, 1)  # (b): two levels at first
+                step = np.where(crossed[act[di]], 1, np.minimum(m.descent_levels, dk))  # (b)
                 nk = dk - step
                 if m.descent == "xor":  # down to the lowest node holding the rest of the ray here
                     t_end = np.minimum(np.minimum(t_exit[di], tmap[di]), ones[: di.size])
@@ -319,6 +326,11 @@ def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
                            "cy": int(yy[0]), "t": float(tt[0]), "H": float(h[0]),
                            "plane": float(plane[0]), "t_exit": float(t_exit[0]),
                            "t_new": float(t_new[0]), "action": action})
+
+        if stats is not None:
+            for key, cnt in (("down", di.size), ("cross", ci.size), ("up", int(up.sum())),
+                             ("hit", int(is_hit.sum())), ("miss", int(miss.sum()))):
+                stats[key] = stats.get(key, 0) + cnt
 
         hit[act] |= is_hit
         hit_t[act] = np.where(is_hit, t_new, hit_t[act])
