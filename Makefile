@@ -71,8 +71,10 @@ bench: $(STAMP)
 	    $(PY) -c "import json; d = json.load(open('out/bench/render512.json')); \
 	    print(f\"512x512 model render (park, f24, oblique): {d['seconds_total']:.2f} s wall\")"
 	@$(ENV) $(PY) scripts/study.py --out out/study
-	@$(ENV) F24_MODEL_VECTORS=10000000 $(PY) -m pytest -n $(JOBS) -q -p no:cacheprovider -s \
-	    tests/test_f24_model.py 2>&1 | grep -E "VECTORS|passed|failed|Error"
+	@rm -rf build/bench_vectors
+	@$(ENV) F24_MODEL_VECTORS=10000000 VECTOR_LOG=build/bench_vectors $(PY) -m pytest -n $(JOBS) \
+	    -q -p no:cacheprovider tests/test_f24_model.py
+	@$(PY) scripts/vector_summary.py --dir build/bench_vectors
 
 # The main job.  Until the pipeline RTL lands, this renders through the golden model only
 # (out/render_model.png, out/render_stats.json) and says so; SCENE, ANGLE, METHOD, SIZE select the
