@@ -47,11 +47,11 @@ $(STAMP): requirements.txt
 lint: $(STAMP)
 	@$(ENV) $(PY) scripts/lint.py
 
-# The whole regression: lint, then the model and cocotb tests in parallel (pytest-xdist), then the
-# table of vectors checked.  Exit status is non-zero when anything failed.
+# The whole regression: lint, a quick Yosys elaboration of every module, then the model and cocotb
+# tests in parallel (pytest-xdist), then the table of vectors checked.  Exit status is non-zero when anything failed.
 test: $(STAMP)
 	@start=$$(date +%s); rm -rf build/vectors; \
-	$(ENV) $(PY) scripts/lint.py && \
+	$(ENV) $(PY) scripts/lint.py && $(PY) scripts/synth_check.py && \
 	$(PY) -m pytest -n $(JOBS) --dist loadgroup -q -p no:cacheprovider tests tb; rc=$$?; \
 	$(PY) scripts/vector_summary.py --json build/vectors.json || rc=1; \
 	echo "make test: wall time $$(( $$(date +%s) - start )) s"; exit $$rc
