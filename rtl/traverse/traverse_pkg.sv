@@ -1,0 +1,218 @@
+// traverse_pkg: types, method decoding and float comparisons of the traverse unit.
+//
+// The traverse unit computes exactly model/traverse.py::_trace with the f24 engine (hit, t, u, v,
+// invalid, iterations, bit for bit).  This package holds what its two modes share:
+//   - the method codes (index in model.traverse.EXACT_METHODS) and their decoding into the policy
+//     bits of model.traverse.Method (start level, descent, level-up, clip);
+//   - the ray record that re-circulates in the loop (per-ray constants of the first mode and the
+//     traversal state of the second);
+//   - comparisons, min and max of f24 words with the model's (numpy float64) semantics.
+package traverse_pkg;
+
+  import f24_pkg::*;
+
+  // A package's constants serve several modules; not every module uses all of them.
+  /* verilator lint_off UNUSEDPARAM */
+  localparam int unsigned IDX_W      = 20;  // f24_to_index width: model.arith.INDEX_W
+  localparam int unsigned LVL_W      = 4;   // pyramid levels 0 .. 15
+  localparam int unsigned MAX_LEVELS = 16;  // level offsets held by the configuration
+  localparam int unsigned CELL_W     = 16;  // a cell index at any level: 0 .. 2^15 - 1
+  localparam int unsigned DIM_W      = 16;  // map width / height (at most 2^15)
+  localparam int unsigned ITER_W     = 16;  // iteration counter and cap
+  localparam int unsigned ADDR_W     = 32;  // byte address of a height lookup
+  localparam int unsigned CODE_W     = 16;  // a height code (unorm8 in the low byte, or unorm16)
+  localparam int unsigned LOOKUP_LAT = 2;   // clocks from lk_valid_o to rs_valid_i
+
+  localparam f24_t F24_POS_ZERO = 24'h000000;
+  localparam f24_t F24_SIGN     = 24'h800000;
+  /* verilator lint_on UNUSEDPARAM */
+
+  // ---- methods (model.traverse.METHOD_CODES) ------------------------------------------------
+  typedef enum logic [3:0] {
+    M_OH          = 4'd0,
+    M_TEVS        = 4'd1,
+    M_DROBOT      = 4'd2,
+    M_START_LEVEL = 4'd3,
+    M_MULTI_DOWN  = 4'd4,
+    M_SELECTIVE   = 4'd5,
+    M_COHERENT    = 4'd6,
+    M_PARK        = 4'd7,
+    M_PARK_GPU    = 4'd8,
+    M_PARK_XOR    = 4'd9
+  } method_e;
+
+  typedef enum logic [1:0] {
+    DESC_ONE   = 2'd0,  // one level per descent
+    DESC_MULTI = 2'd1,  // (b) `levels` levels per descent until the first crossing, then one
+    DESC_XOR   = 2'd2   // as multi, or lower: the lowest node holding the rest of the ray (XOR)
+  } descent_e;
+
+  typedef enum logic [2:0] {
+    UP_NONE      = 3'd0,
+    UP_TEVS      = 3'd1,  // level up when the parent changes
+    UP_DROBOT    = 3'd2,  // level up on every crossing
+    UP_SELECTIVE = 3'd3,  // (c1) tevs, but stay when the plane is met in the very next node
+    UP_COHERENT  = 3'd4   // (c2) tevs, only after two consecutive crossings at one level
+  } level_up_e;
+
+  typedef struct packed {
+    logic      start_level;  // (a) start level by XOR / leading zeros
+    descent_e  descent;
+    logic [1:0] levels;      // (b) levels per descent until the first crossing (multi, xor)
+    level_up_e level_up;
+    logic      clip;         // start at the root's plane 1 - H_root
+  } policy_t;
+
+  // model.traverse.METHODS, field by field (model/traverse_rtl.py holds the same table, and the
+  // traverse_unit test checks it against the model).  Codes above 9 decode as oh.
+  function automatic policy_t decode_method(input logic [3:0] code);
+    policy_t p;
+    p = '{start_level: 1'b0, descent: DESC_ONE, levels: 2'd2, level_up: UP_NONE, clip: 1'b0};
+    case (code)
+      M_TEVS:        p.level_up = UP_TEVS;
+      M_DROBOT:      p.level_up = UP_DROBOT;
+      M_START_LEVEL: p.start_level = 1'b1;
+      M_MULTI_DOWN:  p.descent = DESC_MULTI;
+      M_SELECTIVE:   p.level_up = UP_SELECTIVE;
+      M_COHERENT:    p.level_up = UP_COHERENT;
+      M_PARK:        p = '{start_level: 1'b1, descent: DESC_MULTI, levels: 2'd2,
+                           level_up: UP_SELECTIVE, clip: 1'b0};
+      M_PARK_GPU:    p = '{start_level: 1'b1, descent: DESC_MULTI, levels: 2'd2,
+                           level_up: UP_COHERENT, clip: 1'b0};
+      M_PARK_XOR:    p = '{start_level: 1'b1, descent: DESC_XOR, levels: 2'd3,
+                           level_up: UP_SELECTIVE, clip: 1'b1};
+      default:       ;
+    endcase
+    return p;
+  endfunction
+
+  // ---- configuration (static while rays are in the unit) -------------------------------------
+  typedef struct packed {
+    policy_t                             policy;
+    logic [DIM_W-1:0]                    width;      // map width W (level-0 texels)
+    logic [DIM_W-1:0]                    height;     // map height H
+    logic [LVL_W-1:0]                    n;          // root level: N = 2^n >= max(W, H)
+    logic                                bits16;     // 1: unorm16 heights (2 bytes), 0: unorm8
+    logic [ADDR_W-1:0]                   base;       // byte address of level 0
+    logic [MAX_LEVELS-1:0][ADDR_W-1:0]   level_off;  // byte offset of level k from base
+    logic [CODE_W-1:0]                   root_code;  // the root texel's code (clip start)
+    logic [ITER_W-1:0]                   iter_cap;   // model.traverse.iteration_cap(pyr)
+  } cfg_t;
+
+  // ---- the ray record ------------------------------------------------------------------------
+  // Direction of motion along one axis: sx of the model (+1, -1, or 0 = no crossing on this axis).
+  typedef struct packed {
+    logic mv;   // the axis moves (du != 0 and 1/du finite)
+    logic neg;  // ... towards -u (only meaningful when mv)
+  } dir_t;
+
+  // One ray: what setup computes once, and the state of the iterative search.  When the ray is
+  // done with a hit, t holds the hit time and u0 / v0 hold the hit position u / v (the constants
+  // are no longer needed then): the result record is read straight from the ray.
+  typedef struct packed {
+    // per-ray constants (first mode)
+    f24_t u0, v0, du, dv;
+    f24_t inv_du, inv_dv;              // 1 / du, 1 / dv
+    dir_t sx, sy;
+    f24_t t_map;                       // time of leaving the map's extent
+    // traversal state (second mode)
+    logic [LVL_W-1:0]  k;              // level
+    logic [CELL_W-1:0] cx, cy;         // cell at level k
+    f24_t              t;              // time the ray is at (hit time once done with a hit)
+    logic              crossed;        // has crossed a node (multi-level descent stops)
+    logic              prev_cross;     // the last iteration was a crossing without level-up
+    logic [ITER_W-1:0] iters;          // height reads that returned data
+    // status
+    logic done;                        // finished: waits for the result FIFO
+    logic hit;
+    logic invalid;                     // NaN / Inf field or start outside the map
+    logic capped;                      // stopped by the iteration cap (no hit, no miss)
+    logic err;                         // a height read returned an error
+  } ray_t;
+
+  // What leaves the unit for one ray (besides its id).  t, u, v are meaningful only with hit.
+  typedef struct packed {
+    f24_t              t, u, v;
+    logic              hit, invalid, capped, err;
+    logic [ITER_W-1:0] iters;
+  } result_t;
+
+  // The functions below read only the fields / bits they need.
+  /* verilator lint_off UNUSEDSIGNAL */
+  function automatic result_t ray_result(input ray_t r);
+    return '{t: r.t, u: r.u0, v: r.v0, hit: r.hit, invalid: r.invalid, capped: r.capped,
+             err: r.err, iters: r.iters};
+  endfunction
+
+  // ---- f24 comparisons with float semantics (NaN compares false, -0 == +0) -------------------
+  // Bit-identical to f24_cmp: an order-preserving key with all zeros mapped to one key.
+  function automatic logic f24_is_nan(input f24_t x);
+    return (x[22:16] == EXP_SPEC) && (x[15:0] != 16'd0);
+  endfunction
+
+  function automatic logic f24_is_zero(input f24_t x);
+    return x[22:16] == 7'd0;
+  endfunction
+
+  function automatic logic f24_is_finite(input f24_t x);
+    return x[22:16] != EXP_SPEC;
+  endfunction
+
+  function automatic logic [23:0] f24_key(input f24_t x);
+    if (f24_is_zero(x)) return 24'h800000;
+    return x[23] ? (24'h800000 - {1'b0, x[22:0]}) : (24'h800000 + {1'b0, x[22:0]});
+  endfunction
+
+  function automatic logic f24_lt(input f24_t a, input f24_t b);
+    return !f24_is_nan(a) && !f24_is_nan(b) && (f24_key(a) < f24_key(b));
+  endfunction
+
+  function automatic logic f24_le(input f24_t a, input f24_t b);
+    return !f24_is_nan(a) && !f24_is_nan(b) && (f24_key(a) <= f24_key(b));
+  endfunction
+
+  function automatic logic f24_eq(input f24_t a, input f24_t b);
+    return !f24_is_nan(a) && !f24_is_nan(b) && (f24_key(a) == f24_key(b));
+  endfunction
+
+  // numpy.minimum / numpy.maximum on float64 (what the model uses): a NaN operand gives NaN, and
+  // equal operands (+0 and -0 in particular) give the second one.
+  function automatic f24_t f24_min(input f24_t a, input f24_t b);
+    return (f24_is_nan(a) || f24_lt(a, b)) ? a : b;
+  endfunction
+
+  function automatic f24_t f24_max(input f24_t a, input f24_t b);
+    return (f24_is_nan(a) || f24_lt(b, a)) ? a : b;
+  endfunction
+
+  function automatic f24_t f24_neg(input f24_t a);
+    return a ^ F24_SIGN;
+  endfunction
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  // ---- integer helpers -----------------------------------------------------------------------
+  // Number of significant bits of a non-negative value (0 -> 0): "levels minus leading zeros".
+  function automatic logic [4:0] bitlen16(input logic [15:0] x);
+    logic [4:0] r;
+    r = 5'd0;
+    for (int i = 0; i < 16; i++) begin
+      if (x[i]) r = 5'(i + 1);
+    end
+    return r;
+  endfunction
+
+  typedef logic signed [IDX_W+1:0] sidx_t;  // signed texel / cell arithmetic (22 bits)
+
+  function automatic sidx_t clip_idx(input sidx_t x, input sidx_t lo, input sidx_t hi);
+    if (x < lo) return lo;
+    if (x > hi) return hi;
+    return x;
+  endfunction
+
+  // s of the model as an integer: +1, -1 or 0.
+  function automatic sidx_t dir_val(input dir_t s);
+    if (!s.mv) return '0;
+    return s.neg ? -sidx_t'(1) : sidx_t'(1);
+  endfunction
+
+endpackage

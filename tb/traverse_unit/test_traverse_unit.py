@@ -1,0 +1,334 @@
+"""traverse_unit against model.traverse.trace(pyr, rays, method, "f24"), bit for bit.
+
+Harness (tb_traverse_unit.sv): the unit with height_rom on its lookup port (fixed latency 2,
+random misses from an LFSR).  For every map (1x1 .. 100x128, unorm8 and unorm16, rough / flat /
+spiky heights) and every method code, random + adversarial rays (tests/test_traverse.py) are
+streamed in with random valid gaps and the results drained with random back-pressure; every ray id
+must come back exactly once with the model's hit, invalid, iterations and (for hits) t, u, v words.
+The statistics counters are checked against the model's per-action counts.  A last run measures
+clocks per iteration with an always-hit memory and no back-pressure.
+
+Environment: SEED, TRAVERSE_RAYS (rays per map and method, default 200), WAVES=1.
+"""
+from __future__ import annotations
+
+import dataclasses
+import os
+import random
+import sys
+from pathlib import Path
+
+import cocotb
+import numpy as np
+from cocotb.clock import Clock
+from cocotb.triggers import ClockCycles, FallingEdge, RisingEdge
+
+from model import heightmap, traverse, traverse_rtl
+from model.traverse import EXACT_METHODS
+from tb.common import report, runner
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(runner.ROOT / "tests"))
+from test_traverse import adversarial_rays, height_field  # noqa: E402
+
+ROM_AW = 18
+ROM_BASE = 0x4000_0000
+#: (height, width, unorm bits, height-field kind)
+MAPS = [(1, 1, 8, 0), (2, 2, 8, 0), (7, 5, 16, 0), (16, 16, 8, 2), (37, 61, 8, 0),
+        (17, 64, 16, 0), (64, 64, 16, 1), (64, 64, 8, 2), (100, 128, 16, 2)]
+
+
+def seed() -> int:
+    s = int(os.environ.get("SEED", random.randrange(1 << 31)))
+    cocotb.log.info("SEED=%d", s)
+    return s
+
+
+class Harness:
+    def __init__(self, dut):
+        self.dut = dut
+        self.clk = dut.clk_i
+        self.s = {name: getattr(dut, name) for name in (
+            "ray_valid_i", "ray_ready_o", "ray_id_i", "ray_u0_i", "ray_v0_i", "ray_du_i", "ray_dv_i",
+            "res_valid_o", "res_ready_i", "res_id_o", "res_t_o", "res_u_o", "res_v_o", "res_hit_o",
+            "res_invalid_o", "res_capped_o", "res_err_o", "res_iters_o", "idle_o")}
+
+    async def reset(self):
+        d = self.dut
+        cocotb.start_soon(Clock(self.clk, 10, unit="ns").start())
+        d.rst_ni.value = 0
+        d.ray_valid_i.value = 0
+        d.res_ready_i.value = 0
+        d.wr_en_i.value = 0
+        d.miss_thresh_i.value = 0
+        d.rom_base_i.value = ROM_BASE
+        await ClockCycles(self.clk, 4)
+        await FallingEdge(self.clk)
+        d.rst_ni.value = 1
+
+    async def load(self, pyr: heightmap.Pyramid):
+        img = pyr.memory_image()
+        img += bytes(-len(img) % 4)
+        words = np.frombuffer(img, dtype="<u4")
+        assert len(img) <= 1 << ROM_AW
+        d = self.dut
+        await FallingEdge(self.clk)
+        d.wr_en_i.value = 1
+        for a, w in enumerate(words):
+            d.wr_addr_i.value = a
+            d.wr_data_i.value = int(w)
+            await FallingEdge(self.clk)
+        d.wr_en_i.value = 0
+
+    async def configure(self, cfg: traverse_rtl.Config):
+        await FallingEdge(self.clk)
+        assert int(self.s["idle_o"].value) == 1, "configuration change while rays are in the unit"
+        for name, val in cfg.ports().items():
+            getattr(self.dut, name).value = val
+        await ClockCycles(self.clk, 6)   # the clip start time needs 4 clocks
+        await FallingEdge(self.clk)
+
+    def stats(self) -> dict[str, int]:
+        return {k: int(getattr(self.dut, f"stat_{k}_o").value) for k in (
+            "cycles", "rays_in", "rays_out", "iters", "lookups", "crossings", "level_ups",
+            "descents")}
+
+    async def run(self, words, rng: np.random.Generator, valid_p: float, ready_p: float,
+                  max_cycles: int) -> tuple[dict[int, tuple], int]:
+        """Stream rays (id = index) in, collect results; returns {id: result} and the clocks used."""
+        s = self.s
+        u0, v0, du, dv = ([int(x) for x in w] for w in words)
+        n = len(u0)
+        got: dict[int, tuple] = {}
+        dups = []
+        nxt = 0
+        presenting = False
+        vr = rng.random(max_cycles + 1) < valid_p
+        rr = rng.random(max_cycles + 1) < ready_p
+        cyc = 0
+        # We are at a falling edge: outputs show the state after the last rising edge.
+        while len(got) < n:
+            if cyc >= max_cycles:
+                raise AssertionError(f"timeout: {len(got)} of {n} results after {cyc} clocks")
+            # ray stream
+            if not presenting and nxt < n and vr[cyc]:
+                s["ray_id_i"].value = nxt
+                s["ray_u0_i"].value = u0[nxt]
+                s["ray_v0_i"].value = v0[nxt]
+                s["ray_du_i"].value = du[nxt]
+                s["ray_dv_i"].value = dv[nxt]
+                s["ray_valid_i"].value = 1
+                presenting = True
+            if presenting and int(s["ray_ready_o"].value):
+                nxt += 1          # transferred at the coming rising edge
+                presenting = False
+                fire_in = True
+            else:
+                fire_in = False
+            # result stream
+            ready = bool(rr[cyc])
+            s["res_ready_i"].value = int(ready)
+            if ready and int(s["res_valid_o"].value):
+                rid = int(s["res_id_o"].value)
+                rec = tuple(int(s[k].value) for k in (
+                    "res_t_o", "res_u_o", "res_v_o", "res_hit_o", "res_invalid_o", "res_capped_o",
+                    "res_err_o", "res_iters_o"))
+                if rid in got:
+                    dups.append(rid)
+                got[rid] = rec
+            await RisingEdge(self.clk)
+            cyc += 1
+            await FallingEdge(self.clk)
+            if fire_in and not presenting:
+                s["ray_valid_i"].value = 0
+        s["ray_valid_i"].value = 0
+        s["res_ready_i"].value = 0
+        assert not dups, f"ray ids returned twice: {dups[:10]}"
+        return got, cyc
+
+
+def compare(name: str, got: dict[int, tuple], exp: traverse_rtl.ExpectedWords, cap: int,
+            log) -> int:
+    n = len(exp.hit)
+    bad = []
+    for i in range(n):
+        if i not in got:
+            bad.append(f"ray {i}: no result")
+            continue
+        t, u, v, hit, inv, capped, err, iters = got[i]
+        e_hit, e_inv, e_it = bool(exp.hit[i]), bool(exp.invalid[i]), int(exp.iterations[i])
+        why = []
+        if bool(hit) != e_hit:
+            why.append(f"hit {hit} != {int(e_hit)}")
+        if bool(inv) != e_inv:
+            why.append(f"invalid {inv} != {int(e_inv)}")
+        if iters != e_it:
+            why.append(f"iterations {iters} != {e_it}")
+        if err:
+            why.append("err")
+        if capped and (hit or iters != cap):
+            why.append(f"capped with hit={hit} iterations={iters}")
+        if e_hit and hit:
+            for nm, g, e in (("t", t, exp.t[i]), ("u", u, exp.u[i]), ("v", v, exp.v[i])):
+                if g != int(e):
+                    why.append(f"{nm} 0x{g:06x} != 0x{int(e):06x}")
+        if why:
+            bad.append(f"ray {i}: " + ", ".join(why))
+    for b in bad[:10]:
+        log.error("%s: %s", name, b)
+    return len(bad)
+
+
+def dump(name: str, pyr: heightmap.Pyramid, rays, method: str, got: dict[int, tuple]) -> None:
+    """Save a failing case (map codes, rays, method, RTL results) for offline debugging."""
+    d = runner.BUILD / "tb_traverse_unit" / "failures"
+    d.mkdir(parents=True, exist_ok=True)
+    ids = sorted(got)
+    f = d / (name.split(" miss")[0].replace(" ", "_") + ".npz")
+    np.savez(f, codes=pyr.codes, bits=pyr.bits, method=method,
+             rays=np.stack([rays.u0, rays.v0, rays.du, rays.dv], axis=1),
+             ids=np.array(ids), got=np.array([got[i] for i in ids], dtype=np.int64))
+    cocotb.log.info("saved %s", f)
+
+
+@cocotb.test()
+async def traverse_bit_exact(dut):
+    rng = np.random.default_rng(seed())
+    nrays = int(os.environ.get("TRAVERSE_RAYS", "200"))
+    h = Harness(dut)
+    await h.reset()
+    total = mism = 0
+    failures = []
+    for case, (hh, ww, bits, kind) in enumerate(MAPS):
+        pyr = heightmap.build(height_field(rng, hh, ww, kind), bits)
+        await h.load(pyr)
+        rays = adversarial_rays(rng, ww, hh, nrays)
+        words = traverse_rtl.ray_words(rays)
+        for mi, method in enumerate(EXACT_METHODS):
+            cfg = traverse_rtl.config(pyr, method, base=ROM_BASE)
+            await h.configure(cfg)
+            # Alternate the stress: cache misses and result back-pressure on most runs.
+            miss = [0, 0x2000, 0x6000][(case + mi) % 3]
+            dut.miss_thresh_i.value = miss
+            ready_p = [1.0, 0.5, 0.15][(case + 2 * mi) % 3]
+            valid_p = [1.0, 0.7][mi % 2]
+            st: dict[str, int] = {}
+            res = traverse.trace(pyr, rays, method, "f24", stats=st)
+            exp = traverse_rtl.expected_words(res)
+            before = h.stats()
+            got, cyc = await h.run(words, rng, valid_p, ready_p,
+                                   max_cycles=200 * nrays + 20 * int(res.iterations.sum()) + 10000)
+            after = h.stats()
+            d = {k: after[k] - before[k] for k in after}
+            name = f"{hh}x{ww} u{bits} kind{kind} {method} miss={miss / 65536:.2f} ready={ready_p}"
+            nbad = compare(name, got, exp, cfg.iter_cap, dut._log)
+            if nbad:
+                dump(name, pyr, rays, method, got)
+            sbad = []
+            want = {"rays_in": len(rays), "rays_out": len(rays),
+                    "iters": int(res.iterations.sum()), "descents": st.get("down", 0),
+                    "crossings": st.get("cross", 0), "level_ups": st.get("up", 0)}
+            for k, v in want.items():
+                if d[k] != v:
+                    sbad.append(f"stat {k} {d[k]} != {v}")
+            if d["lookups"] < d["iters"] or (miss == 0 and d["lookups"] != d["iters"]):
+                sbad.append(f"stat lookups {d['lookups']} vs iterations {d['iters']}")
+            dut._log.info("%-55s %5d rays, %6d iterations, %7d clocks, %d mismatches%s", name,
+                          len(rays), d["iters"], cyc, nbad, (" " + "; ".join(sbad)) if sbad else "")
+            total += len(rays)
+            mism += nbad
+            if nbad or sbad:
+                failures.append(name)
+    report.record("traverse_unit", "rays vs model f24", total, mism)
+    dut._log.info("VECTORS traverse_unit: %d rays, %d mismatches", total, mism)
+    assert not failures, f"mismatches in: {failures}"
+
+
+@cocotb.test()
+async def traverse_iteration_cap(dut):
+    """A small iteration cap (the model's cap patched to match): capped rays stop bit-exactly."""
+    rng = np.random.default_rng(seed())
+    h = Harness(dut)
+    await h.reset()
+    pyr = heightmap.build(height_field(rng, 37, 61, 2), 8)
+    await h.load(pyr)
+    rays = adversarial_rays(rng, 61, 37, 300)
+    total = bad = capped = 0
+    orig = traverse.iteration_cap
+    for cap, method in ((3, "oh"), (5, "park"), (8, "drobot"), (4, "park-xor")):
+        traverse.iteration_cap = lambda _pyr, c=cap: c
+        try:
+            res = traverse.trace(pyr, rays, method, "f24")
+        finally:
+            traverse.iteration_cap = orig
+        cfg = dataclasses.replace(traverse_rtl.config(pyr, method, base=ROM_BASE), iter_cap=cap)
+        await h.configure(cfg)
+        dut.miss_thresh_i.value = 0x3000
+        got, _ = await h.run(traverse_rtl.ray_words(rays), rng, 0.8, 0.5, 200000)
+        name = f"cap {cap} {method}"
+        bad += compare(name, got, traverse_rtl.expected_words(res), cap, dut._log)
+        capped += sum(r[5] for r in got.values())
+        total += len(rays)
+    report.record("traverse_unit", "rays vs model f24, small iteration cap", total, bad)
+    dut._log.info("iteration cap: %d rays, %d capped, %d mismatches", total, capped, bad)
+    assert bad == 0 and capped > 0
+
+
+@cocotb.test()
+async def traverse_read_errors(dut):
+    """Lookups outside the memory answer rs_err: every ray that reads finishes with res_err_o."""
+    rng = np.random.default_rng(seed())
+    h = Harness(dut)
+    await h.reset()
+    pyr = heightmap.build(height_field(rng, 16, 16, 0), 8)
+    await h.load(pyr)
+    rays = adversarial_rays(rng, 16, 16, 200)
+    cfg = traverse_rtl.config(pyr, "park", base=ROM_BASE + (1 << ROM_AW))  # outside the ROM
+    await h.configure(cfg)
+    res = traverse.trace(pyr, rays, "park", "f24")
+    got, _ = await h.run(traverse_rtl.ray_words(rays), rng, 1.0, 0.5, 100000)
+    bad = 0
+    for i in range(len(rays)):
+        t, u, v, hit, inv, capped, err, iters = got[i]
+        reads = res.iterations[i] > 0
+        if err != int(reads) or hit or iters != 0 or inv != int(res.invalid[i]) or capped:
+            bad += 1
+    report.record("traverse_unit", "read errors", len(rays), bad)
+    assert bad == 0, f"{bad} rays with a wrong error result"
+
+
+@cocotb.test()
+async def traverse_throughput(dut):
+    """Clocks per iteration with an always-hit memory, rays always offered, results always taken."""
+    rng = np.random.default_rng(seed())
+    h = Harness(dut)
+    await h.reset()
+    pyr = heightmap.build(height_field(rng, 64, 64, 0), 8)
+    await h.load(pyr)
+    n = 2000
+    u0 = rng.uniform(0, 64, n)
+    v0 = rng.uniform(0, 64, n)
+    ang = rng.uniform(0, 2 * np.pi, n)
+    ln = rng.uniform(0, 32, n)
+    from model.rays import Rays
+    rays = Rays(u0, v0, ln * np.cos(ang), ln * np.sin(ang))
+    for method in ("oh", "park", "park-xor"):
+        await h.configure(traverse_rtl.config(pyr, method, base=ROM_BASE))
+        dut.miss_thresh_i.value = 0
+        res = traverse.trace(pyr, rays, method, "f24")
+        before = h.stats()
+        got, cyc = await h.run(traverse_rtl.ray_words(rays), rng, 1.0, 1.0, 100 * n + 100000)
+        after = h.stats()
+        iters = after["iters"] - before["iters"]
+        busy = after["cycles"] - before["cycles"]
+        assert iters == int(res.iterations.sum())
+        dut._log.info("THROUGHPUT %-9s %d rays, %d iterations, %d clocks (%d busy): "
+                      "%.3f clocks / iteration", method, n, iters, cyc, busy, busy / iters)
+        assert busy / iters <= 1.15, "loop under-used"
+
+
+def test_traverse_unit():
+    diff = traverse_rtl.method_differences()
+    assert not diff, "rtl/traverse/traverse_pkg.sv decode_method is out of date: " + "; ".join(diff)
+    runner.run("tb_traverse_unit", "test_traverse_unit", HERE, rtl_top="traverse_unit",
+               extra_sources=[str(HERE / "tb_traverse_unit.sv")])
