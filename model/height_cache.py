@@ -1,0 +1,334 @@
+"""Clock-accurate model of the height cache (rtl/cache/height_cache.sv).
+
+The model holds the same state as the RTL (directory, pseudo-LRU bits, MSHRs, AR queue, lookup
+pipeline, statistics) and advances one clock per :meth:`HeightCacheModel.step`, given every input
+of that clock.  :meth:`outputs` gives the outputs during the clock (before the edge), so a test can
+compare the RTL with it clock by clock.  The behaviour (see the RTL header for the full text):
+
+- lookups answer LOOKUP_LAT = 2 clocks later; hit = tag match in a valid way of the set, unless a
+  line fill wrote that set in the clock the lookup was presented (then: miss, no allocation);
+- a miss to a line held by an MSHR merges; else the lowest free MSHR is allocated and its AR queued;
+  with every MSHR busy the miss is not recorded;
+- replacement: the lowest invalid way, else tree pseudo-LRU (touched by hits and fills);
+- a line whose read had an AXI error is not cached; its MSHR answers rs_err to the first lookup of
+  the line and to those of the next ERR_HOLD clocks, then frees;
+- arid = {epoch, MSHR index}; the epoch advances at each reset; beats of other epochs are ignored.
+
+The RTL's epoch starts at an arbitrary value: the model learns it from the first AR it sees
+(:meth:`learn_epoch`); until then it accepts no R beat (none can arrive before an AR).
+"""
+from __future__ import annotations
+
+from collections import deque
+from dataclasses import dataclass, field
+
+LOOKUP_LAT = 2
+
+FREE, WAIT, FILL, ERR = 0, 1, 2, 3
+
+
+def clog2(x: int) -> int:
+    return max(0, (x - 1).bit_length())
+
+
+@dataclass(frozen=True)
+class CacheConfig:
+    """The RTL's parameters."""
+
+    addr_w: int = 32
+    data_w: int = 64
+    line_bytes: int = 32
+    sets: int = 64
+    ways: int = 2
+    mshrs: int = 4
+    id_w: int = 4
+    err_hold: int = 64
+
+    @property
+    def off_w(self) -> int:
+        return clog2(self.line_bytes)
+
+    @property
+    def set_w(self) -> int:
+        return clog2(self.sets)
+
+    @property
+    def beats(self) -> int:
+        return self.line_bytes * 8 // self.data_w
+
+    @property
+    def beat_bytes(self) -> int:
+        return self.data_w // 8
+
+    @property
+    def midx_w(self) -> int:
+        return clog2(self.mshrs) if self.mshrs > 1 else 1
+
+    @property
+    def epoch_w(self) -> int:
+        return self.id_w - self.midx_w
+
+    @property
+    def way_lvls(self) -> int:
+        return clog2(self.ways)
+
+    def params(self) -> dict[str, int]:
+        """As RTL parameters."""
+        return {"ADDR_W": self.addr_w, "DATA_W": self.data_w, "LINE_BYTES": self.line_bytes,
+                "SETS": self.sets, "WAYS": self.ways, "MSHRS": self.mshrs, "ID_W": self.id_w,
+                "ERR_HOLD": self.err_hold}
+
+
+def plru_victim(cfg: CacheConfig, bits: int) -> int:
+    n = 1
+    for _ in range(cfg.way_lvls):
+        n = 2 * n + ((bits >> (n - 1)) & 1)
+    return n - cfg.ways
+
+
+def plru_touch(cfg: CacheConfig, bits: int, way: int) -> int:
+    n = way + cfg.ways
+    for _ in range(cfg.way_lvls):
+        p = n >> 1
+        bit = 1 if n % 2 == 0 else 0  # point away from the accessed child
+        bits = (bits & ~(1 << (p - 1))) | (bit << (p - 1))
+        n = p
+    return bits
+
+
+@dataclass
+class Mshr:
+    state: int = FREE
+    la: int = 0
+    beat: int = 0
+    rerr: bool = False
+    errc: int = 0
+    buf: list[int] = field(default_factory=list)
+
+
+@dataclass
+class Inputs:
+    """Every input of one clock."""
+
+    rst_n: int = 1
+    lk_valid: int = 0
+    lk_addr: int = 0
+    lk_wide: int = 0
+    arready: int = 0
+    rvalid: int = 0
+    rid: int = 0
+    rdata: int = 0
+    rresp: int = 0
+    rlast: int = 0
+    clr_stats: int = 0
+
+
+@dataclass
+class Outputs:
+    rs_valid: int
+    rs_hit: int
+    rs_err: int
+    rs_data: int
+    arvalid: int
+    araddr: int | None  # None while arvalid is 0
+    arid: int | None    # None while arvalid is 0 or the epoch is not known yet
+    ar_idx: int | None  # the MSHR index part of arid
+
+
+class HeightCacheModel:
+    """See the module docstring.  Call :meth:`step` once per clock, reset included."""
+
+    def __init__(self, cfg: CacheConfig = CacheConfig()):
+        self.cfg = cfg
+        self.epoch: int | None = None
+        self.in_rst = False
+        self.ram: list[list[tuple[int, bytes] | None]] = [[None] * cfg.sets
+                                                          for _ in range(cfg.ways)]
+        self._clear()
+
+    def _clear(self) -> None:
+        c = self.cfg
+        self.valid = [[False] * c.ways for _ in range(c.sets)]
+        self.plru = [0] * c.sets
+        self.mshr = [Mshr(buf=[0] * c.beats) for _ in range(c.mshrs)]
+        self.arq: deque[int] = deque()
+        self.fill_q = False
+        self.fill_idx = 0
+        # stage 1: (addr, wide, vbits, conflict, rd) while s1_valid
+        self.s1_valid = False
+        self.s1: tuple[int, int, list[bool], bool, list[tuple[int, bytes] | None]] | None = None
+        self.rs = (0, 0, 0, 0)
+        self.stats = {"hits": 0, "misses": 0, "bytes": 0, "lines": 0}
+
+    # ------------------------------------------------------------------ helpers
+    def _split(self, addr: int) -> tuple[int, int, int, int]:
+        c = self.cfg
+        off = addr & (c.line_bytes - 1)
+        la = addr >> c.off_w
+        st = la & (c.sets - 1)
+        tag = la >> c.set_w
+        return la, st, tag, off
+
+    def learn_epoch(self, arid: int) -> None:
+        if self.epoch is None:
+            self.epoch = arid >> self.cfg.midx_w
+
+    def outputs(self, rst_n: int = 1) -> Outputs:
+        c = self.cfg
+        arvalid = int(bool(rst_n) and len(self.arq) > 0)
+        araddr = arid = idx = None
+        if arvalid:
+            idx = self.arq[0]
+            araddr = self.mshr[idx].la << c.off_w
+            if self.epoch is not None:
+                arid = (self.epoch << c.midx_w) | idx
+        return Outputs(*self.rs, arvalid, araddr, arid, idx)
+
+    def busy_lines(self) -> int:
+        """MSHRs in use (reads outstanding or errors held)."""
+        return sum(m.state != FREE for m in self.mshr)
+
+    # ------------------------------------------------------------------ one clock
+    def _fill_target(self) -> tuple[int, int, int]:
+        """(set, tag, way) of the pending fill, from the state before the edge."""
+        c = self.cfg
+        m = self.mshr[self.fill_idx]
+        _, st, tag, _ = self._split(m.la << c.off_w)
+        way = plru_victim(c, self.plru[st])
+        for w in range(c.ways - 1, -1, -1):
+            if not self.valid[st][w]:
+                way = w
+        return st, tag, way
+
+    def step(self, i: Inputs) -> dict[str, bool]:
+        """Advance one clock with inputs ``i``; returns what happened (for the test's counts)."""
+        c = self.cfg
+        ev = {"alloc": False, "ar": False, "beat": False, "fill": False, "err_line": False,
+              "conflict": False, "merge": False, "full": False, "stale_beat": False}
+        fill = self._fill_target() if self.fill_q else None
+        if not i.rst_n:
+            if not self.in_rst and self.epoch is not None:
+                self.epoch = (self.epoch + 1) % (1 << c.epoch_w)
+            self.in_rst = True
+            self._clear()  # (a pending fill still writes the RAM; its way stays invalid)
+            return ev
+        self.in_rst = False
+
+        # ---- stage 0: the RAM read sees the contents before this edge's fill write
+        new_s1 = None
+        if i.lk_valid:
+            _, set0, _, _ = self._split(i.lk_addr)
+            new_s1 = (i.lk_addr, i.lk_wide, list(self.valid[set0]),
+                      fill is not None and fill[0] == set0,
+                      [self.ram[w][set0] for w in range(c.ways)])
+
+        # ---- stage 1
+        hit = err = alloc = False
+        data = hit_way = s1set = alloc_idx = 0
+        match = [False] * c.mshrs
+        if self.s1_valid:
+            addr, wide, vbits, conflict, rd = self.s1
+            la, s1set, tag, off = self._split(addr)
+            way_hit = [bool(vbits[w]) and rd[w] is not None and rd[w][0] == tag
+                       for w in range(c.ways)]
+            for w in range(c.ways):
+                if way_hit[w]:
+                    hit_way = w
+            hit = (not conflict) and any(way_hit)
+            if hit:
+                line = rd[hit_way][1]
+                if wide:
+                    o = off & ~1
+                    data = line[o] | (line[o + 1] << 8)
+                else:
+                    data = line[off]
+            match = [m.state != FREE and m.la == la for m in self.mshr]
+            err = (not hit) and any(mt and m.state == ERR for mt, m in zip(match, self.mshr))
+            free = [k for k, m in enumerate(self.mshr) if m.state == FREE]
+            alloc = (not conflict) and not any(way_hit) and not any(match) and bool(free)
+            if alloc:
+                alloc_idx = free[0]
+            ev["conflict"] = conflict
+            ev["merge"] = not hit and any(match)
+            ev["full"] = not conflict and not any(way_hit) and not any(match) and not free
+
+        # ---- R channel
+        r_idx = i.rid & ((1 << c.midx_w) - 1)
+        r_epoch = i.rid >> c.midx_w
+        r_acc = bool(i.rvalid) and self.epoch is not None and r_epoch == self.epoch \
+            and r_idx < c.mshrs and self.mshr[r_idx].state == WAIT
+        r_last = r_bad = False
+        if r_acc:
+            m = self.mshr[r_idx]
+            r_last = m.beat == c.beats - 1
+            r_bad = bool(i.rresp & 2) or m.rerr
+            if bool(i.rlast) != r_last:
+                raise AssertionError("model: rlast on a beat other than the last")
+        ar_pop = len(self.arq) > 0 and bool(i.arready)
+
+        # ---- fill and directory (pseudo-LRU: the hit first, then the fill)
+        if hit:
+            self.plru[s1set] = plru_touch(c, self.plru[s1set], hit_way)
+        if fill is not None:
+            fset, ftag, fway = fill
+            m = self.mshr[self.fill_idx]
+            self.ram[fway][fset] = (ftag, b"".join(int(d).to_bytes(c.beat_bytes, "little")
+                                                   for d in m.buf))
+            self.plru[fset] = plru_touch(c, self.plru[fset], fway)
+            self.valid[fset][fway] = True
+            ev["fill"] = True
+
+        # ---- MSHRs
+        for k, m in enumerate(self.mshr):
+            if m.state == WAIT:
+                if r_acc and r_idx == k:
+                    m.buf[m.beat] = i.rdata
+                    m.beat += 1
+                    m.rerr = r_bad
+                    if r_last:
+                        m.beat = 0
+                        m.state = ERR if r_bad else FILL
+                        m.errc = 0
+                        ev["err_line"] = r_bad
+            elif m.state == FILL:
+                m.state = FREE
+            elif m.state == ERR:
+                if m.errc != 0:
+                    if m.errc == 1:
+                        m.state = FREE
+                    m.errc -= 1
+                elif self.s1_valid and match[k]:
+                    m.errc = c.err_hold
+            if alloc and alloc_idx == k:
+                m.state = WAIT
+                m.beat = 0
+                m.rerr = False
+                m.la = self._split(self.s1[0])[0]
+        self.fill_q = r_acc and r_last and not r_bad
+        self.fill_idx = r_idx if r_acc else self.fill_idx
+
+        # ---- AR queue
+        if ar_pop:
+            self.arq.popleft()
+            ev["ar"] = True
+        if alloc:
+            self.arq.append(alloc_idx)
+            ev["alloc"] = True
+
+        # ---- statistics
+        if i.clr_stats:
+            self.stats = {"hits": 0, "misses": 0, "bytes": 0, "lines": 0}
+        else:
+            self.stats["hits"] += int(hit)
+            self.stats["misses"] += int(self.s1_valid and not hit)
+            self.stats["lines"] += int(ar_pop)
+            self.stats["bytes"] += c.beat_bytes if r_acc else 0
+        ev["beat"] = r_acc
+        ev["stale_beat"] = bool(i.rvalid) and not r_acc
+
+        # ---- pipeline registers
+        self.rs = (int(self.s1_valid), int(hit), int(err), data if hit else 0)
+        self.s1_valid = bool(i.lk_valid)
+        if new_s1 is not None:
+            self.s1 = new_s1
+        return ev

@@ -1,0 +1,499 @@
+// height_cache: the traverse unit's exclusive, non-blocking height cache (Park et al. 2013, sec. 4):
+// a miss never stalls; the lookup answers "miss" and the ray retries on its next pass.
+//
+// Lookup port: one lookup per clock, fully pipelined, fixed latency cache_pkg::LOOKUP_LAT = 2: the
+// answer to the lookup presented at clock c (lk_valid_i) is on rs_*_o at clock c + 2.
+//   stage 0 (c):     read the tag+data RAM of every way at the set (synchronous read) and the
+//                    set's valid bits; note whether a line fill writes that set in this clock.
+//   stage 1 (c + 1): compare tags, select the texel, search the MSHRs; allocate an MSHR on a miss;
+//                    register the answer.
+//   c + 2:           rs_valid_o, rs_hit_o, rs_err_o, rs_data_o.
+// rs_data_o on a hit: lk_wide_i = 0: {8'h00, byte at lk_addr_i}; lk_wide_i = 1: the little-endian
+// 16-bit code at lk_addr_i (lk_addr_i[0] is ignored; the client keeps 16-bit texels aligned).
+// rs_data_o is 0 when rs_hit_o is 0; rs_hit_o and rs_err_o are 0 when rs_valid_o is 0.
+//
+// Organisation: SETS sets x WAYS ways of LINE_BYTES-byte lines; set index = addr[OFF_W +: SET_W],
+// tag = the bits above.  Per way one simple dual-port RAM (cache_sdp_ram) holds {tag, line}; valid
+// bits and replacement state are flops.  Replacement: an invalid way first (lowest index), else
+// tree pseudo-LRU (WAYS - 1 bits per set; exact LRU for WAYS = 2), updated by hits and fills.
+//
+// Misses (stage 1, rs_hit_o = 0):
+//   - the line is already held by an MSHR (being read, or errored): merged, no new read;
+//   - otherwise, with a free MSHR (lowest index): the MSHR is allocated and its AR is queued
+//     (a FIFO of MSHRS entries, so it can never overflow; an allocated miss is never dropped);
+//   - with every MSHR busy the miss is not recorded: the client's retry tries again.
+//   AR: one INCR burst per line (arlen = BEATS - 1, arsize = log2(DATA_W / 8)), line-aligned,
+//   arid = {epoch, MSHR index} (see reset).  ARs leave in allocation order.
+// Fill: rready is tied to 1 (each MSHR buffers its own line, so beats of different reads may
+//   interleave in any order the interconnect likes).  The clock after a line's last beat, the line
+//   is written into the cache and its MSHR is freed.  A lookup presented in that same clock to the
+//   same set (whatever its line) answers a miss and allocates nothing: its RAM read overlaps the
+//   write; its retry will see the filled set.  Every other lookup sees the fill consistently.
+// AXI errors (rresp SLVERR / DECERR on any beat): the line is not written into the cache; its
+//   MSHR turns to MSHR_ERR and keeps the line address.  The first lookup to that line that reaches
+//   stage 1 answers rs_err_o = 1 (rs_hit_o = 0), and so does every lookup to that line in the next
+//   ERR_HOLD clocks (so all the rays that were waiting for the line, retrying once per pass, learn
+//   of the error); then the MSHR is freed and a later lookup to the line reads it again.  The MSHR
+//   waits for its first erroring lookup however long that takes, so an error is never lost.
+// Reset (rst_ni low, synchronous): clears the valid bits, replacement state, MSHRs, the AR queue,
+//   the lookup pipeline and the statistics; m_axi_arvalid is 0 while rst_ni is low.  Reads
+//   issued before the reset may still return: rready stays 1 and their beats are ignored, because
+//   the arid carries an EPOCH_W-bit epoch (EPOCH_W = ID_W - log2(MSHRS), 2 by default) that
+//   advances at each reset.  Requirement: a read issued before a reset returns before 2^EPOCH_W - 1
+//   further resets (power-on is fine: the epoch may start at any value).  The RAM contents are
+//   not cleared (the valid bits are).
+// Statistics (48-bit, cleared by reset and by clr_stats_i; a clock with clr_stats_i counts
+//   nothing): stat_hits_o / stat_misses_o count answered lookups with rs_hit_o = 1 / 0 (a miss
+//   includes errors and unrecorded misses), stat_lines_o counts AR handshakes (line reads issued),
+//   stat_bytes_o counts the bytes of accepted R beats (DATA_W / 8 each; stale beats after a reset
+//   are not counted), so stat_bytes_o = stat_lines_o * LINE_BYTES once the reads have returned.
+module height_cache
+  import cache_pkg::*;
+#(
+  parameter int unsigned ADDR_W     = 32,  // byte address width
+  parameter int unsigned DATA_W     = 64,  // AXI data width
+  parameter int unsigned LINE_BYTES = 32,  // cache line size (power of two, a multiple of DATA_W/8)
+  parameter int unsigned SETS       = 64,  // sets (power of two, >= 2)
+  parameter int unsigned WAYS       = 2,   // associativity (power of two); tree pseudo-LRU
+  parameter int unsigned MSHRS      = 4,   // outstanding line reads (misses merged per line)
+  parameter int unsigned ID_W       = 4,   // AXI ID width (> log2(MSHRS): the rest is the epoch)
+  parameter int unsigned ERR_HOLD   = 64   // clocks an errored line keeps answering rs_err_o
+) (
+  input  logic              clk_i,
+  input  logic              rst_ni,
+  // lookup port
+  input  logic              lk_valid_i,
+  input  logic [ADDR_W-1:0] lk_addr_i,
+  input  logic              lk_wide_i,   // 1: 16-bit texel (unorm16, 2-byte aligned), 0: 8-bit
+  output logic              rs_valid_o,  // lk_valid_i delayed by LOOKUP_LAT
+  output logic              rs_hit_o,
+  output logic              rs_err_o,    // the line came back with an AXI error
+  output logic [15:0]       rs_data_o,
+  // AXI4 read master (AR and R channels)
+  output logic [ID_W-1:0]   m_axi_arid,
+  output logic [ADDR_W-1:0] m_axi_araddr,
+  output logic [7:0]        m_axi_arlen,
+  output logic [2:0]        m_axi_arsize,
+  output logic [1:0]        m_axi_arburst,
+  output logic              m_axi_arvalid,
+  input  logic              m_axi_arready,
+  input  logic [ID_W-1:0]   m_axi_rid,
+  input  logic [DATA_W-1:0] m_axi_rdata,
+  input  logic [1:0]        m_axi_rresp,
+  input  logic              m_axi_rlast,
+  input  logic              m_axi_rvalid,
+  output logic              m_axi_rready,
+  // statistics
+  input  logic              clr_stats_i,
+  output logic [47:0]       stat_hits_o,
+  output logic [47:0]       stat_misses_o,
+  output logic [47:0]       stat_bytes_o,   // AXI bytes read
+  output logic [47:0]       stat_lines_o    // line reads issued
+);
+
+  localparam int unsigned OFF_W      = $clog2(LINE_BYTES);
+  localparam int unsigned SET_W      = $clog2(SETS);
+  localparam int unsigned TAG_W      = ADDR_W - OFF_W - SET_W;
+  localparam int unsigned LA_W       = ADDR_W - OFF_W;           // line address width
+  localparam int unsigned LINE_W     = LINE_BYTES * 8;
+  localparam int unsigned BEATS      = LINE_W / DATA_W;          // beats per line read
+  localparam int unsigned BEAT_W     = (BEATS > 1) ? $clog2(BEATS) : 1;
+  localparam int unsigned BEAT_BYTES = DATA_W / 8;
+  localparam int unsigned WAY_W      = (WAYS > 1) ? $clog2(WAYS) : 1;
+  localparam int unsigned WAY_LVLS   = $clog2(WAYS);             // pseudo-LRU tree depth
+  localparam int unsigned PLRU_W     = (WAYS > 1) ? WAYS - 1 : 1;
+  localparam int unsigned MIDX_W     = (MSHRS > 1) ? $clog2(MSHRS) : 1;
+  localparam int unsigned EPOCH_W    = ID_W - MIDX_W;
+  localparam int unsigned QCNT_W     = $clog2(MSHRS + 1);
+  localparam int unsigned ERRC_W     = $clog2(ERR_HOLD + 1);
+  localparam int unsigned RAM_W      = TAG_W + LINE_W;
+
+  if (LINE_BYTES < 2 || LINE_BYTES > 4096 || (1 << OFF_W) != LINE_BYTES) begin : g_check_line
+    $error("height_cache: LINE_BYTES must be a power of two in 2..4096");
+  end
+  if (DATA_W < 8 || DATA_W > 1024 || (1 << $clog2(DATA_W)) != DATA_W || LINE_W < DATA_W
+      || BEATS > 256) begin : g_check_data
+    $error("height_cache: DATA_W must be a power of two in 8..LINE_BYTES*8 with <= 256 beats");
+  end
+  if (SETS < 2 || (1 << SET_W) != SETS || ADDR_W <= OFF_W + SET_W) begin : g_check_sets
+    $error("height_cache: SETS must be a power of two >= 2 leaving at least one tag bit");
+  end
+  if (WAYS < 1 || (1 << WAY_LVLS) != WAYS) begin : g_check_ways
+    $error("height_cache: WAYS must be a power of two");
+  end
+  if (MSHRS < 1 || ID_W <= MIDX_W) begin : g_check_mshrs
+    $error("height_cache: MSHRS must be >= 1 and ID_W > log2(MSHRS) (epoch bits)");
+  end
+  if (ERR_HOLD < 1) begin : g_check_err_hold
+    $error("height_cache: ERR_HOLD must be >= 1");
+  end
+
+  // ---------------------------------------------------------------- pseudo-LRU (tree) helpers
+  // Node n of the tree (1 .. WAYS-1, children 2n and 2n+1, leaf WAYS + w is way w) is bit n-1:
+  // 0 = the next victim is in the left subtree, 1 = in the right one.
+  function automatic logic [WAY_W-1:0] plru_victim(input logic [PLRU_W-1:0] b);
+    int unsigned n;
+    n = 1;
+    for (int unsigned l = 0; l < WAY_LVLS; l++) n = 2 * n + (b[n-1] ? 1 : 0);
+    return WAY_W'(n - WAYS);
+  endfunction
+
+  // Mark way w most recently used: every node on its path points away from it.
+  function automatic logic [PLRU_W-1:0] plru_touch(input logic [PLRU_W-1:0] b,
+                                                   input logic [WAY_W-1:0] w);
+    int unsigned n;
+    logic [PLRU_W-1:0] r;
+    r = b;
+    n = int'(w) + WAYS;
+    for (int unsigned l = 0; l < WAY_LVLS; l++) begin
+      r[(n >> 1) - 1] = (n % 2 == 0);
+      n = n >> 1;
+    end
+    return r;
+  endfunction
+
+  // ---------------------------------------------------------------- state
+  // Cache directory (flops) and RAM read ports.
+  logic [WAYS-1:0]   valid_q [SETS];
+  logic [PLRU_W-1:0] plru_q  [SETS];
+  logic [RAM_W-1:0]  ram_rd  [WAYS];
+
+  // MSHRs.
+  mshr_state_e                  mshr_state_q [MSHRS];
+  logic [LA_W-1:0]              mshr_la_q    [MSHRS];  // line address
+  logic [BEAT_W-1:0]            mshr_beat_q  [MSHRS];  // beats received
+  logic                         mshr_rerr_q  [MSHRS];  // an earlier beat had an error
+  logic [ERRC_W-1:0]            mshr_errc_q  [MSHRS];  // MSHR_ERR: 0 = no lookup erred yet
+  logic [BEATS-1:0][DATA_W-1:0] mshr_buf_q   [MSHRS];  // the line being read
+
+  // AR queue: MSHR indices in allocation order.
+  logic [MIDX_W-1:0] arq_q [MSHRS];
+  logic [MIDX_W-1:0] arq_wp_q, arq_rp_q;
+  logic [QCNT_W-1:0] arq_cnt_q;
+
+  // Reset epoch (deliberately not reset: it advances at each reset).
+  logic [EPOCH_W-1:0] epoch_q;
+  logic               in_rst_q;
+
+  // Fill (the clock after a line's last good beat).
+  logic              fill_q;
+  logic [MIDX_W-1:0] fill_idx_q;
+
+  // Pipeline.
+  logic              s1_valid_q, s1_wide_q, s1_conflict_q;
+  logic [ADDR_W-1:0] s1_addr_q;
+  logic [WAYS-1:0]   s1_vbits_q;
+  logic              rs_valid_q, rs_hit_q, rs_err_q;
+  logic [15:0]       rs_data_q;
+
+  logic [47:0] st_hits_q, st_misses_q, st_bytes_q, st_lines_q;
+
+  // ---------------------------------------------------------------- fill
+  logic [LA_W-1:0]   fill_la;
+  logic [SET_W-1:0]  fill_set;
+  logic [TAG_W-1:0]  fill_tag;
+  logic [WAY_W-1:0]  fill_way;
+  logic [WAYS-1:0]   fill_vbits;
+
+  always_comb begin
+    fill_la    = mshr_la_q[fill_idx_q];
+    fill_set   = fill_la[SET_W-1:0];
+    fill_tag   = fill_la[LA_W-1:SET_W];
+    fill_vbits = valid_q[fill_set];
+    fill_way   = plru_victim(plru_q[fill_set]);
+    for (int w = WAYS - 1; w >= 0; w--) begin
+      if (!fill_vbits[w]) fill_way = WAY_W'(w);  // an invalid way first, the lowest
+    end
+  end
+
+  // ---------------------------------------------------------------- stage 0: RAM read
+  logic [SET_W-1:0] lk_set;
+  assign lk_set = lk_addr_i[OFF_W +: SET_W];
+
+  for (genvar w = 0; w < WAYS; w++) begin : g_way
+    cache_sdp_ram #(.DEPTH(SETS), .WIDTH(RAM_W)) u_ram (
+      .clk_i   (clk_i),
+      .we_i    (fill_q && fill_way == WAY_W'(w)),
+      .waddr_i (fill_set),
+      .wdata_i ({fill_tag, mshr_buf_q[fill_idx_q]}),
+      .re_i    (lk_valid_i),
+      .raddr_i (lk_set),
+      .rdata_o (ram_rd[w])
+    );
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      s1_valid_q <= 1'b0;
+    end else begin
+      s1_valid_q <= lk_valid_i;
+    end
+    if (lk_valid_i) begin
+      s1_addr_q     <= lk_addr_i;
+      s1_wide_q     <= lk_wide_i;
+      s1_vbits_q    <= valid_q[lk_set];
+      s1_conflict_q <= fill_q && (fill_set == lk_set);
+    end
+  end
+
+  // ---------------------------------------------------------------- stage 1: compare
+  logic [SET_W-1:0]  s1_set;
+  logic [TAG_W-1:0]  s1_tag;
+  logic [LA_W-1:0]   s1_la;
+  logic [WAYS-1:0]   way_hit;
+  logic [WAY_W-1:0]  hit_way;
+  logic [LINE_W-1:0] hit_line;
+  logic [15:0]       hit_shift;  // the 16 bits from the texel's byte on
+  logic              s1_hit, s1_err, s1_alloc, free_any;
+  logic [15:0]       s1_data;
+  logic [MSHRS-1:0]  mshr_match, mshr_busy;
+  logic [MIDX_W-1:0] alloc_idx;
+
+  always_comb begin
+    s1_set   = s1_addr_q[OFF_W +: SET_W];
+    s1_tag   = s1_addr_q[ADDR_W-1 -: TAG_W];
+    s1_la    = s1_addr_q[ADDR_W-1:OFF_W];
+    hit_line = '0;
+    hit_way  = '0;
+    for (int w = 0; w < WAYS; w++) begin
+      way_hit[w] = s1_vbits_q[w] && (ram_rd[w][RAM_W-1 -: TAG_W] == s1_tag);
+      if (way_hit[w]) begin
+        hit_line = hit_line | ram_rd[w][LINE_W-1:0];
+        hit_way  = WAY_W'(w);
+      end
+    end
+    s1_hit = s1_valid_q && !s1_conflict_q && (|way_hit);
+    if (s1_wide_q) begin
+      hit_shift = 16'(hit_line >> {s1_addr_q[OFF_W-1:1], 4'b0000});
+      s1_data   = hit_shift[15:0];
+    end else begin
+      hit_shift = 16'(hit_line >> {s1_addr_q[OFF_W-1:0], 3'b000});
+      s1_data   = {8'h00, hit_shift[7:0]};
+    end
+
+    s1_err    = 1'b0;
+    free_any  = 1'b0;
+    alloc_idx = '0;
+    for (int i = MSHRS - 1; i >= 0; i--) begin
+      mshr_busy[i]  = (mshr_state_q[i] != MSHR_FREE);
+      mshr_match[i] = mshr_busy[i] && (mshr_la_q[i] == s1_la);
+      if (mshr_match[i] && mshr_state_q[i] == MSHR_ERR) s1_err = 1'b1;
+      if (!mshr_busy[i]) begin
+        free_any  = 1'b1;
+        alloc_idx = MIDX_W'(i);  // the lowest free MSHR
+      end
+    end
+    s1_err   = s1_valid_q && !s1_hit && s1_err;
+    s1_alloc = s1_valid_q && !s1_conflict_q && !(|way_hit) && !(|mshr_match) && free_any;
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      rs_valid_q <= 1'b0;
+      rs_hit_q   <= 1'b0;
+      rs_err_q   <= 1'b0;
+      rs_data_q  <= '0;
+    end else begin
+      rs_valid_q <= s1_valid_q;
+      rs_hit_q   <= s1_hit;
+      rs_err_q   <= s1_err;
+      rs_data_q  <= s1_hit ? s1_data : '0;
+    end
+  end
+
+  assign rs_valid_o = rs_valid_q;
+  assign rs_hit_o   = rs_hit_q;
+  assign rs_err_o   = rs_err_q;
+  assign rs_data_o  = rs_data_q;
+
+  // ---------------------------------------------------------------- directory update
+  logic [PLRU_W-1:0] plru_fill_base;
+
+  always_comb begin
+    plru_fill_base = plru_q[fill_set];
+    if (s1_hit && s1_set == fill_set) plru_fill_base = plru_touch(plru_q[s1_set], hit_way);
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      for (int s = 0; s < SETS; s++) begin
+        valid_q[s] <= '0;
+        plru_q[s]  <= '0;
+      end
+    end else begin
+      if (s1_hit) plru_q[s1_set] <= plru_touch(plru_q[s1_set], hit_way);
+      if (fill_q) begin  // after the hit update: the filled way is the most recently used
+        plru_q[fill_set]            <= plru_touch(plru_fill_base, fill_way);
+        valid_q[fill_set][fill_way] <= 1'b1;
+      end
+    end
+  end
+
+  // ---------------------------------------------------------------- R channel
+  logic [MIDX_W-1:0]  r_idx;
+  logic [EPOCH_W-1:0] r_epoch;
+  logic               r_acc, r_last_beat, r_bad;
+
+  always_comb begin
+    r_idx       = m_axi_rid[MIDX_W-1:0];
+    r_epoch     = m_axi_rid[ID_W-1:MIDX_W];
+    r_acc       = m_axi_rvalid && (r_epoch == epoch_q) && (32'(r_idx) < MSHRS)
+                  && (mshr_state_q[r_idx] == MSHR_WAIT);
+    r_last_beat = (mshr_beat_q[r_idx] == BEAT_W'(BEATS - 1));
+    r_bad       = m_axi_rresp[1] || mshr_rerr_q[r_idx];  // SLVERR / DECERR now or earlier
+  end
+
+  assign m_axi_rready = 1'b1;
+
+  // ---------------------------------------------------------------- MSHRs
+  logic ar_pop;
+  assign ar_pop = m_axi_arvalid && m_axi_arready;
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      for (int i = 0; i < MSHRS; i++) begin
+        mshr_state_q[i] <= MSHR_FREE;
+        mshr_beat_q[i]  <= '0;
+        mshr_rerr_q[i]  <= 1'b0;
+        mshr_errc_q[i]  <= '0;
+      end
+      fill_q     <= 1'b0;
+      fill_idx_q <= '0;
+    end else begin
+      for (int i = 0; i < MSHRS; i++) begin
+        unique case (mshr_state_q[i])
+          MSHR_WAIT: begin
+            if (r_acc && r_idx == MIDX_W'(i)) begin
+              mshr_beat_q[i] <= mshr_beat_q[i] + BEAT_W'(1);
+              mshr_rerr_q[i] <= r_bad;
+              if (r_last_beat) begin
+                mshr_beat_q[i]  <= '0;
+                mshr_state_q[i] <= r_bad ? MSHR_ERR : MSHR_FILL;
+                mshr_errc_q[i]  <= '0;
+              end
+            end
+          end
+          MSHR_FILL: mshr_state_q[i] <= MSHR_FREE;  // written into the cache this clock
+          MSHR_ERR: begin
+            if (mshr_errc_q[i] != '0) begin
+              mshr_errc_q[i] <= mshr_errc_q[i] - ERRC_W'(1);
+              if (mshr_errc_q[i] == ERRC_W'(1)) mshr_state_q[i] <= MSHR_FREE;
+            end else if (s1_valid_q && mshr_match[i]) begin
+              mshr_errc_q[i] <= ERRC_W'(ERR_HOLD);  // the first lookup told of the error
+            end
+          end
+          default: ;
+        endcase
+        if (s1_alloc && alloc_idx == MIDX_W'(i)) begin
+          mshr_state_q[i] <= MSHR_WAIT;
+          mshr_beat_q[i]  <= '0;
+          mshr_rerr_q[i]  <= 1'b0;
+        end
+      end
+      fill_q     <= r_acc && r_last_beat && !r_bad;
+      fill_idx_q <= r_idx;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (s1_alloc) mshr_la_q[alloc_idx] <= s1_la;
+    if (r_acc) mshr_buf_q[r_idx][mshr_beat_q[r_idx]] <= m_axi_rdata;
+  end
+
+  // ---------------------------------------------------------------- AR queue and channel
+  function automatic logic [MIDX_W-1:0] arq_next(input logic [MIDX_W-1:0] p);
+    return (32'(p) == MSHRS - 1) ? '0 : p + MIDX_W'(1);
+  endfunction
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      arq_wp_q  <= '0;
+      arq_rp_q  <= '0;
+      arq_cnt_q <= '0;
+    end else begin
+      if (s1_alloc) arq_wp_q <= arq_next(arq_wp_q);
+      if (ar_pop)   arq_rp_q <= arq_next(arq_rp_q);
+      arq_cnt_q <= arq_cnt_q + QCNT_W'(s1_alloc) - QCNT_W'(ar_pop);
+    end
+    if (s1_alloc) arq_q[arq_wp_q] <= alloc_idx;
+  end
+
+  logic [MIDX_W-1:0] ar_idx;
+  assign ar_idx = arq_q[arq_rp_q];
+
+  assign m_axi_arvalid = rst_ni && (arq_cnt_q != '0);
+  assign m_axi_arid    = {epoch_q, ar_idx};
+  assign m_axi_araddr  = {mshr_la_q[ar_idx], {OFF_W{1'b0}}};
+  assign m_axi_arlen   = 8'(BEATS - 1);
+  assign m_axi_arsize  = 3'($clog2(BEAT_BYTES));
+  assign m_axi_arburst = AXI_BURST_INCR;
+
+  // ---------------------------------------------------------------- reset epoch
+  always_ff @(posedge clk_i) begin
+    in_rst_q <= !rst_ni;
+    if (!rst_ni && !in_rst_q) epoch_q <= epoch_q + EPOCH_W'(1);
+  end
+
+  // ---------------------------------------------------------------- statistics
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni || clr_stats_i) begin
+      st_hits_q   <= '0;
+      st_misses_q <= '0;
+      st_bytes_q  <= '0;
+      st_lines_q  <= '0;
+    end else begin
+      st_hits_q   <= st_hits_q + 48'(s1_hit);
+      st_misses_q <= st_misses_q + 48'(s1_valid_q && !s1_hit);
+      st_lines_q  <= st_lines_q + 48'(ar_pop);
+      if (r_acc) st_bytes_q <= st_bytes_q + 48'(BEAT_BYTES);
+    end
+  end
+
+  assign stat_hits_o   = st_hits_q;
+  assign stat_misses_o = st_misses_q;
+  assign stat_bytes_o  = st_bytes_q;
+  assign stat_lines_o  = st_lines_q;
+
+  // rresp[0] only tells EXOKAY from OKAY and DECERR from SLVERR; both errors are treated alike.
+  logic unused_rresp0;
+  assign unused_rresp0 = m_axi_rresp[0];
+
+`ifndef SYNTHESIS
+  // AXI: the AR payload holds and arvalid stays up until the handshake.
+  ar_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      m_axi_arvalid && !m_axi_arready |=> m_axi_arvalid
+        && $stable({m_axi_arid, m_axi_araddr, m_axi_arlen, m_axi_arsize, m_axi_arburst}))
+    else $error("height_cache: AR dropped or changed before arready");
+  // AXI: rlast marks exactly the last beat of each of our bursts.
+  rlast_on_last_beat: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      r_acc |-> (m_axi_rlast == r_last_beat))
+    else $error("height_cache: rlast on a beat other than the last");
+  // A beat carrying the current epoch belongs to an MSHR waiting for its line.
+  r_beat_expected: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      m_axi_rvalid && (r_epoch == epoch_q) |-> r_acc)
+    else $error("height_cache: R beat for no outstanding read");
+  // MSHR bookkeeping: the queue holds only busy MSHRs, never more than MSHRS.
+  mshr_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      ($countones(mshr_busy) <= MSHRS) && (32'(arq_cnt_q) <= $countones(mshr_busy)))
+    else $error("height_cache: MSHR / AR queue count out of range");
+  fill_is_mshr_fill: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      fill_q |-> (mshr_state_q[fill_idx_q] == MSHR_FILL))
+    else $error("height_cache: fill without an MSHR in MSHR_FILL");
+  hit_not_in_mshr: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      s1_hit |-> !(|mshr_match))
+    else $error("height_cache: a line both in the cache and in an MSHR");
+  // Client contract: 16-bit texels are 2-byte aligned.
+  wide_aligned: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      lk_valid_i && lk_wide_i |-> !lk_addr_i[0])
+    else $error("height_cache: unaligned 16-bit lookup");
+
+  for (genvar i = 0; i < MSHRS; i++) begin : g_mshr_unique
+    for (genvar j = i + 1; j < MSHRS; j++) begin : g_pair
+      mshr_unique: assert property (@(posedge clk_i) disable iff (!rst_ni)
+          !(mshr_busy[i] && mshr_busy[j] && (mshr_la_q[i] == mshr_la_q[j])))
+        else $error("height_cache: two MSHRs hold line %h", mshr_la_q[i]);
+    end
+  end
+`endif
+
+endmodule
