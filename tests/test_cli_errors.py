@@ -1,6 +1,7 @@
 """Every command-line tool rejects bad files and arguments with one line and exit status 2."""
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 from pathlib import Path
@@ -39,6 +40,7 @@ TRACE_CASES = {
     "unknown method": ["--method", "nope"],
     "unknown engine": ["--engine", "gpu"],
     "approximate method on f24": ["--method", "relief", "--engine", "f24"],
+    "approximate method on rtl": ["--method", "relief", "--engine", "rtl"],
     "missing output directory": ["--out", "{d}/no/such/dir/o.npz"],
     "bad bits": ["--bits", "12"],
 }
@@ -64,7 +66,7 @@ def test_trace_missing_argument_is_one_line(files) -> None:
 
 def test_trace_writes_the_contract(files) -> None:
     out = files / "ok.npz"
-    for method, engine in [("park", "f24"), ("oh", "f64"), ("relief", "f64")]:
+    for method, engine in [("park", "f24"), ("oh", "f64"), ("relief", "f64"), ("park", "rtl")]:
         p = run("scripts/trace.py", "--heightmap", f"{files}/h.npy", "--rays", f"{files}/r.npy",
                 "--method", method, "--engine", engine, "--out", str(out), "--quiet")
         assert p.returncode == 0, p.stderr
@@ -74,3 +76,8 @@ def test_trace_writes_the_contract(files) -> None:
         assert z["t"].dtype == np.float64 and z["hit"].dtype == bool
         assert z["iterations"].dtype == np.int64 and z["t"].shape == (50,)
         assert np.isnan(z["t"][~z["hit"]]).all()
+        if engine == "rtl":
+            st = json.loads(str(z["stats"]))
+            for k in ("cycles", "rays", "iterations", "height_cache_hits", "height_cache_misses",
+                      "mem_bytes"):
+                assert k in st, k

@@ -1,0 +1,497 @@
+"""traverse_system (traverse_unit + height_cache + AXI4 read master) against model.traverse f24.
+
+The pyramid's memory image (model.heightmap.Pyramid.memory_image()) lies in cocotbext-axi's
+AxiRamRead (sparse memory) at a non-zero base (0x1000_0000 + 4 MiB per map, so the maps of
+different cases never share a cache line); reads outside the images are flagged and answered
+SLVERR.  The memory has random latency (on each burst's first beat; bursts return in order) and
+random back-pressure (pause generators on AR and R); the ray stream has random valid gaps and the
+result stream random ready back-pressure.
+
+Rays: random + adversarial (tests/test_traverse.py) and camera rays of procedural scenes
+(model.scenes + model.camera) on maps of 2x2 .. 1024x1024 (non-square 37x61, unorm8 and unorm16),
+with several methods per map (every method code at least once).  Checked per case: every ray id
+back exactly once, hit / invalid / capped / err / iterations and (for hits) t, u, v words equal
+to model.traverse.trace(..., "f24"); the unit's counters against the model's per-action counts;
+the cache's counters (hits = iterations, hits + misses = lookups, bytes = lines * LINE_BYTES); no
+read outside the image.  SLVERR case: whole cache lines of the pyramid answer SLVERR; the rays whose
+model path (per-ray ``record``) reads a texel in them must come back with res_err (after exactly
+the iterations before that read, no hit), every other ray exactly as the model.
+
+Printed / recorded per case: cache hit rate and clocks per iteration (busy clocks of the unit and
+wall clocks of the run).
+
+Environment: SEED, SYS_SCALE (ray-count factor, default 1.0), WAVES=1.
+"""
+from __future__ import annotations
+
+import json
+import logging
+import os
+import random
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+import cocotb
+import numpy as np
+from cocotb.clock import Clock
+from cocotb.triggers import ClockCycles, FallingEdge
+from cocotbext.axi import AxiRamRead, AxiReadBus
+
+from model import camera, heightmap, scenes, traverse, traverse_rtl
+from model.rays import Rays
+from model.traverse import EXACT_METHODS
+from tb.common import report, runner
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(runner.ROOT / "tests"))
+from test_traverse import adversarial_rays, height_field  # noqa: E402
+
+BASE0 = 0x1000_0000
+REGION = 0x0040_0000      # address space per map (the 1024 x 1024 unorm8 image is 1.4 MB)
+LINE_BYTES = 32           # traverse_system default
+RES_FIELDS = ("res_t_o", "res_u_o", "res_v_o", "res_hit_o", "res_invalid_o", "res_capped_o",
+              "res_err_o", "res_iters_o")
+
+
+def seed() -> int:
+    s = int(os.environ.get("SEED", random.randrange(1 << 31)))
+    cocotb.log.info("SEED=%d", s)
+    return s
+
+
+def scale(n: int) -> int:
+    return max(16, int(n * float(os.environ.get("SYS_SCALE", "1.0"))))
+
+
+def pauses(rng: random.Random, p: float):
+    while True:
+        yield rng.random() < p
+
+
+class MapRam(AxiRamRead):
+    """AxiRamRead with random burst latency, an address check and injected SLVERR ranges."""
+
+    def __init__(self, *args, rng: random.Random, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.rng = rng
+        self.lat = (0, 0)
+        self.regions: list[tuple[int, int]] = []   # [lo, hi) byte ranges holding images
+        self.err_ranges: list[tuple[int, int]] = []
+        self.outside: list[int] = []               # beat addresses read outside every image
+        self.err_beats = 0
+
+    async def _read(self, address, length):
+        if address % LINE_BYTES == 0 and self.lat[1] > 0:   # first beat of a line burst
+            n = self.rng.randint(*self.lat)
+            if n:
+                await ClockCycles(self.clock, n)
+        if not any(lo <= address and address + length <= hi for lo, hi in self.regions):
+            self.outside.append(address)
+            raise IOError("read outside the pyramid")
+        if any(lo < address + length and address < hi for lo, hi in self.err_ranges):
+            self.err_beats += 1
+            raise IOError("injected SLVERR")   # AxiSlaveRead answers rresp = SLVERR
+        return await super()._read(address, length)
+
+
+@dataclass
+class Case:
+    name: str
+    pyr: heightmap.Pyramid
+    base: int
+    rays: Rays
+    methods: tuple[str, ...]
+    valid_p: float = 0.8       # ray stream: probability of offering a ray in a clock
+    ready_p: float = 0.7       # result stream: probability of res_ready_i
+    ar_pause: float = 0.2      # AXI AR / R pause probabilities
+    r_pause: float = 0.2
+    lat: tuple[int, int] = (0, 20)
+
+
+class Harness:
+    def __init__(self, dut, rng: random.Random):
+        self.dut = dut
+        self.clk = dut.clk_i
+        self.rng = rng
+        self.s = {name: getattr(dut, name) for name in (
+            "ray_valid_i", "ray_ready_o", "ray_id_i", "ray_u0_i", "ray_v0_i", "ray_du_i",
+            "ray_dv_i", "res_valid_o", "res_ready_i", "res_id_o", "idle_o") + RES_FIELDS}
+        cocotb.start_soon(Clock(self.clk, 10, unit="ns").start())
+        # Never reset (the cache's reads must all return anyway; the memory holds every map).
+        self.ram = MapRam(AxiReadBus.from_prefix(dut, "m_axi"), self.clk, reset=None, rng=rng,
+                          size=1 << 32)
+        self.ram.log.setLevel(logging.ERROR)
+        self.next_base = BASE0
+
+    async def reset(self):
+        d = self.dut
+        d.rst_ni.value = 0
+        d.ray_valid_i.value = 0
+        d.res_ready_i.value = 0
+        d.clr_stats_i.value = 0
+        await ClockCycles(self.clk, 4)
+        await FallingEdge(self.clk)
+        d.rst_ni.value = 1
+
+    def place(self, pyr: heightmap.Pyramid) -> int:
+        """Write the pyramid's image into the memory at a fresh base; returns the base."""
+        img = pyr.memory_image()
+        assert len(img) <= REGION
+        base = self.next_base
+        self.next_base += REGION
+        self.ram.write(base, img)
+        self.ram.regions.append((base, base + len(img)))
+        return base
+
+    def stats(self) -> dict[str, int]:
+        d = self.dut
+        out = {k: int(getattr(d, f"stat_{k}_o").value) for k in (
+            "cycles", "rays_in", "rays_out", "iters", "lookups", "crossings", "level_ups",
+            "descents", "cache_hits", "cache_misses", "mem_bytes", "mem_lines")}
+        return out
+
+    async def configure(self, cfg: traverse_rtl.Config, case: Case):
+        await FallingEdge(self.clk)
+        assert int(self.s["idle_o"].value) == 1, "configuration change while rays are in the unit"
+        for name, val in cfg.ports().items():
+            getattr(self.dut, name).value = val
+        self.ram.ar_channel.set_pause_generator(pauses(self.rng, case.ar_pause))
+        self.ram.r_channel.set_pause_generator(pauses(self.rng, case.r_pause))
+        self.ram.lat = case.lat
+        self.dut.clr_stats_i.value = 1      # cache statistics per case
+        await FallingEdge(self.clk)
+        self.dut.clr_stats_i.value = 0
+        await ClockCycles(self.clk, 7)      # register stage + the unit's 4 clocks
+        await FallingEdge(self.clk)
+
+    async def run(self, words, valid_p: float, ready_p: float,
+                  max_cycles: int) -> tuple[dict[int, tuple], int, list[int]]:
+        """Stream rays (id = index) in, collect results; {id: result}, clocks, duplicate ids."""
+        s = self.s
+        u0, v0, du, dv = ([int(x) for x in w] for w in words)
+        n = len(u0)
+        got: dict[int, tuple] = {}
+        dups: list[int] = []
+        nxt = 0
+        presenting = False
+        rnd = self.rng.random
+        ray_valid, ray_ready = s["ray_valid_i"], s["ray_ready_o"]
+        res_valid, res_ready, res_id = s["res_valid_o"], s["res_ready_i"], s["res_id_o"]
+        res_sig = [s[k] for k in RES_FIELDS]
+        cyc = 0
+        # At a falling edge: outputs show the state after the last rising edge; inputs written
+        # now are sampled at the next one (ray_ready_o does not depend on ray_valid_i, nor
+        # res_valid_o on res_ready_i), so both handshakes are known before that edge.
+        while len(got) < n:
+            if cyc >= max_cycles:
+                raise AssertionError(f"timeout: {len(got)} of {n} results after {cyc} clocks")
+            if not presenting and nxt < n and rnd() < valid_p:
+                s["ray_id_i"].value = nxt
+                s["ray_u0_i"].value = u0[nxt]
+                s["ray_v0_i"].value = v0[nxt]
+                s["ray_du_i"].value = du[nxt]
+                s["ray_dv_i"].value = dv[nxt]
+                ray_valid.value = 1
+                presenting = True
+            fire_in = presenting and int(ray_ready.value)
+            ready_now = int(rnd() < ready_p)
+            res_ready.value = ready_now
+            if ready_now and int(res_valid.value):
+                rid = int(res_id.value)
+                rec = tuple(int(x.value) for x in res_sig)
+                if rid in got or rid >= n:
+                    dups.append(rid)
+                got[rid] = rec
+            await FallingEdge(self.clk)
+            cyc += 1
+            if fire_in:
+                nxt += 1
+                presenting = False
+                ray_valid.value = 0
+        assert nxt == n and not presenting
+        ray_valid.value = 0
+        # Nothing more may come out.
+        res_ready.value = 1
+        for _ in range(40):
+            await FallingEdge(self.clk)
+            if int(res_valid.value):
+                dups.append(int(res_id.value))
+        res_ready.value = 0
+        return got, cyc, dups
+
+    async def settle(self, max_cycles=20000) -> dict[str, int]:
+        """Wait until the unit is idle and every line read has returned; the statistics then."""
+        for _ in range(max_cycles):
+            await FallingEdge(self.clk)
+            st = self.stats()
+            if int(self.s["idle_o"].value) and st["mem_bytes"] == st["mem_lines"] * LINE_BYTES:
+                return st
+        raise AssertionError(f"not idle / reads outstanding: {self.stats()}")
+
+
+def compare(name: str, got: dict[int, tuple], exp: traverse_rtl.ExpectedWords, cap: int,
+            log, err_expect: dict[int, int] | None = None) -> int:
+    """Mismatches against the model.  ``err_expect``: ray -> iterations before its bad read (the
+    rays that must come back with res_err); None: no ray may."""
+    err_expect = err_expect or {}
+    bad = []
+    for i in range(len(exp.hit)):
+        if i not in got:
+            bad.append(f"ray {i}: no result")
+            continue
+        t, u, v, hit, inv, capped, err, iters = got[i]
+        why = []
+        if i in err_expect:
+            if not err or hit or inv or capped or iters != err_expect[i]:
+                why.append(f"expected err after {err_expect[i]} iterations, got err={err} "
+                           f"hit={hit} invalid={inv} capped={capped} iterations={iters}")
+        else:
+            e_hit, e_inv, e_it = bool(exp.hit[i]), bool(exp.invalid[i]), int(exp.iterations[i])
+            if err:
+                why.append("err")
+            if bool(hit) != e_hit:
+                why.append(f"hit {hit} != {int(e_hit)}")
+            if bool(inv) != e_inv:
+                why.append(f"invalid {inv} != {int(e_inv)}")
+            if iters != e_it:
+                why.append(f"iterations {iters} != {e_it}")
+            if capped and (hit or iters != cap):
+                why.append(f"capped with hit={hit} iterations={iters} (cap {cap})")
+            if e_hit and hit:
+                for nm, g, e in (("t", t, exp.t[i]), ("u", u, exp.u[i]), ("v", v, exp.v[i])):
+                    if g != int(e):
+                        why.append(f"{nm} 0x{g:06x} != 0x{int(e):06x}")
+        if why:
+            bad.append(f"ray {i}: " + ", ".join(why))
+    for b in bad[:10]:
+        log.error("%s: %s", name, b)
+    return len(bad)
+
+
+# ------------------------------------------------------------------------------------------ rays
+
+def camera_rays(rng: np.random.Generator, w: int, h: int, view: str | float, img: int,
+                n: int | None = None) -> Rays:
+    """Camera rays of an img x img image (pixel order), optionally n of them at random."""
+    r = camera.Camera.for_view(view, w, h, img, img).rays().rays
+    if n is not None and n < len(r):
+        r = r.subset(np.sort(rng.choice(len(r), n, replace=False)))
+    return r
+
+
+def cat(*rs: Rays) -> Rays:
+    return Rays(*(np.concatenate([getattr(r, f) for r in rs]) for f in ("u0", "v0", "du", "dv")))
+
+
+def scene_pyr(name: str, hh: int, ww: int, bits: int) -> heightmap.Pyramid:
+    return heightmap.build(scenes.height(name, (hh, ww)), bits)
+
+
+def cases(h: Harness, rng: np.random.Generator) -> list[Case]:
+    """The map / ray / method / stress combinations (every method code at least once)."""
+    out = []
+
+    def add(name, pyr, rays, methods, **kw):
+        out.append(Case(name, pyr, h.place(pyr), rays, tuple(methods), **kw))
+
+    pyr = heightmap.build(height_field(rng, 2, 2, 0), 8)
+    add("2x2 random u8", pyr, cat(adversarial_rays(rng, 2, 2, scale(64)),
+                                  camera_rays(rng, 2, 2, "oblique", 8)),
+        EXACT_METHODS, valid_p=1.0, ready_p=0.5, lat=(0, 8))
+    pyr = scene_pyr("stones", 37, 61, 8)
+    add("37x61 stones u8", pyr, cat(camera_rays(rng, 61, 37, "oblique", 24),
+                                    camera_rays(rng, 61, 37, "grazing", 24),
+                                    adversarial_rays(rng, 61, 37, scale(200))),
+        ("park", "oh", "tevs", "drobot"), valid_p=0.7, ready_p=0.8, lat=(0, 30))
+    pyr = scene_pyr("four-shapes", 64, 64, 16)
+    add("64x64 four-shapes u16", pyr, cat(camera_rays(rng, 64, 64, "grazing", 32),
+                                          adversarial_rays(rng, 64, 64, scale(200))),
+        ("park-xor", "coherent", "selective", "park-gpu"), valid_p=1.0, ready_p=0.3,
+        ar_pause=0.5, r_pause=0.5, lat=(0, 40))
+    pyr = heightmap.build(height_field(rng, 100, 128, 2), 8)
+    add("100x128 random spikes u8", pyr, adversarial_rays(rng, 128, 100, scale(300)),
+        ("start-level", "multi-down", "park"), valid_p=0.9, ready_p=0.9, lat=(5, 60))
+    pyr = scene_pyr("rocks", 256, 256, 8)
+    add("256x256 rocks u8", pyr, camera_rays(rng, 256, 256, "oblique", 64, scale(1200)),
+        ("park", "park-xor", "oh"), valid_p=1.0, ready_p=0.9, ar_pause=0.1, r_pause=0.1,
+        lat=(0, 20))
+    # the same map and rays, no stress at all (memory answers at once, streams never wait)
+    c = out[-1]
+    out.append(Case(c.name + " no stress", c.pyr, c.base, c.rays.subset(np.arange(scale(600))),
+                    ("park",), valid_p=1.0, ready_p=1.0, ar_pause=0.0, r_pause=0.0, lat=(0, 0)))
+    pyr = scene_pyr("saints", 1024, 1024, 8)
+    add("1024x1024 saints u8", pyr, cat(camera_rays(rng, 1024, 1024, "grazing", 48, scale(250)),
+                                        adversarial_rays(rng, 1024, 1024, scale(100))),
+        ("park", "drobot"), valid_p=0.9, ready_p=0.7, lat=(0, 30))
+    return out
+
+
+# ----------------------------------------------------------------------------------------- tests
+
+async def run_case(h: Harness, case: Case, method: str, log, err_expect=None,
+                   res: traverse.TraceResult | None = None, st: dict | None = None) -> dict:
+    """One case and method: run, compare, check the statistics; returns a summary dict."""
+    cfg = traverse_rtl.config(case.pyr, method, base=case.base)
+    await h.configure(cfg, case)
+    if res is None:
+        st = {}
+        res = traverse.trace(case.pyr, case.rays, method, "f24", stats=st)
+    exp = traverse_rtl.expected_words(res)
+    before = h.stats()
+    n = len(case.rays)
+    got, cyc, dups = await h.run(traverse_rtl.ray_words(case.rays), case.valid_p, case.ready_p,
+                                 max_cycles=400 * n + 60 * int(res.iterations.sum()) + 20000)
+    after = await h.settle()
+    d = {k: after[k] - before[k] for k in ("cycles", "rays_in", "rays_out", "iters", "lookups",
+                                           "crossings", "level_ups", "descents")}
+    name = f"{case.name} {method}"
+    nbad = compare(name, got, exp, cfg.iter_cap, log, err_expect)
+    sbad = []
+    if dups:
+        sbad.append(f"ray ids returned twice / unknown: {dups[:10]}")
+    want = {"rays_in": n, "rays_out": n}
+    if err_expect is None:
+        want.update(iters=int(res.iterations.sum()), descents=st.get("down", 0),
+                    crossings=st.get("cross", 0), level_ups=st.get("up", 0))
+    else:
+        want.update(iters=sum(r[7] for r in got.values()))
+    for k, v in want.items():
+        if d[k] != v:
+            sbad.append(f"stat {k} {d[k]} != {v}")
+    hits, misses = after["cache_hits"], after["cache_misses"]
+    lines, nbytes = after["mem_lines"], after["mem_bytes"]
+    if hits != d["iters"]:
+        sbad.append(f"cache hits {hits} != iterations {d['iters']}")
+    if hits + misses != d["lookups"]:
+        sbad.append(f"cache hits + misses {hits + misses} != lookups {d['lookups']}")
+    if nbytes != lines * LINE_BYTES:
+        sbad.append(f"cache bytes {nbytes} != lines {lines} * {LINE_BYTES}")
+    if h.ram.outside:
+        sbad.append(f"reads outside the images: {[hex(a) for a in h.ram.outside[:5]]}")
+        h.ram.outside.clear()
+    iters = max(d["iters"], 1)
+    out = {"name": name, "rays": n, "iters": d["iters"], "lookups": d["lookups"],
+           "hit_rate": hits / max(hits + misses, 1), "lines": lines, "busy": d["cycles"],
+           "clocks": cyc, "lines_per_it": lines / iters, "cpi_busy": d["cycles"] / iters,
+           "cpi_wall": cyc / iters,
+           "mism": nbad, "sbad": sbad,
+           "errs": sum(r[6] for r in got.values()), "hits": int(sum(r[3] for r in got.values()))}
+    msg = (f"TRAVERSE_SYSTEM {name:<38} {n:5d} rays {d['iters']:6d} it  hit rate "
+           f"{out['hit_rate']:.3f} ({hits}/{hits + misses}), {lines:5d} lines "
+           f"({out['lines_per_it']:.3f}/it), "
+           f"{out['cpi_busy']:.2f} busy clk/it, {out['cpi_wall']:.2f} wall clk/it, "
+           f"{nbad} mismatches" + ((" " + "; ".join(sbad)) if sbad else ""))
+    log.info(msg)
+    print(msg)
+    report.record("traverse_system", "rays vs model f24" if err_expect is None
+                  else "rays vs model f24 with SLVERR lines", n, nbad + bool(sbad))
+    perf = runner.BUILD / "traverse_system" / "perf.jsonl"
+    with open(perf, "a") as f:
+        f.write(json.dumps({k: out[k] for k in ("name", "rays", "iters", "lookups", "hit_rate",
+                                                 "lines", "lines_per_it", "busy", "clocks", "cpi_busy",
+                                                 "cpi_wall", "mism")}) + "\n")
+    return out
+
+
+@cocotb.test()
+async def traverse_system_bit_exact(dut):
+    """Random, adversarial and camera rays on maps of 2x2 .. 1024x1024, several methods each."""
+    s = seed()
+    rng = np.random.default_rng(s)
+    (runner.BUILD / "traverse_system" / "perf.jsonl").unlink(missing_ok=True)
+    h = Harness(dut, random.Random(s))
+    await h.reset()
+    t0 = time.time()
+    all_cases = cases(h, rng)
+    total = mism = 0
+    failures = []
+    summaries = []
+    for case in all_cases:
+        for method in case.methods:
+            o = await run_case(h, case, method, dut._log)
+            summaries.append(o)
+            total += o["rays"]
+            mism += o["mism"]
+            if o["mism"] or o["sbad"]:
+                failures.append(o["name"])
+    it = sum(o["iters"] for o in summaries)
+    busy = sum(o["busy"] for o in summaries)
+    wall = sum(o["clocks"] for o in summaries)
+    msg = (f"TRAVERSE_SYSTEM total: {total} rays, {it} iterations, {len(summaries)} runs, "
+           f"{busy / max(it, 1):.2f} busy clk/it, {wall / max(it, 1):.2f} wall clk/it, "
+           f"{mism} mismatches, {time.time() - t0:.1f} s")
+    dut._log.info(msg)
+    print(msg)
+    assert not failures, f"mismatches in: {failures}"
+
+
+@cocotb.test()
+async def traverse_system_slverr(dut):
+    """Some cache lines of the pyramid answer SLVERR: exactly the rays whose model path reads
+    them come back with res_err (after the iterations before that read); the others as the
+    model."""
+    s = seed()
+    rng = np.random.default_rng(s + 1)
+    h = Harness(dut, random.Random(s + 1))
+    await h.reset()
+    hh = ww = 64
+    pyr = scene_pyr("stones", hh, ww, 8)
+    base = h.place(pyr)
+    offs = pyr.level_offsets()
+    bpt = pyr.bits // 8
+    # bad lines: two level-0 rows in the middle, a few level-0 lines elsewhere, one level-2 line
+    bad_lines = set()
+    for row in (30, 31):
+        for x in range(0, ww * bpt, LINE_BYTES):
+            bad_lines.add((base + offs[0] + row * pyr.size * bpt + x) // LINE_BYTES)
+    for _ in range(4):
+        a = base + offs[0] + int(rng.integers(hh * pyr.size * bpt))
+        bad_lines.add(a // LINE_BYTES)
+    bad_lines.add((base + offs[2] + 5 * (pyr.size >> 2) * bpt) // LINE_BYTES)
+    h.ram.err_ranges = [(la * LINE_BYTES, (la + 1) * LINE_BYTES) for la in sorted(bad_lines)]
+    rays = cat(camera_rays(rng, ww, hh, "oblique", 24), adversarial_rays(rng, ww, hh, scale(250)))
+    total = mism = errs_total = 0
+    failures = []
+    for method in ("park", "oh", "drobot"):
+        res = traverse.trace(pyr, rays, method, "f24")
+        # per ray: the model's iteration path; the first read of a bad line
+        err_expect = {}
+        for i in range(len(rays)):
+            if res.invalid[i] or res.iterations[i] == 0:
+                continue
+            rec: list[dict] = []
+            traverse.trace(pyr, rays.subset([i]), method, "f24", record=rec)
+            assert len(rec) == res.iterations[i]
+            for r in rec:
+                k = r["level"]
+                a = base + offs[k] + (r["cy"] * (pyr.size >> k) + r["cx"]) * bpt
+                if a // LINE_BYTES in bad_lines:
+                    err_expect[i] = r["iteration"] - 1
+                    break
+        case = Case(f"{hh}x{ww} stones u8 SLVERR", pyr, base, rays, (method,), valid_p=0.9,
+                    ready_p=0.6, lat=(0, 30))
+        o = await run_case(h, case, method, dut._log, err_expect=err_expect, res=res)
+        n_err = len(err_expect)
+        if not 0 < n_err < len(rays) - 8:
+            o["sbad"].append(f"{n_err} of {len(rays)} rays read a bad line: test not selective")
+        if o["errs"] != n_err:
+            o["sbad"].append(f"{o['errs']} rays with err, model says {n_err}")
+        msg = (f"TRAVERSE_SYSTEM SLVERR {method}: {len(rays)} rays, {n_err} read a bad line "
+               f"(model), {o['errs']} err results, {o['mism']} mismatches, "
+               f"{h.ram.err_beats} SLVERR beats so far")
+        dut._log.info(msg)
+        print(msg)
+        total += len(rays)
+        mism += o["mism"]
+        errs_total += n_err
+        if o["mism"] or o["sbad"]:
+            failures.append((o["name"], o["sbad"]))
+    assert errs_total > 0 and h.ram.err_beats > 0
+    assert not failures, f"failures: {failures}"
+
+
+def test_traverse_system():
+    runner.run("traverse_system", "test_traverse_system", HERE)

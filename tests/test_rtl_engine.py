@@ -1,0 +1,129 @@
+"""The RTL engine (model/rtl_engine.py: traverse_system in the Verilator harness) against the golden
+model, bit for bit: model.traverse.trace(pyr, rays, method, "f24") must give the same t, u, v, hit,
+invalid and iterations, and the unit's statistics must match the model's per-action counts.
+
+Batches of a few thousand adversarial rays (tests/test_traverse.py) on a 64x64 map and a
+non-square unorm16 map, for several methods, with random AXI latency, ray-stream gaps and result
+back-pressure, the pyramid at aligned and unaligned addresses; plus the AXI error path and the
+harness's timeout.  The harness build (about half a
+minute, cached in build/harness/fast) happens once; every test here runs on one xdist worker.
+
+Skipped (with the reason) only while rtl/cache/height_cache.sv does not exist.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from model import f24, heightmap, rtl_engine, traverse
+from test_traverse import adversarial_rays, height_field
+
+pytestmark = [
+    pytest.mark.xdist_group("rtl_engine"),
+    pytest.mark.skipif(not rtl_engine.cache_available(),
+                       reason="rtl/cache/height_cache.sv does not exist yet: traverse_system needs "
+                              "the height cache"),
+]
+
+#: (height, width, unorm bits, height-field kind, methods, latency, back-pressure, base address)
+CASES = [
+    (64, 64, 8, 0, ("oh", "park", "park-xor", "drobot"), (10, 40), 0.0, rtl_engine.DEFAULT_BASE),
+    (37, 100, 16, 2, ("tevs", "multi-down", "selective", "park-gpu"), (1, 60), 0.15, 0x1234_5672),
+    (64, 64, 8, 1, ("start-level", "coherent"), 20, 0.05, 0),
+]
+NRAYS = 3000
+
+
+@pytest.fixture(scope="module")
+def harness() -> None:
+    rtl_engine.build("fast")
+
+
+def bits_equal(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """float64 values equal bit for bit (so -0 != +0; NaN == NaN as the model writes it)."""
+    return np.ascontiguousarray(a).view(np.uint64) == np.ascontiguousarray(b).view(np.uint64)
+
+
+@pytest.mark.parametrize("case", range(len(CASES)), ids=[f"{c[0]}x{c[1]}u{c[2]}k{c[3]}"
+                                                         for c in CASES])
+def test_rtl_equals_model(case: int, harness: None, rng: np.random.Generator) -> None:
+    hh, ww, bits, kind, methods, latency, bp, base = CASES[case]
+    pyr = heightmap.build(height_field(rng, hh, ww, kind), bits)
+    rays = adversarial_rays(rng, ww, hh, NRAYS)
+    failures = []
+    for method in methods:
+        st_model: dict[str, int] = {}
+        ref = traverse.trace(pyr, rays, method, "f24", stats=st_model)
+        res, st = rtl_engine.trace_rtl(pyr, rays, method, latency=latency,
+                                       seed=int(rng.integers(1 << 31)), backpressure=bp,
+                                       base=base)
+        bad = ~(bits_equal(res.t, ref.t) & bits_equal(res.u, ref.u) & bits_equal(res.v, ref.v) &
+                (res.hit == ref.hit) & (res.invalid == ref.invalid) &
+                (res.iterations == ref.iterations))
+        for i in np.nonzero(bad)[0][:5]:
+            failures.append(
+                f"{method} ray {i}: rtl hit={res.hit[i]} inv={res.invalid[i]} "
+                f"it={res.iterations[i]} t={res.t[i]!r} u={res.u[i]!r} v={res.v[i]!r}; model "
+                f"hit={ref.hit[i]} inv={ref.invalid[i]} it={ref.iterations[i]} t={ref.t[i]!r} "
+                f"u={ref.u[i]!r} v={ref.v[i]!r}")
+        if bad.any():
+            failures.append(f"{method}: {int(bad.sum())} of {len(rays)} rays differ")
+        iters = int(ref.iterations.sum())
+        want = {"rays": len(rays), "rays_in": len(rays), "rays_out": len(rays),
+                "iterations": iters, "stat_iterations": iters, "errors": 0, "capped": 0,
+                "descents": st_model.get("down", 0), "crossings": st_model.get("cross", 0),
+                "level_ups": st_model.get("up", 0), "hits": int(ref.hit.sum()),
+                "invalid": int(ref.invalid.sum())}
+        for k, v in want.items():
+            if st[k] != v:
+                failures.append(f"{method}: stats {k} = {st[k]}, expected {v}")
+        if not (st["cycles"] > 0 and st["mem_bytes"] > 0 and st["lookups"] >= iters
+                and st["height_cache_hits"] + st["height_cache_misses"] == st["lookups"]
+                and st["mem_bytes"] == st["axi_bytes"] and st["axi_slverr_beats"] == 0
+                and st["axi_decerr_beats"] == 0):
+            failures.append(f"{method}: implausible stats {st}")
+    assert not failures, "\n".join(failures)
+
+
+def test_axi_errors_finish_rays_with_err(harness: None, rng: np.random.Generator) -> None:
+    """SLVERR on every read: a ray that reads a height finishes with err, no hit, 0 iterations."""
+    pyr = heightmap.build(height_field(rng, 32, 32, 0), 8)
+    rays = adversarial_rays(rng, 32, 32, 400)
+    ref = traverse.trace(pyr, rays, "park", "f24")
+    base = rtl_engine.DEFAULT_BASE
+    out, st = rtl_engine.run_batch(pyr, rays, "park", latency=(5, 30), seed=3,
+                                   err_ranges=[(base, base + len(pyr.memory_image()))])
+    res = rtl_engine.to_result(out)
+    err = (out["flags"] & rtl_engine.FLAG_ERR) != 0
+    reads = ref.iterations > 0
+    assert np.array_equal(err, reads), "err flag on exactly the rays that read a height"
+    assert not res.hit.any() and not res.iterations.any()
+    assert np.array_equal(res.invalid, ref.invalid)
+    assert st["errors"] == int(reads.sum()) and st["axi_slverr_beats"] > 0
+
+
+def test_harness_timeout_fails_loudly(harness: None, rng: np.random.Generator) -> None:
+    pyr = heightmap.build(height_field(rng, 16, 16, 0), 8)
+    rays = adversarial_rays(rng, 16, 16, 100)
+    with pytest.raises(rtl_engine.RtlEngineError, match="timeout"):
+        rtl_engine.trace_rtl(pyr, rays, "oh", timeout=50)
+
+
+def test_input_file_layout(tmp_path) -> None:
+    """The input file the harness reads: header fields, image, f24 ray words (traverse_harness.h)."""
+    pyr = heightmap.build(np.arange(12).reshape(3, 4) / 11.0, 16)
+    rays = adversarial_rays(np.random.default_rng(0), 4, 3, 16)
+    rtl_engine.write_input(tmp_path / "in.bin", pyr, rays, "park-xor", base=0x1000)
+    raw = (tmp_path / "in.bin").read_bytes()
+    head = np.frombuffer(raw[:128], dtype="<u4")
+    img = pyr.memory_image()
+    assert raw[:8] == b"TRVHIN01" and head[2] == 1 and head[3] == 128
+    assert list(head[4:14]) == [traverse.METHOD_CODES["park-xor"], 4, 3, 2, 1, 0x1000,
+                                int(pyr.levels[2][0, 0]), traverse.iteration_cap(pyr), 16, len(img)]
+    assert list(head[14:14 + pyr.n + 1]) == pyr.level_offsets() and not head[14 + pyr.n + 1:].any()
+    pad = -len(img) % 4
+    assert raw[128:128 + len(img)] == img
+    words = np.frombuffer(raw[128 + len(img) + pad:], dtype="<u4").reshape(-1, 4)
+    with np.errstate(invalid="ignore"):
+        assert np.array_equal(words[:, 0], f24.from_float(rays.u0))
+        assert np.array_equal(words[:, 3], f24.from_float(rays.dv))
