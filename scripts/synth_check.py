@@ -7,6 +7,7 @@ Prints one summary line; exit status 1 with the tool's log tail when anything fa
 from __future__ import annotations
 
 import argparse
+import os
 import shutil
 import subprocess
 import sys
@@ -31,7 +32,9 @@ def main() -> int:
             + "".join(f" --top {t}" for t in tops))
     script = f"{read}; hierarchy -check; proc; check -assert"
     args.log.parent.mkdir(parents=True, exist_ok=True)
-    p = subprocess.run([yosys, "-q", "-l", str(args.log), "-p", script], cwd=ROOT,
+    # YoWASP's Yosys sees the file system through WASI: give it paths relative to its cwd.
+    log = os.path.relpath(args.log.resolve(), ROOT)
+    p = subprocess.run([yosys, "-q", "-l", log, "-p", script], cwd=ROOT,
                        capture_output=True, text=True)
     if p.returncode != 0:
         tail = "\n".join(args.log.read_text().splitlines()[-15:]) if args.log.exists() else ""
