@@ -62,8 +62,9 @@ test-model: $(STAMP)
 test-rtl: $(STAMP)
 	@$(ENV) $(PY) -m pytest -n $(JOBS) -q -p no:cacheprovider tb
 
-# Long measurements: model speed, the paper's study (out/study/), the RTL harness (clocks/s,
-# clocks/iteration, height-cache hit rate), and the 10 M-vector soak of model/f24.py against MPFR.
+# Long measurements: model speed, the paper's study (out/study/), the RTL traverse unit per scene
+# and view (scripts/bench_rtl.py: clocks/iteration, height-cache hit rate, bytes/ray, harness
+# clocks/s; out/bench/rtl.md), the harness on random rays, and the 10 M-vector soak of model/f24.py against MPFR.
 bench: $(STAMP)
 	@$(ENV) $(PY) scripts/bench_model.py
 	@$(ENV) $(PY) scripts/render.py --scene rocks --angle oblique --method park --size 512 \
@@ -71,6 +72,9 @@ bench: $(STAMP)
 	    $(PY) -c "import json; d = json.load(open('out/bench/render512.json')); \
 	    print(f\"512x512 model render (park, f24, oblique): {d['seconds_total']:.2f} s wall\")"
 	@$(ENV) $(PY) scripts/study.py --out out/study
+	@$(ENV) $(PY) scripts/bench_rtl.py
+	@$(ENV) $(PY) scripts/bench_rtl.py --scenes rocks --methods park --image 512 \
+	    --out out/bench/rtl_image512.json --md out/bench/rtl_image512.md
 	@$(ENV) $(PY) -m model.rtl_engine --size 64 --rays 20000
 	@$(ENV) $(PY) -m model.rtl_engine --size 256 --rays 20000
 	@rm -rf build/bench_vectors

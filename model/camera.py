@@ -218,6 +218,17 @@ class Fragments:
         return int(self.row.shape[0])
 
 
+def tile_order(row: npt.ArrayLike, col: npt.ArrayLike, image_w: int, tile: int) -> I64:
+    """The permutation that sorts pixels (row, col) into tile x tile blocks (row-major blocks,
+    row-major inside a block): how a tiled rasteriser hands fragments to the pipeline."""
+    if int(tile) != tile or tile < 1:
+        raise ValueError(f"tile must be a positive integer, got {tile!r}")
+    r, c = np.asarray(row, np.int64), np.asarray(col, np.int64)
+    blocks_w = -(-int(image_w) // int(tile))
+    key = ((r // tile) * blocks_w + c // tile) * (tile * tile) + (r % tile) * tile + c % tile
+    return np.argsort(key, kind="stable").astype(np.int64)
+
+
 class CameraRays(NamedTuple):
     """Contract rays of the covered pixels and their pixel indices."""
 
@@ -330,6 +341,15 @@ class Camera:
         f = self.fragments() if frags is None else frags
         du, dv = view_to_tangent(f.tbn, f.view, self.depth_scale)
         return CameraRays(Rays(f.u0.copy(), f.v0.copy(), du, dv), f.row, f.col)
+
+    def tiled_rays(self, tile: int = 8, frags: Fragments | None = None) -> CameraRays:
+        """:meth:`rays` in the order a tiled rasteriser emits them: tile x tile pixel blocks in
+        row-major block order, row-major inside a block (``tile=1``: plain raster order)."""
+        r = self.rays(frags)
+        order = tile_order(r.row, r.col, self.image_w, tile)
+        x = r.rays
+        return CameraRays(Rays(x.u0[order], x.v0[order], x.du[order], x.dv[order]),
+                          r.row[order], r.col[order])
 
     def log2_pb(self, tex_w: int | None = None, tex_h: int | None = None) -> F64:
         """log2(Pb) of triangles 0 and 1 for a texture of tex_w x tex_h (default: the map's)."""

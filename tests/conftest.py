@@ -11,6 +11,10 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+# The RTL engine's harness with the RTL's SVA assertions compiled in (model/rtl_engine.py), also
+# for the scripts the tests start as subprocesses.
+os.environ.setdefault("RTL_ENGINE_CHECKED", "1")
+
 
 @pytest.fixture
 def rng(request) -> np.random.Generator:

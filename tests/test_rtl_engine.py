@@ -36,7 +36,7 @@ NRAYS = 3000
 
 @pytest.fixture(scope="module")
 def harness() -> None:
-    rtl_engine.build("fast")
+    rtl_engine.build("checked")
 
 
 def bits_equal(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -127,3 +127,41 @@ def test_input_file_layout(tmp_path) -> None:
     with np.errstate(invalid="ignore"):
         assert np.array_equal(words[:, 0], f24.from_float(rays.u0))
         assert np.array_equal(words[:, 3], f24.from_float(rays.dv))
+
+
+def test_bench_rtl_small(harness: None, tmp_path) -> None:
+    """scripts/bench_rtl.py end to end on a small map: JSON and table written, RTL == f24 engine,
+    cold-run statistics consistent with the definitions in its docstring."""
+    import json
+    import subprocess
+    import sys
+
+    out, md = tmp_path / "rtl.json", tmp_path / "rtl.md"
+    p = subprocess.run([sys.executable, str(rtl_engine.ROOT / "scripts" / "bench_rtl.py"),
+                        "--scenes", "bump", "--angles", "oblique,grazing", "--methods", "park",
+                        "--size", "32", "--image", "24", "--tile", "4",
+                        "--out", str(out), "--md", str(md)], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    d = json.loads(out.read_text())
+    assert d["mismatches"] == 0 and len(d["rows"]) == 2
+    for r in d["rows"]:
+        for key in ("cold", "warm"):
+            c = r[key]
+            assert c["iterations"] == r["iterations"] and c["mismatches"] == 0
+            assert c["height_cache_hits"] == c["iterations"]  # a lookup that hit = an iteration
+            assert r[f"clk_per_iter_{key}"] == pytest.approx(c["cycles"] / c["iterations"])
+        # a 32x32 pyramid (1,408 bytes) fits the cache: the warm run reads nothing from memory
+        assert r["warm"]["mem_bytes"] == 0 and r["cold"]["mem_bytes"] > 0
+    assert "| bump | oblique | park |" in md.read_text()
+
+
+def test_bench_rtl_rejects_bad_arguments() -> None:
+    import subprocess
+    import sys
+
+    for args, msg in ((["--scenes", "nope"], "unknown scene 'nope'"),
+                      (["--methods", "relief"], "unknown method 'relief'"),
+                      (["--tile", "0"], "--tile must be >= 1")):
+        p = subprocess.run([sys.executable, str(rtl_engine.ROOT / "scripts" / "bench_rtl.py"),
+                            *args], capture_output=True, text=True)
+        assert p.returncode == 2 and msg in p.stderr and len(p.stderr.strip().splitlines()) == 1

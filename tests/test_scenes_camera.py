@@ -274,3 +274,25 @@ def _uv_image(cam: Camera) -> tuple[np.ndarray, np.ndarray]:
     u[f.row, f.col] = f.u0
     v[f.row, f.col] = f.v0
     return u, v
+
+
+def test_tile_order() -> None:
+    """tile_order: every pixel once, blocks in row-major order, row-major inside a block."""
+    from model.camera import Camera, tile_order
+
+    rows, cols = np.divmod(np.arange(6 * 10), 10)
+    o = tile_order(rows, cols, 10, 4)
+    assert sorted(o.tolist()) == list(range(60))
+    first = list(zip(rows[o][:6].tolist(), cols[o][:6].tolist()))
+    assert first == [(0, 0), (0, 1), (0, 2), (0, 3), (1, 0), (1, 1)]
+    blocks = (rows[o] // 4) * 3 + cols[o] // 4
+    assert np.all(np.diff(blocks) >= 0)
+    assert np.array_equal(tile_order(rows, cols, 10, 1), np.arange(60))
+    cam = Camera.for_view("oblique", 16, 16, 12, 12)
+    a, b = cam.rays(), cam.tiled_rays(4)
+    assert sorted(zip(b.row.tolist(), b.col.tolist())) == sorted(zip(a.row.tolist(), a.col.tolist()))
+    key = {(r, c): i for i, (r, c) in enumerate(zip(a.row.tolist(), a.col.tolist()))}
+    idx = np.array([key[(r, c)] for r, c in zip(b.row.tolist(), b.col.tolist())])
+    assert np.array_equal(b.rays.du, a.rays.du[idx]) and np.array_equal(b.rays.u0, a.rays.u0[idx])
+    with pytest.raises(ValueError):
+        tile_order(rows, cols, 10, 0)

@@ -27,8 +27,8 @@ module traverse_system
   parameter int unsigned UNIT_CNT_W       = 48,  // width of the unit's statistics counters
   // height cache
   parameter int unsigned LINE_BYTES       = 32,  // cache line (one AXI burst per line fill)
-  parameter int unsigned SETS             = 64,
-  parameter int unsigned WAYS             = 2,
+  parameter int unsigned SETS             = 256, // sets (power of two); 256 x 4 x 32 B = 32 KiB
+  parameter int unsigned WAYS             = 4,   // associativity (power of two)
   parameter int unsigned MSHRS            = 4,   // line fills in flight
   // AXI4 read master
   parameter int unsigned AXI_ID_W         = 4,

@@ -494,4 +494,5 @@ async def traverse_system_slverr(dut):
 
 
 def test_traverse_system():
-    runner.run("traverse_system", "test_traverse_system", HERE)
+    # A 4 KiB cache (the defaults are 32 KiB): these batches then evict and refill lines often.
+    runner.run("traverse_system", "test_traverse_system", HERE, parameters={"SETS": 64, "WAYS": 2})

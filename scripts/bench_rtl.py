@@ -1,0 +1,192 @@
+#!/usr/bin/env python3
+"""RTL traverse-unit performance (make bench): clocks per iteration, height-cache hit rate and
+memory traffic per scene x view angle, through the Verilator harness (model/rtl_engine.py).
+
+For every scene and view: one ray per covered pixel of an --image x --image camera image over a
+--size x --size map, in the order a tiled rasteriser emits fragments (--tile x --tile pixel
+blocks; --tile 1 is raster order), traced by traverse_system (traverse unit + height cache + AXI
+memory with --latency clocks of read latency).  Two runs per case:
+
+  cold  the frame from an empty cache (the first frame of a view),
+  warm  the same frame again with the cache as the first run left it (an animation's steady
+        state; the harness checks that both runs return the same results).
+
+Every RTL result is compared with the f24 engine (t, u, v, hit, invalid, iterations): a
+difference fails the run (exit status 1).  Writes JSON (--out) and a markdown table (--md) and
+prints the table; the README's performance table comes from it.
+
+Definitions: clocks/iteration = clocks from the first ray in to the last result out / height reads
+that returned data (the unit's iterations).  lookup hit rate = lookups that hit / all lookups
+(a ray whose read missed retries on its next pass, so one miss costs several lookups).  fills per
+iteration = cache-line fills / iterations; 1 - that is the share of height reads served without
+memory traffic (the figure comparable to the paper's "cache hit rate").
+"""
+from __future__ import annotations
+
+import json
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+from model import camera, heightmap, rtl_engine, scenes, traverse  # noqa: E402
+from model.cli import Parser, fail  # noqa: E402
+
+PROG = "bench_rtl.py"
+#: Park et al. 2013, section 5.5 / Table 6: 4 units at 84 MHz, 7.5 Mpixels/s on Rocks (oblique).
+PAPER_MHZ = 84.0
+PAPER_UNITS = 4
+PAPER_MPIX = 7.5
+PAPER_CLOCKS_PER_PIXEL = PAPER_UNITS * PAPER_MHZ / PAPER_MPIX  # per unit: about 45
+
+
+def compare(res: Any, ref: Any) -> int:
+    """Rays whose RTL result differs from the f24 engine's (NaN == NaN)."""
+    bad = np.zeros(len(ref.hit), dtype=bool)
+    for f in ("t", "u", "v"):
+        a, b = getattr(res, f), getattr(ref, f)
+        bad |= ~((a == b) | (np.isnan(a) & np.isnan(b)))
+    for f in ("hit", "invalid", "iterations"):
+        bad |= getattr(res, f) != getattr(ref, f)
+    return int(bad.sum())
+
+
+def run_case(pyr: heightmap.Pyramid, rays: Any, method: str, latency: int) -> dict[str, Any]:
+    ref = traverse.trace(pyr, rays, method, "f24")
+    row: dict[str, Any] = {"rays": len(rays), "iterations": int(ref.iterations.sum())}
+    for warm in (False, True):
+        res, st = rtl_engine.trace_rtl(pyr, rays, method, latency=latency, warm=warm)
+        key = "warm" if warm else "cold"
+        row[key] = {k: st[k] for k in ("cycles", "iterations", "lookups", "height_cache_hits",
+                                       "height_cache_misses", "mem_lines", "mem_bytes",
+                                       "sim_clocks", "wall_seconds", "clocks_per_second")}
+        row[key]["mismatches"] = compare(res, ref)
+        row[key]["iterations_match"] = st["iterations"] == row["iterations"]
+    return row
+
+
+def derived(row: dict[str, Any], key: str) -> dict[str, float]:
+    r = row[key]
+    it = max(r["iterations"], 1)
+    return {"clk_per_iter": r["cycles"] / it,
+            "clk_per_ray": r["cycles"] / max(row["rays"], 1),
+            "lookup_hit": r["height_cache_hits"] / max(r["lookups"], 1),
+            "served": 1.0 - r["mem_lines"] / it,
+            "bytes_per_ray": r["mem_bytes"] / max(row["rays"], 1)}
+
+
+def main() -> int:
+    ap = Parser(prog=PROG, description=__doc__.split("\n\n")[0])
+    ap.add_argument("--scenes", default=",".join(scenes.SCENES))
+    ap.add_argument("--angles", default=",".join(camera.VIEWS))
+    ap.add_argument("--methods", default="park,park-xor")
+    ap.add_argument("--size", type=int, default=256, help="map side in texels (default 256)")
+    ap.add_argument("--image", type=int, default=256, help="camera image side (default 256)")
+    ap.add_argument("--tile", type=int, default=8, help="fragment tile side (1: raster order)")
+    ap.add_argument("--latency", type=int, default=20, help="AXI read latency in clocks")
+    ap.add_argument("--out", type=Path, default=ROOT / "out" / "bench" / "rtl.json")
+    ap.add_argument("--md", type=Path, default=ROOT / "out" / "bench" / "rtl.md")
+    a = ap.parse_args()
+    names = a.scenes.split(",")
+    angles = a.angles.split(",")
+    methods = a.methods.split(",")
+    for what, got, valid in (("scene", names, scenes.SCENES), ("angle", angles, camera.VIEWS),
+                             ("method", methods, traverse.EXACT_METHODS)):
+        bad = [x for x in got if x not in valid]
+        if bad:
+            fail(PROG, f"unknown {what} {bad[0]!r}; valid: {', '.join(valid)}")
+    for what, val, lo in (("--size", a.size, 1), ("--image", a.image, 1), ("--tile", a.tile, 1),
+                          ("--latency", a.latency, 1)):
+        if val < lo:
+            fail(PROG, f"{what} must be >= {lo}, got {val}")
+    try:
+        rtl_engine.build("fast", quiet=False)
+    except rtl_engine.RtlEngineError as e:
+        fail(PROG, str(e).splitlines()[0])
+    rows: list[dict[str, Any]] = []
+    total = len(names) * len(angles) * len(methods)
+    t0 = time.monotonic()
+    for name in names:
+        sc = scenes.load_scene(name, a.size)
+        pyr = heightmap.build(sc.heights)
+        for angle in angles:
+            cam = camera.Camera.for_view(angle, a.size, a.size, a.image, a.image)
+            rays = cam.tiled_rays(a.tile).rays
+            for method in methods:
+                row = {"scene": name, "angle": angle, "method": method,
+                       **run_case(pyr, rays, method, a.latency)}
+                row.update({f"{k}_{key}": v for key in ("cold", "warm")
+                            for k, v in derived(row, key).items()})
+                rows.append(row)
+                sys.stderr.write(f"\r{PROG}: {len(rows)}/{total} cases, "
+                                 f"{time.monotonic() - t0:.0f} s")
+                sys.stderr.flush()
+    sys.stderr.write("\n")
+    mism = sum(r[k]["mismatches"] for r in rows for k in ("cold", "warm"))
+    sim_clocks = sum(r[k]["sim_clocks"] for r in rows for k in ("cold", "warm"))
+    sim_wall = sum(r[k]["wall_seconds"] for r in rows for k in ("cold", "warm"))
+
+    def mean(k: str, sel: list[dict[str, Any]]) -> float:
+        return float(np.mean([r[k] for r in sel])) if sel else float("nan")
+
+    head = ("| scene | view | method | iter/ray | clk/iter cold | clk/iter warm | clk/ray warm "
+            "| lookup hit cold | reads w/o fill cold | reads w/o fill warm | bytes/ray cold |")
+    lines = [head, "|" + "---|" * 11]
+    for r in rows:
+        lines.append(f"| {r['scene']} | {r['angle']} | {r['method']} "
+                     f"| {r['iterations'] / max(r['rays'], 1):.2f} "
+                     f"| {r['clk_per_iter_cold']:.3f} | {r['clk_per_iter_warm']:.3f} "
+                     f"| {r['clk_per_ray_warm']:.2f} | {100 * r['lookup_hit_cold']:.1f}% "
+                     f"| {100 * r['served_cold']:.2f}% | {100 * r['served_warm']:.2f}% "
+                     f"| {r['bytes_per_ray_cold']:.1f} |")
+    summary = []
+    for method in methods:
+        for angle in angles:
+            sel = [r for r in rows if r["method"] == method and r["angle"] == angle]
+            cpr = mean("clk_per_ray_warm", sel)
+            summary.append({
+                "method": method, "angle": angle,
+                "iter_per_ray": float(np.mean([r["iterations"] / max(r["rays"], 1) for r in sel])),
+                "clk_per_iter_cold": mean("clk_per_iter_cold", sel),
+                "clk_per_iter_warm": mean("clk_per_iter_warm", sel),
+                "clk_per_ray_warm": cpr,
+                "served_cold": mean("served_cold", sel),
+                "mrays_per_s_at_84mhz": PAPER_MHZ / cpr if cpr > 0 else float("nan")})
+    lines += ["", f"Mean over the {len(names)} scenes (per unit; the paper: about "
+              f"{PAPER_CLOCKS_PER_PIXEL:.0f} clocks/pixel per unit, {PAPER_MPIX} Mpixels/s from "
+              f"{PAPER_UNITS} units at {PAPER_MHZ:.0f} MHz on Rocks oblique):", "",
+              "| method | view | iter/ray | clk/iter cold | clk/iter warm | clk/ray warm "
+              "| reads w/o fill cold | Mrays/s per unit at 84 MHz |", "|" + "---|" * 8]
+    for s in summary:
+        lines.append(f"| {s['method']} | {s['angle']} | {s['iter_per_ray']:.2f} "
+                     f"| {s['clk_per_iter_cold']:.3f} | {s['clk_per_iter_warm']:.3f} "
+                     f"| {s['clk_per_ray_warm']:.2f} | {100 * s['served_cold']:.2f}% "
+                     f"| {s['mrays_per_s_at_84mhz']:.2f} |")
+    lines += ["", f"Map {a.size}x{a.size}, image {a.image}x{a.image}, {a.tile}x{a.tile} tiles, "
+              f"AXI latency {a.latency} clocks; RTL vs f24 engine: {mism} mismatching rays; "
+              f"harness {sim_clocks:,} clocks in {sim_wall:.1f} s = "
+              f"{sim_clocks / max(sim_wall, 1e-9) / 1e6:.2f} M clocks/s."]
+    md = "\n".join(lines) + "\n"
+    print(md)
+    a.out.parent.mkdir(parents=True, exist_ok=True)
+    a.md.parent.mkdir(parents=True, exist_ok=True)
+    a.md.write_text(md)
+    a.out.write_text(json.dumps({
+        "settings": {"size": a.size, "image": a.image, "tile": a.tile, "latency": a.latency,
+                     "params": rtl_engine.PARAMS},
+        "rows": rows, "summary": summary, "mismatches": mism, "sim_clocks": sim_clocks,
+        "sim_wall_seconds": sim_wall,
+        "paper": {"mhz": PAPER_MHZ, "units": PAPER_UNITS, "mpixels_per_s": PAPER_MPIX,
+                  "clocks_per_pixel_per_unit": PAPER_CLOCKS_PER_PIXEL}}, indent=1))
+    if mism:
+        print(f"{PROG}: {mism} rays differ between the RTL and the f24 engine", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
