@@ -2,7 +2,8 @@
 
 Each ``tb/<unit>/test_<unit>.py`` holds the cocotb coroutines and a pytest function that calls
 :func:`run`.  Builds go to ``build/sim/<name>`` (one directory per parameter set), so pytest-xdist
-workers never share one.  Set ``WAVES=1`` to write an FST waveform (``build/sim/<name>/dump.fst``).
+workers never share one.  Set ``WAVES=1`` to write an FST waveform (``build/sim/<name>-waves/dump.fst``,
+a separate build with tracing compiled in).
 """
 from __future__ import annotations
 
@@ -46,7 +47,16 @@ def verilator_args(waves: bool) -> list[str]:
             "--output-split", "0",
             "-CFLAGS", "-std=c++20 -O1", "--build-jobs", "1"]
     if waves:
-        args += ["--trace-fst", "--trace-structs"]
+        # Verilator's FST writer includes <lz4.h> and links -llz4, which this machine lacks: our
+        # header-only LZ4 block writer (tb/harness/lz4_compat) stands in, and an empty archive
+        # satisfies -llz4; zlib is the system's.
+        stub = BUILD / "lz4stub"
+        stub.mkdir(parents=True, exist_ok=True)
+        if not (stub / "liblz4.a").is_file():
+            (stub / "liblz4.a").write_bytes(b"!<arch>\n")
+        args += ["--trace-fst", "--trace-structs",
+                 "-CFLAGS", f"-I{ROOT / 'tb' / 'harness' / 'lz4_compat'}",
+                 "-LDFLAGS", f"-L{stub} -lz"]
     return args
 
 
@@ -61,8 +71,8 @@ def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, obj
     """
     parameters = dict(parameters or {})
     name = name or top + "".join(f"-{k}{v}" for k, v in sorted(parameters.items()))
-    build_dir = BUILD / name
     waves = os.environ.get("WAVES", "0") == "1"
+    build_dir = BUILD / (name + ("-waves" if waves else ""))
     runner = get_runner("verilator")
     runner.build(
         sources=[str(p) for p in sources_for(rtl_top or top, extra_sources)],
@@ -83,6 +93,6 @@ def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, obj
         build_dir=str(build_dir),
         extra_env=env,
         testcase=testcase,
-        plusargs=["+trace"] if waves else [],
+        test_args=["--trace", "--trace-file", str(build_dir / "dump.fst")] if waves else [],
         results_xml=str(build_dir / "results.xml"),
     )
