@@ -49,12 +49,13 @@ The pipeline per covered pixel (:func:`render_pixels`; ``model.texture`` documen
     3. bilinear lookups of the colour texture and the normal map at the hit (u, v)
     4. shading (above)
 
-The pixel inputs the rasteriser / view unit hand over (:func:`pixel_inputs`): u0, v0, du, dv
-(the contract ray), Pl0 (eye to entry point), seg (world length per unit of t, D / |N . view|)
-and the triangle id; they are computed in float64 by ``model.camera`` and rounded once to the
-engine.  :func:`render` runs the pipeline over an image by tiles, optionally on several
-processes; every per-pixel step is element-wise, so the image does not depend on the tiling
-or the number of processes.
+The pixel inputs the rasteriser hands over (:func:`pixel_inputs`): u0, v0 (the entry texel),
+Pl0 (eye to entry point), the triangle id, its TBN and the unit view vector, computed in float64
+by ``model.camera`` and rounded once to the engine.  Step 0, the view unit
+(:func:`model.view.view_calc`, in the engine's arithmetic), makes the ray (du, dv) and seg (world
+length per unit of t, D / |N . view|) from TBN and view.  :func:`render` runs the pipeline over
+an image by tiles, optionally on several processes; every per-pixel step is element-wise, so
+the image does not depend on the tiling or the number of processes.
 """
 from __future__ import annotations
 
@@ -65,7 +66,7 @@ from typing import Callable, NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from . import f24, texture, traverse
+from . import f24, texture, traverse, view
 from .arith import ENGINES, Arith
 from .camera import Camera, Fragments
 from .heightmap import Pyramid
@@ -202,15 +203,16 @@ class Frame:
 
 
 class PixelInputs(NamedTuple):
-    """Per covered pixel (float64): the contract ray, Pl0, seg and the triangle id."""
+    """Per covered pixel (float64), what the rasteriser hands the pipeline: the entry texel
+    (u0, v0), Pl0 (eye to entry point), the triangle id, its TBN (N, 3, 3) and the unit view
+    vector (N, 3).  The view unit (:func:`model.view.view_calc`) makes the ray from the last two."""
 
     u0: F64
     v0: F64
-    du: F64
-    dv: F64
     pl0: F64
-    seg: F64
     tri: I64
+    tbn: F64
+    view: F64
 
     def subset(self, idx: npt.ArrayLike) -> "PixelInputs":
         return PixelInputs(*(a[idx] for a in self))
@@ -231,12 +233,8 @@ class PixelOutputs(NamedTuple):
 def pixel_inputs(cam: Camera, frags: Fragments | None = None) -> tuple[Fragments, PixelInputs]:
     """The camera's fragments and the pipeline inputs of every covered pixel."""
     f = cam.fragments() if frags is None else frags
-    cr = cam.rays(f)
-    nz = np.einsum("nj,nj->n", f.tbn[:, :, 2], f.view)  # N . view (< 0: towards the surface)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        seg = np.where(nz < 0.0, cam.depth_scale / -nz, np.nan)
-    r = cr.rays
-    return f, PixelInputs(r.u0, r.v0, r.du, r.dv, f.ray_length.copy(), seg, f.tri.copy())
+    return f, PixelInputs(f.u0.copy(), f.v0.copy(), f.ray_length.copy(), f.tri.copy(),
+                          f.tbn.copy(), f.view.copy())
 
 
 def approx_methods() -> dict[str, Callable[..., TraceResult]]:
@@ -270,7 +268,8 @@ def render_pixels(frame: Frame, inp: PixelInputs) -> PixelOutputs:
     """The pipeline (module docstring) for a set of covered pixels."""
     ar = ENGINES[frame.engine]
     n = inp.u0.shape[0]
-    res = trace_rays(frame, Rays(inp.u0, inp.v0, inp.du, inp.dv))
+    vo = view.view_calc(ar, inp.tbn, inp.view, frame.depth_scale)
+    res = trace_rays(frame, Rays(inp.u0, inp.v0, vo.du, vo.dv))
     rgb = np.empty((n, 3), dtype=np.uint8)
     rgb[:] = MISS_COLOUR
     level = np.full(n, -1, dtype=np.int64)
@@ -280,7 +279,7 @@ def render_pixels(frame: Frame, inp: PixelInputs) -> PixelOutputs:
         u, v, t = (ar.r(a[idx]) for a in (res.u, res.v, res.t))
         tri = inp.tri[idx]
         if frame.mip:
-            pl = texture.ray_length(ar, ar.r(inp.pl0[idx]), t, ar.r(inp.seg[idx]))
+            pl = texture.ray_length(ar, ar.r(inp.pl0[idx]), t, vo.seg[idx])
             lc = texture.mip_level(ar, pl, ar.r(np.asarray(frame.log2pb_colour, float)[tri]),
                                    frame.colour.n_levels)
             ln = texture.mip_level(ar, pl, ar.r(np.asarray(frame.log2pb_normal, float)[tri]),
@@ -290,7 +289,7 @@ def render_pixels(frame: Frame, inp: PixelInputs) -> PixelOutputs:
         mw, mh = frame.pyr.width, frame.pyr.height
         col = texture.sample(frame.colour, ar, u, v, lc, frame.colour.scale_for(ar, mw, mh))
         nrm = texture.sample(frame.normals, ar, u, v, ln, frame.normals.scale_for(ar, mw, mh))
-        rgb[idx] = shade(ar, col.value[:, :3], nrm.value[:, :3], inp.du[idx], inp.dv[idx],
+        rgb[idx] = shade(ar, col.value[:, :3], nrm.value[:, :3], vo.du[idx], vo.dv[idx],
                          frame.depth_scale, frame.material)
         level[idx] = lc
         level_n[idx] = ln
