@@ -168,6 +168,97 @@ def _bitlen(x: I64) -> I64:
     return out
 
 
+def start_node(c0x: I64, c0y: I64, ex: I64 | None, ey: I64 | None, width: int, height: int,
+               n: int, xor: bool) -> tuple[B, I64, I64, I64]:
+    """The first mode's start decision (the traverse unit's ``traverse_start_level``).
+
+    (c0x, c0y) is the located level-0 start cell (one outside the padded map, -1 or N, where the
+    ray starts off it), (ex, ey) the unclipped level-0 cell (floor) of the end point A, used only
+    with the start-level policy (a) (``xor``).  Returns whether the start cell lies outside the
+    map's own extent, the start level k (n, or with (a) the lowest level where the start and end
+    cells, clipped to the padded map, share a node: the bit length of their XOR, at most n) and
+    the start node (c0x >> k, c0y >> k) of the clipped start cell.
+    """
+    last = (1 << n) - 1
+    outside = (c0x < 0) | (c0x >= width) | (c0y < 0) | (c0y >= height)
+    c0x, c0y = np.clip(c0x, 0, last), np.clip(c0y, 0, last)
+    if xor:
+        assert ex is not None and ey is not None
+        ax, ay = np.clip(ex, 0, last), np.clip(ey, 0, last)
+        k = np.minimum(_bitlen(np.maximum(c0x ^ ax, c0y ^ ay)), n)
+    else:
+        k = np.zeros_like(c0x) + n
+    return outside, k, c0x >> k, c0y >> k
+
+
+def descent_level(descent: str, levels: int, k: I64, crossed: B, cx: I64 | None = None,
+                  cy: I64 | None = None, ax: I64 | None = None, ay: I64 | None = None,
+                  bx: I64 | None = None, by: I64 | None = None) -> I64:
+    """The descent policy: the new level of rays descending from node (k, cx, cy), k >= 1.
+
+    "one": k - 1.  "multi" (b): ``levels`` levels while the ray has not ``crossed`` a node yet,
+    then one.  "xor": as multi, or lower: the lowest level whose node holds the rest of the ray
+    inside this node, from the level-0 cells (floor, unclipped) of the ray at t_new (ax, ay) and at
+    the node's exit (bx, by), both clipped to the node: the bit length of their XOR.  Never below 0.
+    """
+    if descent == "one":
+        nk = k - 1
+    else:
+        nk = k - np.where(crossed, 1, np.minimum(levels, k))
+        if descent == "xor":
+            assert cx is not None and cy is not None and ax is not None and ay is not None
+            assert bx is not None and by is not None
+            lo, hi = cx << k, ((cx + 1) << k) - 1
+            a_x, b_x = np.clip(ax, lo, hi), np.clip(bx, lo, hi)
+            lo, hi = cy << k, ((cy + 1) << k) - 1
+            a_y, b_y = np.clip(ay, lo, hi), np.clip(by, lo, hi)
+            nk = np.minimum(_bitlen(np.maximum(a_x ^ b_x, a_y ^ b_y)), nk)
+    return np.maximum(nk, 0)
+
+
+def crossing_step(level_up: str, n: int, k: I64, cx: I64, cy: I64, stepx: I64, stepy: I64,
+                  prev_cross: B, p1x: I64 | None = None,
+                  p1y: I64 | None = None) -> tuple[I64, I64, I64, B]:
+    """A node crossing: the neighbour, then the level-up policy.
+
+    (stepx, stepy) is the move along each axis (s where that axis's exit is the node's exit, else
+    0).  ``prev_cross``: the ray's last iteration was a crossing without level-up (coherent);
+    (p1x, p1y): the level-0 cell (floor) where the ray meets this node's plane (selective only).
+    Returns the new level, the new cell and whether the ray went up a level (never above n).
+    """
+    nx, ny = cx + stepx, cy + stepy
+    if level_up == "none":
+        cup = np.zeros(np.shape(k), dtype=bool)
+    else:
+        parent_changed = ((nx >> 1) != (cx >> 1)) | ((ny >> 1) != (cy >> 1))
+        if level_up == "drobot":
+            cup = np.ones(np.shape(k), dtype=bool)
+        elif level_up == "tevs":
+            cup = parent_changed
+        elif level_up == "coherent":
+            cup = parent_changed & prev_cross
+        elif level_up == "selective":  # stay when the plane is met in the very next node
+            assert p1x is not None and p1y is not None
+            diff = np.maximum(np.abs((p1x >> k) - cx), np.abs((p1y >> k) - cy))
+            cup = parent_changed & (diff != 1)
+        else:
+            raise ValueError(f"bad level-up policy {level_up!r}")
+        cup &= k < n
+    return k + cup, np.where(cup, nx >> 1, nx), np.where(cup, ny >> 1, ny), cup
+
+
+def texel_offset(level_off: npt.ArrayLike, n: int, k: I64, cx: I64, cy: I64,
+                 texel_size: int = 1) -> I64:
+    """Where texel (cy, cx) of level k sits in the pyramid's storage.
+
+    Level k starts at ``level_off[k]`` and is row-major with a row pitch of N >> k texels.  With
+    :func:`_flat_levels`' offsets and size 1 this indexes the flat array the trace reads; with
+    :meth:`Pyramid.level_offsets` (bytes) and the texel's byte size it is the byte offset from the
+    base address that the traverse unit reads (``traverse_addr``; model/heightmap.py's layout).
+    """
+    return np.asarray(level_off, dtype=np.int64)[k] + (cy * ((1 << n) >> k) + cx) * texel_size
+
+
 def _flat_levels(pyr: Pyramid) -> tuple[npt.NDArray[np.int64], I64]:
     """All levels in one array (the memory layout's order) and each level's start index."""
     offs = np.cumsum([0] + [lv.size for lv in pyr.levels[:-1]]).astype(np.int64)
@@ -204,7 +295,6 @@ def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
     n = pyr.n
     N = pyr.size
     flat, offs = _flat_levels(pyr)
-    sides = np.array([N >> k for k in range(n + 1)], dtype=np.int64)
     one = np.ones(nv)
     zero_i = np.zeros(nv, dtype=np.int64)
 
@@ -217,16 +307,13 @@ def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
     lo0, hi0 = zero_i, zero_i + (N - 1)
     c0x = locate(ar, S.u0, S.du, S.inv_du, S.sx, t0, zero_i, lo0 - 1, hi0 + 1)
     c0y = locate(ar, S.v0, S.dv, S.inv_dv, S.sy, t0, zero_i, lo0 - 1, hi0 + 1)
-    gone |= (c0x < 0) | (c0x >= pyr.width) | (c0y < 0) | (c0y >= pyr.height)
-    c0x, c0y = np.clip(c0x, 0, N - 1), np.clip(c0y, 0, N - 1)
-    if m.start_level:
+    ex = ey = None
+    if m.start_level:  # (a): the end point A = P + D (or where the ray leaves the map, with clip)
         t_end = np.minimum(one, S.t_map) if m.clip else one
-        ax = np.clip(ar.to_index(np.where(S.sx != 0, position(ar, S.u0, S.du, t_end), S.u0)), 0, N - 1)
-        ay = np.clip(ar.to_index(np.where(S.sy != 0, position(ar, S.v0, S.dv, t_end), S.v0)), 0, N - 1)
-        k = np.minimum(_bitlen(np.maximum(c0x ^ ax, c0y ^ ay)), n)
-    else:
-        k = zero_i + n
-    cx, cy = c0x >> k, c0y >> k
+        ex = ar.to_index(np.where(S.sx != 0, position(ar, S.u0, S.du, t_end), S.u0))
+        ey = ar.to_index(np.where(S.sy != 0, position(ar, S.v0, S.dv, t_end), S.v0))
+    outside, k, cx, cy = start_node(c0x, c0y, ex, ey, pyr.width, pyr.height, n, m.start_level)
+    gone |= outside
 
     # ---- second mode: the iterative search, all rays in lock-step ----------------------------
     t = t0.copy()
@@ -242,7 +329,7 @@ def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
         u0, v0, du, dv = S.u0[act], S.v0[act], S.du[act], S.dv[act]
         ix, iy, sx, sy, tmap = S.inv_du[act], S.inv_dv[act], S.sx[act], S.sy[act], S.t_map[act]
         ones = one[: act.size]
-        code = flat[offs[kk] + yy * sides[kk] + xx]
+        code = flat[texel_offset(offs, n, kk, xx, yy)]
         iters[act] += 1
         h = ar.from_unorm(code, pyr.bits)
         plane = ar.sub(ones, h)
@@ -263,21 +350,15 @@ def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
             dk, dxx, dyy, dt = kk[di], xx[di], yy[di], t_new[di]
             du_, dv_, du0, dv0 = du[di], dv[di], u0[di], v0[di]
             dix, diy, dsx, dsy = ix[di], iy[di], sx[di], sy[di]
-            if m.descent == "one":
-                nk = dk - 1
-            else:
-                step = np.where(crossed[act[di]], 1, np.minimum(m.descent_levels, dk))  # (b)
-                nk = dk - step
-                if m.descent == "xor":  # down to the lowest node holding the rest of the ray here
-                    t_end = np.minimum(np.minimum(t_exit[di], tmap[di]), ones[: di.size])
-                    lo, hi = dxx << dk, ((dxx + 1) << dk) - 1
-                    a_x = np.clip(ar.to_index(np.where(dsx != 0, position(ar, du0, du_, dt), du0)), lo, hi)
-                    b_x = np.clip(ar.to_index(np.where(dsx != 0, position(ar, du0, du_, t_end), du0)), lo, hi)
-                    lo, hi = dyy << dk, ((dyy + 1) << dk) - 1
-                    a_y = np.clip(ar.to_index(np.where(dsy != 0, position(ar, dv0, dv_, dt), dv0)), lo, hi)
-                    b_y = np.clip(ar.to_index(np.where(dsy != 0, position(ar, dv0, dv_, t_end), dv0)), lo, hi)
-                    nk = np.minimum(_bitlen(np.maximum(a_x ^ b_x, a_y ^ b_y)), nk)
-            nk = np.maximum(nk, 0)
+            a_x = a_y = b_x = b_y = None
+            if m.descent == "xor":  # the ray's cells at t_new and at the node's exit
+                t_end = np.minimum(np.minimum(t_exit[di], tmap[di]), ones[: di.size])
+                a_x = ar.to_index(np.where(dsx != 0, position(ar, du0, du_, dt), du0))
+                b_x = ar.to_index(np.where(dsx != 0, position(ar, du0, du_, t_end), du0))
+                a_y = ar.to_index(np.where(dsy != 0, position(ar, dv0, dv_, dt), dv0))
+                b_y = ar.to_index(np.where(dsy != 0, position(ar, dv0, dv_, t_end), dv0))
+            nk = descent_level(m.descent, m.descent_levels, dk, crossed[act[di]], dxx, dyy,
+                               a_x, a_y, b_x, b_y)
             d = dk - nk
             nxd = locate(ar, du0, du_, dix, dsx, dt, nk, dxx << d, ((dxx + 1) << d) - 1)
             nyd = locate(ar, dv0, dv_, diy, dsy, dt, nk, dyy << d, ((dyy + 1) << d) - 1)
@@ -291,30 +372,18 @@ def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
         if ci.size:
             ck, cxx, cyy, csx, csy = kk[ci], xx[ci], yy[ci], sx[ci], sy[ci]
             te = t_exit[ci]
-            nx = cxx + np.where(tx[ci] == te, csx, 0)
-            ny = cyy + np.where(ty[ci] == te, csy, 0)
-            if m.level_up == "none":
-                cup = np.zeros(ci.size, dtype=bool)
-            else:
-                parent_changed = ((nx >> 1) != (cxx >> 1)) | ((ny >> 1) != (cyy >> 1))
-                if m.level_up == "drobot":
-                    cup = np.ones(ci.size, dtype=bool)
-                elif m.level_up == "tevs":
-                    cup = parent_changed
-                elif m.level_up == "coherent":
-                    cup = parent_changed & prev_cross[act[ci]]
-                else:  # selective: stay when the plane is met in the very next node
-                    cpl = plane[ci]
-                    p1x = ar.to_index(np.where(csx != 0, position(ar, u0[ci], du[ci], cpl), u0[ci])) >> ck
-                    p1y = ar.to_index(np.where(csy != 0, position(ar, v0[ci], dv[ci], cpl), v0[ci])) >> ck
-                    diff = np.maximum(np.abs(p1x - cxx), np.abs(p1y - cyy))
-                    cup = parent_changed & (diff != 1)
-                cup &= ck < n
+            p1x = p1y = None
+            if m.level_up == "selective":  # P1: where the ray meets this node's plane
+                cpl = plane[ci]
+                p1x = ar.to_index(np.where(csx != 0, position(ar, u0[ci], du[ci], cpl), u0[ci]))
+                p1y = ar.to_index(np.where(csy != 0, position(ar, v0[ci], dv[ci], cpl), v0[ci]))
+            nck, ncx, ncy, cup = crossing_step(m.level_up, n, ck, cxx, cyy,
+                                               np.where(tx[ci] == te, csx, 0),
+                                               np.where(ty[ci] == te, csy, 0),
+                                               prev_cross[act[ci]], p1x, p1y)
             up[ci] = cup
             g = act[ci]
-            k[g] = ck + cup
-            cx[g] = np.where(cup, nx >> 1, nx)
-            cy[g] = np.where(cup, ny >> 1, ny)
+            k[g], cx[g], cy[g] = nck, ncx, ncy
             t[g] = np.maximum(tt[ci], te)
             crossed[g] = True
             prev_cross[g] = ~cup

@@ -148,3 +148,58 @@ def test_step_record_follows_one_ray() -> None:
     assert res.hit[0] and res.t[0] == 0.25  # enters texel (0, 1) at u = 1: t = 0.25
     assert len(rec) == res.iterations[0] and rec[-1]["action"] == "hit"
     assert rec[0]["level"] == 1
+
+
+def _lowest_shared_level(ax, bx, ay, by, top: int) -> np.ndarray:
+    """The lowest level <= top at which (ax, ay) and (bx, by) lie in one node, the slow way."""
+    out = np.full(len(ax), top)
+    for k in range(top, -1, -1):
+        same = ((ax >> k) == (bx >> k)) & ((ay >> k) == (by >> k))
+        out = np.where(same, k, out)
+    return out
+
+
+def test_factored_pieces_match_their_definitions(rng: np.random.Generator) -> None:
+    """start_node, descent_level, crossing_step and texel_offset (the pieces of the trace loop the
+    RTL's unit tests compare against) agree with their definitions computed the slow way."""
+    n, w, h = 7, 100, 77
+    big = 1 << n
+    m = 20000
+    # start: the lowest level where the clipped start and end cells share a node (a), else n
+    c0x, c0y = rng.integers(-1, big + 1, m), rng.integers(-1, big + 1, m)
+    ex, ey = c0x + rng.integers(-40, 41, m), c0y + rng.integers(-40, 41, m)
+    outside, k, cx, cy = traverse.start_node(c0x, c0y, ex, ey, w, h, n, True)
+    sx, sy = np.clip(c0x, 0, big - 1), np.clip(c0y, 0, big - 1)
+    want = _lowest_shared_level(sx, np.clip(ex, 0, big - 1), sy, np.clip(ey, 0, big - 1), n)
+    assert (k == want).all() and (cx == sx >> k).all() and (cy == sy >> k).all()
+    assert (outside == ((c0x < 0) | (c0x >= w) | (c0y < 0) | (c0y >= h))).all()
+    assert (traverse.start_node(c0x, c0y, None, None, w, h, n, False)[1] == n).all()
+    # xor descent: the lowest node holding both ends inside this node, at most the multi level
+    k = rng.integers(1, n + 1, m)
+    cx, cy = rng.integers(0, big >> k), rng.integers(0, big >> k)
+    crossed = rng.random(m) < 0.3
+    ends = [(c << k) + rng.integers(-3, (1 << k) + 3) for c in (cx, cx, cy, cy)]
+    clipped = [np.clip(e, c << k, ((c + 1) << k) - 1) for e, c in zip(ends, (cx, cx, cy, cy))]
+    multi = k - np.where(crossed, 1, np.minimum(3, k))
+    assert (traverse.descent_level("multi", 3, k, crossed) == multi).all()
+    assert (traverse.descent_level("one", 3, k, crossed) == k - 1).all()
+    nk = traverse.descent_level("xor", 3, k, crossed, cx, cy, ends[0], ends[2], ends[1], ends[3])
+    want = np.minimum(_lowest_shared_level(*clipped, n), multi)
+    assert (nk == np.maximum(want, 0)).all()
+    # crossing: drobot always goes up below the root, to the parent of the neighbour
+    step = rng.integers(-1, 2, m)
+    k = rng.integers(0, n + 1, m)
+    cx, cy = rng.integers(0, big >> k), rng.integers(0, big >> k)
+    nk, nx, ny, up = traverse.crossing_step("drobot", n, k, cx, cy, step, 0 * step, crossed)
+    assert (up == (k < n)).all() and (nk == k + up).all()
+    assert (nx == np.where(up, (cx + step) >> 1, cx + step)).all()
+    assert (ny == np.where(up, cy >> 1, cy)).all()
+    # texel_offset: the byte offset of a node holds its code in the memory image
+    for bits in (8, 16):
+        pyr = heightmap.build(rng.integers(0, 1 << bits, (h, w)).astype(np.uint16), bits)
+        img = np.frombuffer(pyr.memory_image(), dtype=np.uint8).astype(np.int64)
+        k = rng.integers(0, n + 1, 4000)
+        cx, cy = rng.integers(0, big >> k), rng.integers(0, big >> k)
+        off = traverse.texel_offset(pyr.level_offsets(), n, k, cx, cy, bits // 8)
+        code = img[off] if bits == 8 else img[off] | (img[off + 1] << 8)
+        assert (code == [pyr.levels[a][c, b] for a, b, c in zip(k, cx, cy)]).all()

@@ -9,6 +9,7 @@
 //
 // Stage schedule (a unit "a -> b" takes operands in Sa and delivers in Sb):
 //   S0   height address base + off[k] + (cy * side_k + cx) * bytes  -> lk_* registers (S1)
+//        (traverse_addr)
 //        exit boundaries bx = (cx + (sx > 0)) << k                  f24_from_int S0 -> S1
 //   S1   lookup presented (lk_valid_o, lk_addr_o, lk_wide_o)
 //        bx - u0                                                    f24_add      S1 -> S3
@@ -26,8 +27,10 @@
 //        floor(position at t_end)                                   f24_to_index S8 -> S9
 //   S9   floor(position at plane) (selective's P1)                  f24_to_index S9 -> S10
 //   S10  crossing: neighbour cell, level-up policy                  floor(position at t_new)
+//        (traverse_level_decide, crossing part)
 //                                                                   f24_to_index S10 -> S11
 //   S11  descent: new level (one; multi: `levels` until the first crossing; XOR of the ends)
+//        (traverse_level_decide, descent part)
 //   S12  child estimate floor(p) >> k', clip; its entry / exit      f24_from_int S12 -> S13
 //   S13  boundary - u0                                              f24_add      S13 -> S15
 //   S15  (boundary - u0) * (1/du)                                   f24_mul      S15 -> S16
@@ -83,51 +86,80 @@ module traverse_loop
 
   localparam int unsigned D = 18;  // LOOP_DEPTH: stages S0 .. S17
 
+  // Stage registers, written in one always_ff (no copy of the whole ring in combinational logic).
+  // A slot (the ray) goes round the whole ring; what one pass computes lives only from the stage
+  // that computes it to the last one that reads it (arrays indexed by stage).
   typedef struct packed {
-    logic [ID_W-1:0]  id;
-    ray_t             r;
-    logic             ok;                    // S4+: the height read returned data
-    logic             rd_err;                // S4+: the height read returned an error
-    f24_t             te;                    // S5+: t_exit = min(tx, ty)
-    logic             eqx, eqy;              // S5+: tx == t_exit, ty == t_exit
-    f24_t             tmin;                  // S6+: min(t_exit, t_map)
-    logic             miss_pre;              // S6+: t_map <= t_exit
-    f24_t             t_new;                 // S7+: max(t, plane)
-    logic             is_hit, down, miss;    // S8+ (cross = none of them)
-    sidx_t            ibx, iby;              // S10+: floor(position at t_end)
-    f24_t             pu, pv;                // S11+: position at t_new
-    logic [LVL_W-1:0] xk;                    // S11+: crossing: new level
-    logic [CELL_W-1:0] xcx, xcy;             // S11+: crossing: new cell
-    f24_t             xt;                    // S11+: crossing: max(t, t_exit)
-    logic             up;                    // S11+: crossing went up a level
-    sidx_t            iax, iay;              // S12+: floor(position at t_new)
-    logic [LVL_W-1:0] nk;                    // S12+: descent: new level
-    sidx_t            dcx, dcy;              // S13+: descent: child estimate
-    sidx_t            lox, hix, loy, hiy;    // S13+: descent: the children's range at nk
+    logic [ID_W-1:0] id;
+    ray_t            r;
   } slot_t;
+  typedef struct packed {
+    logic ok;                      // the height read returned data
+    logic rd_err;                  // the height read returned an error
+  } rd_t;
+  typedef struct packed {
+    f24_t te;                      // t_exit = min(tx, ty)
+    logic eqx, eqy;                // tx == t_exit, ty == t_exit
+  } exit_t;
+  typedef struct packed {
+    logic is_hit, down, miss;      // (cross = none of them)
+  } act_t;
+  typedef struct packed {
+    f24_t              pu, pv;     // position at t_new
+    logic [LVL_W-1:0]  xk;         // crossing: new level
+    logic [CELL_W-1:0] xcx, xcy;   // crossing: new cell
+    f24_t              xt;         // crossing: max(t, t_exit)
+    logic              up;         // crossing went up a level
+  } cross_t;
+  typedef struct packed {
+    sidx_t dcx, dcy;               // descent: child estimate
+    sidx_t lox, hix, loy, hiy;     // descent: the children's range at nk
+  } child_t;
 
-  logic  v_q [D];
-  slot_t p_q [D];
-  slot_t p_d [D];
-  logic  v0_d;
+  logic                    v_q        [D];
+  slot_t                   p_q        [D];
+  rd_t                     rd_q       [4:16];
+  exit_t                   exit_q     [5:10];
+  f24_t                    tmin_q     [6:7];    // min(t_exit, t_map)
+  logic                    miss_pre_q [6:7];    // t_map <= t_exit
+  f24_t                    t_new_q    [7:16];   // max(t, plane)
+  act_t                    act_q      [8:16];
+  logic signed [IDX_W-1:0] ibx_q      [10:11];  // floor(position at t_end)
+  logic signed [IDX_W-1:0] iby_q      [10:11];
+  cross_t                  cross_q    [11:16];
+  sidx_t                   iax_q, iay_q;        // S12: floor(position at t_new)
+  logic [LVL_W-1:0]        nk_q       [12:16];  // descent: new level
+  child_t                  child_q    [13:16];
+  logic                    v0_d;
+  slot_t                   p0_d;
 
   // ---- S0: height address, exit boundaries -----------------------------------------------------
   /* verilator lint_off UNUSEDSIGNAL */  // a stage view: the stage reads only some fields
   slot_t s0;
   /* verilator lint_on UNUSEDSIGNAL */
-  logic [ADDR_W-1:0] texel;
-  logic [LVL_W-1:0]  sh0;
-  assign s0  = p_q[0];
-  assign sh0 = cfg_i.n - s0.r.k;  // log2 of the row pitch of level k
-  assign texel = ((ADDR_W'(s0.r.cy) << sh0) + ADDR_W'(s0.r.cx)) << cfg_i.bits16;
+  assign s0 = p_q[0];
+
+  logic [ADDR_W-1:0] addr0;
+  logic              wide0;
+  traverse_addr u_addr (
+    .base_i     (cfg_i.base),
+    .level_off_i(cfg_i.level_off),
+    .n_i        (cfg_i.n),
+    .bits16_i   (cfg_i.bits16),
+    .k_i        (s0.r.k),
+    .cx_i       (s0.r.cx),
+    .cy_i       (s0.r.cy),
+    .addr_o     (addr0),
+    .wide_o     (wide0)
+  );
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) lk_valid_o <= 1'b0;
     else         lk_valid_o <= v_q[0] && !s0.r.done;
   end
   always_ff @(posedge clk_i) begin
-    lk_addr_o <= cfg_i.base + cfg_i.level_off[s0.r.k] + texel;
-    lk_wide_o <= cfg_i.bits16;
+    lk_addr_o <= addr0;
+    lk_wide_o <= wide0;
   end
 
   f24_t bx_f, by_f;
@@ -158,7 +190,7 @@ module traverse_loop
 
   // ---- S5: t_end -------------------------------------------------------------------------------
   f24_t tmin5, t_end, due_x, due_y;
-  assign tmin5 = f24_min(p_q[5].te, p_q[5].r.t_map);
+  assign tmin5 = f24_min(exit_q[5].te, p_q[5].r.t_map);
   assign t_end = f24_min(tmin5, F24_ONE);
   f24_mul u_due_x (.clk_i, .en_i(1'b1), .a_i(p_q[5].r.du), .b_i(t_end), .y_o(due_x));
   f24_mul u_due_y (.clk_i, .en_i(1'b1), .a_i(p_q[5].r.dv), .b_i(t_end), .y_o(due_y));
@@ -173,9 +205,9 @@ module traverse_loop
   // ---- S7: decisions, du * t_new, position at plane --------------------------------------------
   f24_t dun_x, dun_y, posp_x, posp_y;
   logic inside7;
-  assign inside7 = f24_lt(p_q[7].t_new, p_q[7].tmin);
-  f24_mul u_dun_x (.clk_i, .en_i(1'b1), .a_i(p_q[7].r.du), .b_i(p_q[7].t_new), .y_o(dun_x));
-  f24_mul u_dun_y (.clk_i, .en_i(1'b1), .a_i(p_q[7].r.dv), .b_i(p_q[7].t_new), .y_o(dun_y));
+  assign inside7 = f24_lt(t_new_q[7], tmin_q[7]);
+  f24_mul u_dun_x (.clk_i, .en_i(1'b1), .a_i(p_q[7].r.du), .b_i(t_new_q[7]), .y_o(dun_x));
+  f24_mul u_dun_y (.clk_i, .en_i(1'b1), .a_i(p_q[7].r.dv), .b_i(t_new_q[7]), .y_o(dun_y));
   f24_add u_posp_x (.clk_i, .en_i(1'b1), .a_i(p_q[7].r.u0), .b_i(dup_x), .y_o(posp_x));
   f24_add u_posp_y (.clk_i, .en_i(1'b1), .a_i(p_q[7].r.v0), .b_i(dup_y), .y_o(posp_y));
 
@@ -198,7 +230,7 @@ module traverse_loop
   f24_to_index #(.W(IDX_W)) u_ip_y (.clk_i, .en_i(1'b1),
     .a_i(p_q[9].r.sy.mv ? posp_y : p_q[9].r.v0), .idx_o(ip_y), .sat_o(unused_sat_py));
 
-  // ---- S10: crossing and level-up; floor(position at t_new) ------------------------------------
+  // ---- S10: floor(position at t_new) ----------------------------------------------------------
   logic signed [IDX_W-1:0] in_x, in_y;
   logic unused_sat_nx, unused_sat_ny;
   f24_to_index #(.W(IDX_W)) u_in_x (.clk_i, .en_i(1'b1),
@@ -206,67 +238,49 @@ module traverse_loop
   f24_to_index #(.W(IDX_W)) u_in_y (.clk_i, .en_i(1'b1),
     .a_i(p_q[10].r.sy.mv ? posn_y : p_q[10].r.v0), .idx_o(in_y), .sat_o(unused_sat_ny));
 
+  // ---- S10: crossing (neighbour, level-up); S11: descent level --------------------------------
   /* verilator lint_off UNUSEDSIGNAL */  // a stage view: the stage reads only some fields
   slot_t s10;
   /* verilator lint_on UNUSEDSIGNAL */
-  sidx_t c10x, c10y, nx, ny, p1x, p1y, dfx, dfy, diff;
-  logic  parent_changed, cup;
-  always_comb begin
-    s10  = p_q[10];
-    c10x = sidx_t'(s10.r.cx);
-    c10y = sidx_t'(s10.r.cy);
-    nx   = c10x + (s10.eqx ? dir_val(s10.r.sx) : '0);
-    ny   = c10y + (s10.eqy ? dir_val(s10.r.sy) : '0);
-    parent_changed = ((nx >>> 1) != (c10x >>> 1)) || ((ny >>> 1) != (c10y >>> 1));
-    // selective: P1 (where the ray meets this node's plane), in cells of level k
-    p1x  = sidx_t'(ip_x) >>> s10.r.k;
-    p1y  = sidx_t'(ip_y) >>> s10.r.k;
-    dfx  = (p1x >= c10x) ? p1x - c10x : c10x - p1x;
-    dfy  = (p1y >= c10y) ? p1y - c10y : c10y - p1y;
-    diff = (dfx > dfy) ? dfx : dfy;
-    case (cfg_i.policy.level_up)
-      UP_TEVS:      cup = parent_changed;
-      UP_DROBOT:    cup = 1'b1;
-      UP_SELECTIVE: cup = parent_changed && (diff != sidx_t'(1));
-      UP_COHERENT:  cup = parent_changed && s10.r.prev_cross;
-      default:      cup = 1'b0;
-    endcase
-    cup = cup && (s10.r.k < cfg_i.n);
-  end
+  assign s10 = p_q[10];
 
-  // ---- S11: descent level ------------------------------------------------------------------------
   /* verilator lint_off UNUSEDSIGNAL */  // a stage view: the stage reads only some fields
   slot_t s11;
   /* verilator lint_on UNUSEDSIGNAL */
-  sidx_t lo0x, hi0x, lo0y, hi0y, ax, bx, ay, by;
-  logic [15:0] xr;
-  logic [4:0]  step, nk0, bl;
-  logic [LVL_W-1:0] nk_xor, nk11;
-  always_comb begin
-    s11  = p_q[11];
-    lo0x = sidx_t'(s11.r.cx) <<< s11.r.k;
-    hi0x = ((sidx_t'(s11.r.cx) + sidx_t'(1)) <<< s11.r.k) - sidx_t'(1);
-    lo0y = sidx_t'(s11.r.cy) <<< s11.r.k;
-    hi0y = ((sidx_t'(s11.r.cy) + sidx_t'(1)) <<< s11.r.k) - sidx_t'(1);
-    ax   = clip_idx(sidx_t'(in_x), lo0x, hi0x);
-    bx   = clip_idx(s11.ibx, lo0x, hi0x);
-    ay   = clip_idx(sidx_t'(in_y), lo0y, hi0y);
-    by   = clip_idx(s11.iby, lo0y, hi0y);
-    xr   = (16'(ax ^ bx) > 16'(ay ^ by)) ? 16'(ax ^ bx) : 16'(ay ^ by);
-    // (b): `levels` levels per descent until the first crossing, then one (never below 0)
-    if (s11.r.crossed)                         step = 5'd1;
-    else if (s11.r.k < 4'(cfg_i.policy.levels)) step = 5'(s11.r.k);
-    else                                       step = 5'(cfg_i.policy.levels);
-    nk0  = 5'(s11.r.k) - step;                // k >= 1 for a descending ray
-    bl   = bitlen16(xr);
-    nk_xor = LVL_W'((bl < nk0) ? bl : nk0);   // down to the lowest node holding the rest
-    case (cfg_i.policy.descent)
-      DESC_MULTI: nk11 = LVL_W'(nk0);
-      DESC_XOR:   nk11 = nk_xor;
-      default:    nk11 = s11.r.k - LVL_W'(1);
-    endcase
-    if (s11.r.k == '0) nk11 = '0;              // not a descending ray: keep in range
-  end
+  assign s11 = p_q[11];
+
+  logic [LVL_W-1:0]  xk10, nk11;
+  logic [CELL_W-1:0] xcx10, xcy10;
+  logic              up10;
+  traverse_level_decide u_level (
+    .level_up_i  (cfg_i.policy.level_up),
+    .n_i         (cfg_i.n),
+    .xk_i        (s10.r.k),
+    .xcx_i       (s10.r.cx),
+    .xcy_i       (s10.r.cy),
+    .eqx_i       (exit_q[10].eqx),
+    .eqy_i       (exit_q[10].eqy),
+    .sx_i        (s10.r.sx),
+    .sy_i        (s10.r.sy),
+    .prev_cross_i(s10.r.prev_cross),
+    .p1x_i       (ip_x),
+    .p1y_i       (ip_y),
+    .xk_o        (xk10),
+    .xcx_o       (xcx10),
+    .xcy_o       (xcy10),
+    .up_o        (up10),
+    .descent_i   (cfg_i.policy.descent),
+    .levels_i    (cfg_i.policy.levels),
+    .dk_i        (s11.r.k),
+    .dcx_i       (s11.r.cx),
+    .dcy_i       (s11.r.cy),
+    .crossed_i   (s11.r.crossed),
+    .ax_i        (in_x),
+    .ay_i        (in_y),
+    .bx_i        (ibx_q[11]),
+    .by_i        (iby_q[11]),
+    .dk_o        (nk11)
+  );
 
   // ---- S12: child estimate and its entry / exit boundaries -------------------------------------
   /* verilator lint_off UNUSEDSIGNAL */  // a stage view: the stage reads only some fields
@@ -276,24 +290,24 @@ module traverse_loop
   sidx_t c12x, c12y, lox, hix, loy, hiy;
   always_comb begin
     s12  = p_q[12];
-    dd   = s12.r.k - s12.nk;
+    dd   = s12.r.k - nk_q[12];
     lox  = sidx_t'(s12.r.cx) <<< dd;
     hix  = ((sidx_t'(s12.r.cx) + sidx_t'(1)) <<< dd) - sidx_t'(1);
     loy  = sidx_t'(s12.r.cy) <<< dd;
     hiy  = ((sidx_t'(s12.r.cy) + sidx_t'(1)) <<< dd) - sidx_t'(1);
-    c12x = clip_idx(s12.iax >>> s12.nk, lox, hix);
-    c12y = clip_idx(s12.iay >>> s12.nk, loy, hiy);
+    c12x = clip_idx(iax_q >>> nk_q[12], lox, hix);
+    c12y = clip_idx(iay_q >>> nk_q[12], loy, hiy);
   end
 
   f24_t ben_x, bex_x, ben_y, bex_y;
   f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(1'b1),
-    .k_i(IDX_W'((c12x + sidx_t'(s12.r.sx.mv && s12.r.sx.neg)) <<< s12.nk)), .y_o(ben_x));
+    .k_i(IDX_W'((c12x + sidx_t'(s12.r.sx.mv && s12.r.sx.neg)) <<< nk_q[12])), .y_o(ben_x));
   f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(1'b1),
-    .k_i(IDX_W'((c12x + sidx_t'(s12.r.sx.mv && !s12.r.sx.neg)) <<< s12.nk)), .y_o(bex_x));
+    .k_i(IDX_W'((c12x + sidx_t'(s12.r.sx.mv && !s12.r.sx.neg)) <<< nk_q[12])), .y_o(bex_x));
   f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(1'b1),
-    .k_i(IDX_W'((c12y + sidx_t'(s12.r.sy.mv && s12.r.sy.neg)) <<< s12.nk)), .y_o(ben_y));
+    .k_i(IDX_W'((c12y + sidx_t'(s12.r.sy.mv && s12.r.sy.neg)) <<< nk_q[12])), .y_o(ben_y));
   f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(1'b1),
-    .k_i(IDX_W'((c12y + sidx_t'(s12.r.sy.mv && !s12.r.sy.neg)) <<< s12.nk)), .y_o(bex_y));
+    .k_i(IDX_W'((c12y + sidx_t'(s12.r.sy.mv && !s12.r.sy.neg)) <<< nk_q[12])), .y_o(bex_y));
 
   // ---- S13, S15: crossing times of the child's boundaries --------------------------------------
   f24_t den_x, dex_x, den_y, dex_y, ten_x, tex_x, ten_y, tex_y;
@@ -318,9 +332,19 @@ module traverse_loop
     return clip_idx(r, lo, hi);
   endfunction
 
-  slot_t s16, n16;
+  slot_t  s16, n16;
+  rd_t    rd16;
+  act_t   act16;
+  cross_t x16;
+  child_t ch16;
+  f24_t   t_new16;
   logic [ITER_W-1:0] it1;
   logic iter16, down16, cross16, up16;
+  assign rd16    = rd_q[16];
+  assign act16   = act_q[16];
+  assign x16     = cross_q[16];
+  assign ch16    = child_q[16];
+  assign t_new16 = t_new_q[16];
   always_comb begin
     s16     = p_q[16];
     n16     = s16;
@@ -331,40 +355,40 @@ module traverse_loop
     up16    = 1'b0;
     if (s16.r.done) begin
       // finished earlier, waiting for room in the result FIFO: untouched
-    end else if (s16.rd_err) begin
+    end else if (rd16.rd_err) begin
       n16.r.done = 1'b1;
       n16.r.err  = 1'b1;
-    end else if (s16.ok) begin
+    end else if (rd16.ok) begin
       iter16       = 1'b1;
       n16.r.iters  = it1;
-      if (s16.is_hit) begin
+      if (act16.is_hit) begin
         n16.r.done = 1'b1;
         n16.r.hit  = 1'b1;
-        n16.r.t    = s16.t_new;
-        n16.r.u0   = s16.pu;
-        n16.r.v0   = s16.pv;
-      end else if (s16.miss) begin
+        n16.r.t    = t_new16;
+        n16.r.u0   = x16.pu;
+        n16.r.v0   = x16.pv;
+      end else if (act16.miss) begin
         n16.r.done = 1'b1;
-      end else if (s16.down) begin
+      end else if (act16.down) begin
         down16          = 1'b1;
-        n16.r.k         = s16.nk;
-        n16.r.cx        = CELL_W'(correct(s16.dcx, s16.r.sx, ten_x, tex_x, s16.t_new,
-                                          s16.lox, s16.hix));
-        n16.r.cy        = CELL_W'(correct(s16.dcy, s16.r.sy, ten_y, tex_y, s16.t_new,
-                                          s16.loy, s16.hiy));
-        n16.r.t         = s16.t_new;
+        n16.r.k         = nk_q[16];
+        n16.r.cx        = CELL_W'(correct(ch16.dcx, s16.r.sx, ten_x, tex_x, t_new16,
+                                          ch16.lox, ch16.hix));
+        n16.r.cy        = CELL_W'(correct(ch16.dcy, s16.r.sy, ten_y, tex_y, t_new16,
+                                          ch16.loy, ch16.hiy));
+        n16.r.t         = t_new16;
         n16.r.prev_cross = 1'b0;
       end else begin
         cross16          = 1'b1;
-        up16             = s16.up;
-        n16.r.k          = s16.xk;
-        n16.r.cx         = s16.xcx;
-        n16.r.cy         = s16.xcy;
-        n16.r.t          = s16.xt;
+        up16             = x16.up;
+        n16.r.k          = x16.xk;
+        n16.r.cx         = x16.xcx;
+        n16.r.cy         = x16.xcy;
+        n16.r.t          = x16.xt;
         n16.r.crossed    = 1'b1;
-        n16.r.prev_cross = !s16.up;
+        n16.r.prev_cross = !x16.up;
       end
-      if (it1 >= cfg_i.iter_cap && !s16.is_hit && !s16.miss) begin
+      if (it1 >= cfg_i.iter_cap && !act16.is_hit && !act16.miss) begin
         n16.r.done   = 1'b1;
         n16.r.capped = 1'b1;
       end
@@ -394,54 +418,8 @@ module traverse_loop
   assign v0_d       = (v_q[D-1] && !retire) || admit;
 
   // ---- stage registers -----------------------------------------------------------------------
-  always_comb begin
-    for (int s = 1; s < D; s++) p_d[s] = p_q[s-1];
-    p_d[0] = s17;                            // re-circulates (priority) ...
-    if (!(v_q[D-1] && !retire)) begin        // ... or a new ray fills the bubble
-      p_d[0].id = new_id_i;
-      p_d[0].r  = new_ray_i;
-    end
-    // S3 -> S4
-    p_d[4].ok     = rs_valid_i && rs_hit_i && !rs_err_i;
-    p_d[4].rd_err = rs_valid_i && rs_err_i;
-    // S4 -> S5
-    p_d[5].te  = te;
-    p_d[5].eqx = f24_eq(tx, te);
-    p_d[5].eqy = f24_eq(ty, te);
-    // S5 -> S6
-    p_d[6].tmin     = tmin5;
-    p_d[6].miss_pre = f24_le(p_q[5].r.t_map, p_q[5].te);
-    // S6 -> S7
-    p_d[7].t_new = f24_max(p_q[6].r.t, plane);
-    // S7 -> S8
-    p_d[8].is_hit = inside7 && (p_q[7].r.k == '0);
-    p_d[8].down   = inside7 && (p_q[7].r.k != '0);
-    p_d[8].miss   = !inside7 && p_q[7].miss_pre;
-    // S9 -> S10
-    p_d[10].ibx = sidx_t'(ie_x);
-    p_d[10].iby = sidx_t'(ie_y);
-    // S10 -> S11
-    p_d[11].pu  = posn_x;
-    p_d[11].pv  = posn_y;
-    p_d[11].xk  = s10.r.k + LVL_W'(cup);
-    p_d[11].xcx = CELL_W'(cup ? (nx >>> 1) : nx);
-    p_d[11].xcy = CELL_W'(cup ? (ny >>> 1) : ny);
-    p_d[11].xt  = f24_max(s10.r.t, s10.te);
-    p_d[11].up  = cup;
-    // S11 -> S12
-    p_d[12].iax = sidx_t'(in_x);
-    p_d[12].iay = sidx_t'(in_y);
-    p_d[12].nk  = nk11;
-    // S12 -> S13
-    p_d[13].dcx = c12x;
-    p_d[13].dcy = c12y;
-    p_d[13].lox = lox;
-    p_d[13].hix = hix;
-    p_d[13].loy = loy;
-    p_d[13].hiy = hiy;
-    // S16 -> S17
-    p_d[17] = n16;
-  end
+  // S17 -> S0: the ray re-circulates (priority), or a new ray fills the bubble.
+  assign p0_d = (v_q[D-1] && !retire) ? s17 : '{id: new_id_i, r: new_ray_i};
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -453,7 +431,45 @@ module traverse_loop
   end
 
   always_ff @(posedge clk_i) begin
-    for (int s = 0; s < D; s++) p_q[s] <= p_d[s];
+    // the slots: one stage per clock, S16's next state into S17
+    p_q[0] <= p0_d;
+    for (int s = 1; s < D - 1; s++) p_q[s] <= p_q[s-1];
+    p_q[D-1] <= n16;
+    // S3 -> S4
+    rd_q[4] <= '{ok: rs_valid_i && rs_hit_i && !rs_err_i, rd_err: rs_valid_i && rs_err_i};
+    for (int s = 5; s <= 16; s++) rd_q[s] <= rd_q[s-1];
+    // S4 -> S5
+    exit_q[5] <= '{te: te, eqx: f24_eq(tx, te), eqy: f24_eq(ty, te)};
+    for (int s = 6; s <= 10; s++) exit_q[s] <= exit_q[s-1];
+    // S5 -> S6
+    tmin_q[6]     <= tmin5;
+    miss_pre_q[6] <= f24_le(p_q[5].r.t_map, exit_q[5].te);
+    tmin_q[7]     <= tmin_q[6];
+    miss_pre_q[7] <= miss_pre_q[6];
+    // S6 -> S7
+    t_new_q[7] <= f24_max(p_q[6].r.t, plane);
+    for (int s = 8; s <= 16; s++) t_new_q[s] <= t_new_q[s-1];
+    // S7 -> S8
+    act_q[8] <= '{is_hit: inside7 && (p_q[7].r.k == '0), down: inside7 && (p_q[7].r.k != '0),
+                  miss: !inside7 && miss_pre_q[7]};
+    for (int s = 9; s <= 16; s++) act_q[s] <= act_q[s-1];
+    // S9 -> S10
+    ibx_q[10] <= ie_x;
+    iby_q[10] <= ie_y;
+    ibx_q[11] <= ibx_q[10];
+    iby_q[11] <= iby_q[10];
+    // S10 -> S11
+    cross_q[11] <= '{pu: posn_x, pv: posn_y, xk: xk10, xcx: xcx10, xcy: xcy10,
+                     xt: f24_max(s10.r.t, exit_q[10].te), up: up10};
+    for (int s = 12; s <= 16; s++) cross_q[s] <= cross_q[s-1];
+    // S11 -> S12
+    iax_q    <= sidx_t'(in_x);
+    iay_q    <= sidx_t'(in_y);
+    nk_q[12] <= nk11;
+    for (int s = 13; s <= 16; s++) nk_q[s] <= nk_q[s-1];
+    // S12 -> S13
+    child_q[13] <= '{dcx: c12x, dcy: c12y, lox: lox, hix: hix, loy: loy, hiy: hiy};
+    for (int s = 14; s <= 16; s++) child_q[s] <= child_q[s-1];
   end
 
   always_comb begin

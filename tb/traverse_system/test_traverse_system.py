@@ -46,6 +46,8 @@ from model.traverse import EXACT_METHODS
 from tb.common import report, runner
 
 HERE = Path(__file__).resolve().parent
+#: Per-batch performance lines (JSON), for reading after a run.
+PERF = runner.BUILD / "traverse_system" / "perf.jsonl"
 sys.path.insert(0, str(runner.ROOT / "tests"))
 from test_traverse import adversarial_rays, height_field  # noqa: E402
 
@@ -388,8 +390,7 @@ async def run_case(h: Harness, case: Case, method: str, log, err_expect=None,
     print(msg)
     report.record("traverse_system", "rays vs model f24" if err_expect is None
                   else "rays vs model f24 with SLVERR lines", n, nbad + bool(sbad))
-    perf = runner.BUILD / "traverse_system" / "perf.jsonl"
-    with open(perf, "a") as f:
+    with open(PERF, "a") as f:
         f.write(json.dumps({k: out[k] for k in ("name", "rays", "iters", "lookups", "hit_rate",
                                                  "lines", "lines_per_it", "busy", "clocks", "cpi_busy",
                                                  "cpi_wall", "mism")}) + "\n")
@@ -401,7 +402,8 @@ async def traverse_system_bit_exact(dut):
     """Random, adversarial and camera rays on maps of 2x2 .. 1024x1024, several methods each."""
     s = seed()
     rng = np.random.default_rng(s)
-    (runner.BUILD / "traverse_system" / "perf.jsonl").unlink(missing_ok=True)
+    PERF.parent.mkdir(parents=True, exist_ok=True)
+    PERF.unlink(missing_ok=True)
     h = Harness(dut, random.Random(s))
     await h.reset()
     t0 = time.time()

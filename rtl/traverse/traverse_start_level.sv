@@ -1,0 +1,54 @@
+// traverse_start_level: the start decision of the first mode (traverse_setup stage T9), purely
+// combinational.
+//
+// Mirrors model/traverse.py::start_node (called from _trace's "first mode" block): from the level-0
+// start cell c0 as locate() found it (one cell outside the padded map, -1 or N = 2^n, when the
+// ray starts off it) and the floor of the end point A (f24_to_index of its position, unclipped):
+//   outside = c0 is outside the map's own extent [0, W) x [0, H)    (the ray never enters)
+//   c0, a   = both clipped to the padded map [0, N - 1]
+//   k       = (a) ? min(bitlen(max(c0x ^ ax, c0y ^ ay)), n) : n      (XOR, leading-zero count)
+//   cell    = c0 >> k                                                 (the start node)
+// bitlen is the number of significant bits ("levels minus leading zeros"): the lowest level at
+// which the start and end cells share a node.  Without the start-level policy the start is the
+// root (the end point is then ignored).
+module traverse_start_level
+  import traverse_pkg::*;
+(
+  input  logic [LVL_W-1:0]        n_i,            // root level n: the padded map is N = 2^n square
+  input  logic [DIM_W-1:0]        width_i,        // map width W (level-0 texels)
+  input  logic [DIM_W-1:0]        height_i,       // map height H
+  input  logic                    start_level_i,  // policy (a): start level by XOR / leading zeros
+  input  sidx_t                   c0x_i,          // located start cell at level 0 (-1 .. N)
+  input  sidx_t                   c0y_i,
+  input  logic signed [IDX_W-1:0] ex_i,           // floor of the end point's u (unclipped)
+  input  logic signed [IDX_W-1:0] ey_i,           // floor of the end point's v (unclipped)
+  output logic                    outside_o,      // the start cell is outside [0, W) x [0, H)
+  output logic [LVL_W-1:0]        k_o,            // start level
+  output logic [CELL_W-1:0]       cx_o,           // start node at level k: c0x >> k
+  output logic [CELL_W-1:0]       cy_o            // c0y >> k
+);
+
+  sidx_t       last;          // N - 1
+  sidx_t       c0x, c0y;      // start cell, clipped
+  sidx_t       ax, ay;        // end cell, clipped
+  logic [15:0] xr;            // max of the two XORs (cells < 2^15)
+  logic [4:0]  kbits;         // its bit length, 0 .. 16
+
+  always_comb begin
+    last      = (sidx_t'(1) <<< n_i) - sidx_t'(1);
+    outside_o = (c0x_i < 0) || (c0x_i >= sidx_t'(width_i)) ||
+                (c0y_i < 0) || (c0y_i >= sidx_t'(height_i));
+    c0x       = clip_idx(c0x_i, '0, last);
+    c0y       = clip_idx(c0y_i, '0, last);
+    ax        = clip_idx(sidx_t'(ex_i), '0, last);
+    ay        = clip_idx(sidx_t'(ey_i), '0, last);
+    xr        = (16'(c0x ^ ax) > 16'(c0y ^ ay)) ? 16'(c0x ^ ax) : 16'(c0y ^ ay);
+    kbits     = bitlen16(xr);
+    if (!start_level_i)             k_o = n_i;
+    else if (kbits < {1'b0, n_i})   k_o = LVL_W'(kbits);
+    else                            k_o = n_i;
+    cx_o      = CELL_W'(c0x >>> k_o);
+    cy_o      = CELL_W'(c0y >>> k_o);
+  end
+
+endmodule
