@@ -134,8 +134,8 @@ def shade(ar: Arith, colour: npt.ArrayLike, nmap: npt.ArrayLike, du: npt.ArrayLi
     ``colour`` (N, 3+) and ``nmap`` (N, 3+) are engine values in [0, 1] (the filtered texels),
     ``du``, ``dv`` (N,) the rays, ``depth_scale`` D in texels.
     """
-    col = np.asarray(colour, dtype=np.float64)
-    nm = np.asarray(nmap, dtype=np.float64)
+    col = ar.r(np.asarray(colour, dtype=np.float64))  # the filter's outputs: engine values already
+    nm = ar.r(np.asarray(nmap, dtype=np.float64))
     du = ar.r(np.asarray(du, dtype=np.float64))
     dv = ar.r(np.asarray(dv, dtype=np.float64))
     n_pix = du.shape[0]

@@ -17,12 +17,10 @@ module f24_cmp
   logic [23:0] ka, kb;  // order-preserving keys: magnitude with the sign folded in
   logic [3:0]  res_d, res_q;  // {lt, eq, gt, un}
 
-  // Map a pattern to an unsigned key whose order is the numeric order (zeros made one key).
+  // Map a pattern to an unsigned key whose order is the numeric order: zeros (either sign) give
+  // 2^23, a positive magnitude m gives 2^23 + m, a negative one 2^23 - 1 - m (~m in 23 bits).
   function automatic logic [23:0] order_key(input f24_t x, input logic is_zero);
-    logic [22:0] mag;
-    mag = is_zero ? 23'd0 : x[22:0];
-    if (is_zero) return 24'h800000;
-    return x[23] ? (24'h800000 - {1'b0, mag}) : (24'h800000 + {1'b0, mag});
+    return is_zero ? 24'h800000 : x[23] ? {1'b0, ~x[22:0]} : {1'b1, x[22:0]};
   endfunction
 
   always_comb begin
@@ -30,12 +28,12 @@ module f24_cmp
     b_zero = (b_i[22:16] == 7'd0);
     a_nan  = (a_i[22:16] == EXP_SPEC) && (a_i[15:0] != 16'd0);
     b_nan  = (b_i[22:16] == EXP_SPEC) && (b_i[15:0] != 16'd0);
-    ka = order_key(a_i, a_zero);
-    kb = order_key(b_i, b_zero);
-    if (a_nan || b_nan)   res_d = 4'b0001;
-    else if (ka < kb)     res_d = 4'b1000;
-    else if (ka == kb)    res_d = 4'b0100;
-    else                  res_d = 4'b0010;
+    ka     = order_key(a_i, a_zero);
+    kb     = order_key(b_i, b_zero);
+    res_d  = (a_nan || b_nan) ? 4'b0001
+           : (ka < kb)        ? 4'b1000
+           : (ka == kb)       ? 4'b0100
+           :                    4'b0010;
   end
 
   always_ff @(posedge clk_i) begin

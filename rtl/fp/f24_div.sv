@@ -1,6 +1,7 @@
 // f24_div: y = a / b, correctly rounded (RNE), latency 2 enabled clocks, one operation per clock.
-// Stage 1: operand classes, sign, exponent and the 19-bit significand quotient by a restoring
-// division loop (combinational), with a sticky bit from the final remainder.
+// Stage 1: operand classes and the special result, sign, exponent and the 19-bit significand
+// quotient by a restoring division loop (combinational), with a sticky bit from the final
+// remainder.
 // Stage 2: normalise the quotient to 17 bits + guard + sticky, round, pack (f24_round_pack).
 module f24_div
   import f24_pkg::*;
@@ -15,10 +16,12 @@ module f24_div
   localparam int unsigned Q_W = SIG_W + 2;  // quotient bits: 17 + guard + one for ma < mb
 
   // ---- stage 1: classify, exponent, significand quotient ---------------------------------------
-  f24_class_t ca, cb;
-  logic [16:0] ma, mb;        // significands with the hidden one, value in [2^16, 2^17)
-  logic [17:0] rem;           // partial remainder, always < 2 * mb
-  logic [Q_W-1:0] quo;        // floor(ma * 2^18 / mb), in [2^17, 2^19)
+  logic        a_zero, b_zero;  // exponent 0: +-0 (subnormal patterns read as zero)
+  logic        a_spec, b_spec;  // exponent 127: Inf or NaN
+  logic        any_nan;
+  logic [16:0] ma, mb;          // significands with the hidden one, value in [2^16, 2^17)
+  logic [17:0] rem;             // partial remainder, always < 2 * mb
+  logic [Q_W-1:0] quo;          // floor(ma * 2^18 / mb), in [2^17, 2^19)
 
   logic                 spec_d, spec_q;  // result is a special (y_spec)
   f24_t                 y_spec_d, y_spec_q;
@@ -28,10 +31,13 @@ module f24_div
   logic                 rem_nz_d, rem_nz_q;
 
   always_comb begin
-    ca = f24_classify(a_i);
-    cb = f24_classify(b_i);
-    ma = {1'b1, a_i[15:0]};
-    mb = {1'b1, b_i[15:0]};
+    a_zero  = (a_i[22:16] == 7'd0);
+    b_zero  = (b_i[22:16] == 7'd0);
+    a_spec  = (a_i[22:16] == EXP_SPEC);
+    b_spec  = (b_i[22:16] == EXP_SPEC);
+    any_nan = (a_spec && a_i[15:0] != 16'd0) || (b_spec && b_i[15:0] != 16'd0);
+    ma      = {1'b1, a_i[15:0]};
+    mb      = {1'b1, b_i[15:0]};
 
     // Restoring division: one quotient bit per step, most significant first.  ma < 2 * mb, so
     // the first bit is ma >= mb and every later remainder stays below 2 * mb (18 bits).
@@ -50,14 +56,12 @@ module f24_div
     quo_d    = quo;
     rem_nz_d = (rem != 18'd0);
 
-    spec_d   = 1'b1;
-    if (ca.nan || cb.nan || (ca.zero && cb.zero) || (ca.inf && cb.inf)) y_spec_d = F24_NAN;
-    else if (ca.inf || cb.zero) y_spec_d = f24_inf(s_d);
-    else if (ca.zero || cb.inf) y_spec_d = f24_zero(s_d);
-    else begin
-      spec_d   = 1'b0;
-      y_spec_d = F24_NAN;  // unused
-    end
+    // NaN for a NaN operand, 0/0 or Inf/Inf; Inf for Inf/finite or finite/0; zero for 0/finite
+    // or finite/Inf.
+    spec_d   = a_spec || b_spec || a_zero || b_zero;
+    y_spec_d = (any_nan || (a_zero && b_zero) || (a_spec && b_spec)) ? F24_NAN
+             : (a_spec || b_zero)                                    ? {s_d, EXP_SPEC, 16'd0}
+             :                                                         {s_d, 23'd0};
   end
 
   always_ff @(posedge clk_i) begin
@@ -72,24 +76,18 @@ module f24_div
   end
 
   // ---- stage 2: normalise, round, pack ---------------------------------------------------------
+  logic [Q_W-1:0]     norm;   // quo_q with its leading one at the top bit
   logic signed [11:0] e;
-  logic [16:0] sig;
-  logic        guard, sticky;
-  f24_t        y_d, y_q;
+  f24_t               y_rnd;  // the rounded quotient of two finite nonzero operands
+  f24_t               y_d, y_q;
 
   always_comb begin
-    if (quo_q[Q_W-1]) begin  // ma >= mb: quotient in [1, 2)
-      e      = e_q;
-      sig    = quo_q[Q_W-1:2];
-      guard  = quo_q[1];
-      sticky = quo_q[0] | rem_nz_q;
-    end else begin           // ma < mb: quotient in (1/2, 1)
-      e      = e_q - 12'sd1;
-      sig    = quo_q[Q_W-2:1];
-      guard  = quo_q[0];
-      sticky = rem_nz_q;
-    end
-    y_d = spec_q ? y_spec_q : f24_round_pack(s_q, e, sig, guard, sticky);
+    // ma >= mb: quotient in [1, 2), leading one at the top bit.  ma < mb: quotient in (1/2, 1),
+    // shifted up by one (its last bit, and the remainder, go to the sticky bit).
+    norm  = quo_q << !quo_q[Q_W-1];
+    e     = e_q - $signed({11'd0, !quo_q[Q_W-1]});
+    y_rnd = f24_round_pack(s_q, e, norm[Q_W-1:2], norm[1], norm[0] | rem_nz_q);
+    y_d   = spec_q ? y_spec_q : y_rnd;
   end
 
   always_ff @(posedge clk_i) begin

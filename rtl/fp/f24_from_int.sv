@@ -16,28 +16,25 @@ module f24_from_int
     $error("f24_from_int: W must be in 2..64");
   end
 
-  localparam int unsigned LZ_W = $clog2(W + 1);  // leading-zero count 0 .. W
-  localparam int unsigned NX_W = W + 18;         // normalised magnitude padded with 18 zeros
-
-  logic              s;
-  logic [W-1:0]      mag;   // |k|; -2^(W-1) gives 2^(W-1), which fits unsigned
-  logic [LZ_W-1:0]   lz;    // leading zeros of mag (W for mag = 0)
-  logic [NX_W-1:0]   nx;    // mag << lz, then 18 zero bits: leading one at bit NX_W-1
-  logic signed [11:0] e;    // biased exponent of the leading one
-  f24_t              y_d, y_q;
+  logic               s;
+  logic [W-1:0]       mag;    // |k|; -2^(W-1) gives 2^(W-1), which fits unsigned
+  logic [63:0]        ml;     // mag left-aligned in 64 bits
+  logic [5:0]         lz;     // leading zeros of ml (garbage for mag = 0, which is not used)
+  logic [63:0]        nx;     // ml << lz: leading one at bit 63
+  logic signed [11:0] e;      // biased exponent of the leading one
+  f24_t               y_rnd;  // the rounded nonzero magnitude with its sign
+  f24_t               y_d, y_q;
 
   always_comb begin
-    s   = k_i[W-1];
-    mag = s ? W'(-k_i) : W'(k_i);
-    lz  = LZ_W'(W);
-    for (int unsigned i = 0; i < W; i++) begin
-      if (mag[i]) lz = LZ_W'(W - 1 - i);  // the highest set bit is seen last
-    end
-    nx  = {mag, 18'd0} << lz;
-    e   = 12'sd63 + 12'(W - 1) - 12'(lz);
+    s     = k_i[W-1];
+    mag   = s ? W'(-k_i) : W'(k_i);
+    ml    = 64'(mag) << (64 - W);
+    lz    = (W <= 32) ? {1'b0, f24_clz32(ml[63:32])} : f24_clz64(ml);
+    nx    = ml << lz;
+    e     = 12'sd63 + 12'(W - 1) - $signed({6'd0, lz});
     // 17 significand bits, guard bit and sticky (narrow W: the padding makes them exact zeros).
-    if (mag == '0) y_d = f24_zero(1'b0);
-    else y_d = f24_round_pack(s, e, nx[NX_W-1 -: 17], nx[W], |nx[W-1:0]);
+    y_rnd = f24_round_pack(s, e, nx[63:47], nx[46], |nx[45:0]);
+    y_d   = (mag == '0) ? '0 : y_rnd;  // 0 gives +0
   end
 
   always_ff @(posedge clk_i) begin

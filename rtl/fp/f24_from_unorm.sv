@@ -20,24 +20,21 @@ module f24_from_unorm
     $error("f24_from_unorm: W must be 8 or 16");
   end
 
-  localparam int unsigned LZ_W  = $clog2(W + 1);          // leading-zero count 0 .. W
   localparam int unsigned REP   = (W + 17 + W - 1) / W;   // copies: lz + 1 + 17 + guard <= W + 17
   localparam int unsigned REP_W = REP * W;
 
-  logic [LZ_W-1:0]    lz;   // leading zeros of k (W for k = 0)
-  logic [REP_W-1:0]   rep;  // k repeated, then shifted so the leading one is the top bit
-  logic signed [11:0] e;    // biased exponent: k / (2^W - 1) in [2^-(lz+1), 2^-lz)
+  logic [4:0]         lz;     // leading zeros of k (garbage for k = 0, which is not used)
+  logic [REP_W-1:0]   rep;    // k repeated, then shifted so the leading one is the top bit
+  logic signed [11:0] e;      // biased exponent: k / (2^W - 1) in [2^-(lz+1), 2^-lz)
+  f24_t               y_rnd;  // the rounded nonzero value
   f24_t               y_d, y_q;
 
   always_comb begin
-    lz = LZ_W'(W);
-    for (int unsigned i = 0; i < W; i++) begin
-      if (k_i[i]) lz = LZ_W'(W - 1 - i);  // the highest set bit is seen last
-    end
-    rep = {REP{k_i}} << lz;
-    e   = 12'sd62 - 12'(lz);
-    if (k_i == '0) y_d = f24_zero(1'b0);
-    else y_d = f24_round_pack(1'b0, e, rep[REP_W-1 -: 17], rep[REP_W-18], 1'b1);
+    lz    = f24_clz32({k_i, {(32 - W){1'b0}}});
+    rep   = {REP{k_i}} << lz;
+    e     = 12'sd62 - $signed({7'd0, lz});
+    y_rnd = f24_round_pack(1'b0, e, rep[REP_W-1 -: 17], rep[REP_W-18], 1'b1);
+    y_d   = (k_i == '0) ? '0 : y_rnd;  // 0 gives +0
   end
 
   always_ff @(posedge clk_i) begin

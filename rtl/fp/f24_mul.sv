@@ -1,4 +1,6 @@
 // f24_mul: y = a * b, correctly rounded (RNE), latency 1 enabled clock, one operation per clock.
+// Written as straight data flow (each signal assigned once, choices by ?:), which simulates
+// cheaper than if/else chains.
 module f24_mul
   import f24_pkg::*;
 (
@@ -9,34 +11,33 @@ module f24_mul
   output f24_t y_o
 );
 
-  f24_class_t ca, cb;
+  logic        a_zero, b_zero;  // exponent 0: +-0 (subnormal patterns read as zero)
+  logic        a_spec, b_spec;  // exponent 127: Inf or NaN
+  logic        any_nan;
   logic        s;
-  logic [33:0] prod;  // 17 x 17 bits: [2^32, 2^34)
-  logic signed [11:0] e;
-  logic [16:0] sig;
-  logic        guard, sticky;
+  logic [33:0] prod;            // 17 x 17 bits: [2^32, 2^34)
+  logic [33:0] norm;            // prod with its leading one at bit 33
+  logic signed [11:0] e;        // biased exponent of norm
+  f24_t        y_rnd;           // the rounded product of two finite nonzero operands
   f24_t        y_d, y_q;
 
   always_comb begin
-    ca   = f24_classify(a_i);
-    cb   = f24_classify(b_i);
-    s    = a_i[23] ^ b_i[23];
-    prod = {1'b1, a_i[15:0]} * {1'b1, b_i[15:0]};
-    e    = $signed({5'd0, a_i[22:16]}) + $signed({5'd0, b_i[22:16]}) - 12'sd63;
-    if (prod[33]) begin
-      e      = e + 12'sd1;
-      sig    = prod[33:17];
-      guard  = prod[16];
-      sticky = |prod[15:0];
-    end else begin
-      sig    = prod[32:16];
-      guard  = prod[15];
-      sticky = |prod[14:0];
-    end
-    if (ca.nan || cb.nan || (ca.zero && cb.inf) || (ca.inf && cb.zero)) y_d = F24_NAN;
-    else if (ca.inf || cb.inf) y_d = f24_inf(s);
-    else if (ca.zero || cb.zero) y_d = f24_zero(s);
-    else y_d = f24_round_pack(s, e, sig, guard, sticky);
+    a_zero  = (a_i[22:16] == 7'd0);
+    b_zero  = (b_i[22:16] == 7'd0);
+    a_spec  = (a_i[22:16] == EXP_SPEC);
+    b_spec  = (b_i[22:16] == EXP_SPEC);
+    any_nan = (a_spec && a_i[15:0] != 16'd0) || (b_spec && b_i[15:0] != 16'd0);
+    s       = a_i[23] ^ b_i[23];
+    prod    = {1'b1, a_i[15:0]} * {1'b1, b_i[15:0]};
+    // A product in [1, 2) is shifted up by one; one in [2, 4) bumps the exponent instead.
+    norm    = prod << !prod[33];
+    e       = $signed({5'd0, a_i[22:16]}) + $signed({5'd0, b_i[22:16]}) - 12'sd63
+            + $signed({11'd0, prod[33]});
+    y_rnd   = f24_round_pack(s, e, norm[33:17], norm[16], |norm[15:0]);
+    // An Inf or NaN operand: NaN for a NaN or for 0 * Inf, else Inf.  Then a zero operand: zero.
+    y_d     = (a_spec || b_spec) ? ((any_nan || a_zero || b_zero) ? F24_NAN : {s, EXP_SPEC, 16'd0})
+            : (a_zero || b_zero) ? {s, 23'd0}
+            :                      y_rnd;
   end
 
   always_ff @(posedge clk_i) begin

@@ -17,7 +17,8 @@ module f24_sqrt
   localparam int unsigned X_W = 2 * R_W;    // radicand bits
 
   // ---- stage 1: classify, exponent, integer square root -----------------------------------------
-  f24_class_t ca;
+  logic           a_zero;     // exponent 0: +-0 (subnormal patterns read as zero)
+  logic           a_spec;     // exponent 127: Inf or NaN
   logic [X_W-1:0] x;          // radicand: significand (x2 for an odd exponent) * 2^18, < 2^36
   logic [R_W-1:0] root;       // floor(sqrt(x)), in [2^17, 2^18)
   logic [R_W+2:0] rem;        // partial remainder, <= 2 * root before the next digit pair
@@ -30,7 +31,8 @@ module f24_sqrt
   logic               rem_nz_d, rem_nz_q;
 
   always_comb begin
-    ca = f24_classify(a_i);
+    a_zero = (a_i[22:16] == 7'd0);
+    a_spec = (a_i[22:16] == EXP_SPEC);
     // Unbiased exponent ea - 63 is even exactly when ea is odd.  For an even ea the significand
     // is doubled and the exponent reduced by one, so the halved exponent is exact.
     if (a_i[16]) x = {1'b0, 1'b1, a_i[15:0], 18'd0};   // m       in [1, 2)
@@ -54,14 +56,11 @@ module f24_sqrt
     root_d   = root;
     rem_nz_d = (rem != '0);
 
-    spec_d = 1'b1;
-    if (ca.nan || (a_i[23] && !ca.zero)) y_spec_d = F24_NAN;  // NaN, negative nonzero, -Inf
-    else if (ca.zero) y_spec_d = f24_zero(a_i[23]);
-    else if (ca.inf) y_spec_d = F24_POS_INF;
-    else begin
-      spec_d   = 1'b0;
-      y_spec_d = F24_NAN;  // unused
-    end
+    // NaN for a NaN, a negative nonzero number or -Inf; +-0 for +-0; +Inf for +Inf.
+    spec_d   = a_zero || a_spec || a_i[23];
+    y_spec_d = a_zero                        ? {a_i[23], 23'd0}
+             : (a_i[23] || a_i[15:0] != '0) ? F24_NAN
+             :                                F24_POS_INF;
   end
 
   always_ff @(posedge clk_i) begin
@@ -75,11 +74,12 @@ module f24_sqrt
   end
 
   // ---- stage 2: round, pack --------------------------------------------------------------------
+  f24_t y_rnd;  // the rounded root of a positive finite number
   f24_t y_d, y_q;
 
   always_comb begin
-    y_d = spec_q ? y_spec_q
-                 : f24_round_pack(1'b0, e_q, root_q[R_W-1:1], root_q[0], rem_nz_q);
+    y_rnd = f24_round_pack(1'b0, e_q, root_q[R_W-1:1], root_q[0], rem_nz_q);
+    y_d   = spec_q ? y_spec_q : y_rnd;
   end
 
   always_ff @(posedge clk_i) begin

@@ -22,46 +22,30 @@ module f24_to_index
 
   localparam logic signed [W-1:0] IDX_MAX = {1'b0, {(W-1){1'b1}}};  //  2^(W-1) - 1
   localparam logic signed [W-1:0] IDX_MIN = {1'b1, {(W-1){1'b0}}};  // -2^(W-1)
+  localparam logic [6:0]          E_SAT   = 7'(63 + W - 1);          // biased exponent of 2^(W-1)
 
-  f24_class_t         c;
   logic               s;
-  logic signed [8:0]  e;        // unbiased exponent, -62 .. 63 for normal operands
-  logic [FW-1:0]      fix;      // |a| in fixed point with 16 fraction bits (valid for 0 <= e <= W-2)
-  logic [W-2:0]       ipart;    // floor(|a|)
-  logic               frac_nz;  // |a| is not an integer
-  logic [W-1:0]       mag;      // ceil(|a|) for negative a, floor(|a|) otherwise
+  logic [6:0]         ea;       // biased exponent
+  logic [FW-1:0]      fix;      // |a| in fixed point with 16 fraction bits (see below)
   logic signed [W-1:0] idx_d, idx_q;
   logic               sat_d, sat_q;
 
   always_comb begin
-    c       = f24_classify(a_i);
-    s       = a_i[23];
-    e       = $signed({2'b00, a_i[22:16]}) - 9'sd63;
-    fix     = '0;
-    ipart   = '0;
-    frac_nz = 1'b1;  // |a| < 1 (e < 0): integer part 0, fraction nonzero
-    if (e >= 9'sd0) begin
-      // The shift only matters for e <= W-2; larger exponents saturate below.
-      fix     = FW'({1'b1, a_i[15:0]}) << e[5:0];
-      ipart   = fix[FW-1:16];
-      frac_nz = |fix[15:0];
-    end
-    mag = s ? {1'b0, ipart} + {{(W-1){1'b0}}, frac_nz} : {1'b0, ipart};
-    // |a| < 2^(W-1) here, so mag <= 2^(W-1) and its negation fits in W bits.
-    idx_d = s ? -$signed(mag) : $signed(mag);
-    sat_d = 1'b0;
-    if (c.nan) begin
-      idx_d = '0;
-      sat_d = 1'b1;
-    end else if (c.zero) begin
-      idx_d = '0;
-    end else if (c.inf || e > $signed(9'(W - 1))) begin
-      idx_d = s ? IDX_MIN : IDX_MAX;  // |a| >= 2^W
-      sat_d = 1'b1;
-    end else if (e == $signed(9'(W - 1))) begin
-      // 2^(W-1) <= |a| < 2^W: only exactly -2^(W-1) is in range.
-      idx_d = s ? IDX_MIN : IDX_MAX;
-      sat_d = !(s && a_i[15:0] == 16'd0);
+    s  = a_i[23];
+    ea = a_i[22:16];
+    // |a| * 2^16, exact for 1 <= |a| < 2^(W-1) (shift 0 .. W-2; larger exponents saturate below).
+    // For 0 < |a| < 1 every fixed-point value in (0, 2^16) has the same floor (0, or -1 when
+    // negated), so 1 stands for all of them.  Zeros give 0.
+    fix = (ea >= 7'd63) ? FW'({1'b1, a_i[15:0]}) << 6'(ea - 7'd63) : FW'(ea != 7'd0);
+    // |a| >= 2^(W-1), Inf or NaN: saturate; only exactly -2^(W-1) is in range; NaN gives 0.
+    if (ea >= E_SAT) begin
+      idx_d = (ea == EXP_SPEC && a_i[15:0] != 16'd0) ? '0 : (s ? IDX_MIN : IDX_MAX);
+      sat_d = !(s && ea == E_SAT && a_i[15:0] == 16'd0);
+    end else begin
+      // floor(a): the two's complement fixed-point value without its 16 fraction bits (dropping
+      // them rounds toward minus infinity): -1.5 -> -2, -1.0 -> -1, -0.5 -> -1.
+      idx_d = $signed(W'((s ? -{1'b0, fix} : {1'b0, fix}) >> 16));
+      sat_d = 1'b0;
     end
   end
 
