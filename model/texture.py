@@ -262,7 +262,7 @@ def ray_length(ar: Arith, pl0: F64, t: F64, seg: F64) -> F64:
 @np.errstate(all="ignore")  # NaN / Inf are ordinary values (model.arith)
 def mip_level(ar: Arith, pl: F64, log2pb: F64, n_levels: int) -> I64:
     """L = clamp(floor(log2(Pl) - log2Pb + 0.5), 0, n_levels - 1) in the engine."""
-    lod = ar.sub(log2(ar, pl), log2pb)
+    lod = ar.sub(log2(ar, pl), ar.r(np.asarray(log2pb, dtype=np.float64)))  # the table's word
     return np.clip(ar.to_index(ar.add(lod, np.full_like(lod, 0.5))), 0, n_levels - 1)
 
 

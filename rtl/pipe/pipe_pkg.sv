@@ -1,0 +1,37 @@
+// pipe_pkg: latencies and widths of the displacement-mapping pipeline's fixed-latency units
+// (view_calc, mip_level), so that the pipeline top can size its buffers and delay lines.
+//
+// Every latency counts enabled clocks (edges with en_i = 1), like the float units of rtl/fp/: an
+// operand set presented on an enabled edge shows at the unit's outputs after LAT enabled edges
+// and holds while en_i is 0.  The unit latencies below restate the README's table of rtl/fp/;
+// the stage schedules of view_calc and mip_level are built from them, and the cocotb tests
+// (tb/view_calc, tb/mip_level) check the sums against the RTL.
+package pipe_pkg;
+
+  // Each unit uses only its own constants.
+  /* verilator lint_off UNUSEDPARAM */
+
+  // ---- float units (rtl/fp/, README "Units") ----------------------------------------------------
+  localparam int unsigned F24_ADD_LAT      = 2;  // f24_add (and subtract)
+  localparam int unsigned F24_MUL_LAT      = 1;  // f24_mul
+  localparam int unsigned F24_DIV_LAT      = 2;  // f24_div
+  localparam int unsigned F24_LOG2_LAT     = 2;  // f24_log2
+  localparam int unsigned F24_TO_INDEX_LAT = 1;  // f24_to_index
+
+  // ---- view_calc (model/view.py) ------------------------------------------------------------
+  // dot products: mul, add, add; then div(D, -z); then mul(x, k), mul(y, k).
+  localparam int unsigned VIEW_CALC_LAT = F24_MUL_LAT + 2 * F24_ADD_LAT + F24_DIV_LAT
+                                        + F24_MUL_LAT;  // 8
+
+  // ---- tri_table / mip_level (model/texture.py "MIP level", model/mip.py) -------------------------
+  localparam int unsigned TRI_TABLE_LAT = 1;   // registered read
+  localparam int unsigned MIP_IDX_W     = 20;  // f24_to_index width: model.arith.INDEX_W
+  localparam int unsigned MIP_LEVEL_W   = 5;   // level output width: levels 0 .. 31
+  // Pl = Pl0 + t seg (mul, add); log2; lod = - log2Pb (add); + 0.5 (add); floor (to_index);
+  // clamp to the level range and the mip_en select (one register).
+  localparam int unsigned MIP_LAT = F24_MUL_LAT + F24_ADD_LAT + F24_LOG2_LAT + 2 * F24_ADD_LAT
+                                  + F24_TO_INDEX_LAT + 1;  // 11
+
+  /* verilator lint_on UNUSEDPARAM */
+
+endpackage

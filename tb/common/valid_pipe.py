@@ -1,0 +1,180 @@
+"""Drive a fixed-latency pipeline unit with valid / tag side band, clock-enable gaps and bubbles.
+
+The units of ``rtl/pipe`` and ``rtl/mip`` (view_calc, mip_level) have ``clk_i``, ``rst_ni``,
+``en_i``, ``valid_i``, ``tag_i`` and data inputs, and ``valid_o``, ``tag_o`` and data outputs;
+every register advances only on enabled clocks and valid is reset synchronously by ``rst_ni``.
+This is :func:`tb.common.fp_unit.check_pipeline` with that side band:
+
+* every clock a random ``en_i``; on an enabled clock either the next operand set with
+  ``valid_i = 1`` and a random tag, or (with probability ``bubble``) a bubble: ``valid_i = 0``
+  with another operand set's data and a random tag; on a stalled clock random data and a random
+  ``valid_i`` (the unit must ignore both);
+* after every enabled edge ``valid_o`` must equal the valid bit taken ``latency`` enabled edges
+  earlier, and for a valid slot ``tag_o`` and the data outputs are collected for that operand
+  set; after a stalled edge every output must hold its value;
+* the data outputs of valid slots are compared bit for bit with the expected arrays at the end,
+  and the count is recorded with :func:`tb.common.report.record` (mismatches included).
+
+The unit's pipeline must hold only bubbles when :meth:`ValidPipe.run` starts: after
+:meth:`ValidPipe.reset` or a previous :meth:`run` (which stops when its last operand set came
+out, so that only bubbles follow it).  Configuration inputs are set by the caller between runs.
+
+(One copy serves tb/view_calc and tb/mip_level; it would belong in tb/common.)
+"""
+from __future__ import annotations
+
+import collections
+from typing import Callable, Mapping
+
+import cocotb
+import numpy as np
+from cocotb.clock import Clock
+from cocotb.triggers import FallingEdge, RisingEdge
+
+from tb.common import report
+
+
+class ValidPipe:
+    """One unit under test; starts its clock and keeps the count of vectors checked."""
+
+    def __init__(self, dut, latency: int, data_in: list[str], data_out: list[str],
+                 report_what: str) -> None:
+        self.dut = dut
+        self.report_what = report_what  # the comparison's name in tb/common/report.py's table
+        self.latency = latency
+        self.data_in = data_in
+        self.data_out = data_out
+        self.tag_w = len(dut.tag_i)
+        self.in_sigs = {k: getattr(dut, k) for k in data_in}
+        self.out_sigs = {k: getattr(dut, k) for k in ["valid_o", "tag_o"] + data_out}
+        self.checked = 0
+        self.mismatches = 0
+        cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+
+    def sample(self) -> dict[str, int]:
+        return {k: int(s.value) for k, s in self.out_sigs.items()}
+
+    async def reset(self, cycles: int = 2) -> None:
+        """rst_ni low for ``cycles`` edges with en_i = 0 (the reset does not wait for en_i)."""
+        d = self.dut
+        d.rst_ni.value = 0
+        d.en_i.value = 0
+        d.valid_i.value = 1
+        await FallingEdge(d.clk_i)
+        for _ in range(cycles):
+            await RisingEdge(d.clk_i)
+            await FallingEdge(d.clk_i)
+            assert int(d.valid_o.value) == 0, "valid_o not cleared by rst_ni"
+        d.rst_ni.value = 1
+        d.valid_i.value = 0
+
+    async def flush_check(self, rng: np.random.Generator) -> None:
+        """Fill the pipeline with valid slots, reset it while stalled: nothing may come out."""
+        d = self.dut
+        d.rst_ni.value = 1
+        d.en_i.value = 1
+        for _ in range(self.latency):
+            d.valid_i.value = 1
+            d.tag_i.value = int(rng.integers(0, 1 << self.tag_w))
+            await RisingEdge(d.clk_i)
+            await FallingEdge(d.clk_i)
+        assert int(d.valid_o.value) == 1, "valid_o should show the first valid slot"
+        d.en_i.value = 0
+        d.rst_ni.value = 0
+        await RisingEdge(d.clk_i)
+        await FallingEdge(d.clk_i)
+        assert int(d.valid_o.value) == 0, "rst_ni with en_i = 0 did not clear valid_o"
+        d.rst_ni.value = 1
+        d.valid_i.value = 0
+        for _ in range(self.latency + 2):
+            d.en_i.value = 1
+            await RisingEdge(d.clk_i)
+            await FallingEdge(d.clk_i)
+            assert int(d.valid_o.value) == 0, "a slot cleared by rst_ni came out valid"
+
+    async def run(self, what: str, inputs: Mapping[str, np.ndarray],
+                  outputs: Mapping[str, np.ndarray], rng: np.random.Generator,
+                  en_prob: float = 0.8, bubble: float = 0.2,
+                  describe: Callable[[int], str] | None = None) -> int:
+        """Stream the operand sets ``inputs[name][k]`` through the unit and compare the data
+        outputs with ``outputs[name][k]``; ``what`` names the run in the log.  Raises after the
+        stream on any mismatch (up to 10 reported per output; a mismatching operand set counts
+        once).  Returns the count checked."""
+        d = self.dut
+        lat = self.latency
+        n = len(next(iter(inputs.values())))
+        in_lists = {k: [int(x) for x in inputs[k]] for k in self.data_in}
+        tags = rng.integers(0, 1 << self.tag_w, n)
+        # Per clock: enable, bubble choice, the operand set shown in a bubble / a stall.
+        m = 2 * n + 4 * lat + 16
+        en_seq = (rng.random(m) < en_prob).tolist()
+        bub_seq = (rng.random(m) < bubble).tolist()
+        junk_idx = rng.integers(0, n, m).tolist()
+        junk_valid = rng.integers(0, 2, m).tolist()
+        junk_tag = rng.integers(0, 1 << self.tag_w, m).tolist()
+        hist: collections.deque = collections.deque([-1] * lat, maxlen=lat)  # -1: a bubble
+        got: dict[str, list[int]] = {k: [] for k in ["tag_o"] + self.data_out}
+        got_idx: list[int] = []
+        d.rst_ni.value = 1
+        prev = self.sample()
+        issued = cyc = 0
+        while len(got_idx) < n:
+            j = cyc % m
+            cyc += 1
+            en = en_seq[j]
+            take = en and issued < n and not bub_seq[j]
+            k = issued if take else junk_idx[j]
+            for name, s in self.in_sigs.items():
+                s.value = in_lists[name][k]
+            d.valid_i.value = 1 if take else (0 if en else junk_valid[j])
+            d.tag_i.value = int(tags[k]) if take else junk_tag[j]
+            d.en_i.value = int(en)
+            await RisingEdge(d.clk_i)
+            await FallingEdge(d.clk_i)
+            now = self.sample()
+            if en:
+                hist.append(issued if take else -1)
+                if take:
+                    issued += 1
+                slot = hist[0]
+                if now["valid_o"] != int(slot >= 0):
+                    raise AssertionError(f"{what}: valid_o = {now['valid_o']} at clock {cyc}, "
+                                         f"expected {int(slot >= 0)}")
+                if slot >= 0:
+                    got_idx.append(slot)
+                    for name in got:
+                        got[name].append(now[name])
+            elif now != prev:
+                raise AssertionError(f"{what}: outputs changed while en_i = 0 (clock {cyc}): "
+                                     f"{prev} -> {now}")
+            prev = now
+        d.valid_i.value = 0
+        d.en_i.value = 0
+        order = np.array(got_idx)
+        assert np.array_equal(order, np.arange(n)), f"{what}: operand sets out of order"
+        expect = dict(outputs)
+        expect["tag_o"] = tags
+        mism = []
+        for name in got:
+            g = np.array(got[name], dtype=np.int64)
+            e = np.asarray(expect[name], dtype=np.int64)
+            bad = np.nonzero(g != e)[0]
+            for b in bad[:10]:
+                desc = describe(int(b)) if describe else ", ".join(
+                    f"{kk}=0x{int(v[b]):06x}" for kk, v in inputs.items())
+                mism.append(f"{what}: {name}: {desc}: got 0x{int(g[b]):06x} "
+                            f"expected 0x{int(e[b]):06x}")
+            if len(bad):
+                mism.append(f"{what}: {name}: {len(bad)} mismatches of {n}")
+        bad_any = np.zeros(n, dtype=bool)
+        for name in got:
+            bad_any |= np.array(got[name], dtype=np.int64) != np.asarray(expect[name], np.int64)
+        nbad = int(bad_any.sum())
+        self.checked += n
+        self.mismatches += nbad
+        report.record(d._name, self.report_what, n, nbad)
+        d._log.info("%s: %d operand sets in %d clocks (latency %d), %d mismatches", what, n, cyc,
+                    lat, nbad)
+        if mism:
+            raise AssertionError("\n".join(mism))
+        return n
