@@ -227,8 +227,40 @@ def _input_hash(variant: str, files: Sequence[Path], args: Sequence[str], env: d
     return h.hexdigest()
 
 
+def _pgo_enabled(variant: str) -> bool:
+    return variant == "fast" and os.environ.get("RTL_ENGINE_PGO", "1") != "0"
+
+
+def _training_input(path: Path) -> None:
+    """A fixed ray batch for the profile-guided build: a rough 64x64 map, rays of every length
+    and direction, the park-xor method (most of the loop's paths)."""
+    from . import heightmap
+
+    rng = np.random.default_rng(12345)
+    pyr = heightmap.build(rng.random((64, 64)) ** 3, 8)
+    n = 3000
+    ang = rng.uniform(0, 2 * np.pi, n)
+    ln = rng.uniform(0, 24, n)
+    rays = Rays(rng.uniform(0, 64, n), rng.uniform(0, 64, n), ln * np.cos(ang), ln * np.sin(ang))
+    write_input(path, pyr, rays, "park-xor")
+
+
+def _run_build(cmd: list[str], env: dict[str, str], log: Path, binary: Path, what: str) -> None:
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=ROOT)
+    with open(log, "a") as f:
+        f.write(" ".join(cmd) + "\n\n" + p.stdout + p.stderr + "\n")
+    if p.returncode != 0 or not binary.is_file():
+        tail = "\n".join((p.stdout + p.stderr).strip().splitlines()[-30:])
+        raise RtlEngineError(f"harness build ({what}) failed, log {log}:\n{tail}")
+
+
 def build(variant: str = "fast", *, force: bool = False, quiet: bool = True) -> Path:
-    """Build the harness variant when its inputs changed; returns the binary's path."""
+    """Build the harness variant when its inputs changed; returns the binary's path.
+
+    The ``fast`` variant is built twice, profile-guided (GCC ``-fprofile-generate``, a run on a
+    fixed training batch, then ``-fprofile-use`` in the same directory): about 15% more clocks
+    per second, same results.  ``RTL_ENGINE_PGO=0`` skips that (one plain build).
+    """
     if variant not in VARIANTS:
         raise ValueError(f"variant is one of {VARIANTS}")
     if not cache_available() and not os.environ.get("RTL_ENGINE_EXTRA_SV"):
@@ -239,11 +271,15 @@ def build(variant: str = "fast", *, force: bool = False, quiet: bool = True) -> 
         raise RtlEngineError("verilator not found on PATH")
     jobs = max(1, os.cpu_count() or 1)
     files = sources()
+    pgo = _pgo_enabled(variant)
     args = _verilator_args(variant, jobs)
-    digest = _input_hash(variant, files, _verilator_args(variant, 0), env)  # any --build-jobs
+    digest = _input_hash(variant + (" pgo" if pgo else ""), files, _verilator_args(variant, 0),
+                         env)  # any --build-jobs
     vdir = BUILD / variant
-    binary = vdir / "obj" / BINARY
+    obj = vdir / "obj"
+    binary = obj / BINARY
     stamp = vdir / "inputs.sha256"
+    log = vdir / "build.log"
     BUILD.mkdir(parents=True, exist_ok=True)
     with open(BUILD / f"{variant}.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
@@ -251,18 +287,39 @@ def build(variant: str = "fast", *, force: bool = False, quiet: bool = True) -> 
             return binary
         if vdir.exists():
             shutil.rmtree(vdir)
-        (vdir / "obj").mkdir(parents=True)
-        cmd = ["verilator", *args, "--Mdir", str(vdir / "obj"), *map(str, files),
-               *(str(p) for p in HARNESS_SOURCES if p.suffix == ".cpp")]
+        obj.mkdir(parents=True)
+        srcs = [*map(str, files), *(str(p) for p in HARNESS_SOURCES if p.suffix == ".cpp")]
         t0 = time.monotonic()
-        p = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=ROOT)
-        (vdir / "build.log").write_text(" ".join(cmd) + "\n\n" + p.stdout + p.stderr)
-        if p.returncode != 0 or not binary.is_file():
-            tail = "\n".join((p.stdout + p.stderr).strip().splitlines()[-30:])
-            raise RtlEngineError(f"harness build ({variant}) failed, log {vdir / 'build.log'}:\n{tail}")
+        if not pgo:
+            _run_build(["verilator", *args, "--Mdir", str(obj), *srcs], env, log, binary, variant)
+        else:
+            prof = vdir / "profile"
+            prof.mkdir()
+
+            def with_flags(cflags: str, ldflags: str) -> list[str]:
+                a = list(args)
+                i = a.index("-CFLAGS")
+                a[i + 1] += " " + cflags
+                return ["verilator", *a, *(["-LDFLAGS", ldflags] if ldflags else []), "--Mdir",
+                        str(obj), *srcs]
+
+            _run_build(with_flags(f"-fprofile-generate -fprofile-dir={prof} "
+                                  "-fprofile-update=single", "-fprofile-generate"),
+                       env, log, binary, f"{variant}, profiling")
+            _training_input(vdir / "train.bin")
+            p = subprocess.run([str(binary), "--in", str(vdir / "train.bin"), "--out",
+                                str(vdir / "train.out"), "--latency", "5:40", "--quiet"],
+                               capture_output=True, text=True)
+            if p.returncode != 0:
+                raise RtlEngineError(f"harness training run failed: {p.stderr.strip()}")
+            for f in [*obj.glob("*.o"), *obj.glob("*.a"), binary]:
+                f.unlink()
+            _run_build(with_flags(f"-fprofile-use -fprofile-dir={prof} -fprofile-partial-training "
+                                  "-Wno-missing-profile", ""), env, log, binary, variant)
         stamp.write_text(digest + "\n")
         if not quiet:
-            print(f"rtl_engine: built {variant} harness in {time.monotonic() - t0:.1f} s")
+            print(f"rtl_engine: built {variant} harness{' (profile-guided)' if pgo else ''} in "
+                  f"{time.monotonic() - t0:.1f} s")
     return binary
 
 
