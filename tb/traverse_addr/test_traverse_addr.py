@@ -20,11 +20,11 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
-from cocotb.triggers import Timer
 
 from model import heightmap, traverse, traverse_rtl
 from model.traverse import EXACT_METHODS
 from tb.common import fp_unit, report, runner
+from tb.common.comb_unit import apply
 
 HERE = Path(__file__).resolve().parent
 ADDR_MASK = (1 << traverse_rtl.ADDR_W) - 1
@@ -48,25 +48,6 @@ def pyramid(rng: np.random.Generator, h: int, w: int, bits: int) -> heightmap.Py
     levels = [np.broadcast_to(np.uint16(7), ((1 << n) >> k,) * 2) for k in range(n + 1)]
     return heightmap.Pyramid(codes=np.broadcast_to(np.uint16(7), (h, w)), bits=bits,
                              levels=levels)
-
-
-async def apply(dut, inputs: dict[str, np.ndarray],
-                outputs: tuple[str, ...]) -> dict[str, np.ndarray]:
-    """Apply every vector to the combinational DUT; return the settled outputs (unsigned)."""
-    n = len(next(iter(inputs.values())))
-    sig = {k: getattr(dut, k) for k in inputs}
-    mask = {k: (1 << len(s)) - 1 for k, s in sig.items()}
-    vals = {k: [int(x) & mask[k] for x in v] for k, v in inputs.items()}
-    osig = [(k, getattr(dut, k)) for k in outputs]
-    got = {k: np.zeros(n, dtype=np.int64) for k in outputs}
-    for i in range(n):
-        for k, s in sig.items():
-            if i == 0 or vals[k][i] != vals[k][i - 1]:
-                s.value = vals[k][i]
-        await Timer(1, "ns")
-        for k, s in osig:
-            got[k][i] = int(s.value)
-    return got
 
 
 def nodes(rng: np.random.Generator, pyr: heightmap.Pyramid, m: int) -> tuple[np.ndarray, ...]:

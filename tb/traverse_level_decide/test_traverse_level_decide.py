@@ -24,11 +24,11 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
-from cocotb.triggers import Timer
 
 from model import traverse
 from model.traverse import METHODS
 from tb.common import fp_unit, report, runner
+from tb.common.comb_unit import apply
 
 HERE = Path(__file__).resolve().parent
 IDX_W = 20        # traverse_pkg::IDX_W: floor of a position (f24_to_index)
@@ -47,24 +47,6 @@ def enum_codes(prefix: str, width: int) -> dict[str, int]:
 
 UP_CODE = enum_codes("UP", 3)
 DESC_CODE = enum_codes("DESC", 2)
-
-
-async def apply(dut, inputs: dict[str, np.ndarray],
-                outputs: tuple[str, ...]) -> dict[str, np.ndarray]:
-    """Apply every vector to the combinational DUT; return the settled outputs (unsigned)."""
-    n = len(next(iter(inputs.values())))
-    sig = {k: getattr(dut, k) for k in inputs}
-    mask = {k: (1 << len(s)) - 1 for k, s in sig.items()}
-    vals = {k: [int(x) & mask[k] for x in v] for k, v in inputs.items()}
-    osig = [(k, getattr(dut, k)) for k in outputs]
-    got = {k: np.zeros(n, dtype=np.int64) for k in outputs}
-    for i in range(n):
-        for k, s in sig.items():
-            s.value = vals[k][i]
-        await Timer(1, "ns")
-        for k, s in osig:
-            got[k][i] = int(s.value)
-    return got
 
 
 def hold(dut, names: tuple[str, ...]) -> None:

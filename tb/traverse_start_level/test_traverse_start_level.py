@@ -16,11 +16,11 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
-from cocotb.triggers import Timer
 
 from model import traverse
 from model.traverse import EXACT_METHODS, METHODS
 from tb.common import fp_unit, report, runner
+from tb.common.comb_unit import apply
 
 HERE = Path(__file__).resolve().parent
 IDX_W = 20      # traverse_pkg::IDX_W: the end point's floor (f24_to_index)
@@ -35,24 +35,6 @@ OUTPUTS = ("outside_o", "k_o", "cx_o", "cy_o")
 def root_level(h: int, w: int) -> int:
     """model.heightmap.build's root level: N = 2^n >= max(W, H)."""
     return max(0, int(np.ceil(np.log2(max(h, w)))))
-
-
-async def apply(dut, inputs: dict[str, np.ndarray],
-                outputs: tuple[str, ...]) -> dict[str, np.ndarray]:
-    """Apply every vector to the combinational DUT; return the settled outputs (unsigned)."""
-    n = len(next(iter(inputs.values())))
-    sig = {k: getattr(dut, k) for k in inputs}
-    mask = {k: (1 << len(s)) - 1 for k, s in sig.items()}
-    vals = {k: [int(x) & mask[k] for x in v] for k, v in inputs.items()}
-    osig = [(k, getattr(dut, k)) for k in outputs]
-    got = {k: np.zeros(n, dtype=np.int64) for k in outputs}
-    for i in range(n):
-        for k, s in sig.items():
-            s.value = vals[k][i]
-        await Timer(1, "ns")
-        for k, s in osig:
-            got[k][i] = int(s.value)
-    return got
 
 
 def vectors(rng: np.random.Generator, count: int) -> dict[str, np.ndarray]:
