@@ -58,7 +58,11 @@ Bilinear lookup at level L (:func:`sample`), in the engine's arithmetic, per loo
                      out = add(top, mul(fy, sub(bot, top)))
 
 The f24 engine of these steps is the exact specification of the hardware's texture address
-calculation and filter; the f64 engine is the reference.  At a texel centre the weights are 0
+calculation and filter; the f64 engine is the reference.  :func:`sample` is the composition of
+:func:`lookup_addresses` (steps 1-5 and the four byte addresses ``base + level_offsets()[L] +
+4 (i W_L + j)``: ``rtl/pipe/tex_addr.sv``), the four reads and :func:`filter_texels` (steps 6-7:
+``rtl/pipe/tex_filter.sv``, which takes each texel as the little-endian 32-bit word of its four
+bytes, R in bits 7:0, G 15:8, B 23:16, A 31:24).  At a texel centre the weights are 0
 and the lookup returns that texel exactly (both engines); halfway between two texels it
 returns their average (exactly in f64, rounded in f24).
 """
@@ -278,15 +282,34 @@ class Lookup(NamedTuple):
     addr: I64 | None
 
 
-@np.errstate(all="ignore")  # NaN / Inf are ordinary values (model.arith)
-def sample(tex: Texture, ar: Arith, u: npt.ArrayLike, v: npt.ArrayLike, level: npt.ArrayLike,
-           scale: tuple[F64, F64] | None = None, with_addresses: bool = False) -> Lookup:
-    """Bilinear lookup at integer ``level`` (per lookup) with clamp-to-edge addressing.
+class TexAddr(NamedTuple):
+    """The result of :func:`lookup_addresses` (steps 1-5), what ``rtl/pipe/tex_addr.sv`` computes.
 
-    ``u``, ``v`` are engine values in level-0 texel units of the height map (or of the texture
-    when ``scale`` is None); ``scale`` = :meth:`Texture.scale_for`.  The steps are those of the
-    module docstring, in the engine ``ar``.
-    """
+    ``addr`` (N, 4): byte addresses of c00, c01, c10, c11 (``base`` + :meth:`Texture.address`);
+    ``fx``, ``fy`` (N,): the engine's weights; ``i0``, ``i1``, ``j0``, ``j1`` (N,): the clamped
+    rows and columns of the four reads (c00 = (i0, j0), c01 = (i0, j1), c10 = (i1, j0),
+    c11 = (i1, j1)); ``level`` (N,) the level of each lookup.  For a NaN coordinate the weight
+    is NaN (index 0); for +-Inf or |x| >= 2^19 the index saturates and the weight may lie
+    outside [0, 1] (e.g. +Inf, or x - 2^19), as the hardware computes it."""
+
+    addr: I64
+    fx: F64
+    fy: F64
+    i0: I64
+    i1: I64
+    j0: I64
+    j1: I64
+    level: I64
+
+
+@np.errstate(all="ignore")  # NaN / Inf are ordinary values (model.arith)
+def lookup_addresses(tex: Texture, ar: Arith, u: npt.ArrayLike, v: npt.ArrayLike,
+                     level: npt.ArrayLike, scale: tuple[F64, F64] | None = None, base: int = 0,
+                     align: int = ALIGN) -> TexAddr:
+    """Steps 1-5 of the bilinear lookup (module docstring) for 1-D arrays ``u``, ``v``: the
+    weights, the clamped texel indices and the four byte addresses (the texture at byte address
+    ``base``).  ``ValueError`` for a level outside 0 .. n_levels - 1.  Only the levels' sizes are
+    read, not their texels."""
     u = np.asarray(u, dtype=np.float64)
     v = np.asarray(v, dtype=np.float64)
     lvl = np.broadcast_to(np.asarray(level, dtype=np.int64), u.shape)
@@ -301,31 +324,53 @@ def sample(tex: Texture, ar: Arith, u: npt.ArrayLike, v: npt.ArrayLike, level: n
     y = ar.sub(ar.mul(v, inv), half)
     j0 = ar.to_index(x)
     i0 = ar.to_index(y)
-    fx = ar.sub(x, ar.from_int(j0))[:, None]
-    fy = ar.sub(y, ar.from_int(i0))[:, None]
+    fx = ar.sub(x, ar.from_int(j0))
+    fy = ar.sub(y, ar.from_int(i0))
     widths = np.array([lv.shape[1] for lv in tex.levels], dtype=np.int64)[lvl]
     heights = np.array([lv.shape[0] for lv in tex.levels], dtype=np.int64)[lvl]
     j1 = np.clip(j0 + 1, 0, widths - 1)
     i1 = np.clip(i0 + 1, 0, heights - 1)
     j0 = np.clip(j0, 0, widths - 1)
     i0 = np.clip(i0, 0, heights - 1)
+    addr = base + np.stack([tex.address(lvl, i0, j0, align), tex.address(lvl, i0, j1, align),
+                            tex.address(lvl, i1, j0, align), tex.address(lvl, i1, j1, align)],
+                           axis=-1)
+    return TexAddr(addr, fx, fy, i0, i1, j0, j1, np.asarray(lvl))
+
+
+@np.errstate(all="ignore")  # NaN / Inf are ordinary values (model.arith)
+def filter_texels(ar: Arith, texels: npt.ArrayLike, fx: npt.ArrayLike,
+                  fy: npt.ArrayLike) -> F64:
+    """Steps 6-7 of the bilinear lookup (module docstring), what ``rtl/pipe/tex_filter.sv``
+    computes: ``texels`` (N, 4, C) unorm8 codes of the reads c00, c01, c10, c11 (C channels,
+    R, G, B, A), ``fx``, ``fy`` (N,) the weights; returns the (N, C) filtered engine values."""
+    t = np.asarray(texels)
+    c00, c01, c10, c11 = (ar.from_unorm(t[:, k], 8) for k in range(4))
+    fxc = np.asarray(fx, dtype=np.float64)[:, None]
+    fyc = np.asarray(fy, dtype=np.float64)[:, None]
+    top = ar.add(c00, ar.mul(fxc, ar.sub(c01, c00)))
+    bot = ar.add(c10, ar.mul(fxc, ar.sub(c11, c10)))
+    return ar.add(top, ar.mul(fyc, ar.sub(bot, top)))
+
+
+def sample(tex: Texture, ar: Arith, u: npt.ArrayLike, v: npt.ArrayLike, level: npt.ArrayLike,
+           scale: tuple[F64, F64] | None = None, with_addresses: bool = False) -> Lookup:
+    """Bilinear lookup at integer ``level`` (per lookup) with clamp-to-edge addressing.
+
+    ``u``, ``v`` are engine values in level-0 texel units of the height map (or of the texture
+    when ``scale`` is None); ``scale`` = :meth:`Texture.scale_for`.  The steps are those of the
+    module docstring, in the engine ``ar``: :func:`lookup_addresses` (steps 1-5, the hardware's
+    address unit), the four reads, :func:`filter_texels` (steps 6-7, the hardware's filter).
+    """
+    la = lookup_addresses(tex, ar, u, v, level, scale)
     # All levels in one flat array (the memory layout's order, without the alignment gaps).
     flat, starts = _flat(tex)
-    base = starts[lvl]
-
-    def read(i: I64, j: I64) -> F64:
-        return ar.from_unorm(flat[base + i * widths + j], 8)
-
-    c00, c01 = read(i0, j0), read(i0, j1)
-    c10, c11 = read(i1, j0), read(i1, j1)
-    top = ar.add(c00, ar.mul(fx, ar.sub(c01, c00)))
-    bot = ar.add(c10, ar.mul(fx, ar.sub(c11, c10)))
-    out = ar.add(top, ar.mul(fy, ar.sub(bot, top)))
-    addr = None
-    if with_addresses:
-        addr = np.stack([tex.address(lvl, i0, j0), tex.address(lvl, i0, j1),
-                         tex.address(lvl, i1, j0), tex.address(lvl, i1, j1)], axis=-1)
-    return Lookup(out, addr)
+    base = starts[la.level]
+    widths = np.array([lv.shape[1] for lv in tex.levels], dtype=np.int64)[la.level]
+    texels = np.stack([flat[base + i * widths + j] for i, j in
+                       ((la.i0, la.j0), (la.i0, la.j1), (la.i1, la.j0), (la.i1, la.j1))], axis=1)
+    out = filter_texels(ar, texels, la.fx, la.fy)
+    return Lookup(out, la.addr if with_addresses else None)
 
 
 _FLAT_CACHE: dict[int, tuple[Texture, U8, I64]] = {}

@@ -5,7 +5,8 @@
 // operand set presented on an enabled edge shows at the unit's outputs after LAT enabled edges
 // and holds while en_i is 0.  The unit latencies below restate the README's table of rtl/fp/;
 // the stage schedules of view_calc and mip_level are built from them, and the cocotb tests
-// (tb/view_calc, tb/mip_level) check the sums against the RTL.
+// (tb/view_calc, tb/mip_level) check the sums against the RTL.  The same holds for the texture
+// path's tex_addr and tex_filter (tb/tex_addr, tb/tex_filter).
 package pipe_pkg;
 
   // Each unit uses only its own constants.
@@ -17,6 +18,8 @@ package pipe_pkg;
   localparam int unsigned F24_DIV_LAT      = 2;  // f24_div
   localparam int unsigned F24_LOG2_LAT     = 2;  // f24_log2
   localparam int unsigned F24_TO_INDEX_LAT = 1;  // f24_to_index
+  localparam int unsigned F24_FROM_INT_LAT   = 1;  // f24_from_int
+  localparam int unsigned F24_FROM_UNORM_LAT = 1;  // f24_from_unorm
 
   // ---- view_calc (model/view.py) ------------------------------------------------------------
   // dot products: mul, add, add; then div(D, -z); then mul(x, k), mul(y, k).
@@ -31,6 +34,22 @@ package pipe_pkg;
   // clamp to the level range and the mip_en select (one register).
   localparam int unsigned MIP_LAT = F24_MUL_LAT + F24_ADD_LAT + F24_LOG2_LAT + 2 * F24_ADD_LAT
                                   + F24_TO_INDEX_LAT + 1;  // 11
+
+  // ---- tex_addr / tex_filter (model/texture.py lookup_addresses, filter_texels) --------------
+  localparam int unsigned TEX_LEVELS  = 16;  // levels a texture configuration holds: textures up
+                                             // to 32768 texels a side (1 + ceil(log2 32768) = 16)
+  localparam int unsigned TEX_LVL_W   = 4;   // a level 0 .. TEX_LEVELS - 1
+  localparam int unsigned TEX_DIM_W   = 16;  // a level's width / height, 1 .. 32768
+  localparam int unsigned TEX_ADDR_W  = 32;  // byte address of a texel (default of tex_addr)
+  localparam int unsigned TEX_IDX_W   = 20;  // f24_to_index / f24_from_int width (INDEX_W)
+  localparam int unsigned TEXEL_W     = 32;  // an RGBA unorm8 texel: R in bits 7:0 .. A in 31:24
+  // u scale (mul); 2^-L (exponent arithmetic, no register) and - 0.5 (add); floor (to_index);
+  // from_int; fx = x - j0 (add).  The addresses are ready in the same stage.
+  localparam int unsigned TEX_ADDR_LAT = F24_MUL_LAT + F24_ADD_LAT + F24_TO_INDEX_LAT
+                                       + F24_FROM_INT_LAT + F24_ADD_LAT;  // 7
+  // from_unorm; per row sub, mul, add (top, bot); then sub, mul, add (between the rows).
+  localparam int unsigned TEX_FILTER_LAT = F24_FROM_UNORM_LAT
+                                         + 2 * (F24_ADD_LAT + F24_MUL_LAT + F24_ADD_LAT);  // 11
 
   /* verilator lint_on UNUSEDPARAM */
 

@@ -1,0 +1,231 @@
+"""tex_addr against model.texture.lookup_addresses in the f24 engine, bit for bit.
+
+Each phase sets one texture configuration (scales su, sv = Texture.scale_for's f24 words; per
+level W_k, H_k and byte offsets, the base address; the unused levels of the configuration filled
+with junk) and streams lookups with random en_i gaps and valid bubbles (tb/common/valid_pipe.py).
+The four addresses (modulo 2^ADDR_W) and fx, fy must equal the model's.
+
+Textures (only their level sizes matter here: zero-stride stand-ins for the large ones):
+  37 x 100 and 100 x 37 (non-square, not powers of two: 8 levels), scale 1 and scale != 1 (the
+  texture on maps of other sizes: 37/64, 100/64, 3/7, ...), 1 x 1 (scale 1 and 1/64), twice the
+  map (scale 2), 20000 x 32768 (16 levels: the largest configuration, 3.5 GB; level_i 16 .. 31
+  read as 15),
+  and a texture whose addresses wrap past 2^ADDR_W.
+Lookups per texture (every level):
+  random       u, v uniform over the map and 10% beyond it on each side, random level
+  centres      texel centres and halfway points of every level (exact with scale 1)
+  edges        u, v at 0, -0, the map edge and just inside / beyond it, -0.5, -1, 2x the map
+  specials     NaN / Inf / zero / subnormal / huge / tiny words in u or v, huge finite values
+               around the to_index saturation (2^19) and beyond
+  pow2 sweep   (scale-1 textures) u, v with every exponent 0..127, both signs, several
+               fractions, at every level: the exponent arithmetic of mul(ut, 2^-L) including
+               its flush to zero
+  patterns     u, v random 24-bit patterns
+and a reset of a full pipeline while stalled.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import cocotb
+import numpy as np
+
+from model import f24, f24_vectors as vec, texture
+from model.arith import ENGINES
+from tb.common import fp_unit, runner
+from tb.common.valid_pipe import ValidPipe
+
+LATENCY = 7  # pipe_pkg::TEX_ADDR_LAT
+TEX_LEVELS = 16  # pipe_pkg::TEX_LEVELS
+DIM_W = 16  # pipe_pkg::TEX_DIM_W
+INS = ["u_i", "v_i", "level_i"]
+OUTS = ["addr00_o", "addr01_o", "addr10_o", "addr11_o", "fx_o", "fy_o"]
+AR = ENGINES["f24"]
+
+
+def stand_in(h: int, w: int) -> texture.Texture:
+    """A texture with the MIP chain of an h x w image (rows x columns) and no texel memory."""
+    levels = []
+    while True:
+        levels.append(np.broadcast_to(np.zeros(4, np.uint8), (h, w, 4)))
+        if h == 1 and w == 1:
+            return texture.Texture(levels)
+        h, w = -(-h // 2), -(-w // 2)
+
+
+def f24w(x) -> np.ndarray:
+    return f24.from_float(np.asarray(x, dtype=np.float64)).astype(np.uint32)
+
+
+def lookups(rng: np.random.Generator, tex: texture.Texture, map_w: int, map_h: int,
+            scale: tuple[float, float], n_random: int, sweep: bool,
+            sat_levels: bool) -> tuple[dict[str, np.ndarray], dict[str, int]]:
+    """u, v words and levels of every stimulus class, and the count per class."""
+    nl = tex.n_levels
+    parts: dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
+    # random
+    u = rng.uniform(-0.1, 1.1, n_random) * map_w
+    v = rng.uniform(-0.1, 1.1, n_random) * map_h
+    parts["random"] = (f24w(u), f24w(v), rng.integers(0, nl, n_random))
+    # centres and halfway points of every level (texture coordinates 2^L (j + 0.5) and 2^L j)
+    us, vs, ls = [], [], []
+    for lv in range(nl):
+        wl, hl = tex.level_size(lv)
+        for off in (0.5, 0.0):
+            js = np.arange(wl + 1) if wl <= 40 else np.unique(np.concatenate(
+                [np.arange(3), np.arange(wl - 2, wl + 1), rng.integers(0, wl + 1, 34)]))
+            iv = rng.integers(0, hl + 1, js.size)
+            us.append(2.0**lv * (js + off) / scale[0])
+            vs.append(2.0**lv * (iv + off) / scale[1])
+            ls.append(np.full(js.size, lv))
+            is_ = np.arange(hl + 1) if hl <= 40 else np.unique(np.concatenate(
+                [np.arange(3), np.arange(hl - 2, hl + 1), rng.integers(0, hl + 1, 34)]))
+            ju = rng.integers(0, wl + 1, is_.size)
+            us.append(2.0**lv * (ju + off) / scale[0])
+            vs.append(2.0**lv * (is_ + off) / scale[1])
+            ls.append(np.full(is_.size, lv))
+    parts["centres"] = (f24w(np.concatenate(us)), f24w(np.concatenate(vs)), np.concatenate(ls))
+    # edges of the map, crossed, at every level
+    def edge_vals(m: int) -> np.ndarray:
+        ulp = 2.0 ** (np.floor(np.log2(m)) - 16)
+        return np.array([0.0, -0.0, m, m - ulp, m + ulp, m + 0.5, m - 0.5, 2.0 * m, -0.5, -1.0,
+                         -1e-3, 0.5, 1e-30, -1e-30, 0.25, m / 2.0])
+    eu, ev = np.meshgrid(edge_vals(map_w), edge_vals(map_h), indexing="ij")
+    eu, ev = np.tile(eu.ravel(), nl), np.tile(ev.ravel(), nl)
+    parts["edges"] = (f24w(eu), f24w(ev), np.repeat(np.arange(nl), eu.size // nl))
+    # special words in one coordinate, huge values around the index saturation
+    huge = f24w([2.0**19 - 4, 2.0**19, -2.0**19, -2.0**19 - 8, 2.0**20, -2.0**20, 1e10, -1e10,
+                 2.0**17 + 2, 2.0**16 + 1, 131071.0, -131071.0, 1e-19])
+    sp = np.concatenate([vec.SPECIALS, huge])
+    m = 6 * sp.size
+    su_ = np.tile(sp, 6)
+    other = f24w(rng.uniform(0, 1, m) * max(map_w, map_h))
+    lv = rng.integers(0, nl, 2 * m)
+    parts["specials"] = (np.concatenate([su_, other]),
+                         np.concatenate([other, rng.permutation(su_)]), lv)
+    if sweep:
+        e = np.arange(128, dtype=np.uint32)
+        fr = np.array([0, 1, 0x8000, 0xFFFF, 0x1234], dtype=np.uint32)
+        s = np.array([0, 1], dtype=np.uint32)
+        ee, ff, ss = (a.ravel() for a in np.meshgrid(e, fr, s, indexing="ij"))
+        w = f24.pack(ss, ee, ff).astype(np.uint32)
+        wu = np.tile(w, nl)
+        wv = rng.permutation(wu)
+        parts["pow2 sweep"] = (wu, wv, np.repeat(np.arange(nl), w.size))
+    m = max(n_random // 10, 500)
+    parts["patterns"] = (vec.rand_bits(rng, m), vec.rand_bits(rng, m), rng.integers(0, nl, m))
+    if sat_levels:  # level_i above TEX_LEVELS - 1: read as TEX_LEVELS - 1
+        m = 400
+        parts["level > 15"] = (f24w(rng.uniform(-0.1, 1.1, m) * map_w),
+                               f24w(rng.uniform(-0.1, 1.1, m) * map_h),
+                               rng.integers(TEX_LEVELS, 32, m))
+    ins = {"u_i": np.concatenate([p[0] for p in parts.values()]).astype(np.uint32),
+           "v_i": np.concatenate([p[1] for p in parts.values()]).astype(np.uint32),
+           "level_i": np.concatenate([p[2] for p in parts.values()]).astype(np.int64)}
+    return ins, {k: len(p[0]) for k, p in parts.items()}
+
+
+def expected(tex: texture.Texture, ins: dict[str, np.ndarray], su: int, sv: int, base: int,
+             addr_w: int) -> dict[str, np.ndarray]:
+    """The model on the words' values: lookup_addresses with the scale words' values."""
+    lvl = np.minimum(ins["level_i"], TEX_LEVELS - 1)
+    la = texture.lookup_addresses(tex, AR, f24.to_float(ins["u_i"]), f24.to_float(ins["v_i"]),
+                                  lvl, (f24.to_float(np.array([su])), f24.to_float(np.array([sv]))),
+                                  base=base)
+    mask = (1 << addr_w) - 1
+    out = {name: la.addr[:, k] & mask for k, name in enumerate(OUTS[:4])}
+    out["fx_o"] = f24.from_float(la.fx)
+    out["fy_o"] = f24.from_float(la.fy)
+    return out
+
+
+def configure(dut, rng: np.random.Generator, tex: texture.Texture, su: int, sv: int,
+              base: int) -> None:
+    """Drive the cfg_* ports (levels beyond the texture's: random junk)."""
+    addr_w = len(dut.cfg_base_i)
+    offs = tex.level_offsets()
+    wv = hv = ov = 0
+    for k in range(TEX_LEVELS):
+        if k < tex.n_levels:
+            w, h = tex.level_size(k)
+            o = offs[k]
+        else:
+            w, h = (int(x) for x in rng.integers(1, 1 << DIM_W, 2))
+            o = int(rng.integers(0, 1 << addr_w))
+        wv |= w << (DIM_W * k)
+        hv |= h << (DIM_W * k)
+        ov |= o << (addr_w * k)
+    dut.cfg_su_i.value = su
+    dut.cfg_sv_i.value = sv
+    dut.cfg_width_i.value = wv
+    dut.cfg_height_i.value = hv
+    dut.cfg_level_off_i.value = ov
+    dut.cfg_base_i.value = base
+
+
+def configs(rng: np.random.Generator, addr_w: int) -> list[tuple[str, texture.Texture, int, int,
+                                                                    int]]:
+    """(name, texture, map width, map height, base address) of every phase."""
+    def base_for(tex: texture.Texture) -> int:
+        top = (1 << addr_w) - tex.memory_size()
+        return int(rng.integers(0, top // 64)) * 64
+
+    t37 = stand_in(37, 100)  # 37 rows, 100 columns
+    t100 = stand_in(100, 37)
+    t1 = stand_in(1, 1)
+    big = stand_in(20000, 32768)  # 3.5 GB: row products up to 2^29
+    odd = stand_in(200, 513)
+    out = [("37x100, map 100x37 (scale 1)", t37, 100, 37, base_for(t37)),
+           ("100x37 on a 64x64 map", t100, 64, 64, base_for(t100)),
+           ("37x100 on a 7x3 map", t37, 7, 3, base_for(t37)),
+           ("1x1 (scale 1)", t1, 1, 1, base_for(t1)),
+           ("1x1 on a 64x48 map", t1, 64, 48, base_for(t1)),
+           ("2x the map: 96x128 on 64x48", stand_in(96, 128), 64, 48, 0),
+           ("20000x32768 (16 levels, scale 1)", big, 32768, 20000, base_for(big)),
+           ("200x513 on 256x256, addresses wrap", odd, 256, 256,
+            (1 << addr_w) - odd.memory_size() // 2)]
+    return out
+
+
+@cocotb.test()
+async def tex_addr_random_and_directed(dut):
+    rng = np.random.default_rng(fp_unit.seed())
+    addr_w = len(dut.addr00_o)
+    pipe = ValidPipe(dut, LATENCY, INS, OUTS, "RTL vs model.texture.lookup_addresses (f24)")
+    await pipe.reset()
+    total, lines = 0, []
+    for i, (name, tex, mw, mh, base) in enumerate(configs(rng, addr_w)):
+        su_v, sv_v = tex.scale_for(AR, mw, mh)
+        su, sv = int(f24w(su_v)[0]), int(f24w(sv_v)[0])
+        scale = (float(su_v[0]), float(sv_v[0]))
+        sweep = scale == (1.0, 1.0)
+        ins, counts = lookups(rng, tex, mw, mh, scale, fp_unit.vectors() if i == 0 else 3000,
+                              sweep, tex.n_levels == TEX_LEVELS)
+        perm = rng.permutation(len(ins["u_i"]))
+        ins = {k: v[perm] for k, v in ins.items()}
+        configure(dut, rng, tex, su, sv, base)  # pipeline drained: only bubbles in flight
+        exp = expected(tex, ins, su, sv, base, addr_w)
+
+        def describe(k: int, ins=ins, name=name) -> str:
+            return (f"[{name}] u=0x{int(ins['u_i'][k]):06x} v=0x{int(ins['v_i'][k]):06x} "
+                    f"L={int(ins['level_i'][k])}")
+
+        nan = int(np.count_nonzero(f24.is_nan(exp["fx_o"]) | f24.is_nan(exp["fy_o"])))
+        total += await pipe.run(f"{name} (su=0x{su:06x} sv=0x{sv:06x}, {tex.n_levels} levels, "
+                                f"{nan} NaN weights)", ins, exp, rng, describe=describe)
+        lines.append(f"{name}: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
+        if i == 1:
+            await pipe.flush_check(rng)
+    for ln in lines:
+        dut._log.info("  %s", ln)
+    dut._log.info("VECTORS tex_addr: %d lookups over %d textures, 0 mismatches", total,
+                  len(lines))
+
+
+def test_tex_addr():
+    runner.run("tex_addr", "test_tex_addr", Path(__file__).parent)
+
+
+def test_tex_addr_tag1_addr40():
+    runner.run("tex_addr", "test_tex_addr", Path(__file__).parent,
+               parameters={"TAG_W": 1, "ADDR_W": 40}, extra_env={"VECTORS": "3000"})
