@@ -160,24 +160,8 @@ module shade_unit
   assign light = {cfg_i.light_z, cfg_i.light_y, cfg_i.light_x};
 
   // ---- valid and tag: S1 .. S36 --------------------------------------------------------------
-  logic             v_q   [1:NS];
-  logic [TAG_W-1:0] tag_q [1:NS];
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      for (int s = 1; s <= NS; s++) v_q[s] <= 1'b0;
-    end else if (en_i) begin
-      v_q[1] <= valid_i;
-      for (int s = 2; s <= NS; s++) v_q[s] <= v_q[s-1];
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (en_i) begin
-      tag_q[1] <= tag_i;
-      for (int s = 2; s <= NS; s++) tag_q[s] <= tag_q[s-1];
-    end
-  end
+  pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(NS)) u_valid_tag (
+    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o);
 
   // ---- float-unit outputs (named by the stage where they appear) ------------------------------
   f24_t [2:0] n_s3;                 // 2M - 1
@@ -315,7 +299,5 @@ module shade_unit
     assign rgb_o[c] = idx[c][7:0];
   end
 
-  assign valid_o = v_q[NS];
-  assign tag_o   = tag_q[NS];
 
 endmodule

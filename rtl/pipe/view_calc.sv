@@ -136,27 +136,8 @@ module view_calc
     end
   end
 
-  // ---- valid and tag, S1 .. S8 ---------------------------------------------------------------
-  logic             v_q   [1:S_OUT];
-  logic [TAG_W-1:0] tag_q [1:S_OUT];
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      for (int s = 1; s <= S_OUT; s++) v_q[s] <= 1'b0;
-    end else if (en_i) begin
-      v_q[1] <= valid_i;
-      for (int s = 2; s <= S_OUT; s++) v_q[s] <= v_q[s-1];
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (en_i) begin
-      tag_q[1] <= tag_i;
-      for (int s = 2; s <= S_OUT; s++) tag_q[s] <= tag_q[s-1];
-    end
-  end
-
-  assign valid_o = v_q[S_OUT];
-  assign tag_o   = tag_q[S_OUT];
+  // ---- valid and tag ---------------------------------------------------------------------------
+  pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(S_OUT)) u_valid_tag (
+    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o);
 
 endmodule
