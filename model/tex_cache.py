@@ -1,0 +1,211 @@
+"""Behavioural model of the texture / normal-map cache (rtl/cache/tex_cache.sv).
+
+Not clock-accurate: it gives what is a pure function of the request stream in the RTL, and an
+estimate of the rest.
+
+- :func:`passes`: how a request (four texel byte addresses c00, c01, c10, c11) is split into
+  passes and which line each sub-cache looks up in each pass, exactly as the RTL does: the row bit
+  is bit j of each address, j a function of the pitch R = addr[2] - addr[0]
+  (:func:`row_bit_position`; 0 when R = 0); sub-cache = (row bit, line parity); a pass is the
+  greedy subset (texel order) of the remaining texels whose lines are in distinct sub-caches or
+  equal.  So the RTL's
+  ``stat_lookups_o`` equals the sum of ``len(lines)`` over the passes.
+- :class:`TexCacheModel`: the directory without timing (XOR-folded sets, tree pseudo-LRU, an
+  invalid way first, a line allocated at lookup).  The RTL also skips ways that queued requests
+  still reference, which depends on timing, so its miss count is close to, not equal to, the
+  model's; the model serves to choose sizes and to estimate hit rates of an access stream.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Iterable, Sequence
+
+
+def clog2(x: int) -> int:
+    return max(0, (x - 1).bit_length())
+
+
+@dataclass(frozen=True)
+class TexCacheConfig:
+    """The RTL's parameters."""
+
+    addr_w: int = 32
+    data_w: int = 64
+    line_bytes: int = 32
+    sets: int = 32
+    ways: int = 4
+    mshrs: int = 16
+    fifo_depth: int = 64
+    id_w: int = 6
+    tag_w: int = 8
+
+    @property
+    def off_w(self) -> int:
+        return clog2(self.line_bytes)
+
+    @property
+    def set_w(self) -> int:
+        return clog2(self.sets)
+
+    @property
+    def beats(self) -> int:
+        return self.line_bytes * 8 // self.data_w
+
+    @property
+    def beat_bytes(self) -> int:
+        return self.data_w // 8
+
+    @property
+    def midx_w(self) -> int:
+        return clog2(self.mshrs) if self.mshrs > 1 else 1
+
+    @property
+    def epoch_w(self) -> int:
+        return self.id_w - self.midx_w
+
+    @property
+    def capacity(self) -> int:
+        """Bytes of line storage (four sub-caches)."""
+        return 4 * self.sets * self.ways * self.line_bytes
+
+    def params(self) -> dict[str, int]:
+        """As RTL parameters."""
+        return {"ADDR_W": self.addr_w, "DATA_W": self.data_w, "LINE_BYTES": self.line_bytes,
+                "SETS": self.sets, "WAYS": self.ways, "MSHRS": self.mshrs,
+                "FIFO_DEPTH": self.fifo_depth, "ID_W": self.id_w, "TAG_W": self.tag_w}
+
+
+#: Bits below a candidate row-bit position that judge it (the RTL's ROW_P).
+ROW_P = 3
+
+
+def row_bit_position(pitch: int, cfg: TexCacheConfig) -> int | None:
+    """The address bit j used as row bit for a quad of row pitch ``pitch`` (None: pitch 0).
+
+    Among j = log2(LINE_BYTES) + 1 .. ADDR_W - 1, the j where the pitch is closest to an odd
+    multiple of 2^j, judged by the ROW_P bits below j: e = pitch[j-1 -: ROW_P] if pitch[j] else
+    its complement; the smallest e, the lowest j on ties."""
+    if pitch == 0:
+        return None
+    best = None
+    for j in range(cfg.off_w + 1, cfg.addr_w):
+        f = (pitch >> (j - ROW_P)) & ((1 << ROW_P) - 1)
+        e = f if (pitch >> j) & 1 else (1 << ROW_P) - 1 - f
+        if best is None or e < best[0]:
+            best = (e, j)
+    assert best is not None
+    return best[1]
+
+
+def row_bits(addrs: Sequence[int], cfg: TexCacheConfig) -> list[int]:
+    """The row bit of each texel: bit j of its address (:func:`row_bit_position` of the pitch
+    addr[2] - addr[0]), or 0 when the pitch is 0."""
+    mask = (1 << cfg.addr_w) - 1
+    j = row_bit_position((addrs[2] - addrs[0]) & mask, cfg)
+    if j is None:
+        return [0, 0, 0, 0]
+    return [(a >> j) & 1 for a in addrs]
+
+
+@dataclass
+class Pass:
+    mask: int                               # texels served (bit t = texel t)
+    lines: dict[int, int] = field(default_factory=dict)  # sub-cache -> line address
+    sub: list[int] = field(default_factory=list)         # sub-cache of each texel (all four)
+
+
+def passes(addrs: Sequence[int], cfg: TexCacheConfig) -> list[Pass]:
+    """The RTL's passes for one request."""
+    rows = row_bits(addrs, cfg)
+    la = [a >> cfg.off_w for a in addrs]
+    sub = [(rows[t] << 1) | (la[t] & 1) for t in range(4)]
+    todo = 0xF
+    out: list[Pass] = []
+    while todo:
+        p = Pass(0, {}, sub)
+        for t in range(4):
+            if not (todo >> t) & 1:
+                continue
+            c = sub[t]
+            if c in p.lines and p.lines[c] != la[t]:
+                continue
+            p.lines.setdefault(c, la[t])
+            p.mask |= 1 << t
+        todo &= ~p.mask
+        out.append(p)
+    return out
+
+
+def set_of(la: int, cfg: TexCacheConfig) -> int:
+    """XOR-folded set index (bit 0 of the line address selects the sub-cache)."""
+    s = cfg.set_w
+    la_w = cfg.addr_w - cfg.off_w
+    lo = (la >> 1) & ((1 << s) - 1)
+    hi = (la >> (1 + s)) & ((1 << s) - 1) if 1 + s < la_w else 0
+    return lo ^ hi
+
+
+class TexCacheModel:
+    """Directory of the four sub-caches without timing (see the module docstring)."""
+
+    def __init__(self, cfg: TexCacheConfig):
+        self.cfg = cfg
+        n = cfg.sets
+        self.tags = [[[None] * cfg.ways for _ in range(n)] for _ in range(4)]
+        self.plru = [[0] * n for _ in range(4)]
+        self.stats = {"requests": 0, "quad_hits": 0, "lookups": 0, "line_misses": 0,
+                      "passes": 0}
+
+    def _victim(self, bits: int) -> int:
+        w = self.cfg.ways
+        n = 1
+        while n < w:
+            n = 2 * n + ((bits >> (n - 1)) & 1)
+        return n - w
+
+    def _touch(self, bits: int, way: int) -> int:
+        n = way + self.cfg.ways
+        while n > 1:
+            node = (n >> 1) - 1
+            if n % 2 == 0:
+                bits |= 1 << node
+            else:
+                bits &= ~(1 << node)
+            n >>= 1
+        return bits
+
+    def lookup(self, c: int, la: int) -> bool:
+        """One line lookup in sub-cache c; True on a hit (the line is allocated on a miss)."""
+        cfg = self.cfg
+        s = set_of(la, cfg)
+        tag = la >> (1 + cfg.set_w)
+        ways = self.tags[c][s]
+        if tag in ways:
+            w = ways.index(tag)
+            hit = True
+        else:
+            w = ways.index(None) if None in ways else self._victim(self.plru[c][s])
+            ways[w] = tag
+            hit = False
+        self.plru[c][s] = self._touch(self.plru[c][s], w)
+        return hit
+
+    def access(self, addrs: Sequence[int]) -> bool:
+        """One request; True when every line lookup hit."""
+        st = self.stats
+        st["requests"] += 1
+        all_hit = True
+        for p in passes(addrs, self.cfg):
+            st["passes"] += 1
+            for c, la in p.lines.items():
+                st["lookups"] += 1
+                if not self.lookup(c, la):
+                    st["line_misses"] += 1
+                    all_hit = False
+        st["quad_hits"] += all_hit
+        return all_hit
+
+    def run(self, stream: Iterable[Sequence[int]]) -> dict[str, int]:
+        for q in stream:
+            self.access(q)
+        return dict(self.stats)

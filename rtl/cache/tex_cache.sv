@@ -1,0 +1,947 @@
+// tex_cache: the unified texture / normal-map cache of Park et al. 2013, Fig. 6.  It serves the
+// bilinear filter one 2x2 texel quad per clock, in request order, and hides the memory latency by
+// prefetching in the style of Igehy, Eldridge and Proudfoot ("Prefetching in a texture cache
+// architecture", 1998): tags are checked when a request enters, misses go to memory at once, the
+// request waits in an in-order FIFO, and its texels are read from the data RAMs at the FIFO head
+// once its lines are there.
+//
+// ---- Streams -----------------------------------------------------------------------------------
+// Request (valid / ready; req_valid_i must not depend on req_ready_o, and the payload must hold
+// while req_valid_i && !req_ready_o): req_addr_i[t], t = 0 .. 3, the byte addresses of the texels
+// c00 = T[i0, j0], c01 = T[i0, j1], c10 = T[i1, j0], c11 = T[i1, j1] (model.texture.sample's
+// order), 4-byte aligned; req_tag_i is side-band returned with the response.  req_ready_o does not
+// depend on req_valid_i (nor on req_addr_i): it looks at the request held in the entry register.
+// Response (valid / ready, in request order, payload stable while rsp_valid_o && !rsp_ready_i):
+// rsp_texel_o[t] the 32-bit word at req_addr_i[t] as stored in memory (little-endian: R in bits
+// 7:0, A in bits 31:24), rsp_tag_o, rsp_err_o = 1 when a line of the quad came back from memory
+// with SLVERR / DECERR (the texels are then undefined).  Nothing is lost, duplicated or reordered.
+//
+// ---- Organisation: four sub-caches, one lookup and one data read each per clock -----------------
+// A line holds LINE_BYTES / 4 consecutive texels.  Texel t lies in line la = addr >> log2(LINE_BYTES)
+// and goes to sub-cache {r, la[0]}: la[0] is the line-index parity and r a "row bit", bit j of the
+// texel's address, j chosen from the quad's row pitch R = req_addr_i[2] - req_addr_i[0] (4 W for
+// a level W texels wide; 0 when the rows are clamped, then r = 0): the address bit above the line
+// parity that adding R flips most reliably (see "row bits" below; for R = 2^k it is bit k).
+// The cache cannot know a texel's row parity from its address (that needs the level's width and
+// base), so the row bit is read from the quad itself.  For a power-of-two width the bottom row's
+// lines are the top row's plus R, which flips bit j: the up to four lines of the quad (top L, L or
+// L + 1; bottom L', L' or L' + 1) fall into four different sub-caches.  Levels of at most
+// 2 * LINE_BYTES / 4 texels need at most two lines, of different parity or equal.  Every quad of a
+// level carries the same R, so a line always goes to the same sub-cache; a quad with clamped rows
+// uses r = 0, so an edge row's line may be held twice (the cache is read-only: harmless).
+// Any other input is served too, only slower: the request is split into passes, each a greedy
+// (texel order) subset of its texels whose lines are in distinct sub-caches or are the same line;
+// one pass per clock.  Real quads of widths that are not powers of two take two passes when a
+// carry defeats the row bit (model.tex_cache.passes: about 1.00 - 1.06 passes per quad over the
+// MIP chains of textures 100 .. 1920 texels wide; odd widths of a few texels are the worst).
+// Each sub-cache: SETS sets x WAYS ways of lines; set = la[1 +: S] ^ la[1 + S +: S] (S = log2 SETS,
+// an XOR fold, so that rows of power-of-two pitch spread over the sets), tag = la >> (1 + S).
+// Tags, valid bits, pseudo-LRU bits, reference counts and the pending / error bits are flops;
+// the lines are in one cache_sdp_ram per sub-cache (SETS * WAYS lines, address {set, way}).
+//
+// Why this organisation: a quad needs up to four line lookups and four data reads every clock.
+// Four single-ported sub-caches do that only if the lines of a quad never share one, which needs
+// a row parity the address alone does not carry; the row bit above supplies it from the quad.  The
+// address-only alternative, two banks by line parity each with a duplicated (two-read-port) data
+// RAM, is conflict-free for every width but needs twice the RAM for the same capacity; a fixed
+// address hash over four banks cannot separate rows of every pitch (about a third of the quads
+// would take a second clock).  Fills are written when the line arrives (at most one per clock, the
+// R channel's rate) rather than in order at the FIFO head as in Igehy et al., where a quad missing
+// two lines of one bank would need two write clocks; reference counts then keep lines in use.
+//
+// ---- Pipeline ------------------------------------------------------------------------------------
+//   clock 0   request accepted into the entry register (row bits computed from req_addr_i).
+//   clock 1   entry: tag lookup in the four sub-caches; a miss picks a victim way and allocates a
+//             line read (MSHR); the pass is pushed into the request FIFO (FIFO_DEPTH passes).  All
+//             or nothing: the pass waits in the entry register while the FIFO is full, while an
+//             MSHR is missing for one of its misses, or while every way of a missed set is
+//             referenced.
+//   clock 2   head: when the lines of the head pass are present (no pending fill), the pass
+//             leaves the FIFO and reads the data RAMs (one line per sub-cache).
+//   clock 3   the texels are selected (and merged with earlier passes of the request).
+//   clock 4   rsp_valid_o (a 2-entry output buffer).
+// So a request that hits answers 4 clocks after its handshake; full throughput is one pass per
+// clock.  A miss answers 3 clocks after its line's last beat.  Sizing: the FIFO lets requests
+// run ahead of the head by FIFO_DEPTH passes, so it should exceed the memory latency plus a line's
+// beats and the queueing of bursts of misses; MSHRS about FIFO_DEPTH / 4.  Measured on camera
+// streams (tb/tex_cache, two 256x256 textures, 32-byte lines over 64 bits, one beat per clock):
+// with the defaults 0.98 quads per clock at latency 20, 0.92 at 50, 0.67 at 100 (0.97 at 100
+// with FIFO_DEPTH = 128, MSHRS = 32).
+//
+// ---- Lines in use are never evicted (reference counts) ------------------------------------------
+// Every line slot has a reference count: +1 when a pass that reads it enters the FIFO, -1 when the
+// pass reads it at the head.  A victim must have count 0 (invalid ways first, else tree
+// pseudo-LRU among the unreferenced ways); the tag is replaced at once and the line is written
+// when it arrives.  So a line that queued passes still need is never overwritten, later passes
+// that look up a line in flight hit its tag and simply wait for the fill (misses merge per line
+// through the tags), and a slot waiting for its fill is always referenced (by its allocator).
+//
+// ---- Memory (AXI4 read master, AR and R channels) -------------------------------------------------
+// One INCR burst per line (arlen = LINE_BYTES * 8 / DATA_W - 1, arsize = log2(DATA_W / 8)),
+// line-aligned (never crossing 4 KiB); arid = {epoch, MSHR index}; the ARs of one clock leave in
+// sub-cache order, those of different clocks in allocation order (a queue of MSHR indices).
+// rready is 1: each MSHR buffers its own line, so beats of different IDs may interleave.  On the
+// line's last beat the line is written into its slot and the MSHR is free again (MSHRS reads in
+// flight at most).
+// Errors: a line whose beats carry SLVERR / DECERR is not written; its slot gets the error bit and
+// loses its valid bit: the passes already waiting for it answer rsp_err_o = 1 (nothing hangs), a
+// later request reads the line again.
+// Reset (rst_ni low, synchronous): empties the entry register, the FIFO, the output, the MSHRs and
+// the AR queue, clears the valid, pending and error bits, the reference counts, the pseudo-LRU bits
+// and the statistics; requests not yet answered are dropped; req_ready_o and m_axi_arvalid are 0.
+// Reads issued before the reset still return (rready stays 1) and are ignored: the arid's
+// EPOCH_W = ID_W - log2(MSHRS) epoch bits advance at each reset.  Requirement: a read returns before
+// 2^EPOCH_W - 1 further resets.
+//
+// ---- Statistics (48-bit; cleared by reset and by clr_stats_i, a clock with clr_stats_i counts
+// nothing) -----------------------------------------------------------------------------------------
+//   stat_requests_o    requests accepted (req_valid_i && req_ready_o)
+//   stat_quad_hits_o   requests whose every line lookup hit (a line in flight counts as a hit)
+//   stat_lookups_o     line lookups (distinct lines per pass)
+//   stat_line_misses_o line lookups that missed = line reads allocated
+//   stat_bytes_o       bytes of accepted R beats (stale beats after a reset not counted)
+module tex_cache
+  import cache_pkg::*;
+#(
+  parameter int unsigned ADDR_W     = 32,  // byte address width
+  parameter int unsigned DATA_W     = 64,  // AXI data width (power of two, 8 .. LINE_BYTES * 8)
+  parameter int unsigned LINE_BYTES = 32,  // line size: power of two, 8 .. 4096 (>= 2 texels)
+  parameter int unsigned SETS       = 32,  // sets per sub-cache (power of two, >= 2)
+  parameter int unsigned WAYS       = 4,   // ways per set (power of two, >= 2); 4 x 32 x 4 x 32 B
+                                           // = 16 KiB by default
+  parameter int unsigned MSHRS      = 16,  // line reads in flight (>= 4: a pass may miss 4 lines)
+  parameter int unsigned FIFO_DEPTH = 64,  // request FIFO (passes; power of two, >= 2): the
+                                           // requests that can wait for memory at full rate
+  parameter int unsigned ID_W       = 6,   // AXI ID width (> log2(MSHRS): the rest is the epoch)
+  parameter int unsigned TAG_W      = 8    // side-band width (req_tag_i -> rsp_tag_o)
+) (
+  input  logic                     clk_i,
+  input  logic                     rst_ni,
+  // requests: one 2x2 quad
+  input  logic                     req_valid_i,
+  output logic                     req_ready_o,
+  input  logic [3:0][ADDR_W-1:0]   req_addr_i,   // [0] c00, [1] c01, [2] c10, [3] c11
+  input  logic [TAG_W-1:0]         req_tag_i,
+  // responses, in request order
+  output logic                     rsp_valid_o,
+  input  logic                     rsp_ready_i,
+  output logic [3:0][31:0]         rsp_texel_o,
+  output logic                     rsp_err_o,
+  output logic [TAG_W-1:0]         rsp_tag_o,
+  // AXI4 read master (AR and R channels)
+  output logic [ID_W-1:0]          m_axi_arid,
+  output logic [ADDR_W-1:0]        m_axi_araddr,
+  output logic [7:0]               m_axi_arlen,
+  output logic [2:0]               m_axi_arsize,
+  output logic [1:0]               m_axi_arburst,
+  output logic                     m_axi_arvalid,
+  input  logic                     m_axi_arready,
+  input  logic [ID_W-1:0]          m_axi_rid,
+  input  logic [DATA_W-1:0]        m_axi_rdata,
+  input  logic [1:0]               m_axi_rresp,
+  input  logic                     m_axi_rlast,
+  input  logic                     m_axi_rvalid,
+  output logic                     m_axi_rready,
+  // statistics
+  input  logic                     clr_stats_i,
+  output logic [47:0]              stat_requests_o,
+  output logic [47:0]              stat_quad_hits_o,
+  output logic [47:0]              stat_lookups_o,
+  output logic [47:0]              stat_line_misses_o,
+  output logic [47:0]              stat_bytes_o
+);
+
+  localparam int unsigned NSUB       = 4;                        // sub-caches
+  localparam int unsigned OFF_W      = $clog2(LINE_BYTES);
+  localparam int unsigned LA_W       = ADDR_W - OFF_W;           // line address width
+  localparam int unsigned LINE_W     = LINE_BYTES * 8;
+  localparam int unsigned WSEL_W     = OFF_W - 2;                // texel within a line
+  localparam int unsigned BEATS      = LINE_W / DATA_W;          // beats per line read
+  localparam int unsigned BEAT_W     = (BEATS > 1) ? $clog2(BEATS) : 1;
+  localparam int unsigned BUF_BEATS  = (BEATS > 1) ? BEATS - 1 : 1;  // the last beat is not kept
+  localparam int unsigned BEAT_BYTES = DATA_W / 8;
+  localparam int unsigned SET_W      = $clog2(SETS);
+  localparam int unsigned WAY_W      = $clog2(WAYS);
+  localparam int unsigned PLRU_W     = WAYS - 1;
+  localparam int unsigned TAGB       = LA_W - 1 - SET_W;         // stored tag bits
+  localparam int unsigned MIDX_W     = (MSHRS > 1) ? $clog2(MSHRS) : 1;
+  localparam int unsigned EPOCH_W    = ID_W - MIDX_W;
+  localparam int unsigned QCNT_W     = $clog2(MSHRS + 1);
+  localparam int unsigned RC_W       = $clog2(FIFO_DEPTH + 1);   // a slot is read once per pass
+  localparam int unsigned FP_W       = $clog2(FIFO_DEPTH);
+  localparam int unsigned FC_W       = $clog2(FIFO_DEPTH + 1);
+  localparam int unsigned OUT_DEPTH  = 2;
+
+  if (LINE_BYTES < 8 || LINE_BYTES > 4096 || (1 << OFF_W) != LINE_BYTES) begin : g_check_line
+    $error("tex_cache: LINE_BYTES must be a power of two in 8..4096");
+  end
+  if (DATA_W < 8 || (1 << $clog2(DATA_W)) != DATA_W || LINE_W < DATA_W || BEATS > 256)
+  begin : g_check_data
+    $error("tex_cache: DATA_W must be a power of two in 8..LINE_BYTES*8 with <= 256 beats");
+  end
+  if (SETS < 2 || (1 << SET_W) != SETS || TAGB < 1) begin : g_check_sets
+    $error("tex_cache: SETS must be a power of two >= 2 leaving at least one tag bit");
+  end
+  if (WAYS < 2 || (1 << WAY_W) != WAYS) begin : g_check_ways
+    $error("tex_cache: WAYS must be a power of two >= 2");
+  end
+  if (MSHRS < NSUB || ID_W <= MIDX_W) begin : g_check_mshrs
+    $error("tex_cache: MSHRS must be >= 4 and ID_W > log2(MSHRS) (epoch bits)");
+  end
+  if (FIFO_DEPTH < 2 || (1 << FP_W) != FIFO_DEPTH) begin : g_check_fifo
+    $error("tex_cache: FIFO_DEPTH must be a power of two >= 2");
+  end
+  if (TAG_W < 1) begin : g_check_tag
+    $error("tex_cache: TAG_W must be >= 1");
+  end
+
+  // ---------------------------------------------------------------- helpers
+  // XOR-folded set index of a line (bit 0, the parity, selects the sub-cache).
+  function automatic logic [SET_W-1:0] set_of(input logic [LA_W-1:0] la);
+    logic [SET_W-1:0] s;
+    s = '0;
+    for (int unsigned i = 0; i < SET_W; i++) begin
+      if (1 + i < LA_W) s[i] = la[1 + i];
+      if (1 + SET_W + i < LA_W) s[i] = s[i] ^ la[1 + SET_W + i];
+    end
+    return s;
+  endfunction
+
+  // Tree pseudo-LRU (node n = 1 .. WAYS-1 is bit n-1, children 2n, 2n+1; 0: the next victim is on
+  // the left).  pick: follow the tree's direction unless that subtree has no candidate (mask m).
+  function automatic logic [WAY_W-1:0] plru_pick(input logic [PLRU_W-1:0] b,
+                                                 input logic [WAYS-1:0] m);
+    int unsigned n, lo, span;
+    logic l_has, r_has, go_r;
+    n    = 1;
+    lo   = 0;
+    span = WAYS;
+    for (int unsigned l = 0; l < WAY_W; l++) begin
+      l_has = 1'b0;
+      r_has = 1'b0;
+      for (int unsigned w = 0; w < WAYS; w++) begin
+        if (w >= lo && w < lo + span / 2 && m[w]) l_has = 1'b1;
+        if (w >= lo + span / 2 && w < lo + span && m[w]) r_has = 1'b1;
+      end
+      go_r = b[n-1] ? r_has : !l_has;
+      n    = 2 * n + (go_r ? 1 : 0);
+      if (go_r) lo = lo + span / 2;
+      span = span / 2;
+    end
+    return WAY_W'(lo);
+  endfunction
+
+  // Mark way w most recently used: every node on its path points away from it.
+  function automatic logic [PLRU_W-1:0] plru_touch(input logic [PLRU_W-1:0] b,
+                                                   input logic [WAY_W-1:0] w);
+    int unsigned n;
+    logic [PLRU_W-1:0] r;
+    r = b;
+    n = int'(w) + WAYS;
+    for (int unsigned l = 0; l < WAY_W; l++) begin
+      r[(n >> 1) - 1] = (n % 2 == 0);
+      n = n >> 1;
+    end
+    return r;
+  endfunction
+
+  // ---------------------------------------------------------------- state
+  // Per sub-cache directory (flops).
+  logic [TAGB-1:0]   tag_q     [NSUB][SETS][WAYS];  // no reset (valid_q qualifies it)
+  logic [WAYS-1:0]   valid_q   [NSUB][SETS];
+  logic [WAYS-1:0]   pend_q    [NSUB][SETS];        // allocated, line not yet written
+  logic [WAYS-1:0]   err_q     [NSUB][SETS];        // the last fill came back with an error
+  logic [RC_W-1:0]   rc_q      [NSUB][SETS][WAYS];  // passes in the FIFO that read the slot
+  logic [PLRU_W-1:0] plru_q    [NSUB][SETS];
+
+  // Entry register (the request being looked up).
+  logic                   s0_valid_q;
+  logic [3:0][ADDR_W-1:0] s0_addr_q;
+  logic [TAG_W-1:0]       s0_tag_q;
+  logic [3:0]             s0_todo_q;   // texels not yet sent in a pass
+  logic [3:0]             s0_row_q;    // row bit per texel
+  logic                   s0_missed_q; // an earlier pass of this request missed
+
+  // Request FIFO (one entry per pass).
+  typedef struct packed {
+    logic [NSUB-1:0]             used;  // sub-cache read by the pass
+    logic [NSUB-1:0][SET_W-1:0]  set;
+    logic [NSUB-1:0][WAY_W-1:0]  way;
+    logic [3:0]                  tsel;  // texels served by the pass
+    logic [3:0][1:0]             tsub;  // their sub-cache
+    logic [3:0][WSEL_W-1:0]      tword; // their word in the line
+    logic [TAG_W-1:0]            tag;
+    logic                        last;  // the request's last pass
+  } pass_t;
+
+  pass_t             fifo_q [FIFO_DEPTH];
+  logic [FP_W-1:0]   fifo_wp_q, fifo_rp_q;
+  logic [FC_W-1:0]   fifo_cnt_q;
+
+  // Head read stage (the clock after the pop: the RAMs show the lines).
+  logic              h1_valid_q, h1_last_q, h1_err_q;
+  logic [3:0]        h1_tsel_q;
+  logic [3:0][1:0]   h1_tsub_q;
+  logic [3:0][WSEL_W-1:0] h1_tword_q;
+  logic [TAG_W-1:0]  h1_tag_q;
+  logic [3:0][31:0]  acc_texel_q;  // texels of the earlier passes of the request
+  logic              acc_err_q;
+
+  // Output buffer.
+  typedef struct packed {
+    logic [3:0][31:0] texel;
+    logic             err;
+    logic [TAG_W-1:0] tag;
+  } rsp_t;
+
+  rsp_t              out_q [OUT_DEPTH];
+  logic              out_wp_q, out_rp_q;
+  logic [1:0]        out_cnt_q;
+
+  // MSHRs.
+  logic                         mshr_busy_q [MSHRS];
+  logic [LA_W-1:0]              mshr_la_q   [MSHRS];
+  logic [1:0]                   mshr_sub_q  [MSHRS];
+  logic [SET_W-1:0]             mshr_set_q  [MSHRS];
+  logic [WAY_W-1:0]             mshr_way_q  [MSHRS];
+  logic [BEAT_W-1:0]            mshr_beat_q [MSHRS];
+  logic                         mshr_rerr_q [MSHRS];  // an earlier beat had an error
+  logic [BUF_BEATS-1:0][DATA_W-1:0] mshr_buf_q [MSHRS];
+
+  // AR queue (MSHR indices in allocation order).
+  logic [MIDX_W-1:0] arq_q [MSHRS];
+  logic [MIDX_W-1:0] arq_wp_q, arq_rp_q;
+  logic [QCNT_W-1:0] arq_cnt_q;
+
+  // Reset epoch (deliberately not reset: it advances at each reset).
+  logic [EPOCH_W-1:0] epoch_q;
+  logic               in_rst_q;
+
+  logic [47:0] st_req_q, st_qhit_q, st_lk_q, st_miss_q, st_bytes_q;
+
+  // ---------------------------------------------------------------- row bits (at the input)
+  // Row-bit position j: among the address bits j = OFF_W + 1 .. ADDR_W - 1, the one where the
+  // pitch R is closest to an odd multiple of 2^j, judged by the ROW_P bits below bit j: the
+  // distance is e = R[j-1 -: ROW_P] when R[j] = 1, else its complement (2^ROW_P - 1 - that);
+  // the smallest e wins, the lowest j on ties.  Adding R then flips bit j of an address unless a
+  // carry (or borrow) from below bit j interferes, which happens with probability about
+  // e / 2^ROW_P: never when R is a power of two (e = 0 at its only one).
+  localparam int unsigned ROW_P = 3;
+  logic [ADDR_W-1:0] in_pitch;
+  logic [3:0]        in_row;
+
+  always_comb begin
+    logic [ROW_P-1:0] e, best_e;
+    logic             found;
+    in_pitch = req_addr_i[2] - req_addr_i[0];
+    in_row   = '0;
+    best_e   = '1;
+    found    = 1'b0;
+    for (int unsigned j = OFF_W + 1; j < ADDR_W; j++) begin
+      e = in_pitch[j - 1 -: ROW_P];
+      if (!in_pitch[j]) e = ~e;
+      if (!found || e < best_e) begin
+        found  = 1'b1;
+        best_e = e;
+        for (int t = 0; t < 4; t++) in_row[t] = req_addr_i[t][j];
+      end
+    end
+    if (in_pitch == '0) in_row = '0;  // rows clamped: one row
+  end
+
+  // ---------------------------------------------------------------- entry: pass selection
+  logic [3:0][LA_W-1:0] e_la;
+  logic [3:0][1:0]      e_sub;
+  logic [3:0]           e_sel;
+  logic [NSUB-1:0]      lk_v;
+  logic [NSUB-1:0][LA_W-1:0] lk_la;
+
+  always_comb begin
+    for (int t = 0; t < 4; t++) begin
+      e_la[t]  = s0_addr_q[t][ADDR_W-1:OFF_W];
+      e_sub[t] = {s0_row_q[t], e_la[t][0]};
+    end
+    // greedy, in texel order: a texel joins unless an earlier member uses its sub-cache for
+    // another line (the first texel still to do always joins)
+    for (int t = 0; t < 4; t++) begin
+      e_sel[t] = s0_valid_q && s0_todo_q[t];
+      for (int u = 0; u < t; u++) begin
+        if (e_sel[u] && e_sub[u] == e_sub[t] && e_la[u] != e_la[t]) e_sel[t] = 1'b0;
+      end
+    end
+    lk_v  = '0;
+    lk_la = '0;
+    for (int t = 3; t >= 0; t--) begin
+      if (e_sel[t]) begin
+        lk_v[e_sub[t]]  = 1'b1;
+        lk_la[e_sub[t]] = e_la[t];
+      end
+    end
+  end
+
+  // ---------------------------------------------------------------- entry: tag lookup, victims
+  logic [NSUB-1:0][SET_W-1:0] lk_set;
+  logic [NSUB-1:0][TAGB-1:0]  lk_tag;
+  logic [NSUB-1:0]            lk_alloc, lk_blocked;
+  logic [NSUB-1:0][WAY_W-1:0] lk_way;     // the hit way or the victim
+  logic [NSUB-1:0][MIDX_W-1:0] lk_mshr;   // MSHR of a miss
+  logic                       mshr_short; // not enough free MSHRs for the pass's misses
+  logic [NSUB-1:0][WAYS-1:0]  way_hit, way_free;
+
+  always_comb begin
+    logic [MSHRS-1:0] avail;
+    logic             found;
+    found = 1'b0;
+    for (int c = 0; c < NSUB; c++) begin
+      lk_set[c] = set_of(lk_la[c]);
+      lk_tag[c] = lk_la[c][LA_W-1 -: TAGB];  // the bits above the low set field
+      lk_way[c] = '0;
+      for (int w = 0; w < WAYS; w++) begin
+        way_hit[c][w]  = valid_q[c][lk_set[c]][w] && (tag_q[c][lk_set[c]][w] == lk_tag[c]);
+        way_free[c][w] = (rc_q[c][lk_set[c]][w] == '0);
+        if (way_hit[c][w]) lk_way[c] = WAY_W'(w);
+      end
+      lk_alloc[c]   = lk_v[c] && !(|way_hit[c]);
+      lk_blocked[c] = lk_alloc[c] && !(|way_free[c]);
+      if (!(|way_hit[c])) begin
+        // an unreferenced invalid way first (the lowest), else pseudo-LRU among the unreferenced
+        if (|(way_free[c] & ~valid_q[c][lk_set[c]])) begin
+          for (int w = WAYS - 1; w >= 0; w--) begin
+            if (way_free[c][w] && !valid_q[c][lk_set[c]][w]) lk_way[c] = WAY_W'(w);
+          end
+        end else begin
+          lk_way[c] = plru_pick(plru_q[c][lk_set[c]], way_free[c]);
+        end
+      end
+    end
+    // MSHRs for the misses: the lowest free ones, in sub-cache order
+    for (int m = 0; m < MSHRS; m++) avail[m] = !mshr_busy_q[m];
+    mshr_short = 1'b0;
+    lk_mshr    = '0;
+    for (int c = 0; c < NSUB; c++) begin
+      if (lk_alloc[c]) begin
+        found = 1'b0;
+        for (int m = 0; m < MSHRS; m++) begin
+          if (!found && avail[m]) begin
+            found      = 1'b1;
+            lk_mshr[c] = MIDX_W'(m);
+            avail[m]   = 1'b0;
+          end
+        end
+        if (!found) mshr_short = 1'b1;
+      end
+    end
+  end
+
+  logic e_fire, e_last;
+
+  assign e_last      = (s0_todo_q & ~e_sel) == '0;
+  assign e_fire      = rst_ni && s0_valid_q && (fifo_cnt_q != FC_W'(FIFO_DEPTH))
+                       && !(|lk_blocked) && !mshr_short;
+  assign req_ready_o = rst_ni && (!s0_valid_q || (e_fire && e_last));
+
+  logic req_fire;
+  assign req_fire = req_valid_i && req_ready_o;
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      s0_valid_q  <= 1'b0;
+      s0_todo_q   <= '0;
+      s0_missed_q <= 1'b0;
+    end else begin
+      if (req_fire) begin
+        s0_valid_q  <= 1'b1;
+        s0_todo_q   <= 4'hf;
+        s0_missed_q <= 1'b0;
+      end else if (e_fire) begin  // a pass of a request with more to do
+        s0_todo_q   <= s0_todo_q & ~e_sel;
+        s0_missed_q <= s0_missed_q || (|lk_alloc);
+        if (e_last) s0_valid_q <= 1'b0;
+      end
+    end
+    if (req_fire) begin
+      s0_addr_q <= req_addr_i;
+      s0_tag_q  <= req_tag_i;
+      s0_row_q  <= in_row;
+    end
+  end
+
+  // ---------------------------------------------------------------- request FIFO
+  logic  h_pop, h_ready;
+  pass_t hd;
+  pass_t e_pass;
+
+  always_comb begin
+    e_pass.used = lk_v;
+    e_pass.set  = lk_set;
+    e_pass.way  = lk_way;
+    e_pass.tsel = e_sel;
+    e_pass.tsub = e_sub;
+    for (int t = 0; t < 4; t++) e_pass.tword[t] = s0_addr_q[t][OFF_W-1:2];
+    e_pass.tag  = s0_tag_q;
+    e_pass.last = e_last;
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      fifo_wp_q  <= '0;
+      fifo_rp_q  <= '0;
+      fifo_cnt_q <= '0;
+    end else begin
+      if (e_fire) fifo_wp_q <= fifo_wp_q + FP_W'(1);
+      if (h_pop)  fifo_rp_q <= fifo_rp_q + FP_W'(1);
+      fifo_cnt_q <= fifo_cnt_q + FC_W'(e_fire) - FC_W'(h_pop);
+    end
+    if (e_fire) fifo_q[fifo_wp_q] <= e_pass;
+  end
+
+  // ---------------------------------------------------------------- head: wait, pop, read
+  logic       out_pop;
+  logic [NSUB-1:0] hd_err;
+
+  assign out_pop = rsp_valid_o && rsp_ready_i;
+
+  always_comb begin
+    hd      = fifo_q[fifo_rp_q];
+    h_ready = (fifo_cnt_q != '0);
+    for (int c = 0; c < NSUB; c++) begin
+      if (hd.used[c] && pend_q[c][hd.set[c]][hd.way[c]]) h_ready = 1'b0;
+      hd_err[c] = hd.used[c] && err_q[c][hd.set[c]][hd.way[c]];
+    end
+  end
+
+  // room for the result in the output buffer the clock after the pop
+  assign h_pop = rst_ni && h_ready
+                 && (32'(out_cnt_q) - 32'(out_pop) + 32'(h1_valid_q) + 1 <= OUT_DEPTH);
+
+  // ---------------------------------------------------------------- data RAMs
+  logic [LA_W-1:0]   r_la;
+  logic [1:0]        fill_sub;
+  logic [SET_W-1:0]  fill_set;
+  logic [WAY_W-1:0]  fill_way;
+  logic [LINE_W-1:0] fill_line;
+  logic              fill_v, fill_bad;
+  logic [LINE_W-1:0] ram_rd [NSUB];
+
+  for (genvar c = 0; c < NSUB; c++) begin : g_sub
+    cache_sdp_ram #(.DEPTH(SETS * WAYS), .WIDTH(LINE_W)) u_ram (
+      .clk_i   (clk_i),
+      .we_i    (fill_v && !fill_bad && fill_sub == 2'(c)),
+      .waddr_i ({fill_set, fill_way}),
+      .wdata_i (fill_line),
+      .re_i    (h_pop && hd.used[c]),
+      .raddr_i ({hd.set[c], hd.way[c]}),
+      .rdata_o (ram_rd[c])
+    );
+  end
+
+  // ---------------------------------------------------------------- select, merge, output
+  logic [3:0][31:0] h1_texel;
+  rsp_t             h1_rsp;
+
+  always_comb begin
+    for (int t = 0; t < 4; t++) begin
+      h1_texel[t] = acc_texel_q[t];
+      if (h1_tsel_q[t]) h1_texel[t] = ram_rd[h1_tsub_q[t]][32 * h1_tword_q[t] +: 32];
+    end
+    h1_rsp.texel = h1_texel;
+    h1_rsp.err   = acc_err_q || h1_err_q;
+    h1_rsp.tag   = h1_tag_q;
+  end
+
+  logic out_push;
+  assign out_push = h1_valid_q && h1_last_q;
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      h1_valid_q  <= 1'b0;
+      acc_err_q   <= 1'b0;
+      acc_texel_q <= '0;
+      out_wp_q    <= 1'b0;
+      out_rp_q    <= 1'b0;
+      out_cnt_q   <= '0;
+    end else begin
+      h1_valid_q <= h_pop;
+      if (h1_valid_q) begin
+        if (h1_last_q) begin
+          acc_err_q   <= 1'b0;
+          acc_texel_q <= '0;
+        end else begin
+          acc_err_q   <= h1_rsp.err;
+          acc_texel_q <= h1_texel;
+        end
+      end
+      if (out_push) out_wp_q <= !out_wp_q;
+      if (out_pop)  out_rp_q <= !out_rp_q;
+      out_cnt_q <= out_cnt_q + 2'(out_push) - 2'(out_pop);
+    end
+    if (h_pop) begin
+      h1_last_q  <= hd.last;
+      h1_err_q   <= |hd_err;
+      h1_tsel_q  <= hd.tsel;
+      h1_tsub_q  <= hd.tsub;
+      h1_tword_q <= hd.tword;
+      h1_tag_q   <= hd.tag;
+    end
+    if (out_push) out_q[out_wp_q] <= h1_rsp;
+  end
+
+  assign rsp_valid_o = (out_cnt_q != '0);
+  assign rsp_texel_o = out_q[out_rp_q].texel;
+  assign rsp_err_o   = out_q[out_rp_q].err;
+  assign rsp_tag_o   = out_q[out_rp_q].tag;
+
+  // ---------------------------------------------------------------- R channel, fills
+  logic [MIDX_W-1:0]  r_idx;
+  logic [EPOCH_W-1:0] r_epoch;
+  logic               r_acc, r_last_beat;
+
+  always_comb begin
+    r_idx       = m_axi_rid[MIDX_W-1:0];
+    r_epoch     = m_axi_rid[ID_W-1:MIDX_W];
+    r_acc       = rst_ni && m_axi_rvalid && (r_epoch == epoch_q) && (32'(r_idx) < MSHRS)
+                  && mshr_busy_q[r_idx];
+    r_last_beat = (mshr_beat_q[r_idx] == BEAT_W'(BEATS - 1));
+    r_la        = mshr_la_q[r_idx];
+    fill_v      = r_acc && r_last_beat;
+    fill_bad    = m_axi_rresp[1] || mshr_rerr_q[r_idx];  // SLVERR / DECERR now or earlier
+    fill_sub    = mshr_sub_q[r_idx];
+    fill_set    = mshr_set_q[r_idx];
+    fill_way    = mshr_way_q[r_idx];
+    fill_line   = '0;
+    for (int b = 0; b < BEATS - 1; b++) fill_line[b * DATA_W +: DATA_W] = mshr_buf_q[r_idx][b];
+    fill_line[(BEATS - 1) * DATA_W +: DATA_W] = m_axi_rdata;
+  end
+
+  assign m_axi_rready = 1'b1;
+
+  // ---------------------------------------------------------------- directory updates
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      for (int c = 0; c < NSUB; c++) begin
+        for (int s = 0; s < SETS; s++) begin
+          valid_q[c][s] <= '0;
+          pend_q[c][s]  <= '0;
+          err_q[c][s]   <= '0;
+          plru_q[c][s]  <= '0;
+          for (int w = 0; w < WAYS; w++) rc_q[c][s][w] <= '0;
+        end
+      end
+    end else begin
+      for (int c = 0; c < NSUB; c++) begin
+        if (e_fire && lk_v[c]) begin
+          plru_q[c][lk_set[c]] <= plru_touch(plru_q[c][lk_set[c]], lk_way[c]);
+          if (lk_alloc[c]) begin
+            valid_q[c][lk_set[c]][lk_way[c]] <= 1'b1;
+            pend_q[c][lk_set[c]][lk_way[c]]  <= 1'b1;
+            err_q[c][lk_set[c]][lk_way[c]]   <= 1'b0;
+          end
+        end
+        // reference counts: +1 for the pass entering, -1 for the pass read at the head
+        if (e_fire && lk_v[c] && h_pop && hd.used[c]
+            && lk_set[c] == hd.set[c] && lk_way[c] == hd.way[c]) begin
+          // both: unchanged
+        end else begin
+          if (e_fire && lk_v[c])
+            rc_q[c][lk_set[c]][lk_way[c]] <= rc_q[c][lk_set[c]][lk_way[c]] + RC_W'(1);
+          if (h_pop && hd.used[c])
+            rc_q[c][hd.set[c]][hd.way[c]] <= rc_q[c][hd.set[c]][hd.way[c]] - RC_W'(1);
+        end
+      end
+      // the line arrives (a pending slot: never the one allocated in this clock)
+      if (fill_v) begin
+        pend_q[fill_sub][fill_set][fill_way] <= 1'b0;
+        err_q[fill_sub][fill_set][fill_way]  <= fill_bad;
+        if (fill_bad) valid_q[fill_sub][fill_set][fill_way] <= 1'b0;
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    for (int c = 0; c < NSUB; c++) begin
+      if (rst_ni && e_fire && lk_alloc[c]) tag_q[c][lk_set[c]][lk_way[c]] <= lk_tag[c];
+    end
+  end
+
+  // ---------------------------------------------------------------- MSHRs and AR queue
+  logic ar_pop;
+  assign ar_pop = m_axi_arvalid && m_axi_arready;
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      for (int m = 0; m < MSHRS; m++) begin
+        mshr_busy_q[m] <= 1'b0;
+        mshr_beat_q[m] <= '0;
+        mshr_rerr_q[m] <= 1'b0;
+      end
+    end else begin
+      if (r_acc) begin
+        mshr_beat_q[r_idx] <= mshr_beat_q[r_idx] + BEAT_W'(1);
+        mshr_rerr_q[r_idx] <= fill_bad;
+        if (r_last_beat) begin
+          mshr_busy_q[r_idx] <= 1'b0;
+          mshr_beat_q[r_idx] <= '0;
+          mshr_rerr_q[r_idx] <= 1'b0;
+        end
+      end
+      for (int c = 0; c < NSUB; c++) begin
+        if (e_fire && lk_alloc[c]) begin  // a free MSHR: never the one finishing now
+          mshr_busy_q[lk_mshr[c]] <= 1'b1;
+          mshr_beat_q[lk_mshr[c]] <= '0;
+          mshr_rerr_q[lk_mshr[c]] <= 1'b0;
+        end
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    for (int c = 0; c < NSUB; c++) begin
+      if (e_fire && lk_alloc[c]) begin
+        mshr_la_q[lk_mshr[c]]  <= lk_la[c];
+        mshr_sub_q[lk_mshr[c]] <= 2'(c);
+        mshr_set_q[lk_mshr[c]] <= lk_set[c];
+        mshr_way_q[lk_mshr[c]] <= lk_way[c];
+      end
+    end
+    if (r_acc && !r_last_beat) mshr_buf_q[r_idx][mshr_beat_q[r_idx]] <= m_axi_rdata;
+  end
+
+  function automatic logic [MIDX_W-1:0] arq_add(input logic [MIDX_W-1:0] p, input int unsigned k);
+    int unsigned q;
+    q = 32'(p) + k;
+    if (q >= MSHRS) q = q - MSHRS;
+    return MIDX_W'(q);
+  endfunction
+
+  // the misses of one pass join the queue in sub-cache order
+  logic [NSUB-1:0][MIDX_W-1:0] arq_pos;
+  logic [2:0]                  arq_n;
+
+  always_comb begin
+    arq_n = '0;
+    for (int c = 0; c < NSUB; c++) begin
+      arq_pos[c] = arq_add(arq_wp_q, 32'(arq_n));
+      if (e_fire && lk_alloc[c]) arq_n = arq_n + 3'd1;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      arq_wp_q  <= '0;
+      arq_rp_q  <= '0;
+      arq_cnt_q <= '0;
+    end else begin
+      arq_wp_q <= arq_add(arq_wp_q, 32'(arq_n));
+      if (ar_pop) arq_rp_q <= arq_add(arq_rp_q, 1);
+      arq_cnt_q <= arq_cnt_q + QCNT_W'(arq_n) - QCNT_W'(ar_pop);
+    end
+    for (int c = 0; c < NSUB; c++) begin
+      if (e_fire && lk_alloc[c]) arq_q[arq_pos[c]] <= lk_mshr[c];
+    end
+  end
+
+  logic [MIDX_W-1:0] ar_idx;
+  assign ar_idx = arq_q[arq_rp_q];
+
+  assign m_axi_arvalid = rst_ni && (arq_cnt_q != '0);
+  assign m_axi_arid    = {epoch_q, ar_idx};
+  assign m_axi_araddr  = {mshr_la_q[ar_idx], {OFF_W{1'b0}}};
+  assign m_axi_arlen   = 8'(BEATS - 1);
+  assign m_axi_arsize  = 3'($clog2(BEAT_BYTES));
+  assign m_axi_arburst = AXI_BURST_INCR;
+
+  // ---------------------------------------------------------------- reset epoch
+  always_ff @(posedge clk_i) begin
+    in_rst_q <= !rst_ni;
+    if (!rst_ni && !in_rst_q) epoch_q <= epoch_q + EPOCH_W'(1);
+  end
+
+  // ---------------------------------------------------------------- statistics
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni || clr_stats_i) begin
+      st_req_q   <= '0;
+      st_qhit_q  <= '0;
+      st_lk_q    <= '0;
+      st_miss_q  <= '0;
+      st_bytes_q <= '0;
+    end else begin
+      st_req_q <= st_req_q + 48'(req_fire);
+      if (e_fire) begin
+        st_lk_q   <= st_lk_q + 48'($countones(lk_v));
+        st_miss_q <= st_miss_q + 48'($countones(lk_alloc));
+        if (e_last && !s0_missed_q && !(|lk_alloc)) st_qhit_q <= st_qhit_q + 48'd1;
+      end
+      if (r_acc) st_bytes_q <= st_bytes_q + 48'(BEAT_BYTES);
+    end
+  end
+
+  assign stat_requests_o    = st_req_q;
+  assign stat_quad_hits_o   = st_qhit_q;
+  assign stat_lookups_o     = st_lk_q;
+  assign stat_line_misses_o = st_miss_q;
+  assign stat_bytes_o       = st_bytes_q;
+
+  // rresp[0] only tells EXOKAY from OKAY and DECERR from SLVERR; both errors are treated alike.
+  // rlast is implied by the beat count (checked by an assertion); the texel address bits 1:0 are 0.
+  logic unused;
+  assign unused = ^{m_axi_rresp[0], m_axi_rlast, r_la, s0_addr_q[0][1:0], s0_addr_q[1][1:0],
+                    s0_addr_q[2][1:0], s0_addr_q[3][1:0]};
+
+`ifndef SYNTHESIS
+  // ------------------------------------------------------------------ assertions
+  // Streams: payload stable while stalled (the request side is the client's contract).
+  req_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      req_valid_i && !req_ready_o |=> req_valid_i && $stable({req_addr_i, req_tag_i}))
+    else $error("tex_cache: request dropped or changed while stalled");
+  req_aligned: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      req_valid_i |-> (req_addr_i[0][1:0] | req_addr_i[1][1:0] | req_addr_i[2][1:0]
+                       | req_addr_i[3][1:0]) == 2'b00)
+    else $error("tex_cache: texel address not 4-byte aligned");
+  rsp_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      rsp_valid_o && !rsp_ready_i |=> rsp_valid_o
+        && $stable({rsp_texel_o, rsp_err_o, rsp_tag_o}))
+    else $error("tex_cache: response dropped or changed while stalled");
+  // FIFOs.
+  fifo_no_overflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      e_fire |-> (fifo_cnt_q < FC_W'(FIFO_DEPTH)) || h_pop)
+    else $error("tex_cache: request FIFO overflow");
+  fifo_no_underflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      h_pop |-> fifo_cnt_q != '0)
+    else $error("tex_cache: request FIFO underflow");
+  fifo_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      32'(fifo_cnt_q) <= FIFO_DEPTH && FP_W'(fifo_wp_q - fifo_rp_q) == FP_W'(fifo_cnt_q))
+    else $error("tex_cache: request FIFO pointers inconsistent");
+  out_no_overflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      out_push |-> (out_cnt_q < 2'(OUT_DEPTH)) || out_pop)
+    else $error("tex_cache: output buffer overflow");
+  out_no_underflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      out_pop |-> out_cnt_q != '0)
+    else $error("tex_cache: output buffer underflow");
+  // AXI: AR holds until the handshake; rlast on exactly the last beat; beats only for reads.
+  ar_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      m_axi_arvalid && !m_axi_arready |=> m_axi_arvalid
+        && $stable({m_axi_arid, m_axi_araddr, m_axi_arlen, m_axi_arsize, m_axi_arburst}))
+    else $error("tex_cache: AR dropped or changed before arready");
+  rlast_on_last_beat: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      r_acc |-> (m_axi_rlast == r_last_beat))
+    else $error("tex_cache: rlast on a beat other than the last");
+  r_beat_expected: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      m_axi_rvalid && (r_epoch == epoch_q) |-> r_acc)
+    else $error("tex_cache: R beat for no outstanding read");
+
+  // Shadow (simulation only): the line each data slot holds, and the lines each queued pass reads.
+  logic [LA_W-1:0] sh_slot_la [NSUB][SETS][WAYS];
+  logic [NSUB-1:0][LA_W-1:0] sh_pass_la [FIFO_DEPTH];
+  logic [NSUB-1:0] sh_slot_ok [SETS][WAYS];  // the slot has been written since reset
+
+  always_ff @(posedge clk_i) begin
+    if (e_fire) sh_pass_la[fifo_wp_q] <= lk_la;
+    if (!rst_ni) begin
+      for (int s = 0; s < SETS; s++) for (int w = 0; w < WAYS; w++) sh_slot_ok[s][w] <= '0;
+    end else if (fill_v) begin
+      sh_slot_la[fill_sub][fill_set][fill_way] <= r_la;
+      sh_slot_ok[fill_set][fill_way][fill_sub] <= 1'b1;
+    end
+  end
+
+  always @(posedge clk_i) begin
+    if (rst_ni) begin
+      // Invariants of every slot: a pending slot is referenced (by its allocator at least);
+      // valid tags of a set are unique.
+      for (int c = 0; c < NSUB; c++) begin
+        for (int s = 0; s < SETS; s++) begin
+          for (int w = 0; w < WAYS; w++) begin
+            pending_referenced: assert (!pend_q[c][s][w] || rc_q[c][s][w] != '0)
+              else $error("tex_cache: sub-cache %0d set %0d way %0d pending but unreferenced",
+                          c, s, w);
+            for (int v = w + 1; v < WAYS; v++) begin
+              tag_unique: assert (!(valid_q[c][s][w] && valid_q[c][s][v]
+                                    && tag_q[c][s][w] == tag_q[c][s][v]))
+                else $error("tex_cache: sub-cache %0d set %0d holds a line twice", c, s);
+            end
+          end
+        end
+      end
+      for (int c = 0; c < NSUB; c++) begin
+        // No eviction of a referenced line: a victim is unreferenced (hence not pending).
+        if (e_fire && lk_alloc[c]) begin
+          victim_unreferenced: assert (rc_q[c][lk_set[c]][lk_way[c]] == '0
+                                       && !pend_q[c][lk_set[c]][lk_way[c]])
+            else $error("tex_cache: sub-cache %0d evicts a referenced line", c);
+        end
+        // Reference counts never wrap.
+        if (e_fire && lk_v[c]) begin
+          rc_no_overflow: assert (rc_q[c][lk_set[c]][lk_way[c]] != '1)
+            else $error("tex_cache: reference count overflow");
+        end
+        if (h_pop && hd.used[c]) begin
+          rc_no_underflow: assert (rc_q[c][hd.set[c]][hd.way[c]] != '0)
+            else $error("tex_cache: reference count underflow");
+          // The slot read at the head holds the line the pass looked up (unless it errored).
+          head_reads_its_line: assert (err_q[c][hd.set[c]][hd.way[c]]
+                                       || (sh_slot_ok[hd.set[c]][hd.way[c]][c]
+                                           && sh_slot_la[c][hd.set[c]][hd.way[c]]
+                                              == sh_pass_la[fifo_rp_q][c]))
+            else $error("tex_cache: head reads sub-cache %0d slot (%0d, %0d): line %h, not %h",
+                        c, hd.set[c], hd.way[c],
+                        sh_slot_la[c][hd.set[c]][hd.way[c]], sh_pass_la[fifo_rp_q][c]);
+        end
+      end
+      // MSHRs: a busy MSHR's slot is valid, pending and tagged with its line; no two busy MSHRs
+      // fill one slot; the AR queue holds at most the busy MSHRs.
+      for (int m = 0; m < MSHRS; m++) begin
+        if (mshr_busy_q[m]) begin
+          mshr_slot_pending: assert (pend_q[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]]
+              && valid_q[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]]
+              && tag_q[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]] == mshr_la_q[m][LA_W-1 -: TAGB]
+              && set_of(mshr_la_q[m]) == mshr_set_q[m])
+            else $error("tex_cache: MSHR %0d does not own a pending slot of its line", m);
+          for (int n = m + 1; n < MSHRS; n++) begin
+            mshr_unique: assert (!(mshr_busy_q[n] && mshr_sub_q[n] == mshr_sub_q[m]
+                                   && (mshr_la_q[n] == mshr_la_q[m]
+                                       || (mshr_set_q[n] == mshr_set_q[m]
+                                           && mshr_way_q[n] == mshr_way_q[m]))))
+              else $error("tex_cache: MSHRs %0d and %0d read the same line / slot", m, n);
+          end
+        end
+      end
+    end
+  end
+
+  // Coverage points, read by tb/tex_cache (simulation only; nothing in the design reads them).
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic sim_merge, sim_victim_wait, sim_mshr_wait, sim_fifo_full, sim_split, sim_stale_beat,
+        sim_err_fill, sim_err_pass, sim_victim_redirect;
+  /* verilator lint_on UNUSEDSIGNAL */
+  always_comb begin
+    logic [WAY_W-1:0] free_way;
+    sim_merge           = 1'b0;  // a pass enters with a line that is still being read
+    sim_victim_redirect = 1'b0;  // a reference made the victim differ from the plain policy
+    for (int c = 0; c < NSUB; c++) begin
+      if (e_fire && lk_v[c] && !lk_alloc[c] && pend_q[c][lk_set[c]][lk_way[c]]) sim_merge = 1'b1;
+      free_way = plru_pick(plru_q[c][lk_set[c]], '1);
+      for (int w = WAYS - 1; w >= 0; w--) begin
+        if (!valid_q[c][lk_set[c]][w]) free_way = WAY_W'(w);
+      end
+      if (e_fire && lk_alloc[c] && free_way != lk_way[c]) sim_victim_redirect = 1'b1;
+    end
+  end
+  assign sim_victim_wait = rst_ni && s0_valid_q && (|lk_blocked);  // every way referenced
+  assign sim_mshr_wait   = rst_ni && s0_valid_q && mshr_short;
+  assign sim_fifo_full   = rst_ni && s0_valid_q && fifo_cnt_q == FC_W'(FIFO_DEPTH);
+  assign sim_split       = e_fire && !e_last;                        // a request of 2+ passes
+  assign sim_stale_beat  = m_axi_rvalid && r_epoch != epoch_q;       // a read from before a reset
+  assign sim_err_fill    = fill_v && fill_bad;
+  assign sim_err_pass    = h_pop && (|hd_err);
+
+  logic [QCNT_W-1:0] busy_cnt;
+  always_comb begin
+    busy_cnt = '0;
+    for (int m = 0; m < MSHRS; m++) busy_cnt = busy_cnt + QCNT_W'(mshr_busy_q[m]);
+  end
+  arq_within_busy: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      arq_cnt_q <= busy_cnt)
+    else $error("tex_cache: AR queue holds more reads than busy MSHRs");
+`endif
+
+endmodule

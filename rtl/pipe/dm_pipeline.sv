@@ -1,0 +1,531 @@
+// dm_pipeline: the displacement-mapping unit of Park et al. 2013, Fig. 6, from fragments to colours.
+//
+//   fragments -> [slot + context] -> view_calc -> FIFO #0 -> traverse_system (traverse unit,
+//   height cache, AXI port H) -> hit: mip_level -> tex_addr (colour, normal map) -> request
+//   FIFOs -> tex_cache (AXI port T) -> tex_filter -> shade_unit -> out FIFO \
+//                                 miss / invalid: -> miss FIFO ------------------> arbiter -> pixels
+//
+// The model it mirrors: model/shade.py render_pixels (view unit, trace, MIP level, two bilinear
+// lookups, shading); every RTL pixel equals the f24 engine's.
+//
+// Contexts.  Each fragment in flight owns a slot (SLOTS of them, a free list); the slot id is the
+// ray id inside traverse_system, and per-slot registers hold what later stages need (pixel id,
+// Pl0, triangle, du, dv, seg, the traversal's flags).  A fragment is accepted only when a slot is
+// free, so nothing in the unit can overflow on slots; the slot returns to the free list when its
+// pixel leaves.
+//
+// Flow control.  The fixed-latency units (view_calc, mip_level, tex_addr, tex_filter,
+// shade_unit) never stall (en_i = 1); admission into them is by credit instead (the paper's
+// controller that keeps FIFO #0 from overflowing):
+//   - a fragment enters view_calc only if FIFO #0 has room for it and every fragment already in
+//     view_calc (vc_cnt_q + FIFO #0 count < F0_DEPTH);
+//   - a hit leaves traverse_system only if the texture-request FIFOs have room for it and every
+//     hit between admission and the FIFOs (req_cnt_q < REQ_DEPTH) and the out FIFO has room for
+//     every hit not yet out (hit_cnt_q < OUT_DEPTH); tex_cache's responses are then always taken
+//     (rsp_ready = 1) because the filter and shader behind it cannot back up;
+//   - a miss / invalid ray leaves traverse_system when the miss FIFO has room.
+// The colour and normal-map requests of a pixel are pushed together into two FIFOs and sent to
+// the cache alternately (colour first), so its responses come in pairs.
+//
+// Outputs.  Pixels leave in completion order with their pixel id (px_id_o); px_hit_o /
+// px_invalid_o / px_err_o (a height or texel read returned an AXI error) / px_iters_o describe
+// the pixel; a pixel without a hit gets cfg_miss_rgb_i.  The output is a register (payload stable
+// while px_valid_o && !px_ready_i).
+module dm_pipeline
+  import f24_pkg::*;
+  import traverse_pkg::*;
+  import pipe_pkg::*;
+  import shade_pkg::*;
+#(
+  parameter int unsigned PIX_W      = 20,   // pixel id width (px_id_o = frag_id_i)
+  parameter int unsigned SLOTS      = 128,  // fragments in flight (power of two)
+  parameter int unsigned TRIS       = 16,   // triangle table entries
+  parameter int unsigned F0_DEPTH   = 16,   // FIFO #0 (power of two)
+  parameter int unsigned REQ_DEPTH  = 16,   // texture-request FIFOs, pixels (power of two)
+  parameter int unsigned OUT_DEPTH  = 64,   // shaded-pixel FIFO (power of two): hits in the back end
+  parameter int unsigned MISS_DEPTH = 16,   // miss FIFO (power of two)
+  parameter int unsigned H_ID_W     = 4,    // AXI ID width, height port
+  parameter int unsigned T_ID_W     = 6,    // AXI ID width, texture port (> log2 of tex_cache MSHRS)
+  parameter int unsigned AXI_DATA_W = 64,   // AXI data width (both ports)
+  parameter int unsigned TRI_W      = (TRIS > 1) ? $clog2(TRIS) : 1  // triangle id width
+) (
+  input  logic                                 clk_i,
+  input  logic                                 rst_ni,
+  // configuration (static while busy): traversal
+  input  logic [3:0]                           cfg_method_i,
+  input  logic [DIM_W-1:0]                     cfg_width_i,
+  input  logic [DIM_W-1:0]                     cfg_height_i,
+  input  logic [LVL_W-1:0]                     cfg_root_level_i,
+  input  logic                                 cfg_bits16_i,
+  input  logic [ADDR_W-1:0]                    cfg_base_i,
+  input  logic [MAX_LEVELS-1:0][ADDR_W-1:0]    cfg_level_off_i,
+  input  logic [CODE_W-1:0]                    cfg_root_code_i,
+  input  logic [ITER_W-1:0]                    cfg_iter_cap_i,
+  // view unit, MIP levels, shading, miss colour
+  input  f24_t                                 cfg_depth_i,          // D
+  input  logic                                 cfg_mip_en_i,
+  input  logic [MIP_LEVEL_W:0]                 cfg_levels_colour_i,
+  input  logic [MIP_LEVEL_W:0]                 cfg_levels_normal_i,
+  input  shade_cfg_t                           cfg_shade_i,
+  input  logic [2:0][7:0]                      cfg_miss_rgb_i,
+  // textures: [0] colour, [1] normal map
+  input  f24_t [1:0]                           cfg_tex_su_i,
+  input  f24_t [1:0]                           cfg_tex_sv_i,
+  input  logic [1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0] cfg_tex_width_i,
+  input  logic [1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0] cfg_tex_height_i,
+  input  logic [1:0][TEX_ADDR_W-1:0]           cfg_tex_base_i,
+  input  logic [1:0][TEX_LEVELS-1:0][TEX_ADDR_W-1:0] cfg_tex_level_off_i,
+  // triangle table (log2 Pb per triangle and texture)
+  input  logic                                 tt_we_i,
+  input  logic [TRI_W:0]                       tt_waddr_i,
+  input  f24_t                                 tt_wdata_i,
+  // fragments in
+  input  logic                                 frag_valid_i,
+  output logic                                 frag_ready_o,
+  input  logic [PIX_W-1:0]                     frag_id_i,
+  input  f24_t                                 frag_u0_i,
+  input  f24_t                                 frag_v0_i,
+  input  f24_t                                 frag_pl0_i,
+  input  logic [TRI_W-1:0]                     frag_tri_i,
+  input  f24_t [8:0]                           frag_tbn_i,   // T (0..2), B (3..5), N (6..8)
+  input  f24_t [2:0]                           frag_view_i,
+  // pixels out
+  output logic                                 px_valid_o,
+  input  logic                                 px_ready_i,
+  output logic [PIX_W-1:0]                     px_id_o,
+  output logic [2:0][7:0]                      px_rgb_o,
+  output logic                                 px_hit_o,
+  output logic                                 px_invalid_o,
+  output logic                                 px_err_o,
+  output logic [ITER_W-1:0]                    px_iters_o,
+  // AXI4 read master: heights
+  output logic [H_ID_W-1:0]                    m_axi_h_arid,
+  output logic [ADDR_W-1:0]                    m_axi_h_araddr,
+  output logic [7:0]                           m_axi_h_arlen,
+  output logic [2:0]                           m_axi_h_arsize,
+  output logic [1:0]                           m_axi_h_arburst,
+  output logic                                 m_axi_h_arvalid,
+  input  logic                                 m_axi_h_arready,
+  input  logic [H_ID_W-1:0]                    m_axi_h_rid,
+  input  logic [AXI_DATA_W-1:0]                m_axi_h_rdata,
+  input  logic [1:0]                           m_axi_h_rresp,
+  input  logic                                 m_axi_h_rlast,
+  input  logic                                 m_axi_h_rvalid,
+  output logic                                 m_axi_h_rready,
+  // AXI4 read master: textures
+  output logic [T_ID_W-1:0]                    m_axi_t_arid,
+  output logic [TEX_ADDR_W-1:0]                m_axi_t_araddr,
+  output logic [7:0]                           m_axi_t_arlen,
+  output logic [2:0]                           m_axi_t_arsize,
+  output logic [1:0]                           m_axi_t_arburst,
+  output logic                                 m_axi_t_arvalid,
+  input  logic                                 m_axi_t_arready,
+  input  logic [T_ID_W-1:0]                    m_axi_t_rid,
+  input  logic [AXI_DATA_W-1:0]                m_axi_t_rdata,
+  input  logic [1:0]                           m_axi_t_rresp,
+  input  logic                                 m_axi_t_rlast,
+  input  logic                                 m_axi_t_rvalid,
+  output logic                                 m_axi_t_rready,
+  // statistics (48 bits, since reset or clr_stats_i)
+  input  logic                                 clr_stats_i,
+  output logic [47:0]                          stat_cycles_o,      // clocks with a pixel inside
+  output logic [47:0]                          stat_pixels_o,      // pixels out
+  output logic [47:0]                          stat_iters_o,       // traversal iterations
+  output logic [47:0]                          stat_h_hits_o,      // height-cache lookups hit
+  output logic [47:0]                          stat_h_misses_o,
+  output logic [47:0]                          stat_h_bytes_o,
+  output logic [47:0]                          stat_t_requests_o,  // texture quads
+  output logic [47:0]                          stat_t_quad_hits_o,
+  output logic [47:0]                          stat_t_line_misses_o,
+  output logic [47:0]                          stat_t_bytes_o,
+  output logic                                 idle_o              // no pixel inside
+);
+
+  localparam int unsigned SLOT_W = $clog2(SLOTS);
+  localparam int unsigned OUT_CW = $clog2(OUT_DEPTH) + 1;
+  localparam int unsigned REQ_CW = $clog2(REQ_DEPTH) + 1;
+  localparam int unsigned F0_CW  = $clog2(F0_DEPTH) + 1;
+
+  if ((1 << SLOT_W) != SLOTS || SLOTS < 2) begin : g_check_slots
+    $error("dm_pipeline: SLOTS must be a power of two >= 2");
+  end
+
+  // ---- slots: free list (filled with 0 .. SLOTS-1 after reset) and per-slot context ----------
+  logic              init_q;          // filling the free list
+  logic [SLOT_W:0]   init_cnt_q;
+  logic              free_push, free_pop, free_empty, free_full;
+  logic [SLOT_W-1:0] free_push_id, free_head;
+  logic [SLOT_W:0]   free_count;
+  logic [SLOT_W:0]   live_q;          // slots in use (pixels inside)
+
+  traverse_fifo #(.W(SLOT_W), .DEPTH(SLOTS)) u_free (
+    .clk_i, .rst_ni, .wr_i(free_push), .wr_data_i(free_push_id), .rd_i(free_pop),
+    .rd_data_o(free_head), .full_o(free_full), .empty_o(free_empty), .count_o(free_count));
+
+  logic [PIX_W-1:0]  ctx_pix_q   [SLOTS];
+  f24_t              ctx_pl0_q   [SLOTS];
+  logic [TRI_W-1:0]  ctx_tri_q   [SLOTS];
+  f24_t              ctx_du_q    [SLOTS];
+  f24_t              ctx_dv_q    [SLOTS];
+  f24_t              ctx_seg_q   [SLOTS];
+  logic              ctx_inv_q   [SLOTS];
+  logic              ctx_herr_q  [SLOTS];
+  logic [ITER_W-1:0] ctx_iters_q [SLOTS];
+
+  // ---- accept: fragment -> view_calc ---------------------------------------------------------
+  logic [F0_CW-1:0]  vc_cnt_q;        // fragments inside view_calc
+  logic              f0_wr, f0_rd, f0_full, f0_empty;
+  logic [F0_CW-1:0]  f0_count;
+  logic              acc;
+
+  assign frag_ready_o = !init_q && !free_empty &&
+                        (F0_CW'(vc_cnt_q) + f0_count < F0_CW'(F0_DEPTH));
+  assign acc      = frag_valid_i && frag_ready_o;
+  assign free_pop = acc;
+
+  always_ff @(posedge clk_i) begin
+    if (acc) begin
+      ctx_pix_q[free_head] <= frag_id_i;
+      ctx_pl0_q[free_head] <= frag_pl0_i;
+      ctx_tri_q[free_head] <= frag_tri_i;
+    end
+  end
+
+  localparam int unsigned VC_TAG_W = SLOT_W + 48;
+  logic                vc_valid;
+  logic [VC_TAG_W-1:0] vc_tag;
+  f24_t                vc_du, vc_dv, vc_seg;
+
+  view_calc #(.TAG_W(VC_TAG_W)) u_view (
+    .clk_i, .rst_ni, .en_i(1'b1), .cfg_depth_i,
+    .valid_i(acc), .tag_i({free_head, frag_u0_i, frag_v0_i}),
+    .tx_i(frag_tbn_i[0]), .ty_i(frag_tbn_i[1]), .tz_i(frag_tbn_i[2]),
+    .bx_i(frag_tbn_i[3]), .by_i(frag_tbn_i[4]), .bz_i(frag_tbn_i[5]),
+    .nx_i(frag_tbn_i[6]), .ny_i(frag_tbn_i[7]), .nz_i(frag_tbn_i[8]),
+    .vx_i(frag_view_i[0]), .vy_i(frag_view_i[1]), .vz_i(frag_view_i[2]),
+    .valid_o(vc_valid), .tag_o(vc_tag), .du_o(vc_du), .dv_o(vc_dv), .seg_o(vc_seg));
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) vc_cnt_q <= '0;
+    else         vc_cnt_q <= vc_cnt_q + F0_CW'(acc) - F0_CW'(vc_valid);
+  end
+
+  logic [SLOT_W-1:0] vc_slot;
+  assign vc_slot = vc_tag[VC_TAG_W-1 -: SLOT_W];
+  always_ff @(posedge clk_i) begin
+    if (vc_valid) begin
+      ctx_du_q[vc_slot]  <= vc_du;
+      ctx_dv_q[vc_slot]  <= vc_dv;
+      ctx_seg_q[vc_slot] <= vc_seg;
+    end
+  end
+
+  // ---- FIFO #0 -> traverse_system ------------------------------------------------------------
+  localparam int unsigned F0_W = SLOT_W + 4 * 24;
+  logic [F0_W-1:0] f0_head;
+  assign f0_wr = vc_valid;
+
+  traverse_fifo #(.W(F0_W), .DEPTH(F0_DEPTH)) u_fifo0 (
+    .clk_i, .rst_ni, .wr_i(f0_wr), .wr_data_i({vc_tag, vc_du, vc_dv}), .rd_i(f0_rd),
+    .rd_data_o(f0_head), .full_o(f0_full), .empty_o(f0_empty), .count_o(f0_count));
+
+  logic              ray_ready;
+  logic              res_valid, res_ready, res_hit, res_inv, res_capped, res_herr;
+  logic [SLOT_W-1:0] res_id;
+  f24_t              res_t, res_u, res_v;
+  logic [ITER_W-1:0] res_iters;
+  logic [47:0]       t_cycles, t_rays_in, t_rays_out, t_lookups, t_cross, t_ups, t_desc;
+  logic              t_idle;
+  logic [47:0]       h_lines;
+
+  assign f0_rd = !f0_empty && ray_ready;
+
+  traverse_system #(.RAY_ID_W(SLOT_W), .AXI_ID_W(H_ID_W), .AXI_DATA_W(AXI_DATA_W)) u_trav (
+    .clk_i, .rst_ni,
+    .cfg_method_i, .cfg_width_i, .cfg_height_i, .cfg_root_level_i, .cfg_bits16_i, .cfg_base_i,
+    .cfg_level_off_i, .cfg_root_code_i, .cfg_iter_cap_i,
+    .ray_valid_i(!f0_empty), .ray_ready_o(ray_ready), .ray_id_i(f0_head[F0_W-1 -: SLOT_W]),
+    .ray_u0_i(f0_head[95:72]), .ray_v0_i(f0_head[71:48]), .ray_du_i(f0_head[47:24]),
+    .ray_dv_i(f0_head[23:0]),
+    .res_valid_o(res_valid), .res_ready_i(res_ready), .res_id_o(res_id), .res_t_o(res_t),
+    .res_u_o(res_u), .res_v_o(res_v), .res_hit_o(res_hit), .res_invalid_o(res_inv),
+    .res_capped_o(res_capped), .res_err_o(res_herr), .res_iters_o(res_iters),
+    .m_axi_arid(m_axi_h_arid), .m_axi_araddr(m_axi_h_araddr), .m_axi_arlen(m_axi_h_arlen),
+    .m_axi_arsize(m_axi_h_arsize), .m_axi_arburst(m_axi_h_arburst),
+    .m_axi_arvalid(m_axi_h_arvalid), .m_axi_arready(m_axi_h_arready), .m_axi_rid(m_axi_h_rid),
+    .m_axi_rdata(m_axi_h_rdata), .m_axi_rresp(m_axi_h_rresp), .m_axi_rlast(m_axi_h_rlast),
+    .m_axi_rvalid(m_axi_h_rvalid), .m_axi_rready(m_axi_h_rready),
+    .stat_cycles_o(t_cycles), .stat_rays_in_o(t_rays_in), .stat_rays_out_o(t_rays_out),
+    .stat_iters_o(stat_iters_o), .stat_lookups_o(t_lookups), .stat_crossings_o(t_cross),
+    .stat_level_ups_o(t_ups), .stat_descents_o(t_desc), .clr_stats_i,
+    .stat_cache_hits_o(stat_h_hits_o), .stat_cache_misses_o(stat_h_misses_o),
+    .stat_mem_bytes_o(stat_h_bytes_o), .stat_mem_lines_o(h_lines),
+    .idle_o(t_idle));
+
+  // ---- results: hits to the texture path, the rest to the miss FIFO --------------------------
+  logic              miss_wr, miss_rd, miss_full, miss_empty;
+  logic [SLOT_W-1:0] miss_head;
+  logic [$clog2(MISS_DEPTH):0] miss_count;
+  logic [REQ_CW-1:0] req_cnt_q;   // hits admitted whose normal-map request is not yet sent
+  logic [OUT_CW-1:0] hit_cnt_q;   // hits admitted and not yet out
+  logic              hit_adm, req_done, hit_out;
+
+  assign res_ready = res_hit ? (req_cnt_q < REQ_CW'(REQ_DEPTH) && hit_cnt_q < OUT_CW'(OUT_DEPTH))
+                             : !miss_full;
+  assign hit_adm   = res_valid && res_ready && res_hit;
+  assign miss_wr   = res_valid && res_ready && !res_hit;
+
+  always_ff @(posedge clk_i) begin
+    if (res_valid && res_ready) begin
+      ctx_inv_q[res_id]   <= res_inv;
+      ctx_herr_q[res_id]  <= res_herr;
+      ctx_iters_q[res_id] <= res_iters;
+    end
+  end
+
+  traverse_fifo #(.W(SLOT_W), .DEPTH(MISS_DEPTH)) u_miss (
+    .clk_i, .rst_ni, .wr_i(miss_wr), .wr_data_i(res_id), .rd_i(miss_rd), .rd_data_o(miss_head),
+    .full_o(miss_full), .empty_o(miss_empty), .count_o(miss_count));
+
+  // hit -> mip_level (context read at admission: Pl0, triangle, seg)
+  localparam int unsigned MIP_TAG_W = SLOT_W + 48;
+  logic                 mip_valid;
+  logic [MIP_TAG_W-1:0] mip_tag;
+  logic [MIP_LEVEL_W-1:0] lvl_c, lvl_n;
+
+  mip_level #(.TAG_W(MIP_TAG_W), .TRIS(TRIS)) u_mip (
+    .clk_i, .rst_ni, .en_i(1'b1), .cfg_mip_en_i, .cfg_levels_colour_i, .cfg_levels_normal_i,
+    .tt_we_i, .tt_waddr_i, .tt_wdata_i,
+    .valid_i(hit_adm), .tag_i({res_id, res_u, res_v}), .t_i(res_t), .seg_i(ctx_seg_q[res_id]),
+    .pl0_i(ctx_pl0_q[res_id]), .tri_i(ctx_tri_q[res_id]),
+    .valid_o(mip_valid), .tag_o(mip_tag), .level_colour_o(lvl_c), .level_normal_o(lvl_n));
+
+  // mip -> two address units (colour, normal map)
+  localparam int unsigned REQ_W = 4 * TEX_ADDR_W + 48;  // {fx, fy, a11, a10, a01, a00}
+  logic [1:0]              ta_valid;
+  logic [1:0][SLOT_W-1:0]  ta_slot;
+  logic [1:0][REQ_W-1:0]   ta_req;
+
+  for (genvar x = 0; x < 2; x++) begin : g_addr
+    logic [TEX_ADDR_W-1:0] a00, a01, a10, a11;
+    f24_t                  fx, fy;
+    tex_addr #(.TAG_W(SLOT_W), .ADDR_W(TEX_ADDR_W)) u_addr (
+      .clk_i, .rst_ni, .en_i(1'b1),
+      .cfg_su_i(cfg_tex_su_i[x]), .cfg_sv_i(cfg_tex_sv_i[x]), .cfg_width_i(cfg_tex_width_i[x]),
+      .cfg_height_i(cfg_tex_height_i[x]), .cfg_base_i(cfg_tex_base_i[x]),
+      .cfg_level_off_i(cfg_tex_level_off_i[x]),
+      .valid_i(mip_valid), .tag_i(mip_tag[MIP_TAG_W-1 -: SLOT_W]), .u_i(mip_tag[47:24]),
+      .v_i(mip_tag[23:0]), .level_i(x == 0 ? lvl_c : lvl_n),
+      .valid_o(ta_valid[x]), .tag_o(ta_slot[x]), .addr00_o(a00), .addr01_o(a01),
+      .addr10_o(a10), .addr11_o(a11), .fx_o(fx), .fy_o(fy));
+    assign ta_req[x] = {fx, fy, a11, a10, a01, a00};
+  end
+
+  // request FIFOs: colour {slot, request}, normal {request}; sent alternately, colour first
+  logic              rq_c_empty, rq_n_empty, rq_c_full, rq_n_full, rq_sel_q;
+  logic [SLOT_W+REQ_W-1:0] rq_c_head;
+  logic [REQ_W-1:0]  rq_n_head, rq_head;
+  logic [SLOT_W-1:0] rq_slot;
+  logic              tc_req_valid, tc_req_ready;
+  logic [REQ_CW-1:0] rq_c_count, rq_n_count;
+
+  traverse_fifo #(.W(SLOT_W + REQ_W), .DEPTH(REQ_DEPTH)) u_rq_c (
+    .clk_i, .rst_ni, .wr_i(ta_valid[0]), .wr_data_i({ta_slot[0], ta_req[0]}),
+    .rd_i(tc_req_valid && tc_req_ready && !rq_sel_q), .rd_data_o(rq_c_head), .full_o(rq_c_full),
+    .empty_o(rq_c_empty), .count_o(rq_c_count));
+  traverse_fifo #(.W(REQ_W), .DEPTH(REQ_DEPTH)) u_rq_n (
+    .clk_i, .rst_ni, .wr_i(ta_valid[1]), .wr_data_i(ta_req[1]),
+    .rd_i(tc_req_valid && tc_req_ready && rq_sel_q), .rd_data_o(rq_n_head), .full_o(rq_n_full),
+    .empty_o(rq_n_empty), .count_o(rq_n_count));
+
+  // The slot of the pair being sent (the colour entry's, kept for the normal-map request).
+  logic [SLOT_W-1:0] pair_slot_q;
+  assign rq_head      = rq_sel_q ? rq_n_head : rq_c_head[REQ_W-1:0];
+  assign rq_slot      = rq_sel_q ? pair_slot_q : rq_c_head[SLOT_W+REQ_W-1 -: SLOT_W];
+  assign tc_req_valid = rq_sel_q ? !rq_n_empty : !rq_c_empty;
+  assign req_done     = tc_req_valid && tc_req_ready && rq_sel_q;
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) rq_sel_q <= 1'b0;
+    else if (tc_req_valid && tc_req_ready) rq_sel_q <= !rq_sel_q;
+  end
+  always_ff @(posedge clk_i) begin
+    if (tc_req_valid && tc_req_ready && !rq_sel_q) pair_slot_q <= rq_slot;
+  end
+
+  // tex_cache: tag = {slot, normal?, fx, fy}
+  localparam int unsigned TC_TAG_W = SLOT_W + 1 + 48;
+  logic                 tc_rsp_valid, tc_rsp_err;
+  logic [3:0][31:0]     tc_rsp_texel;
+  logic [TC_TAG_W-1:0]  tc_rsp_tag;
+  logic [47:0]          tc_lookups;
+
+  tex_cache #(.ADDR_W(TEX_ADDR_W), .DATA_W(AXI_DATA_W), .ID_W(T_ID_W), .TAG_W(TC_TAG_W)) u_tc (
+    .clk_i, .rst_ni,
+    .req_valid_i(tc_req_valid), .req_ready_o(tc_req_ready),
+    .req_addr_i(rq_head[4*TEX_ADDR_W-1:0]),  // [0] a00, [1] a01, [2] a10, [3] a11
+    .req_tag_i({rq_slot, rq_sel_q, rq_head[REQ_W-1 -: 48]}),
+    .rsp_valid_o(tc_rsp_valid), .rsp_ready_i(1'b1), .rsp_texel_o(tc_rsp_texel),
+    .rsp_err_o(tc_rsp_err), .rsp_tag_o(tc_rsp_tag),
+    .m_axi_arid(m_axi_t_arid), .m_axi_araddr(m_axi_t_araddr), .m_axi_arlen(m_axi_t_arlen),
+    .m_axi_arsize(m_axi_t_arsize), .m_axi_arburst(m_axi_t_arburst),
+    .m_axi_arvalid(m_axi_t_arvalid), .m_axi_arready(m_axi_t_arready), .m_axi_rid(m_axi_t_rid),
+    .m_axi_rdata(m_axi_t_rdata), .m_axi_rresp(m_axi_t_rresp), .m_axi_rlast(m_axi_t_rlast),
+    .m_axi_rvalid(m_axi_t_rvalid), .m_axi_rready(m_axi_t_rready),
+    .clr_stats_i, .stat_requests_o(stat_t_requests_o), .stat_quad_hits_o(stat_t_quad_hits_o),
+    .stat_lookups_o(tc_lookups), .stat_line_misses_o(stat_t_line_misses_o),
+    .stat_bytes_o(stat_t_bytes_o));
+
+  // tex_filter (one quad per clock; tag = {slot, normal?, err})
+  localparam int unsigned TF_TAG_W = SLOT_W + 2;
+  logic                tf_valid;
+  logic [TF_TAG_W-1:0] tf_tag;
+  f24_t                tf_r, tf_g, tf_b, tf_a;
+
+  tex_filter #(.TAG_W(TF_TAG_W)) u_filter (
+    .clk_i, .rst_ni, .en_i(1'b1), .valid_i(tc_rsp_valid),
+    .tag_i({tc_rsp_tag[TC_TAG_W-1 -: SLOT_W + 1], tc_rsp_err}),
+    .t00_i(tc_rsp_texel[0]), .t01_i(tc_rsp_texel[1]), .t10_i(tc_rsp_texel[2]),
+    .t11_i(tc_rsp_texel[3]), .fx_i(tc_rsp_tag[47:24]), .fy_i(tc_rsp_tag[23:0]),
+    .valid_o(tf_valid), .tag_o(tf_tag), .r_o(tf_r), .g_o(tf_g), .b_o(tf_b), .a_o(tf_a));
+
+  // pair the colour (first) and normal-map (second) results -> shade_unit
+  f24_t [2:0] col_q;
+  logic       col_err_q;
+  logic       sh_in_valid;
+  logic [SLOT_W-1:0] sh_in_slot;
+  assign sh_in_valid = tf_valid && tf_tag[1];
+  assign sh_in_slot  = tf_tag[TF_TAG_W-1 -: SLOT_W];
+  always_ff @(posedge clk_i) begin
+    if (tf_valid && !tf_tag[1]) begin
+      col_q     <= {tf_b, tf_g, tf_r};
+      col_err_q <= tf_tag[0];
+    end
+  end
+
+  logic              sh_valid;
+  logic [SLOT_W:0]   sh_tag;
+  logic [2:0][7:0]   sh_rgb;
+
+  shade_unit #(.TAG_W(SLOT_W + 1)) u_shade (
+    .clk_i, .rst_ni, .en_i(1'b1), .cfg_i(cfg_shade_i), .valid_i(sh_in_valid),
+    .tag_i({sh_in_slot, col_err_q | tf_tag[0]}), .col_i(col_q), .nrm_i({tf_b, tf_g, tf_r}),
+    .du_i(ctx_du_q[sh_in_slot]), .dv_i(ctx_dv_q[sh_in_slot]),
+    .valid_o(sh_valid), .tag_o(sh_tag), .rgb_o(sh_rgb));
+
+  // shaded FIFO {slot, err, rgb}
+  localparam int unsigned OUT_W = SLOT_W + 1 + 24;
+  logic             out_rd, out_full, out_empty;
+  logic [OUT_W-1:0] out_head;
+  logic [OUT_CW-1:0] out_count;
+
+  traverse_fifo #(.W(OUT_W), .DEPTH(OUT_DEPTH)) u_out (
+    .clk_i, .rst_ni, .wr_i(sh_valid), .wr_data_i({sh_tag, sh_rgb}), .rd_i(out_rd),
+    .rd_data_o(out_head), .full_o(out_full), .empty_o(out_empty), .count_o(out_count));
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      req_cnt_q <= '0;
+      hit_cnt_q <= '0;
+    end else begin
+      req_cnt_q <= req_cnt_q + REQ_CW'(hit_adm) - REQ_CW'(req_done);
+      hit_cnt_q <= hit_cnt_q + OUT_CW'(hit_adm) - OUT_CW'(hit_out);
+    end
+  end
+
+  // ---- output register: shaded pixels first, then misses -------------------------------------
+  logic              o_valid_q, o_hit_q, o_err_q;
+  logic [SLOT_W-1:0] o_slot_q;
+  logic [2:0][7:0]   o_rgb_q;
+  logic              o_load;
+
+  assign o_load  = !o_valid_q || px_ready_i;
+  assign out_rd  = o_load && !out_empty;
+  assign miss_rd = o_load && out_empty && !miss_empty;
+  assign hit_out = out_rd;
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) o_valid_q <= 1'b0;
+    else if (o_load) o_valid_q <= !out_empty || !miss_empty;
+  end
+  always_ff @(posedge clk_i) begin
+    if (out_rd) begin
+      o_slot_q <= out_head[OUT_W-1 -: SLOT_W];
+      o_err_q  <= out_head[24];
+      o_rgb_q  <= out_head[23:0];
+      o_hit_q  <= 1'b1;
+    end else if (miss_rd) begin
+      o_slot_q <= miss_head;
+      o_err_q  <= 1'b0;
+      o_rgb_q  <= cfg_miss_rgb_i;
+      o_hit_q  <= 1'b0;
+    end
+  end
+
+  assign px_valid_o   = o_valid_q;
+  assign px_id_o      = ctx_pix_q[o_slot_q];
+  assign px_rgb_o     = o_rgb_q;
+  assign px_hit_o     = o_hit_q;
+  assign px_invalid_o = ctx_inv_q[o_slot_q];
+  assign px_err_o     = o_err_q | ctx_herr_q[o_slot_q];
+  assign px_iters_o   = ctx_iters_q[o_slot_q];
+
+  // ---- slot free list: init after reset, then one free per pixel out -------------------------
+  logic px_done;
+  assign px_done = px_valid_o && px_ready_i;
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      init_q     <= 1'b1;
+      init_cnt_q <= '0;
+    end else if (init_q) begin
+      init_cnt_q <= init_cnt_q + (SLOT_W+1)'(1);
+      if (init_cnt_q == (SLOT_W+1)'(SLOTS - 1)) init_q <= 1'b0;
+    end
+  end
+  assign free_push    = init_q || px_done;
+  assign free_push_id = init_q ? init_cnt_q[SLOT_W-1:0] : o_slot_q;
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) live_q <= '0;
+    else         live_q <= live_q + (SLOT_W+1)'(acc) - (SLOT_W+1)'(px_done);
+  end
+
+  // ---- statistics -----------------------------------------------------------------------------
+  logic [47:0] cyc_q, pix_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni || clr_stats_i) begin
+      cyc_q <= '0;
+      pix_q <= '0;
+    end else begin
+      if (live_q != '0) cyc_q <= cyc_q + 48'd1;
+      if (px_done)      pix_q <= pix_q + 48'd1;
+    end
+  end
+  assign stat_cycles_o = cyc_q;
+  assign stat_pixels_o = pix_q;
+  assign idle_o        = (live_q == '0) && !init_q;
+
+  // Unused here: the traversal's other counters (the harness reads them through hierarchy).
+  logic unused;
+  assign unused = ^{t_cycles, t_rays_in, t_rays_out, t_lookups, t_cross, t_ups, t_desc, t_idle,
+                    res_capped, tc_lookups, free_full, rq_c_full, rq_n_full, out_full,
+                    f0_full, h_lines, miss_count, ta_slot[1], rq_c_count, rq_n_count, tf_a, out_count};
+
+`ifndef SYNTHESIS
+  // Slot conservation: free + live = SLOTS once the free list is filled.
+  slots_conserved: assert property (@(posedge clk_i) disable iff (!rst_ni || init_q)
+    free_count + live_q == (SLOT_W+1)'(SLOTS));
+  // The credits hold: the FIFOs behind fixed-latency units never see a write while full.
+  fifo0_credit: assert property (@(posedge clk_i) disable iff (!rst_ni) f0_wr |-> !f0_full);
+  req_credit:   assert property (@(posedge clk_i) disable iff (!rst_ni)
+    ta_valid[0] |-> !rq_c_full && !rq_n_full);
+  out_credit:   assert property (@(posedge clk_i) disable iff (!rst_ni) sh_valid |-> !out_full);
+  // The pixel stream's payload holds while stalled; the texture request too.
+  px_stable:    assert property (@(posedge clk_i) disable iff (!rst_ni)
+    px_valid_o && !px_ready_i |=> px_valid_o && $stable(px_id_o) && $stable(px_rgb_o));
+  tc_req_held: assert property (@(posedge clk_i) disable iff (!rst_ni)
+    tc_req_valid && !tc_req_ready |=> tc_req_valid);
+`endif
+
+endmodule
