@@ -20,48 +20,20 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
-
-def clog2(x: int) -> int:
-    return max(0, (x - 1).bit_length())
+from .height_cache import CacheConfig, plru_touch, plru_victim
 
 
 @dataclass(frozen=True)
-class TexCacheConfig:
-    """The RTL's parameters."""
+class TexCacheConfig(CacheConfig):
+    """The RTL's parameters (the height cache's, other defaults, plus the request FIFO and the
+    side-band width; ``err_hold`` does not apply)."""
 
-    addr_w: int = 32
-    data_w: int = 64
-    line_bytes: int = 32
     sets: int = 32
     ways: int = 4
     mshrs: int = 16
-    fifo_depth: int = 64
     id_w: int = 6
+    fifo_depth: int = 64
     tag_w: int = 8
-
-    @property
-    def off_w(self) -> int:
-        return clog2(self.line_bytes)
-
-    @property
-    def set_w(self) -> int:
-        return clog2(self.sets)
-
-    @property
-    def beats(self) -> int:
-        return self.line_bytes * 8 // self.data_w
-
-    @property
-    def beat_bytes(self) -> int:
-        return self.data_w // 8
-
-    @property
-    def midx_w(self) -> int:
-        return clog2(self.mshrs) if self.mshrs > 1 else 1
-
-    @property
-    def epoch_w(self) -> int:
-        return self.id_w - self.midx_w
 
     @property
     def capacity(self) -> int:
@@ -156,24 +128,6 @@ class TexCacheModel:
         self.stats = {"requests": 0, "quad_hits": 0, "lookups": 0, "line_misses": 0,
                       "passes": 0}
 
-    def _victim(self, bits: int) -> int:
-        w = self.cfg.ways
-        n = 1
-        while n < w:
-            n = 2 * n + ((bits >> (n - 1)) & 1)
-        return n - w
-
-    def _touch(self, bits: int, way: int) -> int:
-        n = way + self.cfg.ways
-        while n > 1:
-            node = (n >> 1) - 1
-            if n % 2 == 0:
-                bits |= 1 << node
-            else:
-                bits &= ~(1 << node)
-            n >>= 1
-        return bits
-
     def lookup(self, c: int, la: int) -> bool:
         """One line lookup in sub-cache c; True on a hit (the line is allocated on a miss)."""
         cfg = self.cfg
@@ -184,10 +138,10 @@ class TexCacheModel:
             w = ways.index(tag)
             hit = True
         else:
-            w = ways.index(None) if None in ways else self._victim(self.plru[c][s])
+            w = ways.index(None) if None in ways else plru_victim(cfg, self.plru[c][s])
             ways[w] = tag
             hit = False
-        self.plru[c][s] = self._touch(self.plru[c][s], w)
+        self.plru[c][s] = plru_touch(cfg, self.plru[c][s], w)
         return hit
 
     def access(self, addrs: Sequence[int]) -> bool:
