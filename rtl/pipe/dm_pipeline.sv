@@ -15,13 +15,13 @@
 // pixel leaves.
 //
 // Flow control.  The fixed-latency units (view_calc, mip_level, tex_addr, tex_filter,
-// shade_unit) never stall (en_i = 1); admission into them is by credit instead (the paper's
-// controller that keeps FIFO #0 from overflowing):
+// shade_unit) never stall (en_i = 1); admission into them is by credit instead (pipe_credit; the
+// paper's controller that keeps FIFO #0 from overflowing):
 //   - a fragment enters view_calc only if FIFO #0 has room for it and every fragment already in
-//     view_calc (vc_cnt_q + FIFO #0 count < F0_DEPTH);
+//     view_calc (fragments in view_calc + FIFO #0 count < F0_DEPTH);
 //   - a hit leaves traverse_system only if the texture-request FIFOs have room for it and every
-//     hit between admission and the FIFOs (req_cnt_q < REQ_DEPTH) and the out FIFO has room for
-//     every hit not yet out (hit_cnt_q < OUT_DEPTH); tex_cache's responses are then always taken
+//     hit between admission and the FIFOs (< REQ_DEPTH) and the out FIFO has room for
+//     every hit not yet out (< OUT_DEPTH); tex_cache's responses are then always taken
 //     (rsp_ready = 1) because the filter and shader behind it cannot back up;
 //   - a miss / invalid ray leaves traverse_system when the miss FIFO has room.
 // The colour and normal-map requests of a pixel are pushed together into two FIFOs and sent to
@@ -173,13 +173,14 @@ module dm_pipeline
   logic [ITER_W-1:0] ctx_iters_q [SLOTS];
 
   // ---- accept: fragment -> view_calc ---------------------------------------------------------
-  logic [F0_CW-1:0]  vc_cnt_q;        // fragments inside view_calc
+  logic [F0_CW-1:0]  vc_cnt;          // fragments inside view_calc
   logic              f0_wr, f0_rd, f0_full, f0_empty;
   logic [F0_CW-1:0]  f0_count;
   logic              acc;
 
-  assign frag_ready_o = !init_q && !free_empty &&
-                        (F0_CW'(vc_cnt_q) + f0_count < F0_CW'(F0_DEPTH));
+  logic              f0_room;
+
+  assign frag_ready_o = !init_q && !free_empty && f0_room;
   assign acc      = frag_valid_i && frag_ready_o;
   assign free_pop = acc;
 
@@ -205,10 +206,11 @@ module dm_pipeline
     .vx_i(frag_view_i[0]), .vy_i(frag_view_i[1]), .vz_i(frag_view_i[2]),
     .valid_o(vc_valid), .tag_o(vc_tag), .du_o(vc_du), .dv_o(vc_dv), .seg_o(vc_seg));
 
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) vc_cnt_q <= '0;
-    else         vc_cnt_q <= vc_cnt_q + F0_CW'(acc) - F0_CW'(vc_valid);
-  end
+  // The controller that keeps FIFO #0 from overflowing: fragments inside view_calc plus FIFO
+  // #0's fill never exceed its depth.
+  pipe_credit #(.LIMIT(F0_DEPTH), .CW(F0_CW)) u_f0_credit (
+    .clk_i, .rst_ni, .take_i(acc), .give_i(vc_valid), .held_i(f0_count), .room_o(f0_room),
+    .count_o(vc_cnt));
 
   logic [SLOT_W-1:0] vc_slot;
   assign vc_slot = vc_tag[VC_TAG_W-1 -: SLOT_W];
@@ -266,12 +268,12 @@ module dm_pipeline
   logic              miss_wr, miss_rd, miss_full, miss_empty;
   logic [SLOT_W-1:0] miss_head;
   logic [$clog2(MISS_DEPTH):0] miss_count;
-  logic [REQ_CW-1:0] req_cnt_q;   // hits admitted whose normal-map request is not yet sent
-  logic [OUT_CW-1:0] hit_cnt_q;   // hits admitted and not yet out
+  logic [REQ_CW-1:0] req_cnt;     // hits admitted whose normal-map request is not yet sent
+  logic [OUT_CW-1:0] hit_cnt;     // hits admitted and not yet out
+  logic              req_room, hit_room;
   logic              hit_adm, req_done, hit_out;
 
-  assign res_ready = res_hit ? (req_cnt_q < REQ_CW'(REQ_DEPTH) && hit_cnt_q < OUT_CW'(OUT_DEPTH))
-                             : !miss_full;
+  assign res_ready = res_hit ? (req_room && hit_room) : !miss_full;
   assign hit_adm   = res_valid && res_ready && res_hit;
   assign miss_wr   = res_valid && res_ready && !res_hit;
 
@@ -423,15 +425,14 @@ module dm_pipeline
     .clk_i, .rst_ni, .wr_i(sh_valid), .wr_data_i({sh_tag, sh_rgb}), .rd_i(out_rd),
     .rd_data_o(out_head), .full_o(out_full), .empty_o(out_empty), .count_o(out_count));
 
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      req_cnt_q <= '0;
-      hit_cnt_q <= '0;
-    end else begin
-      req_cnt_q <= req_cnt_q + REQ_CW'(hit_adm) - REQ_CW'(req_done);
-      hit_cnt_q <= hit_cnt_q + OUT_CW'(hit_adm) - OUT_CW'(hit_out);
-    end
-  end
+  // Credits of the back end: a hit is admitted only when both request FIFOs and the out FIFO
+  // will have room for it whenever it arrives (the counts span the units in front of them).
+  pipe_credit #(.LIMIT(REQ_DEPTH), .CW(REQ_CW)) u_req_credit (
+    .clk_i, .rst_ni, .take_i(hit_adm), .give_i(req_done), .held_i('0), .room_o(req_room),
+    .count_o(req_cnt));
+  pipe_credit #(.LIMIT(OUT_DEPTH), .CW(OUT_CW)) u_out_credit (
+    .clk_i, .rst_ni, .take_i(hit_adm), .give_i(hit_out), .held_i('0), .room_o(hit_room),
+    .count_o(hit_cnt));
 
   // ---- output register: shaded pixels first, then misses -------------------------------------
   logic              o_valid_q, o_hit_q, o_err_q;
@@ -510,7 +511,8 @@ module dm_pipeline
   logic unused;
   assign unused = ^{t_cycles, t_rays_in, t_rays_out, t_lookups, t_cross, t_ups, t_desc, t_idle,
                     res_capped, tc_lookups, free_full, rq_c_full, rq_n_full, out_full,
-                    f0_full, h_lines, miss_count, ta_slot[1], rq_c_count, rq_n_count, tf_a, out_count};
+                    f0_full, h_lines, miss_count, vc_cnt, req_cnt, hit_cnt, ta_slot[1],
+                    rq_c_count, rq_n_count, tf_a, out_count};
 
 `ifndef SYNTHESIS
   // Slot conservation: free + live = SLOTS once the free list is filled.

@@ -1,0 +1,82 @@
+"""traverse_fifo (every FIFO of the traverse unit and the pipeline: FIFO #0, FIFO #1, the
+request, miss and out FIFOs, the slot free list) against a deque, clock by clock.
+
+Every clock a random write (only when not full: a write needs full_o = 0 even with a read in
+the same clock) and a random read (only when not empty), with the write and read probabilities drifting in bursts so the FIFO runs
+empty, full and in between.  After every edge rd_data_o (when not empty), full_o, empty_o and
+count_o must equal the model's.  The overflow/underflow SVA are on.
+"""
+from __future__ import annotations
+
+import os
+from collections import deque
+from pathlib import Path
+
+import cocotb
+import numpy as np
+import pytest
+from cocotb.clock import Clock
+from cocotb.triggers import FallingEdge, RisingEdge
+
+from tb.common import fp_unit, report, runner
+
+
+@cocotb.test()
+async def traverse_fifo_random(dut):
+    rng = np.random.default_rng(fp_unit.seed())
+    depth, width = int(os.environ["DEPTH"]), int(os.environ["W"])
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    dut.rst_ni.value = 0
+    dut.wr_i.value = 0
+    dut.rd_i.value = 0
+    dut.wr_data_i.value = 0
+    for _ in range(2):
+        await RisingEdge(dut.clk_i)
+    await FallingEdge(dut.clk_i)
+    dut.rst_ni.value = 1
+    n = fp_unit.vectors()
+    p_wr = rng.uniform(0.0, 1.0, n // 32 + 1).repeat(32)[:n]
+    p_rd = rng.uniform(0.0, 1.0, n // 32 + 1).repeat(32)[:n]
+    want_wr = rng.random(n) < p_wr
+    want_rd = rng.random(n) < p_rd
+    data = rng.integers(0, 1 << width, n, dtype=np.uint64).tolist()
+    q: deque[int] = deque()
+    bad = fulls = empties = 0
+    msgs: list[str] = []
+    for k in range(n):
+        exp = {"full_o": int(len(q) == depth), "empty_o": int(not q), "count_o": len(q)}
+        got = {name: int(getattr(dut, name).value) for name in exp}
+        if q:
+            exp["rd_data_o"] = q[0]
+            got["rd_data_o"] = int(dut.rd_data_o.value)
+        if got != exp:
+            bad += 1
+            if len(msgs) < 10:
+                msgs.append(f"clock {k}: got {got} expected {exp}")
+        fulls += exp["full_o"]
+        empties += exp["empty_o"]
+        wr = bool(want_wr[k]) and len(q) < depth
+        rd = bool(want_rd[k]) and bool(q)
+        dut.wr_i.value = int(wr)
+        dut.wr_data_i.value = data[k]
+        dut.rd_i.value = int(rd)
+        await RisingEdge(dut.clk_i)
+        if rd:
+            q.popleft()
+        if wr:
+            q.append(data[k])
+        await FallingEdge(dut.clk_i)
+    report.record(dut._name, f"RTL vs deque (W {width}, DEPTH {depth})", n, bad)
+    dut._log.info("VECTORS traverse_fifo W=%d DEPTH=%d: %d clocks (%d full, %d empty), "
+                  "%d mismatches", width, depth, n, fulls, empties, bad)
+    if fulls == 0 or empties == 0:
+        msgs.append(f"the stimulus never reached full ({fulls}) or empty ({empties})")
+    if msgs:
+        raise AssertionError("\n".join(msgs))
+
+
+@pytest.mark.parametrize("width,depth", [(16, 16), (7, 2), (33, 4)])
+def test_traverse_fifo(width: int, depth: int):
+    runner.run("traverse_fifo", "test_traverse_fifo", Path(__file__).parent,
+               parameters={"W": width, "DEPTH": depth},
+               extra_env={"W": str(width), "DEPTH": str(depth), "VECTORS": "20000"})
