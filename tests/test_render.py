@@ -145,7 +145,7 @@ def _bad_cases(tmp: Path) -> list[list[str]]:
     return [
         ["--scene", "nosuch"],                        # unknown scene
         ["--method", "nosuch"],                       # unknown method
-        ["--engine", "rtl"],                          # not yet: arrives with the pipeline RTL
+        ["--engine", "rtl", "--method", "relief"],    # approximate methods have no RTL
         ["--engine", "f32"],                          # unknown engine
         ["--method", "relief", "--engine", "f24"],    # approximate methods are f64 only
         ["--angle", "sideways"],                      # unknown view
@@ -185,7 +185,7 @@ def test_bad_arguments_exit_2_one_line(tmp_path: Path, capsys: pytest.CaptureFix
         assert ei.value.code == 2, case
         lines = err.strip().splitlines()
         assert len(lines) == 1 and "error" in lines[0], (case, err)
-        if case == ["--engine", "rtl"]:
+        if case == ["--engine", "rtl", "--method", "relief"]:
             assert "pipeline RTL" in lines[0]
 
 

@@ -20,28 +20,28 @@
 // index modulo 2^RAY_ID_W; a ray whose id is still in flight waits (the stream stalls) so ids stay
 // unique among the rays in the unit.
 //
-// Memory model (AXI4 slave, read channels): an address accepted in clock c presents its first
-// beat in clock c + L (L fixed or drawn uniformly in [min, max] per burst, L >= 1); bursts of one
-// ID come back in order, bursts of different IDs in the order they become ready (never
-// interleaved beat by beat); one beat per clock unless --rvalid-gap inserts bubbles; a presented
-// beat is held until rready.  The memory holds the image at cfg_base and zeros around it up to
-// the 4 KiB pages the image touches (so line reads of an unaligned image stay inside); beat data
-// is the bus-aligned DATA_W/8-byte window; a transfer reaching outside the memory answers DECERR,
-// one overlapping an --err range answers SLVERR.
+// Memory model (AXI4 slave, read channels; axi_mem.h, shared with pipeline_harness.cpp): an
+// address accepted in clock c presents its first beat in clock c + L (L fixed or drawn uniformly
+// in [min, max] per burst, L >= 1); bursts of one ID come back in order, bursts of different IDs
+// in the order they become ready (never interleaved beat by beat); one beat per clock unless
+// --rvalid-gap inserts bubbles; a presented beat is held until rready.  The memory holds the image
+// at cfg_base and zeros around it up to the 4 KiB pages the image touches (so line reads of an
+// unaligned image stay inside); beat data is the bus-aligned DATA_W/8-byte window; a transfer
+// reaching outside the memory answers DECERR, one overlapping an --err range answers SLVERR.
 #include <cerrno>
 #include <chrono>
 #include <cinttypes>
-#include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <deque>
 #include <memory>
 #include <string>
-#include <type_traits>
+#include <tuple>
 #include <vector>
 
 #include "Vtraverse_system.h"
+#include "axi_mem.h"
+#include "harness_common.h"
 #include "traverse_harness.h"
 #include "verilated.h"
 #ifdef HARNESS_TRACE
@@ -60,6 +60,14 @@
 #endif
 
 namespace {
+
+using harness::AxiMemConfig;
+using harness::AxiStats;
+using harness::Coin;
+using harness::fail;
+using harness::parse_prob;
+using harness::parse_u64;
+using harness::Rng;
 
 constexpr unsigned kDataBytes = HARNESS_AXI_DATA_W / 8;
 constexpr unsigned kAxiIds = 1u << HARNESS_AXI_ID_W;
@@ -96,85 +104,16 @@ Exit status: 0 all rays back exactly once; 1 usage or file error; 2 timeout; 3 a
 (unknown / duplicate / missing ray id, AXI protocol violation, warm / measured runs differ).
 )";
 
-[[noreturn]] void fail(int code, const char* fmt, ...) __attribute__((format(printf, 2, 3)));
-void fail(int code, const char* fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  std::fprintf(stderr, "traverse_harness: FAIL: ");
-  std::vfprintf(stderr, fmt, ap);
-  std::fprintf(stderr, "\n");
-  va_end(ap);
-  std::exit(code);
-}
-
-// xoshiro256** seeded through splitmix64.
-struct Rng {
-  uint64_t s[4];
-  explicit Rng(uint64_t seed) {
-    uint64_t z = seed;
-    for (auto& w : s) {
-      z += 0x9E3779B97F4A7C15ull;
-      uint64_t x = z;
-      x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-      x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-      w = x ^ (x >> 31);
-    }
-  }
-  static uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-  uint64_t next() {
-    const uint64_t r = rotl(s[1] * 5, 7) * 9;
-    const uint64_t t = s[1] << 17;
-    s[2] ^= s[0];
-    s[3] ^= s[1];
-    s[1] ^= s[2];
-    s[0] ^= s[3];
-    s[2] ^= t;
-    s[3] = rotl(s[3], 45);
-    return r;
-  }
-  uint32_t range(uint32_t lo, uint32_t hi) {  // uniform in [lo, hi]
-    if (hi <= lo) return lo;
-    return lo + static_cast<uint32_t>(next() % (static_cast<uint64_t>(hi - lo) + 1));
-  }
-};
-
-// A biased coin: true with probability p (no random draw at all when p == 0).
-struct Coin {
-  uint64_t thr = 0;
-  bool on = false;
-  void set(double p) {
-    on = p > 0.0;
-    thr = p >= 1.0 ? (1ull << 53) : static_cast<uint64_t>(p * 9007199254740992.0);
-  }
-  bool flip(Rng& r) const { return on && (r.next() >> 11) < thr; }
-};
+using Memory = harness::AxiReadSlave<kDataBytes, kAxiIds>;
 
 struct Options {
   std::string in, out, stats, waves;
-  uint32_t lat_min = 20, lat_max = 20;
+  AxiMemConfig mem;  // latency, rvalid gaps, arready stalls, SLVERR ranges
   uint64_t seed = 0;
-  double ray_gap = 0, res_stall = 0, ar_stall = 0, rvalid_gap = 0;
-  std::vector<std::pair<uint64_t, uint64_t>> err;
+  double ray_gap = 0, res_stall = 0;
   uint64_t timeout = 0;
   bool warm = false, quiet = false;
 };
-
-uint64_t parse_u64(const std::string& s, const char* what) {
-  char* end = nullptr;
-  errno = 0;
-  unsigned long long v = std::strtoull(s.c_str(), &end, 0);
-  if (s.empty() || errno != 0 || *end != '\0' || s[0] == '-')
-    fail(1, "bad %s '%s' (a non-negative integer)", what, s.c_str());
-  return v;
-}
-
-double parse_prob(const std::string& s, const char* what) {
-  char* end = nullptr;
-  double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end != '\0' || !(v >= 0.0 && v <= 1.0))
-    fail(1, "bad %s '%s' (a probability in [0, 1])", what, s.c_str());
-  return v;
-}
 
 Options parse_args(int argc, char** argv) {
   Options o;
@@ -196,16 +135,8 @@ Options parse_args(int argc, char** argv) {
     } else if (a == "--waves") {
       o.waves = val("--waves");
     } else if (a == "--latency") {
-      std::string v = val("--latency");
-      size_t c = v.find(':');
-      if (c == std::string::npos) {
-        o.lat_min = o.lat_max = static_cast<uint32_t>(parse_u64(v, "latency"));
-      } else {
-        o.lat_min = static_cast<uint32_t>(parse_u64(v.substr(0, c), "latency"));
-        o.lat_max = static_cast<uint32_t>(parse_u64(v.substr(c + 1), "latency"));
-      }
-      if (o.lat_min < 1 || o.lat_max < o.lat_min || o.lat_max > 1000000)
-        fail(1, "--latency: need 1 <= MIN <= MAX <= 1000000");
+      std::tie(o.mem.lat_min, o.mem.lat_max) =
+          harness::parse_latency(val("--latency"), "--latency");
     } else if (a == "--seed") {
       o.seed = parse_u64(val("--seed"), "seed");
     } else if (a == "--ray-gap") {
@@ -213,16 +144,11 @@ Options parse_args(int argc, char** argv) {
     } else if (a == "--res-stall") {
       o.res_stall = parse_prob(val("--res-stall"), "--res-stall");
     } else if (a == "--ar-stall") {
-      o.ar_stall = parse_prob(val("--ar-stall"), "--ar-stall");
+      o.mem.ar_stall = parse_prob(val("--ar-stall"), "--ar-stall");
     } else if (a == "--rvalid-gap") {
-      o.rvalid_gap = parse_prob(val("--rvalid-gap"), "--rvalid-gap");
+      o.mem.rvalid_gap = parse_prob(val("--rvalid-gap"), "--rvalid-gap");
     } else if (a == "--err") {
-      std::string v = val("--err");
-      size_t c = v.find(':');
-      if (c == std::string::npos) fail(1, "--err wants LO:HI");
-      uint64_t lo = parse_u64(v.substr(0, c), "--err LO"), hi = parse_u64(v.substr(c + 1), "--err HI");
-      if (hi <= lo) fail(1, "--err: empty range %s", v.c_str());
-      o.err.emplace_back(lo, hi);
+      o.mem.err.push_back(harness::parse_range(val("--err"), "--err"));
     } else if (a == "--timeout") {
       o.timeout = parse_u64(val("--timeout"), "timeout");
     } else if (a == "--warm") {
@@ -271,154 +197,6 @@ Input read_input(const std::string& path) {
 }
 
 // Set a Verilator port of any width from a little-endian byte window.
-template <typename T>
-void set_bus(T& port, const uint8_t* bytes) {
-  if constexpr (std::is_integral_v<T>) {
-    T v = 0;
-    std::memcpy(&v, bytes, kDataBytes);  // the little-endian host's byte order
-    port = v;
-  } else {
-    for (unsigned w = 0; w < kDataBytes / 4; ++w) {
-      uint32_t x;
-      std::memcpy(&x, bytes + 4 * w, 4);
-      port[w] = x;
-    }
-  }
-}
-
-struct Burst {
-  uint64_t addr;      // araddr
-  uint64_t ready_at;  // clock of the first beat
-  uint64_t seq;       // acceptance order
-  uint32_t beats, size, kind, beat;
-};
-
-struct AxiStats {
-  uint64_t bursts = 0, beats = 0, bytes = 0, slverr = 0, decerr = 0, max_outstanding = 0;
-};
-
-class Memory {
- public:
-  // The memory: the image at `base`, zeros around it up to the 4 KiB pages it touches.
-  Memory(const std::vector<uint8_t>& img, uint64_t base, const Options& o)
-      : lo_(base & ~uint64_t{4095}), hi_((base + img.size() + 4095) & ~uint64_t{4095}),
-        err_(o.err), lat_min_(o.lat_min), lat_max_(o.lat_max) {
-    gap_.set(o.rvalid_gap);
-    mem_.assign(hi_ - lo_, 0);
-    if (!img.empty()) std::memcpy(mem_.data() + (base - lo_), img.data(), img.size());
-  }
-
-  // Address channel handshake in clock `now`.
-  void accept(uint32_t id, uint64_t addr, uint32_t len, uint32_t size, uint32_t kind, uint64_t now,
-              Rng& rng) {
-    if (kind == 3) fail(3, "AXI: reserved arburst 3 at 0x%" PRIx64, addr);
-    if ((1u << size) > kDataBytes)
-      fail(3, "AXI: arsize %u (%u bytes) wider than the %u-byte bus", size, 1u << size, kDataBytes);
-    const uint32_t beats = len + 1;
-    const uint64_t bytes = static_cast<uint64_t>(beats) << size;
-    if (kind == 1 && ((addr & ~uint64_t{4095}) != (((addr & ~((uint64_t{1} << size) - 1)) + bytes - 1) & ~uint64_t{4095})))
-      fail(3, "AXI: INCR burst at 0x%" PRIx64 " (%u x %u bytes) crosses a 4 KiB boundary", addr,
-           beats, 1u << size);
-    if (kind == 2 && (beats != 2 && beats != 4 && beats != 8 && beats != 16))
-      fail(3, "AXI: WRAP burst of %u beats", beats);
-    if (kind == 2 && (addr & ((1u << size) - 1)))
-      fail(3, "AXI: unaligned WRAP burst at 0x%" PRIx64, addr);
-    uint64_t ready = now + rng.range(lat_min_, lat_max_);
-    auto& q = q_[id];
-    q.push_back(Burst{addr, ready, seq_++, beats, size, kind, 0});
-    ++pending_;
-    ++st.bursts;
-    if (pending_ > st.max_outstanding) st.max_outstanding = pending_;
-  }
-
-  // Drive the R channel for clock `now` (called with clk low, before eval).
-  template <typename Top>
-  void drive(Top* top, uint64_t now, Rng& rng) {
-    if (presenting_) return;  // a presented beat is held until rready
-    top->m_axi_rvalid = 0;
-    if (active_ < 0) {
-      if (pending_ == 0) return;
-      const Burst* best = nullptr;
-      for (unsigned i = 0; i < kAxiIds; ++i) {
-        if (q_[i].empty()) continue;
-        const Burst& b = q_[i].front();
-        if (b.ready_at <= now && (!best || b.ready_at < best->ready_at ||
-                                  (b.ready_at == best->ready_at && b.seq < best->seq))) {
-          best = &b;
-          active_ = static_cast<int>(i);
-        }
-      }
-      if (active_ < 0) return;
-    }
-    if (gap_.flip(rng)) return;
-    Burst& b = q_[active_].front();
-    const uint64_t nbytes = uint64_t{1} << b.size;
-    uint64_t a;  // the beat's address
-    const uint64_t aligned = b.addr & ~(nbytes - 1);
-    if (b.kind == 0) {
-      a = b.addr;
-    } else if (b.kind == 1) {
-      a = b.beat == 0 ? b.addr : aligned + b.beat * nbytes;
-    } else {
-      const uint64_t span = b.beats * nbytes;
-      const uint64_t lo = b.addr & ~(span - 1);
-      a = lo + ((b.addr - lo + b.beat * nbytes) % span);
-    }
-    const uint64_t t_lo = a & ~(nbytes - 1), t_hi = t_lo + nbytes;  // bytes of this transfer
-    uint32_t resp = 0;
-    if (t_lo < lo_ || t_hi > hi_) {
-      resp = 3;  // DECERR: outside the memory
-    } else {
-      for (const auto& r : err_)
-        if (t_lo < r.second && r.first < t_hi) resp = 2;  // SLVERR: injected
-    }
-    const uint64_t win = a & ~uint64_t{kDataBytes - 1};  // the bus-aligned window of the beat
-    if (resp == 3) {
-      static const uint8_t zeros[kDataBytes] = {};
-      set_bus(top->m_axi_rdata, zeros);
-    } else {  // inside [lo_, hi_): pages are whole bus windows
-      set_bus(top->m_axi_rdata, mem_.data() + (win - lo_));
-    }
-    top->m_axi_rid = static_cast<uint32_t>(active_);
-    top->m_axi_rresp = resp;
-    top->m_axi_rlast = b.beat + 1 == b.beats;
-    top->m_axi_rvalid = 1;
-    presenting_ = true;
-    cur_resp_ = resp;
-  }
-
-  // The R handshake happened in clock `now`.
-  void taken() {
-    Burst& b = q_[active_].front();
-    ++st.beats;
-    st.bytes += uint64_t{1} << b.size;
-    if (cur_resp_ == 2) ++st.slverr;
-    if (cur_resp_ == 3) ++st.decerr;
-    presenting_ = false;
-    if (++b.beat == b.beats) {
-      q_[active_].pop_front();
-      --pending_;
-      active_ = -1;
-    }
-  }
-
-  bool presenting() const { return presenting_; }
-  uint64_t pending() const { return pending_; }
-  AxiStats st;
-
- private:
-  uint64_t lo_, hi_;  // the memory's byte addresses [lo_, hi_)
-  std::vector<uint8_t> mem_;
-  std::vector<std::pair<uint64_t, uint64_t>> err_;
-  uint32_t lat_min_, lat_max_;
-  Coin gap_;
-  std::deque<Burst> q_[kAxiIds];
-  uint64_t seq_ = 0, pending_ = 0;
-  int active_ = -1;
-  bool presenting_ = false;
-  uint32_t cur_resp_ = 0;
-};
-
 struct UnitStats {
   uint64_t cycles, rays_in, rays_out, iters, lookups, crossings, level_ups, descents;
   uint64_t c_hits, c_misses, c_bytes, c_lines;
@@ -436,7 +214,7 @@ class Sim {
  public:
   Sim(const Input& in, const Options& o)
       : in_(in), o_(o), rng_(o.seed * 0x9E3779B97F4A7C15ull + 1),
-        mem_(in.mem, in.h.base, o) {
+        mem_("AXI", in.mem, in.h.base, o.mem) {
     ctx_ = std::make_unique<VerilatedContext>();
     ctx_->randReset(2);
     ctx_->randSeed(static_cast<int>(o.seed & 0x7FFFFFFF));
@@ -453,7 +231,6 @@ class Sim {
 #endif
     ray_gap_.set(o.ray_gap);
     res_stall_.set(o.res_stall);
-    ar_stall_.set(o.ar_stall);
     tag_index_.assign(kRayTags, 0);
     tag_busy_.assign(kRayTags, 0);
   }
@@ -526,8 +303,8 @@ class Sim {
       }
       t->ray_valid_i = presenting;
       t->res_ready_i = !res_stall_.flip(rng_);
-      t->m_axi_arready = !ar_stall_.flip(rng_);
-      mem_.drive(t, now_, rng_);
+      t->m_axi_arready = mem_.draw_arready(rng_);
+      drive_r(t);
       t->eval();
       dump(2 * now_);
       // ---- handshakes of this clock ----
@@ -551,8 +328,10 @@ class Sim {
         rec.t = t->res_t_o;
         rec.u = t->res_u_o;
         rec.v = t->res_v_o;
-        rec.flags = (t->res_hit_o ? trvh::kFlagHit : 0) | (t->res_invalid_o ? trvh::kFlagInvalid : 0) |
-                    (t->res_capped_o ? trvh::kFlagCapped : 0) | (t->res_err_o ? trvh::kFlagErr : 0);
+        rec.flags = (t->res_hit_o ? uint32_t{trvh::kFlagHit} : 0u) |
+                    (t->res_invalid_o ? uint32_t{trvh::kFlagInvalid} : 0u) |
+                    (t->res_capped_o ? uint32_t{trvh::kFlagCapped} : 0u) |
+                    (t->res_err_o ? uint32_t{trvh::kFlagErr} : 0u);
         rec.iterations = t->res_iters_o;
         ++done;
         last = now_;
@@ -571,7 +350,7 @@ class Sim {
     for (int i = 0; i < 40; ++i) {
       t->clk_i = 0;
       t->res_ready_i = 1;
-      mem_.drive(t, now_, rng_);
+      drive_r(t);
       t->eval();
       dump(2 * now_);
       if (t->res_valid_o)
@@ -602,36 +381,24 @@ class Sim {
 #endif
   }
 
+  // The memory's R channel of this clock (clk low, before eval).
+  void drive_r(Vtraverse_system* t) {
+    harness::drive_r<kDataBytes>(mem_.drive(now_, rng_), t->m_axi_rid, t->m_axi_rdata,
+                                 t->m_axi_rresp, t->m_axi_rlast, t->m_axi_rvalid);
+  }
+
   // Address and data channel handshakes (sampled with clk low, after eval).
   void axi_handshakes(Vtraverse_system* t) {
-    const bool arv = t->m_axi_arvalid;
-    if (ar_wait_) {  // arvalid stayed high without arready last clock: payload must hold
-      if (!arv || t->m_axi_araddr != ar_addr_ || t->m_axi_arid != ar_id_ ||
-          t->m_axi_arlen != ar_len_ || t->m_axi_arsize != ar_size_ || t->m_axi_arburst != ar_kind_)
-        fail(3, "AXI: clock %" PRIu64 ": AR request changed or withdrawn before arready", now_);
-    }
-    if (arv) {
-      ar_addr_ = t->m_axi_araddr;
-      ar_id_ = t->m_axi_arid;
-      ar_len_ = t->m_axi_arlen;
-      ar_size_ = t->m_axi_arsize;
-      ar_kind_ = t->m_axi_arburst;
-      if (t->m_axi_arready) {
-        mem_.accept(ar_id_, ar_addr_, ar_len_, ar_size_, ar_kind_, now_, rng_);
-        ar_wait_ = false;
-      } else {
-        ar_wait_ = true;
-      }
-    } else {
-      ar_wait_ = false;
-    }
-    if (mem_.presenting() && t->m_axi_rready) mem_.taken();
+    mem_.handshakes(harness::ArSignals{static_cast<bool>(t->m_axi_arvalid), t->m_axi_arid,
+                                       t->m_axi_araddr, t->m_axi_arlen, t->m_axi_arsize,
+                                       t->m_axi_arburst},
+                    t->m_axi_arready, t->m_axi_rready, now_, rng_);
   }
 
   void clock() {
     top_->clk_i = 0;
     top_->ray_valid_i = 0;
-    mem_.drive(top_.get(), now_, rng_);
+    drive_r(top_.get());
     top_->eval();
     dump(2 * now_);
     axi_handshakes(top_.get());
@@ -669,13 +436,10 @@ class Sim {
 #ifdef HARNESS_TRACE
   std::unique_ptr<VerilatedFstC> fst_;
 #endif
-  Coin ray_gap_, res_stall_, ar_stall_;
+  Coin ray_gap_, res_stall_;
   std::vector<uint32_t> tag_index_;
   std::vector<uint8_t> tag_busy_;
   uint64_t now_ = 0, tag_stalls_ = 0;
-  bool ar_wait_ = false;
-  uint64_t ar_addr_ = 0;
-  uint32_t ar_id_ = 0, ar_len_ = 0, ar_size_ = 0, ar_kind_ = 0;
 };
 
 void write_output(const std::string& path, const std::vector<trvh::OutRecord>& out) {
@@ -693,6 +457,7 @@ void write_output(const std::string& path, const std::vector<trvh::OutRecord>& o
 }  // namespace
 
 int main(int argc, char** argv) {
+  harness::set_name("traverse_harness");
   const Options o = parse_args(argc, argv);
   const Input in = read_input(o.in);
   const uint32_t n = in.h.n_rays;
@@ -771,8 +536,8 @@ int main(int argc, char** argv) {
                    iters ? static_cast<double>(cycles) / iters : 0.0);
       std::fprintf(f, "  \"ray_id_stalls\": %" PRIu64 ",\n", sim.tag_stalls());
       std::fprintf(f, "  \"warm\": %s,\n", o.warm ? "true" : "false");
-      std::fprintf(f, "  \"latency_min\": %u,\n", o.lat_min);
-      std::fprintf(f, "  \"latency_max\": %u,\n", o.lat_max);
+      std::fprintf(f, "  \"latency_min\": %u,\n", o.mem.lat_min);
+      std::fprintf(f, "  \"latency_max\": %u,\n", o.mem.lat_max);
       std::fprintf(f, "  \"seed\": %" PRIu64 ",\n", o.seed);
       std::fprintf(f, "  \"sim_clocks\": %" PRIu64 ",\n", clocks);
       std::fprintf(f, "  \"wall_seconds\": %.6f,\n", wall);
