@@ -9,7 +9,8 @@ estimate of the rest.
   (:func:`row_bit_position`; 0 when R = 0); sub-cache = (row bit, line parity); a pass is the
   greedy subset (texel order) of the remaining texels whose lines are in distinct sub-caches or
   equal.  So the RTL's
-  ``stat_lookups_o`` equals the sum of ``len(lines)`` over the passes.
+  ``stat_lookups_o`` equals the sum of ``len(lines)`` over the passes.  ``stat_texel_hits_o``
+  counts the texels (four per request) whose pass's lookup in their sub-cache hit.
 - :class:`TexCacheModel`: the directory without timing (XOR-folded sets, tree pseudo-LRU, an
   invalid way first, a line allocated at lookup).  The RTL also skips ways that queued requests
   still reference, which depends on timing, so its miss count is close to, not equal to, the
@@ -126,7 +127,7 @@ class TexCacheModel:
         self.tags = [[[None] * cfg.ways for _ in range(n)] for _ in range(4)]
         self.plru = [[0] * n for _ in range(4)]
         self.stats = {"requests": 0, "quad_hits": 0, "lookups": 0, "line_misses": 0,
-                      "passes": 0}
+                      "texel_hits": 0, "passes": 0}
 
     def lookup(self, c: int, la: int) -> bool:
         """One line lookup in sub-cache c; True on a hit (the line is allocated on a miss)."""
@@ -153,7 +154,11 @@ class TexCacheModel:
             st["passes"] += 1
             for c, la in p.lines.items():
                 st["lookups"] += 1
-                if not self.lookup(c, la):
+                hit = self.lookup(c, la)
+                # the texels of this pass in sub-cache c share its lookup's outcome
+                st["texel_hits"] += hit * sum((p.mask >> t) & 1 and p.sub[t] == c
+                                              for t in range(4))
+                if not hit:
                     st["line_misses"] += 1
                     all_hit = False
         st["quad_hits"] += all_hit

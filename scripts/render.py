@@ -402,6 +402,7 @@ def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Ima
         "identical": len(bad) == 0, "mismatches": int(len(bad)),
         "height_cache_hit_rate": st["height_cache_hit_rate"],
         "texture_cache_hit_rate": st["texture_cache_hit_rate"],
+        "texture_quad_hit_rate": st["texture_quad_hit_rate"],
         "mem_bytes": st["mem_bytes"], "height_mem_bytes": st["height_mem_bytes"],
         "texture_mem_bytes": st["texture_mem_bytes"],
         "cycles_per_pixel": round(cpp, 4),
@@ -431,7 +432,8 @@ def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Ima
               f"{st['cycles']} clocks = {cpp:.2f} clocks/pixel, {st['iterations_per_pixel']:.2f} "
               f"iterations/pixel ({st['cycles_per_iteration']:.3f} clocks/iteration)")
         print(f"{PROG}: RTL caches: height {st['height_cache_hit_rate']:.2%} of lookups hit, "
-              f"texture {st['texture_cache_hit_rate']:.2%} of 2x2 quads hit; memory "
+              f"texture {st['texture_cache_hit_rate']:.2%} of texel reads hit "
+              f"({st['texture_quad_hit_rate']:.2%} of 2x2 quads had all four); memory "
               f"{st['mem_bytes']} bytes = {st['bytes_per_pixel']:.2f} bytes/pixel "
               f"(heights {st['height_mem_bytes']}, textures {st['texture_mem_bytes']}; AXI "
               f"latency {latency[0] if latency[0] == latency[1] else latency} clocks)")

@@ -86,6 +86,11 @@ def test_frame_equals_model(case: int, harness: Path, rng: np.random.Generator) 
     assert st["hits"] == int(ref.out.hit.sum()) and st["invalid"] == int(ref.out.invalid.sum())
     # every hit reads two quads (colour, normal map); lookups = hits + misses
     assert st["texture_requests"] == 2 * st["hits"]
+    # texel-level hits: a hit quad is four; each missed line lookup leaves at least one texel out
+    req, th = st["texture_requests"], st["texture_texel_hits"]
+    assert 4 * st["texture_quad_hits"] <= th <= 4 * req
+    assert st["texture_line_misses"] <= 4 * req - th
+    assert st["texture_cache_hit_rate"] == pytest.approx(th / max(4 * req, 1), abs=1e-6)
     assert st["height_cache_hits"] == st["iterations"]  # a lookup that hit = an iteration
     assert st["mem_bytes"] == st["height_mem_bytes"] + st["texture_mem_bytes"]
     assert st["height_mem_bytes"] == st["axi_h_bytes"]

@@ -99,6 +99,8 @@
 //   stat_quad_hits_o   requests whose every line lookup hit (a line in flight counts as a hit)
 //   stat_lookups_o     line lookups (distinct lines per pass)
 //   stat_line_misses_o line lookups that missed = line reads allocated
+//   stat_texel_hits_o  texels (four per request) whose line lookup hit (a line in flight counts
+//                      as a hit): texel_hits / (4 requests) is the per-texel hit rate
 //   stat_bytes_o       bytes of accepted R beats (stale beats after a reset not counted)
 module tex_cache
   import cache_pkg::*;
@@ -148,6 +150,7 @@ module tex_cache
   output logic [47:0]              stat_quad_hits_o,
   output logic [47:0]              stat_lookups_o,
   output logic [47:0]              stat_line_misses_o,
+  output logic [47:0]              stat_texel_hits_o,
   output logic [47:0]              stat_bytes_o
 );
 
@@ -317,7 +320,7 @@ module tex_cache
   logic [EPOCH_W-1:0] epoch_q;
   logic               in_rst_q;
 
-  logic [47:0] st_req_q, st_qhit_q, st_lk_q, st_miss_q, st_bytes_q;
+  logic [47:0] st_req_q, st_qhit_q, st_lk_q, st_miss_q, st_thit_q, st_bytes_q;
 
   // ---------------------------------------------------------------- row bits (at the input)
   // Row-bit position j: among the address bits j = OFF_W + 1 .. ADDR_W - 1, the one where the
@@ -757,18 +760,29 @@ module tex_cache
   end
 
   // ---------------------------------------------------------------- statistics
+  // texels of this pass whose sub-cache lookup hit
+  logic [2:0] e_texel_hits;
+  always_comb begin
+    e_texel_hits = '0;
+    for (int t = 0; t < 4; t++) begin
+      e_texel_hits = e_texel_hits + 3'(e_sel[t] && !lk_alloc[e_sub[t]]);
+    end
+  end
+
   always_ff @(posedge clk_i) begin
     if (!rst_ni || clr_stats_i) begin
       st_req_q   <= '0;
       st_qhit_q  <= '0;
       st_lk_q    <= '0;
       st_miss_q  <= '0;
+      st_thit_q  <= '0;
       st_bytes_q <= '0;
     end else begin
       st_req_q <= st_req_q + 48'(req_fire);
       if (e_fire) begin
         st_lk_q   <= st_lk_q + 48'($countones(lk_v));
         st_miss_q <= st_miss_q + 48'($countones(lk_alloc));
+        st_thit_q <= st_thit_q + 48'(e_texel_hits);
         if (e_last && !s0_missed_q && !(|lk_alloc)) st_qhit_q <= st_qhit_q + 48'd1;
       end
       if (r_acc) st_bytes_q <= st_bytes_q + 48'(BEAT_BYTES);
@@ -779,6 +793,7 @@ module tex_cache
   assign stat_quad_hits_o   = st_qhit_q;
   assign stat_lookups_o     = st_lk_q;
   assign stat_line_misses_o = st_miss_q;
+  assign stat_texel_hits_o  = st_thit_q;
   assign stat_bytes_o       = st_bytes_q;
 
   // rresp[0] only tells EXOKAY from OKAY and DECERR from SLVERR; both errors are treated alike.

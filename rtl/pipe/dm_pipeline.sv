@@ -137,6 +137,7 @@ module dm_pipeline
   output logic [47:0]                          stat_t_requests_o,  // texture quads
   output logic [47:0]                          stat_t_quad_hits_o,
   output logic [47:0]                          stat_t_line_misses_o,
+  output logic [47:0]                          stat_t_texel_hits_o, // texels whose line hit
   output logic [47:0]                          stat_t_bytes_o,
   output logic                                 idle_o              // no pixel inside
 );
@@ -376,7 +377,7 @@ module dm_pipeline
     .m_axi_rvalid(m_axi_t_rvalid), .m_axi_rready(m_axi_t_rready),
     .clr_stats_i, .stat_requests_o(stat_t_requests_o), .stat_quad_hits_o(stat_t_quad_hits_o),
     .stat_lookups_o(tc_lookups), .stat_line_misses_o(stat_t_line_misses_o),
-    .stat_bytes_o(stat_t_bytes_o));
+    .stat_texel_hits_o(stat_t_texel_hits_o), .stat_bytes_o(stat_t_bytes_o));
 
   // tex_filter (one quad per clock; tag = {slot, normal?, err})
   localparam int unsigned TF_TAG_W = SLOT_W + 2;

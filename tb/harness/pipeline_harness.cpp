@@ -289,14 +289,14 @@ Input read_input(const std::string& path) {
 
 struct UnitStats {
   uint64_t cycles, pixels, iters, h_hits, h_misses, h_bytes, t_requests, t_quad_hits,
-      t_line_misses, t_bytes;
+      t_line_misses, t_texel_hits, t_bytes;
 };
 
 UnitStats snapshot(const Vdm_pipeline* t) {
   return UnitStats{t->stat_cycles_o,     t->stat_pixels_o,     t->stat_iters_o,
                    t->stat_h_hits_o,     t->stat_h_misses_o,   t->stat_h_bytes_o,
                    t->stat_t_requests_o, t->stat_t_quad_hits_o, t->stat_t_line_misses_o,
-                   t->stat_t_bytes_o};
+                   t->stat_t_texel_hits_o, t->stat_t_bytes_o};
 }
 
 // Pack 24-bit words, element i at bits [24 i +: 24], into a wide port.
@@ -643,6 +643,7 @@ int main(int argc, char** argv) {
 
   const uint64_t h_hits = d(&UnitStats::h_hits), h_misses = d(&UnitStats::h_misses);
   const uint64_t t_req = d(&UnitStats::t_requests), t_qh = d(&UnitStats::t_quad_hits);
+  const uint64_t t_th = d(&UnitStats::t_texel_hits);
   const uint64_t h_bytes = d(&UnitStats::h_bytes), t_bytes = d(&UnitStats::t_bytes);
   const double cps = wall > 0 ? static_cast<double>(clocks) / wall : 0.0;
   if (!o.stats.empty()) {
@@ -662,7 +663,11 @@ int main(int argc, char** argv) {
     std::fprintf(f, "  \"height_mem_bytes\": %" PRIu64 ",\n", h_bytes);
     std::fprintf(f, "  \"texture_requests\": %" PRIu64 ",\n", t_req);
     std::fprintf(f, "  \"texture_quad_hits\": %" PRIu64 ",\n", t_qh);
-    std::fprintf(f, "  \"texture_cache_hit_rate\": %.6f,\n", ratio(t_qh, t_req));
+    std::fprintf(f, "  \"texture_texel_hits\": %" PRIu64 ",\n", t_th);
+    // per texel access (four per quad), the usual measure of a texture cache; the quad rate is
+    // the stricter one (all four texels' lines present)
+    std::fprintf(f, "  \"texture_cache_hit_rate\": %.6f,\n", ratio(t_th, 4 * t_req));
+    std::fprintf(f, "  \"texture_quad_hit_rate\": %.6f,\n", ratio(t_qh, t_req));
     std::fprintf(f, "  \"texture_line_misses\": %" PRIu64 ",\n", d(&UnitStats::t_line_misses));
     std::fprintf(f, "  \"texture_mem_bytes\": %" PRIu64 ",\n", t_bytes);
     std::fprintf(f, "  \"mem_bytes\": %" PRIu64 ",\n", h_bytes + t_bytes);

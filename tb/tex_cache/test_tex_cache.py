@@ -221,7 +221,8 @@ class Harness:
     def stats(self) -> dict[str, int]:
         d = self.dut
         return {k: int(getattr(d, f"stat_{k}_o").value)
-                for k in ("requests", "quad_hits", "lookups", "line_misses", "bytes")}
+                for k in ("requests", "quad_hits", "lookups", "line_misses", "texel_hits",
+                          "bytes")}
 
     async def monitor(self) -> None:
         """At each rising edge (cocotbext-axi's sampling point: the values before the edge), the
@@ -407,7 +408,13 @@ class Harness:
             probs.append(f"line misses {st['line_misses']} != AR handshakes {self.cnt['lines']}")
         if st["bytes"] != st["line_misses"] * lb:
             probs.append(f"bytes {st['bytes']} != line misses {st['line_misses']} x {lb}")
-        if not st["quad_hits"] <= st["requests"] or not st["line_misses"] <= st["lookups"]:
+        # A hit quad is four texel hits; a texel that missed is one whose line lookup missed,
+        # and every missed lookup serves at least one texel (when every request counted was
+        # looked up in the same counting interval).
+        texels_ok = (4 * st["quad_hits"] <= st["texel_hits"] <= 4 * st["requests"]
+                     and st["line_misses"] <= 4 * st["requests"] - st["texel_hits"])
+        if (not st["quad_hits"] <= st["requests"] or not st["line_misses"] <= st["lookups"]
+                or (exact_lookups and not texels_ok)):
             probs.append(f"counts out of range {st}")
         if self.ram.outside:
             probs.append(f"reads outside the images: {[hex(a) for a in self.ram.outside[:4]]}")
@@ -434,6 +441,7 @@ def summary(h: Harness, r: dict, st: dict, what: str, model: dict | None = None)
     out = {"what": what, "cfg": h.cfg.__dict__, "quads": r["quads"], "span": r["span"],
            "quads_per_clock": r["quads"] / max(r["span"], 1),
            "quad_hit_rate": st["quad_hits"] / max(st["requests"], 1),
+           "texel_hit_rate": st["texel_hits"] / max(4 * st["requests"], 1),
            "line_hit_rate": 1 - st["line_misses"] / max(st["lookups"], 1),
            "lines_per_quad": st["line_misses"] / max(st["requests"], 1),
            "lookups_per_quad": st["lookups"] / max(st["requests"], 1),
@@ -445,6 +453,7 @@ def summary(h: Harness, r: dict, st: dict, what: str, model: dict | None = None)
         out["model_passes_per_quad"] = model["passes"] / max(model["requests"], 1)
     msg = (f"TEX_CACHE {what}: {r['quads']} quads in {r['span']} clocks = "
            f"{out['quads_per_clock']:.3f} quads/clock; quad hit rate {out['quad_hit_rate']:.3f}, "
+           f"texel hit rate {out['texel_hit_rate']:.3f}, "
            f"line hit rate {out['line_hit_rate']:.3f}, {out['lines_per_quad']:.3f} line reads "
            f"per quad, {out['lookups_per_quad']:.2f} lookups per quad"
            + (f"; model: quad hit rate {out['model_quad_hit_rate']:.3f}, "
@@ -490,7 +499,7 @@ async def realistic_throughput(dut):
             summary(h, r, st, f"{name}, latency {lat}", model)
             # Without a victim changed by a reference, the directory is the model's exactly.
             if h.cov["victim_redirect"] == redirects:
-                for k in ("quad_hits", "lookups", "line_misses"):
+                for k in ("quad_hits", "lookups", "line_misses", "texel_hits"):
                     if st[k] != model[k]:
                         h.bad.append(f"{name}: {k} {st[k]} != model {model[k]}")
                 h.exact += 1
