@@ -72,6 +72,8 @@ bench: $(STAMP)
 	    $(PY) -c "import json; d = json.load(open('out/bench/render512.json')); \
 	    print(f\"512x512 model render (park, f24, oblique): {d['seconds_total']:.2f} s wall\")"
 	@$(ENV) $(PY) scripts/study.py --out out/study
+	@$(ENV) $(PY) scripts/terrain.py --synthetic 512 --size 512 --rtl --out out/terrain
+	@$(ENV) $(PY) scripts/relief_texture.py --out out/relief_texture
 	@$(ENV) $(PY) scripts/bench_rtl.py
 	@$(ENV) $(PY) scripts/bench_rtl.py --scenes rocks --methods park --image 512 \
 	    --out out/bench/rtl_image512.json --md out/bench/rtl_image512.md

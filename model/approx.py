@@ -55,6 +55,18 @@ one read per step; a step may move backwards (a point below the surface).  ``par
 case iterations = 1.  Iterations: ``iterations`` (fewer only if a step leaves the map).  On a flat
 plane at depth s: t_n = s (1 - (1 - c)^n); exact for vertical rays.
 
+Base surface (both parallax methods; Gonzalez et al. 2016 Section 2.2, a coarse tessellated mesh
+as the base instead of the top plane).  ``t_start`` (per ray, default 0) starts the iteration at
+t_0 = t_start: the depth where the ray meets the base surface.  ``base_normal`` (per ray, (N, 3),
+components along +u, +v and up in texel units, default (0, 0, 1)) is the unit normal n of the
+base there; the step then reaches the plane parallel to the base through the read surface point
+(their Fig. 6/7), with offset limiting applied to V.n instead of V.z:
+
+    c = cos_theta n_z / max(V.n, limit)      (V.n for limit = 0; c = 1 where that is <= 0)
+
+V = (-du, -dv, D) / L the unit vector towards the eye.  For n = (0, 0, 1) this is the formula
+above (and without ``base_normal`` the code path is the original one, bit for bit).
+
 ``binary`` (steps=3) -- binary search with a final secant step (Policarpo 2005's binary search;
 Gonzalez 2016 Fig. 10 with PAR_ITER = 3).  Bracket lo = 0 (assumed above), hi = 1 (depth 1 is
 solid).  Each step reads the midpoint m: g(m) >= 0 -> hi = m, else lo = m.  The secant needs the
@@ -64,6 +76,10 @@ once after the loop (t = 0 or t = 1).  Result: t = lo + (hi - lo) (-g_lo) / (g_h
 (= steps + 1 exactly when all midpoints are on one side; steps = 0 reads both ends: 2).
 Exact (up to rounding) whenever g is linear on the final bracket: vertical rays, flat planes.
 If g is monotone along the ray (a single crossing), |t - t*| <= 2^-steps.
+``lo`` / ``hi`` (per ray, defaults 0 and 1) give another initial bracket, e.g. Gonzalez 2016's
+segment of the ray around its hit with a coarse base mesh; a bracket end outside the map that
+has to be read for the secant ends the ray as a miss like any other outside read, and the
+"above / solid" assumptions of the ends are not checked (the secant uses the gaps as read).
 
 ``relief`` (linear_steps=16, binary_steps=6) -- relief mapping (Policarpo et al. 2005).  Linear
 search at t_k = k / n, k = 1..n, one read each, stopping at the first solid sample (g >= 0); then
@@ -223,17 +239,49 @@ def solid_at(pyr: Pyramid, rays: Rays, t: npt.ArrayLike) -> B:
 
 # ---- parallax family -------------------------------------------------------------------------
 
+def _per_ray(name: str, value: npt.ArrayLike, n: int, shape: tuple[int, ...] = ()) -> F64:
+    """A per-ray float64 parameter of shape (n, *shape) (a scalar is broadcast), all finite."""
+    a = np.asarray(value, dtype=np.float64)
+    try:
+        a = np.broadcast_to(a, (n, *shape)).copy()
+    except ValueError:
+        raise ValueError(f"{name} must have shape ({n}, {', '.join(map(str, shape))}) "
+                         f"or broadcast to it, got {np.shape(value)}") from None
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} must be finite")
+    return a
+
+
+def _base_factor(cx: _Ctx, d: float, lim: float, base_normal: npt.ArrayLike) -> F64:
+    """Gonzalez 2016's step factor on a tilted base: cos_theta n_z / max(V.n, limit)."""
+    n = _per_ray("base_normal", base_normal, len(cx.u0), (3,))
+    n = n / np.linalg.norm(n, axis=1, keepdims=True)
+    ell = np.hypot(np.hypot(cx.du, cx.dv), d)
+    vn = (-cx.du * n[:, 0] - cx.dv * n[:, 1] + d * n[:, 2]) / ell   # V.n
+    den = np.maximum(vn, lim) if lim > 0.0 else vn
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(den > 0.0, (d / ell) * n[:, 2] / den, 1.0)
+
+
 def parallax_iter(pyr: Pyramid, rays: Rays, *, iterations: int = 2, limit: float = 1.0,
-                  depth_scale: float = DEFAULT_DEPTH_SCALE) -> TraceResult:
-    """Iterative parallax mapping with offset limiting (see the module docstring)."""
+                  depth_scale: float = DEFAULT_DEPTH_SCALE, t_start: npt.ArrayLike | None = None,
+                  base_normal: npt.ArrayLike | None = None) -> TraceResult:
+    """Iterative parallax mapping with offset limiting (see the module docstring).
+
+    ``t_start`` / ``base_normal``: the optional per-ray base surface (module docstring).
+    """
     n = _check_int("iterations", iterations, 1)
     lim = float(limit)
     if not 0.0 <= lim <= 1.0:
         raise ValueError(f"limit must be in [0, 1], got {limit!r}")
     d = _check_depth_scale(depth_scale)
     cx = _Ctx.make(pyr, rays)
-    c = np.ones(len(rays)) if lim == 0.0 else np.minimum(1.0, _cos_theta(cx.du, cx.dv, d) / lim)
-    t = np.zeros(len(rays))
+    if base_normal is None:
+        c = np.ones(len(rays)) if lim == 0.0 else np.minimum(1.0, _cos_theta(cx.du, cx.dv, d) / lim)
+    else:
+        c = _base_factor(cx, d, lim, base_normal)
+    t = np.zeros(len(rays)) if t_start is None else np.where(
+        cx.valid, _per_ray("t_start", t_start, len(rays)), 0.0)
     active = cx.valid.copy()
     for _ in range(n):
         s, ins = cx.read(t, active)
@@ -243,19 +291,27 @@ def parallax_iter(pyr: Pyramid, rays: Rays, *, iterations: int = 2, limit: float
 
 
 def parallax(pyr: Pyramid, rays: Rays, *, limit: float = 1.0,
-             depth_scale: float = DEFAULT_DEPTH_SCALE) -> TraceResult:
-    """Parallax mapping with offset limiting: one read, t = s * min(1, cos_theta / limit)."""
-    return parallax_iter(pyr, rays, iterations=1, limit=limit, depth_scale=depth_scale)
+             depth_scale: float = DEFAULT_DEPTH_SCALE, t_start: npt.ArrayLike | None = None,
+             base_normal: npt.ArrayLike | None = None) -> TraceResult:
+    """Parallax mapping with offset limiting: one read, t = s * min(1, cos_theta / limit)
+    (from the top plane; on a base surface t = t_start + c (s - t_start), module docstring)."""
+    return parallax_iter(pyr, rays, iterations=1, limit=limit, depth_scale=depth_scale,
+                         t_start=t_start, base_normal=base_normal)
 
 
 # ---- binary search with secant ---------------------------------------------------------------
 
-def binary(pyr: Pyramid, rays: Rays, *, steps: int = 3) -> TraceResult:
-    """Binary search over t in [0, 1] with a final secant step (see the module docstring)."""
+def binary(pyr: Pyramid, rays: Rays, *, steps: int = 3, lo: npt.ArrayLike | None = None,
+           hi: npt.ArrayLike | None = None) -> TraceResult:
+    """Binary search over t in [lo, hi] (default [0, 1]) with a final secant step (see the
+    module docstring)."""
     n = _check_int("steps", steps, 0)
     cx = _Ctx.make(pyr, rays)
     m_ = len(rays)
-    lo, hi = np.zeros(m_), np.ones(m_)
+    lo = np.zeros(m_) if lo is None else np.where(cx.valid, _per_ray("lo", lo, m_), 0.0)
+    hi = np.ones(m_) if hi is None else np.where(cx.valid, _per_ray("hi", hi, m_), 1.0)
+    if np.any(lo > hi):
+        raise ValueError("binary: the bracket needs lo <= hi on every ray")
     glo, ghi = np.full(m_, np.nan), np.full(m_, np.nan)
     active = cx.valid.copy()
     for _ in range(n):
@@ -269,7 +325,8 @@ def binary(pyr: Pyramid, rays: Rays, *, steps: int = 3) -> TraceResult:
         lo, glo = np.where(above, mid, lo), np.where(above, g, glo)
     # Bracket ends never replaced by a midpoint: read them once for the secant.
     need = active & np.isnan(glo)
-    s, _ = cx.read(lo, need)          # lo = 0: the entry, inside for every valid ray
+    s, ins = cx.read(lo, need)        # lo = 0 (default): the entry, inside for every valid ray
+    active = active & ~(need & ~ins)
     glo = np.where(need, lo - s, glo)
     need = active & np.isnan(ghi)
     s, ins = cx.read(hi, need)        # hi = 1: may be outside the map -> miss
