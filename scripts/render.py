@@ -5,7 +5,8 @@ or through the pipeline RTL (Verilator) and the model, pixel for pixel compared.
   render.py [--scene NAME | --heightmap FILE [--texture FILE] [--normal-map FILE]]
             [--angle front|oblique|grazing|DEGREES] [--method NAME] [--engine f64|f24|rtl]
             [--size N] [--map-size N] [--out PNG] [--stats JSON] [--jobs J] [--no-mip]
-            [--model-out PNG] [--latency L|MIN:MAX] [--rtl-tile N] [--checked] [--clock-mhz F]
+            [--model-out PNG] [--latency L|MIN:MAX] [--rtl-tile N] [--rtl-blocks rows|morton]
+            [--checked] [--clock-mhz F]
 
 Writes the image (PNG through OpenImageIO) and a JSON of statistics.  Without --texture a user
 height map is coloured by a height ramp (``height_ramp``); without --normal-map its normals come
@@ -49,9 +50,6 @@ DEFAULT_JOBS = max(1, min(os.cpu_count() or 1, 8))
 PROGRESS_MIN_PIXELS = 1 << 17
 #: The approximate methods of CONVENTIONS (model.approx, imported only when one is asked for).
 APPROX_NAMES = ("parallax", "parallax-iter", "binary", "relief", "pom", "distance")
-#: The clock Mpixels/s are quoted at without a synthesis report: Park et al. 2013's 84 MHz.
-PAPER_MHZ = 84.0
-SYNTH_REPORT = ROOT / "out" / "synth" / "report.json"
 #: Mismatching pixels listed when the RTL and the model differ.
 SHOW_MISMATCHES = 5
 
@@ -117,20 +115,6 @@ def rel(p: Path) -> str:
         return str(p)
 
 
-def synth_clock() -> tuple[float, str] | None:
-    """The top's place-and-route fmax from out/synth/report.json (make synth), if there is one."""
-    try:
-        rep = json.loads(SYNTH_REPORT.read_text())
-        f = float(rep["fmax_mhz"])
-    except (OSError, ValueError, KeyError, TypeError):
-        return None
-    if not f > 0:
-        return None
-    dev = rep.get("settings", {}).get("device_name", "") if isinstance(rep, dict) else ""
-    return f, (f"fmax of {rep.get('top', 'the top')} from place and route "
-               f"({rel(SYNTH_REPORT)}{', ' + dev if dev else ''})")
-
-
 def main(argv: list[str] | None = None) -> int:
     t_start = time.time()
     ap = Parser(prog=PROG, description=__doc__.split("\n\n")[0])
@@ -162,8 +146,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--no-mip", action="store_true", help="always texture level 0 (MIP off)")
     ap.add_argument("--latency", default="20", help="--engine rtl: AXI read latency of both "
                     "memory ports, L or MIN:MAX clocks drawn per burst (default 20)")
-    ap.add_argument("--rtl-tile", default="8", help="--engine rtl: fragments in N x N pixel "
-                    "blocks, as a tiled rasteriser emits them (1: raster order; default 8)")
+    ap.add_argument("--rtl-tile", default="16", help="--engine rtl: fragments in N x N pixel "
+                    "blocks, as a tiled rasteriser emits them (1: raster order; default 16)")
+    ap.add_argument("--rtl-blocks", default="rows", choices=("rows", "morton"),
+                    help="--engine rtl: order of the blocks: row by row (default) or along a "
+                    "Z-order curve")
     ap.add_argument("--seed", default="0", help="--engine rtl: seed of random latencies")
     ap.add_argument("--checked", action="store_true", help="--engine rtl: the harness with the "
                     "RTL's assertions on (slower; RTL_ENGINE_CHECKED=1 does the same)")
@@ -345,7 +332,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{PROG}: model (f24): {model_png}: {covered} covered pixels, {hits} hits, "
               f"{stats['iterations_per_pixel']} iterations/pixel, {secs:.2f} s", flush=True)
     return render_rtl(args, frame, cam, img, stats, out_png, stats_path, latency=latency,
-                      rtl_tile=rtl_tile, seed=seed, clock=clock or synth_clock(),
+                      rtl_tile=rtl_tile, seed=seed, clock=clock,
                       build_secs=build_secs, t_start=t_start)
 
 
@@ -386,6 +373,7 @@ def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Ima
                     enabled=not args.quiet)
     try:
         img, st = rtl_pipeline.render_rtl(frame, cam, frags=ref.frags, tile=rtl_tile,
+                                          blocks=args.rtl_blocks,
                                           latency=latency, seed=seed, checked=checked,
                                           progress=lambda d, t: prog.update(d))
     except RtlEngineError as e:
@@ -393,9 +381,7 @@ def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Ima
         return 1
     write_png(out_png, img.rgb)
     bad = rtl_pipeline.compare(img.out, ref.out)
-    mhz, clock_src = clock if clock is not None else (
-        PAPER_MHZ, f"assumed: the paper's {PAPER_MHZ:g} MHz (no {rel(SYNTH_REPORT)}; "
-                   "make synth measures ours)")
+    mhz, clock_src = clock if clock is not None else rtl_pipeline.pipeline_clock()
     cpp = st["cycles_per_pixel"]
     stats: dict[str, Any] = {
         "pixels": st["pixels"], "cycles": st["cycles"], "iterations": st["iterations"],
@@ -417,6 +403,7 @@ def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Ima
         "image": [cam.image_h, cam.image_w], "image_pixels": cam.image_w * cam.image_h,
         "covered_pixels": len(ref.frags), "hits": st["hits"], "invalid": st["invalid"],
         "errors": st["errors"], "axi_latency": list(latency), "fragment_tile": rtl_tile,
+        "fragment_blocks": args.rtl_blocks,
         "harness_variant": st["harness_variant"],
         "method": frame.method, "engine": "rtl", "scene": model_stats["scene"],
         "angle": model_stats["angle"], "elevation_deg": model_stats["elevation_deg"],

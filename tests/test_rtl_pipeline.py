@@ -323,16 +323,48 @@ def test_render_reports_a_difference(tmp_path: Path, capsys: pytest.CaptureFixtu
 def test_clock_from_synthesis_report(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """Mpixels/s are quoted at out/synth/report.json's top fmax when there is one, else at the
     paper's 84 MHz, labelled as assumed."""
-    spec = importlib.util.spec_from_file_location("render_script_clock", RENDER)
-    mod = importlib.util.module_from_spec(spec)
-    assert spec.loader is not None
-    spec.loader.exec_module(mod)
+    from model import rtl_pipeline as mod
+
     rep = tmp_path / "report.json"
     monkeypatch.setattr(mod, "SYNTH_REPORT", rep)
     assert mod.synth_clock() is None
+    assert mod.pipeline_clock() == (84.0, mod.pipeline_clock()[1])
+    assert "assumed" in mod.pipeline_clock()[1]
     rep.write_text(json.dumps({"top": "dm_pipeline_fpga_top", "fmax_mhz": 61.25,
                                "settings": {"device_name": "LFE5U-85F"}, "blocks": {}}))
     mhz, src = mod.synth_clock()
     assert mhz == 61.25 and "dm_pipeline_fpga_top" in src and "LFE5U-85F" in src
+    assert mod.pipeline_clock() == (mhz, src)
     rep.write_text(json.dumps({"top": "dm_pipeline_fpga_top", "blocks": {}}))  # no P&R yet
     assert mod.synth_clock() is None
+
+
+def test_bench_pipeline(harness: Path, tmp_path: Path) -> None:
+    """scripts/bench_pipeline.py on two small frames (MIP on and off): both identical to the
+    model, the figures consistent with their definitions, the targets listed; bad arguments
+    exit 2 with one line."""
+    bench = ROOT / "scripts" / "bench_pipeline.py"
+    out, md = tmp_path / "b.json", tmp_path / "b.md"
+    p = subprocess.run([sys.executable, str(bench), "--scenes", "bump", "--views", "oblique",
+                        "--mip", "on,off", "--map", "32", "--image", "40", "--jobs", "1",
+                        "--out", str(out), "--md", str(md)],
+                       capture_output=True, text=True, cwd=ROOT)
+    assert p.returncode == 0, p.stderr
+    d = json.loads(out.read_text())
+    assert [c["mip"] for c in d["cases"]] == [True, False]
+    for c in d["cases"]:
+        assert c["mismatches"] == 0 and c["pixels"] > 0
+        assert c["cycles_per_iteration"] == pytest.approx(c["cycles"] / c["iterations"])
+        assert c["bytes_per_pixel"] == pytest.approx(c["height_bytes_per_pixel"]
+                                                     + c["texture_bytes_per_pixel"])
+        assert 0 < c["texture_quad_hit_rate"] <= c["texture_cache_hit_rate"] <= 1
+    # the same rays either way: MIP changes only the texture path
+    on, off = d["cases"]
+    assert on["iterations"] == off["iterations"] and on["pixels"] == off["pixels"]
+    assert d["summary"]["mismatches"] == 0 and len(d["targets"]) == 4
+    assert "| bump | oblique | on |" in md.read_text()
+    for bad in (["--scenes", "nosuch"], ["--mip", "maybe"], ["--image", "0"],
+                ["--method", "relief"]):
+        p = subprocess.run([sys.executable, str(bench), *bad], capture_output=True, text=True,
+                           cwd=ROOT)
+        assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1, (bad, p.stderr)

@@ -296,3 +296,27 @@ def test_tile_order() -> None:
     assert np.array_equal(b.rays.du, a.rays.du[idx]) and np.array_equal(b.rays.u0, a.rays.u0[idx])
     with pytest.raises(ValueError):
         tile_order(rows, cols, 10, 0)
+
+
+def test_tile_order_morton() -> None:
+    """tile_order(blocks="morton"): every pixel once, each block's pixels together (row-major
+    inside), the blocks along the Z-order curve of (block row, block column)."""
+    from model.camera import tile_order
+
+    rows, cols = np.divmod(np.arange(20 * 36), 36)
+    o = tile_order(rows, cols, 36, 4, blocks="morton")
+    assert sorted(o.tolist()) == list(range(20 * 36))
+    br, bc = rows[o] // 4, cols[o] // 4
+    starts = np.flatnonzero(np.r_[True, (np.diff(br) != 0) | (np.diff(bc) != 0)])
+    assert len(starts) == 5 * 9                     # each block visited once, all its pixels
+    seq = list(zip(br[starts].tolist(), bc[starts].tolist()))
+    assert seq[:8] == [(0, 0), (0, 1), (1, 0), (1, 1), (0, 2), (0, 3), (1, 2), (1, 3)]
+
+    def z(r: int, c: int) -> int:                   # the curve, bit by bit
+        return sum((((r >> k) & 1) << (2 * k + 1)) | (((c >> k) & 1) << (2 * k))
+                   for k in range(8))
+    assert [z(r, c) for r, c in seq] == sorted(z(r, c) for r, c in seq)
+    first = list(zip(rows[o][:5].tolist(), cols[o][:5].tolist()))
+    assert first == [(0, 0), (0, 1), (0, 2), (0, 3), (1, 0)]
+    with pytest.raises(ValueError):
+        tile_order(rows, cols, 36, 4, blocks="hilbert")

@@ -46,6 +46,9 @@ module dm_pipeline
   parameter int unsigned MISS_DEPTH = 16,   // miss FIFO (power of two)
   parameter int unsigned H_ID_W     = 4,    // AXI ID width, height port
   parameter int unsigned T_ID_W     = 6,    // AXI ID width, texture port (> log2 of tex_cache MSHRS)
+  parameter int unsigned T_LINE_BYTES = 64, // tex_cache line (16 texels)
+  parameter int unsigned T_SETS     = 32,   // tex_cache sets per sub-cache (4 sub-caches)
+  parameter int unsigned T_WAYS     = 4,    // tex_cache ways: 4 x 16 x 4 x 64 B = 16 KiB
   parameter int unsigned AXI_DATA_W = 64,   // AXI data width (both ports)
   parameter int unsigned TRI_W      = (TRIS > 1) ? $clog2(TRIS) : 1  // triangle id width
 ) (
@@ -363,7 +366,8 @@ module dm_pipeline
   logic [TC_TAG_W-1:0]  tc_rsp_tag;
   logic [47:0]          tc_lookups;
 
-  tex_cache #(.ADDR_W(TEX_ADDR_W), .DATA_W(AXI_DATA_W), .ID_W(T_ID_W), .TAG_W(TC_TAG_W)) u_tc (
+  tex_cache #(.ADDR_W(TEX_ADDR_W), .DATA_W(AXI_DATA_W), .LINE_BYTES(T_LINE_BYTES), .SETS(T_SETS),
+              .WAYS(T_WAYS), .ID_W(T_ID_W), .TAG_W(TC_TAG_W)) u_tc (
     .clk_i, .rst_ni,
     .req_valid_i(tc_req_valid), .req_ready_o(tc_req_ready),
     .req_addr_i(rq_head[4*TEX_ADDR_W-1:0]),  // [0] a00, [1] a01, [2] a10, [3] a11

@@ -1,0 +1,203 @@
+#!/usr/bin/env python3
+"""Whole-pipeline performance (make bench): dm_pipeline per scene x view x MIP on/off through the
+Verilator harness (model/rtl_pipeline.py), every frame compared with the model's f24 render.
+
+For every case the scene's --map x --map height map, colour texture and normal map are rendered
+into an --image x --image camera image, one fragment per covered pixel in --tile x --tile blocks
+(the pipeline harness's default order), AXI read latency --latency clocks on both ports, caches
+cold (the first frame of a view).  Every RTL pixel (colour, hit, invalid, iterations) must equal
+the f24 model's: a difference fails the run (exit status 1).  Writes JSON (--out) and a markdown
+table (--md) and prints the table and the issue's targets.
+
+Definitions:
+  clocks/pixel     clocks from the first fragment in to the last pixel out / pixels
+  clk/iter         clocks / traversal iterations: 1.0 would be the traverse unit's pace, so the
+                   target "whole pipeline <= 1.25 x iterations per pixel" is clk/iter <= 1.25
+  height hit       height-cache lookups that hit / lookups (a miss retries on the ray's next pass)
+  texture hit      texel reads whose cache line was present (or in flight) / texel reads (four per
+                   bilinear quad, two quads per hit pixel): the per-access texture-cache hit rate
+  quad hit         quads whose every texel hit (the stricter figure)
+  bytes/pixel      AXI bytes read on both ports / pixels
+"""
+from __future__ import annotations
+
+import json
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+from model import camera, rtl_pipeline, scenes, shade, traverse  # noqa: E402
+from model.cli import Parser, Progress, fail  # noqa: E402
+
+PROG = "bench_pipeline.py"
+#: The issue's targets (README "Performance").
+TARGET_CLK_PER_ITER = 1.25
+TARGET_TEX_HIT_MIP = 0.95
+TARGET_HEIGHT_HIT = 0.99
+#: Park et al., IEICE 2011, Table I: texture-cache hit rates (%) without / with MIP-mapping.
+IEICE_OFF = (74.5, 73.9, 79.6)
+IEICE_ON = (93.7, 98.6, 97.2)
+
+
+def csv_list(what: str, text: str, allowed: tuple[str, ...]) -> list[str]:
+    items = [x.strip() for x in text.split(",") if x.strip()]
+    if not items:
+        fail(PROG, f"{what} is empty")
+    for x in items:
+        if x not in allowed:
+            fail(PROG, f"unknown {what[2:].rstrip('s')} {x!r} (one of {', '.join(allowed)})")
+    return items
+
+
+def positive(what: str, text: str, hi: int) -> int:
+    try:
+        v = int(text, 10)
+    except ValueError:
+        fail(PROG, f"{what} must be a positive integer, got {text!r}")
+    if not 1 <= v <= hi:
+        fail(PROG, f"{what} must be in 1..{hi}, got {v}")
+    return v
+
+
+def run_case(scene: str, view: str, mip: bool, a: Any) -> dict[str, Any]:
+    frame, cam = rtl_pipeline.scene_frame(scene, a.map, view, a.image, a.method, mip)
+    rtl_pipeline.check_limits(frame)
+    ref = shade.render(frame, cam, jobs=a.jobs)
+    img, st = rtl_pipeline.render_rtl(frame, cam, frags=ref.frags, tile=a.tile,
+                                      latency=a.latency)
+    bad = rtl_pipeline.compare(img.out, ref.out)
+    n = max(st["pixels"], 1)
+    return {
+        "scene": scene, "view": view, "mip": mip, "pixels": st["pixels"],
+        "cycles": st["cycles"], "iterations": st["iterations"],
+        "mismatches": int(len(bad)),
+        "cycles_per_pixel": st["cycles"] / n, "iterations_per_pixel": st["iterations"] / n,
+        "cycles_per_iteration": st["cycles"] / max(st["iterations"], 1),
+        "height_cache_hit_rate": st["height_cache_hit_rate"],
+        "texture_cache_hit_rate": st["texture_cache_hit_rate"],
+        "texture_quad_hit_rate": st["texture_quad_hit_rate"],
+        "height_bytes_per_pixel": st["height_mem_bytes"] / n,
+        "texture_bytes_per_pixel": st["texture_mem_bytes"] / n,
+        "bytes_per_pixel": st["mem_bytes"] / n,
+        "harness_clocks_per_second": st["clocks_per_second"],
+    }
+
+
+def table(rows: list[dict[str, Any]], mhz: float) -> str:
+    head = ("| scene | view | MIP | pixels | clocks/pixel | iterations/pixel | clk/iter | "
+            "height hit | texture hit | quad hit | bytes/pixel (height + texture) | "
+            f"Mpixels/s at {mhz:g} MHz |")
+    out = [head, "|" + "---|" * (head.count("|") - 1)]
+    for r in rows:
+        out.append(f"| {r['scene']} | {r['view']} | {'on' if r['mip'] else 'off'} | "
+                   f"{r['pixels']:,} | {r['cycles_per_pixel']:.2f} | "
+                   f"{r['iterations_per_pixel']:.2f} | {r['cycles_per_iteration']:.3f} | "
+                   f"{r['height_cache_hit_rate']:.2%} | {r['texture_cache_hit_rate']:.2%} | "
+                   f"{r['texture_quad_hit_rate']:.2%} | {r['bytes_per_pixel']:.1f} "
+                   f"({r['height_bytes_per_pixel']:.1f} + {r['texture_bytes_per_pixel']:.1f}) | "
+                   f"{mhz / r['cycles_per_pixel']:.1f} |")
+    return "\n".join(out)
+
+
+def summary(rows: list[dict[str, Any]]) -> dict[str, Any]:
+    def agg(key: str, sel: list[dict[str, Any]]) -> dict[str, float] | None:
+        if not sel:
+            return None
+        v = [r[key] for r in sel]
+        return {"mean": sum(v) / len(v), "min": min(v), "max": max(v)}
+
+    on = [r for r in rows if r["mip"]]
+    off = [r for r in rows if not r["mip"]]
+    return {"cases": len(rows), "mismatches": sum(r["mismatches"] for r in rows),
+            "cycles_per_iteration": agg("cycles_per_iteration", rows),
+            "height_cache_hit_rate": agg("height_cache_hit_rate", rows),
+            "texture_cache_hit_rate_mip_on": agg("texture_cache_hit_rate", on),
+            "texture_cache_hit_rate_mip_off": agg("texture_cache_hit_rate", off),
+            "bytes_per_pixel_mip_on": agg("bytes_per_pixel", on),
+            "bytes_per_pixel_mip_off": agg("bytes_per_pixel", off)}
+
+
+def verdicts(s: dict[str, Any]) -> list[str]:
+    """The issue's targets against this run: measured figure, target, met or not."""
+    out = []
+    c = s["cycles_per_iteration"]
+    out.append(f"clocks/iteration: worst {c['max']:.3f}, mean {c['mean']:.3f} (target <= "
+               f"{TARGET_CLK_PER_ITER}): {'met' if c['max'] <= TARGET_CLK_PER_ITER else 'NOT met'}")
+    h = s["height_cache_hit_rate"]
+    out.append(f"height-cache hit rate: min {h['min']:.2%}, mean {h['mean']:.2%} (target >= "
+               f"{TARGET_HEIGHT_HIT:.0%}): "
+               f"{'met' if h['min'] >= TARGET_HEIGHT_HIT else 'NOT met in every case'}")
+    t = s["texture_cache_hit_rate_mip_on"]
+    if t:
+        out.append(f"texture-cache hit rate, MIP on: min {t['min']:.2%}, mean {t['mean']:.2%} "
+                   f"(target >= {TARGET_TEX_HIT_MIP:.0%}; IEICE 2011: "
+                   f"{min(IEICE_ON):g}-{max(IEICE_ON):g}%): "
+                   f"{'met' if t['min'] >= TARGET_TEX_HIT_MIP else 'NOT met in every case'}")
+    t = s["texture_cache_hit_rate_mip_off"]
+    if t:
+        out.append(f"texture-cache hit rate, MIP off: min {t['min']:.2%}, mean {t['mean']:.2%} "
+                   f"(IEICE 2011: {min(IEICE_OFF):g}-{max(IEICE_OFF):g}%)")
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = Parser(prog=PROG, description=__doc__.split("\n\n")[0])
+    ap.add_argument("--scenes", default=",".join(scenes.SCENES),
+                    help="comma-separated scenes (default all)")
+    ap.add_argument("--views", default="front,oblique,grazing",
+                    help="comma-separated views (default front,oblique,grazing)")
+    ap.add_argument("--mip", default="on", help="on, off or on,off (default on)")
+    ap.add_argument("--method", default="park", help="exact method (default park)")
+    ap.add_argument("--map", default="256", help="height map / texture side (default 256)")
+    ap.add_argument("--image", default="512", help="image side (default 512)")
+    ap.add_argument("--tile", default=str(rtl_pipeline.DEFAULT_TILE),
+                    help=f"fragment blocks (default {rtl_pipeline.DEFAULT_TILE})")
+    ap.add_argument("--latency", default="20", help="AXI read latency, clocks (default 20)")
+    ap.add_argument("--jobs", default="2", help="processes for the model render (default 2)")
+    ap.add_argument("--out", type=Path, default=ROOT / "out" / "bench" / "pipeline.json")
+    ap.add_argument("--md", type=Path, default=ROOT / "out" / "bench" / "pipeline.md")
+    a = ap.parse_args(argv)
+    a.scene_list = csv_list("--scenes", a.scenes, tuple(scenes.SCENES))
+    a.view_list = csv_list("--views", a.views, tuple(camera.VIEWS))
+    mips = [m == "on" for m in csv_list("--mip", a.mip, ("on", "off"))]
+    if a.method not in traverse.EXACT_METHODS:
+        fail(PROG, f"unknown exact method {a.method!r}")
+    a.map = positive("--map", a.map, 4096)
+    a.image = positive("--image", a.image, 4096)
+    a.tile = positive("--tile", a.tile, 4096)
+    a.latency = positive("--latency", a.latency, 10_000)
+    a.jobs = positive("--jobs", a.jobs, 64)
+    mhz, clock_src = rtl_pipeline.pipeline_clock()
+
+    t0 = time.time()
+    rtl_pipeline.build(rtl_pipeline.default_variant(), quiet=False)
+    cases = [(s, v, m) for s in a.scene_list for v in a.view_list for m in mips]
+    prog = Progress(f"{PROG}: {len(cases)} frames", len(cases))
+    rows = []
+    for k, (s, v, m) in enumerate(cases):
+        rows.append(run_case(s, v, m, a))
+        prog.update(k + 1)
+    s = summary(rows)
+    res = {"settings": {"method": a.method, "map": a.map, "image": a.image, "tile": a.tile,
+                        "latency": a.latency, "clock_mhz": mhz, "clock_source": clock_src},
+           "cases": rows, "summary": s, "targets": verdicts(s),
+           "seconds": round(time.time() - t0, 1)}
+    a.out.parent.mkdir(parents=True, exist_ok=True)
+    a.out.write_text(json.dumps(res, indent=1) + "\n")
+    md = (f"Pipeline (dm_pipeline), method {a.method}, {a.map}x{a.map} maps, {a.image}x{a.image} "
+          f"image, {a.tile}x{a.tile} fragment blocks, AXI latency {a.latency}, cold caches; "
+          f"Mpixels/s per pipeline at {mhz:g} MHz ({clock_src}).\n\n" + table(rows, mhz) + "\n\n"
+          + "\n".join(f"- {x}" for x in res["targets"]) + "\n")
+    a.md.parent.mkdir(parents=True, exist_ok=True)
+    a.md.write_text(md)
+    print(md)
+    print(f"{PROG}: {len(rows)} frames, {s['mismatches']} pixels differ from the f24 model; "
+          f"{res['seconds']} s; {a.out}, {a.md}")
+    return 1 if s["mismatches"] else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
