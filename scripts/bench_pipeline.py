@@ -13,7 +13,11 @@ Definitions:
   clocks/pixel     clocks from the first fragment in to the last pixel out / pixels
   clk/iter         clocks / traversal iterations: 1.0 would be the traverse unit's pace, so the
                    target "whole pipeline <= 1.25 x iterations per pixel" is clk/iter <= 1.25
-  height hit       height-cache lookups that hit / lookups (a miss retries on the ray's next pass)
+  height served    1 - height-cache line fills / iterations: the height reads served without
+                   memory traffic, the figure comparable to a blocking cache's hit rate (the
+                   paper's 99%) and the one the target is checked on
+  height lookups   height-cache lookups that hit / lookups (a ray whose read missed retries on its
+                   next pass, so one miss counts once per retry)
   texture hit      texel reads whose cache line was present (or in flight) / texel reads (four per
                    bilinear quad, two quads per hit pixel): the per-access texture-cache hit rate
   quad hit         quads whose every texel hit (the stricter figure)
@@ -77,6 +81,7 @@ def run_case(scene: str, view: str, mip: bool, a: Any) -> dict[str, Any]:
         "cycles_per_pixel": st["cycles"] / n, "iterations_per_pixel": st["iterations"] / n,
         "cycles_per_iteration": st["cycles"] / max(st["iterations"], 1),
         "height_cache_hit_rate": st["height_cache_hit_rate"],
+        "height_reads_served": 1.0 - st["axi_h_bursts"] / max(st["iterations"], 1),
         "texture_cache_hit_rate": st["texture_cache_hit_rate"],
         "texture_quad_hit_rate": st["texture_quad_hit_rate"],
         "height_bytes_per_pixel": st["height_mem_bytes"] / n,
@@ -88,14 +93,16 @@ def run_case(scene: str, view: str, mip: bool, a: Any) -> dict[str, Any]:
 
 def table(rows: list[dict[str, Any]], mhz: float) -> str:
     head = ("| scene | view | MIP | pixels | clocks/pixel | iterations/pixel | clk/iter | "
-            "height hit | texture hit | quad hit | bytes/pixel (height + texture) | "
+            "height served | height lookups | texture hit | quad hit | "
+            "bytes/pixel (height + texture) | "
             f"Mpixels/s at {mhz:g} MHz |")
     out = [head, "|" + "---|" * (head.count("|") - 1)]
     for r in rows:
         out.append(f"| {r['scene']} | {r['view']} | {'on' if r['mip'] else 'off'} | "
                    f"{r['pixels']:,} | {r['cycles_per_pixel']:.2f} | "
                    f"{r['iterations_per_pixel']:.2f} | {r['cycles_per_iteration']:.3f} | "
-                   f"{r['height_cache_hit_rate']:.2%} | {r['texture_cache_hit_rate']:.2%} | "
+                   f"{r['height_reads_served']:.2%} | {r['height_cache_hit_rate']:.2%} | "
+                   f"{r['texture_cache_hit_rate']:.2%} | "
                    f"{r['texture_quad_hit_rate']:.2%} | {r['bytes_per_pixel']:.1f} "
                    f"({r['height_bytes_per_pixel']:.1f} + {r['texture_bytes_per_pixel']:.1f}) | "
                    f"{mhz / r['cycles_per_pixel']:.1f} |")
@@ -114,6 +121,7 @@ def summary(rows: list[dict[str, Any]]) -> dict[str, Any]:
     return {"cases": len(rows), "mismatches": sum(r["mismatches"] for r in rows),
             "cycles_per_iteration": agg("cycles_per_iteration", rows),
             "height_cache_hit_rate": agg("height_cache_hit_rate", rows),
+            "height_reads_served": agg("height_reads_served", rows),
             "texture_cache_hit_rate_mip_on": agg("texture_cache_hit_rate", on),
             "texture_cache_hit_rate_mip_off": agg("texture_cache_hit_rate", off),
             "bytes_per_pixel_mip_on": agg("bytes_per_pixel", on),
@@ -126,8 +134,9 @@ def verdicts(s: dict[str, Any]) -> list[str]:
     c = s["cycles_per_iteration"]
     out.append(f"clocks/iteration: worst {c['max']:.3f}, mean {c['mean']:.3f} (target <= "
                f"{TARGET_CLK_PER_ITER}): {'met' if c['max'] <= TARGET_CLK_PER_ITER else 'NOT met'}")
-    h = s["height_cache_hit_rate"]
-    out.append(f"height-cache hit rate: min {h['min']:.2%}, mean {h['mean']:.2%} (target >= "
+    h = s["height_reads_served"]
+    out.append(f"height reads served without a fill: min {h['min']:.2%}, mean {h['mean']:.2%} "
+               f"(lookup hit rate min {s['height_cache_hit_rate']['min']:.2%}; target >= "
                f"{TARGET_HEIGHT_HIT:.0%}): "
                f"{'met' if h['min'] >= TARGET_HEIGHT_HIT else 'NOT met in every case'}")
     t = s["texture_cache_hit_rate_mip_on"]
