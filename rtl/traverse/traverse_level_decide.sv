@@ -51,63 +51,54 @@ module traverse_level_decide
   output logic [LVL_W-1:0]        dk_o            // new level
 );
 
+  // Plain data flow, one expression per signal.
+
   // ---- crossing ------------------------------------------------------------------------------
-  sidx_t cx, cy, nx, ny, p1x, p1y, dfx, dfy, diff;
-  logic  parent_changed, up;
-  always_comb begin
-    cx   = sidx_t'(xcx_i);
-    cy   = sidx_t'(xcy_i);
-    nx   = cx + (eqx_i ? dir_val(sx_i) : '0);
-    ny   = cy + (eqy_i ? dir_val(sy_i) : '0);
-    parent_changed = ((nx >>> 1) != (cx >>> 1)) || ((ny >>> 1) != (cy >>> 1));
-    // selective: P1 (where the ray meets this node's plane), in cells of level k
-    p1x  = sidx_t'(p1x_i) >>> xk_i;
-    p1y  = sidx_t'(p1y_i) >>> xk_i;
-    dfx  = (p1x >= cx) ? p1x - cx : cx - p1x;
-    dfy  = (p1y >= cy) ? p1y - cy : cy - p1y;
-    diff = (dfx > dfy) ? dfx : dfy;
-    case (level_up_i)
-      UP_TEVS:      up = parent_changed;
-      UP_DROBOT:    up = 1'b1;
-      UP_SELECTIVE: up = parent_changed && (diff != sidx_t'(1));
-      UP_COHERENT:  up = parent_changed && prev_cross_i;
-      default:      up = 1'b0;
-    endcase
-    up    = up && (xk_i < n_i);
-    up_o  = up;
-    xk_o  = xk_i + LVL_W'(up);
-    xcx_o = CELL_W'(up ? (nx >>> 1) : nx);
-    xcy_o = CELL_W'(up ? (ny >>> 1) : ny);
-  end
+  sidx_t cx, cy, nx, ny, p1x, p1y, dfx, dfy;
+  logic  parent_changed, selective_stay, up;
+  assign cx  = sidx_t'(xcx_i);
+  assign cy  = sidx_t'(xcy_i);
+  assign nx  = cx + (eqx_i ? dir_val(sx_i) : '0);
+  assign ny  = cy + (eqy_i ? dir_val(sy_i) : '0);
+  assign parent_changed = ((nx >>> 1) != (cx >>> 1)) || ((ny >>> 1) != (cy >>> 1));
+  // selective: P1 (where the ray meets this node's plane), in cells of level k; the ray stays
+  // when P1 is in the very next node: max(|p1x - cx|, |p1y - cy|) == 1
+  assign p1x = sidx_t'(p1x_i) >>> xk_i;
+  assign p1y = sidx_t'(p1y_i) >>> xk_i;
+  assign dfx = (p1x >= cx) ? p1x - cx : cx - p1x;
+  assign dfy = (p1y >= cy) ? p1y - cy : cy - p1y;
+  assign selective_stay = (((dfx > dfy) ? dfx : dfy) == sidx_t'(1));
+  assign up  = (xk_i < n_i)
+            && ((level_up_i == UP_TEVS)      ? parent_changed
+              : (level_up_i == UP_DROBOT)    ? 1'b1
+              : (level_up_i == UP_SELECTIVE) ? parent_changed && !selective_stay
+              : (level_up_i == UP_COHERENT)  ? parent_changed && prev_cross_i
+              :                                1'b0);
+  assign up_o  = up;
+  assign xk_o  = xk_i + LVL_W'(up);
+  assign xcx_o = CELL_W'(up ? (nx >>> 1) : nx);
+  assign xcy_o = CELL_W'(up ? (ny >>> 1) : ny);
 
   // ---- descent -------------------------------------------------------------------------------
   sidx_t       lox, hix, loy, hiy, ax, bx, ay, by;
-  logic [15:0] xr;
   logic [4:0]  step, nk_multi, bl;
-  logic [LVL_W-1:0] nk_xor;
-  always_comb begin
-    lox  = sidx_t'(dcx_i) <<< dk_i;
-    hix  = ((sidx_t'(dcx_i) + sidx_t'(1)) <<< dk_i) - sidx_t'(1);
-    loy  = sidx_t'(dcy_i) <<< dk_i;
-    hiy  = ((sidx_t'(dcy_i) + sidx_t'(1)) <<< dk_i) - sidx_t'(1);
-    ax   = clip_idx(sidx_t'(ax_i), lox, hix);
-    bx   = clip_idx(sidx_t'(bx_i), lox, hix);
-    ay   = clip_idx(sidx_t'(ay_i), loy, hiy);
-    by   = clip_idx(sidx_t'(by_i), loy, hiy);
-    xr   = (16'(ax ^ bx) > 16'(ay ^ by)) ? 16'(ax ^ bx) : 16'(ay ^ by);
-    // (b): `levels` levels per descent until the first crossing, then one (never below 0)
-    if (crossed_i)                    step = 5'd1;
-    else if (dk_i < 4'(levels_i))     step = 5'(dk_i);
-    else                              step = 5'(levels_i);
-    nk_multi = 5'(dk_i) - step;       // k >= 1 for a descending ray
-    bl       = bitlen16(xr);
-    nk_xor   = LVL_W'((bl < nk_multi) ? bl : nk_multi);  // the lowest node holding the rest
-    case (descent_i)
-      DESC_MULTI: dk_o = LVL_W'(nk_multi);
-      DESC_XOR:   dk_o = nk_xor;
-      default:    dk_o = dk_i - LVL_W'(1);
-    endcase
-    if (dk_i == '0) dk_o = '0;        // not a descending ray: keep in range
-  end
+  assign lox  = sidx_t'(dcx_i) <<< dk_i;
+  assign hix  = ((sidx_t'(dcx_i) + sidx_t'(1)) <<< dk_i) - sidx_t'(1);
+  assign loy  = sidx_t'(dcy_i) <<< dk_i;
+  assign hiy  = ((sidx_t'(dcy_i) + sidx_t'(1)) <<< dk_i) - sidx_t'(1);
+  assign ax   = clip_idx(sidx_t'(ax_i), lox, hix);
+  assign bx   = clip_idx(sidx_t'(bx_i), lox, hix);
+  assign ay   = clip_idx(sidx_t'(ay_i), loy, hiy);
+  assign by   = clip_idx(sidx_t'(by_i), loy, hiy);
+  // bitlen(max(a, b)) = bitlen(a | b): the lowest node holding both ends
+  assign bl   = bitlen16(16'(ax ^ bx) | 16'(ay ^ by));
+  // (b): `levels` levels per descent until the first crossing, then one (never below 0)
+  assign step = crossed_i ? 5'd1 : (dk_i < 4'(levels_i)) ? 5'(dk_i) : 5'(levels_i);
+  assign nk_multi = 5'(dk_i) - step;   // k >= 1 for a descending ray
+  // not a descending ray (k = 0): 0, to keep the level in range
+  assign dk_o = (dk_i == '0)             ? '0
+              : (descent_i == DESC_MULTI) ? LVL_W'(nk_multi)
+              : (descent_i == DESC_XOR)   ? LVL_W'((bl < nk_multi) ? bl : nk_multi)
+              :                             dk_i - LVL_W'(1);
 
 endmodule
