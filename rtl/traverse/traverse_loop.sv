@@ -19,13 +19,17 @@
 //   - what one pass computes for a later stage of the same pass (t_exit, t_new, the action, the
 //     crossing, the hit position and the descent): written by the stage that computes it, only
 //     for the passes that read it, and read up to 10 stages later (before the slot comes round).
-// A few activity bits per stage do move with the slots: the height read returned data (ok) or an
-// error (S3 - S16), the pass hits or descends (S8 - S10), the pass descends (S8 - S12).
+// A few activity bits per stage do move with the slots: the slot holds a live ray (S1 - S2), the
+// height read returned data (ok) or an error (S3 - S16), the pass hits or descends (S8 - S10), the
+// pass descends (S8 - S15).
 //
-// Clock enables: the units that only some methods use advance only for those methods and hold
-// their registers otherwise (less switching, and less work for a simulator): the positions at
-// t_end (the XOR descent), those at the plane (the selective level-up), and the 8-bit or the
-// 16-bit height conversion.  The other units run every clock.
+// Clock enables: a unit advances only while its stages hold a pass that uses its result, and
+// holds its registers otherwise (less switching, and less work for a simulator).  Before the
+// height arrives (S0 - S2) that is a live ray; from S3 on a pass whose height read returned data
+// (ok); the positions at t_new only for a pass that hits or descends, the floor of that position
+// and the child's boundaries only for a descent.  The units that only some methods use advance
+// only for those methods: the positions at t_end (the XOR descent), those at the plane (the
+// selective level-up), and the 8-bit or the 16-bit height conversion.
 //
 // Stage schedule (a unit "a -> b" takes operands in Sa and delivers in Sb):
 //   S0   height address base + off[k] + (cy * side_k + cx) * bytes  -> lk_* registers (S1)
@@ -189,7 +193,8 @@ module traverse_loop
   logic         ok3, err3;         // the height read of the ray in S3 returned data / an error
   logic [16:4]  ok_q, err_q;       // ok3, err3 of the ray in stage s (meaningful with v_q[s])
   logic [10:8]  in_q;              // in_q[s]: ok, and the pass hits or descends (inside its node)
-  logic [12:8]  dn_q;              // dn_q[s]: ok, and the pass descends
+  logic [15:8]  dn_q;              // dn_q[s]: ok, and the pass descends
+  logic [2:1]   lv_q;              // lv_q[s]: the slot in stage s holds a live ray (not done)
   logic         xor_desc, sel_up;  // the method uses the XOR descent / the selective level-up
   slot_idx_t    ph_q;              // phase: stage s holds the slot of entry (ph_q - s) mod D
   slot_idx_t    sl [D];            // sl[s] = (ph_q - s) mod D
@@ -225,9 +230,12 @@ module traverse_loop
     .wide_o     (wide0)
   );
 
+  logic live0;  // the slot in S0 holds a live ray: it looks its height up
+  assign live0 = v_q[0] && !stat_q[sl[0]].done;
+
   always_ff @(posedge clk_i) begin
     if (!rst_ni) lk_valid_o <= 1'b0;
-    else         lk_valid_o <= v_q[0] && !stat_q[sl[0]].done;
+    else         lk_valid_o <= live0;
   end
   always_ff @(posedge clk_i) begin
     lk_addr_o <= addr0;
@@ -238,17 +246,17 @@ module traverse_loop
   assign sel_up   = (cfg_i.policy.level_up == UP_SELECTIVE);
 
   f24_t bx_f, by_f;
-  f24_from_int #(.W(IDX_W)) u_bx (.clk_i, .en_i(1'b1),
+  f24_from_int #(.W(IDX_W)) u_bx (.clk_i, .en_i(live0),
     .k_i(IDX_W'((sidx_t'(n0.cx) + sidx_t'(d0.sx.mv && !d0.sx.neg)) <<< n0.k)), .y_o(bx_f));
-  f24_from_int #(.W(IDX_W)) u_by (.clk_i, .en_i(1'b1),
+  f24_from_int #(.W(IDX_W)) u_by (.clk_i, .en_i(live0),
     .k_i(IDX_W'((sidx_t'(n0.cy) + sidx_t'(d0.sy.mv && !d0.sy.neg)) <<< n0.k)), .y_o(by_f));
 
   // ---- S1 ------------------------------------------------------------------------------------
   f24_pair_t uv1;
   f24_t      dx_f, dy_f;
   assign uv1 = uv_q[sl[1]];
-  f24_add u_dx (.clk_i, .en_i(1'b1), .a_i(bx_f), .b_i(f24_neg(uv1.u)), .y_o(dx_f));
-  f24_add u_dy (.clk_i, .en_i(1'b1), .a_i(by_f), .b_i(f24_neg(uv1.v)), .y_o(dy_f));
+  f24_add u_dx (.clk_i, .en_i(lv_q[1] || lv_q[2]), .a_i(bx_f), .b_i(f24_neg(uv1.u)), .y_o(dx_f));
+  f24_add u_dy (.clk_i, .en_i(lv_q[1] || lv_q[2]), .a_i(by_f), .b_i(f24_neg(uv1.v)), .y_o(dy_f));
 
   // ---- S3: the height arrives ------------------------------------------------------------------
   f24_pair_t inv3;
@@ -256,16 +264,17 @@ module traverse_loop
   assign inv3 = inv_q[sl[3]];
   assign ok3  = rs_valid_i && rs_hit_i && !rs_err_i;
   assign err3 = rs_valid_i && rs_err_i;
-  f24_from_unorm #(.W(8))  u_h8  (.clk_i, .en_i(!cfg_i.bits16), .k_i(rs_data_i[7:0]), .y_o(h8));
-  f24_from_unorm #(.W(16)) u_h16 (.clk_i, .en_i(cfg_i.bits16), .k_i(rs_data_i), .y_o(h16));
-  f24_mul u_tx (.clk_i, .en_i(1'b1), .a_i(dx_f), .b_i(inv3.u), .y_o(tx_raw));
-  f24_mul u_ty (.clk_i, .en_i(1'b1), .a_i(dy_f), .b_i(inv3.v), .y_o(ty_raw));
+  f24_from_unorm #(.W(8))  u_h8  (.clk_i, .en_i(ok3 && !cfg_i.bits16), .k_i(rs_data_i[7:0]),
+                                  .y_o(h8));
+  f24_from_unorm #(.W(16)) u_h16 (.clk_i, .en_i(ok3 && cfg_i.bits16), .k_i(rs_data_i), .y_o(h16));
+  f24_mul u_tx (.clk_i, .en_i(ok3), .a_i(dx_f), .b_i(inv3.u), .y_o(tx_raw));
+  f24_mul u_ty (.clk_i, .en_i(ok3), .a_i(dy_f), .b_i(inv3.v), .y_o(ty_raw));
 
   // ---- S4: plane, t_exit -----------------------------------------------------------------------
   f24_t  plane;
   dirs_t d4;
   assign d4 = dir_q[sl[4]];
-  f24_add u_plane (.clk_i, .en_i(1'b1), .a_i(F24_ONE),
+  f24_add u_plane (.clk_i, .en_i(ok_q[4] || ok_q[5]), .a_i(F24_ONE),
                    .b_i(f24_neg(cfg_i.bits16 ? h16 : h8)), .y_o(plane));
 
   // t_exit = min(tx, ty), and whether tx / ty equal it (knowing which one it is).
@@ -293,8 +302,8 @@ module traverse_loop
   assign tmin5   = ord_min_first(te5.ord, otmap5) ? te5 : '{t: tmap5, ord: otmap5};
   assign t_end   = ord_min_first(tmin5.ord, f24_ord(F24_ONE)) ? tmin5.t : F24_ONE;
   assign tmin5_d = '{tmin: tmin5, miss_pre: ord_le(otmap5, te5.ord)};
-  f24_mul u_due_x (.clk_i, .en_i(xor_desc), .a_i(duv5.u), .b_i(t_end), .y_o(due_x));
-  f24_mul u_due_y (.clk_i, .en_i(xor_desc), .a_i(duv5.v), .b_i(t_end), .y_o(due_y));
+  f24_mul u_due_x (.clk_i, .en_i(xor_desc && ok_q[5]), .a_i(duv5.u), .b_i(t_end), .y_o(due_x));
+  f24_mul u_due_y (.clk_i, .en_i(xor_desc && ok_q[5]), .a_i(duv5.v), .b_i(t_end), .y_o(due_y));
 
   // ---- S6: t_new, position at t_end, du * plane ------------------------------------------------
   f24_pair_t uv6;
@@ -302,10 +311,12 @@ module traverse_loop
   f24_t      pose_x, pose_y, dup_x, dup_y;
   assign uv6     = uv_q[sl[6]];
   assign duv6    = duv_q[sl[6]];
-  f24_add u_pose_x (.clk_i, .en_i(xor_desc), .a_i(uv6.u), .b_i(due_x), .y_o(pose_x));
-  f24_add u_pose_y (.clk_i, .en_i(xor_desc), .a_i(uv6.v), .b_i(due_y), .y_o(pose_y));
-  f24_mul u_dup_x (.clk_i, .en_i(sel_up), .a_i(duv6.u), .b_i(plane), .y_o(dup_x));
-  f24_mul u_dup_y (.clk_i, .en_i(sel_up), .a_i(duv6.v), .b_i(plane), .y_o(dup_y));
+  logic pose_en;  // S6 - S7 hold a pass of the XOR descent whose height read returned data
+  assign pose_en = xor_desc && (ok_q[6] || ok_q[7]);
+  f24_add u_pose_x (.clk_i, .en_i(pose_en), .a_i(uv6.u), .b_i(due_x), .y_o(pose_x));
+  f24_add u_pose_y (.clk_i, .en_i(pose_en), .a_i(uv6.v), .b_i(due_y), .y_o(pose_y));
+  f24_mul u_dup_x (.clk_i, .en_i(sel_up && ok_q[6]), .a_i(duv6.u), .b_i(plane), .y_o(dup_x));
+  f24_mul u_dup_y (.clk_i, .en_i(sel_up && ok_q[6]), .a_i(duv6.v), .b_i(plane), .y_o(dup_y));
 
   // max(a, b), for t_new = max(t, plane)
   function automatic tval_t t_max(input tval_t a, input f24_t b);
@@ -330,10 +341,12 @@ module traverse_loop
   assign leaf7   = (node_q[sl[7]].k == '0);
   assign act7    = '{is_hit: inside7 && leaf7, down: inside7 && !leaf7,
                      miss: !inside7 && tm7.miss_pre};
-  f24_mul u_dun_x (.clk_i, .en_i(1'b1), .a_i(duv7.u), .b_i(t_new7.t), .y_o(dun_x));
-  f24_mul u_dun_y (.clk_i, .en_i(1'b1), .a_i(duv7.v), .b_i(t_new7.t), .y_o(dun_y));
-  f24_add u_posp_x (.clk_i, .en_i(sel_up), .a_i(uv7.u), .b_i(dup_x), .y_o(posp_x));
-  f24_add u_posp_y (.clk_i, .en_i(sel_up), .a_i(uv7.v), .b_i(dup_y), .y_o(posp_y));
+  f24_mul u_dun_x (.clk_i, .en_i(ok_q[7] && inside7), .a_i(duv7.u), .b_i(t_new7.t), .y_o(dun_x));
+  f24_mul u_dun_y (.clk_i, .en_i(ok_q[7] && inside7), .a_i(duv7.v), .b_i(t_new7.t), .y_o(dun_y));
+  logic posp_en;  // S7 - S8 hold a pass of the selective level-up whose height read returned data
+  assign posp_en = sel_up && (ok_q[7] || ok_q[8]);
+  f24_add u_posp_x (.clk_i, .en_i(posp_en), .a_i(uv7.u), .b_i(dup_x), .y_o(posp_x));
+  f24_add u_posp_y (.clk_i, .en_i(posp_en), .a_i(uv7.v), .b_i(dup_y), .y_o(posp_y));
 
   // ---- S8: position at t_new, floor(position at t_end) -----------------------------------------
   f24_pair_t uv8;
@@ -341,11 +354,11 @@ module traverse_loop
   logic signed [IDX_W-1:0] ie_x, ie_y;
   logic unused_sat_ex, unused_sat_ey;
   assign uv8 = uv_q[sl[8]];
-  f24_add u_posn_x (.clk_i, .en_i(1'b1), .a_i(uv8.u), .b_i(dun_x), .y_o(posn_x));
-  f24_add u_posn_y (.clk_i, .en_i(1'b1), .a_i(uv8.v), .b_i(dun_y), .y_o(posn_y));
-  f24_to_index #(.W(IDX_W)) u_ie_x (.clk_i, .en_i(xor_desc),
+  f24_add u_posn_x (.clk_i, .en_i(in_q[8] || in_q[9]), .a_i(uv8.u), .b_i(dun_x), .y_o(posn_x));
+  f24_add u_posn_y (.clk_i, .en_i(in_q[8] || in_q[9]), .a_i(uv8.v), .b_i(dun_y), .y_o(posn_y));
+  f24_to_index #(.W(IDX_W)) u_ie_x (.clk_i, .en_i(xor_desc && dn_q[8]),
     .a_i(dir_q[sl[8]].sx.mv ? pose_x : uv8.u), .idx_o(ie_x), .sat_o(unused_sat_ex));
-  f24_to_index #(.W(IDX_W)) u_ie_y (.clk_i, .en_i(xor_desc),
+  f24_to_index #(.W(IDX_W)) u_ie_y (.clk_i, .en_i(xor_desc && dn_q[8]),
     .a_i(dir_q[sl[8]].sy.mv ? pose_y : uv8.v), .idx_o(ie_y), .sat_o(unused_sat_ey));
 
   // ---- S9: floor(position at plane) ------------------------------------------------------------
@@ -353,9 +366,9 @@ module traverse_loop
   logic signed [IDX_W-1:0] ip_x, ip_y;
   logic unused_sat_px, unused_sat_py;
   assign uv9 = uv_q[sl[9]];
-  f24_to_index #(.W(IDX_W)) u_ip_x (.clk_i, .en_i(sel_up),
+  f24_to_index #(.W(IDX_W)) u_ip_x (.clk_i, .en_i(sel_up && ok_q[9] && !in_q[9]),
     .a_i(dir_q[sl[9]].sx.mv ? posp_x : uv9.u), .idx_o(ip_x), .sat_o(unused_sat_px));
-  f24_to_index #(.W(IDX_W)) u_ip_y (.clk_i, .en_i(sel_up),
+  f24_to_index #(.W(IDX_W)) u_ip_y (.clk_i, .en_i(sel_up && ok_q[9] && !in_q[9]),
     .a_i(dir_q[sl[9]].sy.mv ? posp_y : uv9.v), .idx_o(ip_y), .sat_o(unused_sat_py));
 
   // ---- S10: floor(position at t_new) ----------------------------------------------------------
@@ -365,9 +378,9 @@ module traverse_loop
   logic unused_sat_nx, unused_sat_ny;
   assign uv10 = uv_q[sl[10]];
   assign d10  = dir_q[sl[10]];
-  f24_to_index #(.W(IDX_W)) u_in_x (.clk_i, .en_i(1'b1),
+  f24_to_index #(.W(IDX_W)) u_in_x (.clk_i, .en_i(dn_q[10]),
     .a_i(d10.sx.mv ? posn_x : uv10.u), .idx_o(in_x), .sat_o(unused_sat_nx));
-  f24_to_index #(.W(IDX_W)) u_in_y (.clk_i, .en_i(1'b1),
+  f24_to_index #(.W(IDX_W)) u_in_y (.clk_i, .en_i(dn_q[10]),
     .a_i(d10.sy.mv ? posn_y : uv10.v), .idx_o(in_y), .sat_o(unused_sat_ny));
 
   // ---- S10: crossing (neighbour, level-up); S11: descent level --------------------------------
@@ -445,13 +458,13 @@ module traverse_loop
                     fwd: CELL_W'(clip_idx(c12y + stepy, loy, hiy))};
 
   f24_t ben_x, bex_x, ben_y, bex_y;
-  f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(1'b1),
+  f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(dn_q[12]),
     .k_i(IDX_W'((c12x + sidx_t'(d12.sx.mv && d12.sx.neg)) <<< nk12)), .y_o(ben_x));
-  f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(1'b1),
+  f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(dn_q[12]),
     .k_i(IDX_W'((c12x + sidx_t'(d12.sx.mv && !d12.sx.neg)) <<< nk12)), .y_o(bex_x));
-  f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(1'b1),
+  f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(dn_q[12]),
     .k_i(IDX_W'((c12y + sidx_t'(d12.sy.mv && d12.sy.neg)) <<< nk12)), .y_o(ben_y));
-  f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(1'b1),
+  f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(dn_q[12]),
     .k_i(IDX_W'((c12y + sidx_t'(d12.sy.mv && !d12.sy.neg)) <<< nk12)), .y_o(bex_y));
 
   // ---- S13, S15: crossing times of the child's boundaries --------------------------------------
@@ -460,14 +473,16 @@ module traverse_loop
   f24_t      den_x, dex_x, den_y, dex_y, ten_x, tex_x, ten_y, tex_y;
   assign uv13  = uv_q[sl[13]];
   assign inv15 = inv_q[sl[15]];
-  f24_add u_den_x (.clk_i, .en_i(1'b1), .a_i(ben_x), .b_i(f24_neg(uv13.u)), .y_o(den_x));
-  f24_add u_dex_x (.clk_i, .en_i(1'b1), .a_i(bex_x), .b_i(f24_neg(uv13.u)), .y_o(dex_x));
-  f24_add u_den_y (.clk_i, .en_i(1'b1), .a_i(ben_y), .b_i(f24_neg(uv13.v)), .y_o(den_y));
-  f24_add u_dex_y (.clk_i, .en_i(1'b1), .a_i(bex_y), .b_i(f24_neg(uv13.v)), .y_o(dex_y));
-  f24_mul u_ten_x (.clk_i, .en_i(1'b1), .a_i(den_x), .b_i(inv15.u), .y_o(ten_x));
-  f24_mul u_tex_x (.clk_i, .en_i(1'b1), .a_i(dex_x), .b_i(inv15.u), .y_o(tex_x));
-  f24_mul u_ten_y (.clk_i, .en_i(1'b1), .a_i(den_y), .b_i(inv15.v), .y_o(ten_y));
-  f24_mul u_tex_y (.clk_i, .en_i(1'b1), .a_i(dex_y), .b_i(inv15.v), .y_o(tex_y));
+  logic bd_en;  // S13 - S14 hold a descent
+  assign bd_en = dn_q[13] || dn_q[14];
+  f24_add u_den_x (.clk_i, .en_i(bd_en), .a_i(ben_x), .b_i(f24_neg(uv13.u)), .y_o(den_x));
+  f24_add u_dex_x (.clk_i, .en_i(bd_en), .a_i(bex_x), .b_i(f24_neg(uv13.u)), .y_o(dex_x));
+  f24_add u_den_y (.clk_i, .en_i(bd_en), .a_i(ben_y), .b_i(f24_neg(uv13.v)), .y_o(den_y));
+  f24_add u_dex_y (.clk_i, .en_i(bd_en), .a_i(bex_y), .b_i(f24_neg(uv13.v)), .y_o(dex_y));
+  f24_mul u_ten_x (.clk_i, .en_i(dn_q[15]), .a_i(den_x), .b_i(inv15.u), .y_o(ten_x));
+  f24_mul u_tex_x (.clk_i, .en_i(dn_q[15]), .a_i(dex_x), .b_i(inv15.u), .y_o(tex_x));
+  f24_mul u_ten_y (.clk_i, .en_i(dn_q[15]), .a_i(den_y), .b_i(inv15.v), .y_o(ten_y));
+  f24_mul u_tex_y (.clk_i, .en_i(dn_q[15]), .a_i(dex_y), .b_i(inv15.v), .y_o(tex_y));
 
   // ---- S16: next state -----------------------------------------------------------------------
   // locate's correction: the cell whose crossing times bracket t (cells are half-open in t).
@@ -549,7 +564,8 @@ module traverse_loop
     ok_q  <= {ok_q[15:4], ok3};
     err_q <= {err_q[15:4], err3};
     in_q  <= {in_q[9:8], ok_q[7] && inside7};
-    dn_q  <= {dn_q[11:8], ok_q[7] && act7.down};
+    dn_q  <= {dn_q[14:8], ok_q[7] && act7.down};
+    lv_q  <= {lv_q[1], v_q[0] && !stat_q[sl[0]].done};
   end
 
   always_ff @(posedge clk_i) begin
@@ -603,8 +619,10 @@ module traverse_loop
   end
 
   always_ff @(posedge clk_i) begin
-    iax_q <= sidx_t'(in_x);
-    iay_q <= sidx_t'(in_y);
+    if (dn_q[11]) begin
+      iax_q <= sidx_t'(in_x);
+      iay_q <= sidx_t'(in_y);
+    end
   end
 
   always_comb begin
