@@ -1,5 +1,8 @@
-// traverse_level_decide: the level decisions of the second mode, purely combinational.  Two
-// independent parts, fed by two stages of traverse_loop:
+// traverse_level_decide: the level decisions of the second mode, purely combinational: the
+// functions traverse_pkg::level_cross and level_descend as a module (their unit test's form;
+// traverse_loop calls the functions where it registers their results, so that a simulator
+// evaluates them only for the passes that use them).  Two independent parts, for two stages of
+// traverse_loop:
 //
 // Crossing (stage S10), mirrors model/traverse.py::crossing_step (the "Node crossing" block of
 // _trace): the neighbour n = c + (s where this axis's exit time is the node's exit time, else 0),
@@ -51,54 +54,16 @@ module traverse_level_decide
   output logic [LVL_W-1:0]        dk_o            // new level
 );
 
-  // Plain data flow, one expression per signal.
-
-  // ---- crossing ------------------------------------------------------------------------------
-  sidx_t cx, cy, nx, ny, p1x, p1y, dfx, dfy;
-  logic  parent_changed, selective_stay, up;
-  assign cx  = sidx_t'(xcx_i);
-  assign cy  = sidx_t'(xcy_i);
-  assign nx  = cx + (eqx_i ? dir_val(sx_i) : '0);
-  assign ny  = cy + (eqy_i ? dir_val(sy_i) : '0);
-  assign parent_changed = ((nx >>> 1) != (cx >>> 1)) || ((ny >>> 1) != (cy >>> 1));
-  // selective: P1 (where the ray meets this node's plane), in cells of level k; the ray stays
-  // when P1 is in the very next node: max(|p1x - cx|, |p1y - cy|) == 1
-  assign p1x = sidx_t'(p1x_i) >>> xk_i;
-  assign p1y = sidx_t'(p1y_i) >>> xk_i;
-  assign dfx = (p1x >= cx) ? p1x - cx : cx - p1x;
-  assign dfy = (p1y >= cy) ? p1y - cy : cy - p1y;
-  assign selective_stay = (((dfx > dfy) ? dfx : dfy) == sidx_t'(1));
-  assign up  = (xk_i < n_i)
-            && ((level_up_i == UP_TEVS)      ? parent_changed
-              : (level_up_i == UP_DROBOT)    ? 1'b1
-              : (level_up_i == UP_SELECTIVE) ? parent_changed && !selective_stay
-              : (level_up_i == UP_COHERENT)  ? parent_changed && prev_cross_i
-              :                                1'b0);
-  assign up_o  = up;
-  assign xk_o  = xk_i + LVL_W'(up);
-  assign xcx_o = CELL_W'(up ? (nx >>> 1) : nx);
-  assign xcy_o = CELL_W'(up ? (ny >>> 1) : ny);
-
-  // ---- descent -------------------------------------------------------------------------------
-  sidx_t       lox, hix, loy, hiy, ax, bx, ay, by;
-  logic [4:0]  step, nk_multi, bl;
-  assign lox  = sidx_t'(dcx_i) <<< dk_i;
-  assign hix  = ((sidx_t'(dcx_i) + sidx_t'(1)) <<< dk_i) - sidx_t'(1);
-  assign loy  = sidx_t'(dcy_i) <<< dk_i;
-  assign hiy  = ((sidx_t'(dcy_i) + sidx_t'(1)) <<< dk_i) - sidx_t'(1);
-  assign ax   = clip_idx(sidx_t'(ax_i), lox, hix);
-  assign bx   = clip_idx(sidx_t'(bx_i), lox, hix);
-  assign ay   = clip_idx(sidx_t'(ay_i), loy, hiy);
-  assign by   = clip_idx(sidx_t'(by_i), loy, hiy);
-  // bitlen(max(a, b)) = bitlen(a | b): the lowest node holding both ends
-  assign bl   = bitlen16(16'(ax ^ bx) | 16'(ay ^ by));
-  // (b): `levels` levels per descent until the first crossing, then one (never below 0)
-  assign step = crossed_i ? 5'd1 : (dk_i < 4'(levels_i)) ? 5'(dk_i) : 5'(levels_i);
-  assign nk_multi = 5'(dk_i) - step;   // k >= 1 for a descending ray
-  // not a descending ray (k = 0): 0, to keep the level in range
-  assign dk_o = (dk_i == '0)             ? '0
-              : (descent_i == DESC_MULTI) ? LVL_W'(nk_multi)
-              : (descent_i == DESC_XOR)   ? LVL_W'((bl < nk_multi) ? bl : nk_multi)
-              :                             dk_i - LVL_W'(1);
+  // The logic is traverse_pkg::level_cross and level_descend (traverse_loop calls them where it
+  // registers their results); this module is their combinational form.
+  cross_node_t x;
+  assign x     = level_cross(level_up_i, n_i, xk_i, xcx_i, xcy_i, eqx_i, eqy_i, sx_i, sy_i,
+                             prev_cross_i, p1x_i, p1y_i);
+  assign xk_o  = x.k;
+  assign xcx_o = x.cx;
+  assign xcy_o = x.cy;
+  assign up_o  = x.up;
+  assign dk_o  = level_descend(descent_i, levels_i, dk_i, dcx_i, dcy_i, crossed_i, ax_i, ay_i,
+                               bx_i, by_i);
 
 endmodule

@@ -51,10 +51,10 @@
 //        floor(position at t_end)                                   f24_to_index S8 -> S9
 //   S9   floor(position at plane) (selective's P1)                  f24_to_index S9 -> S10
 //   S10  crossing: neighbour cell, level-up policy                  floor(position at t_new)
-//        (traverse_level_decide, crossing part)
+//        (traverse_pkg::level_cross)
 //                                                                   f24_to_index S10 -> S11
 //   S11  descent: new level (one; multi: `levels` until the first crossing; XOR of the ends)
-//        (traverse_level_decide, descent part)
+//        (traverse_pkg::level_descend)
 //   S12  child estimate floor(p) >> k', clip; its entry / exit      f24_from_int S12 -> S13
 //        and the three cells locate's correction chooses from
 //   S13  boundary - u0                                              f24_add      S13 -> S15
@@ -155,10 +155,6 @@ module traverse_loop
     logic signed [IDX_W-1:0] x, y;
   } idx_pair_t;
   typedef struct packed {
-    node_t             xn;         // new level and cell
-    logic              up;         // went up a level
-  } cross_t;
-  typedef struct packed {
     logic [CELL_W-1:0] back;       // t before the estimate's entry: one cell back (clipped)
     logic [CELL_W-1:0] est;        // the estimate itself
     logic [CELL_W-1:0] fwd;        // t at or after its exit: one cell on (clipped)
@@ -182,7 +178,7 @@ module traverse_loop
   act_t             act_q    [D];  // [S7 ok]          S16
   idx_pair_t        ie_q     [D];  // [S9 XOR descent] S11: floor(position at t_end)
   tval_t            xt_q     [D];  // [S10 ok, not inside] S16: the crossing's time max(t, t_exit)
-  cross_t           cross_q  [D];  // [S10 ok, not inside] S16: the crossing's node
+  cross_node_t      cross_q  [D];  // [S10 ok, not inside] S16: the crossing's new node, up
   f24_pair_t        pos_q    [D];  // [S10 inside]     S16: position at t_new (the hit's u, v)
   logic [LVL_W-1:0] nk_q     [D];  // [S11 descent]    S12, S16: the descent's new level
   locate_t          locx_q   [D];  // [S12 descent]    S16
@@ -384,16 +380,15 @@ module traverse_loop
     .a_i(d10.sy.mv ? posn_y : uv10.v), .idx_o(in_y), .sat_o(unused_sat_ny));
 
   // ---- S10: crossing (neighbour, level-up); S11: descent level --------------------------------
-  node_t   n10, n11, xn10;
+  // The decisions themselves (traverse_pkg::level_cross, level_descend) are made where their
+  // results are registered (cross_q, nk_q, below), only for the passes that use them.
+  node_t   n10, n11;
   exit_t   ex10;
   /* verilator lint_off UNUSEDSIGNAL */  // the crossing reads prev_cross, the descent crossed
   status_t st10, st11;
   /* verilator lint_on UNUSEDSIGNAL */
   idx_pair_t ie11;
-  logic [LVL_W-1:0] nk11;
-  logic             up10;
-  tval_t            t10;
-  cross_t           cross10;
+  tval_t     t10;
   assign n10  = node_q[sl[10]];
   assign ex10 = exit_q[sl[10]];
   assign st10 = stat_q[sl[10]];
@@ -401,37 +396,7 @@ module traverse_loop
   assign st11 = stat_q[sl[11]];
   assign ie11 = ie_q[sl[11]];
   assign t10     = t_q[sl[10]];
-  assign cross10 = '{xn: xn10, up: up10};
 
-  traverse_level_decide u_level (
-    .level_up_i  (cfg_i.policy.level_up),
-    .n_i         (cfg_i.n),
-    .xk_i        (n10.k),
-    .xcx_i       (n10.cx),
-    .xcy_i       (n10.cy),
-    .eqx_i       (ex10.eqx),
-    .eqy_i       (ex10.eqy),
-    .sx_i        (d10.sx),
-    .sy_i        (d10.sy),
-    .prev_cross_i(st10.prev_cross),
-    .p1x_i       (ip_x),
-    .p1y_i       (ip_y),
-    .xk_o        (xn10.k),
-    .xcx_o       (xn10.cx),
-    .xcy_o       (xn10.cy),
-    .up_o        (up10),
-    .descent_i   (cfg_i.policy.descent),
-    .levels_i    (cfg_i.policy.levels),
-    .dk_i        (n11.k),
-    .dcx_i       (n11.cx),
-    .dcy_i       (n11.cy),
-    .crossed_i   (st11.crossed),
-    .ax_i        (in_x),
-    .ay_i        (in_y),
-    .bx_i        (ie11.x),
-    .by_i        (ie11.y),
-    .dk_o        (nk11)
-  );
 
   // ---- S12: child estimate, its entry / exit boundaries, locate's three candidates -----------
   sidx_t            iax_q, iay_q;  // floor(position at t_new), registered S11 -> S12
@@ -496,7 +461,7 @@ module traverse_loop
   /* verilator lint_on UNUSEDSIGNAL */
   status_t nst16;
   act_t    act16;
-  cross_t  x16;
+  cross_node_t x16;
   tval_t   t_new16;
   logic [ITER_W-1:0] it1;
   logic live16, err16, iter16, hit16, miss16, down16, cross16, cap16;
@@ -589,7 +554,7 @@ module traverse_loop
     if (hit16 || down16) t_q[sl[16]] <= t_new16;
     if (cross16) begin
       t_q[sl[16]]    <= xt_q[sl[16]];
-      node_q[sl[16]] <= x16.xn;
+      node_q[sl[16]] <= '{k: x16.k, cx: x16.cx, cy: x16.cy};
     end
     if (down16) node_q[sl[16]] <= '{k:  nk_q[sl[16]],
                                     cx: correct(locx_q[sl[16]], f24_ord(ten_x), f24_ord(tex_x),
@@ -608,10 +573,15 @@ module traverse_loop
     if (dn_q[9] && xor_desc) ie_q[sl[9]] <= '{x: ie_x, y: ie_y};
     if (ok_q[10] && !in_q[10]) begin
       xt_q[sl[10]]    <= ord_max_first(t10.ord, ex10.te.ord) ? t10 : ex10.te;
-      cross_q[sl[10]] <= cross10;
+      cross_q[sl[10]] <= level_cross(cfg_i.policy.level_up, cfg_i.n, n10.k, n10.cx, n10.cy,
+                                     ex10.eqx, ex10.eqy, d10.sx, d10.sy, st10.prev_cross, ip_x,
+                                     ip_y);
     end
     if (in_q[10])      pos_q[sl[10]]  <= '{u: posn_x, v: posn_y};
-    if (dn_q[11])      nk_q[sl[11]]   <= nk11;
+    if (dn_q[11])      nk_q[sl[11]]   <= level_descend(cfg_i.policy.descent,
+                                                       cfg_i.policy.levels, n11.k, n11.cx,
+                                                       n11.cy, st11.crossed, in_x, in_y, ie11.x,
+                                                       ie11.y);
     if (dn_q[12]) begin
       locx_q[sl[12]] <= loc12x;
       locy_q[sl[12]] <= loc12y;

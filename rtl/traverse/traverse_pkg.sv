@@ -232,4 +232,71 @@ package traverse_pkg;
     return {{(IDX_W+1){s.mv && s.neg}}, s.mv};
   endfunction
 
+
+  // ---- level decisions of the second mode (traverse_level_decide has the full description) ---
+  // Crossing: the neighbour cell and the level-up policy; the new node and whether it went up.
+  typedef struct packed {
+    logic [LVL_W-1:0]  k;   // new level
+    logic [CELL_W-1:0] cx;  // new cell at the new level
+    logic [CELL_W-1:0] cy;
+    logic              up;  // the crossing went up a level
+  } cross_node_t;
+
+  function automatic cross_node_t level_cross(
+      input level_up_e level_up, input logic [LVL_W-1:0] n, input logic [LVL_W-1:0] k,
+      input logic [CELL_W-1:0] xcx, input logic [CELL_W-1:0] xcy, input logic eqx,
+      input logic eqy, input dir_t sx, input dir_t sy, input logic prev_cross,
+      input logic signed [IDX_W-1:0] p1x_i, input logic signed [IDX_W-1:0] p1y_i);
+    sidx_t cx, cy, nx, ny, p1x, p1y, dfx, dfy;
+    logic  parent_changed, selective_stay, up;
+    cx  = sidx_t'(xcx);
+    cy  = sidx_t'(xcy);
+    nx  = cx + (eqx ? dir_val(sx) : '0);
+    ny  = cy + (eqy ? dir_val(sy) : '0);
+    parent_changed = ((nx >>> 1) != (cx >>> 1)) || ((ny >>> 1) != (cy >>> 1));
+    // selective: P1 (where the ray meets this node's plane), in cells of level k; the ray stays
+    // when P1 is in the very next node: max(|p1x - cx|, |p1y - cy|) == 1
+    p1x = sidx_t'(p1x_i) >>> k;
+    p1y = sidx_t'(p1y_i) >>> k;
+    dfx = (p1x >= cx) ? p1x - cx : cx - p1x;
+    dfy = (p1y >= cy) ? p1y - cy : cy - p1y;
+    selective_stay = (((dfx > dfy) ? dfx : dfy) == sidx_t'(1));
+    up  = (k < n)
+       && ((level_up == UP_TEVS)      ? parent_changed
+         : (level_up == UP_DROBOT)    ? 1'b1
+         : (level_up == UP_SELECTIVE) ? parent_changed && !selective_stay
+         : (level_up == UP_COHERENT)  ? parent_changed && prev_cross
+         :                              1'b0);
+    return '{k: k + LVL_W'(up), cx: CELL_W'(up ? (nx >>> 1) : nx),
+             cy: CELL_W'(up ? (ny >>> 1) : ny), up: up};
+  endfunction
+
+  // Descent: the new level.
+  function automatic logic [LVL_W-1:0] level_descend(
+      input descent_e descent, input logic [1:0] levels, input logic [LVL_W-1:0] k,
+      input logic [CELL_W-1:0] dcx, input logic [CELL_W-1:0] dcy, input logic crossed,
+      input logic signed [IDX_W-1:0] ax_i, input logic signed [IDX_W-1:0] ay_i,
+      input logic signed [IDX_W-1:0] bx_i, input logic signed [IDX_W-1:0] by_i);
+    sidx_t       lox, hix, loy, hiy, ax, bx, ay, by;
+    logic [4:0]  step, nk_multi, bl;
+    lox  = sidx_t'(dcx) <<< k;
+    hix  = ((sidx_t'(dcx) + sidx_t'(1)) <<< k) - sidx_t'(1);
+    loy  = sidx_t'(dcy) <<< k;
+    hiy  = ((sidx_t'(dcy) + sidx_t'(1)) <<< k) - sidx_t'(1);
+    ax   = clip_idx(sidx_t'(ax_i), lox, hix);
+    bx   = clip_idx(sidx_t'(bx_i), lox, hix);
+    ay   = clip_idx(sidx_t'(ay_i), loy, hiy);
+    by   = clip_idx(sidx_t'(by_i), loy, hiy);
+    // bitlen(max(a, b)) = bitlen(a | b): the lowest node holding both ends
+    bl   = bitlen16(16'(ax ^ bx) | 16'(ay ^ by));
+    // (b): `levels` levels per descent until the first crossing, then one (never below 0)
+    step = crossed ? 5'd1 : (k < 4'(levels)) ? 5'(k) : 5'(levels);
+    nk_multi = 5'(k) - step;   // k >= 1 for a descending ray
+    // not a descending ray (k = 0): 0, to keep the level in range
+    return (k == '0)                ? '0
+         : (descent == DESC_MULTI) ? LVL_W'(nk_multi)
+         : (descent == DESC_XOR)   ? LVL_W'((bl < nk_multi) ? bl : nk_multi)
+         :                           k - LVL_W'(1);
+  endfunction
+
 endpackage
