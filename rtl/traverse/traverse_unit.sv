@@ -21,7 +21,8 @@
 // does not count as an iteration.  rs_err_i = 1: the ray finishes with res_err_o = 1.
 //
 // Configuration (cfg_*): static while the unit holds rays (idle_o = 1 to change it) and stable at
-// least 4 clocks before the next ray enters (the clip start time is derived from it).
+// least 5 clocks before the next ray enters (one register stage, which loads while idle_o = 1,
+// then the clip start time is derived from it in 4 more).
 // model/traverse_rtl.py packs it from a Pyramid and a method name.
 module traverse_unit
   import f24_pkg::*;
@@ -89,12 +90,16 @@ module traverse_unit
   localparam int unsigned SF_W  = ID_W + $bits(ray_t);
   localparam int unsigned RF_W  = ID_W + $bits(result_t);
 
-  // One expression (not field by field), so that a simulator can evaluate each field where it is
-  // used.
+  // The configuration register (decoded): it loads while the unit is idle, the only time the
+  // configuration may change, and holds otherwise.
   cfg_t cfg;
-  assign cfg = '{policy: decode_method(cfg_method_i), width: cfg_width_i, height: cfg_height_i,
-                 n: cfg_root_level_i, bits16: cfg_bits16_i, base: cfg_base_i,
-                 level_off: cfg_level_off_i, root_code: cfg_root_code_i, iter_cap: cfg_iter_cap_i};
+  always_ff @(posedge clk_i) begin
+    if (idle_o) begin
+      cfg <= '{policy: decode_method(cfg_method_i), width: cfg_width_i, height: cfg_height_i,
+               n: cfg_root_level_i, bits16: cfg_bits16_i, base: cfg_base_i,
+               level_off: cfg_level_off_i, root_code: cfg_root_code_i, iter_cap: cfg_iter_cap_i};
+    end
+  end
 
   // ---- rays in: credits for setup + setup FIFO ---------------------------------------------
   logic in_fire, out_fire;
