@@ -1,11 +1,18 @@
 // cache_sdp_ram: simple dual-port RAM (one write port, one read port, one clock), synchronous
-// read: rdata_o shows mem[raddr_i] from the clock after re_i (and holds while re_i is 0).
+// read.  A word is LANES lanes of WIDTH / LANES bits: the write port writes whole words, the read
+// port reads one lane, so rdata_o shows lane rlane_i of mem[raddr_i] from the clock after re_i
+// (and holds while re_i is 0).  LANES = 1 is an ordinary RAM (rlane_i is ignored); LANES > 1 a
+// RAM whose read port is narrower than its write port (block RAMs offer such asymmetric ports;
+// the height cache writes whole lines and reads one 16-bit texel word).
 // A read of the address written in the same clock returns the old word in simulation; real RAMs
 // may differ, so the height cache never relies on it (it discards such reads).
 module cache_sdp_ram #(
   parameter int unsigned DEPTH = 64,  // >= 2
-  parameter int unsigned WIDTH = 32,
-  parameter int unsigned AW    = $clog2(DEPTH)
+  parameter int unsigned WIDTH = 32,  // word (write port) width, a multiple of LANES
+  parameter int unsigned LANES = 1,   // lanes per word (a power of two): read width WIDTH / LANES
+  parameter int unsigned AW    = $clog2(DEPTH),
+  parameter int unsigned LW    = WIDTH / LANES,                  // lane (read port) width
+  parameter int unsigned SW    = (LANES > 1) ? $clog2(LANES) : 1  // lane index width
 ) (
   input  logic             clk_i,
   input  logic             we_i,
@@ -13,19 +20,29 @@ module cache_sdp_ram #(
   input  logic [WIDTH-1:0] wdata_i,
   input  logic             re_i,
   input  logic [AW-1:0]    raddr_i,
-  output logic [WIDTH-1:0] rdata_o
+  /* verilator lint_off UNUSEDSIGNAL */  // LANES = 1: no lane to choose
+  input  logic [SW-1:0]    rlane_i = '0,  // lane to read (may be left unconnected when LANES = 1)
+  /* verilator lint_on UNUSEDSIGNAL */
+  output logic [LW-1:0]    rdata_o
 );
 
   if (DEPTH < 2 || AW != $clog2(DEPTH)) begin : g_check
     $error("cache_sdp_ram: DEPTH must be >= 2 and AW = $clog2(DEPTH)");
   end
+  if (LANES < 1 || (1 << $clog2(LANES)) != LANES || LW * LANES != WIDTH
+      || SW != ((LANES > 1) ? $clog2(LANES) : 1)) begin : g_check_lanes
+    $error("cache_sdp_ram: LANES must be a power of two dividing WIDTH (LW, SW derived)");
+  end
 
-  logic [WIDTH-1:0] mem_q [DEPTH];
-  logic [WIDTH-1:0] rdata_q;
+  logic [LANES-1:0][LW-1:0] mem_q [DEPTH];
+  logic [LW-1:0]            rdata_q;
+  logic [SW-1:0]            lane;
+
+  assign lane = (LANES > 1) ? rlane_i : '0;
 
   always_ff @(posedge clk_i) begin
     if (we_i) mem_q[waddr_i] <= wdata_i;
-    if (re_i) rdata_q <= mem_q[raddr_i];
+    if (re_i) rdata_q <= mem_q[raddr_i][lane];
   end
 
   assign rdata_o = rdata_q;

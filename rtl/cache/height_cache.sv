@@ -3,8 +3,9 @@
 //
 // Lookup port: one lookup per clock, fully pipelined, fixed latency cache_pkg::LOOKUP_LAT = 2: the
 // answer to the lookup presented at clock c (lk_valid_i) is on rs_*_o at clock c + 2.
-//   stage 0 (c):     read the tag+data RAM of every way at the set (synchronous read) and the
-//                    set's valid bits; note whether a line fill writes that set in this clock.
+//   stage 0 (c):     read the tag RAM and the texel's word of the data RAM of every way at the
+//                    set (synchronous read) and the set's valid bits; note whether a line fill
+//                    writes that set in this clock.
 //   stage 1 (c + 1): compare tags, select the texel, search the MSHRs; allocate an MSHR on a miss;
 //                    register the answer.
 //   c + 2:           rs_valid_o, rs_hit_o, rs_err_o, rs_data_o.
@@ -13,9 +14,12 @@
 // rs_data_o is 0 when rs_hit_o is 0; rs_hit_o and rs_err_o are 0 when rs_valid_o is 0.
 //
 // Organisation: SETS sets x WAYS ways of LINE_BYTES-byte lines; set index = addr[OFF_W +: SET_W],
-// tag = the bits above.  Per way one simple dual-port RAM (cache_sdp_ram) holds {tag, line}; valid
-// bits and replacement state are flops.  Replacement: an invalid way first (lowest index), else
-// tree pseudo-LRU (WAYS - 1 bits per set; exact LRU for WAYS = 2), updated by hits and fills.
+// tag = the bits above.  Per way two simple dual-port RAMs (cache_sdp_ram): the tags, and the
+// lines, written a whole line at a time and read one 16-bit word (the one holding the texel) at a
+// time; valid bits and replacement state are flops.  Replacement: an invalid way first (lowest
+// index), else tree pseudo-LRU (WAYS - 1 bits per set; exact LRU for WAYS = 2), updated by hits and
+// fills.  The lookup path is plain data flow, nowhere wider than 64 bits: a lookup reads one
+// 16-bit word per way, never a whole line.
 //
 // Misses (stage 1, rs_hit_o = 0):
 //   - the line is already held by an MSHR (being read, or errored): merged, no new read;
@@ -106,7 +110,8 @@ module height_cache
   localparam int unsigned EPOCH_W    = ID_W - MIDX_W;
   localparam int unsigned QCNT_W     = $clog2(MSHRS + 1);
   localparam int unsigned ERRC_W     = $clog2(ERR_HOLD + 1);
-  localparam int unsigned RAM_W      = TAG_W + LINE_W;
+  localparam int unsigned LANES      = LINE_BYTES / 2;           // 16-bit words per line
+  localparam int unsigned LANE_W     = (LANES > 1) ? $clog2(LANES) : 1;
 
   if (LINE_BYTES < 2 || LINE_BYTES > 4096 || (1 << OFF_W) != LINE_BYTES) begin : g_check_line
     $error("height_cache: LINE_BYTES must be a power of two in 2..4096");
@@ -156,7 +161,8 @@ module height_cache
   // Cache directory (flops) and RAM read ports.
   logic [WAYS-1:0]   valid_q [SETS];
   logic [PLRU_W-1:0] plru_q  [SETS];
-  logic [RAM_W-1:0]  ram_rd  [WAYS];
+  logic [TAG_W-1:0]  tag_rd  [WAYS];  // the tag of each way at the looked-up set
+  logic [15:0]       word_rd [WAYS];  // the 16-bit word holding the texel, of each way
 
   // MSHRs.
   mshr_state_e                  mshr_state_q [MSHRS];
@@ -181,7 +187,9 @@ module height_cache
 
   // Pipeline.
   logic              s1_valid_q, s1_wide_q, s1_conflict_q;
+  /* verilator lint_off UNUSEDSIGNAL */  // the word within the line was chosen in stage 0
   logic [ADDR_W-1:0] s1_addr_q;
+  /* verilator lint_on UNUSEDSIGNAL */
   logic [WAYS-1:0]   s1_vbits_q;
   logic              rs_valid_q, rs_hit_q, rs_err_q;
   logic [15:0]       rs_data_q;
@@ -195,12 +203,12 @@ module height_cache
   logic [WAY_W-1:0]  fill_way;
   logic [WAYS-1:0]   fill_vbits;
 
+  assign fill_la    = mshr_la_q[fill_idx_q];
+  assign fill_set   = fill_la[SET_W-1:0];
+  assign fill_tag   = fill_la[LA_W-1:SET_W];
+  assign fill_vbits = valid_q[fill_set];
   always_comb begin
-    fill_la    = mshr_la_q[fill_idx_q];
-    fill_set   = fill_la[SET_W-1:0];
-    fill_tag   = fill_la[LA_W-1:SET_W];
-    fill_vbits = valid_q[fill_set];
-    fill_way   = plru_victim(plru_q[fill_set]);
+    fill_way = plru_victim(plru_q[fill_set]);
     for (int w = WAYS - 1; w >= 0; w--) begin
       if (!fill_vbits[w]) fill_way = WAY_W'(w);  // an invalid way first, the lowest
     end
@@ -211,14 +219,26 @@ module height_cache
   assign lk_set = lk_addr_i[OFF_W +: SET_W];
 
   for (genvar w = 0; w < WAYS; w++) begin : g_way
-    cache_sdp_ram #(.DEPTH(SETS), .WIDTH(RAM_W)) u_ram (
+    logic we;
+    assign we = fill_q && (fill_way == WAY_W'(w));
+    cache_sdp_ram #(.DEPTH(SETS), .WIDTH(TAG_W)) u_tags (
       .clk_i   (clk_i),
-      .we_i    (fill_q && fill_way == WAY_W'(w)),
+      .we_i    (we),
       .waddr_i (fill_set),
-      .wdata_i ({fill_tag, mshr_buf_q[fill_idx_q]}),
+      .wdata_i (fill_tag),
       .re_i    (lk_valid_i),
       .raddr_i (lk_set),
-      .rdata_o (ram_rd[w])
+      .rdata_o (tag_rd[w])
+    );
+    cache_sdp_ram #(.DEPTH(SETS), .WIDTH(LINE_W), .LANES(LANES)) u_lines (
+      .clk_i   (clk_i),
+      .we_i    (we),
+      .waddr_i (fill_set),
+      .wdata_i (mshr_buf_q[fill_idx_q]),
+      .re_i    (lk_valid_i),
+      .raddr_i (lk_set),
+      .rlane_i (LANE_W'(lk_addr_i[OFF_W-1:0] >> 1)),  // the 16-bit word holding the texel
+      .rdata_o (word_rd[w])
     );
   end
 
@@ -242,50 +262,52 @@ module height_cache
   logic [LA_W-1:0]   s1_la;
   logic [WAYS-1:0]   way_hit;
   logic [WAY_W-1:0]  hit_way;
-  logic [LINE_W-1:0] hit_line;
-  logic [15:0]       hit_shift;  // the 16 bits from the texel's byte on
+  logic [15:0]       hit_word;  // the texel's word, ORed over the ways that hit (at most one)
   logic              s1_hit, s1_err, s1_alloc, free_any;
   logic [15:0]       s1_data;
-  logic [MSHRS-1:0]  mshr_match, mshr_busy;
+  logic [MSHRS-1:0]  mshr_match, mshr_busy, mshr_err;
   logic [MIDX_W-1:0] alloc_idx;
 
+  assign s1_set = s1_addr_q[OFF_W +: SET_W];
+  assign s1_tag = s1_addr_q[ADDR_W-1 -: TAG_W];
+  assign s1_la  = s1_addr_q[ADDR_W-1:OFF_W];
+
+  for (genvar w = 0; w < WAYS; w++) begin : g_hit
+    assign way_hit[w] = s1_vbits_q[w] && (tag_rd[w] == s1_tag);
+  end
+
   always_comb begin
-    s1_set   = s1_addr_q[OFF_W +: SET_W];
-    s1_tag   = s1_addr_q[ADDR_W-1 -: TAG_W];
-    s1_la    = s1_addr_q[ADDR_W-1:OFF_W];
-    hit_line = '0;
+    hit_word = '0;
     hit_way  = '0;
     for (int w = 0; w < WAYS; w++) begin
-      way_hit[w] = s1_vbits_q[w] && (ram_rd[w][RAM_W-1 -: TAG_W] == s1_tag);
-      if (way_hit[w]) begin
-        hit_line = hit_line | ram_rd[w][LINE_W-1:0];
-        hit_way  = WAY_W'(w);
-      end
+      hit_word = hit_word | (way_hit[w] ? word_rd[w] : 16'h0000);
+      if (way_hit[w]) hit_way = WAY_W'(w);
     end
-    s1_hit = s1_valid_q && !s1_conflict_q && (|way_hit);
-    if (s1_wide_q) begin
-      hit_shift = 16'(hit_line >> {s1_addr_q[OFF_W-1:1], 4'b0000});
-      s1_data   = hit_shift[15:0];
-    end else begin
-      hit_shift = 16'(hit_line >> {s1_addr_q[OFF_W-1:0], 3'b000});
-      s1_data   = {8'h00, hit_shift[7:0]};
-    end
+  end
 
-    s1_err    = 1'b0;
+  assign s1_hit  = s1_valid_q && !s1_conflict_q && (|way_hit);
+  // 16-bit texel: the word; 8-bit texel: its byte of the word.
+  assign s1_data = s1_wide_q ? hit_word : {8'h00, s1_addr_q[0] ? hit_word[15:8] : hit_word[7:0]};
+
+  for (genvar i = 0; i < MSHRS; i++) begin : g_search
+    assign mshr_busy[i]  = (mshr_state_q[i] != MSHR_FREE);
+    assign mshr_match[i] = mshr_busy[i] && (mshr_la_q[i] == s1_la);
+    assign mshr_err[i]   = mshr_match[i] && (mshr_state_q[i] == MSHR_ERR);
+  end
+
+  always_comb begin
     free_any  = 1'b0;
     alloc_idx = '0;
     for (int i = MSHRS - 1; i >= 0; i--) begin
-      mshr_busy[i]  = (mshr_state_q[i] != MSHR_FREE);
-      mshr_match[i] = mshr_busy[i] && (mshr_la_q[i] == s1_la);
-      if (mshr_match[i] && mshr_state_q[i] == MSHR_ERR) s1_err = 1'b1;
       if (!mshr_busy[i]) begin
         free_any  = 1'b1;
         alloc_idx = MIDX_W'(i);  // the lowest free MSHR
       end
     end
-    s1_err   = s1_valid_q && !s1_hit && s1_err;
-    s1_alloc = s1_valid_q && !s1_conflict_q && !(|way_hit) && !(|mshr_match) && free_any;
   end
+
+  assign s1_err   = s1_valid_q && !s1_hit && (|mshr_err);
+  assign s1_alloc = s1_valid_q && !s1_conflict_q && !(|way_hit) && !(|mshr_match) && free_any;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -307,12 +329,12 @@ module height_cache
   assign rs_data_o  = rs_data_q;
 
   // ---------------------------------------------------------------- directory update
-  logic [PLRU_W-1:0] plru_fill_base;
-
-  always_comb begin
-    plru_fill_base = plru_q[fill_set];
-    if (s1_hit && s1_set == fill_set) plru_fill_base = plru_touch(plru_q[s1_set], hit_way);
-  end
+  // A hit marks its way most recently used; a fill (after the hit, on the same set) marks the
+  // filled way.
+  logic [PLRU_W-1:0] plru_hit, plru_fill;
+  assign plru_hit  = plru_touch(plru_q[s1_set], hit_way);
+  assign plru_fill = plru_touch((s1_hit && s1_set == fill_set) ? plru_hit : plru_q[fill_set],
+                                fill_way);
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -321,9 +343,9 @@ module height_cache
         plru_q[s]  <= '0;
       end
     end else begin
-      if (s1_hit) plru_q[s1_set] <= plru_touch(plru_q[s1_set], hit_way);
+      if (s1_hit) plru_q[s1_set] <= plru_hit;
       if (fill_q) begin  // after the hit update: the filled way is the most recently used
-        plru_q[fill_set]            <= plru_touch(plru_fill_base, fill_way);
+        plru_q[fill_set]            <= plru_fill;
         valid_q[fill_set][fill_way] <= 1'b1;
       end
     end
@@ -334,14 +356,12 @@ module height_cache
   logic [EPOCH_W-1:0] r_epoch;
   logic               r_acc, r_last_beat, r_bad;
 
-  always_comb begin
-    r_idx       = m_axi_rid[MIDX_W-1:0];
-    r_epoch     = m_axi_rid[ID_W-1:MIDX_W];
-    r_acc       = m_axi_rvalid && (r_epoch == epoch_q) && (32'(r_idx) < MSHRS)
-                  && (mshr_state_q[r_idx] == MSHR_WAIT);
-    r_last_beat = (mshr_beat_q[r_idx] == BEAT_W'(BEATS - 1));
-    r_bad       = m_axi_rresp[1] || mshr_rerr_q[r_idx];  // SLVERR / DECERR now or earlier
-  end
+  assign r_idx       = m_axi_rid[MIDX_W-1:0];
+  assign r_epoch     = m_axi_rid[ID_W-1:MIDX_W];
+  assign r_acc       = m_axi_rvalid && (r_epoch == epoch_q) && (32'(r_idx) < MSHRS)
+                       && (mshr_state_q[r_idx] == MSHR_WAIT);
+  assign r_last_beat = (mshr_beat_q[r_idx] == BEAT_W'(BEATS - 1));
+  assign r_bad       = m_axi_rresp[1] || mshr_rerr_q[r_idx];  // SLVERR / DECERR now or earlier
 
   assign m_axi_rready = 1'b1;
 

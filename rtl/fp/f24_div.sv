@@ -15,29 +15,35 @@ module f24_div
 
   localparam int unsigned Q_W = SIG_W + 2;  // quotient bits: 17 + guard + one for ma < mb
 
+  // Each stage is a function of its inputs, evaluated where its register is enabled (so a
+  // simulator evaluates a stage only in the clocks it advances; the hardware is the same).
+
   // ---- stage 1: classify, exponent, significand quotient ---------------------------------------
-  logic        a_zero, b_zero;  // exponent 0: +-0 (subnormal patterns read as zero)
-  logic        a_spec, b_spec;  // exponent 127: Inf or NaN
-  logic        any_nan;
-  logic [16:0] ma, mb;          // significands with the hidden one, value in [2^16, 2^17)
-  logic [17:0] rem;             // partial remainder, always < 2 * mb
-  logic [Q_W-1:0] quo;          // floor(ma * 2^18 / mb), in [2^17, 2^19)
+  typedef struct packed {
+    logic               spec;    // result is a special (spec_y)
+    f24_t               spec_y;
+    logic               s;
+    logic signed [11:0] e;       // biased exponent of a quotient in [1, 2)
+    logic [Q_W-1:0]     quo;     // floor(ma * 2^18 / mb), in [2^17, 2^19)
+    logic               rem_nz;  // the final remainder is not zero
+  } quot_t;
 
-  logic                 spec_d, spec_q;  // result is a special (y_spec)
-  f24_t                 y_spec_d, y_spec_q;
-  logic                 s_d, s_q;
-  logic signed [11:0]   e_d, e_q;        // biased exponent of a quotient in [1, 2)
-  logic [Q_W-1:0]       quo_d, quo_q;
-  logic                 rem_nz_d, rem_nz_q;
-
-  always_comb begin
-    a_zero  = (a_i[22:16] == 7'd0);
-    b_zero  = (b_i[22:16] == 7'd0);
-    a_spec  = (a_i[22:16] == EXP_SPEC);
-    b_spec  = (b_i[22:16] == EXP_SPEC);
-    any_nan = (a_spec && a_i[15:0] != 16'd0) || (b_spec && b_i[15:0] != 16'd0);
-    ma      = {1'b1, a_i[15:0]};
-    mb      = {1'b1, b_i[15:0]};
+  function automatic quot_t div_quot(input f24_t a, input f24_t b);
+    logic           a_zero, b_zero;  // exponent 0: +-0 (subnormal patterns read as zero)
+    logic           a_spec, b_spec;  // exponent 127: Inf or NaN
+    logic           any_nan;
+    logic           s;
+    logic [16:0]    ma, mb;          // significands with the hidden one, value in [2^16, 2^17)
+    logic [17:0]    rem;             // partial remainder, always < 2 * mb
+    logic [Q_W-1:0] quo;
+    a_zero  = (a[22:16] == 7'd0);
+    b_zero  = (b[22:16] == 7'd0);
+    a_spec  = (a[22:16] == EXP_SPEC);
+    b_spec  = (b[22:16] == EXP_SPEC);
+    any_nan = (a_spec && a[15:0] != 16'd0) || (b_spec && b[15:0] != 16'd0);
+    s       = a[23] ^ b[23];
+    ma      = {1'b1, a[15:0]};
+    mb      = {1'b1, b[15:0]};
 
     // Restoring division: one quotient bit per step, most significant first.  ma < 2 * mb, so
     // the first bit is ma >= mb and every later remainder stays below 2 * mb (18 bits).
@@ -51,47 +57,37 @@ module f24_div
       if (i != 0) rem = {rem[16:0], 1'b0};
     end
 
-    s_d      = a_i[23] ^ b_i[23];
-    e_d      = $signed({5'd0, a_i[22:16]}) - $signed({5'd0, b_i[22:16]}) + 12'sd63;
-    quo_d    = quo;
-    rem_nz_d = (rem != 18'd0);
-
     // NaN for a NaN operand, 0/0 or Inf/Inf; Inf for Inf/finite or finite/0; zero for 0/finite
     // or finite/Inf.
-    spec_d   = a_spec || b_spec || a_zero || b_zero;
-    y_spec_d = (any_nan || (a_zero && b_zero) || (a_spec && b_spec)) ? F24_NAN
-             : (a_spec || b_zero)                                    ? {s_d, EXP_SPEC, 16'd0}
-             :                                                         {s_d, 23'd0};
-  end
+    return '{spec:   a_spec || b_spec || a_zero || b_zero,
+             spec_y: (any_nan || (a_zero && b_zero) || (a_spec && b_spec)) ? F24_NAN
+                   : (a_spec || b_zero)                                    ? {s, EXP_SPEC, 16'd0}
+                   :                                                         {s, 23'd0},
+             s:      s,
+             e:      $signed({5'd0, a[22:16]}) - $signed({5'd0, b[22:16]}) + 12'sd63,
+             quo:    quo,
+             rem_nz: (rem != 18'd0)};
+  endfunction
+
+  // ---- stage 2: normalise, round, pack ---------------------------------------------------------
+  function automatic f24_t div_round(input quot_t q);
+    logic [Q_W-1:0]     norm;   // q.quo with its leading one at the top bit
+    logic signed [11:0] e;
+    // ma >= mb: quotient in [1, 2), leading one at the top bit.  ma < mb: quotient in (1/2, 1),
+    // shifted up by one (its last bit, and the remainder, go to the sticky bit).
+    norm = q.quo << !q.quo[Q_W-1];
+    e    = q.e - $signed({11'd0, !q.quo[Q_W-1]});
+    return q.spec ? q.spec_y : f24_round_pack(q.s, e, norm[Q_W-1:2], norm[1], norm[0] | q.rem_nz);
+  endfunction
+
+  quot_t s1_q;
+  f24_t  y_q;
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
-      spec_q   <= spec_d;
-      y_spec_q <= y_spec_d;
-      s_q      <= s_d;
-      e_q      <= e_d;
-      quo_q    <= quo_d;
-      rem_nz_q <= rem_nz_d;
+      s1_q <= div_quot(a_i, b_i);
+      y_q  <= div_round(s1_q);
     end
-  end
-
-  // ---- stage 2: normalise, round, pack ---------------------------------------------------------
-  logic [Q_W-1:0]     norm;   // quo_q with its leading one at the top bit
-  logic signed [11:0] e;
-  f24_t               y_rnd;  // the rounded quotient of two finite nonzero operands
-  f24_t               y_d, y_q;
-
-  always_comb begin
-    // ma >= mb: quotient in [1, 2), leading one at the top bit.  ma < mb: quotient in (1/2, 1),
-    // shifted up by one (its last bit, and the remainder, go to the sticky bit).
-    norm  = quo_q << !quo_q[Q_W-1];
-    e     = e_q - $signed({11'd0, !quo_q[Q_W-1]});
-    y_rnd = f24_round_pack(s_q, e, norm[Q_W-1:2], norm[1], norm[0] | rem_nz_q);
-    y_d   = spec_q ? y_spec_q : y_rnd;
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (en_i) y_q <= y_d;
   end
 
   assign y_o = y_q;

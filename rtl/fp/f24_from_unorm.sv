@@ -23,22 +23,22 @@ module f24_from_unorm
   localparam int unsigned REP   = (W + 17 + W - 1) / W;   // copies: lz + 1 + 17 + guard <= W + 17
   localparam int unsigned REP_W = REP * W;
 
-  logic [4:0]         lz;     // leading zeros of k (garbage for k = 0, which is not used)
-  logic [REP_W-1:0]   rep;    // k repeated, then shifted so the leading one is the top bit
-  logic signed [11:0] e;      // biased exponent: k / (2^W - 1) in [2^-(lz+1), 2^-lz)
-  f24_t               y_rnd;  // the rounded nonzero value
-  f24_t               y_d, y_q;
+  // The conversion as a function of k, evaluated where the output register is enabled (a
+  // simulator evaluates it only in the clocks the unit advances; the hardware is the same).
+  function automatic f24_t from_unorm(input logic [W-1:0] k);
+    logic [4:0]         lz;     // leading zeros of k (garbage for k = 0, which is not used)
+    logic [REP_W-1:0]   rep;    // k repeated, then shifted so the leading one is the top bit
+    logic signed [11:0] e;      // biased exponent: k / (2^W - 1) in [2^-(lz+1), 2^-lz)
+    lz  = f24_clz32({k, {(32 - W){1'b0}}});
+    rep = {REP{k}} << lz;
+    e   = 12'sd62 - $signed({7'd0, lz});
+    return (k == '0) ? '0 : f24_round_pack(1'b0, e, rep[REP_W-1 -: 17], rep[REP_W-18], 1'b1);
+  endfunction
 
-  always_comb begin
-    lz    = f24_clz32({k_i, {(32 - W){1'b0}}});
-    rep   = {REP{k_i}} << lz;
-    e     = 12'sd62 - $signed({7'd0, lz});
-    y_rnd = f24_round_pack(1'b0, e, rep[REP_W-1 -: 17], rep[REP_W-18], 1'b1);
-    y_d   = (k_i == '0) ? '0 : y_rnd;  // 0 gives +0
-  end
+  f24_t y_q;
 
   always_ff @(posedge clk_i) begin
-    if (en_i) y_q <= y_d;
+    if (en_i) y_q <= from_unorm(k_i);
   end
 
   assign y_o = y_q;

@@ -24,39 +24,39 @@ module f24_to_index
   localparam logic signed [W-1:0] IDX_MIN = {1'b1, {(W-1){1'b0}}};  // -2^(W-1)
   localparam logic [6:0]          E_SAT   = 7'(63 + W - 1);          // biased exponent of 2^(W-1)
 
-  logic               s;
-  logic [6:0]         ea;       // biased exponent
-  logic [FW-1:0]      fix;      // |a| in fixed point with 16 fraction bits (see below)
-  logic signed [W-1:0] idx_d, idx_q;
-  logic               sat_d, sat_q;
+  typedef struct packed {
+    logic signed [W-1:0] idx;
+    logic                sat;
+  } index_t;
 
-  always_comb begin
-    s  = a_i[23];
-    ea = a_i[22:16];
+  // The conversion as a function of a, evaluated where the output registers are enabled (a
+  // simulator evaluates it only in the clocks the unit advances; the hardware is the same).
+  function automatic index_t to_index(input f24_t a);
+    logic          s;
+    logic [6:0]    ea;       // biased exponent
+    logic [FW-1:0] fix;      // |a| in fixed point with 16 fraction bits (see below)
+    s  = a[23];
+    ea = a[22:16];
     // |a| * 2^16, exact for 1 <= |a| < 2^(W-1) (shift 0 .. W-2; larger exponents saturate below).
     // For 0 < |a| < 1 every fixed-point value in (0, 2^16) has the same floor (0, or -1 when
     // negated), so 1 stands for all of them.  Zeros give 0.
-    fix = (ea >= 7'd63) ? FW'({1'b1, a_i[15:0]}) << 6'(ea - 7'd63) : FW'(ea != 7'd0);
+    fix = (ea >= 7'd63) ? FW'({1'b1, a[15:0]}) << 6'(ea - 7'd63) : FW'(ea != 7'd0);
     // |a| >= 2^(W-1), Inf or NaN: saturate; only exactly -2^(W-1) is in range; NaN gives 0.
-    if (ea >= E_SAT) begin
-      idx_d = (ea == EXP_SPEC && a_i[15:0] != 16'd0) ? '0 : (s ? IDX_MIN : IDX_MAX);
-      sat_d = !(s && ea == E_SAT && a_i[15:0] == 16'd0);
-    end else begin
-      // floor(a): the two's complement fixed-point value without its 16 fraction bits (dropping
-      // them rounds toward minus infinity): -1.5 -> -2, -1.0 -> -1, -0.5 -> -1.
-      idx_d = $signed(W'((s ? -{1'b0, fix} : {1'b0, fix}) >> 16));
-      sat_d = 1'b0;
-    end
-  end
+    // Else floor(a): the two's complement fixed-point value without its 16 fraction bits
+    // (dropping them rounds toward minus infinity): -1.5 -> -2, -1.0 -> -1, -0.5 -> -1.
+    return (ea >= E_SAT)
+        ? '{idx: (ea == EXP_SPEC && a[15:0] != 16'd0) ? '0 : (s ? IDX_MIN : IDX_MAX),
+            sat: !(s && ea == E_SAT && a[15:0] == 16'd0)}
+        : '{idx: $signed(W'((s ? -{1'b0, fix} : {1'b0, fix}) >> 16)), sat: 1'b0};
+  endfunction
+
+  index_t q;
 
   always_ff @(posedge clk_i) begin
-    if (en_i) begin
-      idx_q <= idx_d;
-      sat_q <= sat_d;
-    end
+    if (en_i) q <= to_index(a_i);
   end
 
-  assign idx_o = idx_q;
-  assign sat_o = sat_q;
+  assign idx_o = q.idx;
+  assign sat_o = q.sat;
 
 endmodule

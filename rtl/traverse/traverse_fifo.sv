@@ -1,7 +1,8 @@
 // traverse_fifo: synchronous FIFO of W-bit words, DEPTH entries (a power of two), first-word
 // fall-through (the head is visible on rd_data_o while empty_o is 0).  Write and read may happen
-// in the same clock (a write needs full_o = 0 even then).  Writing while full and reading while empty are errors (asserted), never
-// silently dropped or repeated: the users check full_o / empty_o first.
+// in the same clock (a write needs full_o = 0 even then).  Writing while full and reading while
+// empty are errors (asserted), never silently dropped or repeated: the users check full_o /
+// empty_o first.
 module traverse_fifo #(
   parameter int unsigned W     = 8,
   parameter int unsigned DEPTH = 16   // power of two, >= 2

@@ -1,5 +1,8 @@
-// traverse_level_decide: the level decisions of the second mode, purely combinational.  Two
-// independent parts, fed by two stages of traverse_loop:
+// traverse_level_decide: the level decisions of the second mode, purely combinational: the
+// functions traverse_pkg::level_cross and level_descend as a module (their unit test's form;
+// traverse_loop calls the functions where it registers their results, so that a simulator
+// evaluates them only for the passes that use them).  Two independent parts, for two stages of
+// traverse_loop:
 //
 // Crossing (stage S10), mirrors model/traverse.py::crossing_step (the "Node crossing" block of
 // _trace): the neighbour n = c + (s where this axis's exit time is the node's exit time, else 0),
@@ -51,63 +54,16 @@ module traverse_level_decide
   output logic [LVL_W-1:0]        dk_o            // new level
 );
 
-  // ---- crossing ------------------------------------------------------------------------------
-  sidx_t cx, cy, nx, ny, p1x, p1y, dfx, dfy, diff;
-  logic  parent_changed, up;
-  always_comb begin
-    cx   = sidx_t'(xcx_i);
-    cy   = sidx_t'(xcy_i);
-    nx   = cx + (eqx_i ? dir_val(sx_i) : '0);
-    ny   = cy + (eqy_i ? dir_val(sy_i) : '0);
-    parent_changed = ((nx >>> 1) != (cx >>> 1)) || ((ny >>> 1) != (cy >>> 1));
-    // selective: P1 (where the ray meets this node's plane), in cells of level k
-    p1x  = sidx_t'(p1x_i) >>> xk_i;
-    p1y  = sidx_t'(p1y_i) >>> xk_i;
-    dfx  = (p1x >= cx) ? p1x - cx : cx - p1x;
-    dfy  = (p1y >= cy) ? p1y - cy : cy - p1y;
-    diff = (dfx > dfy) ? dfx : dfy;
-    case (level_up_i)
-      UP_TEVS:      up = parent_changed;
-      UP_DROBOT:    up = 1'b1;
-      UP_SELECTIVE: up = parent_changed && (diff != sidx_t'(1));
-      UP_COHERENT:  up = parent_changed && prev_cross_i;
-      default:      up = 1'b0;
-    endcase
-    up    = up && (xk_i < n_i);
-    up_o  = up;
-    xk_o  = xk_i + LVL_W'(up);
-    xcx_o = CELL_W'(up ? (nx >>> 1) : nx);
-    xcy_o = CELL_W'(up ? (ny >>> 1) : ny);
-  end
-
-  // ---- descent -------------------------------------------------------------------------------
-  sidx_t       lox, hix, loy, hiy, ax, bx, ay, by;
-  logic [15:0] xr;
-  logic [4:0]  step, nk_multi, bl;
-  logic [LVL_W-1:0] nk_xor;
-  always_comb begin
-    lox  = sidx_t'(dcx_i) <<< dk_i;
-    hix  = ((sidx_t'(dcx_i) + sidx_t'(1)) <<< dk_i) - sidx_t'(1);
-    loy  = sidx_t'(dcy_i) <<< dk_i;
-    hiy  = ((sidx_t'(dcy_i) + sidx_t'(1)) <<< dk_i) - sidx_t'(1);
-    ax   = clip_idx(sidx_t'(ax_i), lox, hix);
-    bx   = clip_idx(sidx_t'(bx_i), lox, hix);
-    ay   = clip_idx(sidx_t'(ay_i), loy, hiy);
-    by   = clip_idx(sidx_t'(by_i), loy, hiy);
-    xr   = (16'(ax ^ bx) > 16'(ay ^ by)) ? 16'(ax ^ bx) : 16'(ay ^ by);
-    // (b): `levels` levels per descent until the first crossing, then one (never below 0)
-    if (crossed_i)                    step = 5'd1;
-    else if (dk_i < 4'(levels_i))     step = 5'(dk_i);
-    else                              step = 5'(levels_i);
-    nk_multi = 5'(dk_i) - step;       // k >= 1 for a descending ray
-    bl       = bitlen16(xr);
-    nk_xor   = LVL_W'((bl < nk_multi) ? bl : nk_multi);  // the lowest node holding the rest
-    case (descent_i)
-      DESC_MULTI: dk_o = LVL_W'(nk_multi);
-      DESC_XOR:   dk_o = nk_xor;
-      default:    dk_o = dk_i - LVL_W'(1);
-    endcase
-    if (dk_i == '0) dk_o = '0;        // not a descending ray: keep in range
-  end
+  // The logic is traverse_pkg::level_cross and level_descend (traverse_loop calls them where it
+  // registers their results); this module is their combinational form.
+  cross_node_t x;
+  assign x     = level_cross(level_up_i, n_i, xk_i, xcx_i, xcy_i, eqx_i, eqy_i, sx_i, sy_i,
+                             prev_cross_i, p1x_i, p1y_i);
+  assign xk_o  = x.k;
+  assign xcx_o = x.cx;
+  assign xcy_o = x.cy;
+  assign up_o  = x.up;
+  assign dk_o  = level_descend(descent_i, levels_i, dk_i, dcx_i, dcy_i, crossed_i, ax_i, ay_i,
+                               bx_i, by_i);
 
 endmodule

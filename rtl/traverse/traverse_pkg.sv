@@ -4,8 +4,8 @@
 // invalid, iterations, bit for bit).  This package holds what its two modes share:
 //   - the method codes (index in model.traverse.EXACT_METHODS) and their decoding into the policy
 //     bits of model.traverse.Method (start level, descent, level-up, clip);
-//   - the ray record that re-circulates in the loop (per-ray constants of the first mode and the
-//     traversal state of the second);
+//   - the ray record setup hands to the loop (per-ray constants of the first mode and the initial
+//     traversal state of the second) and the result record;
 //   - comparisons, min and max of f24 words with the model's (numpy float64) semantics.
 package traverse_pkg;
 
@@ -106,9 +106,9 @@ package traverse_pkg;
     logic neg;  // ... towards -u (only meaningful when mv)
   } dir_t;
 
-  // One ray: what setup computes once, and the state of the iterative search.  When the ray is
-  // done with a hit, t holds the hit time and u0 / v0 hold the hit position u / v (the constants
-  // are no longer needed then): the result record is read straight from the ray.
+  // One ray as setup hands it to the loop: what setup computes once, and the initial state of the
+  // iterative search (traverse_loop keeps the fields in its slot table; there, once the ray is
+  // done with a hit, t holds the hit time and u0 / v0 hold the hit position u / v).
   typedef struct packed {
     // per-ray constants (first mode)
     f24_t u0, v0, du, dv;
@@ -137,17 +137,14 @@ package traverse_pkg;
     logic [ITER_W-1:0] iters;
   } result_t;
 
-  // The functions below read only the fields / bits they need.
-  /* verilator lint_off UNUSEDSIGNAL */
-  function automatic result_t ray_result(input ray_t r);
-    return '{t: r.t, u: r.u0, v: r.v0, hit: r.hit, invalid: r.invalid, capped: r.capped,
-             err: r.err, iters: r.iters};
-  endfunction
-
   // ---- f24 comparisons with float semantics (NaN compares false, -0 == +0) -------------------
-  // Bit-identical to f24_cmp: an order-preserving key with all zeros mapped to one key.
+  // Bit-identical to f24_cmp: an order-preserving key with all zeros mapped to one key.  Every
+  // helper is one flat expression (no if / else), which simulators evaluate as plain data flow;
+  // a value compared several times is converted to its f24_ord_t once (f24_ord) and the ord_*
+  // helpers compare those.  The functions below read only the fields / bits they need.
+  /* verilator lint_off UNUSEDSIGNAL */
   function automatic logic f24_is_nan(input f24_t x);
-    return (x[22:16] == EXP_SPEC) && (x[15:0] != 16'd0);
+    return x[22:0] > 23'h7f0000;     // exponent 127 with a nonzero fraction
   endfunction
 
   function automatic logic f24_is_zero(input f24_t x);
@@ -158,31 +155,56 @@ package traverse_pkg;
     return x[22:16] != EXP_SPEC;
   endfunction
 
-  function automatic logic [23:0] f24_key(input f24_t x);
-    if (f24_is_zero(x)) return 24'h800000;
-    return x[23] ? (24'h800000 - {1'b0, x[22:0]}) : (24'h800000 + {1'b0, x[22:0]});
+  // A value in integer-comparable form: positives above 2^23 (magnitude added), negatives below
+  // it (magnitude inverted), every zero (exponent 0) exactly 2^23; NaN is flagged (its key is
+  // never looked at).
+  typedef struct packed {
+    logic        nan;
+    logic [23:0] key;
+  } f24_ord_t;
+
+  function automatic f24_ord_t f24_ord(input f24_t x);
+    return '{nan: f24_is_nan(x),
+             key: f24_is_zero(x) ? 24'h800000 : {!x[23], x[22:0] ^ {23{x[23]}}}};
+  endfunction
+
+  function automatic logic ord_lt(input f24_ord_t a, input f24_ord_t b);
+    return !a.nan && !b.nan && (a.key < b.key);
+  endfunction
+
+  function automatic logic ord_le(input f24_ord_t a, input f24_ord_t b);
+    return !a.nan && !b.nan && (a.key <= b.key);
+  endfunction
+
+  function automatic logic ord_eq(input f24_ord_t a, input f24_ord_t b);
+    return !a.nan && !b.nan && (a.key == b.key);
   endfunction
 
   function automatic logic f24_lt(input f24_t a, input f24_t b);
-    return !f24_is_nan(a) && !f24_is_nan(b) && (f24_key(a) < f24_key(b));
+    return ord_lt(f24_ord(a), f24_ord(b));
   endfunction
 
   function automatic logic f24_le(input f24_t a, input f24_t b);
-    return !f24_is_nan(a) && !f24_is_nan(b) && (f24_key(a) <= f24_key(b));
-  endfunction
-
-  function automatic logic f24_eq(input f24_t a, input f24_t b);
-    return !f24_is_nan(a) && !f24_is_nan(b) && (f24_key(a) == f24_key(b));
+    return ord_le(f24_ord(a), f24_ord(b));
   endfunction
 
   // numpy.minimum / numpy.maximum on float64 (what the model uses): a NaN operand gives NaN, and
-  // equal operands (+0 and -0 in particular) give the second one.
+  // equal operands (+0 and -0 in particular) give the second one.  These say whether the result
+  // is the first operand.
+  function automatic logic ord_min_first(input f24_ord_t a, input f24_ord_t b);
+    return a.nan || ord_lt(a, b);
+  endfunction
+
+  function automatic logic ord_max_first(input f24_ord_t a, input f24_ord_t b);
+    return a.nan || ord_lt(b, a);
+  endfunction
+
   function automatic f24_t f24_min(input f24_t a, input f24_t b);
-    return (f24_is_nan(a) || f24_lt(a, b)) ? a : b;
+    return ord_min_first(f24_ord(a), f24_ord(b)) ? a : b;
   endfunction
 
   function automatic f24_t f24_max(input f24_t a, input f24_t b);
-    return (f24_is_nan(a) || f24_lt(b, a)) ? a : b;
+    return ord_max_first(f24_ord(a), f24_ord(b)) ? a : b;
   endfunction
 
   function automatic f24_t f24_neg(input f24_t a);
@@ -191,28 +213,90 @@ package traverse_pkg;
   /* verilator lint_on UNUSEDSIGNAL */
 
   // ---- integer helpers -----------------------------------------------------------------------
-  // Number of significant bits of a non-negative value (0 -> 0): "levels minus leading zeros".
+  // Number of significant bits of a non-negative value (0 -> 0): "levels minus leading zeros",
+  // from the log-depth leading-zero count of f24_pkg.
   function automatic logic [4:0] bitlen16(input logic [15:0] x);
-    logic [4:0] r;
-    r = 5'd0;
-    for (int i = 0; i < 16; i++) begin
-      if (x[i]) r = 5'(i + 1);
-    end
-    return r;
+    logic [4:0] lz;  // leading zeros of x (0 .. 15 when x != 0)
+    lz = f24_clz32({x, 16'd0});
+    return (x == 16'd0) ? 5'd0 : 5'd16 - lz;
   endfunction
 
   typedef logic signed [IDX_W+1:0] sidx_t;  // signed texel / cell arithmetic (22 bits)
 
   function automatic sidx_t clip_idx(input sidx_t x, input sidx_t lo, input sidx_t hi);
-    if (x < lo) return lo;
-    if (x > hi) return hi;
-    return x;
+    return (x < lo) ? lo : (x > hi) ? hi : x;
   endfunction
 
-  // s of the model as an integer: +1, -1 or 0.
+  // s of the model as an integer: +1, -1 or 0 (all ones for -1).
   function automatic sidx_t dir_val(input dir_t s);
-    if (!s.mv) return '0;
-    return s.neg ? -sidx_t'(1) : sidx_t'(1);
+    return {{(IDX_W+1){s.mv && s.neg}}, s.mv};
+  endfunction
+
+
+  // ---- level decisions of the second mode (traverse_level_decide has the full description) ---
+  // Crossing: the neighbour cell and the level-up policy; the new node and whether it went up.
+  typedef struct packed {
+    logic [LVL_W-1:0]  k;   // new level
+    logic [CELL_W-1:0] cx;  // new cell at the new level
+    logic [CELL_W-1:0] cy;
+    logic              up;  // the crossing went up a level
+  } cross_node_t;
+
+  function automatic cross_node_t level_cross(
+      input level_up_e level_up, input logic [LVL_W-1:0] n, input logic [LVL_W-1:0] k,
+      input logic [CELL_W-1:0] xcx, input logic [CELL_W-1:0] xcy, input logic eqx,
+      input logic eqy, input dir_t sx, input dir_t sy, input logic prev_cross,
+      input logic signed [IDX_W-1:0] p1x_i, input logic signed [IDX_W-1:0] p1y_i);
+    sidx_t cx, cy, nx, ny, p1x, p1y, dfx, dfy;
+    logic  parent_changed, selective_stay, up;
+    cx  = sidx_t'(xcx);
+    cy  = sidx_t'(xcy);
+    nx  = cx + (eqx ? dir_val(sx) : '0);
+    ny  = cy + (eqy ? dir_val(sy) : '0);
+    parent_changed = ((nx >>> 1) != (cx >>> 1)) || ((ny >>> 1) != (cy >>> 1));
+    // selective: P1 (where the ray meets this node's plane), in cells of level k; the ray stays
+    // when P1 is in the very next node: max(|p1x - cx|, |p1y - cy|) == 1
+    p1x = sidx_t'(p1x_i) >>> k;
+    p1y = sidx_t'(p1y_i) >>> k;
+    dfx = (p1x >= cx) ? p1x - cx : cx - p1x;
+    dfy = (p1y >= cy) ? p1y - cy : cy - p1y;
+    selective_stay = (((dfx > dfy) ? dfx : dfy) == sidx_t'(1));
+    up  = (k < n)
+       && ((level_up == UP_TEVS)      ? parent_changed
+         : (level_up == UP_DROBOT)    ? 1'b1
+         : (level_up == UP_SELECTIVE) ? parent_changed && !selective_stay
+         : (level_up == UP_COHERENT)  ? parent_changed && prev_cross
+         :                              1'b0);
+    return '{k: k + LVL_W'(up), cx: CELL_W'(up ? (nx >>> 1) : nx),
+             cy: CELL_W'(up ? (ny >>> 1) : ny), up: up};
+  endfunction
+
+  // Descent: the new level.
+  function automatic logic [LVL_W-1:0] level_descend(
+      input descent_e descent, input logic [1:0] levels, input logic [LVL_W-1:0] k,
+      input logic [CELL_W-1:0] dcx, input logic [CELL_W-1:0] dcy, input logic crossed,
+      input logic signed [IDX_W-1:0] ax_i, input logic signed [IDX_W-1:0] ay_i,
+      input logic signed [IDX_W-1:0] bx_i, input logic signed [IDX_W-1:0] by_i);
+    sidx_t       lox, hix, loy, hiy, ax, bx, ay, by;
+    logic [4:0]  step, nk_multi, bl;
+    lox  = sidx_t'(dcx) <<< k;
+    hix  = ((sidx_t'(dcx) + sidx_t'(1)) <<< k) - sidx_t'(1);
+    loy  = sidx_t'(dcy) <<< k;
+    hiy  = ((sidx_t'(dcy) + sidx_t'(1)) <<< k) - sidx_t'(1);
+    ax   = clip_idx(sidx_t'(ax_i), lox, hix);
+    bx   = clip_idx(sidx_t'(bx_i), lox, hix);
+    ay   = clip_idx(sidx_t'(ay_i), loy, hiy);
+    by   = clip_idx(sidx_t'(by_i), loy, hiy);
+    // bitlen(max(a, b)) = bitlen(a | b): the lowest node holding both ends
+    bl   = bitlen16(16'(ax ^ bx) | 16'(ay ^ by));
+    // (b): `levels` levels per descent until the first crossing, then one (never below 0)
+    step = crossed ? 5'd1 : (k < 4'(levels)) ? 5'(k) : 5'(levels);
+    nk_multi = 5'(k) - step;   // k >= 1 for a descending ray
+    // not a descending ray (k = 0): 0, to keep the level in range
+    return (k == '0)                ? '0
+         : (descent == DESC_MULTI) ? LVL_W'(nk_multi)
+         : (descent == DESC_XOR)   ? LVL_W'((bl < nk_multi) ? bl : nk_multi)
+         :                           k - LVL_W'(1);
   endfunction
 
 endpackage

@@ -6,7 +6,8 @@
 // the start level and the start cell, or done = 1 for an invalid ray or one that never enters the
 // map (the model's "gone": no iteration).
 //
-// Stage schedule (T0 = the input register; "a -> b": a unit takes operands at Ta, result at Tb):
+// Stage schedule (T0 = the clock after in_valid_i; "a -> b": a unit takes operands at Ta, result
+// at Tb):
 //   T0  invalid checks (NaN / Inf field, negative start)        1/du, 1/dv: f24_div T0 -> T2
 //       exit boundary of the map b = du > 0 ? W : 0             f24_from_int T0 -> T1
 //       position at t0: du * t0                                 f24_mul T0 -> T1
@@ -29,8 +30,20 @@
 //   T9  gone |= start cell outside the map; start level k by XOR / bit length; cell >> k: out
 //       (traverse_start_level).
 //
+// Ray table: a ray's values do not move from stage to stage.  Every ray in the pipeline owns one
+// entry of a table of NS = 10 entries (one per stage); since the pipeline advances every clock,
+// the entry of the ray in stage Ts is (ph_q - s) mod 10, with ph_q a phase counter that steps
+// every clock.  A value is written into the ray's entry by the stage that computes it and read by
+// the later stages that need it (before the entry is reused, 10 clocks after the ray came in).
+// Only the valid bits move, one stage per clock (v_q).
+//
+// Clock enables: a float unit advances only while a ray is in it, and holds its registers
+// otherwise (less switching, and less work for a simulator); likewise a stage computes what it
+// writes into the table only while it holds a ray.
+//
 // The start time t0 (0, or max(0, 1 - H_root) for the clip policy) is the same for every ray; a
-// small always-running pipeline derives it from the configuration (ready 4 clocks after a change).
+// small pipeline derives it from the configuration (ready 4 clocks after a change).  It runs while
+// the unit is idle (idle_i), the only time the configuration may change, and holds otherwise.
 module traverse_setup
   import f24_pkg::*;
   import traverse_pkg::*;
@@ -42,6 +55,7 @@ module traverse_setup
   /* verilator lint_off UNUSEDSIGNAL */  // the first mode reads only part of the configuration
   input  cfg_t            cfg_i,
   /* verilator lint_on UNUSEDSIGNAL */
+  input  logic            idle_i,      // the unit holds no ray (the configuration may change)
   input  logic            in_valid_i,  // a ray enters T0 (no back-pressure: the caller has room)
   input  logic [ID_W-1:0] in_id_i,
   input  f24_t            in_u0_i,
@@ -54,29 +68,41 @@ module traverse_setup
   output logic [3:0]      busy_o       // rays in the pipeline (for slot accounting)
 );
 
-  localparam int unsigned NS = 10;  // stages T0 .. T9
+  localparam int unsigned NS = 10;          // stages T0 .. T9
+  localparam int unsigned SW = $clog2(NS);  // ray-table index width
 
-  // Stage registers, written in one always_ff (no copy of the whole pipeline in combinational
-  // logic).  Every value lives from the stage that computes it to the last one that reads it;
-  // arrays are indexed by stage.
+  typedef logic [SW-1:0] slot_idx_t;
   typedef struct packed {
-    logic [ID_W-1:0] id;
-    f24_t            u0, v0, du, dv;
-  } in_t;                             // T0 .. T9: the ray as it came in
+    f24_t u, v;                     // a value per axis
+  } f24_pair_t;
   typedef struct packed {
-    f24_t inv_du, inv_dv;             // 1 / du, 1 / dv
-    dir_t sx, sy;                     // directions of motion
-  } dirs_t;                           // T3 .. T9
+    dir_t sx, sy;                   // directions of motion
+  } dirs_t;
 
-  logic  v_q       [NS];
-  in_t   in_q      [NS];
-  logic  bad_q;                       // T1: NaN / Inf field or a negative start
-  logic  invalid_q [2:NS-1];          // T2 ..: bad, or a start at or beyond W / H
-  dirs_t dir_q     [3:NS-1];
-  f24_t  t_map_q   [5:NS-1];          // time of leaving the map's extent
-  logic  gone_q    [6:NS-1];          // t_map <= t0: never enters
-  sidx_t c0x_q     [5:NS-1];          // start cell: T5 .. T8 estimate, T9 corrected
-  sidx_t c0y_q     [5:NS-1];
+  // The ray table (see the header); the stage that writes each field is in brackets.
+  logic [ID_W-1:0] id_q      [NS];  // [in]
+  f24_pair_t       uv_q      [NS];  // [in] u0, v0
+  f24_pair_t       duv_q     [NS];  // [in] du, dv
+  logic            invalid_q [NS];  // [T1] NaN / Inf field, negative start, or a start >= W / H
+  f24_pair_t       inv_q     [NS];  // [T2] 1 / du, 1 / dv
+  dirs_t           dir_q     [NS];  // [T2]
+  f24_t            t_map_q   [NS];  // [T4] time of leaving the map's extent
+  sidx_t           estx_q    [NS];  // [T4] locate's estimate of the start cell (level 0)
+  sidx_t           esty_q    [NS];
+  logic            gone_q    [NS];  // [T5] t_map <= t0: never enters
+  // Values that live one clock.
+  logic            bad_q;           // T0 -> T1: NaN / Inf field or a negative start
+  sidx_t           c0x_q, c0y_q;    // T8 -> T9: the corrected start cell
+
+  logic [NS-1:0]   v_q;             // v_q[s]: stage Ts holds a ray
+  slot_idx_t       ph_q;            // phase: stage Ts holds the ray of entry (ph_q - s) mod NS
+  slot_idx_t       sl [NS];         // sl[s] = (ph_q - s) mod NS
+
+  always_comb begin
+    for (int s = 0; s < NS; s++) begin
+      sl[s] = (ph_q >= SW'(s)) ? ph_q - SW'(s) : ph_q + SW'(NS - s);
+    end
+  end
 
   // ---- configuration-derived constants -------------------------------------------------------
   sidx_t width_s, height_s, size_s;   // W, H, N = 2^n
@@ -85,171 +111,206 @@ module traverse_setup
   assign size_s   = sidx_t'(1) <<< cfg_i.n;
 
   // t0 = clip ? max(+0, 1 - H_root) : +0 (model: np.maximum(zeros, sub(one, h_root))).
-  f24_t h_root8, h_root16, t0_raw, t0_q;
-  f24_from_unorm #(.W(8))  u_root8  (.clk_i, .en_i(1'b1), .k_i(cfg_i.root_code[7:0]), .y_o(h_root8));
-  f24_from_unorm #(.W(16)) u_root16 (.clk_i, .en_i(1'b1), .k_i(cfg_i.root_code), .y_o(h_root16));
-  f24_add u_root_plane (.clk_i, .en_i(1'b1), .a_i(F24_ONE),
+  f24_t h_root8, h_root16, t0_raw, t0_d, t0_q;
+  f24_ord_t ot0;                      // t0 in comparable form
+  f24_from_unorm #(.W(8))  u_root8  (.clk_i, .en_i(idle_i), .k_i(cfg_i.root_code[7:0]),
+                                     .y_o(h_root8));
+  f24_from_unorm #(.W(16)) u_root16 (.clk_i, .en_i(idle_i), .k_i(cfg_i.root_code), .y_o(h_root16));
+  f24_add u_root_plane (.clk_i, .en_i(idle_i), .a_i(F24_ONE),
                         .b_i(f24_neg(cfg_i.bits16 ? h_root16 : h_root8)), .y_o(t0_raw));
+  assign t0_d = cfg_i.policy.clip ? f24_max(F24_POS_ZERO, t0_raw) : F24_POS_ZERO;
   always_ff @(posedge clk_i) begin
-    t0_q <= cfg_i.policy.clip ? f24_max(F24_POS_ZERO, t0_raw) : F24_POS_ZERO;
+    if (idle_i) t0_q <= t0_d;
   end
+  assign ot0 = f24_ord(t0_q);
 
   // ---- float units -------------------------------------------------------------------------
   // T0
-  f24_t inv_x, inv_y, bmx_f, bmy_f, dut0_x, dut0_y;
+  f24_pair_t uv0, duv0;
+  f24_t      inv_x, inv_y, bmx_f, bmy_f, dut0_x, dut0_y;
   logic signed [IDX_W-1:0] iu0, iv0;
   logic unused_sat_u0, unused_sat_v0;
   logic du_pos, dv_pos;
-  assign du_pos = !in_q[0].du[23] && !f24_is_zero(in_q[0].du);
-  assign dv_pos = !in_q[0].dv[23] && !f24_is_zero(in_q[0].dv);
+  assign uv0    = uv_q[sl[0]];
+  assign duv0   = duv_q[sl[0]];
+  assign du_pos = !duv0.u[23] && !f24_is_zero(duv0.u);
+  assign dv_pos = !duv0.v[23] && !f24_is_zero(duv0.v);
 
-  f24_div u_inv_x (.clk_i, .en_i(1'b1), .a_i(F24_ONE), .b_i(in_q[0].du), .y_o(inv_x));
-  f24_div u_inv_y (.clk_i, .en_i(1'b1), .a_i(F24_ONE), .b_i(in_q[0].dv), .y_o(inv_y));
-  f24_from_int #(.W(IDX_W)) u_bmx (.clk_i, .en_i(1'b1),
+  f24_div u_inv_x (.clk_i, .en_i(v_q[0] || v_q[1]), .a_i(F24_ONE), .b_i(duv0.u), .y_o(inv_x));
+  f24_div u_inv_y (.clk_i, .en_i(v_q[0] || v_q[1]), .a_i(F24_ONE), .b_i(duv0.v), .y_o(inv_y));
+  f24_from_int #(.W(IDX_W)) u_bmx (.clk_i, .en_i(v_q[0]),
     .k_i(du_pos ? IDX_W'(cfg_i.width) : '0), .y_o(bmx_f));
-  f24_from_int #(.W(IDX_W)) u_bmy (.clk_i, .en_i(1'b1),
+  f24_from_int #(.W(IDX_W)) u_bmy (.clk_i, .en_i(v_q[0]),
     .k_i(dv_pos ? IDX_W'(cfg_i.height) : '0), .y_o(bmy_f));
-  f24_mul u_dut0_x (.clk_i, .en_i(1'b1), .a_i(in_q[0].du), .b_i(t0_q), .y_o(dut0_x));
-  f24_mul u_dut0_y (.clk_i, .en_i(1'b1), .a_i(in_q[0].dv), .b_i(t0_q), .y_o(dut0_y));
-  f24_to_index #(.W(IDX_W)) u_iu0 (.clk_i, .en_i(1'b1), .a_i(in_q[0].u0), .idx_o(iu0),
+  f24_mul u_dut0_x (.clk_i, .en_i(v_q[0]), .a_i(duv0.u), .b_i(t0_q), .y_o(dut0_x));
+  f24_mul u_dut0_y (.clk_i, .en_i(v_q[0]), .a_i(duv0.v), .b_i(t0_q), .y_o(dut0_y));
+  f24_to_index #(.W(IDX_W)) u_iu0 (.clk_i, .en_i(v_q[0]), .a_i(uv0.u), .idx_o(iu0),
                                    .sat_o(unused_sat_u0));
-  f24_to_index #(.W(IDX_W)) u_iv0 (.clk_i, .en_i(1'b1), .a_i(in_q[0].v0), .idx_o(iv0),
+  f24_to_index #(.W(IDX_W)) u_iv0 (.clk_i, .en_i(v_q[0]), .a_i(uv0.v), .idx_o(iv0),
                                    .sat_o(unused_sat_v0));
 
   // T1
-  f24_t dmx, dmy, pos0_x, pos0_y;
-  f24_add u_dmx (.clk_i, .en_i(1'b1), .a_i(bmx_f), .b_i(f24_neg(in_q[1].u0)), .y_o(dmx));
-  f24_add u_dmy (.clk_i, .en_i(1'b1), .a_i(bmy_f), .b_i(f24_neg(in_q[1].v0)), .y_o(dmy));
-  f24_add u_pos0_x (.clk_i, .en_i(1'b1), .a_i(in_q[1].u0), .b_i(dut0_x), .y_o(pos0_x));
-  f24_add u_pos0_y (.clk_i, .en_i(1'b1), .a_i(in_q[1].v0), .b_i(dut0_y), .y_o(pos0_y));
+  f24_pair_t uv1;
+  f24_t      dmx, dmy, pos0_x, pos0_y;
+  assign uv1 = uv_q[sl[1]];
+  f24_add u_dmx (.clk_i, .en_i(v_q[1] || v_q[2]), .a_i(bmx_f), .b_i(f24_neg(uv1.u)), .y_o(dmx));
+  f24_add u_dmy (.clk_i, .en_i(v_q[1] || v_q[2]), .a_i(bmy_f), .b_i(f24_neg(uv1.v)), .y_o(dmy));
+  f24_add u_pos0_x (.clk_i, .en_i(v_q[1] || v_q[2]), .a_i(uv1.u), .b_i(dut0_x), .y_o(pos0_x));
+  f24_add u_pos0_y (.clk_i, .en_i(v_q[1] || v_q[2]), .a_i(uv1.v), .b_i(dut0_y), .y_o(pos0_y));
+
+  // T2
+  f24_pair_t duv2;
+  assign duv2 = duv_q[sl[2]];
 
   // T3
-  f24_t tmx_raw, tmy_raw;
+  f24_pair_t uv3, inv3;
+  dirs_t     dir3;
+  f24_t      tmx_raw, tmy_raw;
   logic signed [IDX_W-1:0] ip0x, ip0y;
   logic unused_sat_p0x, unused_sat_p0y;
-  f24_mul u_tmx (.clk_i, .en_i(1'b1), .a_i(dmx), .b_i(dir_q[3].inv_du), .y_o(tmx_raw));
-  f24_mul u_tmy (.clk_i, .en_i(1'b1), .a_i(dmy), .b_i(dir_q[3].inv_dv), .y_o(tmy_raw));
-  f24_to_index #(.W(IDX_W)) u_ip0x (.clk_i, .en_i(1'b1),
-    .a_i(dir_q[3].sx.mv ? pos0_x : in_q[3].u0), .idx_o(ip0x), .sat_o(unused_sat_p0x));
-  f24_to_index #(.W(IDX_W)) u_ip0y (.clk_i, .en_i(1'b1),
-    .a_i(dir_q[3].sy.mv ? pos0_y : in_q[3].v0), .idx_o(ip0y), .sat_o(unused_sat_p0y));
+  assign uv3  = uv_q[sl[3]];
+  assign inv3 = inv_q[sl[3]];
+  assign dir3 = dir_q[sl[3]];
+  f24_mul u_tmx (.clk_i, .en_i(v_q[3]), .a_i(dmx), .b_i(inv3.u), .y_o(tmx_raw));
+  f24_mul u_tmy (.clk_i, .en_i(v_q[3]), .a_i(dmy), .b_i(inv3.v), .y_o(tmy_raw));
+  f24_to_index #(.W(IDX_W)) u_ip0x (.clk_i, .en_i(v_q[3]),
+    .a_i(dir3.sx.mv ? pos0_x : uv3.u), .idx_o(ip0x), .sat_o(unused_sat_p0x));
+  f24_to_index #(.W(IDX_W)) u_ip0y (.clk_i, .en_i(v_q[3]),
+    .a_i(dir3.sy.mv ? pos0_y : uv3.v), .idx_o(ip0y), .sat_o(unused_sat_p0y));
 
   // T4: entry / exit boundaries of the estimated start cell (level 0)
+  dirs_t dir4;
   sidx_t est_x, est_y;
   f24_t  ben_x, bex_x, ben_y, bex_y;
+  assign dir4   = dir_q[sl[4]];
   assign est_x = clip_idx(sidx_t'(ip0x), -sidx_t'(1), size_s);
   assign est_y = clip_idx(sidx_t'(ip0y), -sidx_t'(1), size_s);
-  f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(1'b1),
-    .k_i(IDX_W'(est_x + sidx_t'(dir_q[4].sx.mv && dir_q[4].sx.neg))), .y_o(ben_x));
-  f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(1'b1),
-    .k_i(IDX_W'(est_x + sidx_t'(dir_q[4].sx.mv && !dir_q[4].sx.neg))), .y_o(bex_x));
-  f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(1'b1),
-    .k_i(IDX_W'(est_y + sidx_t'(dir_q[4].sy.mv && dir_q[4].sy.neg))), .y_o(ben_y));
-  f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(1'b1),
-    .k_i(IDX_W'(est_y + sidx_t'(dir_q[4].sy.mv && !dir_q[4].sy.neg))), .y_o(bex_y));
+  f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(v_q[4]),
+    .k_i(IDX_W'(est_x + sidx_t'(dir4.sx.mv && dir4.sx.neg))), .y_o(ben_x));
+  f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(v_q[4]),
+    .k_i(IDX_W'(est_x + sidx_t'(dir4.sx.mv && !dir4.sx.neg))), .y_o(bex_x));
+  f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(v_q[4]),
+    .k_i(IDX_W'(est_y + sidx_t'(dir4.sy.mv && dir4.sy.neg))), .y_o(ben_y));
+  f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(v_q[4]),
+    .k_i(IDX_W'(est_y + sidx_t'(dir4.sy.mv && !dir4.sy.neg))), .y_o(bex_y));
 
   // T5
-  f24_t t_end, due_x, due_y, den_x, dex_x, den_y, dex_y;
-  assign t_end = cfg_i.policy.clip ? f24_min(F24_ONE, t_map_q[5]) : F24_ONE;
-  f24_mul u_due_x (.clk_i, .en_i(1'b1), .a_i(in_q[5].du), .b_i(t_end), .y_o(due_x));
-  f24_mul u_due_y (.clk_i, .en_i(1'b1), .a_i(in_q[5].dv), .b_i(t_end), .y_o(due_y));
-  f24_add u_den_x (.clk_i, .en_i(1'b1), .a_i(ben_x), .b_i(f24_neg(in_q[5].u0)), .y_o(den_x));
-  f24_add u_dex_x (.clk_i, .en_i(1'b1), .a_i(bex_x), .b_i(f24_neg(in_q[5].u0)), .y_o(dex_x));
-  f24_add u_den_y (.clk_i, .en_i(1'b1), .a_i(ben_y), .b_i(f24_neg(in_q[5].v0)), .y_o(den_y));
-  f24_add u_dex_y (.clk_i, .en_i(1'b1), .a_i(bex_y), .b_i(f24_neg(in_q[5].v0)), .y_o(dex_y));
+  f24_pair_t uv5, duv5;
+  f24_t      t_map5, t_end, due_x, due_y, den_x, dex_x, den_y, dex_y;
+  f24_ord_t  ot_map5;
+  assign uv5    = uv_q[sl[5]];
+  assign duv5   = duv_q[sl[5]];
+  assign t_map5 = t_map_q[sl[5]];
+  assign ot_map5 = f24_ord(t_map5);
+  assign t_end   = (cfg_i.policy.clip && !ord_min_first(f24_ord(F24_ONE), ot_map5)) ? t_map5
+                                                                                   : F24_ONE;
+  f24_mul u_due_x (.clk_i, .en_i(v_q[5]), .a_i(duv5.u), .b_i(t_end), .y_o(due_x));
+  f24_mul u_due_y (.clk_i, .en_i(v_q[5]), .a_i(duv5.v), .b_i(t_end), .y_o(due_y));
+  f24_add u_den_x (.clk_i, .en_i(v_q[5] || v_q[6]), .a_i(ben_x), .b_i(f24_neg(uv5.u)), .y_o(den_x));
+  f24_add u_dex_x (.clk_i, .en_i(v_q[5] || v_q[6]), .a_i(bex_x), .b_i(f24_neg(uv5.u)), .y_o(dex_x));
+  f24_add u_den_y (.clk_i, .en_i(v_q[5] || v_q[6]), .a_i(ben_y), .b_i(f24_neg(uv5.v)), .y_o(den_y));
+  f24_add u_dex_y (.clk_i, .en_i(v_q[5] || v_q[6]), .a_i(bex_y), .b_i(f24_neg(uv5.v)), .y_o(dex_y));
 
   // T6
-  f24_t pose_x, pose_y;
-  f24_add u_pose_x (.clk_i, .en_i(1'b1), .a_i(in_q[6].u0), .b_i(due_x), .y_o(pose_x));
-  f24_add u_pose_y (.clk_i, .en_i(1'b1), .a_i(in_q[6].v0), .b_i(due_y), .y_o(pose_y));
+  f24_pair_t uv6;
+  f24_t      pose_x, pose_y;
+  assign uv6 = uv_q[sl[6]];
+  f24_add u_pose_x (.clk_i, .en_i(v_q[6] || v_q[7]), .a_i(uv6.u), .b_i(due_x), .y_o(pose_x));
+  f24_add u_pose_y (.clk_i, .en_i(v_q[6] || v_q[7]), .a_i(uv6.v), .b_i(due_y), .y_o(pose_y));
 
   // T7
-  f24_t ten_x, tex_x, ten_y, tex_y;
-  f24_mul u_ten_x (.clk_i, .en_i(1'b1), .a_i(den_x), .b_i(dir_q[7].inv_du), .y_o(ten_x));
-  f24_mul u_tex_x (.clk_i, .en_i(1'b1), .a_i(dex_x), .b_i(dir_q[7].inv_du), .y_o(tex_x));
-  f24_mul u_ten_y (.clk_i, .en_i(1'b1), .a_i(den_y), .b_i(dir_q[7].inv_dv), .y_o(ten_y));
-  f24_mul u_tex_y (.clk_i, .en_i(1'b1), .a_i(dex_y), .b_i(dir_q[7].inv_dv), .y_o(tex_y));
+  f24_pair_t inv7;
+  f24_t      ten_x, tex_x, ten_y, tex_y;
+  assign inv7 = inv_q[sl[7]];
+  f24_mul u_ten_x (.clk_i, .en_i(v_q[7]), .a_i(den_x), .b_i(inv7.u), .y_o(ten_x));
+  f24_mul u_tex_x (.clk_i, .en_i(v_q[7]), .a_i(dex_x), .b_i(inv7.u), .y_o(tex_x));
+  f24_mul u_ten_y (.clk_i, .en_i(v_q[7]), .a_i(den_y), .b_i(inv7.v), .y_o(ten_y));
+  f24_mul u_tex_y (.clk_i, .en_i(v_q[7]), .a_i(dex_y), .b_i(inv7.v), .y_o(tex_y));
 
   // T8
+  f24_pair_t uv8;
+  dirs_t     dir8;
   logic signed [IDX_W-1:0] ipe_x, ipe_y;
   logic unused_sat_pex, unused_sat_pey;
-  f24_to_index #(.W(IDX_W)) u_ipe_x (.clk_i, .en_i(1'b1),
-    .a_i(dir_q[8].sx.mv ? pose_x : in_q[8].u0), .idx_o(ipe_x), .sat_o(unused_sat_pex));
-  f24_to_index #(.W(IDX_W)) u_ipe_y (.clk_i, .en_i(1'b1),
-    .a_i(dir_q[8].sy.mv ? pose_y : in_q[8].v0), .idx_o(ipe_y), .sat_o(unused_sat_pey));
+  assign uv8  = uv_q[sl[8]];
+  assign dir8 = dir_q[sl[8]];
+  f24_to_index #(.W(IDX_W)) u_ipe_x (.clk_i, .en_i(v_q[8]),
+    .a_i(dir8.sx.mv ? pose_x : uv8.u), .idx_o(ipe_x), .sat_o(unused_sat_pex));
+  f24_to_index #(.W(IDX_W)) u_ipe_y (.clk_i, .en_i(v_q[8]),
+    .a_i(dir8.sy.mv ? pose_y : uv8.v), .idx_o(ipe_y), .sat_o(unused_sat_pey));
 
   // locate's correction: the cell whose crossing times bracket t (cells are half-open in t).
-  function automatic sidx_t correct(input sidx_t c, input dir_t s, input f24_t t_entry,
-                                    input f24_t t_exit, input f24_t t, input sidx_t lo,
+  function automatic sidx_t correct(input sidx_t c, input dir_t s, input f24_ord_t t_entry,
+                                    input f24_ord_t t_exit, input f24_ord_t t, input sidx_t lo,
                                     input sidx_t hi);
-    sidx_t r;
-    if (f24_lt(t, t_entry))      r = c - dir_val(s);
-    else if (f24_le(t_exit, t))  r = c + dir_val(s);
-    else                         r = c;
-    return clip_idx(r, lo, hi);
+    return clip_idx(ord_lt(t, t_entry) ? c - dir_val(s) : ord_le(t_exit, t) ? c + dir_val(s) : c,
+                    lo, hi);
   endfunction
 
-  // ---- stage registers -----------------------------------------------------------------------
+  // ---- pipeline and ray table ----------------------------------------------------------------
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      for (int s = 0; s < NS; s++) v_q[s] <= 1'b0;
+      v_q  <= '0;
+      ph_q <= '0;
     end else begin
-      v_q[0] <= in_valid_i;
-      for (int s = 1; s < NS; s++) v_q[s] <= v_q[s-1];
+      v_q  <= {v_q[NS-2:0], in_valid_i};
+      ph_q <= (ph_q == SW'(NS - 1)) ? '0 : ph_q + SW'(1);
     end
   end
 
   always_ff @(posedge clk_i) begin
-    // T0: the ray (captured every clock; v_q says whether it is one)
-    in_q[0] <= '{id: in_id_i, u0: in_u0_i, v0: in_v0_i, du: in_du_i, dv: in_dv_i};
-    for (int s = 1; s < NS; s++) in_q[s] <= in_q[s-1];
-    // T0 -> T1
-    bad_q <= !f24_is_finite(in_q[0].u0) || !f24_is_finite(in_q[0].v0) ||
-             !f24_is_finite(in_q[0].du) || !f24_is_finite(in_q[0].dv) ||
-             (in_q[0].u0[23] && !f24_is_zero(in_q[0].u0)) ||
-             (in_q[0].v0[23] && !f24_is_zero(in_q[0].v0));
-    // T1 -> T2
-    invalid_q[2] <= bad_q || (sidx_t'(iu0) >= width_s) || (sidx_t'(iv0) >= height_s);
-    for (int s = 3; s < NS; s++) invalid_q[s] <= invalid_q[s-1];
-    // T2 -> T3
-    dir_q[3] <= '{inv_du: inv_x, inv_dv: inv_y,
-                  sx: '{mv: !f24_is_zero(in_q[2].du) && f24_is_finite(inv_x), neg: in_q[2].du[23]},
-                  sy: '{mv: !f24_is_zero(in_q[2].dv) && f24_is_finite(inv_y), neg: in_q[2].dv[23]}};
-    for (int s = 4; s < NS; s++) dir_q[s] <= dir_q[s-1];
-    // T4 -> T5
-    t_map_q[5] <= f24_min(dir_q[4].sx.mv ? tmx_raw : F24_POS_INF,
-                          dir_q[4].sy.mv ? tmy_raw : F24_POS_INF);
-    for (int s = 6; s < NS; s++) t_map_q[s] <= t_map_q[s-1];
-    c0x_q[5] <= est_x;
-    c0y_q[5] <= est_y;
-    for (int s = 6; s < NS - 1; s++) begin
-      c0x_q[s] <= c0x_q[s-1];
-      c0y_q[s] <= c0y_q[s-1];
+    // in: the ray enters the entry of the one leaving T9 (that entry is T0's next clock)
+    if (in_valid_i) begin
+      id_q[sl[NS-1]]  <= in_id_i;
+      uv_q[sl[NS-1]]  <= '{u: in_u0_i, v: in_v0_i};
+      duv_q[sl[NS-1]] <= '{u: in_du_i, v: in_dv_i};
     end
-    // T5 -> T6
-    gone_q[6] <= f24_le(t_map_q[5], t0_q);
-    for (int s = 7; s < NS; s++) gone_q[s] <= gone_q[s-1];
+    // A stage computes and writes only while it holds a ray.
+    // T0 -> T1: NaN / Inf field, negative start
+    if (v_q[0]) begin
+      bad_q <= !f24_is_finite(uv0.u) || !f24_is_finite(uv0.v) ||
+               !f24_is_finite(duv0.u) || !f24_is_finite(duv0.v) ||
+               (uv0.u[23] && !f24_is_zero(uv0.u)) || (uv0.v[23] && !f24_is_zero(uv0.v));
+    end
+    // T1 -> T2: or a start at or beyond W / H
+    if (v_q[1]) begin
+      invalid_q[sl[1]] <= bad_q || (sidx_t'(iu0) >= width_s) || (sidx_t'(iv0) >= height_s);
+    end
+    // T2 -> T3: directions
+    if (v_q[2]) begin
+      inv_q[sl[2]] <= '{u: inv_x, v: inv_y};
+      dir_q[sl[2]] <= '{sx: '{mv: !f24_is_zero(duv2.u) && f24_is_finite(inv_x), neg: duv2.u[23]},
+                        sy: '{mv: !f24_is_zero(duv2.v) && f24_is_finite(inv_y), neg: duv2.v[23]}};
+    end
+    // T4 -> T5: time of leaving the map, the start cell's estimate
+    if (v_q[4]) begin
+      t_map_q[sl[4]] <= f24_min(dir4.sx.mv ? tmx_raw : F24_POS_INF,
+                                dir4.sy.mv ? tmy_raw : F24_POS_INF);
+      estx_q[sl[4]]  <= est_x;
+      esty_q[sl[4]]  <= est_y;
+    end
+    // T5 -> T6: never enters
+    if (v_q[5]) gone_q[sl[5]] <= ord_le(ot_map5, ot0);
     // T8 -> T9: locate's correction
-    c0x_q[NS-1] <= correct(c0x_q[NS-2], dir_q[NS-2].sx, ten_x, tex_x, t0_q, -sidx_t'(1), size_s);
-    c0y_q[NS-1] <= correct(c0y_q[NS-2], dir_q[NS-2].sy, ten_y, tex_y, t0_q, -sidx_t'(1), size_s);
+    if (v_q[8]) begin
+      c0x_q <= correct(estx_q[sl[8]], dir8.sx, f24_ord(ten_x), f24_ord(tex_x), ot0, -sidx_t'(1),
+                       size_s);
+      c0y_q <= correct(esty_q[sl[8]], dir8.sy, f24_ord(ten_y), f24_ord(tex_y), ot0, -sidx_t'(1),
+                       size_s);
+    end
   end
 
   // ---- T9: start cell, start level, out -------------------------------------------------------
-  in_t   l;                           // the last stage
-  dirs_t ld;
-  assign l  = in_q[NS-1];
-  assign ld = dir_q[NS-1];
-
-  logic             outside;
-  logic [LVL_W-1:0] k;
+  logic              outside;
+  logic [LVL_W-1:0]  k;
   logic [CELL_W-1:0] cx, cy;
   traverse_start_level u_start_level (
     .n_i          (cfg_i.n),
     .width_i      (cfg_i.width),
     .height_i     (cfg_i.height),
     .start_level_i(cfg_i.policy.start_level),
-    .c0x_i        (c0x_q[NS-1]),
-    .c0y_i        (c0y_q[NS-1]),
+    .c0x_i        (c0x_q),
+    .c0y_i        (c0y_q),
     .ex_i         (ipe_x),
     .ey_i         (ipe_y),
     .outside_o    (outside),
@@ -258,31 +319,21 @@ module traverse_setup
     .cy_o         (cy)
   );
 
-  always_comb begin
-    out_ray_o            = '0;
-    out_ray_o.u0         = l.u0;
-    out_ray_o.v0         = l.v0;
-    out_ray_o.du         = l.du;
-    out_ray_o.dv         = l.dv;
-    out_ray_o.inv_du     = ld.inv_du;
-    out_ray_o.inv_dv     = ld.inv_dv;
-    out_ray_o.sx         = ld.sx;
-    out_ray_o.sy         = ld.sy;
-    out_ray_o.t_map      = t_map_q[NS-1];
-    out_ray_o.k          = k;
-    out_ray_o.cx         = cx;
-    out_ray_o.cy         = cy;
-    out_ray_o.t          = t0_q;
-    out_ray_o.invalid    = invalid_q[NS-1];
-    out_ray_o.done       = invalid_q[NS-1] || gone_q[NS-1] || outside;
-  end
+  // One expression (not field by field), so that a simulator can evaluate it where it is used.
+  f24_pair_t uv9, duv9, inv9;
+  dirs_t     dir9;
+  assign uv9       = uv_q[sl[NS-1]];
+  assign duv9      = duv_q[sl[NS-1]];
+  assign inv9      = inv_q[sl[NS-1]];
+  assign dir9      = dir_q[sl[NS-1]];
+  assign out_ray_o = '{u0: uv9.u, v0: uv9.v, du: duv9.u, dv: duv9.v, inv_du: inv9.u, inv_dv: inv9.v,
+                       sx: dir9.sx, sy: dir9.sy, t_map: t_map_q[sl[NS-1]], k: k, cx: cx, cy: cy,
+                       t: t0_q, crossed: 1'b0, prev_cross: 1'b0, iters: '0,
+                       done: invalid_q[sl[NS-1]] || gone_q[sl[NS-1]] || outside, hit: 1'b0,
+                       invalid: invalid_q[sl[NS-1]], capped: 1'b0, err: 1'b0};
 
   assign out_valid_o = v_q[NS-1];
-  assign out_id_o    = l.id;
-
-  always_comb begin
-    busy_o = '0;
-    for (int s = 0; s < NS; s++) busy_o = busy_o + 4'(v_q[s]);
-  end
+  assign out_id_o    = id_q[sl[NS-1]];
+  assign busy_o      = 4'($countones(v_q));
 
 endmodule

@@ -31,24 +31,19 @@ module traverse_start_level
   sidx_t       last;          // N - 1
   sidx_t       c0x, c0y;      // start cell, clipped
   sidx_t       ax, ay;        // end cell, clipped
-  logic [15:0] xr;            // max of the two XORs (cells < 2^15)
-  logic [4:0]  kbits;         // its bit length, 0 .. 16
+  logic [4:0]  kbits;         // bitlen(max(c0x ^ ax, c0y ^ ay)) = bitlen of their OR, 0 .. 16
 
-  always_comb begin
-    last      = (sidx_t'(1) <<< n_i) - sidx_t'(1);
-    outside_o = (c0x_i < 0) || (c0x_i >= sidx_t'(width_i)) ||
-                (c0y_i < 0) || (c0y_i >= sidx_t'(height_i));
-    c0x       = clip_idx(c0x_i, '0, last);
-    c0y       = clip_idx(c0y_i, '0, last);
-    ax        = clip_idx(sidx_t'(ex_i), '0, last);
-    ay        = clip_idx(sidx_t'(ey_i), '0, last);
-    xr        = (16'(c0x ^ ax) > 16'(c0y ^ ay)) ? 16'(c0x ^ ax) : 16'(c0y ^ ay);
-    kbits     = bitlen16(xr);
-    if (!start_level_i)             k_o = n_i;
-    else if (kbits < {1'b0, n_i})   k_o = LVL_W'(kbits);
-    else                            k_o = n_i;
-    cx_o      = CELL_W'(c0x >>> k_o);
-    cy_o      = CELL_W'(c0y >>> k_o);
-  end
+  // Plain data flow, one expression per signal.
+  assign last      = (sidx_t'(1) <<< n_i) - sidx_t'(1);
+  assign outside_o = (c0x_i < 0) || (c0x_i >= sidx_t'(width_i)) ||
+                     (c0y_i < 0) || (c0y_i >= sidx_t'(height_i));
+  assign c0x       = clip_idx(c0x_i, '0, last);
+  assign c0y       = clip_idx(c0y_i, '0, last);
+  assign ax        = clip_idx(sidx_t'(ex_i), '0, last);
+  assign ay        = clip_idx(sidx_t'(ey_i), '0, last);
+  assign kbits     = bitlen16(16'(c0x ^ ax) | 16'(c0y ^ ay));  // cells < 2^15
+  assign k_o       = (start_level_i && kbits < {1'b0, n_i}) ? LVL_W'(kbits) : n_i;
+  assign cx_o      = CELL_W'(c0x >>> k_o);
+  assign cy_o      = CELL_W'(c0y >>> k_o);
 
 endmodule

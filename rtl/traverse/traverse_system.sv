@@ -9,9 +9,9 @@
 // with the code, miss: the ray goes round again while the line is fetched, or err when the line
 // came back with an AXI error response).  Flow control: see traverse_unit.sv.
 //
-// Configuration: cfg_* go through one register stage here (they fan out to the whole unit; this
-// also keeps them out of every simulator's input-evaluation path), so they must be static while
-// idle_o = 0 and stable 5 clocks (traverse_unit's 4 + 1) before the next ray enters.
+// Configuration: cfg_* go through one register stage in traverse_unit (they fan out to the whole
+// unit; this also keeps them out of every simulator's input-evaluation path), which loads while
+// idle_o = 1: they must be static while idle_o = 0 and stable 5 clocks before the next ray enters.
 //
 // Statistics: the unit's counters (since reset, wrapping at UNIT_CNT_W bits) and the cache's
 // (48 bits, cleared by clr_stats_i).  tb/harness/traverse_harness.cpp runs this module on whole
@@ -98,27 +98,6 @@ module traverse_system
   output logic                              idle_o              // no ray in the unit
 );
 
-  // ---- configuration register ----------------------------------------------------------------
-  logic [3:0]                        cfg_method_q;
-  logic [DIM_W-1:0]                  cfg_width_q, cfg_height_q;
-  logic [LVL_W-1:0]                  cfg_root_level_q;
-  logic                              cfg_bits16_q;
-  logic [ADDR_W-1:0]                 cfg_base_q;
-  logic [MAX_LEVELS-1:0][ADDR_W-1:0] cfg_level_off_q;
-  logic [CODE_W-1:0]                 cfg_root_code_q;
-  logic [ITER_W-1:0]                 cfg_iter_cap_q;
-  always_ff @(posedge clk_i) begin
-    cfg_method_q     <= cfg_method_i;
-    cfg_width_q      <= cfg_width_i;
-    cfg_height_q     <= cfg_height_i;
-    cfg_root_level_q <= cfg_root_level_i;
-    cfg_bits16_q     <= cfg_bits16_i;
-    cfg_base_q       <= cfg_base_i;
-    cfg_level_off_q  <= cfg_level_off_i;
-    cfg_root_code_q  <= cfg_root_code_i;
-    cfg_iter_cap_q   <= cfg_iter_cap_i;
-  end
-
   // ---- traverse unit and height cache ---------------------------------------------------------
   logic              lk_valid, lk_wide, rs_valid, rs_hit, rs_err;
   logic [ADDR_W-1:0] lk_addr;
@@ -129,10 +108,8 @@ module traverse_system
     .CNT_W(UNIT_CNT_W)
   ) u_unit (
     .clk_i, .rst_ni,
-    .cfg_method_i(cfg_method_q), .cfg_width_i(cfg_width_q), .cfg_height_i(cfg_height_q),
-    .cfg_root_level_i(cfg_root_level_q), .cfg_bits16_i(cfg_bits16_q), .cfg_base_i(cfg_base_q),
-    .cfg_level_off_i(cfg_level_off_q), .cfg_root_code_i(cfg_root_code_q),
-    .cfg_iter_cap_i(cfg_iter_cap_q),
+    .cfg_method_i, .cfg_width_i, .cfg_height_i, .cfg_root_level_i, .cfg_bits16_i, .cfg_base_i,
+    .cfg_level_off_i, .cfg_root_code_i, .cfg_iter_cap_i,
     .ray_valid_i, .ray_ready_o, .ray_id_i, .ray_u0_i, .ray_v0_i, .ray_du_i, .ray_dv_i,
     .res_valid_o, .res_ready_i, .res_id_o, .res_t_o, .res_u_o, .res_v_o, .res_hit_o,
     .res_invalid_o, .res_capped_o, .res_err_o, .res_iters_o,

@@ -21,7 +21,8 @@
 // does not count as an iteration.  rs_err_i = 1: the ray finishes with res_err_o = 1.
 //
 // Configuration (cfg_*): static while the unit holds rays (idle_o = 1 to change it) and stable at
-// least 4 clocks before the next ray enters (the clip start time is derived from it).
+// least 5 clocks before the next ray enters (one register stage, which loads while idle_o = 1,
+// then the clip start time is derived from it in 4 more).
 // model/traverse_rtl.py packs it from a Pyramid and a method name.
 module traverse_unit
   import f24_pkg::*;
@@ -89,17 +90,15 @@ module traverse_unit
   localparam int unsigned SF_W  = ID_W + $bits(ray_t);
   localparam int unsigned RF_W  = ID_W + $bits(result_t);
 
+  // The configuration register (decoded): it loads while the unit is idle, the only time the
+  // configuration may change, and holds otherwise.
   cfg_t cfg;
-  always_comb begin
-    cfg.policy    = decode_method(cfg_method_i);
-    cfg.width     = cfg_width_i;
-    cfg.height    = cfg_height_i;
-    cfg.n         = cfg_root_level_i;
-    cfg.bits16    = cfg_bits16_i;
-    cfg.base      = cfg_base_i;
-    cfg.level_off = cfg_level_off_i;
-    cfg.root_code = cfg_root_code_i;
-    cfg.iter_cap  = cfg_iter_cap_i;
+  always_ff @(posedge clk_i) begin
+    if (idle_o) begin
+      cfg <= '{policy: decode_method(cfg_method_i), width: cfg_width_i, height: cfg_height_i,
+               n: cfg_root_level_i, bits16: cfg_bits16_i, base: cfg_base_i,
+               level_off: cfg_level_off_i, root_code: cfg_root_code_i, iter_cap: cfg_iter_cap_i};
+    end
   end
 
   // ---- rays in: credits for setup + setup FIFO ---------------------------------------------
@@ -119,7 +118,7 @@ module traverse_unit
   ray_t            su_ray;
   logic [3:0]      su_busy;
   traverse_setup #(.ID_W(ID_W)) u_setup (
-    .clk_i, .rst_ni, .cfg_i(cfg),
+    .clk_i, .rst_ni, .cfg_i(cfg), .idle_i(idle_o),
     .in_valid_i(in_fire), .in_id_i(ray_id_i), .in_u0_i(ray_u0_i), .in_v0_i(ray_v0_i),
     .in_du_i(ray_du_i), .in_dv_i(ray_dv_i),
     .out_valid_o(su_valid), .out_id_o(su_id), .out_ray_o(su_ray), .busy_o(su_busy)
