@@ -471,18 +471,29 @@ def trace_rtl(pyr: Pyramid, rays: Rays, method: str, *,
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Build the harness, then measure it on a random map (clocks/s, clocks/iteration, hit rate)."""
-    import argparse
+    from . import heightmap, traverse
+    from .cli import Parser, fail
 
-    from . import heightmap
-
-    ap = argparse.ArgumentParser(prog="python -m model.rtl_engine", description=main.__doc__)
+    prog = "python -m model.rtl_engine"
+    ap = Parser(prog=prog, description=main.__doc__)
     ap.add_argument("--size", type=int, default=256, help="map side (default 256)")
     ap.add_argument("--rays", type=int, default=20000)
-    ap.add_argument("--method", default="park")
-    ap.add_argument("--latency", default="20", help="L or MIN:MAX")
+    ap.add_argument("--method", default="park", choices=traverse.EXACT_METHODS)
+    ap.add_argument("--latency", default="20", help="L or MIN:MAX, clocks >= 1")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--build-only", action="store_true")
     a = ap.parse_args(argv)
+    if not 1 <= a.size <= 8192:
+        fail(prog, f"--size must be in 1..8192, got {a.size}")
+    if a.rays < 1:
+        fail(prog, f"--rays must be positive, got {a.rays}")
+    try:
+        lat = tuple(int(x) for x in a.latency.split(":")) if ":" in a.latency else int(a.latency)
+    except ValueError:
+        fail(prog, f"--latency must be L or MIN:MAX, got {a.latency!r}")
+    if min(lat if isinstance(lat, tuple) else (lat,)) < 1 or (
+            isinstance(lat, tuple) and (len(lat) != 2 or lat[0] > lat[1])):
+        fail(prog, f"--latency must be L >= 1 or MIN:MAX with 1 <= MIN <= MAX, got {a.latency!r}")
     t0 = time.monotonic()
     build("fast", quiet=False)
     print(f"rtl_engine: harness ready ({time.monotonic() - t0:.1f} s)")
@@ -494,7 +505,6 @@ def main(argv: Sequence[str] | None = None) -> int:
     ln = rng.uniform(0, a.size / 4, a.rays)
     rays = Rays(rng.uniform(0, a.size, a.rays), rng.uniform(0, a.size, a.rays),
                 ln * np.cos(ang), ln * np.sin(ang))
-    lat = tuple(int(x) for x in a.latency.split(":")) if ":" in a.latency else int(a.latency)
     for warm in (False, True):
         _, st = trace_rtl(pyr, rays, a.method, latency=lat, seed=a.seed, warm=warm)
         print(f"{'warm' if warm else 'cold'}: {st['rays']} rays, {st['iterations']} iterations, "

@@ -441,22 +441,30 @@ def scene_frame(scene: str, map_size: int, angle: str | float, image: int,
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Build the harness, render a scene through the RTL and the f24 model, compare, report."""
-    import argparse
+    from . import camera, scenes
+    from .cli import Parser, fail
 
-    ap = argparse.ArgumentParser(prog="python -m model.rtl_pipeline", description=main.__doc__)
-    ap.add_argument("--scene", default="rocks")
-    ap.add_argument("--angle", default="oblique")
-    ap.add_argument("--method", default="park")
+    prog = "python -m model.rtl_pipeline"
+    ap = Parser(prog=prog, description=main.__doc__)
+    ap.add_argument("--scene", default="rocks", choices=scenes.SCENES)
+    ap.add_argument("--angle", default="oblique", choices=tuple(camera.VIEWS))
+    ap.add_argument("--method", default="park", choices=traverse.EXACT_METHODS)
     ap.add_argument("--size", type=int, default=64, help="map and image side (default 64)")
     ap.add_argument("--variant", default="fast", choices=VARIANTS)
     ap.add_argument("--build-only", action="store_true")
     a = ap.parse_args(argv)
+    if not 2 <= a.size <= 4096:
+        fail(prog, f"--size must be in 2..4096, got {a.size}")
     t0 = time.monotonic()
     build(a.variant, quiet=False)
     print(f"rtl_pipeline: harness ready ({time.monotonic() - t0:.1f} s)")
     if a.build_only:
         return 0
     frame, cam = scene_frame(a.scene, a.size, a.angle, a.size, a.method)
+    try:
+        check_limits(frame)
+    except RtlLimitError as e:
+        fail(prog, f"the pipeline RTL cannot render this: {e}")
     img, st = render_rtl(frame, cam, checked=a.variant == "checked")
     ref = shade.render(frame, cam)
     bad = compare(img.out, ref.out)

@@ -29,6 +29,15 @@ def main() -> int:
     args = ap.parse_args()
     if args.scene not in scenes.SCENES:
         fail("bench_model.py", f"unknown scene {args.scene!r}")
+    for what, v, lo in (("--size", args.size, 2), ("--image-size", args.image_size, 1),
+                        ("--repeat", args.repeat, 1)):
+        if not lo <= v <= 8192:
+            fail("bench_model.py", f"{what} must be in {lo}..8192, got {v}")
+    angles = args.angles.split(",")
+    bad_angles = [a for a in angles if a not in camera.VIEWS]
+    if bad_angles:
+        fail("bench_model.py", f"unknown angle(s) {', '.join(bad_angles)} (one of "
+                               f"{', '.join(camera.VIEWS)})")
     methods = args.methods.split(",")
     bad = [m for m in methods if m not in traverse.METHODS]
     if bad:
@@ -37,7 +46,7 @@ def main() -> int:
     pyr = heightmap.build(sc.heights)
     rows = []
     print(f"{'angle':8} {'method':10} {'engine':6} {'rays':>7} {'iter/ray':>9} {'rays/s':>10}")
-    for angle in args.angles.split(","):
+    for angle in angles:
         rays = camera.Camera.for_view(angle, args.size, args.size, args.image_size,
                                       args.image_size).rays().rays
         for m in methods:

@@ -8,13 +8,13 @@ The package is committed; tests/test_f24_approx_model.py checks that it equals :
 """
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
+from model.cli import Parser  # noqa: E402
 
 from model import f24_approx as A  # noqa: E402
 
@@ -79,7 +79,7 @@ def render() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = Parser(prog="gen_f24_tables.py", description=__doc__.splitlines()[0])
     ap.add_argument("--check", action="store_true", help="compare instead of writing")
     args = ap.parse_args(argv)
     text = render()

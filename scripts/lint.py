@@ -5,7 +5,6 @@ Prints one line per module with a problem and a summary; exit status 1 on any wa
 """
 from __future__ import annotations
 
-import argparse
 import os
 import shutil
 import subprocess
@@ -15,6 +14,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+from model.cli import Parser  # noqa: E402
 from tb.common.runner import rtl_index  # noqa: E402
 
 
@@ -25,7 +25,7 @@ def lint_one(verilator: str, top: str, files: list[Path]) -> tuple[str, int, str
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__)
+    ap = Parser(prog="lint.py", description=__doc__)
     ap.add_argument("modules", nargs="*", help="only these modules (default: all under rtl/)")
     args = ap.parse_args()
     verilator = shutil.which("verilator")

