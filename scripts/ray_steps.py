@@ -1,0 +1,313 @@
+#!/usr/bin/env python3
+"""One ray, step by step: the golden model's traversal of a single ray (level, cell, the height read
+and its byte address, t, plane, t_exit, t_new, action per iteration), to line up with the RTL's
+waveform; optionally the same ray through the RTL (Verilator harness), with its FST.
+
+  ray_steps.py (--scene NAME [--map-size N] | --heightmap FILE)
+               (--ray U0 V0 DU DV | --rays RAYS.npy --index I | --pixel X Y [--angle A] [--image N])
+               [--method park] [--engine f24|f64] [--rtl] [--waves OUT.fst] [--json OUT.json]
+
+The steps come from model.traverse.trace's `record` hook (the traversal itself is not repeated
+here).  With the f24 engine every float is also shown as its 24-bit pattern (hex), the form the
+waves show.  Iteration i of the model is the i-th height lookup of the ray that the cache answered
+with a hit (rs_hit_i = 1): lookups answered with a miss go round again and are not iterations.
+--pixel takes the ray the pipeline traces for that pixel of a scene view (the view unit's du, dv
+in the engine's arithmetic, model.view.view_calc).  Bad input: one line, exit status 2.
+"""
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from model import f24, heightmap, traverse  # noqa: E402
+from model.arith import ENGINES  # noqa: E402
+from model.cli import Parser, fail  # noqa: E402
+from model.rays import Rays  # noqa: E402
+
+PROG = "ray_steps.py"
+#: The harness's byte address of the pyramid (model.rtl_engine.DEFAULT_BASE).
+DEFAULT_BASE = 0x4000_0000
+#: Clocks from a height lookup to its answer (traverse_pkg::LOOKUP_LAT).
+LOOKUP_LAT = 2
+
+
+def hx(x: float) -> str:
+    """The f24 pattern of a value the f24 engine produced (exactly representable)."""
+    return f"{int(f24.from_float(np.array([x]))[0]):06x}"
+
+
+def texel_address(pyr: heightmap.Pyramid, base: int, k: int, cx: int, cy: int) -> int:
+    """traverse_addr's byte address: base + level_off[k] + (cy * (N >> k) + cx) * bytes."""
+    return base + pyr.level_offsets()[k] + (cy * (pyr.size >> k) + cx) * (pyr.bits // 8)
+
+
+def load_map(args) -> tuple[np.ndarray, str, Any]:
+    """Heights, a name, and the scene (None for a height-map file)."""
+    if args.heightmap is not None:
+        if args.scene is not None:
+            fail(PROG, "give --scene or --heightmap, not both")
+        try:
+            return heightmap.load(args.heightmap), str(args.heightmap), None
+        except Exception as e:  # HeightMapError, OpenImageIO's errors
+            fail(PROG, f"cannot read height map {args.heightmap}: {e}".splitlines()[0])
+    from model import scenes
+    name = args.scene or "rocks"
+    if name not in scenes.SCENES:
+        fail(PROG, f"unknown scene {name!r} (valid scenes: {', '.join(scenes.SCENES)})")
+    if args.map_size < 1 or args.map_size > 4096:
+        fail(PROG, f"--map-size must be 1 .. 4096, got {args.map_size}")
+    sc = scenes.load_scene(name, args.map_size)
+    return sc.heights, f"{name} {args.map_size}x{args.map_size}", sc
+
+
+def pick_ray(args, pyr: heightmap.Pyramid, scene, engine: str) -> tuple[Rays, str]:
+    given = [x for x in ("ray", "rays", "pixel") if getattr(args, x) is not None]
+    if len(given) != 1:
+        fail(PROG, "give exactly one of --ray, --rays (with --index), --pixel")
+    if args.ray is not None:
+        return Rays.from_array(np.array([args.ray], dtype=np.float64)), "given with --ray"
+    if args.rays is not None:
+        if args.index is None:
+            fail(PROG, "--rays needs --index")
+        try:
+            a = np.load(args.rays, allow_pickle=False)
+        except Exception as e:
+            fail(PROG, f"cannot read rays file {args.rays}: {e}".splitlines()[0])
+        if not isinstance(a, np.ndarray) or a.dtype != np.float64 or a.ndim != 2 \
+                or a.shape[1] != 4:
+            fail(PROG, f"rays must be a float64 (N, 4) array, {args.rays} holds "
+                       f"{getattr(a, 'dtype', '?')} {getattr(a, 'shape', '?')}")
+        if not 0 <= args.index < len(a):
+            fail(PROG, f"--index {args.index} out of range: {args.rays} holds {len(a)} rays")
+        return Rays.from_array(a[args.index:args.index + 1]), f"ray {args.index} of {args.rays}"
+    # --pixel: the ray the pipeline traces for that pixel
+    from model import camera, view
+    from model.camera import VIEWS
+    try:
+        angle: str | float = args.angle if args.angle in VIEWS else float(args.angle)
+    except ValueError:
+        fail(PROG, f"--angle must be one of {', '.join(VIEWS)} or an elevation in degrees")
+    depth = scene.depth_scale if scene is not None else camera.depth_scale(pyr.width, pyr.height)
+    try:
+        cam = camera.Camera.for_view(angle, pyr.width, pyr.height, args.image, args.image,
+                                     depth_scale=depth)
+    except ValueError as e:
+        fail(PROG, str(e))
+    x, y = args.pixel
+    fr = cam.fragments()
+    idx = np.nonzero((fr.row == y) & (fr.col == x))[0]
+    if idx.size == 0:
+        fail(PROG, f"pixel ({x}, {y}) of the {args.image}x{args.image} {args.angle} view is not "
+                   "covered by the quad")
+    i = int(idx[0])
+    vo = view.view_calc(ENGINES[engine], fr.tbn[i:i + 1], fr.view[i:i + 1], depth)
+    return (Rays(fr.u0[i:i + 1].copy(), fr.v0[i:i + 1].copy(), vo.du, vo.dv),
+            f"pixel ({x}, {y}) of the {args.image}x{args.image} {args.angle} view "
+            f"(view unit, {engine})")
+
+
+def steps(pyr: heightmap.Pyramid, rays: Rays, method: str, engine: str, base: int
+          ) -> tuple[list[dict[str, Any]], Any, dict[str, int]]:
+    rec: list[dict[str, Any]] = []
+    stats: dict[str, int] = {}
+    res = traverse.trace(pyr, rays, method, engine, record=rec, stats=stats)
+    for r in rec:
+        r["code"] = int(pyr.levels[r["level"]][r["cy"], r["cx"]])
+        r["address"] = texel_address(pyr, base, r["level"], r["cx"], r["cy"])
+    return rec, res, stats
+
+
+def rtl_lookups(fst: Path, scope: str = "TOP.traverse_system.u_unit.") -> list[dict[str, Any]]:
+    """The height lookups of the traverse unit in an FST of the harness, in order: clock, byte
+    address, and the cache's answer LOOKUP_LAT clocks later (hit / miss / error, code).  The
+    harness dumps clock n's inputs at time 2n (clk_i low) and its edge at 2n + 1."""
+    import pywellen
+
+    w = pywellen.Waveform(str(fst))
+    vs = {v.full_name: v for v in w.all_vars()}
+    names = ("clk_i", "lk_valid_o", "lk_addr_o", "rs_valid_i", "rs_hit_i", "rs_err_i", "rs_data_i")
+    missing = [n for n in names if scope + n not in vs]
+    if missing:
+        raise KeyError(f"{fst} lacks {scope}{missing[0]}")
+    sig = {n: vs[scope + n].signal for n in names}
+    steps: list[int] = []
+    w.stream_time_steps(lambda idx, *_: steps.append(idx), [vs[scope + "clk_i"]])
+    n_idx = (max(steps) + 1) if steps else 0
+
+    def val(n: str, i: int) -> int:
+        v = sig[n].value_at(i)
+        return int(v) if isinstance(v, int) else 0
+
+    looks: list[dict[str, Any]] = []
+    for i in range(0, n_idx, 2):
+        if val("clk_i", i) or not val("lk_valid_o", i):
+            continue
+        lk: dict[str, Any] = {"clock": i // 2, "time": i, "address": val("lk_addr_o", i)}
+        j = i + 2 * LOOKUP_LAT   # the answer, LOOKUP_LAT clocks later
+        if j < n_idx and val("rs_valid_i", j):
+            lk.update(hit=bool(val("rs_hit_i", j)), err=bool(val("rs_err_i", j)),
+                      code=val("rs_data_i", j))
+        looks.append(lk)
+    return looks
+
+
+def compare_lookups(steps_: list[dict[str, Any]], looks: list[dict[str, Any]]) -> str | None:
+    """None when the RTL's answered lookups read the model's addresses and codes in order, else
+    the first difference."""
+    read = [lk for lk in looks if lk.get("hit") or lk.get("err")]
+    for i, s in enumerate(steps_):
+        if i >= len(read):
+            return f"iteration {s['iteration']}: the model reads 0x{s['address']:08x}; the RTL " \
+                   f"made only {len(read)} answered lookups"
+        lk = read[i]
+        if lk["address"] != s["address"] or lk["code"] != s["code"] or lk.get("err"):
+            return (f"iteration {s['iteration']}: the model reads 0x{s['address']:08x} (code "
+                    f"0x{s['code']:x}), the RTL 0x{lk['address']:08x} (code 0x{lk['code']:x}"
+                    f"{', error' if lk.get('err') else ''}) at clock {lk['clock']} "
+                    f"(time {lk['time']})")
+    if len(read) > len(steps_):
+        lk = read[len(steps_)]
+        return (f"the RTL reads on after the model's {len(steps_)} iterations: 0x"
+                f"{lk['address']:08x} at clock {lk['clock']} (time {lk['time']})")
+    return None
+
+
+def fmt_val(x: float, f24_engine: bool) -> str:
+    if f24_engine:
+        return f"{x:<11.6g} {hx(x)}" if np.isfinite(x) else f"{x:<11} {hx(x)}"
+    return f"{x:<.9g}"
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = Parser(prog=PROG, description=__doc__.split("\n\n")[0])
+    src = ap.add_argument_group("height map")
+    src.add_argument("--scene", help="procedural scene (default rocks)")
+    src.add_argument("--map-size", type=int, default=256, help="scene map side (default 256)")
+    src.add_argument("--heightmap", type=Path, help="image (OpenImageIO) or .npy")
+    src.add_argument("--bits", type=int, default=8, choices=(8, 16), help="height storage")
+    ray = ap.add_argument_group("the ray")
+    ray.add_argument("--ray", type=float, nargs=4, metavar=("U0", "V0", "DU", "DV"))
+    ray.add_argument("--rays", type=Path, help="a RAYS.npy batch (trace.py's input) ...")
+    ray.add_argument("--index", type=int, help="... and the ray's index in it")
+    ray.add_argument("--pixel", type=int, nargs=2, metavar=("X", "Y"),
+                     help="the pipeline's ray for pixel (column X, row Y) of a view")
+    ray.add_argument("--angle", default="oblique", help="front | oblique | grazing | degrees")
+    ray.add_argument("--image", type=int, default=256, help="image side for --pixel")
+    ap.add_argument("--method", default="park", help=", ".join(traverse.EXACT_METHODS))
+    ap.add_argument("--engine", default="f24", choices=("f24", "f64"))
+    ap.add_argument("--base", type=lambda s: int(s, 0), default=DEFAULT_BASE,
+                    help="byte address of the pyramid (default 0x40000000, the harness's)")
+    ap.add_argument("--rtl", action="store_true", help="also trace the ray on the RTL")
+    ap.add_argument("--waves", type=Path, help="with --rtl: write the RTL run's FST here")
+    ap.add_argument("--latency", type=int, default=20, help="AXI read latency for --rtl")
+    ap.add_argument("--json", type=Path, help="write the steps and results as JSON")
+    args = ap.parse_args(argv)
+
+    if args.method not in traverse.EXACT_METHODS:
+        fail(PROG, f"unknown method {args.method!r} (exact methods: "
+                   f"{', '.join(traverse.EXACT_METHODS)})")
+    if args.waves is not None:
+        args.rtl = True
+        if args.waves.suffix != ".fst":
+            fail(PROG, f"--waves writes an FST file (name it .fst): {args.waves}")
+    if args.rtl and args.engine != "f24":
+        fail(PROG, "--rtl compares with the f24 engine (the RTL's arithmetic)")
+    h, name, scene = load_map(args)
+    pyr = heightmap.build(h, bits=args.bits)
+    rays, origin = pick_ray(args, pyr, scene, args.engine)
+    is24 = args.engine == "f24"
+    rec, res, stats = steps(pyr, rays, args.method, args.engine, args.base)
+
+    out = sys.stdout
+    print(f"{PROG}: {name} (unorm{pyr.bits}, padded {pyr.size}, root level {pyr.n}), "
+          f"method {args.method}, engine {args.engine}; pyramid at 0x{args.base:08x}", file=out)
+    r = [float(getattr(rays, k)[0]) for k in ("u0", "v0", "du", "dv")]
+    print(f"ray ({origin}): u0 {r[0]!r} v0 {r[1]!r} du {r[2]!r} dv {r[3]!r}", file=out)
+    if is24:
+        q = [float(f24.to_float(f24.from_float(np.array([x])))[0]) for x in r]
+        print("  as f24 (ray_u0_i ray_v0_i ray_du_i ray_dv_i): "
+              + " ".join(hx(x) for x in q), file=out)
+    cols = ["t", "plane", "t_exit", "t_new"]
+    w = 18 if is24 else 12
+    print(f"{'iter':>4} {'lvl':>3} {'cell x':>7} {'cell y':>7} {'address':>10} {'code':>6} "
+          + " ".join(f"{c:<{w}}" for c in cols) + " action", file=out)
+    for s in rec:
+        print(f"{s['iteration']:>4} {s['level']:>3} {s['cx']:>7} {s['cy']:>7} "
+              f"{s['address']:>#10x} {s['code']:>#6x} "
+              + " ".join(f"{fmt_val(s[c], is24):<{w}}" for c in cols) + f" {s['action']}",
+              file=out)
+    inv = bool(res.invalid[0])
+    summary = {"hit": bool(res.hit[0]), "invalid": inv, "t": float(res.t[0]),
+               "u": float(res.u[0]), "v": float(res.v[0]),
+               "iterations": int(res.iterations[0])}
+    if inv:
+        print("model: the ray is invalid (a NaN / Inf field, or it starts outside the map): "
+              "no iterations", file=out)
+    else:
+        print(f"model: {'hit' if summary['hit'] else 'no hit'}"
+              + (f" t {summary['t']!r} u {summary['u']!r} v {summary['v']!r}"
+                 + (f" (f24 {hx(summary['t'])} {hx(summary['u'])} {hx(summary['v'])})"
+                    if is24 else "") if summary["hit"] else "")
+              + f", {summary['iterations']} iterations; {stats}", file=out)
+    result: dict[str, Any] = {"map": name, "method": args.method, "engine": args.engine,
+                              "ray": r, "origin": origin, "base": args.base, "steps": rec,
+                              "model": summary}
+    rc = 0
+    if args.rtl:
+        from model import rtl_engine
+        print(f"{PROG}: running the ray on the RTL (Verilator harness"
+              + (", traced build" if args.waves else "") + "; the first build takes minutes)",
+              file=sys.stderr, flush=True)
+        try:
+            rr, st = rtl_engine.trace_rtl(pyr, rays, args.method, latency=args.latency,
+                                          waves=args.waves, base=args.base)
+        except Exception as e:  # RtlEngineError, build failures
+            print(f"{PROG}: the RTL run failed: {e}".splitlines()[0], file=sys.stderr)
+            return 1
+        got = {"hit": bool(rr.hit[0]), "invalid": bool(rr.invalid[0]), "t": float(rr.t[0]),
+               "u": float(rr.u[0]), "v": float(rr.v[0]), "iterations": int(rr.iterations[0])}
+        same = all((got[k] == summary[k]) or (isinstance(got[k], float) and np.isnan(got[k])
+                                              and np.isnan(summary[k])) for k in got)
+        print(f"rtl:   {'hit' if got['hit'] else 'no hit'}"
+              + (f" t {got['t']!r} u {got['u']!r} v {got['v']!r}" if got["hit"] else "")
+              + f", {got['iterations']} iterations, {st.get('cycles')} clocks: "
+              + ("identical to the model" if same else "DIFFERENT from the model"), file=out)
+        if args.waves:
+            looks = rtl_lookups(args.waves)
+            print(f"rtl lookups in the waves ({len(looks)}; clock n is at time 2n; iteration i = "
+                  f"the i-th answered lookup; for a lookup at clock c: the ray's state in group "
+                  f"S0 at c - 1, lk_* at c, the answer at c + {LOOKUP_LAT}, the action and next "
+                  f"state in S16 at c + 15):", file=out)
+            print(f"{'clock':>6} {'time':>6} {'address':>10}  answer", file=out)
+            it = 0
+            for lk in looks:
+                ans = ("error" if lk.get("err") else f"hit {lk['code']:#06x}" if lk.get("hit")
+                       else "miss (goes round again)" if "hit" in lk else "(no answer)")
+                if lk.get("hit") or lk.get("err"):
+                    it += 1
+                    ans += f"  = iteration {it}"
+                print(f"{lk['clock']:>6} {lk['time']:>6} {lk['address']:>#10x}  {ans}", file=out)
+            diff = compare_lookups(rec, looks)
+            print("lookups: " + ("the RTL reads the model's addresses and codes in order"
+                                 if diff is None else f"FIRST DIFFERENCE: {diff}"), file=out)
+            print(f"waves: {args.waves} (gtkwave {args.waves} tb/waves/traverse_harness.gtkw)",
+                  file=out)
+            result["rtl_lookups"] = looks
+            result["lookup_difference"] = diff
+            same = same and diff is None
+        result["rtl"] = got
+        result["rtl_stats"] = st
+        rc = 0 if same else 1
+    if args.json:
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        args.json.write_text(json.dumps(result, indent=1, default=float) + "\n")
+    return rc
+
+
+if __name__ == "__main__":
+    sys.exit(main())

