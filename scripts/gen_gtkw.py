@@ -53,10 +53,10 @@ TRAVERSE: list[tuple[str, list[Sig]]] = [
         ("u_unit.lk_valid_o", 1, BIN), ("u_unit.lk_addr_o", 32, HEX), ("u_unit.lk_wide_o", 1, BIN),
         ("u_unit.rs_valid_i", 1, BIN), ("u_unit.rs_hit_i", 1, BIN), ("u_unit.rs_err_i", 1, BIN),
         ("u_unit.rs_data_i", 16, HEX)]),
-    ("S3-S7: H, plane = 1 - H, crossing times, t_exit, t_end", [
+    ("S3-S7: H, plane = 1 - H, crossing times, t_end", [
         ("u_unit.u_loop.h8", 24, HEX), ("u_unit.u_loop.plane", 24, HEX),
-        ("u_unit.u_loop.tx", 24, HEX), ("u_unit.u_loop.ty", 24, HEX),
-        ("u_unit.u_loop.te", 24, HEX), ("u_unit.u_loop.t_end", 24, HEX),
+        ("u_unit.u_loop.tx_raw", 24, HEX), ("u_unit.u_loop.ty_raw", 24, HEX),
+        ("u_unit.u_loop.t_end", 24, HEX),
         ("u_unit.u_loop.inside7", 1, BIN)]),
     ("S12: descent (the new level, levels descended)", [
         ("u_unit.u_loop.nk12", 4, DEC), ("u_unit.u_loop.dd", 4, DEC)]),

@@ -156,6 +156,29 @@ def rtl_lookups(fst: Path, scope: str = "TOP.traverse_system.u_unit.") -> list[d
     return looks
 
 
+def ray_slot(fst: Path, n_iters: int, scope: str = "TOP.traverse_system.u_unit.u_loop.",
+             slots: int = 18) -> int | None:
+    """The loop slot a lone ray occupies in an FST of the harness: the slot whose iteration count
+    (stat_q[j].iters) counts 1 .. n_iters.  None when the FST has no slot table."""
+    import pywellen
+
+    w = pywellen.Waveform(str(fst))
+    vs = {v.full_name: v for v in w.all_vars()}
+    steps: list[int] = []
+    clk = vs.get(scope + "clk_i")
+    if clk is None:
+        return None
+    w.stream_time_steps(lambda idx, *_: steps.append(idx), [clk])
+    for j in range(slots):
+        v = vs.get(f"{scope}stat_q.[{j}].iters")
+        if v is None:
+            return None
+        seen = {v.signal.value_at(i) for i in range(2, (max(steps) + 1) if steps else 0, 2)}
+        if n_iters > 0 and set(range(1, n_iters + 1)) <= seen:
+            return j
+    return None
+
+
 def compare_lookups(steps_: list[dict[str, Any]], looks: list[dict[str, Any]]) -> str | None:
     """None when the RTL's answered lookups read the model's addresses and codes in order, else
     the first difference."""
@@ -292,6 +315,13 @@ def main(argv: list[str] | None = None) -> int:
                     it += 1
                     ans += f"  = iteration {it}"
                 print(f"{lk['clock']:>6} {lk['time']:>6} {lk['address']:>#10x}  {ans}", file=out)
+            slot = ray_slot(args.waves, len(rec))
+            if slot is not None:
+                print(f"slot: the ray is in loop slot {slot}: u_loop.node_q[{slot}] (k, cx, cy), "
+                      f"t_q[{slot}].t and stat_q[{slot}].iters hold a row's level, cell, t and "
+                      f"iteration - 1 from its lookup until 16 clocks after it, then the next "
+                      f"row's", file=out)
+                result["rtl_slot"] = slot
             diff = compare_lookups(rec, looks)
             print("lookups: " + ("the RTL reads the model's addresses and codes in order"
                                  if diff is None else f"FIRST DIFFERENCE: {diff}"), file=out)
