@@ -20,12 +20,13 @@ unpacked array element `arr.arr[i]`, a packed struct member `s.member` (--trace-
 """
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "tb" / "waves"
+sys.path.insert(0, str(ROOT))
+from model.cli import Parser  # noqa: E402
 
 # GTKWave trace flags: hex / binary / decimal, right-justified; comment; group begin / end.
 HEX, BIN, DEC = "22", "28", "24"
@@ -205,7 +206,7 @@ def check_fst(target: str, fst: Path) -> list[str]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap = Parser(prog="gen_gtkw.py", description=__doc__.split("\n\n")[0])
     ap.add_argument("--check-only", action="store_true")
     ap.add_argument("--fst", type=Path)
     ap.add_argument("--target", choices=sorted(TARGETS))
@@ -217,7 +218,13 @@ def main(argv: list[str] | None = None) -> int:
         if not args.fst.is_file():
             print(f"gen_gtkw.py: error: no file {args.fst}", file=sys.stderr)
             return 2
-        missing = check_fst(args.target, args.fst)
+        try:
+            missing = check_fst(args.target, args.fst)
+        except (RuntimeError, OSError, ValueError) as e:
+            msg = " ".join(str(e).split()) or type(e).__name__
+            print(f"gen_gtkw.py: error: {args.fst} is not a readable FST/VCD waveform ({msg})",
+                  file=sys.stderr)
+            return 2
         n = sum(len(s) for _, s in groups_for(args.target))
         if missing:
             print(f"gen_gtkw.py: {args.target}: {len(missing)} of {n} signals not in {args.fst}:")

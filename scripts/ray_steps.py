@@ -240,6 +240,13 @@ def main(argv: list[str] | None = None) -> int:
             fail(PROG, f"--waves writes an FST file (name it .fst): {args.waves}")
     if args.rtl and args.engine != "f24":
         fail(PROG, "--rtl compares with the f24 engine (the RTL's arithmetic)")
+    if args.json is not None:
+        try:
+            args.json.parent.mkdir(parents=True, exist_ok=True)
+        except OSError as e:
+            fail(PROG, f"cannot write --json {args.json}: {e.strerror or e}")
+        if args.json.is_dir():
+            fail(PROG, f"--json {args.json} is a directory")
     h, name, scene = load_map(args)
     pyr = heightmap.build(h, bits=args.bits)
     rays, origin = pick_ray(args, pyr, scene, args.engine)
@@ -334,7 +341,6 @@ def main(argv: list[str] | None = None) -> int:
         result["rtl_stats"] = st
         rc = 0 if same else 1
     if args.json:
-        args.json.parent.mkdir(parents=True, exist_ok=True)
         args.json.write_text(json.dumps(result, indent=1, default=float) + "\n")
     return rc
 

@@ -27,6 +27,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+from model.cli import Parser  # noqa: E402
 
 TOP = "dm_pipeline_fpga_top"
 LPF = ROOT / "constraints" / "dm_pipeline.lpf"
@@ -626,7 +627,7 @@ def read_target(lpf: Path) -> float:
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap = Parser(prog="synth.py", description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", type=Path, default=ROOT / "out" / "synth")
     ap.add_argument("--blocks", default="", help="comma-separated subset of: "
                     + ", ".join(BLOCK_NAMES))

@@ -13,7 +13,6 @@ names nothing: one line, exit status 2.
 """
 from __future__ import annotations
 
-import argparse
 import os
 import re
 import subprocess
@@ -26,6 +25,8 @@ TB = ROOT / "tb"
 SIM = ROOT / "build" / "sim"
 GTKW = TB / "waves"
 PROG = "waves.py"
+sys.path.insert(0, str(ROOT))
+from model.cli import Parser  # noqa: E402
 
 
 def fail(msg: str) -> int:
@@ -62,7 +63,7 @@ def gtkw_for(fst: Path) -> Path | None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n\n")[0])
+    ap = Parser(prog=PROG, description=__doc__.split("\n\n")[0])
     ap.add_argument("test", help="testbench dir, test file or pytest node id")
     ap.add_argument("--case", help="cocotb test name(s), comma-separated (default: all)")
     args = ap.parse_args(argv)

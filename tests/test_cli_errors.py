@@ -103,7 +103,6 @@ def _fails(why: str) -> dict[str, str]:
     return {"xfail": why}
 
 
-_USAGE = "plain argparse: a usage block before the error line"
 
 #: tool (a script path or "-m module"), its arguments ({d}: a scratch directory holding h.npy,
 #: r.npy, r3.npy, junk.npy, junk.png, junk.fst, afile, junkcov/x.dat, emptydir/), and optionally
@@ -191,21 +190,20 @@ TOOL_CASES: dict[str, tuple[str, list[str], dict[str, str]]] = {
     "ray_steps waves not fst": ("scripts/ray_steps.py", ["--ray", "1", "1", "1", "1", "--rtl",
                                                          "--waves", "{d}/x.vcd"], {}),
     "ray_steps json in a file": ("scripts/ray_steps.py", ["--ray", "1", "1", "1", "1", "--json",
-                                                          "{d}/afile/x.json"],
-                                 _fails("FileExistsError traceback after the trace, status 1")),
+                                                          "{d}/afile/x.json"], {}),
     # waves.py
-    "waves no test": ("scripts/waves.py", [], _fails(_USAGE)),
+    "waves no test": ("scripts/waves.py", [], {}),
     "waves empty test": ("scripts/waves.py", [""], {}),
     "waves unknown test": ("scripts/waves.py", ["nope_tb"], {}),
     "waves directory with a test part": ("scripts/waves.py", ["tb/traverse_fifo::x"], {}),
-    "waves unknown option": ("scripts/waves.py", ["traverse_fifo", "--nope"], _fails(_USAGE)),
+    "waves unknown option": ("scripts/waves.py", ["traverse_fifo", "--nope"], {}),
     # synth.py
     "synth unknown block": ("scripts/synth.py", ["--blocks", "nope"], {}),
     "synth jobs 0": ("scripts/synth.py", ["--jobs", "0"], {}),
     "synth missing constraints": ("scripts/synth.py", ["--lpf", "{d}/nope.lpf"], {}),
     "synth constraints without a clock": ("scripts/synth.py", ["--lpf", "{d}/afile"], {}),
     "synth missing report": ("scripts/synth.py", ["--report-only", "--out", "{d}/nosyn"], {}),
-    "synth unknown device": ("scripts/synth.py", ["--device", "nope"], _fails(_USAGE)),
+    "synth unknown device": ("scripts/synth.py", ["--device", "nope"], {}),
     # soak.py
     "soak rays 0": ("scripts/soak.py", ["--rays", "0"], {}),
     "soak rays not a number": ("scripts/soak.py", ["--rays", "x"], {}),
@@ -234,9 +232,8 @@ TOOL_CASES: dict[str, tuple[str, list[str], dict[str, str]]] = {
     "gen_gtkw missing fst": ("scripts/gen_gtkw.py", ["--fst", "{d}/nope.fst", "--target",
                                                      "traverse_harness"], {}),
     "gen_gtkw unreadable fst": ("scripts/gen_gtkw.py", ["--fst", "{d}/junk.fst", "--target",
-                                                        "traverse_harness"],
-                                _fails("RuntimeError traceback from pywellen, exit status 1")),
-    "gen_gtkw unknown target": ("scripts/gen_gtkw.py", ["--target", "nope"], _fails(_USAGE)),
+                                                        "traverse_harness"], {}),
+    "gen_gtkw unknown target": ("scripts/gen_gtkw.py", ["--target", "nope"], {}),
     "lint unknown module": ("scripts/lint.py", ["nope_module"], {}),
     "lint unknown option": ("scripts/lint.py", ["--nope"], {}),
     "synth_check log in a file": ("scripts/synth_check.py", ["--log", "{d}/afile/x.log"],
