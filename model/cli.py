@@ -38,8 +38,9 @@ class Progress:
             return
         self.last = now
         rate = done / max(now - self.t0, 1e-9)
+        pace = f"{rate:,.0f}/s" if rate >= 10 else f"{rate:.2f}/s"
         sys.stderr.write(f"\r{self.what}: {done}/{self.total} ({100 * done / self.total:.0f}%), "
-                         f"{rate:,.0f}/s")
+                         f"{pace}")
         if done >= self.total:
             sys.stderr.write("\n")
         sys.stderr.flush()

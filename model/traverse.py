@@ -266,24 +266,49 @@ def _flat_levels(pyr: Pyramid) -> tuple[npt.NDArray[np.int64], I64]:
     return flat, offs
 
 
+def pyramid_texels(pyr: Pyramid) -> int:
+    """Texels in all levels of the pyramid (the length of :func:`trace`'s ``touched``)."""
+    return int(sum(lv.size for lv in pyr.levels))
+
+
+def lines_touched(pyr: Pyramid, touched: npt.NDArray[np.bool_], line_bytes: int,
+                  base: int = 0) -> int:
+    """Distinct cache lines of ``line_bytes`` holding a texel marked in ``touched``, with the
+    pyramid stored at byte address ``base`` (:meth:`Pyramid.level_offsets`): the line fills a
+    cold cache cannot avoid for those reads (compulsory misses)."""
+    flat_offs = np.cumsum([0] + [lv.size for lv in pyr.levels]).astype(np.int64)
+    byte_offs = pyr.level_offsets()
+    bpt = pyr.bits // 8
+    lines = []
+    for k in range(len(pyr.levels)):
+        idx = np.nonzero(touched[flat_offs[k]:flat_offs[k + 1]])[0].astype(np.int64)
+        lines.append((base + byte_offs[k] + idx * bpt) // line_bytes)
+    return int(np.unique(np.concatenate(lines)).size) if lines else 0
+
+
 def trace(pyr: Pyramid, rays: Rays, method: str | Method = "park", engine: str | Arith = "f64",
           record: list[dict[str, Any]] | None = None,
-          stats: dict[str, int] | None = None) -> TraceResult:
+          stats: dict[str, int] | None = None,
+          touched: npt.NDArray[np.bool_] | None = None) -> TraceResult:
     """Trace rays through the pyramid with an exact method on an engine (``f64`` or ``f24``).
 
     ``record``, when given, receives one dict per iteration of ray 0 (level, cell, t, H, action):
     the step-by-step trace that lines up with the RTL's waves.  ``stats``, when given, gets the
     counts of what the iterations did: ``down``, ``cross``, ``hit``, ``miss`` (one per iteration,
     so they sum to the iterations) and ``up`` (the crossings that also went up a level).
+    ``touched``, when given (bool, one per texel of every level: :func:`pyramid_texels`), is set
+    where an iteration read the texel (:func:`lines_touched` turns it into cache lines).
     """
     with np.errstate(all="ignore"):  # Inf and NaN are values of the datapath, not errors
         return _trace(pyr, rays, METHODS[method] if isinstance(method, str) else method,
-                      ENGINES[engine] if isinstance(engine, str) else engine, record, stats)
+                      ENGINES[engine] if isinstance(engine, str) else engine, record, stats,
+                      touched)
 
 
 def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
            record: list[dict[str, Any]] | None,
-           stats: dict[str, int] | None) -> TraceResult:
+           stats: dict[str, int] | None,
+           touched: npt.NDArray[np.bool_] | None = None) -> TraceResult:
     if m.descent not in DESCENT_POLICIES or m.level_up not in LEVEL_UP_POLICIES:
         raise ValueError(f"bad method {m}")
     nrays = len(rays)
@@ -329,7 +354,10 @@ def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
         u0, v0, du, dv = S.u0[act], S.v0[act], S.du[act], S.dv[act]
         ix, iy, sx, sy, tmap = S.inv_du[act], S.inv_dv[act], S.sx[act], S.sy[act], S.t_map[act]
         ones = one[: act.size]
-        code = flat[texel_offset(offs, n, kk, xx, yy)]
+        fi = texel_offset(offs, n, kk, xx, yy)
+        code = flat[fi]
+        if touched is not None:
+            touched[fi] = True
         iters[act] += 1
         h = ar.from_unorm(code, pyr.bits)
         plane = ar.sub(ones, h)

@@ -358,6 +358,10 @@ def test_bench_pipeline(harness: Path, tmp_path: Path) -> None:
         assert c["bytes_per_pixel"] == pytest.approx(c["height_bytes_per_pixel"]
                                                      + c["texture_bytes_per_pixel"])
         assert 0 < c["texture_quad_hit_rate"] <= c["texture_cache_hit_rate"] <= 1
+        # a cold cache fills every line the rays touch at least once
+        assert c["height_line_bytes"] == 32 and c["height_lines_touched"] > 0
+        assert c["height_fills_per_bound"] >= 1.0
+        assert c["height_reads_served"] <= c["height_served_bound"] < 1.0
     # the same rays either way: MIP changes only the texture path
     on, off = d["cases"]
     assert on["iterations"] == off["iterations"] and on["pixels"] == off["pixels"]

@@ -150,6 +150,33 @@ def test_step_record_follows_one_ray() -> None:
     assert rec[0]["level"] == 1
 
 
+@pytest.mark.parametrize("bits", [8, 16])
+def test_touched_texels_and_lines(rng: np.random.Generator, bits: int) -> None:
+    """trace(touched=...) marks exactly the texels the per-ray step records read, and
+    lines_touched counts the distinct cache lines of their byte addresses (the slow way)."""
+    h, w = 23, 37
+    pyr = heightmap.build(height_field(rng, h, w, 1), bits=bits)
+    rays = adversarial_rays(rng, w, h, 60)
+    touched = np.zeros(traverse.pyramid_texels(pyr), dtype=bool)
+    res = traverse.trace(pyr, rays, "park", "f24", touched=touched)
+    cells = set()
+    for i in range(len(rays)):
+        rec: list[dict] = []
+        traverse.trace(pyr, rays.subset([i]), "park", "f24", record=rec)
+        assert len(rec) == res.iterations[i]
+        cells |= {(r["level"], r["cy"], r["cx"]) for r in rec}
+    assert cells, "no ray read a texel"
+    offs = np.cumsum([0] + [lv.size for lv in pyr.levels]).astype(np.int64)
+    marked = {(k, int(f - offs[k]) // (pyr.size >> k), int(f - offs[k]) % (pyr.size >> k))
+              for f in np.nonzero(touched)[0] for k in [int(np.searchsorted(offs, f, "right")) - 1]}
+    assert marked == cells
+    byte_offs, bpt = pyr.level_offsets(), bits // 8
+    for line, base in ((32, 0), (64, 0x4000_0000), (32, 16)):
+        want = {(base + byte_offs[k] + (cy * (pyr.size >> k) + cx) * bpt) // line
+                for k, cy, cx in cells}
+        assert traverse.lines_touched(pyr, touched, line, base) == len(want)
+
+
 def _lowest_shared_level(ax, bx, ay, by, top: int) -> np.ndarray:
     """The lowest level <= top at which (ax, ay) and (bx, by) lie in one node, the slow way."""
     out = np.full(len(ax), top)

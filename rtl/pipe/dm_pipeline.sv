@@ -46,9 +46,13 @@ module dm_pipeline
   parameter int unsigned MISS_DEPTH = 16,   // miss FIFO (power of two)
   parameter int unsigned H_ID_W     = 4,    // AXI ID width, height port
   parameter int unsigned T_ID_W     = 6,    // AXI ID width, texture port (> log2 of tex_cache MSHRS)
-  parameter int unsigned T_LINE_BYTES = 64, // tex_cache line (16 texels)
+  // Cache geometry (README "Pipeline performance": chosen by a sweep over the scenes and views)
+  parameter int unsigned T_LINE_BYTES = 128, // tex_cache line (32 texels of one row)
   parameter int unsigned T_SETS     = 32,   // tex_cache sets per sub-cache (4 sub-caches)
-  parameter int unsigned T_WAYS     = 4,    // tex_cache ways: 4 x 16 x 4 x 64 B = 16 KiB
+  parameter int unsigned T_WAYS     = 4,    // tex_cache ways: 4 x 32 x 4 x 128 B = 64 KiB
+  parameter int unsigned H_LINE_BYTES = 32, // height_cache line (one AXI burst per fill)
+  parameter int unsigned H_SETS     = 512,  // height_cache sets (power of two)
+  parameter int unsigned H_WAYS     = 4,    // height_cache ways: 512 x 4 x 32 B = 64 KiB
   parameter int unsigned AXI_DATA_W = 64,   // AXI data width (both ports)
   parameter int unsigned TRI_W      = (TRIS > 1) ? $clog2(TRIS) : 1  // triangle id width
 ) (
@@ -246,7 +250,8 @@ module dm_pipeline
 
   assign f0_rd = !f0_empty && ray_ready;
 
-  traverse_system #(.RAY_ID_W(SLOT_W), .AXI_ID_W(H_ID_W), .AXI_DATA_W(AXI_DATA_W)) u_trav (
+  traverse_system #(.RAY_ID_W(SLOT_W), .AXI_ID_W(H_ID_W), .AXI_DATA_W(AXI_DATA_W),
+                    .LINE_BYTES(H_LINE_BYTES), .SETS(H_SETS), .WAYS(H_WAYS)) u_trav (
     .clk_i, .rst_ni,
     .cfg_method_i, .cfg_width_i, .cfg_height_i, .cfg_root_level_i, .cfg_bits16_i, .cfg_base_i,
     .cfg_level_off_i, .cfg_root_code_i, .cfg_iter_cap_i,
