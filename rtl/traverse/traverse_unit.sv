@@ -172,7 +172,11 @@ module traverse_unit
   assign res_iters_o   = rf_res.iters;
 
   // ---- statistics ----------------------------------------------------------------------------
-  logic [CNT_W-1:0] inflight_q;  // rays in the unit: in minus out
+  // Rays in the unit: in minus out.  At most SETUP_FIFO_DEPTH in setup and its FIFO (the
+  // credits above), the ring's slots (busy_o < 32) and RES_FIFO_DEPTH results.
+  localparam int unsigned MAX_INFLIGHT = SETUP_FIFO_DEPTH + 31 + RES_FIFO_DEPTH;
+  localparam int unsigned IF_W = $clog2(MAX_INFLIGHT + 1);
+  logic [IF_W-1:0] inflight_q;
   assign idle_o = (inflight_q == '0);
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -186,7 +190,7 @@ module traverse_unit
       stat_level_ups_o <= '0;
       stat_descents_o  <= '0;
     end else begin
-      inflight_q       <= inflight_q + CNT_W'(in_fire) - CNT_W'(out_fire);
+      inflight_q       <= inflight_q + IF_W'(in_fire) - IF_W'(out_fire);
       stat_cycles_o    <= stat_cycles_o + CNT_W'(!idle_o);
       stat_rays_in_o   <= stat_rays_in_o + CNT_W'(in_fire);
       stat_rays_out_o  <= stat_rays_out_o + CNT_W'(out_fire);
@@ -200,10 +204,12 @@ module traverse_unit
 
 `ifndef SYNTHESIS
   // Slot conservation: every ray that came in is in exactly one place until it goes out.
-  logic [CNT_W-1:0] occupancy;
-  assign occupancy = CNT_W'(su_busy) + CNT_W'(sf_count) + CNT_W'(lp_busy) + CNT_W'(rf_count);
+  // (Counted one bit wider than inflight_q, so an occupancy beyond MAX_INFLIGHT cannot alias.)
+  logic [IF_W:0] occupancy;
+  assign occupancy = (IF_W+1)'(su_busy) + (IF_W+1)'(sf_count) + (IF_W+1)'(lp_busy)
+                   + (IF_W+1)'(rf_count);
   slot_conservation: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                      inflight_q == occupancy)
+                                      (IF_W+1)'(inflight_q) == occupancy)
     else $error("traverse_unit: rays in (%0d) != rays out + in flight (%0d)", inflight_q,
                 occupancy);
   setup_credits: assert property (@(posedge clk_i) disable iff (!rst_ni)

@@ -54,6 +54,16 @@ from test_traverse import adversarial_rays, height_field  # noqa: E402
 BASE0 = 0x1000_0000
 REGION = 0x0040_0000      # address space per map (the 1024 x 1024 unorm8 image is 1.4 MB)
 LINE_BYTES = 32           # traverse_system default
+#: Statistics counters (Harness.stats names) and their widths: UNIT_CNT_W = 48 and the cache's.
+CNT_BITS = {k: 48 for k in ("cycles", "rays_in", "rays_out", "iters", "lookups", "crossings",
+                            "level_ups", "descents", "cache_hits", "cache_misses", "mem_bytes",
+                            "mem_lines")}
+#: The register behind each counter (instance, signal), for Harness.preset.
+PRESET_REGS = {**{k: ("u_unit", f"stat_{k}_o") for k in ("cycles", "rays_in", "rays_out",
+                                                         "iters", "lookups", "crossings",
+                                                         "level_ups", "descents")},
+               "cache_hits": ("u_cache", "st_hits_q"), "cache_misses": ("u_cache", "st_misses_q"),
+               "mem_bytes": ("u_cache", "st_bytes_q"), "mem_lines": ("u_cache", "st_lines_q")}
 RES_FIELDS = ("res_t_o", "res_u_o", "res_v_o", "res_hit_o", "res_invalid_o", "res_capped_o",
               "res_err_o", "res_iters_o")
 
@@ -148,6 +158,13 @@ class Harness:
         self.ram.regions.append((base, base + len(img)))
         return base
 
+    def preset(self, values: dict[str, int]) -> None:
+        """Deposit values into statistics counters (names as :meth:`stats`): the counter
+        registers themselves, so the next clocks count on from there."""
+        for k, v in values.items():
+            inst, reg = PRESET_REGS[k]
+            getattr(getattr(self.dut, inst), reg).value = v
+
     def stats(self) -> dict[str, int]:
         d = self.dut
         out = {k: int(getattr(d, f"stat_{k}_o").value) for k in (
@@ -224,12 +241,17 @@ class Harness:
         res_ready.value = 0
         return got, cyc, dups
 
-    async def settle(self, max_cycles=20000) -> dict[str, int]:
-        """Wait until the unit is idle and every line read has returned; the statistics then."""
+    async def settle(self, max_cycles=20000, base: dict[str, int] | None = None
+                     ) -> dict[str, int]:
+        """Wait until the unit is idle and every line read has returned (bytes = lines *
+        LINE_BYTES since ``base``, the statistics at the start); the statistics then."""
+        b = base or {"mem_bytes": 0, "mem_lines": 0}
         for _ in range(max_cycles):
             await FallingEdge(self.clk)
             st = self.stats()
-            if int(self.s["idle_o"].value) and st["mem_bytes"] == st["mem_lines"] * LINE_BYTES:
+            nbytes = (st["mem_bytes"] - b["mem_bytes"]) % (1 << CNT_BITS["mem_bytes"])
+            lines = (st["mem_lines"] - b["mem_lines"]) % (1 << CNT_BITS["mem_lines"])
+            if int(self.s["idle_o"].value) and nbytes == lines * LINE_BYTES:
                 return st
         raise AssertionError(f"not idle / reads outstanding: {self.stats()}")
 
@@ -334,21 +356,31 @@ def cases(h: Harness, rng: np.random.Generator) -> list[Case]:
 # ----------------------------------------------------------------------------------------- tests
 
 async def run_case(h: Harness, case: Case, method: str, log, err_expect=None,
-                   res: traverse.TraceResult | None = None, st: dict | None = None) -> dict:
-    """One case and method: run, compare, check the statistics; returns a summary dict."""
+                   res: traverse.TraceResult | None = None, st: dict | None = None,
+                   preset: dict[str, int] | None = None) -> dict:
+    """One case and method: run, compare, check the statistics; returns a summary dict.
+
+    ``preset``: counter values deposited after the configuration (:meth:`Harness.preset`); the
+    statistics are then checked as differences modulo the counters' widths."""
     cfg = traverse_rtl.config(case.pyr, method, base=case.base)
     await h.configure(cfg, case)
     if res is None:
         st = {}
         res = traverse.trace(case.pyr, case.rays, method, "f24", stats=st)
     exp = traverse_rtl.expected_words(res)
+    if preset:
+        await FallingEdge(h.clk)
+        h.preset(preset)
+        await FallingEdge(h.clk)
     before = h.stats()
+    if preset:
+        for k, v in preset.items():
+            assert before[k] == v, f"counter {k} reads {before[k]} after a deposit of {v}"
     n = len(case.rays)
     got, cyc, dups = await h.run(traverse_rtl.ray_words(case.rays), case.valid_p, case.ready_p,
                                  max_cycles=400 * n + 60 * int(res.iterations.sum()) + 20000)
-    after = await h.settle()
-    d = {k: after[k] - before[k] for k in ("cycles", "rays_in", "rays_out", "iters", "lookups",
-                                           "crossings", "level_ups", "descents")}
+    after = await h.settle(base=before)
+    d = {k: (after[k] - before[k]) % (1 << CNT_BITS[k]) for k in after}
     name = f"{case.name} {method}"
     nbad = compare(name, got, exp, cfg.iter_cap, log, err_expect)
     sbad = []
@@ -363,8 +395,8 @@ async def run_case(h: Harness, case: Case, method: str, log, err_expect=None,
     for k, v in want.items():
         if d[k] != v:
             sbad.append(f"stat {k} {d[k]} != {v}")
-    hits, misses = after["cache_hits"], after["cache_misses"]
-    lines, nbytes = after["mem_lines"], after["mem_bytes"]
+    hits, misses = d["cache_hits"], d["cache_misses"]
+    lines, nbytes = d["mem_lines"], d["mem_bytes"]
     if hits != d["iters"]:
         sbad.append(f"cache hits {hits} != iterations {d['iters']}")
     if hits + misses != d["lookups"]:
@@ -493,6 +525,29 @@ async def traverse_system_slverr(dut):
             failures.append((o["name"], o["sbad"]))
     assert errs_total > 0 and h.ram.err_beats > 0
     assert not failures, f"failures: {failures}"
+
+
+@cocotb.test()
+async def traverse_system_counters_wrap(dut):
+    """Every statistics counter counts modulo 2^48: deposited 1 to 3 counts below the wrap, a
+    batch of camera rays carries each of them past it, and the differences (modulo 2^48) must
+    still equal the model's counts (run_case's checks)."""
+    s = seed()
+    rng = np.random.default_rng(s + 2)
+    h = Harness(dut, random.Random(s + 2))
+    await h.reset()
+    pyr = scene_pyr("rocks", 32, 32, 8)
+    base = h.place(pyr)
+    rays = camera_rays(rng, 32, 32, "oblique", 16)
+    case = Case("32x32 rocks u8, counters at 2^48 - 3", pyr, base, rays, ("park",))
+    preset = {k: (1 << CNT_BITS[k]) - 1 - (j % 3) for j, k in enumerate(CNT_BITS)}
+    o = await run_case(h, case, "park", dut._log, preset=preset)
+    after = h.stats()
+    unwrapped = [k for k in preset if after[k] >= preset[k]]
+    assert not o["mism"] and not o["sbad"], f"{o['mism']} mismatches; {o['sbad']}"
+    assert not unwrapped, f"counters that did not pass 2^48 in this batch: {unwrapped}"
+    print(f"TRAVERSE_SYSTEM counters wrap: all {len(preset)} counters passed 2^48 and still "
+          "agree with the model")
 
 
 def test_traverse_system():
