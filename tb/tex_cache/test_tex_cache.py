@@ -64,6 +64,11 @@ COVER = ("merge", "victim_wait", "mshr_wait", "fifo_full", "split", "stale_beat"
          "err_pass", "victim_redirect")
 
 
+#: The statistics outputs (stat_<name>_o) and the counter register behind each.
+STAT_REGS = {"requests": "st_req_q", "quad_hits": "st_qhit_q", "lookups": "st_lk_q",
+             "line_misses": "st_miss_q", "texel_hits": "st_thit_q", "bytes": "st_bytes_q"}
+
+
 def config() -> TexCacheConfig:
     return TexCacheConfig(**json.loads(os.environ.get("TC_CFG", "{}")))
 
@@ -196,6 +201,7 @@ class Harness:
         self.checked = 0         # responses compared
         self.flagged = 0         # responses with rsp_err_o
         self.cnt = {"requests": 0, "lookups": 0, "lines": 0}  # since the last clear / reset
+        self.stat_base: dict[str, int] = {}  # the last preset (Harness.preset)
         self.epoch = None        # the RTL's epoch (from arid)
         self.inflight: Counter = Counter()  # line reads issued and not finished, by arid
         self.cov: Counter = Counter()       # clocks with each of the RTL's sim_* coverage points
@@ -220,9 +226,16 @@ class Harness:
 
     def stats(self) -> dict[str, int]:
         d = self.dut
-        return {k: int(getattr(d, f"stat_{k}_o").value)
-                for k in ("requests", "quad_hits", "lookups", "line_misses", "texel_hits",
-                          "bytes")}
+        raw = {k: int(getattr(d, f"stat_{k}_o").value) for k in STAT_REGS}
+        # counts since the last preset (modulo the counters' 48 bits); plain values without one
+        return {k: (v - self.stat_base.get(k, 0)) % (1 << 48) for k, v in raw.items()}
+
+    def preset(self, values: dict[str, int]) -> None:
+        """Deposit values into the statistics counter registers (names as :meth:`stats`); later
+        :meth:`stats` reads count from there, modulo 2^48."""
+        for k, v in values.items():
+            getattr(self.dut, STAT_REGS[k]).value = v
+        self.stat_base = dict(values)
 
     async def monitor(self) -> None:
         """At each rising edge (cocotbext-axi's sampling point: the values before the edge), the
@@ -264,6 +277,7 @@ class Harness:
     async def reset(self, clocks=4) -> None:
         s = self.s
         s["rst_ni"].value = 0
+        self.stat_base = {}                 # the counters restart from zero
         s["req_valid_i"].value = 0
         s["rsp_ready_i"].value = 0
         for _ in range(clocks):
@@ -637,6 +651,31 @@ async def backpressure(dut):
     st = h.check_stats("back-pressure")
     summary(h, r, st, "back-pressure (rsp_ready 10%)")
     h.finish("back-pressure", need=("victim_wait", "mshr_wait", "split"))
+
+
+@cocotb.test()
+async def counters_wrap(dut):
+    """The statistics counters count modulo 2^48: deposited 1 to 3 counts below the wrap, a
+    random stream carries each of them past it, and the counts since the deposit (modulo 2^48)
+    must still satisfy check_stats (requests, lookups and line misses as the handshakes say,
+    bytes = misses x line)."""
+    h, rng = new_harness(dut)
+    await h.reset()
+    await FallingEdge(dut.clk_i)
+    preset = {k: (1 << 48) - 1 - (j % 3) for j, k in enumerate(STAT_REGS)}
+    h.preset(preset)
+    await FallingEdge(dut.clk_i)
+    assert all(v == 0 for v in h.stats().values()), f"deposit not taken: {h.stats()}"
+    stream = Q.random_quads(rng, h.texs, scale(300))
+    r = await h.run(stream, what="counters near 2^48")
+    await h.drain()
+    st = h.check_stats("counters near 2^48")
+    raw = {k: int(getattr(dut, f"stat_{k}_o").value) for k in STAT_REGS}
+    unwrapped = [k for k in preset if raw[k] >= preset[k]]
+    if unwrapped:
+        h.bad.append(f"counters that did not pass 2^48: {unwrapped} ({st})")
+    summary(h, r, st, "counters near 2^48")
+    h.finish("counters wrap")
 
 
 def test_model_passes():
