@@ -2,8 +2,8 @@
 // read.  A word is LANES lanes of WIDTH / LANES bits: the write port writes whole words, the read
 // port reads one lane, so rdata_o shows lane rlane_i of mem[raddr_i] from the clock after re_i
 // (and holds while re_i is 0).  LANES = 1 is an ordinary RAM (rlane_i is ignored); LANES > 1 a
-// RAM whose read port is narrower than its write port (block RAMs offer such asymmetric ports;
-// the height cache writes whole lines and reads one 16-bit texel word).
+// RAM whose read port is narrower than its write port (the height cache writes whole lines and
+// reads one 16-bit texel word): the read register holds the word, the lane is picked after it.
 // A read of the address written in the same clock returns the old word in simulation; real RAMs
 // may differ, so the height cache never relies on it (it discards such reads).
 module cache_sdp_ram #(
@@ -35,16 +35,31 @@ module cache_sdp_ram #(
   end
 
   logic [LANES-1:0][LW-1:0] mem_q [DEPTH];
-  logic [LW-1:0]            rdata_q;
-  logic [SW-1:0]            lane;
-
-  assign lane = (LANES > 1) ? rlane_i : '0;
 
   always_ff @(posedge clk_i) begin
     if (we_i) mem_q[waddr_i] <= wdata_i;
-    if (re_i) rdata_q <= mem_q[raddr_i][lane];
   end
 
-  assign rdata_o = rdata_q;
+  // The read register holds the whole word and the lane is chosen after it: a synchronous read
+  // port straight into a register is what block RAM offers (Yosys maps it to ECP5 EBR / Xilinx
+  // BRAM; with the lane multiplexer in front of the register the read port is asynchronous and
+  // becomes LUT RAM).
+  if (LANES > 1) begin : g_lanes
+    logic [LANES-1:0][LW-1:0] word_q;
+    logic [SW-1:0]            lane_q;
+    always_ff @(posedge clk_i) begin
+      if (re_i) begin
+        word_q <= mem_q[raddr_i];
+        lane_q <= rlane_i;
+      end
+    end
+    assign rdata_o = word_q[lane_q];
+  end else begin : g_word
+    logic [LW-1:0] rdata_q;
+    always_ff @(posedge clk_i) begin
+      if (re_i) rdata_q <= mem_q[raddr_i];
+    end
+    assign rdata_o = rdata_q;
+  end
 
 endmodule
