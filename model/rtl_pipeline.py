@@ -401,25 +401,56 @@ PAPER_MHZ = 84.0
 SYNTH_REPORT = Path(__file__).resolve().parents[1] / "out" / "synth" / "report.json"
 
 
+#: The blocks dm_pipeline is made of, as scripts/synth.py names them: when the top has no
+#: place-and-route result, the slowest of their out-of-context fmax bounds its clock.
+PIPELINE_BLOCKS = ("view_calc", "traverse_system", "mip_level", "tex_addr", "tex_cache",
+                   "tex_filter", "shade_unit")
+
+
+def _positive(x: Any) -> float | None:
+    try:
+        f = float(x)
+    except (TypeError, ValueError):
+        return None
+    return f if f > 0 else None
+
+
 def synth_clock(report: Path | None = None) -> tuple[float, str] | None:
-    """The top's place-and-route fmax (MHz) and where it comes from, from ``make synth``'s
-    report (default :data:`SYNTH_REPORT`), or None when there is no usable report."""
+    """The clock ``make synth``'s report (default :data:`SYNTH_REPORT`) gives the pipeline, in
+    MHz, and where it comes from: the top's place-and-route fmax; without one (the top was not
+    placed and routed, e.g. it does not fit the device), the lowest out-of-context fmax among
+    :data:`PIPELINE_BLOCKS`, labelled as that bound; None when there is no usable report."""
     try:
         rep = json.loads((report or SYNTH_REPORT).read_text())
-        f = float(rep["fmax_mhz"])
-    except (OSError, ValueError, KeyError, TypeError):
+    except (OSError, ValueError):
         return None
-    if not f > 0:
+    if not isinstance(rep, dict):
         return None
-    dev = rep.get("settings", {}).get("device_name", "") if isinstance(rep, dict) else ""
-    return f, (f"fmax of {rep.get('top', 'the top')} from place and route "
-               f"(out/synth/report.json{', ' + dev if dev else ''})")
+    settings = rep.get("settings")
+    dev = settings.get("device_name", "") if isinstance(settings, dict) else ""
+    where = f"out/synth/report.json{', ' + dev if dev else ''}"
+    f = _positive(rep.get("fmax_mhz"))
+    if f is not None:
+        return f, f"fmax of {rep.get('top', 'the top')} from place and route ({where})"
+    blocks = rep.get("blocks")
+    fm = []
+    for name in PIPELINE_BLOCKS:
+        b = blocks.get(name) if isinstance(blocks, dict) else None
+        v = _positive(b.get("fmax_mhz")) if isinstance(b, dict) else None
+        if v is not None:
+            fm.append((v, name))
+    if not fm:
+        return None
+    f, name = min(fm)
+    return f, (f"bound: the slowest block of the pipeline placed and routed out of context, "
+               f"{name} ({where}); the top itself has no place-and-route fmax")
 
 
 def pipeline_clock() -> tuple[float, str]:
     """The clock to quote Mpixels/s at: :func:`synth_clock`, else the paper's 84 MHz, labelled."""
     return synth_clock() or (PAPER_MHZ, f"assumed: the paper's {PAPER_MHZ:g} MHz (no "
-                                        "out/synth/report.json; make synth measures ours)")
+                                        "out/synth/report.json with an fmax; make synth "
+                                        "measures ours)")
 
 
 def scene_frame(scene: str, map_size: int, angle: str | float, image: int,

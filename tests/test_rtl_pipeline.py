@@ -337,6 +337,17 @@ def test_clock_from_synthesis_report(tmp_path: Path, monkeypatch: pytest.MonkeyP
     assert mod.pipeline_clock() == (mhz, src)
     rep.write_text(json.dumps({"top": "dm_pipeline_fpga_top", "blocks": {}}))  # no P&R yet
     assert mod.synth_clock() is None
+    # the top not placed: the slowest pipeline block out of context bounds the clock (blocks
+    # outside the pipeline, like f24_sqrt, do not count)
+    rep.write_text(json.dumps({"top": "dm_pipeline_fpga_top", "fmax_mhz": None,
+                               "blocks": {"view_calc": {"fmax_mhz": 17.0},
+                                          "tex_filter": {"fmax_mhz": 63.3},
+                                          "f24_sqrt": {"fmax_mhz": 9.0},
+                                          "shade_unit": {"lut": 5}}}))
+    mhz, src = mod.synth_clock()
+    assert mhz == 17.0 and "view_calc" in src and "out of context" in src
+    rep.write_text("[1, 2]")
+    assert mod.synth_clock() is None
 
 
 def test_bench_pipeline(harness: Path, tmp_path: Path) -> None:
