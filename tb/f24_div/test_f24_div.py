@@ -1,12 +1,13 @@
 """f24_div against model.f24.div: random patterns, values near 1.0 and the directed set.
 
 Run once per latency parameter: LAT = 2 (the default, the paper's: the whole division loop in
-stage 1), LAT = 8 (3 quotient bits per stage: the depth that reaches 100 MHz on the ECP5) and an
-odd split of the loop (LAT = 5: 5, 5, 5 and 4 bits per stage).
+stage 1), the deep divider the design instantiates (f24_pkg::F24_DIV_LAT: 3 quotient bits per
+stage) and an odd split of the loop (LAT = 5: 5, 5, 5 and 4 bits per stage).
 fp_unit.check_pipeline drops en_i at random and checks the latency, the hold while en_i = 0 and
 every result bit.
 """
 import os
+import re
 from pathlib import Path
 
 import cocotb
@@ -15,6 +16,14 @@ import pytest
 
 from model import f24, f24_vectors as vec
 from tb.common import fp_unit, runner
+
+
+def design_lat() -> int:
+    """f24_pkg::F24_DIV_LAT, the latency the design instantiates."""
+    pkg = runner.RTL / "fp" / "f24_pkg.sv"
+    m = re.search(r"localparam\s+int\s+unsigned\s+F24_DIV_LAT\s*=\s*(\d+)\s*;", pkg.read_text())
+    assert m, f"F24_DIV_LAT not found in {pkg}"
+    return int(m.group(1))
 
 
 @cocotb.test()
@@ -35,7 +44,7 @@ def test_f24_div():
     runner.run("f24_div", "test_f24_div", Path(__file__).parent, extra_env={"DIV_LAT": "2"})
 
 
-@pytest.mark.parametrize("lat", [5, 8])
+@pytest.mark.parametrize("lat", sorted({design_lat(), 5}))
 def test_f24_div_lat(lat: int):
     runner.run("f24_div", "test_f24_div", Path(__file__).parent, parameters={"LAT": lat},
                extra_env={"DIV_LAT": str(lat)})
