@@ -5,7 +5,7 @@
 //   remainder.
 //   Stage 2: normalise the quotient to 17 bits + guard + sticky, round, pack (f24_round_pack).
 // LAT > 2 (for clock speed; the result is the same, bit for bit): the 19 steps of the restoring
-// loop are spread over stages 1 .. LAT-1, K = ceil(19 / (LAT-1)) quotient bits per stage (the
+// loop are spread over stages 1 .. LAT-1, STEP = ceil(19 / (LAT-1)) quotient bits per stage (the
 // last stage of the loop takes what is left; a stage past the 19th bit only passes the state on).
 // Stage 1 also does the classification, special result, sign and exponent; every loop stage
 // carries the partial remainder, the quotient bits so far, the divisor and the special / sign /
@@ -53,7 +53,7 @@ module f24_div
   // significant first.  ma < 2 * mb, so the first bit is ma >= mb and every later remainder stays
   // below 2 * mb (18 bits).
   function automatic part_t div_steps(input part_t p, input int hi, input int lo);
-    part_t      q;
+    part_t       q;
     logic [16:0] mb;
     q  = p;
     mb = {1'b1, p.fb};
