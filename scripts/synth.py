@@ -54,7 +54,8 @@ class Block:
 BLOCKS = [
     Block("f24_add", "f24_add", what="float add (2 clocks)"),
     Block("f24_mul", "f24_mul", what="float multiply (1 clock)"),
-    Block("f24_div", "f24_div", what="float divide (2 clocks)"),
+    # The divider as view_calc and traverse_setup instantiate it: LAT = f24_pkg::F24_DIV_LAT.
+    Block("f24_div", "f24_div", {"LAT": 8}, what="float divide (8 clocks)"),
     Block("f24_cmp", "f24_cmp", what="float compare (1 clock)"),
     Block("f24_sqrt", "f24_sqrt", what="float square root (2 clocks)"),
     Block("f24_rsqrt", "f24_rsqrt", what="approximate 1/sqrt (2 clocks)"),

@@ -143,6 +143,16 @@ def test_blocks_are_rtl_modules():
         assert b.module in index, b.module
 
 
+def test_div_block_is_the_design_divider():
+    """The f24_div block is synthesised with the latency the design instantiates."""
+    pkg = (ROOT / "rtl" / "fp" / "f24_pkg.sv").read_text()
+    m = re.search(r"localparam\s+int\s+unsigned\s+F24_DIV_LAT\s*=\s*(\d+)\s*;", pkg)
+    assert m
+    (div,) = [b for b in synth.BLOCKS if b.name == "f24_div"]
+    assert div.params == {"LAT": int(m.group(1))}
+    assert f"({m.group(1)} clocks)" in div.what
+
+
 # ---- constraints ---------------------------------------------------------------------------------
 def test_constraints():
     assert synth.read_target(ROOT / "constraints" / "dm_pipeline.lpf") == 100.0

@@ -20,6 +20,11 @@ package f24_pkg;
   localparam f24_t F24_POS_INF  = 24'h7f0000;
   localparam f24_t F24_ONE      = 24'h3f0000;
   localparam f24_t F24_MAX      = 24'h7effff;  // largest finite value
+
+  // Latency of the divider the design instantiates (f24_div #(.LAT(F24_DIV_LAT)) in view_calc
+  // and traverse_setup): the restoring division loop over F24_DIV_LAT - 1 stages for the clock
+  // (README "What limits the clock"; the unit's default, LAT = 2, is the paper's).
+  localparam int unsigned F24_DIV_LAT = 8;
   /* verilator lint_on UNUSEDPARAM */
 
   // Operand class, decoded once per operand.

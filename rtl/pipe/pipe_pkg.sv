@@ -15,16 +15,16 @@ package pipe_pkg;
   // ---- float units (rtl/fp/, README "Units") ----------------------------------------------------
   localparam int unsigned F24_ADD_LAT      = 2;  // f24_add (and subtract)
   localparam int unsigned F24_MUL_LAT      = 1;  // f24_mul
-  localparam int unsigned F24_DIV_LAT      = 2;  // f24_div
   localparam int unsigned F24_LOG2_LAT     = 2;  // f24_log2
   localparam int unsigned F24_TO_INDEX_LAT = 1;  // f24_to_index
   localparam int unsigned F24_FROM_INT_LAT   = 1;  // f24_from_int
   localparam int unsigned F24_FROM_UNORM_LAT = 1;  // f24_from_unorm
+  // f24_div: f24_pkg::F24_DIV_LAT (the divider's LAT parameter, set where the units use it).
 
   // ---- view_calc (model/view.py) ------------------------------------------------------------
   // dot products: mul, add, add; then div(D, -z); then mul(x, k), mul(y, k).
-  localparam int unsigned VIEW_CALC_LAT = F24_MUL_LAT + 2 * F24_ADD_LAT + F24_DIV_LAT
-                                        + F24_MUL_LAT;  // 8
+  localparam int unsigned VIEW_CALC_LAT = F24_MUL_LAT + 2 * F24_ADD_LAT
+                                        + f24_pkg::F24_DIV_LAT + F24_MUL_LAT;  // 14
 
   // ---- tri_table / mip_level (model/texture.py "MIP level", model/mip.py) -------------------------
   localparam int unsigned TRI_TABLE_LAT = 1;   // registered read

@@ -7,25 +7,27 @@
 //   du = mul(x, k); dv = mul(y, k); seg = k
 //   where not (down > 0) (z >= 0, either zero, or NaN): du = dv = seg = NaN (0x7F8000)
 //
-// Fully pipelined, fixed latency VIEW_CALC_LAT = 8 enabled clocks (pipe_pkg), one fragment per
+// Fully pipelined, fixed latency VIEW_CALC_LAT = 14 enabled clocks (pipe_pkg), one fragment per
 // clock.  Every register (valid, tag, data, the float units) advances only while en_i is 1, so
 // the enclosing pipeline stalls the whole unit with en_i = 0.  A fragment is taken on an enabled
-// edge with valid_i = 1; its result shows at valid_o / tag_o / du_o / dv_o / seg_o after 8
+// edge with valid_i = 1; its result shows at valid_o / tag_o / du_o / dv_o / seg_o after 14
 // enabled edges and holds while en_i is 0.  valid is reset by rst_ni (synchronous, active low,
 // independent of en_i); data registers have no reset.  cfg_depth_i must be static while busy.
 //
-// Stage schedule (S0 = the input ports; "a -> b": a unit takes operands in Sa, result in Sb):
+// Stage schedule (S0 = the input ports; "a -> b": a unit takes operands in Sa, result in Sb).
+// The divider is the pipelined one, f24_div #(.LAT(F24_DIV_LAT)) with f24_pkg::F24_DIV_LAT = 8;
+// everything after it moves with that latency (the stage numbers below are for 8):
 //   S0  9 products T.V, B.V, N.V: mul(col[i], V[i])                f24_mul  S0 -> S1
 //   S1  sx = add(p0, p1) per column                                  f24_add  S1 -> S3
 //       p2 per column delayed S1 -> S3 (2 registers)
 //   S3  x, y, z = add(sx, p2)                                       f24_add  S3 -> S5
 //   S5  down = -z; ok = down > 0 (sign 0, exponent not 0, not NaN)
-//       k = div(D, down)                                            f24_div  S5 -> S7
-//       x, y and ok delayed S5 -> S7 (2 registers)
-//   S7  ks = ok ? k : NaN
-//       du = mul(x, ks), dv = mul(y, ks) (mul(., NaN) = NaN)       f24_mul  S7 -> S8
-//       seg = ks                                                    register S7 -> S8
-//   S8  outputs (straight from registers)
+//       k = div(D, down)                                            f24_div  S5 -> S13
+//       x, y and ok delayed S5 -> S13 (8 registers)
+//   S13 ks = ok ? k : NaN
+//       du = mul(x, ks), dv = mul(y, ks) (mul(., NaN) = NaN)       f24_mul  S13 -> S14
+//       seg = ks                                                    register S13 -> S14
+//   S14 outputs (straight from registers)
 // Float units: 11 f24_mul, 6 f24_add, 1 f24_div.  Applying the NaN of an unusable view by
 // forcing the multipliers' operand k to NaN gives exactly the model's NaN (every NaN a unit
 // produces is 0x7F8000) and keeps the outputs free of logic after the registers.
@@ -65,8 +67,8 @@ module view_calc
   localparam int unsigned S_SUM1 = F24_MUL_LAT;           // 1
   localparam int unsigned S_SUM2 = S_SUM1 + F24_ADD_LAT;  // 3
   localparam int unsigned S_DIV  = S_SUM2 + F24_ADD_LAT;  // 5
-  localparam int unsigned S_SCL  = S_DIV + F24_DIV_LAT;   // 7
-  localparam int unsigned S_OUT  = S_SCL + F24_MUL_LAT;   // 8
+  localparam int unsigned S_SCL  = S_DIV + F24_DIV_LAT;   // 13
+  localparam int unsigned S_OUT  = S_SCL + F24_MUL_LAT;   // 14
   if (S_OUT != VIEW_CALC_LAT) begin : g_check_lat
     $error("view_calc: stage schedule does not add up to VIEW_CALC_LAT");
   end
@@ -99,25 +101,25 @@ module view_calc
   // ---- S5: down, the usability test, the divider ---------------------------------------------
   f24_t down;
   logic down_pos;                       // down > 0: positive, nonzero, not NaN (+Inf counts)
-  f24_t k;                              // S7: div(D, down)
+  f24_t k;                              // S_SCL: div(D, down)
   assign down     = {~dot[2][23], dot[2][22:0]};
   assign down_pos = !down[23] && (down[22:16] != 7'd0)
                     && !((down[22:16] == EXP_SPEC) && (down[15:0] != 16'd0));
-  f24_div u_k (.clk_i, .en_i, .a_i(cfg_depth_i), .b_i(down), .y_o(k));
+  f24_div #(.LAT(F24_DIV_LAT)) u_k (.clk_i, .en_i, .a_i(cfg_depth_i), .b_i(down), .y_o(k));
 
-  f24_t x_q  [S_DIV+1:S_SCL];           // x, y in stages S6 .. S7
+  f24_t x_q  [S_DIV+1:S_SCL];           // x, y in stages S6 .. S_SCL
   f24_t y_q  [S_DIV+1:S_SCL];
-  logic ok_q [S_DIV+1:S_SCL];           // down > 0 in stages S6 .. S7
+  logic ok_q [S_DIV+1:S_SCL];           // down > 0 in stages S6 .. S_SCL
 
-  // ---- S7: scale -------------------------------------------------------------------------------
+  // ---- S_SCL: scale -----------------------------------------------------------------------------
   f24_t ks;                             // k, or NaN for an unusable view
-  f24_t seg_q;                          // S8
+  f24_t seg_q;                          // S_OUT
   assign ks = ok_q[S_SCL] ? k : F24_NAN;
   f24_mul u_du (.clk_i, .en_i, .a_i(x_q[S_SCL]), .b_i(ks), .y_o(du_o));
   f24_mul u_dv (.clk_i, .en_i, .a_i(y_q[S_SCL]), .b_i(ks), .y_o(dv_o));
   assign seg_o = seg_q;
 
-  // ---- delay lines and the S7 -> S8 register -------------------------------------------------
+  // ---- delay lines and the S_SCL -> S_OUT register -------------------------------------------
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       for (int c = 0; c < 3; c++) begin

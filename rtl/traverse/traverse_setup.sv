@@ -2,40 +2,46 @@
 // mode" block of _trace), a fixed-depth pipeline taking one ray per clock, never stalling.
 //
 // In: the ray's four numbers as f24 words (the model's ar.r() of the float64 ray).  Out, SETUP_LAT
-// clocks later: the ray record (traverse_pkg::ray_t) with the per-ray constants, the start time t0,
-// the start level and the start cell, or done = 1 for an invalid ray or one that never enters the
-// map (the model's "gone": no iteration).
+// clocks later (traverse_pkg: F24_DIV_LAT + 8 = 16): the ray record (traverse_pkg::ray_t) with
+// the per-ray constants, the start time t0, the start level and the start cell, or done = 1 for
+// an invalid ray or one that never enters the map (the model's "gone": no iteration).
 //
 // Stage schedule (T0 = the clock after in_valid_i; "a -> b": a unit takes operands at Ta, result
-// at Tb):
-//   T0  invalid checks (NaN / Inf field, negative start)        1/du, 1/dv: f24_div T0 -> T2
-//       exit boundary of the map b = du > 0 ? W : 0             f24_from_int T0 -> T1
-//       position at t0: du * t0                                 f24_mul T0 -> T1
-//       floor(u0), floor(v0) (start < W, < H)                   f24_to_index T0 -> T1
-//   T1  invalid = ... | floor(u0) >= W | floor(v0) >= H
-//       b - u0                                                  f24_add T1 -> T3
-//       u0 + du t0                                              f24_add T1 -> T3
-//   T2  sx = sign(du) if du != 0 and 1/du finite
-//   T3  (b - u0) * (1/du)                                       f24_mul T3 -> T4
-//       floor(position at t0) (u0 if sx = 0)                    f24_to_index T3 -> T4
-//   T4  t_map = min(tmx, tmy); locate estimate c = clip(floor, -1, N)
-//       entry / exit boundary of c                              f24_from_int T4 -> T5
-//   T5  gone = t_map <= t0; t_end = clip ? min(1, t_map) : 1
-//       du * t_end                                              f24_mul T5 -> T6
-//       boundary - u0                                           f24_add T5 -> T7
-//   T6  u0 + du t_end                                           f24_add T6 -> T8
-//   T7  (boundary - u0) * (1/du): crossing times                f24_mul T7 -> T8
-//   T8  locate correction by the crossing times, clip to [-1, N]
-//       floor(position at t_end) (u0 if sx = 0)                 f24_to_index T8 -> T9
-//   T9  gone |= start cell outside the map; start level k by XOR / bit length; cell >> k: out
+// at Tb).  The reciprocals start at T0 and take F24_DIV_LAT = 8 clocks (f24_pkg: the pipelined
+// divider); the rest of the first mode starts C = F24_DIV_LAT - 2 = 6 clocks later, at T6, so
+// that 1/du is ready at T8 where the directions need it, and then runs as with the paper's
+// 2-clock divider (T6 .. T15 here were T0 .. T9 there).  Nothing before T8 depends on 1/du.
+//   T0  1/du, 1/dv                                              f24_div T0 -> T8
+//   T6  invalid checks (NaN / Inf field, negative start)
+//       exit boundary of the map b = du > 0 ? W : 0             f24_from_int T6 -> T7
+//       position at t0: du * t0                                 f24_mul T6 -> T7
+//       floor(u0), floor(v0) (start < W, < H)                   f24_to_index T6 -> T7
+//   T7  invalid = ... | floor(u0) >= W | floor(v0) >= H
+//       b - u0                                                  f24_add T7 -> T9
+//       u0 + du t0                                              f24_add T7 -> T9
+//   T8  sx = sign(du) if du != 0 and 1/du finite
+//   T9  (b - u0) * (1/du)                                       f24_mul T9 -> T10
+//       floor(position at t0) (u0 if sx = 0)                    f24_to_index T9 -> T10
+//   T10 t_map = min(tmx, tmy); locate estimate c = clip(floor, -1, N)
+//       entry / exit boundary of c                              f24_from_int T10 -> T11
+//   T11 gone = t_map <= t0; t_end = clip ? min(1, t_map) : 1
+//       du * t_end                                              f24_mul T11 -> T12
+//       boundary - u0                                           f24_add T11 -> T13
+//   T12 u0 + du t_end                                           f24_add T12 -> T14
+//   T13 (boundary - u0) * (1/du): crossing times                f24_mul T13 -> T14
+//   T14 locate correction by the crossing times, clip to [-1, N]
+//       floor(position at t_end) (u0 if sx = 0)                 f24_to_index T14 -> T15
+//   T15 gone |= start cell outside the map; start level k by XOR / bit length; cell >> k: out
 //       (traverse_start_level).
+// In the code, stage T(C+k) is vs[k] / ss[k], and a name ending in the digit k (uv3, dir8, ...)
+// is a value of stage T(C+k): the numbers of the paper's schedule.
 //
 // Ray table: a ray's values do not move from stage to stage.  Every ray in the pipeline owns one
-// entry of a table of NS = 10 entries (one per stage); since the pipeline advances every clock,
-// the entry of the ray in stage Ts is (ph_q - s) mod 10, with ph_q a phase counter that steps
-// every clock.  A value is written into the ray's entry by the stage that computes it and read by
-// the later stages that need it (before the entry is reused, 10 clocks after the ray came in).
-// Only the valid bits move, one stage per clock (v_q).
+// entry of a table of NS = SETUP_LAT = 16 entries (one per stage); since the pipeline advances
+// every clock, the entry of the ray in stage Ts is (ph_q - s) mod NS, with ph_q a phase counter
+// that steps every clock.  A value is written into the ray's entry by the stage that computes it
+// and read by the later stages that need it (before the entry is reused, NS clocks after the ray
+// came in).  Only the valid bits move, one stage per clock (v_q).
 //
 // Clock enables: a float unit advances only while a ray is in it, and holds its registers
 // otherwise (less switching, and less work for a simulator); likewise a stage computes what it
@@ -65,11 +71,15 @@ module traverse_setup
   output logic            out_valid_o,
   output logic [ID_W-1:0] out_id_o,
   output ray_t            out_ray_o,
-  output logic [3:0]      busy_o       // rays in the pipeline (for slot accounting)
+  output logic [SETUP_BUSY_W-1:0] busy_o  // rays in the pipeline (for slot accounting)
 );
 
-  localparam int unsigned NS = 10;          // stages T0 .. T9
-  localparam int unsigned SW = $clog2(NS);  // ray-table index width
+  localparam int unsigned NS = SETUP_LAT;           // stages T0 .. T(NS-1)
+  localparam int unsigned SW = $clog2(NS);          // ray-table index width
+  localparam int unsigned C  = F24_DIV_LAT - 2;     // start of the paper's schedule (its T0)
+  if (NS != C + 10 || F24_DIV_LAT < 2) begin : g_check_lat
+    $error("traverse_setup: stage schedule does not add up to SETUP_LAT");
+  end
 
   typedef logic [SW-1:0] slot_idx_t;
   typedef struct packed {
@@ -83,26 +93,30 @@ module traverse_setup
   logic [ID_W-1:0] id_q      [NS];  // [in]
   f24_pair_t       uv_q      [NS];  // [in] u0, v0
   f24_pair_t       duv_q     [NS];  // [in] du, dv
-  logic            invalid_q [NS];  // [T1] NaN / Inf field, negative start, or a start >= W / H
-  f24_pair_t       inv_q     [NS];  // [T2] 1 / du, 1 / dv
-  dirs_t           dir_q     [NS];  // [T2]
-  f24_t            t_map_q   [NS];  // [T4] time of leaving the map's extent
-  sidx_t           estx_q    [NS];  // [T4] locate's estimate of the start cell (level 0)
+  logic            invalid_q [NS];  // [T(C+1)] NaN / Inf field, negative start, start >= W / H
+  f24_pair_t       inv_q     [NS];  // [T(C+2)] 1 / du, 1 / dv
+  dirs_t           dir_q     [NS];  // [T(C+2)]
+  f24_t            t_map_q   [NS];  // [T(C+4)] time of leaving the map's extent
+  sidx_t           estx_q    [NS];  // [T(C+4)] locate's estimate of the start cell (level 0)
   sidx_t           esty_q    [NS];
-  logic            gone_q    [NS];  // [T5] t_map <= t0: never enters
+  logic            gone_q    [NS];  // [T(C+5)] t_map <= t0: never enters
   // Values that live one clock.
-  logic            bad_q;           // T0 -> T1: NaN / Inf field or a negative start
-  sidx_t           c0x_q, c0y_q;    // T8 -> T9: the corrected start cell
+  logic            bad_q;           // T(C+0) -> T(C+1): NaN / Inf field or a negative start
+  sidx_t           c0x_q, c0y_q;    // T(C+8) -> T(C+9): the corrected start cell
 
   logic [NS-1:0]   v_q;             // v_q[s]: stage Ts holds a ray
   slot_idx_t       ph_q;            // phase: stage Ts holds the ray of entry (ph_q - s) mod NS
   slot_idx_t       sl [NS];         // sl[s] = (ph_q - s) mod NS
+  logic [8:0]      vs;              // vs[k] = v_q[C+k]: the working stages of the paper's
+  slot_idx_t       ss [9];          // schedule (its T0 .. T8); ss[k] = sl[C+k]
 
   always_comb begin
     for (int s = 0; s < NS; s++) begin
       sl[s] = (ph_q >= SW'(s)) ? ph_q - SW'(s) : ph_q + SW'(NS - s);
     end
+    for (int k = 0; k < 9; k++) ss[k] = sl[C+k];
   end
+  assign vs = v_q[C +: 9];
 
   // ---- configuration-derived constants -------------------------------------------------------
   sidx_t width_s, height_s, size_s;   // W, H, N = 2^n
@@ -125,118 +139,125 @@ module traverse_setup
   assign ot0 = f24_ord(t0_q);
 
   // ---- float units -------------------------------------------------------------------------
-  // T0
+  // T0: the reciprocals; a divider advances while a ray is in it (T0 .. T(F24_DIV_LAT-1)).
+  f24_pair_t duv_div;
+  f24_t      inv_x, inv_y;
+  assign duv_div = duv_q[sl[0]];
+  f24_div #(.LAT(F24_DIV_LAT)) u_inv_x (.clk_i, .en_i(|v_q[F24_DIV_LAT-1:0]), .a_i(F24_ONE),
+                                        .b_i(duv_div.u), .y_o(inv_x));
+  f24_div #(.LAT(F24_DIV_LAT)) u_inv_y (.clk_i, .en_i(|v_q[F24_DIV_LAT-1:0]), .a_i(F24_ONE),
+                                        .b_i(duv_div.v), .y_o(inv_y));
+
+  // T(C+0)
   f24_pair_t uv0, duv0;
-  f24_t      inv_x, inv_y, bmx_f, bmy_f, dut0_x, dut0_y;
+  f24_t      bmx_f, bmy_f, dut0_x, dut0_y;
   logic signed [IDX_W-1:0] iu0, iv0;
   logic unused_sat_u0, unused_sat_v0;
   logic du_pos, dv_pos;
-  assign uv0    = uv_q[sl[0]];
-  assign duv0   = duv_q[sl[0]];
+  assign uv0    = uv_q[ss[0]];
+  assign duv0   = duv_q[ss[0]];
   assign du_pos = !duv0.u[23] && !f24_is_zero(duv0.u);
   assign dv_pos = !duv0.v[23] && !f24_is_zero(duv0.v);
 
-  f24_div u_inv_x (.clk_i, .en_i(v_q[0] || v_q[1]), .a_i(F24_ONE), .b_i(duv0.u), .y_o(inv_x));
-  f24_div u_inv_y (.clk_i, .en_i(v_q[0] || v_q[1]), .a_i(F24_ONE), .b_i(duv0.v), .y_o(inv_y));
-  f24_from_int #(.W(IDX_W)) u_bmx (.clk_i, .en_i(v_q[0]),
+  f24_from_int #(.W(IDX_W)) u_bmx (.clk_i, .en_i(vs[0]),
     .k_i(du_pos ? IDX_W'(cfg_i.width) : '0), .y_o(bmx_f));
-  f24_from_int #(.W(IDX_W)) u_bmy (.clk_i, .en_i(v_q[0]),
+  f24_from_int #(.W(IDX_W)) u_bmy (.clk_i, .en_i(vs[0]),
     .k_i(dv_pos ? IDX_W'(cfg_i.height) : '0), .y_o(bmy_f));
-  f24_mul u_dut0_x (.clk_i, .en_i(v_q[0]), .a_i(duv0.u), .b_i(t0_q), .y_o(dut0_x));
-  f24_mul u_dut0_y (.clk_i, .en_i(v_q[0]), .a_i(duv0.v), .b_i(t0_q), .y_o(dut0_y));
-  f24_to_index #(.W(IDX_W)) u_iu0 (.clk_i, .en_i(v_q[0]), .a_i(uv0.u), .idx_o(iu0),
+  f24_mul u_dut0_x (.clk_i, .en_i(vs[0]), .a_i(duv0.u), .b_i(t0_q), .y_o(dut0_x));
+  f24_mul u_dut0_y (.clk_i, .en_i(vs[0]), .a_i(duv0.v), .b_i(t0_q), .y_o(dut0_y));
+  f24_to_index #(.W(IDX_W)) u_iu0 (.clk_i, .en_i(vs[0]), .a_i(uv0.u), .idx_o(iu0),
                                    .sat_o(unused_sat_u0));
-  f24_to_index #(.W(IDX_W)) u_iv0 (.clk_i, .en_i(v_q[0]), .a_i(uv0.v), .idx_o(iv0),
+  f24_to_index #(.W(IDX_W)) u_iv0 (.clk_i, .en_i(vs[0]), .a_i(uv0.v), .idx_o(iv0),
                                    .sat_o(unused_sat_v0));
 
-  // T1
+  // T(C+1)
   f24_pair_t uv1;
   f24_t      dmx, dmy, pos0_x, pos0_y;
-  assign uv1 = uv_q[sl[1]];
-  f24_add u_dmx (.clk_i, .en_i(v_q[1] || v_q[2]), .a_i(bmx_f), .b_i(f24_neg(uv1.u)), .y_o(dmx));
-  f24_add u_dmy (.clk_i, .en_i(v_q[1] || v_q[2]), .a_i(bmy_f), .b_i(f24_neg(uv1.v)), .y_o(dmy));
-  f24_add u_pos0_x (.clk_i, .en_i(v_q[1] || v_q[2]), .a_i(uv1.u), .b_i(dut0_x), .y_o(pos0_x));
-  f24_add u_pos0_y (.clk_i, .en_i(v_q[1] || v_q[2]), .a_i(uv1.v), .b_i(dut0_y), .y_o(pos0_y));
+  assign uv1 = uv_q[ss[1]];
+  f24_add u_dmx (.clk_i, .en_i(vs[1] || vs[2]), .a_i(bmx_f), .b_i(f24_neg(uv1.u)), .y_o(dmx));
+  f24_add u_dmy (.clk_i, .en_i(vs[1] || vs[2]), .a_i(bmy_f), .b_i(f24_neg(uv1.v)), .y_o(dmy));
+  f24_add u_pos0_x (.clk_i, .en_i(vs[1] || vs[2]), .a_i(uv1.u), .b_i(dut0_x), .y_o(pos0_x));
+  f24_add u_pos0_y (.clk_i, .en_i(vs[1] || vs[2]), .a_i(uv1.v), .b_i(dut0_y), .y_o(pos0_y));
 
-  // T2
+  // T(C+2)
   f24_pair_t duv2;
-  assign duv2 = duv_q[sl[2]];
+  assign duv2 = duv_q[ss[2]];
 
-  // T3
+  // T(C+3)
   f24_pair_t uv3, inv3;
   dirs_t     dir3;
   f24_t      tmx_raw, tmy_raw;
   logic signed [IDX_W-1:0] ip0x, ip0y;
   logic unused_sat_p0x, unused_sat_p0y;
-  assign uv3  = uv_q[sl[3]];
-  assign inv3 = inv_q[sl[3]];
-  assign dir3 = dir_q[sl[3]];
-  f24_mul u_tmx (.clk_i, .en_i(v_q[3]), .a_i(dmx), .b_i(inv3.u), .y_o(tmx_raw));
-  f24_mul u_tmy (.clk_i, .en_i(v_q[3]), .a_i(dmy), .b_i(inv3.v), .y_o(tmy_raw));
-  f24_to_index #(.W(IDX_W)) u_ip0x (.clk_i, .en_i(v_q[3]),
+  assign uv3  = uv_q[ss[3]];
+  assign inv3 = inv_q[ss[3]];
+  assign dir3 = dir_q[ss[3]];
+  f24_mul u_tmx (.clk_i, .en_i(vs[3]), .a_i(dmx), .b_i(inv3.u), .y_o(tmx_raw));
+  f24_mul u_tmy (.clk_i, .en_i(vs[3]), .a_i(dmy), .b_i(inv3.v), .y_o(tmy_raw));
+  f24_to_index #(.W(IDX_W)) u_ip0x (.clk_i, .en_i(vs[3]),
     .a_i(dir3.sx.mv ? pos0_x : uv3.u), .idx_o(ip0x), .sat_o(unused_sat_p0x));
-  f24_to_index #(.W(IDX_W)) u_ip0y (.clk_i, .en_i(v_q[3]),
+  f24_to_index #(.W(IDX_W)) u_ip0y (.clk_i, .en_i(vs[3]),
     .a_i(dir3.sy.mv ? pos0_y : uv3.v), .idx_o(ip0y), .sat_o(unused_sat_p0y));
 
-  // T4: entry / exit boundaries of the estimated start cell (level 0)
+  // T(C+4): entry / exit boundaries of the estimated start cell (level 0)
   dirs_t dir4;
   sidx_t est_x, est_y;
   f24_t  ben_x, bex_x, ben_y, bex_y;
-  assign dir4   = dir_q[sl[4]];
+  assign dir4   = dir_q[ss[4]];
   assign est_x = clip_idx(sidx_t'(ip0x), -sidx_t'(1), size_s);
   assign est_y = clip_idx(sidx_t'(ip0y), -sidx_t'(1), size_s);
-  f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(v_q[4]),
+  f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(vs[4]),
     .k_i(IDX_W'(est_x + sidx_t'(dir4.sx.mv && dir4.sx.neg))), .y_o(ben_x));
-  f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(v_q[4]),
+  f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(vs[4]),
     .k_i(IDX_W'(est_x + sidx_t'(dir4.sx.mv && !dir4.sx.neg))), .y_o(bex_x));
-  f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(v_q[4]),
+  f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(vs[4]),
     .k_i(IDX_W'(est_y + sidx_t'(dir4.sy.mv && dir4.sy.neg))), .y_o(ben_y));
-  f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(v_q[4]),
+  f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(vs[4]),
     .k_i(IDX_W'(est_y + sidx_t'(dir4.sy.mv && !dir4.sy.neg))), .y_o(bex_y));
 
-  // T5
+  // T(C+5)
   f24_pair_t uv5, duv5;
   f24_t      t_map5, t_end, due_x, due_y, den_x, dex_x, den_y, dex_y;
   f24_ord_t  ot_map5;
-  assign uv5    = uv_q[sl[5]];
-  assign duv5   = duv_q[sl[5]];
-  assign t_map5 = t_map_q[sl[5]];
+  assign uv5    = uv_q[ss[5]];
+  assign duv5   = duv_q[ss[5]];
+  assign t_map5 = t_map_q[ss[5]];
   assign ot_map5 = f24_ord(t_map5);
   assign t_end   = (cfg_i.policy.clip && !ord_min_first(f24_ord(F24_ONE), ot_map5)) ? t_map5
                                                                                    : F24_ONE;
-  f24_mul u_due_x (.clk_i, .en_i(v_q[5]), .a_i(duv5.u), .b_i(t_end), .y_o(due_x));
-  f24_mul u_due_y (.clk_i, .en_i(v_q[5]), .a_i(duv5.v), .b_i(t_end), .y_o(due_y));
-  f24_add u_den_x (.clk_i, .en_i(v_q[5] || v_q[6]), .a_i(ben_x), .b_i(f24_neg(uv5.u)), .y_o(den_x));
-  f24_add u_dex_x (.clk_i, .en_i(v_q[5] || v_q[6]), .a_i(bex_x), .b_i(f24_neg(uv5.u)), .y_o(dex_x));
-  f24_add u_den_y (.clk_i, .en_i(v_q[5] || v_q[6]), .a_i(ben_y), .b_i(f24_neg(uv5.v)), .y_o(den_y));
-  f24_add u_dex_y (.clk_i, .en_i(v_q[5] || v_q[6]), .a_i(bex_y), .b_i(f24_neg(uv5.v)), .y_o(dex_y));
+  f24_mul u_due_x (.clk_i, .en_i(vs[5]), .a_i(duv5.u), .b_i(t_end), .y_o(due_x));
+  f24_mul u_due_y (.clk_i, .en_i(vs[5]), .a_i(duv5.v), .b_i(t_end), .y_o(due_y));
+  f24_add u_den_x (.clk_i, .en_i(vs[5] || vs[6]), .a_i(ben_x), .b_i(f24_neg(uv5.u)), .y_o(den_x));
+  f24_add u_dex_x (.clk_i, .en_i(vs[5] || vs[6]), .a_i(bex_x), .b_i(f24_neg(uv5.u)), .y_o(dex_x));
+  f24_add u_den_y (.clk_i, .en_i(vs[5] || vs[6]), .a_i(ben_y), .b_i(f24_neg(uv5.v)), .y_o(den_y));
+  f24_add u_dex_y (.clk_i, .en_i(vs[5] || vs[6]), .a_i(bex_y), .b_i(f24_neg(uv5.v)), .y_o(dex_y));
 
-  // T6
+  // T(C+6)
   f24_pair_t uv6;
   f24_t      pose_x, pose_y;
-  assign uv6 = uv_q[sl[6]];
-  f24_add u_pose_x (.clk_i, .en_i(v_q[6] || v_q[7]), .a_i(uv6.u), .b_i(due_x), .y_o(pose_x));
-  f24_add u_pose_y (.clk_i, .en_i(v_q[6] || v_q[7]), .a_i(uv6.v), .b_i(due_y), .y_o(pose_y));
+  assign uv6 = uv_q[ss[6]];
+  f24_add u_pose_x (.clk_i, .en_i(vs[6] || vs[7]), .a_i(uv6.u), .b_i(due_x), .y_o(pose_x));
+  f24_add u_pose_y (.clk_i, .en_i(vs[6] || vs[7]), .a_i(uv6.v), .b_i(due_y), .y_o(pose_y));
 
-  // T7
+  // T(C+7)
   f24_pair_t inv7;
   f24_t      ten_x, tex_x, ten_y, tex_y;
-  assign inv7 = inv_q[sl[7]];
-  f24_mul u_ten_x (.clk_i, .en_i(v_q[7]), .a_i(den_x), .b_i(inv7.u), .y_o(ten_x));
-  f24_mul u_tex_x (.clk_i, .en_i(v_q[7]), .a_i(dex_x), .b_i(inv7.u), .y_o(tex_x));
-  f24_mul u_ten_y (.clk_i, .en_i(v_q[7]), .a_i(den_y), .b_i(inv7.v), .y_o(ten_y));
-  f24_mul u_tex_y (.clk_i, .en_i(v_q[7]), .a_i(dex_y), .b_i(inv7.v), .y_o(tex_y));
+  assign inv7 = inv_q[ss[7]];
+  f24_mul u_ten_x (.clk_i, .en_i(vs[7]), .a_i(den_x), .b_i(inv7.u), .y_o(ten_x));
+  f24_mul u_tex_x (.clk_i, .en_i(vs[7]), .a_i(dex_x), .b_i(inv7.u), .y_o(tex_x));
+  f24_mul u_ten_y (.clk_i, .en_i(vs[7]), .a_i(den_y), .b_i(inv7.v), .y_o(ten_y));
+  f24_mul u_tex_y (.clk_i, .en_i(vs[7]), .a_i(dex_y), .b_i(inv7.v), .y_o(tex_y));
 
-  // T8
+  // T(C+8)
   f24_pair_t uv8;
   dirs_t     dir8;
   logic signed [IDX_W-1:0] ipe_x, ipe_y;
   logic unused_sat_pex, unused_sat_pey;
-  assign uv8  = uv_q[sl[8]];
-  assign dir8 = dir_q[sl[8]];
-  f24_to_index #(.W(IDX_W)) u_ipe_x (.clk_i, .en_i(v_q[8]),
+  assign uv8  = uv_q[ss[8]];
+  assign dir8 = dir_q[ss[8]];
+  f24_to_index #(.W(IDX_W)) u_ipe_x (.clk_i, .en_i(vs[8]),
     .a_i(dir8.sx.mv ? pose_x : uv8.u), .idx_o(ipe_x), .sat_o(unused_sat_pex));
-  f24_to_index #(.W(IDX_W)) u_ipe_y (.clk_i, .en_i(v_q[8]),
+  f24_to_index #(.W(IDX_W)) u_ipe_y (.clk_i, .en_i(vs[8]),
     .a_i(dir8.sy.mv ? pose_y : uv8.v), .idx_o(ipe_y), .sat_o(unused_sat_pey));
 
   // locate's correction: the cell whose crossing times bracket t (cells are half-open in t).
@@ -259,48 +280,48 @@ module traverse_setup
   end
 
   always_ff @(posedge clk_i) begin
-    // in: the ray enters the entry of the one leaving T9 (that entry is T0's next clock)
+    // in: the ray enters the entry of the one leaving T(NS-1) (that entry is T0's next clock)
     if (in_valid_i) begin
       id_q[sl[NS-1]]  <= in_id_i;
       uv_q[sl[NS-1]]  <= '{u: in_u0_i, v: in_v0_i};
       duv_q[sl[NS-1]] <= '{u: in_du_i, v: in_dv_i};
     end
     // A stage computes and writes only while it holds a ray.
-    // T0 -> T1: NaN / Inf field, negative start
-    if (v_q[0]) begin
+    // T(C+0) -> T(C+1): NaN / Inf field, negative start
+    if (vs[0]) begin
       bad_q <= !f24_is_finite(uv0.u) || !f24_is_finite(uv0.v) ||
                !f24_is_finite(duv0.u) || !f24_is_finite(duv0.v) ||
                (uv0.u[23] && !f24_is_zero(uv0.u)) || (uv0.v[23] && !f24_is_zero(uv0.v));
     end
-    // T1 -> T2: or a start at or beyond W / H
-    if (v_q[1]) begin
-      invalid_q[sl[1]] <= bad_q || (sidx_t'(iu0) >= width_s) || (sidx_t'(iv0) >= height_s);
+    // T(C+1) -> T(C+2): or a start at or beyond W / H
+    if (vs[1]) begin
+      invalid_q[ss[1]] <= bad_q || (sidx_t'(iu0) >= width_s) || (sidx_t'(iv0) >= height_s);
     end
-    // T2 -> T3: directions
-    if (v_q[2]) begin
-      inv_q[sl[2]] <= '{u: inv_x, v: inv_y};
-      dir_q[sl[2]] <= '{sx: '{mv: !f24_is_zero(duv2.u) && f24_is_finite(inv_x), neg: duv2.u[23]},
+    // T(C+2) -> T(C+3): directions
+    if (vs[2]) begin
+      inv_q[ss[2]] <= '{u: inv_x, v: inv_y};
+      dir_q[ss[2]] <= '{sx: '{mv: !f24_is_zero(duv2.u) && f24_is_finite(inv_x), neg: duv2.u[23]},
                         sy: '{mv: !f24_is_zero(duv2.v) && f24_is_finite(inv_y), neg: duv2.v[23]}};
     end
-    // T4 -> T5: time of leaving the map, the start cell's estimate
-    if (v_q[4]) begin
-      t_map_q[sl[4]] <= f24_min(dir4.sx.mv ? tmx_raw : F24_POS_INF,
+    // T(C+4) -> T(C+5): time of leaving the map, the start cell's estimate
+    if (vs[4]) begin
+      t_map_q[ss[4]] <= f24_min(dir4.sx.mv ? tmx_raw : F24_POS_INF,
                                 dir4.sy.mv ? tmy_raw : F24_POS_INF);
-      estx_q[sl[4]]  <= est_x;
-      esty_q[sl[4]]  <= est_y;
+      estx_q[ss[4]]  <= est_x;
+      esty_q[ss[4]]  <= est_y;
     end
-    // T5 -> T6: never enters
-    if (v_q[5]) gone_q[sl[5]] <= ord_le(ot_map5, ot0);
-    // T8 -> T9: locate's correction
-    if (v_q[8]) begin
-      c0x_q <= correct(estx_q[sl[8]], dir8.sx, f24_ord(ten_x), f24_ord(tex_x), ot0, -sidx_t'(1),
+    // T(C+5) -> T(C+6): never enters
+    if (vs[5]) gone_q[ss[5]] <= ord_le(ot_map5, ot0);
+    // T(C+8) -> T(C+9): locate's correction
+    if (vs[8]) begin
+      c0x_q <= correct(estx_q[ss[8]], dir8.sx, f24_ord(ten_x), f24_ord(tex_x), ot0, -sidx_t'(1),
                        size_s);
-      c0y_q <= correct(esty_q[sl[8]], dir8.sy, f24_ord(ten_y), f24_ord(tex_y), ot0, -sidx_t'(1),
+      c0y_q <= correct(esty_q[ss[8]], dir8.sy, f24_ord(ten_y), f24_ord(tex_y), ot0, -sidx_t'(1),
                        size_s);
     end
   end
 
-  // ---- T9: start cell, start level, out -------------------------------------------------------
+  // ---- T(C+9) = T(NS-1): start cell, start level, out -------------------------------------------
   logic              outside;
   logic [LVL_W-1:0]  k;
   logic [CELL_W-1:0] cx, cy;
@@ -334,6 +355,6 @@ module traverse_setup
 
   assign out_valid_o = v_q[NS-1];
   assign out_id_o    = id_q[sl[NS-1]];
-  assign busy_o      = 4'($countones(v_q));
+  assign busy_o      = SETUP_BUSY_W'($countones(v_q));
 
 endmodule

@@ -1,5 +1,5 @@
-// traverse_start_level: the start decision of the first mode (traverse_setup stage T9), purely
-// combinational.
+// traverse_start_level: the start decision of the first mode (traverse_setup's last stage, T15),
+// purely combinational.
 //
 // Mirrors model/traverse.py::start_node (called from _trace's "first mode" block): from the level-0
 // start cell c0 as locate() found it (one cell outside the padded map, -1 or N = 2^n, when the

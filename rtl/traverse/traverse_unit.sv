@@ -1,7 +1,7 @@
 // traverse_unit: ray / height-field intersection through the max-mipmap pyramid, bit-exact with
 // model.traverse.trace(pyr, rays, method, "f24") (hit, t, u, v, invalid, iterations).
 //
-//   ray stream -> traverse_setup (first mode, 10 stages) -> setup FIFO
+//   ray stream -> traverse_setup (first mode, SETUP_LAT = 16 stages) -> setup FIFO
 //              -> traverse_loop (second mode, 18-slot ring, one height lookup per pass)
 //              -> result FIFO -> result stream (rays leave in completion order, not input order)
 //
@@ -29,7 +29,7 @@ module traverse_unit
   import traverse_pkg::*;
 #(
   parameter int unsigned ID_W             = 16,
-  parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > setup latency (10) for full rate
+  parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > SETUP_LAT (16) for full rate
   parameter int unsigned RES_FIFO_DEPTH   = 16,  // power of two
   parameter int unsigned CNT_W            = 32   // statistics counters
 ) (
@@ -116,7 +116,7 @@ module traverse_unit
   logic            su_valid;
   logic [ID_W-1:0] su_id;
   ray_t            su_ray;
-  logic [3:0]      su_busy;
+  logic [SETUP_BUSY_W-1:0] su_busy;
   traverse_setup #(.ID_W(ID_W)) u_setup (
     .clk_i, .rst_ni, .cfg_i(cfg), .idle_i(idle_o),
     .in_valid_i(in_fire), .in_id_i(ray_id_i), .in_u0_i(ray_u0_i), .in_v0_i(ray_v0_i),

@@ -1,6 +1,6 @@
 """traverse_start_level against model.traverse.start_node, bit for bit.
 
-The module is combinational (setup stage T9): every vector is applied, settled, and its outputs
+The module is combinational (setup stage T15): every vector is applied, settled, and its outputs
 (outside, start level k, start node cx / cy) compared with the model's start decision for the same
 start cell, end cell and configuration.  Maps from 1x1 to 32768x32768, square and not, every
 method's start-level policy; random vectors (start cells in and one outside the padded map, end
