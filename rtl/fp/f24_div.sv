@@ -38,12 +38,17 @@ module f24_div
   // simulator evaluates a stage only in the clocks it advances; the hardware is the same).
 
   // ---- the division loop (stages 1 .. LAT-1) ----------------------------------------------------
-  // The state between two loop stages.
+  // What every stage after the first carries unchanged to the rounding stage.
   typedef struct packed {
     logic               spec;    // result is a special (spec_y)
     f24_t               spec_y;
     logic               s;
     logic signed [11:0] e;       // biased exponent of a quotient in [1, 2)
+  } head_t;
+
+  // The state between two loop stages.
+  typedef struct packed {
+    head_t              h;
     logic [FRAC_W-1:0]  fb;      // the divisor's fraction (mb = {1, fb})
     logic [17:0]        rem;     // partial remainder, shifted for the next bit, < 2 * mb
     logic [Q_W-1:0]     quo;     // the quotient bits so far (the bits still to come are 0)
@@ -81,12 +86,13 @@ module f24_div
     s       = a[23] ^ b[23];
     // NaN for a NaN operand, 0/0 or Inf/Inf; Inf for Inf/finite or finite/0; zero for 0/finite
     // or finite/Inf.  The remainder starts as ma, the dividend's significand with the hidden one.
-    return div_steps('{spec:   a_spec || b_spec || a_zero || b_zero,
-                       spec_y: (any_nan || (a_zero && b_zero) || (a_spec && b_spec)) ? F24_NAN
-                             : (a_spec || b_zero)                          ? {s, EXP_SPEC, 16'd0}
-                             :                                               {s, 23'd0},
-                       s:      s,
-                       e:      $signed({5'd0, a[22:16]}) - $signed({5'd0, b[22:16]}) + 12'sd63,
+    return div_steps('{h:  '{spec:   a_spec || b_spec || a_zero || b_zero,
+                             spec_y: (any_nan || (a_zero && b_zero) || (a_spec && b_spec))
+                                   ? F24_NAN
+                                   : (a_spec || b_zero) ? {s, EXP_SPEC, 16'd0} : {s, 23'd0},
+                             s:      s,
+                             e:      $signed({5'd0, a[22:16]}) - $signed({5'd0, b[22:16]})
+                                   + 12'sd63},
                        fb:     b[15:0],
                        rem:    {2'b01, a[15:0]},
                        quo:    '0},
@@ -95,10 +101,7 @@ module f24_div
 
   // ---- the quotient at the end of the loop (stage LAT-1's register) -----------------------------
   typedef struct packed {
-    logic               spec;    // result is a special (spec_y)
-    f24_t               spec_y;
-    logic               s;
-    logic signed [11:0] e;       // biased exponent of a quotient in [1, 2)
+    head_t              h;
     logic [Q_W-1:0]     quo;     // floor(ma * 2^18 / mb), in [2^17, 2^19)
     logic               rem_nz;  // the final remainder is not zero
   } quot_t;
@@ -106,7 +109,7 @@ module f24_div
   // The divisor is not needed past the loop (hence the waiver on p.fb).
   /* verilator lint_off UNUSEDSIGNAL */
   function automatic quot_t div_quot(input part_t p);
-    return '{spec: p.spec, spec_y: p.spec_y, s: p.s, e: p.e, quo: p.quo, rem_nz: (p.rem != 18'd0)};
+    return '{h: p.h, quo: p.quo, rem_nz: (p.rem != 18'd0)};
   endfunction
   /* verilator lint_on UNUSEDSIGNAL */
 
@@ -117,8 +120,9 @@ module f24_div
     // ma >= mb: quotient in [1, 2), leading one at the top bit.  ma < mb: quotient in (1/2, 1),
     // shifted up by one (its last bit, and the remainder, go to the sticky bit).
     norm = q.quo << !q.quo[Q_W-1];
-    e    = q.e - $signed({11'd0, !q.quo[Q_W-1]});
-    return q.spec ? q.spec_y : f24_round_pack(q.s, e, norm[Q_W-1:2], norm[1], norm[0] | q.rem_nz);
+    e    = q.h.e - $signed({11'd0, !q.quo[Q_W-1]});
+    return q.h.spec ? q.h.spec_y
+                    : f24_round_pack(q.h.s, e, norm[Q_W-1:2], norm[1], norm[0] | q.rem_nz);
   endfunction
 
   // Quotient bits of loop stage j (1 .. NL): hi(j) down to lo(j).
