@@ -264,12 +264,20 @@ def trace_rays(frame: Frame, rays: Rays) -> TraceResult:
 
 
 @np.errstate(all="ignore")  # NaN / Inf are ordinary values (model.arith)
+def pixel_rays(frame: Frame, inp: PixelInputs) -> tuple[Rays, view.ViewOut]:
+    """The view unit's rays of a set of covered pixels (the first step of :func:`render_pixels`)
+    and its outputs."""
+    vo = view.view_calc(ENGINES[frame.engine], inp.tbn, inp.view, frame.depth_scale)
+    return Rays(inp.u0, inp.v0, vo.du, vo.dv), vo
+
+
+@np.errstate(all="ignore")  # NaN / Inf are ordinary values (model.arith)
 def render_pixels(frame: Frame, inp: PixelInputs) -> PixelOutputs:
     """The pipeline (module docstring) for a set of covered pixels."""
     ar = ENGINES[frame.engine]
     n = inp.u0.shape[0]
-    vo = view.view_calc(ar, inp.tbn, inp.view, frame.depth_scale)
-    res = trace_rays(frame, Rays(inp.u0, inp.v0, vo.du, vo.dv))
+    rays, vo = pixel_rays(frame, inp)
+    res = trace_rays(frame, rays)
     rgb = np.empty((n, 3), dtype=np.uint8)
     rgb[:] = MISS_COLOUR
     level = np.full(n, -1, dtype=np.int64)

@@ -259,16 +259,20 @@ def texel_offset(level_off: npt.ArrayLike, n: int, k: I64, cx: I64, cy: I64,
     return np.asarray(level_off, dtype=np.int64)[k] + (cy * ((1 << n) >> k) + cx) * texel_size
 
 
+def _level_starts(pyr: Pyramid) -> I64:
+    """Each level's first index in the flat array of all levels, and (last) the total size."""
+    return np.cumsum([0] + [lv.size for lv in pyr.levels]).astype(np.int64)
+
+
 def _flat_levels(pyr: Pyramid) -> tuple[npt.NDArray[np.int64], I64]:
     """All levels in one array (the memory layout's order) and each level's start index."""
-    offs = np.cumsum([0] + [lv.size for lv in pyr.levels[:-1]]).astype(np.int64)
     flat = np.concatenate([lv.ravel() for lv in pyr.levels]).astype(np.int64)
-    return flat, offs
+    return flat, _level_starts(pyr)[:-1]
 
 
 def pyramid_texels(pyr: Pyramid) -> int:
     """Texels in all levels of the pyramid (the length of :func:`trace`'s ``touched``)."""
-    return int(sum(lv.size for lv in pyr.levels))
+    return int(_level_starts(pyr)[-1])
 
 
 def lines_touched(pyr: Pyramid, touched: npt.NDArray[np.bool_], line_bytes: int,
@@ -276,7 +280,7 @@ def lines_touched(pyr: Pyramid, touched: npt.NDArray[np.bool_], line_bytes: int,
     """Distinct cache lines of ``line_bytes`` holding a texel marked in ``touched``, with the
     pyramid stored at byte address ``base`` (:meth:`Pyramid.level_offsets`): the line fills a
     cold cache cannot avoid for those reads (compulsory misses)."""
-    flat_offs = np.cumsum([0] + [lv.size for lv in pyr.levels]).astype(np.int64)
+    flat_offs = _level_starts(pyr)
     byte_offs = pyr.level_offsets()
     bpt = pyr.bits // 8
     lines = []

@@ -39,9 +39,6 @@ sys.path.insert(0, str(ROOT))
 import numpy as np  # noqa: E402
 
 from model import camera, pipeline_rtl, rtl_pipeline, scenes, shade, traverse  # noqa: E402
-from model import view as view_unit  # noqa: E402
-from model.arith import ENGINES  # noqa: E402
-from model.rays import Rays  # noqa: E402
 from model.cli import Parser, Progress, fail  # noqa: E402
 
 PROG = "bench_pipeline.py"
@@ -78,13 +75,10 @@ def height_lines(frame: shade.Frame, cam: camera.Camera, frags: camera.Fragments
                  line_bytes: int) -> tuple[int, int]:
     """(height lines the frame's rays read, iterations): the rays of shade.render_pixels traced
     again with the touched-texel mask."""
-    ar = ENGINES[frame.engine]
     _, inp = shade.pixel_inputs(cam, frags)
-    with np.errstate(all="ignore"):
-        vo = view_unit.view_calc(ar, inp.tbn, inp.view, frame.depth_scale)
+    rays, _ = shade.pixel_rays(frame, inp)
     touched = np.zeros(traverse.pyramid_texels(frame.pyr), dtype=bool)
-    res = traverse.trace(frame.pyr, Rays(inp.u0, inp.v0, vo.du, vo.dv), frame.method,
-                         frame.engine, touched=touched)
+    res = traverse.trace(frame.pyr, rays, frame.method, frame.engine, touched=touched)
     return (traverse.lines_touched(frame.pyr, touched, line_bytes, pipeline_rtl.HEIGHT_BASE),
             int(res.iterations.sum()))
 

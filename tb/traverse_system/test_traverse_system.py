@@ -137,6 +137,7 @@ class Harness:
                           size=1 << 32)
         self.ram.log.setLevel(logging.ERROR)
         self.next_base = BASE0
+        self.sent = 0          # rays that went in during the last run
 
     async def reset(self):
         d = self.dut
@@ -186,9 +187,11 @@ class Harness:
         await ClockCycles(self.clk, 7)      # the unit's 5 clocks (register stage, clip start time)
         await FallingEdge(self.clk)
 
-    async def run(self, words, valid_p: float, ready_p: float,
-                  max_cycles: int) -> tuple[dict[int, tuple], int, list[int]]:
-        """Stream rays (id = index) in, collect results; {id: result}, clocks, duplicate ids."""
+    async def run(self, words, valid_p: float, ready_p: float, max_cycles: int,
+                  stop: int | None = None) -> tuple[dict[int, tuple], int, list[int]]:
+        """Stream rays (id = index) in, collect results; {id: result}, clocks, duplicate ids.
+        ``stop``: end after that many clocks, rays still in flight (a batch to be cut short by
+        a reset); ``self.sent`` is then the number of rays that went in."""
         s = self.s
         u0, v0, du, dv = ([int(x) for x in w] for w in words)
         n = len(u0)
@@ -205,6 +208,9 @@ class Harness:
         # now are sampled at the next one (ray_ready_o does not depend on ray_valid_i, nor
         # res_valid_o on res_ready_i), so both handshakes are known before that edge.
         while len(got) < n:
+            if stop is not None and cyc >= stop:
+                self.sent = nxt
+                return got, cyc, dups
             if cyc >= max_cycles:
                 raise AssertionError(f"timeout: {len(got)} of {n} results after {cyc} clocks")
             if not presenting and nxt < n and rnd() < valid_p:
@@ -231,6 +237,7 @@ class Harness:
                 presenting = False
                 ray_valid.value = 0
         assert nxt == n and not presenting
+        self.sent = nxt
         ray_valid.value = 0
         # Nothing more may come out.
         res_ready.value = 1
@@ -240,33 +247,6 @@ class Harness:
                 dups.append(int(res_id.value))
         res_ready.value = 0
         return got, cyc, dups
-
-    async def run_part(self, words, clocks: int, valid_p: float, ready_p: float
-                       ) -> tuple[int, int]:
-        """Stream rays (id = index) for ``clocks`` clocks, taking results at random without
-        checking them (a batch to be cut short by a reset); (rays sent, results taken)."""
-        s = self.s
-        u0, v0, du, dv = ([int(x) for x in w] for w in words)
-        n = len(u0)
-        nxt = got = 0
-        presenting = False
-        for _ in range(clocks):
-            if not presenting and nxt < n and self.rng.random() < valid_p:
-                for k, arr in (("ray_id_i", range(n)), ("ray_u0_i", u0), ("ray_v0_i", v0),
-                               ("ray_du_i", du), ("ray_dv_i", dv)):
-                    s[k].value = arr[nxt]
-                s["ray_valid_i"].value = 1
-                presenting = True
-            fire_in = presenting and int(s["ray_ready_o"].value)
-            ready_now = int(self.rng.random() < ready_p)
-            s["res_ready_i"].value = ready_now
-            got += int(ready_now and int(s["res_valid_o"].value))
-            await FallingEdge(self.clk)
-            if fire_in:
-                nxt += 1
-                presenting = False
-                s["ray_valid_i"].value = 0
-        return nxt, got
 
     async def settle(self, max_cycles=20000, base: dict[str, int] | None = None
                      ) -> dict[str, int]:
@@ -577,8 +557,9 @@ async def traverse_system_reset_mid_batch(dut):
                     lat=(0, 60))
         await h.configure(traverse_rtl.config(pyr, "park", base=base), case)
         stop = int(rng.integers(30, 300))
-        sent, got = await h.run_part(traverse_rtl.ray_words(rays), stop, 0.9, 0.3)
-        in_flight.append(sent - got)
+        got, _, _ = await h.run(traverse_rtl.ray_words(rays), 0.9, 0.3, max_cycles=stop + 1,
+                                stop=stop)
+        in_flight.append(h.sent - len(got))
         # reset while the batch is in flight
         d.rst_ni.value = 0
         d.ray_valid_i.value = 0
