@@ -71,6 +71,8 @@ BLOCKS = [
     Block("height_cache", "height_cache",
           {"SETS": 512, "WAYS": 4, "MSHRS": 4, "ID_W": 4, "DATA_W": 64, "LINE_BYTES": 32},
           what="height cache, 64 KiB"),
+    Block("traverse_setup", "traverse_setup", {"ID_W": 7},
+          what="traverse unit's first mode (setup)"),
     Block("traverse_unit", "traverse_unit", {"ID_W": 7, "CNT_W": 48}, what="traverse unit"),
     Block("traverse_system", "traverse_system", {"RAY_ID_W": 7, "SETS": 512},
           what="traverse unit + height cache + AXI"),

@@ -2,15 +2,18 @@
 // mode" block of _trace), a fixed-depth pipeline taking one ray per clock, never stalling.
 //
 // In: the ray's four numbers as f24 words (the model's ar.r() of the float64 ray).  Out, SETUP_LAT
-// clocks later (traverse_pkg: F24_DIV_LAT + 8 = 16): the ray record (traverse_pkg::ray_t) with
+// clocks later (traverse_pkg: F24_DIV_LAT + 9 = 17): the ray record (traverse_pkg::ray_t) with
 // the per-ray constants, the start time t0, the start level and the start cell, or done = 1 for
 // an invalid ray or one that never enters the map (the model's "gone": no iteration).
 //
 // Stage schedule (T0 = the clock after in_valid_i; "a -> b": a unit takes operands at Ta, result
 // at Tb).  The reciprocals start at T0 and take F24_DIV_LAT = 8 clocks (f24_pkg: the pipelined
 // divider); the rest of the first mode starts C = F24_DIV_LAT - 2 = 6 clocks later, at T6, so
-// that 1/du is ready at T8 where the directions need it, and then runs as with the paper's
-// 2-clock divider (T6 .. T15 here were T0 .. T9 there).  Nothing before T8 depends on 1/du.
+// that 1/du is ready at T8 where the directions need it.  Nothing before T8 depends on 1/du.
+// Every float unit takes its operands from registers (a unit's result, or a registered table
+// read, below), and integer logic that feeds a unit has a stage of its own (T10: the boundary
+// integers; T10 was the conversion itself with the 2-clock divider's schedule, which had one
+// stage less).
 //   T0  1/du, 1/dv                                              f24_div T0 -> T8
 //   T6  invalid checks (NaN / Inf field, negative start)
 //       exit boundary of the map b = du > 0 ? W : 0             f24_from_int T6 -> T7
@@ -22,26 +25,28 @@
 //   T8  sx = sign(du) if du != 0 and 1/du finite
 //   T9  (b - u0) * (1/du)                                       f24_mul T9 -> T10
 //       floor(position at t0) (u0 if sx = 0)                    f24_to_index T9 -> T10
-//   T10 t_map = min(tmx, tmy); locate estimate c = clip(floor, -1, N)
-//       entry / exit boundary of c                              f24_from_int T10 -> T11
-//   T11 gone = t_map <= t0; t_end = clip ? min(1, t_map) : 1
+//   T10 t_map = min(tmx, tmy); t_end = clip ? min(1, t_map) : 1; locate estimate
+//       c = clip(floor, -1, N) and its entry / exit boundary integers
+//   T11 gone = t_map <= t0
+//       entry / exit boundary of c                              f24_from_int T11 -> T12
 //       du * t_end                                              f24_mul T11 -> T12
-//       boundary - u0                                           f24_add T11 -> T13
-//   T12 u0 + du t_end                                           f24_add T12 -> T14
-//   T13 (boundary - u0) * (1/du): crossing times                f24_mul T13 -> T14
-//   T14 locate correction by the crossing times, clip to [-1, N]
+//   T12 boundary - u0                                           f24_add T12 -> T14
+//       u0 + du t_end                                           f24_add T12 -> T14
+//   T14 (boundary - u0) * (1/du): crossing times                f24_mul T14 -> T15
 //       floor(position at t_end) (u0 if sx = 0)                 f24_to_index T14 -> T15
-//   T15 gone |= start cell outside the map; start level k by XOR / bit length; cell >> k: out
+//   T15 locate correction by the crossing times, clip to [-1, N]
+//   T16 gone |= start cell outside the map; start level k by XOR / bit length; cell >> k: out
 //       (traverse_start_level).
 // In the code, stage T(C+k) is vs[k] / ss[k], and a name ending in the digit k (uv3, dir8, ...)
-// is a value of stage T(C+k): the numbers of the paper's schedule.
+// is a value of stage T(C+k).
 //
 // Ray table: a ray's values do not move from stage to stage.  Every ray in the pipeline owns one
-// entry of a table of NS = SETUP_LAT = 16 entries (one per stage); since the pipeline advances
+// entry of a table of NS = SETUP_LAT = 17 entries (one per stage); since the pipeline advances
 // every clock, the entry of the ray in stage Ts is (ph_q - s) mod NS, with ph_q a phase counter
 // that steps every clock.  A value is written into the ray's entry by the stage that computes it
 // and read by the later stages that need it (before the entry is reused, NS clocks after the ray
-// came in).  Only the valid bits move, one stage per clock (v_q).
+// came in); a value a float unit takes as an operand is read one clock early into a register.
+// Only the valid bits move, one stage per clock (v_q).
 //
 // Clock enables: a float unit advances only while a ray is in it, and holds its registers
 // otherwise (less switching, and less work for a simulator); likewise a stage computes what it
@@ -77,7 +82,7 @@ module traverse_setup
   localparam int unsigned NS = SETUP_LAT;           // stages T0 .. T(NS-1)
   localparam int unsigned SW = $clog2(NS);          // ray-table index width
   localparam int unsigned C  = F24_DIV_LAT - 2;     // start of the paper's schedule (its T0)
-  if (NS != C + 10 || F24_DIV_LAT < 2) begin : g_check_lat
+  if (NS != C + 11 || F24_DIV_LAT < 3) begin : g_check_lat
     $error("traverse_setup: stage schedule does not add up to SETUP_LAT");
   end
 
@@ -102,21 +107,21 @@ module traverse_setup
   logic            gone_q    [NS];  // [T(C+5)] t_map <= t0: never enters
   // Values that live one clock.
   logic            bad_q;           // T(C+0) -> T(C+1): NaN / Inf field or a negative start
-  sidx_t           c0x_q, c0y_q;    // T(C+8) -> T(C+9): the corrected start cell
+  sidx_t           c0x_q, c0y_q;    // T(C+9) -> T(C+10): the corrected start cell
 
   logic [NS-1:0]   v_q;             // v_q[s]: stage Ts holds a ray
   slot_idx_t       ph_q;            // phase: stage Ts holds the ray of entry (ph_q - s) mod NS
   slot_idx_t       sl [NS];         // sl[s] = (ph_q - s) mod NS
-  logic [8:0]      vs;              // vs[k] = v_q[C+k]: the working stages of the paper's
-  slot_idx_t       ss [9];          // schedule (its T0 .. T8); ss[k] = sl[C+k]
+  logic [9:0]      vs;              // vs[k] = v_q[C+k]: the working stages of the schedule
+  slot_idx_t       ss [10];         // (T(C+0) .. T(C+9); T(C+10) is the last); ss[k] = sl[C+k]
 
   always_comb begin
     for (int s = 0; s < NS; s++) begin
       sl[s] = (ph_q >= SW'(s)) ? ph_q - SW'(s) : ph_q + SW'(NS - s);
     end
-    for (int k = 0; k < 9; k++) ss[k] = sl[C+k];
+    for (int k = 0; k < 10; k++) ss[k] = sl[C+k];
   end
-  assign vs = v_q[C +: 9];
+  assign vs = v_q[C +: 10];
 
   // ---- configuration-derived constants -------------------------------------------------------
   sidx_t width_s, height_s, size_s;   // W, H, N = 2^n
@@ -138,127 +143,114 @@ module traverse_setup
   end
   assign ot0 = f24_ord(t0_q);
 
+  // ---- registered table reads --------------------------------------------------------------
+  // A float unit takes its operands from registers, never through a table read (a 16:1 read
+  // multiplexer in front of a unit's clock would cost its fmax): a value a stage T(C+k) needs
+  // is read from the table one clock earlier, in T(C+k-1), into a register (name ending in k,
+  // _q), or forwarded from the value the earlier stage writes.
+  f24_pair_t duv_div_q;                     // T0 (from the input)
+  f24_pair_t uv0_q, duv0_q;                 // T(C+0)
+  logic [IDX_W-1:0] kbm_x_q, kbm_y_q;       // T(C+0): exit boundary W / H or 0, as an integer
+  f24_pair_t uv1_q;                         // T(C+1)
+  f24_pair_t uv3_q, inv3_q;                 // T(C+3)
+  dirs_t     dir3_q, dir4_q;                // T(C+3), T(C+4)
+  f24_pair_t duv5_q;                        // T(C+5)
+  f24_t      t_end5_q;                      // T(C+5): computed in T(C+4)
+  logic [IDX_W-1:0] kben_x_q, kbex_x_q, kben_y_q, kbex_y_q;  // T(C+5): computed in T(C+4)
+  f24_pair_t uv6_q;                         // T(C+6)
+  f24_pair_t uv8_q, inv8_q;                 // T(C+8)
+  dirs_t     dir8_q, dir9_q;                // T(C+8), T(C+9)
+  sidx_t     estx9_q, esty9_q;              // T(C+9)
+  logic signed [IDX_W-1:0] ipe_x10_q, ipe_y10_q;  // T(C+10)
+  f24_pair_t duv_r;                         // the table read for T(C+0)
+
   // ---- float units -------------------------------------------------------------------------
   // T0: the reciprocals; a divider advances while a ray is in it (T0 .. T(F24_DIV_LAT-1)).
-  f24_pair_t duv_div;
   f24_t      inv_x, inv_y;
-  assign duv_div = duv_q[sl[0]];
   f24_div #(.LAT(F24_DIV_LAT)) u_inv_x (.clk_i, .en_i(|v_q[F24_DIV_LAT-1:0]), .a_i(F24_ONE),
-                                        .b_i(duv_div.u), .y_o(inv_x));
+                                        .b_i(duv_div_q.u), .y_o(inv_x));
   f24_div #(.LAT(F24_DIV_LAT)) u_inv_y (.clk_i, .en_i(|v_q[F24_DIV_LAT-1:0]), .a_i(F24_ONE),
-                                        .b_i(duv_div.v), .y_o(inv_y));
+                                        .b_i(duv_div_q.v), .y_o(inv_y));
 
   // T(C+0)
-  f24_pair_t uv0, duv0;
   f24_t      bmx_f, bmy_f, dut0_x, dut0_y;
   logic signed [IDX_W-1:0] iu0, iv0;
   logic unused_sat_u0, unused_sat_v0;
-  logic du_pos, dv_pos;
-  assign uv0    = uv_q[ss[0]];
-  assign duv0   = duv_q[ss[0]];
-  assign du_pos = !duv0.u[23] && !f24_is_zero(duv0.u);
-  assign dv_pos = !duv0.v[23] && !f24_is_zero(duv0.v);
-
-  f24_from_int #(.W(IDX_W)) u_bmx (.clk_i, .en_i(vs[0]),
-    .k_i(du_pos ? IDX_W'(cfg_i.width) : '0), .y_o(bmx_f));
-  f24_from_int #(.W(IDX_W)) u_bmy (.clk_i, .en_i(vs[0]),
-    .k_i(dv_pos ? IDX_W'(cfg_i.height) : '0), .y_o(bmy_f));
-  f24_mul u_dut0_x (.clk_i, .en_i(vs[0]), .a_i(duv0.u), .b_i(t0_q), .y_o(dut0_x));
-  f24_mul u_dut0_y (.clk_i, .en_i(vs[0]), .a_i(duv0.v), .b_i(t0_q), .y_o(dut0_y));
-  f24_to_index #(.W(IDX_W)) u_iu0 (.clk_i, .en_i(vs[0]), .a_i(uv0.u), .idx_o(iu0),
+  f24_from_int #(.W(IDX_W)) u_bmx (.clk_i, .en_i(vs[0]), .k_i(kbm_x_q), .y_o(bmx_f));
+  f24_from_int #(.W(IDX_W)) u_bmy (.clk_i, .en_i(vs[0]), .k_i(kbm_y_q), .y_o(bmy_f));
+  f24_mul u_dut0_x (.clk_i, .en_i(vs[0]), .a_i(duv0_q.u), .b_i(t0_q), .y_o(dut0_x));
+  f24_mul u_dut0_y (.clk_i, .en_i(vs[0]), .a_i(duv0_q.v), .b_i(t0_q), .y_o(dut0_y));
+  f24_to_index #(.W(IDX_W)) u_iu0 (.clk_i, .en_i(vs[0]), .a_i(uv0_q.u), .idx_o(iu0),
                                    .sat_o(unused_sat_u0));
-  f24_to_index #(.W(IDX_W)) u_iv0 (.clk_i, .en_i(vs[0]), .a_i(uv0.v), .idx_o(iv0),
+  f24_to_index #(.W(IDX_W)) u_iv0 (.clk_i, .en_i(vs[0]), .a_i(uv0_q.v), .idx_o(iv0),
                                    .sat_o(unused_sat_v0));
 
   // T(C+1)
-  f24_pair_t uv1;
   f24_t      dmx, dmy, pos0_x, pos0_y;
-  assign uv1 = uv_q[ss[1]];
-  f24_add u_dmx (.clk_i, .en_i(vs[1] || vs[2]), .a_i(bmx_f), .b_i(f24_neg(uv1.u)), .y_o(dmx));
-  f24_add u_dmy (.clk_i, .en_i(vs[1] || vs[2]), .a_i(bmy_f), .b_i(f24_neg(uv1.v)), .y_o(dmy));
-  f24_add u_pos0_x (.clk_i, .en_i(vs[1] || vs[2]), .a_i(uv1.u), .b_i(dut0_x), .y_o(pos0_x));
-  f24_add u_pos0_y (.clk_i, .en_i(vs[1] || vs[2]), .a_i(uv1.v), .b_i(dut0_y), .y_o(pos0_y));
+  f24_add u_dmx (.clk_i, .en_i(vs[1] || vs[2]), .a_i(bmx_f), .b_i(f24_neg(uv1_q.u)), .y_o(dmx));
+  f24_add u_dmy (.clk_i, .en_i(vs[1] || vs[2]), .a_i(bmy_f), .b_i(f24_neg(uv1_q.v)), .y_o(dmy));
+  f24_add u_pos0_x (.clk_i, .en_i(vs[1] || vs[2]), .a_i(uv1_q.u), .b_i(dut0_x), .y_o(pos0_x));
+  f24_add u_pos0_y (.clk_i, .en_i(vs[1] || vs[2]), .a_i(uv1_q.v), .b_i(dut0_y), .y_o(pos0_y));
 
-  // T(C+2)
+  // T(C+2): directions (written to the table and forwarded to T(C+3))
   f24_pair_t duv2;
+  dirs_t     dir2;
   assign duv2 = duv_q[ss[2]];
+  assign dir2 = '{sx: '{mv: !f24_is_zero(duv2.u) && f24_is_finite(inv_x), neg: duv2.u[23]},
+                  sy: '{mv: !f24_is_zero(duv2.v) && f24_is_finite(inv_y), neg: duv2.v[23]}};
 
   // T(C+3)
-  f24_pair_t uv3, inv3;
-  dirs_t     dir3;
   f24_t      tmx_raw, tmy_raw;
   logic signed [IDX_W-1:0] ip0x, ip0y;
   logic unused_sat_p0x, unused_sat_p0y;
-  assign uv3  = uv_q[ss[3]];
-  assign inv3 = inv_q[ss[3]];
-  assign dir3 = dir_q[ss[3]];
-  f24_mul u_tmx (.clk_i, .en_i(vs[3]), .a_i(dmx), .b_i(inv3.u), .y_o(tmx_raw));
-  f24_mul u_tmy (.clk_i, .en_i(vs[3]), .a_i(dmy), .b_i(inv3.v), .y_o(tmy_raw));
+  f24_mul u_tmx (.clk_i, .en_i(vs[3]), .a_i(dmx), .b_i(inv3_q.u), .y_o(tmx_raw));
+  f24_mul u_tmy (.clk_i, .en_i(vs[3]), .a_i(dmy), .b_i(inv3_q.v), .y_o(tmy_raw));
   f24_to_index #(.W(IDX_W)) u_ip0x (.clk_i, .en_i(vs[3]),
-    .a_i(dir3.sx.mv ? pos0_x : uv3.u), .idx_o(ip0x), .sat_o(unused_sat_p0x));
+    .a_i(dir3_q.sx.mv ? pos0_x : uv3_q.u), .idx_o(ip0x), .sat_o(unused_sat_p0x));
   f24_to_index #(.W(IDX_W)) u_ip0y (.clk_i, .en_i(vs[3]),
-    .a_i(dir3.sy.mv ? pos0_y : uv3.v), .idx_o(ip0y), .sat_o(unused_sat_p0y));
+    .a_i(dir3_q.sy.mv ? pos0_y : uv3_q.v), .idx_o(ip0y), .sat_o(unused_sat_p0y));
 
-  // T(C+4): entry / exit boundaries of the estimated start cell (level 0)
-  dirs_t dir4;
+  // T(C+4): the time of leaving the map and t_end; the estimated start cell (level 0) and the
+  // integers of its entry / exit boundaries (converted in T(C+5))
   sidx_t est_x, est_y;
-  f24_t  ben_x, bex_x, ben_y, bex_y;
-  assign dir4   = dir_q[ss[4]];
-  assign est_x = clip_idx(sidx_t'(ip0x), -sidx_t'(1), size_s);
-  assign est_y = clip_idx(sidx_t'(ip0y), -sidx_t'(1), size_s);
-  f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(vs[4]),
-    .k_i(IDX_W'(est_x + sidx_t'(dir4.sx.mv && dir4.sx.neg))), .y_o(ben_x));
-  f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(vs[4]),
-    .k_i(IDX_W'(est_x + sidx_t'(dir4.sx.mv && !dir4.sx.neg))), .y_o(bex_x));
-  f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(vs[4]),
-    .k_i(IDX_W'(est_y + sidx_t'(dir4.sy.mv && dir4.sy.neg))), .y_o(ben_y));
-  f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(vs[4]),
-    .k_i(IDX_W'(est_y + sidx_t'(dir4.sy.mv && !dir4.sy.neg))), .y_o(bex_y));
+  f24_t  t_map4, t_end4;
+  assign est_x  = clip_idx(sidx_t'(ip0x), -sidx_t'(1), size_s);
+  assign est_y  = clip_idx(sidx_t'(ip0y), -sidx_t'(1), size_s);
+  assign t_map4 = f24_min(dir4_q.sx.mv ? tmx_raw : F24_POS_INF,
+                          dir4_q.sy.mv ? tmy_raw : F24_POS_INF);
+  assign t_end4 = (cfg_i.policy.clip && !ord_min_first(f24_ord(F24_ONE), f24_ord(t_map4)))
+                ? t_map4 : F24_ONE;
 
   // T(C+5)
-  f24_pair_t uv5, duv5;
-  f24_t      t_map5, t_end, due_x, due_y, den_x, dex_x, den_y, dex_y;
-  f24_ord_t  ot_map5;
-  assign uv5    = uv_q[ss[5]];
-  assign duv5   = duv_q[ss[5]];
-  assign t_map5 = t_map_q[ss[5]];
-  assign ot_map5 = f24_ord(t_map5);
-  assign t_end   = (cfg_i.policy.clip && !ord_min_first(f24_ord(F24_ONE), ot_map5)) ? t_map5
-                                                                                   : F24_ONE;
-  f24_mul u_due_x (.clk_i, .en_i(vs[5]), .a_i(duv5.u), .b_i(t_end), .y_o(due_x));
-  f24_mul u_due_y (.clk_i, .en_i(vs[5]), .a_i(duv5.v), .b_i(t_end), .y_o(due_y));
-  f24_add u_den_x (.clk_i, .en_i(vs[5] || vs[6]), .a_i(ben_x), .b_i(f24_neg(uv5.u)), .y_o(den_x));
-  f24_add u_dex_x (.clk_i, .en_i(vs[5] || vs[6]), .a_i(bex_x), .b_i(f24_neg(uv5.u)), .y_o(dex_x));
-  f24_add u_den_y (.clk_i, .en_i(vs[5] || vs[6]), .a_i(ben_y), .b_i(f24_neg(uv5.v)), .y_o(den_y));
-  f24_add u_dex_y (.clk_i, .en_i(vs[5] || vs[6]), .a_i(bex_y), .b_i(f24_neg(uv5.v)), .y_o(dex_y));
+  f24_t      due_x, due_y, ben_x, bex_x, ben_y, bex_y;
+  f24_mul u_due_x (.clk_i, .en_i(vs[5]), .a_i(duv5_q.u), .b_i(t_end5_q), .y_o(due_x));
+  f24_mul u_due_y (.clk_i, .en_i(vs[5]), .a_i(duv5_q.v), .b_i(t_end5_q), .y_o(due_y));
+  f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(vs[5]), .k_i(kben_x_q), .y_o(ben_x));
+  f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(vs[5]), .k_i(kbex_x_q), .y_o(bex_x));
+  f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(vs[5]), .k_i(kben_y_q), .y_o(ben_y));
+  f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(vs[5]), .k_i(kbex_y_q), .y_o(bex_y));
 
   // T(C+6)
-  f24_pair_t uv6;
-  f24_t      pose_x, pose_y;
-  assign uv6 = uv_q[ss[6]];
-  f24_add u_pose_x (.clk_i, .en_i(vs[6] || vs[7]), .a_i(uv6.u), .b_i(due_x), .y_o(pose_x));
-  f24_add u_pose_y (.clk_i, .en_i(vs[6] || vs[7]), .a_i(uv6.v), .b_i(due_y), .y_o(pose_y));
-
-  // T(C+7)
-  f24_pair_t inv7;
-  f24_t      ten_x, tex_x, ten_y, tex_y;
-  assign inv7 = inv_q[ss[7]];
-  f24_mul u_ten_x (.clk_i, .en_i(vs[7]), .a_i(den_x), .b_i(inv7.u), .y_o(ten_x));
-  f24_mul u_tex_x (.clk_i, .en_i(vs[7]), .a_i(dex_x), .b_i(inv7.u), .y_o(tex_x));
-  f24_mul u_ten_y (.clk_i, .en_i(vs[7]), .a_i(den_y), .b_i(inv7.v), .y_o(ten_y));
-  f24_mul u_tex_y (.clk_i, .en_i(vs[7]), .a_i(dex_y), .b_i(inv7.v), .y_o(tex_y));
+  f24_t      den_x, dex_x, den_y, dex_y, pose_x, pose_y;
+  f24_add u_den_x (.clk_i, .en_i(vs[6] || vs[7]), .a_i(ben_x), .b_i(f24_neg(uv6_q.u)), .y_o(den_x));
+  f24_add u_dex_x (.clk_i, .en_i(vs[6] || vs[7]), .a_i(bex_x), .b_i(f24_neg(uv6_q.u)), .y_o(dex_x));
+  f24_add u_den_y (.clk_i, .en_i(vs[6] || vs[7]), .a_i(ben_y), .b_i(f24_neg(uv6_q.v)), .y_o(den_y));
+  f24_add u_dex_y (.clk_i, .en_i(vs[6] || vs[7]), .a_i(bex_y), .b_i(f24_neg(uv6_q.v)), .y_o(dex_y));
+  f24_add u_pose_x (.clk_i, .en_i(vs[6] || vs[7]), .a_i(uv6_q.u), .b_i(due_x), .y_o(pose_x));
+  f24_add u_pose_y (.clk_i, .en_i(vs[6] || vs[7]), .a_i(uv6_q.v), .b_i(due_y), .y_o(pose_y));
 
   // T(C+8)
-  f24_pair_t uv8;
-  dirs_t     dir8;
+  f24_t      ten_x, tex_x, ten_y, tex_y;
   logic signed [IDX_W-1:0] ipe_x, ipe_y;
   logic unused_sat_pex, unused_sat_pey;
-  assign uv8  = uv_q[ss[8]];
-  assign dir8 = dir_q[ss[8]];
+  f24_mul u_ten_x (.clk_i, .en_i(vs[8]), .a_i(den_x), .b_i(inv8_q.u), .y_o(ten_x));
+  f24_mul u_tex_x (.clk_i, .en_i(vs[8]), .a_i(dex_x), .b_i(inv8_q.u), .y_o(tex_x));
+  f24_mul u_ten_y (.clk_i, .en_i(vs[8]), .a_i(den_y), .b_i(inv8_q.v), .y_o(ten_y));
+  f24_mul u_tex_y (.clk_i, .en_i(vs[8]), .a_i(dex_y), .b_i(inv8_q.v), .y_o(tex_y));
   f24_to_index #(.W(IDX_W)) u_ipe_x (.clk_i, .en_i(vs[8]),
-    .a_i(dir8.sx.mv ? pose_x : uv8.u), .idx_o(ipe_x), .sat_o(unused_sat_pex));
+    .a_i(dir8_q.sx.mv ? pose_x : uv8_q.u), .idx_o(ipe_x), .sat_o(unused_sat_pex));
   f24_to_index #(.W(IDX_W)) u_ipe_y (.clk_i, .en_i(vs[8]),
-    .a_i(dir8.sy.mv ? pose_y : uv8.v), .idx_o(ipe_y), .sat_o(unused_sat_pey));
+    .a_i(dir8_q.sy.mv ? pose_y : uv8_q.v), .idx_o(ipe_y), .sat_o(unused_sat_pey));
 
   // locate's correction: the cell whose crossing times bracket t (cells are half-open in t).
   function automatic sidx_t correct(input sidx_t c, input dir_t s, input f24_ord_t t_entry,
@@ -267,6 +259,48 @@ module traverse_setup
     return clip_idx(ord_lt(t, t_entry) ? c - dir_val(s) : ord_le(t_exit, t) ? c + dir_val(s) : c,
                     lo, hi);
   endfunction
+
+  // The registered reads.  Each loads while the stage before the reader holds a ray.
+  assign duv_r = duv_q[sl[C-1]];
+  always_ff @(posedge clk_i) begin
+    if (in_valid_i) duv_div_q <= '{u: in_du_i, v: in_dv_i};
+    if (v_q[C-1]) begin
+      uv0_q   <= uv_q[sl[C-1]];
+      duv0_q  <= duv_r;
+      kbm_x_q <= (!duv_r.u[23] && !f24_is_zero(duv_r.u)) ? IDX_W'(cfg_i.width) : '0;
+      kbm_y_q <= (!duv_r.v[23] && !f24_is_zero(duv_r.v)) ? IDX_W'(cfg_i.height) : '0;
+    end
+    if (vs[0]) uv1_q <= uv_q[ss[0]];
+    if (vs[2]) begin
+      uv3_q  <= uv_q[ss[2]];
+      inv3_q <= '{u: inv_x, v: inv_y};
+      dir3_q <= dir2;
+    end
+    if (vs[3]) dir4_q <= dir3_q;
+    if (vs[4]) begin
+      duv5_q   <= duv_q[ss[4]];
+      t_end5_q <= t_end4;
+      kben_x_q <= IDX_W'(est_x + sidx_t'(dir4_q.sx.mv && dir4_q.sx.neg));
+      kbex_x_q <= IDX_W'(est_x + sidx_t'(dir4_q.sx.mv && !dir4_q.sx.neg));
+      kben_y_q <= IDX_W'(est_y + sidx_t'(dir4_q.sy.mv && dir4_q.sy.neg));
+      kbex_y_q <= IDX_W'(est_y + sidx_t'(dir4_q.sy.mv && !dir4_q.sy.neg));
+    end
+    if (vs[5]) uv6_q <= uv_q[ss[5]];
+    if (vs[7]) begin
+      uv8_q  <= uv_q[ss[7]];
+      inv8_q <= inv_q[ss[7]];
+      dir8_q <= dir_q[ss[7]];
+    end
+    if (vs[8]) begin
+      dir9_q  <= dir8_q;
+      estx9_q <= estx_q[ss[8]];
+      esty9_q <= esty_q[ss[8]];
+    end
+    if (vs[9]) begin
+      ipe_x10_q <= ipe_x;
+      ipe_y10_q <= ipe_y;
+    end
+  end
 
   // ---- pipeline and ray table ----------------------------------------------------------------
   always_ff @(posedge clk_i) begin
@@ -289,39 +323,37 @@ module traverse_setup
     // A stage computes and writes only while it holds a ray.
     // T(C+0) -> T(C+1): NaN / Inf field, negative start
     if (vs[0]) begin
-      bad_q <= !f24_is_finite(uv0.u) || !f24_is_finite(uv0.v) ||
-               !f24_is_finite(duv0.u) || !f24_is_finite(duv0.v) ||
-               (uv0.u[23] && !f24_is_zero(uv0.u)) || (uv0.v[23] && !f24_is_zero(uv0.v));
+      bad_q <= !f24_is_finite(uv0_q.u) || !f24_is_finite(uv0_q.v) ||
+               !f24_is_finite(duv0_q.u) || !f24_is_finite(duv0_q.v) ||
+               (uv0_q.u[23] && !f24_is_zero(uv0_q.u)) || (uv0_q.v[23] && !f24_is_zero(uv0_q.v));
     end
     // T(C+1) -> T(C+2): or a start at or beyond W / H
     if (vs[1]) begin
       invalid_q[ss[1]] <= bad_q || (sidx_t'(iu0) >= width_s) || (sidx_t'(iv0) >= height_s);
     end
-    // T(C+2) -> T(C+3): directions
+    // T(C+2) -> T(C+3): reciprocals and directions
     if (vs[2]) begin
       inv_q[ss[2]] <= '{u: inv_x, v: inv_y};
-      dir_q[ss[2]] <= '{sx: '{mv: !f24_is_zero(duv2.u) && f24_is_finite(inv_x), neg: duv2.u[23]},
-                        sy: '{mv: !f24_is_zero(duv2.v) && f24_is_finite(inv_y), neg: duv2.v[23]}};
+      dir_q[ss[2]] <= dir2;
     end
     // T(C+4) -> T(C+5): time of leaving the map, the start cell's estimate
     if (vs[4]) begin
-      t_map_q[ss[4]] <= f24_min(dir4.sx.mv ? tmx_raw : F24_POS_INF,
-                                dir4.sy.mv ? tmy_raw : F24_POS_INF);
+      t_map_q[ss[4]] <= t_map4;
       estx_q[ss[4]]  <= est_x;
       esty_q[ss[4]]  <= est_y;
     end
     // T(C+5) -> T(C+6): never enters
-    if (vs[5]) gone_q[ss[5]] <= ord_le(ot_map5, ot0);
-    // T(C+8) -> T(C+9): locate's correction
-    if (vs[8]) begin
-      c0x_q <= correct(estx_q[ss[8]], dir8.sx, f24_ord(ten_x), f24_ord(tex_x), ot0, -sidx_t'(1),
+    if (vs[5]) gone_q[ss[5]] <= ord_le(f24_ord(t_map_q[ss[5]]), ot0);
+    // T(C+9) -> T(C+10): locate's correction
+    if (vs[9]) begin
+      c0x_q <= correct(estx9_q, dir9_q.sx, f24_ord(ten_x), f24_ord(tex_x), ot0, -sidx_t'(1),
                        size_s);
-      c0y_q <= correct(esty_q[ss[8]], dir8.sy, f24_ord(ten_y), f24_ord(tex_y), ot0, -sidx_t'(1),
+      c0y_q <= correct(esty9_q, dir9_q.sy, f24_ord(ten_y), f24_ord(tex_y), ot0, -sidx_t'(1),
                        size_s);
     end
   end
 
-  // ---- T(C+9) = T(NS-1): start cell, start level, out -------------------------------------------
+  // ---- T(C+10) = T(NS-1): start cell, start level, out ------------------------------------------
   logic              outside;
   logic [LVL_W-1:0]  k;
   logic [CELL_W-1:0] cx, cy;
@@ -332,29 +364,41 @@ module traverse_setup
     .start_level_i(cfg_i.policy.start_level),
     .c0x_i        (c0x_q),
     .c0y_i        (c0y_q),
-    .ex_i         (ipe_x),
-    .ey_i         (ipe_y),
+    .ex_i         (ipe_x10_q),
+    .ey_i         (ipe_y10_q),
     .outside_o    (outside),
     .k_o          (k),
     .cx_o         (cx),
     .cy_o         (cy)
   );
 
+  // The ray's table fields for the output, read in T(NS-2) (registered like the others).
+  typedef struct packed {
+    logic [ID_W-1:0] id;
+    f24_pair_t       uv, duv, inv;
+    dirs_t           dir;
+    f24_t            t_map;
+    logic            invalid, gone;
+  } out_fields_t;
+  out_fields_t out_q;
+  always_ff @(posedge clk_i) begin
+    if (v_q[NS-2]) begin
+      out_q <= '{id: id_q[sl[NS-2]], uv: uv_q[sl[NS-2]], duv: duv_q[sl[NS-2]],
+                 inv: inv_q[sl[NS-2]], dir: dir_q[sl[NS-2]], t_map: t_map_q[sl[NS-2]],
+                 invalid: invalid_q[sl[NS-2]], gone: gone_q[sl[NS-2]]};
+    end
+  end
+
   // One expression (not field by field), so that a simulator can evaluate it where it is used.
-  f24_pair_t uv9, duv9, inv9;
-  dirs_t     dir9;
-  assign uv9       = uv_q[sl[NS-1]];
-  assign duv9      = duv_q[sl[NS-1]];
-  assign inv9      = inv_q[sl[NS-1]];
-  assign dir9      = dir_q[sl[NS-1]];
-  assign out_ray_o = '{u0: uv9.u, v0: uv9.v, du: duv9.u, dv: duv9.v, inv_du: inv9.u, inv_dv: inv9.v,
-                       sx: dir9.sx, sy: dir9.sy, t_map: t_map_q[sl[NS-1]], k: k, cx: cx, cy: cy,
+  assign out_ray_o = '{u0: out_q.uv.u, v0: out_q.uv.v, du: out_q.duv.u, dv: out_q.duv.v,
+                       inv_du: out_q.inv.u, inv_dv: out_q.inv.v, sx: out_q.dir.sx,
+                       sy: out_q.dir.sy, t_map: out_q.t_map, k: k, cx: cx, cy: cy,
                        t: t0_q, crossed: 1'b0, prev_cross: 1'b0, iters: '0,
-                       done: invalid_q[sl[NS-1]] || gone_q[sl[NS-1]] || outside, hit: 1'b0,
-                       invalid: invalid_q[sl[NS-1]], capped: 1'b0, err: 1'b0};
+                       done: out_q.invalid || out_q.gone || outside, hit: 1'b0,
+                       invalid: out_q.invalid, capped: 1'b0, err: 1'b0};
 
   assign out_valid_o = v_q[NS-1];
-  assign out_id_o    = id_q[sl[NS-1]];
+  assign out_id_o    = out_q.id;
   assign busy_o      = SETUP_BUSY_W'($countones(v_q));
 
 endmodule
