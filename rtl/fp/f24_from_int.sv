@@ -1,6 +1,22 @@
 // f24_from_int: signed W-bit integer -> f24.  Exact when |k| has at most 17 significant bits,
 // otherwise rounded to nearest, ties to even; 0 gives +0.  Latency 1 enabled clock, one conversion
 // per clock.  Golden model: model.f24_conv.from_int.
+//
+// Structure (one clock; the normalising shift is the long path, so the rounding is kept off it):
+//   - k = 0 and k = -2^(W-1) are decoded from k itself: +0, and the constant -2^(W-1) (exact).
+//     Every other k has a magnitude of W - 1 bits, one bit less to negate and normalise.
+//   - |k| < 2^17 is exact: the leading-zero count and shift of the low 17 bits alone, no
+//     rounding; its exponent is 79 - (leading zeros).
+//   - |k| >= 2^17 (W > 18 only; W = 20 in the design: bit length 18 or 19) needs at most W - 19
+//     bits of left shift: the count sees the bits above bit 16 with bit 17's place forced to one,
+//     so the shift is short (one 2:1 mux at W = 20).  Guard, sticky and the round-up bit come from
+//     that shift, and {exponent, fraction} + 1 (the rounded-up result: a fraction of all ones
+//     carries into the exponent, which is exactly 2.0 renormalised) runs in a carry chain beside
+//     the exact path's shifter; the round-up bit only chooses.
+//   - No range check: the exponent is 63 + (bit length - 1), at most 63 + 62 for any |k| below
+//     2^63 (plus one when rounding carries), and 2^63 itself is exact, so it stays in [63, 126].
+// Equal to the previous single round-and-pack (f24_pkg::f24_round_pack) for every W; checked by a
+// Yosys SAT miter for W = 2 .. 64 (a selection) and by the cocotb test against the model.
 module f24_from_int
   import f24_pkg::*;
 #(
@@ -20,20 +36,42 @@ module f24_from_int
   // simulator evaluates it only in the clocks the unit advances; the hardware is the same).
   function automatic f24_t from_int(input logic signed [W-1:0] k);
     logic               s;
-    logic [W-1:0]       mag;    // |k|; -2^(W-1) gives 2^(W-1), which fits unsigned
-    logic [63:0]        ml;     // mag left-aligned in 64 bits
-    logic [5:0]         lz;     // leading zeros of ml (garbage for mag = 0, which is not used)
-    logic [63:0]        nx;     // ml << lz: leading one at bit 63
-    logic signed [11:0] e;      // biased exponent of the leading one
-    s   = k[W-1];
-    mag = s ? W'(-k) : W'(k);
-    ml  = 64'(mag) << (64 - W);
-    lz  = (W <= 32) ? {1'b0, f24_clz32(ml[63:32])} : f24_clz64(ml);
-    nx  = ml << lz;
-    e   = 12'sd63 + 12'(W - 1) - $signed({6'd0, lz});
-    // 17 significand bits, guard bit and sticky (narrow W: the padding makes them exact zeros);
-    // 0 gives +0.
-    return (mag == '0) ? '0 : f24_round_pack(s, e, nx[63:47], nx[46], |nx[45:0]);
+    logic               kmin;   // k = -2^(W-1): exactly 2^(W-1) in magnitude
+    logic [W-2:0]       mag;    // |k| for every other k (W - 1 bits)
+    logic [63:0]        ml;     // mag, zero-extended
+    // |k| < 2^17: exact.  Normalise the low 17 bits; no rounding.
+    logic [4:0]         lzx;    // leading zeros of mag[16:0] (garbage for 0, which is not used)
+    logic [15:0]        nxx;    // mag[16:0] << lzx below its leading one (at bit 16)
+    logic [6:0]         ex;     // its biased exponent, 63 + 16 - lzx
+    // |k| >= 2^17 (W > 18 only): at most W - 19 leading zeros, rounded to nearest even.
+    logic               big;
+    logic [63:0]        u;      // mag left-aligned in 64 bits
+    logic [5:0]         lzr;    // leading zeros of u, at most W - 19 (a one is forced in below)
+    logic [62:0]        nx;     // u << lzr below its leading one (at bit 63 when big)
+    logic [6:0]         er;     // biased exponent, 63 + W - 2 - lzr
+    logic               up;     // round up: above halfway, or halfway with an odd significand
+    logic [22:0]        ri;     // {er, fraction} + 1: the rounded-up result (a fraction of all
+                                // ones carries into the exponent: exactly 2.0 renormalised)
+    s    = k[W-1];
+    kmin = s && (k[W-2:0] == '0);
+    mag  = s ? -k[W-2:0] : k[W-2:0];
+    ml   = 64'(mag);
+    lzx  = f24_clz32({ml[16:0], 15'd0});
+    nxx  = 16'(ml[16:0] << lzx);
+    ex   = 7'd79 - {2'd0, lzx};
+    big  = (ml[63:17] != 47'd0);
+    u    = ml << (65 - W);
+    lzr  = f24_clz64(u | (64'd1 << (82 - W)));
+    nx   = 63'(u << lzr);
+    er   = 7'(63 + W - 2) - {1'b0, lzr};
+    up   = nx[46] && (nx[45:0] != 46'd0 || nx[47]);
+    ri   = {er, nx[62:47]} + 23'd1;
+    // 0 gives +0.  The exponent never leaves [1, 126]: |k| <= 2^63, and 2^63 itself is exact.
+    return (k == '0) ? '0
+         : kmin      ? {1'b1, 7'(63 + W - 1), 16'd0}
+         : !big      ? {s, ex, nxx}
+         : up        ? {s, ri}
+         :             {s, er, nx[62:47]};
   endfunction
 
   f24_t y_q;

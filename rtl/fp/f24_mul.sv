@@ -1,6 +1,26 @@
 // f24_mul: y = a * b, correctly rounded (RNE), latency 1 enabled clock, one operation per clock.
 // Written as straight data flow (each signal assigned once, choices by ?:), which simulates
 // cheaper than if/else chains.
+//
+// The clock holds the 17 x 17 multiplier (a MULT18X18D, combinational: about half of the clock
+// period), so everything that does not need the product is computed beside it, and after it come
+// only a 2:1 mux, one carry chain and a last 2:1 mux:
+//   - beside the multiplier, from the operands alone: the classes (zero, Inf / NaN), and from
+//     t = ea + eb + 1 (the biased exponent of a product in [1, 2), plus 64) three flags for each
+//     alignment h = 0 / 1 of the product (h = its bit 33, one more in the exponent): flush
+//     (exponent below 0, or a zero operand), Inf / NaN (exponent above 126, or a special operand),
+//     and "in [1, 126]" (the fraction is kept);
+//   - after the multiplier: the fraction f aligned by h, the exponent field t + h (bit logic,
+//     not a second chain), {exponent, f} + 1 in one carry chain (a fraction of all ones carries
+//     into the exponent: exactly 2.0 renormalised), and the round-up bit (guard and sticky, RNE)
+//     for either alignment; the round-up bit then picks {exponent, f} or the incremented one.
+//   - the flush and Inf / NaN flags pick exponent 0 / 127 last, and out of [1, 126] the fraction
+//     is 0 (the NaN's 0x8000); these need h alone, not the rounding: an exponent of 0 that rounds
+//     up to 1 is exactly 2^-62 (fraction 0, the chain gives it), one of 126 that rounds up to 127
+//     is Inf (fraction 0 again).
+// Equal to the previous single round-and-pack of the normalised product (f24_pkg::f24_round_pack
+// with its range compare after the rounding): checked by a Yosys SAT miter of the two
+// combinational functions and by the cocotb test against the model.
 module f24_mul
   import f24_pkg::*;
 (
@@ -11,32 +31,81 @@ module f24_mul
   output f24_t y_o
 );
 
+  // x >= k for a constant k, as plain logic from the bottom bit up (a comparison written with >=
+  // would become a carry chain of its own; this one is a few LUTs beside the multiplier).
+  function automatic logic ge(input logic [7:0] x, input logic [7:0] k);
+    logic r;
+    r = 1'b1;  // x >= k over the bits below the current one (none yet: equal)
+    for (int i = 0; i < 8; i++) r = k[i] ? (x[i] && r) : (x[i] || r);
+    return r;
+  endfunction
+
   // The product as a function of the operands, evaluated where the output register is enabled
   // (a simulator evaluates it only in the clocks the unit advances; the hardware is the same).
   function automatic f24_t mul(input f24_t a, input f24_t b);
     logic        a_zero, b_zero;  // exponent 0: +-0 (subnormal patterns read as zero)
     logic        a_spec, b_spec;  // exponent 127: Inf or NaN
-    logic        any_nan;
+    logic        spec, zero;      // some operand is Inf / NaN; some operand is zero
+    logic        nan;             // the result is NaN: a NaN operand, or 0 * Inf
+    logic        fin;             // both operands finite and nonzero: the rounded product
     logic        s;
+    logic [7:0]  t;               // ea + eb + 1 = (biased exponent of a product in [1, 2)) + 64
+    logic        lo0, lo1;        // flush to zero: a zero operand, or exponent t - 64 + k <= -1
+    logic        hi0, hi1;        // Inf / NaN exponent: a special operand, or t - 64 + k >= 127
+    logic        in0, in1;        // finite, exponent t - 64 + k in [1, 126]: keep the fraction
     logic [33:0] prod;            // 17 x 17 bits: [2^32, 2^34)
-    logic [33:0] norm;            // prod with its leading one at bit 33
-    logic signed [11:0] e;        // biased exponent of norm
-    a_zero  = (a[22:16] == 7'd0);
-    b_zero  = (b[22:16] == 7'd0);
-    a_spec  = (a[22:16] == EXP_SPEC);
-    b_spec  = (b[22:16] == EXP_SPEC);
-    any_nan = (a_spec && a[15:0] != 16'd0) || (b_spec && b[15:0] != 16'd0);
-    s       = a[23] ^ b[23];
-    prod    = {1'b1, a[15:0]} * {1'b1, b[15:0]};
-    // A product in [1, 2) is shifted up by one; one in [2, 4) bumps the exponent instead.
-    norm    = prod << !prod[33];
-    e       = $signed({5'd0, a[22:16]}) + $signed({5'd0, b[22:16]}) - 12'sd63
-            + $signed({11'd0, prod[33]});
-    // An Inf or NaN operand: NaN for a NaN or for 0 * Inf, else Inf.  Then a zero operand: zero.
-    // Else the rounded product of two finite nonzero operands.
-    return (a_spec || b_spec) ? ((any_nan || a_zero || b_zero) ? F24_NAN : {s, EXP_SPEC, 16'd0})
-         : (a_zero || b_zero) ? {s, 23'd0}
-         :                      f24_round_pack(s, e, norm[33:17], norm[16], |norm[15:0]);
+    logic        h;               // prod in [2^33, 2^34): the exponent is one higher
+    logic        st_l, st_h;      // sticky bits below the guard bit, for h = 0 and h = 1
+    logic        up;              // round up: above halfway, or halfway with an odd significand
+    logic [6:0]  eh;              // exponent field of the truncated product: t + h, bit 6 flipped
+    logic        cy;              // carry of t + h
+    logic [15:0] f;               // fraction of the truncated product
+    logic [6:0]  ehi;             // {eh, f} + 1: the rounded-up exponent field and fraction
+    logic [15:0] fi;
+    logic        lo, hi, in;      // lo*, hi*, in* for k = h
+    a_zero = (a[22:16] == 7'd0);
+    b_zero = (b[22:16] == 7'd0);
+    a_spec = (a[22:16] == EXP_SPEC);
+    b_spec = (b[22:16] == EXP_SPEC);
+    spec   = a_spec || b_spec;
+    zero   = a_zero || b_zero;
+    nan    = spec && (zero || (a_spec && a[15:0] != 16'd0) || (b_spec && b[15:0] != 16'd0));
+    fin    = !spec && !zero;
+    s      = a[23] ^ b[23];
+    // Beside the multiplier: the exponent and its range for k = h = 0 and 1.  The biased exponent
+    // of a product in [1, 2) is ea + eb - 63 = t - 64.
+    t      = {1'b0, a[22:16]} + {1'b0, b[22:16]} + 8'd1;
+    lo0    = !spec && (zero || !ge(t, 8'd64));
+    lo1    = !spec && (zero || !ge(t, 8'd63));
+    hi0    = spec || (!zero && ge(t, 8'd191));
+    hi1    = spec || (!zero && ge(t, 8'd190));
+    in0    = fin && ge(t, 8'd65) && !ge(t, 8'd191);
+    in1    = fin && ge(t, 8'd64) && !ge(t, 8'd190);
+    // The product, its alignment and the rounding.  A product in [1, 2) keeps bits 31:16 as its
+    // fraction, one in [2, 4) bits 32:17 and one more in the exponent.
+    prod   = {1'b1, a[15:0]} * {1'b1, b[15:0]};
+    h      = prod[33];
+    st_l   = |prod[14:0];
+    st_h   = st_l || prod[15];
+    up     = h ? (prod[16] && (st_h || prod[17])) : (prod[15] && (st_l || prod[16]));
+    f      = h ? prod[32:17] : prod[31:16];
+    // t + h as bit logic (h is late: no second carry chain), bit 6 flipped for the bias.
+    cy     = h;
+    for (int i = 0; i < 7; i++) begin
+      eh[i] = t[i] ^ cy;
+      cy    = cy && t[i];
+    end
+    eh[6]  = !eh[6];
+    {ehi, fi} = {eh, f} + 23'd1;
+    lo     = h ? lo1 : lo0;
+    hi     = h ? hi1 : hi0;
+    in     = h ? in1 : in0;
+    // A flushed result: exponent 0.  An Inf / NaN one: 127.  Else the exponent field, rounded up
+    // or not; out of [1, 126] before rounding the fraction is 0 (or the NaN's), and a rounding
+    // that carries into the exponent leaves the fraction 0 too.
+    return {s && !nan,
+            lo ? 7'd0 : hi ? EXP_SPEC : up ? ehi : eh,
+            !in ? {nan, 15'd0} : up ? fi : f};
   endfunction
 
   f24_t y_q;
