@@ -2,9 +2,11 @@
 
 Each unit is checked against its bit-exact model on every fraction at several exponents, on the
 special values and on random patterns; ``unary_tests`` builds the three cocotb tests for a unit.
+The latency under test is the environment's APPROX_LAT (the unit's LAT parameter; default 2).
 """
 from __future__ import annotations
 
+import os
 from typing import Callable
 
 import cocotb
@@ -13,7 +15,8 @@ import numpy as np
 from model import f24, f24_vectors as vec
 from tb.common import fp_unit
 
-LATENCY = 2
+#: The latencies the units are built and checked at (their LAT parameter; 2 is the default).
+LATS = (2, 3)
 #: Biased exponents swept over all 2^16 fractions: both parities (both tables) and the range ends.
 EXPONENTS = (1, 2, 62, 63, 64, 65, 125, 126)
 
@@ -36,8 +39,9 @@ def unary_tests(unit: str, model: Callable[[np.ndarray], np.ndarray]) -> tuple:
     prefix = unit.removeprefix("f24_")
 
     async def run(dut, what: str, a: np.ndarray, rng: np.random.Generator) -> None:
-        n = await fp_unit.check_pipeline(dut, LATENCY, {"a_i": a}, {"y_o": model(a)}, rng)
-        dut._log.info("VECTORS %s %s: %d, 0 mismatches", unit, what, n)
+        latency = int(os.environ.get("APPROX_LAT", "2"))
+        n = await fp_unit.check_pipeline(dut, latency, {"a_i": a}, {"y_o": model(a)}, rng)
+        dut._log.info("VECTORS %s LAT=%d %s: %d, 0 mismatches", unit, latency, what, n)
 
     async def every_fraction_test(dut):
         rng = np.random.default_rng(fp_unit.seed())
