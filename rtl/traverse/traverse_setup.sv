@@ -40,13 +40,14 @@
 // In the code, stage T(C+k) is vs[k] / ss[k], and a name ending in the digit k (uv3, dir8, ...)
 // is a value of stage T(C+k).
 //
-// Ray table: a ray's values do not move from stage to stage.  Every ray in the pipeline owns one
-// entry of a table of NS = SETUP_LAT = 17 entries (one per stage); since the pipeline advances
-// every clock, the entry of the ray in stage Ts is (ph_q - s) mod NS, with ph_q a phase counter
-// that steps every clock.  A value is written into the ray's entry by the stage that computes it
-// and read by the later stages that need it (before the entry is reused, NS clocks after the ray
-// came in); a value a float unit takes as an operand is read one clock early into a register.
-// Only the valid bits move, one stage per clock (v_q).
+// Ray table: a ray's values do not move from stage to stage.  Every ray in stages T0 .. T(NS-2)
+// owns one entry of a table of NT = NS - 1 = 16 entries (the last stage reads nothing from the
+// table: what it outputs was read in T(NS-2)); since the pipeline advances every clock, the entry
+// of the ray in stage Ts is (ph_q - s) mod NT, with ph_q a phase counter that steps every clock.
+// A value is written into the ray's entry by the stage that computes it and read by the later
+// stages that need it (before the entry is reused, NT clocks after the ray came in); a value a
+// float unit takes as an operand is read one clock early into a register.  Only the valid bits
+// move, one stage per clock (v_q).
 //
 // Clock enables: a float unit advances only while a ray is in it, and holds its registers
 // otherwise (less switching, and less work for a simulator); likewise a stage computes what it
@@ -80,7 +81,8 @@ module traverse_setup
 );
 
   localparam int unsigned NS = SETUP_LAT;           // stages T0 .. T(NS-1)
-  localparam int unsigned SW = $clog2(NS);          // ray-table index width
+  localparam int unsigned NT = NS - 1;              // ray-table entries (T0 .. T(NS-2))
+  localparam int unsigned SW = $clog2(NT);          // ray-table index width
   localparam int unsigned C  = F24_DIV_LAT - 2;     // start of the paper's schedule (its T0)
   if (NS != C + 11 || F24_DIV_LAT < 3) begin : g_check_lat
     $error("traverse_setup: stage schedule does not add up to SETUP_LAT");
@@ -95,29 +97,29 @@ module traverse_setup
   } dirs_t;
 
   // The ray table (see the header); the stage that writes each field is in brackets.
-  logic [ID_W-1:0] id_q      [NS];  // [in]
-  f24_pair_t       uv_q      [NS];  // [in] u0, v0
-  f24_pair_t       duv_q     [NS];  // [in] du, dv
-  logic            invalid_q [NS];  // [T(C+1)] NaN / Inf field, negative start, start >= W / H
-  f24_pair_t       inv_q     [NS];  // [T(C+2)] 1 / du, 1 / dv
-  dirs_t           dir_q     [NS];  // [T(C+2)]
-  f24_t            t_map_q   [NS];  // [T(C+4)] time of leaving the map's extent
-  sidx_t           estx_q    [NS];  // [T(C+4)] locate's estimate of the start cell (level 0)
-  sidx_t           esty_q    [NS];
-  logic            gone_q    [NS];  // [T(C+5)] t_map <= t0: never enters
+  logic [ID_W-1:0] id_q      [NT];  // [in]
+  f24_pair_t       uv_q      [NT];  // [in] u0, v0
+  f24_pair_t       duv_q     [NT];  // [in] du, dv
+  logic            invalid_q [NT];  // [T(C+1)] NaN / Inf field, negative start, start >= W / H
+  f24_pair_t       inv_q     [NT];  // [T(C+2)] 1 / du, 1 / dv
+  dirs_t           dir_q     [NT];  // [T(C+2)]
+  f24_t            t_map_q   [NT];  // [T(C+4)] time of leaving the map's extent
+  sidx_t           estx_q    [NT];  // [T(C+4)] locate's estimate of the start cell (level 0)
+  sidx_t           esty_q    [NT];
+  logic            gone_q    [NT];  // [T(C+5)] t_map <= t0: never enters
   // Values that live one clock.
   logic            bad_q;           // T(C+0) -> T(C+1): NaN / Inf field or a negative start
   sidx_t           c0x_q, c0y_q;    // T(C+9) -> T(C+10): the corrected start cell
 
   logic [NS-1:0]   v_q;             // v_q[s]: stage Ts holds a ray
-  slot_idx_t       ph_q;            // phase: stage Ts holds the ray of entry (ph_q - s) mod NS
-  slot_idx_t       sl [NS];         // sl[s] = (ph_q - s) mod NS
+  slot_idx_t       ph_q;            // phase: stage Ts holds the ray of entry (ph_q - s) mod NT
+  slot_idx_t       sl [NT];         // sl[s] = (ph_q - s) mod NT, s = 0 .. NS-2
   logic [9:0]      vs;              // vs[k] = v_q[C+k]: the working stages of the schedule
   slot_idx_t       ss [10];         // (T(C+0) .. T(C+9); T(C+10) is the last); ss[k] = sl[C+k]
 
   always_comb begin
-    for (int s = 0; s < NS; s++) begin
-      sl[s] = (ph_q >= SW'(s)) ? ph_q - SW'(s) : ph_q + SW'(NS - s);
+    for (int s = 0; s < NT; s++) begin
+      sl[s] = (ph_q >= SW'(s)) ? ph_q - SW'(s) : ph_q + SW'(NT - s);
     end
     for (int k = 0; k < 10; k++) ss[k] = sl[C+k];
   end
@@ -309,16 +311,17 @@ module traverse_setup
       ph_q <= '0;
     end else begin
       v_q  <= {v_q[NS-2:0], in_valid_i};
-      ph_q <= (ph_q == SW'(NS - 1)) ? '0 : ph_q + SW'(1);
+      ph_q <= (ph_q == SW'(NT - 1)) ? '0 : ph_q + SW'(1);
     end
   end
 
   always_ff @(posedge clk_i) begin
-    // in: the ray enters the entry of the one leaving T(NS-1) (that entry is T0's next clock)
+    // in: the ray takes the entry of the one in T(NS-2), whose last reads are at this clock's
+    // edge (that entry is T0's next clock)
     if (in_valid_i) begin
-      id_q[sl[NS-1]]  <= in_id_i;
-      uv_q[sl[NS-1]]  <= '{u: in_u0_i, v: in_v0_i};
-      duv_q[sl[NS-1]] <= '{u: in_du_i, v: in_dv_i};
+      id_q[sl[NS-2]]  <= in_id_i;
+      uv_q[sl[NS-2]]  <= '{u: in_u0_i, v: in_v0_i};
+      duv_q[sl[NS-2]] <= '{u: in_du_i, v: in_dv_i};
     end
     // A stage computes and writes only while it holds a ray.
     // T(C+0) -> T(C+1): NaN / Inf field, negative start
