@@ -2,7 +2,7 @@
 // mode" block of _trace), a fixed-depth pipeline taking one ray per clock, never stalling.
 //
 // In: the ray's four numbers as f24 words (the model's ar.r() of the float64 ray).  Out, SETUP_LAT
-// clocks later (traverse_pkg: F24_DIV_LAT + 9 = 17): the ray record (traverse_pkg::ray_t) with
+// clocks later (traverse_pkg: F24_DIV_LAT + 11 = 19): the ray record (traverse_pkg::ray_t) with
 // the per-ray constants, the start time t0, the start level and the start cell, or done = 1 for
 // an invalid ray or one that never enters the map (the model's "gone": no iteration).
 //
@@ -12,8 +12,8 @@
 // that 1/du is ready at T8 where the directions need it.  Nothing before T8 depends on 1/du.
 // Every float unit takes its operands from registers (a unit's result, or a registered table
 // read, below), and integer logic that feeds a unit has a stage of its own (T10: the boundary
-// integers; T10 was the conversion itself with the 2-clock divider's schedule, which had one
-// stage less).
+// integers); the start decision takes two clocks (T16, T17: traverse_start_level) and the
+// shift to the start node a third (T18).
 //   T0  1/du, 1/dv                                              f24_div T0 -> T8
 //   T6  invalid checks (NaN / Inf field, negative start)
 //       exit boundary of the map b = du > 0 ? W : 0             f24_from_int T6 -> T7
@@ -35,19 +35,20 @@
 //   T14 (boundary - u0) * (1/du): crossing times                f24_mul T14 -> T15
 //       floor(position at t_end) (u0 if sx = 0)                 f24_to_index T14 -> T15
 //   T15 locate correction by the crossing times, clip to [-1, N]
-//   T16 gone |= start cell outside the map; start level k by XOR / bit length; cell >> k: out
-//       (traverse_start_level).
+//   T16 start cell and end cell clipped to the map, outside, XOR     traverse_start_level
+//   T17 start level k by bit length (leading-zero count)             T16 -> T18
+//   T18 gone |= start cell outside the map; cell >> k: out
 // In the code, stage T(C+k) is vs[k] / ss[k], and a name ending in the digit k (uv3, dir8, ...)
 // is a value of stage T(C+k).
 //
-// Ray table: a ray's values do not move from stage to stage.  Every ray in stages T0 .. T(NS-2)
-// owns one entry of a table of NT = NS - 1 = 16 entries (the last stage reads nothing from the
-// table: what it outputs was read in T(NS-2)); since the pipeline advances every clock, the entry
-// of the ray in stage Ts is (ph_q - s) mod NT, with ph_q a phase counter that steps every clock.
-// A value is written into the ray's entry by the stage that computes it and read by the later
-// stages that need it (before the entry is reused, NT clocks after the ray came in); a value a
-// float unit takes as an operand is read one clock early into a register.  Only the valid bits
-// move, one stage per clock (v_q).
+// Ray table: a ray's values do not move from stage to stage.  Every ray in stages T0 .. T(NS-4)
+// owns one entry of a table of NT = NS - 3 = 16 entries (16-deep LUT RAM; the last three stages
+// read nothing from the table: what they output was read in T(NS-4)); since the pipeline
+// advances every clock, the entry of the ray in stage Ts is (ph_q - s) mod NT, with ph_q a phase
+// counter that steps every clock.  A value is written into the ray's entry by the stage that
+// computes it and read by the later stages that need it (before the entry is reused, NT clocks
+// after the ray came in); a value a float unit takes as an operand is read one clock early into a
+// register.  Only the valid bits move, one stage per clock (v_q).
 //
 // Clock enables: a float unit advances only while a ray is in it, and holds its registers
 // otherwise (less switching, and less work for a simulator); likewise a stage computes what it
@@ -81,10 +82,10 @@ module traverse_setup
 );
 
   localparam int unsigned NS = SETUP_LAT;           // stages T0 .. T(NS-1)
-  localparam int unsigned NT = NS - 1;              // ray-table entries (T0 .. T(NS-2))
+  localparam int unsigned NT = NS - 3;              // ray-table entries (T0 .. T(NS-4))
   localparam int unsigned SW = $clog2(NT);          // ray-table index width
   localparam int unsigned C  = F24_DIV_LAT - 2;     // start of the paper's schedule (its T0)
-  if (NS != C + 11 || F24_DIV_LAT < 3) begin : g_check_lat
+  if (NS != C + 13 || NT != 16 || F24_DIV_LAT < 3) begin : g_check_lat
     $error("traverse_setup: stage schedule does not add up to SETUP_LAT");
   end
 
@@ -113,7 +114,7 @@ module traverse_setup
 
   logic [NS-1:0]   v_q;             // v_q[s]: stage Ts holds a ray
   slot_idx_t       ph_q;            // phase: stage Ts holds the ray of entry (ph_q - s) mod NT
-  slot_idx_t       sl [NT];         // sl[s] = (ph_q - s) mod NT, s = 0 .. NS-2
+  slot_idx_t       sl [NT];         // sl[s] = (ph_q - s) mod NT, s = 0 .. NS-4
   logic [9:0]      vs;              // vs[k] = v_q[C+k]: the working stages of the schedule
   slot_idx_t       ss [10];         // (T(C+0) .. T(C+9); T(C+10) is the last); ss[k] = sl[C+k]
 
@@ -316,12 +317,12 @@ module traverse_setup
   end
 
   always_ff @(posedge clk_i) begin
-    // in: the ray takes the entry of the one in T(NS-2), whose last reads are at this clock's
+    // in: the ray takes the entry of the one in T(NT-1), whose last reads are at this clock's
     // edge (that entry is T0's next clock)
     if (in_valid_i) begin
-      id_q[sl[NS-2]]  <= in_id_i;
-      uv_q[sl[NS-2]]  <= '{u: in_u0_i, v: in_v0_i};
-      duv_q[sl[NS-2]] <= '{u: in_du_i, v: in_dv_i};
+      id_q[sl[NT-1]]  <= in_id_i;
+      uv_q[sl[NT-1]]  <= '{u: in_u0_i, v: in_v0_i};
+      duv_q[sl[NT-1]] <= '{u: in_du_i, v: in_dv_i};
     end
     // A stage computes and writes only while it holds a ray.
     // T(C+0) -> T(C+1): NaN / Inf field, negative start
@@ -356,11 +357,13 @@ module traverse_setup
     end
   end
 
-  // ---- T(C+10) = T(NS-1): start cell, start level, out ------------------------------------------
+  // ---- T(C+10) .. T(C+12) = T(NS-1): start level (2 clocks), start cell, out -----------------
   logic              outside;
   logic [LVL_W-1:0]  k;
   logic [CELL_W-1:0] cx, cy;
   traverse_start_level u_start_level (
+    .clk_i        (clk_i),
+    .en_i         (v_q[NS-3] || v_q[NS-2]),
     .n_i          (cfg_i.n),
     .width_i      (cfg_i.width),
     .height_i     (cfg_i.height),
@@ -375,7 +378,8 @@ module traverse_setup
     .cy_o         (cy)
   );
 
-  // The ray's table fields for the output, read in T(NS-2) (registered like the others).
+  // The ray's table fields for the output, read in T(NT-1) = T(NS-4) (the last stage that owns
+  // an entry) and carried to T(NS-1) in registers.
   typedef struct packed {
     logic [ID_W-1:0] id;
     f24_pair_t       uv, duv, inv;
@@ -383,25 +387,27 @@ module traverse_setup
     f24_t            t_map;
     logic            invalid, gone;
   } out_fields_t;
-  out_fields_t out_q;
+  out_fields_t out_q [3];  // the fields of the ray in T(NS-3), T(NS-2), T(NS-1)
   always_ff @(posedge clk_i) begin
-    if (v_q[NS-2]) begin
-      out_q <= '{id: id_q[sl[NS-2]], uv: uv_q[sl[NS-2]], duv: duv_q[sl[NS-2]],
-                 inv: inv_q[sl[NS-2]], dir: dir_q[sl[NS-2]], t_map: t_map_q[sl[NS-2]],
-                 invalid: invalid_q[sl[NS-2]], gone: gone_q[sl[NS-2]]};
+    if (v_q[NS-4]) begin
+      out_q[0] <= '{id: id_q[sl[NT-1]], uv: uv_q[sl[NT-1]], duv: duv_q[sl[NT-1]],
+                    inv: inv_q[sl[NT-1]], dir: dir_q[sl[NT-1]], t_map: t_map_q[sl[NT-1]],
+                    invalid: invalid_q[sl[NT-1]], gone: gone_q[sl[NT-1]]};
     end
+    if (v_q[NS-3]) out_q[1] <= out_q[0];
+    if (v_q[NS-2]) out_q[2] <= out_q[1];
   end
 
   // One expression (not field by field), so that a simulator can evaluate it where it is used.
-  assign out_ray_o = '{u0: out_q.uv.u, v0: out_q.uv.v, du: out_q.duv.u, dv: out_q.duv.v,
-                       inv_du: out_q.inv.u, inv_dv: out_q.inv.v, sx: out_q.dir.sx,
-                       sy: out_q.dir.sy, t_map: out_q.t_map, k: k, cx: cx, cy: cy,
+  assign out_ray_o = '{u0: out_q[2].uv.u, v0: out_q[2].uv.v, du: out_q[2].duv.u, dv: out_q[2].duv.v,
+                       inv_du: out_q[2].inv.u, inv_dv: out_q[2].inv.v, sx: out_q[2].dir.sx,
+                       sy: out_q[2].dir.sy, t_map: out_q[2].t_map, k: k, cx: cx, cy: cy,
                        t: t0_q, crossed: 1'b0, prev_cross: 1'b0, iters: '0,
-                       done: out_q.invalid || out_q.gone || outside, hit: 1'b0,
-                       invalid: out_q.invalid, capped: 1'b0, err: 1'b0};
+                       done: out_q[2].invalid || out_q[2].gone || outside, hit: 1'b0,
+                       invalid: out_q[2].invalid, capped: 1'b0, err: 1'b0};
 
   assign out_valid_o = v_q[NS-1];
-  assign out_id_o    = out_q.id;
+  assign out_id_o    = out_q[2].id;
   assign busy_o      = SETUP_BUSY_W'($countones(v_q));
 
 endmodule

@@ -1,7 +1,7 @@
 // traverse_unit: ray / height-field intersection through the max-mipmap pyramid, bit-exact with
 // model.traverse.trace(pyr, rays, method, "f24") (hit, t, u, v, invalid, iterations).
 //
-//   ray stream -> traverse_setup (first mode, SETUP_LAT = 17 stages) -> setup FIFO
+//   ray stream -> traverse_setup (first mode, SETUP_LAT = 19 stages) -> setup FIFO
 //              -> traverse_loop (second mode, 18-slot ring, one height lookup per pass)
 //              -> result FIFO -> result stream (rays leave in completion order, not input order)
 //
@@ -29,7 +29,7 @@ module traverse_unit
   import traverse_pkg::*;
 #(
   parameter int unsigned ID_W             = 16,
-  parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > SETUP_LAT (17) for full rate
+  parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > SETUP_LAT (19) for full rate
   parameter int unsigned RES_FIFO_DEPTH   = 16,  // power of two
   parameter int unsigned CNT_W            = 32   // statistics counters
 ) (

@@ -32,7 +32,8 @@ def vectors() -> int:
 
 async def check_pipeline(dut, latency: int, inputs: Mapping[str, np.ndarray],
                          outputs: Mapping[str, np.ndarray], rng: np.random.Generator,
-                         en_prob: float = 0.8, describe: Callable[[int], str] | None = None) -> int:
+                         en_prob: float = 0.8, describe: Callable[[int], str] | None = None,
+                         label: str = "RTL vs model.f24") -> int:
     """Stream ``inputs`` through the unit and compare every output signal with ``outputs``.
 
     ``inputs[name][k]`` is applied as the k-th operand set; ``outputs[name][k]`` is the expected value
@@ -91,7 +92,7 @@ async def check_pipeline(dut, latency: int, inputs: Mapping[str, np.ndarray],
     nbad = sum(int(np.count_nonzero(np.array(got[k], dtype=np.int64) !=
                                    np.asarray(outputs[k], dtype=np.int64)[np.array(got_idx)]))
                for k in outputs)
-    report.record(dut._name, "RTL vs model.f24", n, nbad)
+    report.record(dut._name, label, n, nbad)
     dut._log.info("checked %d operand sets in %d clocks, latency %d", n, cyc, latency)
     if mism:
         raise AssertionError("\n".join(mism))
