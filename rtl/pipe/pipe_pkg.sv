@@ -22,9 +22,10 @@ package pipe_pkg;
   // f24_div: f24_pkg::F24_DIV_LAT (the divider's LAT parameter, set where the units use it).
 
   // ---- view_calc (model/view.py) ------------------------------------------------------------
-  // dot products: mul, add, add; then div(D, -z); then mul(x, k), mul(y, k).
+  // dot products: mul, add, add; then div(D, -z); the NaN select of k (one register); then
+  // mul(x, k), mul(y, k).
   localparam int unsigned VIEW_CALC_LAT = F24_MUL_LAT + 2 * F24_ADD_LAT
-                                        + f24_pkg::F24_DIV_LAT + F24_MUL_LAT;  // 14
+                                        + f24_pkg::F24_DIV_LAT + 1 + F24_MUL_LAT;  // 15
 
   // ---- tri_table / mip_level (model/texture.py "MIP level", model/mip.py) -------------------------
   localparam int unsigned TRI_TABLE_LAT = 1;   // registered read

@@ -7,10 +7,10 @@
 //   du = mul(x, k); dv = mul(y, k); seg = k
 //   where not (down > 0) (z >= 0, either zero, or NaN): du = dv = seg = NaN (0x7F8000)
 //
-// Fully pipelined, fixed latency VIEW_CALC_LAT = 14 enabled clocks (pipe_pkg), one fragment per
+// Fully pipelined, fixed latency VIEW_CALC_LAT = 15 enabled clocks (pipe_pkg), one fragment per
 // clock.  Every register (valid, tag, data, the float units) advances only while en_i is 1, so
 // the enclosing pipeline stalls the whole unit with en_i = 0.  A fragment is taken on an enabled
-// edge with valid_i = 1; its result shows at valid_o / tag_o / du_o / dv_o / seg_o after 14
+// edge with valid_i = 1; its result shows at valid_o / tag_o / du_o / dv_o / seg_o after 15
 // enabled edges and holds while en_i is 0.  valid is reset by rst_ni (synchronous, active low,
 // independent of en_i); data registers have no reset.  cfg_depth_i must be static while busy.
 //
@@ -23,11 +23,12 @@
 //   S3  x, y, z = add(sx, p2)                                       f24_add  S3 -> S5
 //   S5  down = -z; ok = down > 0 (sign 0, exponent not 0, not NaN)
 //       k = div(D, down)                                            f24_div  S5 -> S13
-//       x, y and ok delayed S5 -> S13 (8 registers)
-//   S13 ks = ok ? k : NaN
-//       du = mul(x, ks), dv = mul(y, ks) (mul(., NaN) = NaN)       f24_mul  S13 -> S14
-//       seg = ks                                                    register S13 -> S14
-//   S14 outputs (straight from registers)
+//       x, y delayed S5 -> S14 (9 registers), ok S5 -> S13
+//   S13 ks = ok ? k : NaN                                           register S13 -> S14
+//       (a register of its own: the select in front of the multipliers cost their fmax)
+//   S14 du = mul(x, ks), dv = mul(y, ks) (mul(., NaN) = NaN)       f24_mul  S14 -> S15
+//       seg = ks                                                    register S14 -> S15
+//   S15 outputs (straight from registers)
 // Float units: 11 f24_mul, 6 f24_add, 1 f24_div.  Applying the NaN of an unusable view by
 // forcing the multipliers' operand k to NaN gives exactly the model's NaN (every NaN a unit
 // produces is 0x7F8000) and keeps the outputs free of logic after the registers.
@@ -67,8 +68,9 @@ module view_calc
   localparam int unsigned S_SUM1 = F24_MUL_LAT;           // 1
   localparam int unsigned S_SUM2 = S_SUM1 + F24_ADD_LAT;  // 3
   localparam int unsigned S_DIV  = S_SUM2 + F24_ADD_LAT;  // 5
-  localparam int unsigned S_SCL  = S_DIV + F24_DIV_LAT;   // 13
-  localparam int unsigned S_OUT  = S_SCL + F24_MUL_LAT;   // 14
+  localparam int unsigned S_KS   = S_DIV + F24_DIV_LAT;   // 13
+  localparam int unsigned S_SCL  = S_KS + 1;              // 14
+  localparam int unsigned S_OUT  = S_SCL + F24_MUL_LAT;   // 15
   if (S_OUT != VIEW_CALC_LAT) begin : g_check_lat
     $error("view_calc: stage schedule does not add up to VIEW_CALC_LAT");
   end
@@ -101,7 +103,7 @@ module view_calc
   // ---- S5: down, the usability test, the divider ---------------------------------------------
   f24_t down;
   logic down_pos;                       // down > 0: positive, nonzero, not NaN (+Inf counts)
-  f24_t k;                              // S_SCL: div(D, down)
+  f24_t k;                              // S_KS: div(D, down)
   assign down     = {~dot[2][23], dot[2][22:0]};
   assign down_pos = !down[23] && (down[22:16] != 7'd0)
                     && !((down[22:16] == EXP_SPEC) && (down[15:0] != 16'd0));
@@ -109,14 +111,13 @@ module view_calc
 
   f24_t x_q  [S_DIV+1:S_SCL];           // x, y in stages S6 .. S_SCL
   f24_t y_q  [S_DIV+1:S_SCL];
-  logic ok_q [S_DIV+1:S_SCL];           // down > 0 in stages S6 .. S_SCL
+  logic ok_q [S_DIV+1:S_KS];            // down > 0 in stages S6 .. S_KS
 
   // ---- S_SCL: scale -----------------------------------------------------------------------------
-  f24_t ks;                             // k, or NaN for an unusable view
+  f24_t ks_q;                           // S_SCL: k, or NaN for an unusable view
   f24_t seg_q;                          // S_OUT
-  assign ks = ok_q[S_SCL] ? k : F24_NAN;
-  f24_mul u_du (.clk_i, .en_i, .a_i(x_q[S_SCL]), .b_i(ks), .y_o(du_o));
-  f24_mul u_dv (.clk_i, .en_i, .a_i(y_q[S_SCL]), .b_i(ks), .y_o(dv_o));
+  f24_mul u_du (.clk_i, .en_i, .a_i(x_q[S_SCL]), .b_i(ks_q), .y_o(du_o));
+  f24_mul u_dv (.clk_i, .en_i, .a_i(y_q[S_SCL]), .b_i(ks_q), .y_o(dv_o));
   assign seg_o = seg_q;
 
   // ---- delay lines and the S_SCL -> S_OUT register -------------------------------------------
@@ -130,11 +131,12 @@ module view_calc
       y_q[S_DIV+1]  <= dot[1];
       ok_q[S_DIV+1] <= down_pos;
       for (int s = S_DIV + 2; s <= S_SCL; s++) begin
-        x_q[s]  <= x_q[s-1];
-        y_q[s]  <= y_q[s-1];
-        ok_q[s] <= ok_q[s-1];
+        x_q[s] <= x_q[s-1];
+        y_q[s] <= y_q[s-1];
       end
-      seg_q <= ks;
+      for (int s = S_DIV + 2; s <= S_KS; s++) ok_q[s] <= ok_q[s-1];
+      ks_q  <= ok_q[S_KS] ? k : F24_NAN;
+      seg_q <= ks_q;
     end
   end
 

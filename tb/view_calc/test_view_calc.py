@@ -21,7 +21,7 @@ from model.arith import ENGINES
 from tb.common import fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 
-LATENCY = 14  # pipe_pkg::VIEW_CALC_LAT (the divider: f24_pkg::F24_DIV_LAT = 8)
+LATENCY = 15  # pipe_pkg::VIEW_CALC_LAT (the divider: f24_pkg::F24_DIV_LAT = 8)
 WORDS = ["tx_i", "ty_i", "tz_i", "bx_i", "by_i", "bz_i", "nx_i", "ny_i", "nz_i",
          "vx_i", "vy_i", "vz_i"]
 OUTS = ["du_o", "dv_o", "seg_o"]
