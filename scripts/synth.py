@@ -58,8 +58,10 @@ BLOCKS = [
     Block("f24_div", "f24_div", {"LAT": 8}, what="float divide (8 clocks)"),
     Block("f24_cmp", "f24_cmp", what="float compare (1 clock)"),
     Block("f24_sqrt", "f24_sqrt", what="float square root (2 clocks)"),
-    Block("f24_rsqrt", "f24_rsqrt", what="approximate 1/sqrt (2 clocks)"),
-    Block("f24_log2", "f24_log2", what="approximate log2 (2 clocks)"),
+    # log2 and rsqrt as mip_level and shade_unit instantiate them: LAT = pipe_pkg::F24_LOG2_LAT,
+    # pipe_pkg::F24_RSQRT_LAT.
+    Block("f24_rsqrt", "f24_rsqrt", {"LAT": 3}, what="approximate 1/sqrt (3 clocks)"),
+    Block("f24_log2", "f24_log2", {"LAT": 3}, what="approximate log2 (3 clocks)"),
     Block("f24_from_unorm", "f24_from_unorm", what="unorm8 -> float"),
     Block("f24_from_int", "f24_from_int", what="int20 -> float"),
     Block("f24_to_index", "f24_to_index", what="float -> int20 (floor)"),

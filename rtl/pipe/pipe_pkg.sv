@@ -15,7 +15,10 @@ package pipe_pkg;
   // ---- float units (rtl/fp/, README "Units") ----------------------------------------------------
   localparam int unsigned F24_ADD_LAT      = 2;  // f24_add (and subtract)
   localparam int unsigned F24_MUL_LAT      = 1;  // f24_mul
-  localparam int unsigned F24_LOG2_LAT     = 2;  // f24_log2
+  localparam int unsigned F24_LOG2_LAT     = 3;  // f24_log2 #(.LAT(3)): table / product + sum /
+                                                 // normalise + round (LAT 2 stays near 50 MHz)
+  localparam int unsigned F24_RSQRT_LAT    = 3;  // f24_rsqrt #(.LAT(3)) (shade_unit): table /
+                                                 // product + sum / round (LAT 2: near 70 MHz)
   localparam int unsigned F24_TO_INDEX_LAT = 1;  // f24_to_index
   localparam int unsigned F24_FROM_INT_LAT   = 1;  // f24_from_int
   localparam int unsigned F24_FROM_UNORM_LAT = 1;  // f24_from_unorm
@@ -34,7 +37,7 @@ package pipe_pkg;
   // Pl = Pl0 + t seg (mul, add); log2; lod = - log2Pb (add); + 0.5 (add); floor (to_index);
   // clamp to the level range and the mip_en select (one register).
   localparam int unsigned MIP_LAT = F24_MUL_LAT + F24_ADD_LAT + F24_LOG2_LAT + 2 * F24_ADD_LAT
-                                  + F24_TO_INDEX_LAT + 1;  // 11
+                                  + F24_TO_INDEX_LAT + 1;  // 12
 
   // ---- tex_addr / tex_filter (model/texture.py lookup_addresses, filter_texels) --------------
   localparam int unsigned TEX_LEVELS  = 16;  // levels a texture configuration holds: textures up

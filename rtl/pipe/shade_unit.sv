@@ -25,7 +25,7 @@
 // light vector l (three components), AMBIENT, KD, KS, D and D2 = mul(D, D).  Hard-wired
 // (shade_pkg): EPS = 2^-40, 1, 0, 255 and 0.5; the constant 2 only appears as mul(M_c, 2).
 //
-// Fully pipelined, fixed latency SHADE_LAT = 36 enabled clocks (shade_pkg), one pixel per clock.
+// Fully pipelined, fixed latency SHADE_LAT = 38 enabled clocks (shade_pkg), one pixel per clock.
 // Every register (valid, tag, data, the float units) advances only while en_i is 1, so the
 // enclosing pipeline stalls the whole unit with en_i = 0.  A pixel is taken on an enabled edge with
 // valid_i = 1; its result shows at valid_o / tag_o / rgb_o after SHADE_LAT enabled edges and holds
@@ -36,47 +36,50 @@
 // "reg" = exact logic into one register):
 //   S0   M_c * 2 (exact doubling, see below)                          reg          S0 -> S1
 //        du*du, dv*dv                                                f24_mul      S0 -> S1
-//        du, dv delayed S0 -> S7; C delayed S0 -> S21
+//        du, dv delayed S0 -> S8; C delayed S0 -> S22
 //   S1   n_c = 2M_c - 1                                              f24_add x3   S1 -> S3
 //        du2 + dv2                                                   f24_add      S1 -> S3
 //   S3   n_c * n_c                                                   f24_mul x3   S3 -> S4
 //        (du2 + dv2) + D2 = vv                                       f24_add      S3 -> S5
-//        n delayed S3 -> S11
+//        n delayed S3 -> S12
 //   S4   nx2 + ny2 (nz2 delayed S4 -> S6)                            f24_add      S4 -> S6
-//   S5   rv = rsqrt(vv)                                              f24_rsqrt    S5 -> S7
+//   S5   rv = rsqrt(vv)                                              f24_rsqrt    S5 -> S8
 //   S6   nn = (nx2 + ny2) + nz2                                      f24_add      S6 -> S8
-//   S7   v = (-du rv, -dv rv, D rv)                                  f24_mul x3   S7 -> S8
-//   S8   max(nn, EPS)                                                reg          S8 -> S9
-//        h_c = l_c + v_c                                             f24_add x3   S8 -> S10
-//   S9   rn = rsqrt(nn)                                              f24_rsqrt    S9 -> S11
-//   S10  h_c * h_c                                                   f24_mul x3   S10 -> S11
-//        h delayed S10 -> S17
-//   S11  n_c * rn (unit normal)                                      f24_mul x3   S11 -> S12
-//        hx2 + hy2 (hz2 delayed S11 -> S13)                          f24_add      S11 -> S13
-//   S12  n_c * l_c                                                   f24_mul x3   S12 -> S13
-//        unit normal delayed S12 -> S18
-//   S13  hh = (hx2 + hy2) + hz2                                      f24_add      S13 -> S15
-//        nlx + nly (nlz delayed S13 -> S15)                          f24_add      S13 -> S15
-//   S15  rh = rsqrt(hh)                                              f24_rsqrt    S15 -> S17
-//        dot(n, l) = (nlx + nly) + nlz                               f24_add      S15 -> S17
-//   S17  h_c * rh (unit half vector)                                 f24_mul x3   S17 -> S18
-//        ndl = max(dot(n, l), 0)                                     reg          S17 -> S18
-//   S18  n_c * h_c                                                   f24_mul x3   S18 -> S19
-//        KD * ndl                                                    f24_mul      S18 -> S19
-//   S19  nhx + nhy (nhz delayed S19 -> S21)                          f24_add      S19 -> S21
-//        a = AMBIENT + KD ndl                                        f24_add      S19 -> S21
-//   S21  dot(n, h) = (nhx + nhy) + nhz                               f24_add      S21 -> S23
-//        C_c * a                                                     f24_mul x3   S21 -> S22
-//        C_c a delayed S22 -> S29
-//   S23  ndh = max(dot(n, h), 0)                                     reg          S23 -> S24
-//   S24  s = ndh^2, ^4, ^8, ^16 (four squarings)                     f24_mul x4   S24 -> S28
-//   S28  sp = KS * s                                                 f24_mul      S28 -> S29
-//   S29  c_c = C_c a + sp                                            f24_add x3   S29 -> S31
-//   S31  min(max(c_c, 0), 1)                                         reg          S31 -> S32
-//   S32  c_c * 255                                                   f24_mul x3   S32 -> S33
-//   S33  + 0.5                                                       f24_add x3   S33 -> S35
-//   S35  floor -> unorm8                                             f24_to_index S35 -> S36
-//   S36  outputs (straight from registers); valid and tag delayed S0 -> S36
+//   S8   v = (-du rv, -dv rv, D rv)                                  f24_mul x3   S8 -> S9
+//        max(nn, EPS)                                                reg          S8 -> S9
+//   S9   h_c = l_c + v_c                                             f24_add x3   S9 -> S11
+//        rn = rsqrt(nn)                                              f24_rsqrt    S9 -> S12
+//   S11  h_c * h_c                                                   f24_mul x3   S11 -> S12
+//        h delayed S11 -> S19
+//   S12  n_c * rn (unit normal)                                      f24_mul x3   S12 -> S13
+//        hx2 + hy2 (hz2 delayed S12 -> S14)                          f24_add      S12 -> S14
+//   S13  n_c * l_c                                                   f24_mul x3   S13 -> S14
+//        unit normal delayed S13 -> S20
+//   S14  hh = (hx2 + hy2) + hz2                                      f24_add      S14 -> S16
+//        nlx + nly (nlz delayed S14 -> S16)                          f24_add      S14 -> S16
+//   S16  rh = rsqrt(hh)                                              f24_rsqrt    S16 -> S19
+//        dot(n, l) = (nlx + nly) + nlz                               f24_add      S16 -> S18
+//   S18  ndl = max(dot(n, l), 0)                                     reg          S18 -> S19
+//   S19  h_c * rh (unit half vector)                                 f24_mul x3   S19 -> S20
+//        KD * ndl                                                    f24_mul      S19 -> S20
+//   S20  n_c * h_c                                                   f24_mul x3   S20 -> S21
+//        a = AMBIENT + KD ndl                                        f24_add      S20 -> S22
+//   S21  nhx + nhy (nhz delayed S21 -> S23)                          f24_add      S21 -> S23
+//   S22  C_c * a                                                     f24_mul x3   S22 -> S23
+//        C_c a delayed S23 -> S31
+//   S23  dot(n, h) = (nhx + nhy) + nhz                               f24_add      S23 -> S25
+//   S25  ndh = max(dot(n, h), 0)                                     reg          S25 -> S26
+//   S26  s = ndh^2, ^4, ^8, ^16 (four squarings)                     f24_mul x4   S26 -> S30
+//   S30  sp = KS * s                                                 f24_mul      S30 -> S31
+//   S31  c_c = C_c a + sp                                            f24_add x3   S31 -> S33
+//   S33  min(max(c_c, 0), 1)                                         reg          S33 -> S34
+//   S34  c_c * 255                                                   f24_mul x3   S34 -> S35
+//   S35  + 0.5                                                       f24_add x3   S35 -> S37
+//   S37  floor -> unorm8                                             f24_to_index S37 -> S38
+//   S38  outputs (straight from registers); valid and tag delayed S0 -> S38
+// The three f24_rsqrt run at LAT = pipe_pkg::F24_RSQRT_LAT = 3 (table / product + sum / round:
+// over 120 MHz; at their 2 clocks they limit the unit to below 60 MHz), with the same results;
+// the schedule above is written for that latency (checked at elaboration).
 //
 // Float units: 35 f24_mul, 23 f24_add, 3 f24_rsqrt, 3 f24_to_index #(9); no f24_cmp.  Exact logic
 // (no rounding involved, each into one register): 3 doublers, max(nn, EPS), 2 x max(., 0) and 3
@@ -115,7 +118,14 @@ module shade_unit
   output logic [2:0][7:0]  rgb_o     // unorm8 codes (R, G, B at 0, 1, 2)
 );
 
-  localparam int unsigned NS = SHADE_LAT;  // S1 .. S36 are registers
+  localparam int unsigned NS = SHADE_LAT;  // S1 .. S38 are registers
+
+  // The three f24_rsqrt: the schedule (header) is written for 3 clocks each (rv S5 -> S8, rn
+  // S9 -> S12, rh S16 -> S19); another latency needs the stages below renumbered.
+  localparam int unsigned RSQRT_LAT = pipe_pkg::F24_RSQRT_LAT;
+  if (RSQRT_LAT != 3 || NS != 38) begin : g_check_lat
+    $error("shade_unit: the stage schedule is written for F24_RSQRT_LAT = 3, SHADE_LAT = 38");
+  end
 
   localparam f24_t NEG_ONE = SHADE_ONE ^ 24'h800000;  // sub(x, 1) = add(x, -1)
 
@@ -159,7 +169,7 @@ module shade_unit
   f24_t [2:0] light;
   assign light = {cfg_i.light_z, cfg_i.light_y, cfg_i.light_x};
 
-  // ---- valid and tag: S1 .. S36 --------------------------------------------------------------
+  // ---- valid and tag: S1 .. S38 --------------------------------------------------------------
   pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(NS)) u_valid_tag (
     .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o);
 
@@ -167,72 +177,72 @@ module shade_unit
   f24_t [2:0] n_s3;                 // 2M - 1
   f24_t [2:0] nsq_s4;               // n_c^2
   f24_t       nxy_s6, nn_s8;
-  f24_t       du2_s1, dv2_s1, duv_s3, vv_s5, rv_s7;
-  f24_t [2:0] v_s8;                 // unit view vector
-  f24_t       rn_s11;
-  f24_t [2:0] h_s10;                // l + v
-  f24_t [2:0] hsq_s11;
-  f24_t [2:0] nu_s12;               // unit normal
-  f24_t       hxy_s13, hh_s15, rh_s17;
-  f24_t [2:0] nl_s13;               // n_c l_c
-  f24_t       nlxy_s15, dnl_s17;
-  f24_t [2:0] hu_s18;               // unit half vector
-  f24_t [2:0] nh_s19;               // n_c h_c
-  f24_t       kdl_s19, a_s21, nhxy_s21, dnh_s23;
-  f24_t [2:0] ca_s22;               // C_c a
-  f24_t       s_s25, s_s26, s_s27, s_s28, sp_s29;
-  f24_t [2:0] cc_s31;               // C_c a + sp
-  f24_t [2:0] k_s33, kh_s35;        // c 255, c 255 + 0.5
+  f24_t       du2_s1, dv2_s1, duv_s3, vv_s5, rv_s8;
+  f24_t [2:0] v_s9;                 // unit view vector
+  f24_t       rn_s12;
+  f24_t [2:0] h_s11;                // l + v
+  f24_t [2:0] hsq_s12;
+  f24_t [2:0] nu_s13;               // unit normal
+  f24_t       hxy_s14, hh_s16, rh_s19;
+  f24_t [2:0] nl_s14;               // n_c l_c
+  f24_t       nlxy_s16, dnl_s18;
+  f24_t [2:0] hu_s20;               // unit half vector
+  f24_t [2:0] nh_s21;               // n_c h_c
+  f24_t       kdl_s20, a_s22, nhxy_s23, dnh_s25;
+  f24_t [2:0] ca_s23;               // C_c a
+  f24_t       s_s27, s_s28, s_s29, s_s30, sp_s31;
+  f24_t [2:0] cc_s33;               // C_c a + sp
+  f24_t [2:0] k_s35, kh_s37;        // c 255, c 255 + 0.5
 
   // ---- stage registers of the data path (no reset) --------------------------------------------
   f24_t [2:0] m2_q;                 // S1: 2M
-  f24_t       du_q   [1:7];         // S1 .. S7
-  f24_t       dv_q   [1:7];
-  f24_t [2:0] col_q  [1:21];        // S1 .. S21
+  f24_t       du_q   [1:8];         // S1 .. S8
+  f24_t       dv_q   [1:8];
+  f24_t [2:0] col_q  [1:22];        // S1 .. S22
   f24_t       nsqz_q [5:6];         // nz^2, S5 .. S6
-  f24_t [2:0] n_q    [4:11];        // 2M - 1, S4 .. S11
+  f24_t [2:0] n_q    [4:12];        // 2M - 1, S4 .. S12
   f24_t       nnm_q;                // S9: max(nn, EPS)
-  f24_t       hsqz_q [12:13];       // hz^2
-  f24_t [2:0] h_q    [11:17];       // l + v
-  f24_t       nlz_q  [14:15];       // nz lz
-  f24_t [2:0] nu_q   [13:18];       // unit normal
-  f24_t       ndl_q;                // S18: max(dot(n, l), 0)
-  f24_t       nhz_q  [20:21];       // nz hz
-  f24_t       ndh_q;                // S24: max(dot(n, h), 0)
-  f24_t [2:0] ca_q   [23:29];       // C_c a
-  f24_t [2:0] cl_q;                 // S32: clamped colour
+  f24_t       hsqz_q [13:14];       // hz^2
+  f24_t [2:0] h_q    [12:19];       // l + v
+  f24_t       nlz_q  [15:16];       // nz lz
+  f24_t [2:0] nu_q   [14:20];       // unit normal
+  f24_t       ndl_q;                // S19: max(dot(n, l), 0)
+  f24_t       nhz_q  [22:23];       // nz hz
+  f24_t       ndh_q;                // S26: max(dot(n, h), 0)
+  f24_t [2:0] ca_q   [24:31];       // C_c a
+  f24_t [2:0] cl_q;                 // S34: clamped colour
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       for (int c = 0; c < 3; c++) m2_q[c] <= dbl(nrm_i[c]);
       du_q[1] <= du_i;
       dv_q[1] <= dv_i;
-      for (int s = 2; s <= 7; s++) begin
+      for (int s = 2; s <= 8; s++) begin
         du_q[s] <= du_q[s-1];
         dv_q[s] <= dv_q[s-1];
       end
       col_q[1] <= col_i;
-      for (int s = 2; s <= 21; s++) col_q[s] <= col_q[s-1];
+      for (int s = 2; s <= 22; s++) col_q[s] <= col_q[s-1];
       nsqz_q[5] <= nsq_s4[2];
       nsqz_q[6] <= nsqz_q[5];
       n_q[4] <= n_s3;
-      for (int s = 5; s <= 11; s++) n_q[s] <= n_q[s-1];
+      for (int s = 5; s <= 12; s++) n_q[s] <= n_q[s-1];
       nnm_q <= max_np(nn_s8, SHADE_EPS);
-      hsqz_q[12] <= hsq_s11[2];
-      hsqz_q[13] <= hsqz_q[12];
-      h_q[11] <= h_s10;
-      for (int s = 12; s <= 17; s++) h_q[s] <= h_q[s-1];
-      nlz_q[14] <= nl_s13[2];
-      nlz_q[15] <= nlz_q[14];
-      nu_q[13] <= nu_s12;
-      for (int s = 14; s <= 18; s++) nu_q[s] <= nu_q[s-1];
-      ndl_q <= max_np(dnl_s17, SHADE_ZERO);
-      nhz_q[20] <= nh_s19[2];
-      nhz_q[21] <= nhz_q[20];
-      ndh_q <= max_np(dnh_s23, SHADE_ZERO);
-      ca_q[23] <= ca_s22;
-      for (int s = 24; s <= 29; s++) ca_q[s] <= ca_q[s-1];
-      for (int c = 0; c < 3; c++) cl_q[c] <= min_np(max_np(cc_s31[c], SHADE_ZERO), SHADE_ONE);
+      hsqz_q[13] <= hsq_s12[2];
+      hsqz_q[14] <= hsqz_q[13];
+      h_q[12] <= h_s11;
+      for (int s = 13; s <= 19; s++) h_q[s] <= h_q[s-1];
+      nlz_q[15] <= nl_s14[2];
+      nlz_q[16] <= nlz_q[15];
+      nu_q[14] <= nu_s13;
+      for (int s = 15; s <= 20; s++) nu_q[s] <= nu_q[s-1];
+      ndl_q <= max_np(dnl_s18, SHADE_ZERO);
+      nhz_q[22] <= nh_s21[2];
+      nhz_q[23] <= nhz_q[22];
+      ndh_q <= max_np(dnh_s25, SHADE_ZERO);
+      ca_q[24] <= ca_s23;
+      for (int s = 25; s <= 31; s++) ca_q[s] <= ca_q[s-1];
+      for (int c = 0; c < 3; c++) cl_q[c] <= min_np(max_np(cc_s33[c], SHADE_ZERO), SHADE_ONE);
     end
   end
 
@@ -242,35 +252,35 @@ module shade_unit
   f24_mul u_dv2 (.clk_i, .en_i, .a_i(dv_i), .b_i(dv_i), .y_o(dv2_s1));
   f24_add u_duv (.clk_i, .en_i, .a_i(du2_s1), .b_i(dv2_s1), .y_o(duv_s3));
   f24_add u_vv  (.clk_i, .en_i, .a_i(duv_s3), .b_i(cfg_i.d2), .y_o(vv_s5));
-  f24_rsqrt u_rv (.clk_i, .en_i, .a_i(vv_s5), .y_o(rv_s7));
-  f24_mul u_vx  (.clk_i, .en_i, .a_i({~du_q[7][23], du_q[7][22:0]}), .b_i(rv_s7), .y_o(v_s8[0]));
-  f24_mul u_vy  (.clk_i, .en_i, .a_i({~dv_q[7][23], dv_q[7][22:0]}), .b_i(rv_s7), .y_o(v_s8[1]));
-  f24_mul u_vz  (.clk_i, .en_i, .a_i(cfg_i.d), .b_i(rv_s7), .y_o(v_s8[2]));
+  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rv (.clk_i, .en_i, .a_i(vv_s5), .y_o(rv_s8));
+  f24_mul u_vx  (.clk_i, .en_i, .a_i({~du_q[8][23], du_q[8][22:0]}), .b_i(rv_s8), .y_o(v_s9[0]));
+  f24_mul u_vy  (.clk_i, .en_i, .a_i({~dv_q[8][23], dv_q[8][22:0]}), .b_i(rv_s8), .y_o(v_s9[1]));
+  f24_mul u_vz  (.clk_i, .en_i, .a_i(cfg_i.d), .b_i(rv_s8), .y_o(v_s9[2]));
 
   // 2-4: |n|^2, its reciprocal square root
   f24_add u_nxy (.clk_i, .en_i, .a_i(nsq_s4[0]), .b_i(nsq_s4[1]), .y_o(nxy_s6));
   f24_add u_nn  (.clk_i, .en_i, .a_i(nxy_s6), .b_i(nsqz_q[6]), .y_o(nn_s8));
-  f24_rsqrt u_rn (.clk_i, .en_i, .a_i(nnm_q), .y_o(rn_s11));
+  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rn (.clk_i, .en_i, .a_i(nnm_q), .y_o(rn_s12));
 
   // 7-8: |h|^2, its reciprocal square root
-  f24_add u_hxy (.clk_i, .en_i, .a_i(hsq_s11[0]), .b_i(hsq_s11[1]), .y_o(hxy_s13));
-  f24_add u_hh  (.clk_i, .en_i, .a_i(hxy_s13), .b_i(hsqz_q[13]), .y_o(hh_s15));
-  f24_rsqrt u_rh (.clk_i, .en_i, .a_i(hh_s15), .y_o(rh_s17));
+  f24_add u_hxy (.clk_i, .en_i, .a_i(hsq_s12[0]), .b_i(hsq_s12[1]), .y_o(hxy_s14));
+  f24_add u_hh  (.clk_i, .en_i, .a_i(hxy_s14), .b_i(hsqz_q[14]), .y_o(hh_s16));
+  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rh (.clk_i, .en_i, .a_i(hh_s16), .y_o(rh_s19));
 
   // 9, 11: n.l, the diffuse term a = AMBIENT + KD ndl
-  f24_add u_nlxy (.clk_i, .en_i, .a_i(nl_s13[0]), .b_i(nl_s13[1]), .y_o(nlxy_s15));
-  f24_add u_dnl  (.clk_i, .en_i, .a_i(nlxy_s15), .b_i(nlz_q[15]), .y_o(dnl_s17));
-  f24_mul u_kdl  (.clk_i, .en_i, .a_i(cfg_i.kd), .b_i(ndl_q), .y_o(kdl_s19));
-  f24_add u_a    (.clk_i, .en_i, .a_i(cfg_i.ambient), .b_i(kdl_s19), .y_o(a_s21));
+  f24_add u_nlxy (.clk_i, .en_i, .a_i(nl_s14[0]), .b_i(nl_s14[1]), .y_o(nlxy_s16));
+  f24_add u_dnl  (.clk_i, .en_i, .a_i(nlxy_s16), .b_i(nlz_q[16]), .y_o(dnl_s18));
+  f24_mul u_kdl  (.clk_i, .en_i, .a_i(cfg_i.kd), .b_i(ndl_q), .y_o(kdl_s20));
+  f24_add u_a    (.clk_i, .en_i, .a_i(cfg_i.ambient), .b_i(kdl_s20), .y_o(a_s22));
 
   // 9-11: n.h, s = ndh^16, sp = KS s
-  f24_add u_nhxy (.clk_i, .en_i, .a_i(nh_s19[0]), .b_i(nh_s19[1]), .y_o(nhxy_s21));
-  f24_add u_dnh  (.clk_i, .en_i, .a_i(nhxy_s21), .b_i(nhz_q[21]), .y_o(dnh_s23));
-  f24_mul u_s1   (.clk_i, .en_i, .a_i(ndh_q), .b_i(ndh_q), .y_o(s_s25));
-  f24_mul u_s2   (.clk_i, .en_i, .a_i(s_s25), .b_i(s_s25), .y_o(s_s26));
-  f24_mul u_s3   (.clk_i, .en_i, .a_i(s_s26), .b_i(s_s26), .y_o(s_s27));
-  f24_mul u_s4   (.clk_i, .en_i, .a_i(s_s27), .b_i(s_s27), .y_o(s_s28));
-  f24_mul u_sp   (.clk_i, .en_i, .a_i(cfg_i.ks), .b_i(s_s28), .y_o(sp_s29));
+  f24_add u_nhxy (.clk_i, .en_i, .a_i(nh_s21[0]), .b_i(nh_s21[1]), .y_o(nhxy_s23));
+  f24_add u_dnh  (.clk_i, .en_i, .a_i(nhxy_s23), .b_i(nhz_q[23]), .y_o(dnh_s25));
+  f24_mul u_s1   (.clk_i, .en_i, .a_i(ndh_q), .b_i(ndh_q), .y_o(s_s27));
+  f24_mul u_s2   (.clk_i, .en_i, .a_i(s_s27), .b_i(s_s27), .y_o(s_s28));
+  f24_mul u_s3   (.clk_i, .en_i, .a_i(s_s28), .b_i(s_s28), .y_o(s_s29));
+  f24_mul u_s4   (.clk_i, .en_i, .a_i(s_s29), .b_i(s_s29), .y_o(s_s30));
+  f24_mul u_sp   (.clk_i, .en_i, .a_i(cfg_i.ks), .b_i(s_s30), .y_o(sp_s31));
 
   // per component
   logic signed [8:0] idx [3];  // floor(c 255 + 0.5), in 0 .. 255
@@ -279,22 +289,22 @@ module shade_unit
     // 1: decode; 2: squares; 4: normalise
     f24_add u_n   (.clk_i, .en_i, .a_i(m2_q[c]), .b_i(NEG_ONE), .y_o(n_s3[c]));
     f24_mul u_nsq (.clk_i, .en_i, .a_i(n_s3[c]), .b_i(n_s3[c]), .y_o(nsq_s4[c]));
-    f24_mul u_nu  (.clk_i, .en_i, .a_i(n_q[11][c]), .b_i(rn_s11), .y_o(nu_s12[c]));
+    f24_mul u_nu  (.clk_i, .en_i, .a_i(n_q[12][c]), .b_i(rn_s12), .y_o(nu_s13[c]));
     // 7-8: half vector, its squares, normalise
-    f24_add u_h   (.clk_i, .en_i, .a_i(light[c]), .b_i(v_s8[c]), .y_o(h_s10[c]));
-    f24_mul u_hsq (.clk_i, .en_i, .a_i(h_s10[c]), .b_i(h_s10[c]), .y_o(hsq_s11[c]));
-    f24_mul u_hu  (.clk_i, .en_i, .a_i(h_q[17][c]), .b_i(rh_s17), .y_o(hu_s18[c]));
+    f24_add u_h   (.clk_i, .en_i, .a_i(light[c]), .b_i(v_s9[c]), .y_o(h_s11[c]));
+    f24_mul u_hsq (.clk_i, .en_i, .a_i(h_s11[c]), .b_i(h_s11[c]), .y_o(hsq_s12[c]));
+    f24_mul u_hu  (.clk_i, .en_i, .a_i(h_q[19][c]), .b_i(rh_s19), .y_o(hu_s20[c]));
     // 9: the dot products' products
-    f24_mul u_nl  (.clk_i, .en_i, .a_i(nu_s12[c]), .b_i(light[c]), .y_o(nl_s13[c]));
-    f24_mul u_nh  (.clk_i, .en_i, .a_i(nu_q[18][c]), .b_i(hu_s18[c]), .y_o(nh_s19[c]));
+    f24_mul u_nl  (.clk_i, .en_i, .a_i(nu_s13[c]), .b_i(light[c]), .y_o(nl_s14[c]));
+    f24_mul u_nh  (.clk_i, .en_i, .a_i(nu_q[20][c]), .b_i(hu_s20[c]), .y_o(nh_s21[c]));
     // 12: colour
-    f24_mul u_ca  (.clk_i, .en_i, .a_i(col_q[21][c]), .b_i(a_s21), .y_o(ca_s22[c]));
-    f24_add u_cc  (.clk_i, .en_i, .a_i(ca_q[29][c]), .b_i(sp_s29), .y_o(cc_s31[c]));
+    f24_mul u_ca  (.clk_i, .en_i, .a_i(col_q[22][c]), .b_i(a_s22), .y_o(ca_s23[c]));
+    f24_add u_cc  (.clk_i, .en_i, .a_i(ca_q[31][c]), .b_i(sp_s31), .y_o(cc_s33[c]));
     // 14: unorm8
-    f24_mul u_k   (.clk_i, .en_i, .a_i(cl_q[c]), .b_i(SHADE_255), .y_o(k_s33[c]));
-    f24_add u_kh  (.clk_i, .en_i, .a_i(k_s33[c]), .b_i(SHADE_HALF), .y_o(kh_s35[c]));
+    f24_mul u_k   (.clk_i, .en_i, .a_i(cl_q[c]), .b_i(SHADE_255), .y_o(k_s35[c]));
+    f24_add u_kh  (.clk_i, .en_i, .a_i(k_s35[c]), .b_i(SHADE_HALF), .y_o(kh_s37[c]));
     /* verilator lint_off PINCONNECTEMPTY */  // sat_o: the operand is in [0.5, 255.5] or NaN
-    f24_to_index #(.W(9)) u_idx (.clk_i, .en_i, .a_i(kh_s35[c]), .idx_o(idx[c]), .sat_o());
+    f24_to_index #(.W(9)) u_idx (.clk_i, .en_i, .a_i(kh_s37[c]), .idx_o(idx[c]), .sat_o());
     /* verilator lint_on PINCONNECTEMPTY */
     assign rgb_o[c] = idx[c][7:0];
   end

@@ -28,7 +28,7 @@ from model.arith import ENGINES
 from tb.common import fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 
-LATENCY = 11  # pipe_pkg::MIP_LAT
+LATENCY = 12  # pipe_pkg::MIP_LAT (f24_log2 at pipe_pkg::F24_LOG2_LAT = 3)
 INS = ["t_i", "seg_i", "pl0_i", "tri_i"]
 OUTS = ["level_colour_o", "level_normal_o"]
 AR = ENGINES["f24"]
