@@ -25,11 +25,11 @@
 //
 // Clock enables: a unit advances only while its stages hold a pass that uses its result, and
 // holds its registers otherwise (less switching, and less work for a simulator).  Before the
-// height arrives (S0 - S2) that is a live ray; from S3 on a pass whose height read returned data
-// (ok); the positions at t_new only for a pass that hits or descends, the floor of that position
-// and the child's boundaries only for a descent.  The units that only some methods use advance
-// only for those methods: the positions at t_end (the XOR descent), those at the plane (the
-// selective level-up), and the 8-bit or the 16-bit height conversion.
+// height arrives (S0 - S3) that is a live ray; from S3 on a pass whose height read returned data
+// (ok): the positions at t and at the plane too (whether the pass hits or descends is decided in
+// S7, after they start); the floor of the position at t_new and the child's boundaries only for
+// a descent, the floor of the position at the plane only for a crossing of the selective
+// level-up.  The positions at t_end (and their floor) advance only for the XOR descent.
 //
 // Registered operands: a float unit takes its operands from registers (a unit's result, or a
 // table read made one clock earlier into a register, name ending in the stage that uses it, _q),
@@ -361,7 +361,7 @@ module traverse_loop
   f24_mul u_due_y (.clk_i, .en_i(xor_desc && ok_q[6]), .a_i(duv6_q.v), .b_i(tend6_q),
                    .y_o(due_y));
 
-  // ---- S7: decisions; u0 + du t, u0 + du plane, u0 + du t_end ------------------------------------
+  // ---- S7: decisions; u0 + du t, u0 + du plane, u0 + du t_end -----------------------------------
   logic inside7;
   act_t act7;
   assign inside7 = ord_lt(t_new7_q, tmin7_q.tmin.ord);
@@ -378,7 +378,7 @@ module traverse_loop
   f24_add u_pose_x (.clk_i, .en_i(pose_en), .a_i(uv7_q.u), .b_i(due_x), .y_o(pose_x));
   f24_add u_pose_y (.clk_i, .en_i(pose_en), .a_i(uv7_q.v), .b_i(due_y), .y_o(pose_y));
 
-  // ---- S9: floors of the positions at t_new (or the plane), at t_end -----------------------------
+  // ---- S9: floors of the positions at t_new (or the plane), at t_end ----------------------------
   // A descent floors the position at t_new, a crossing of the selective level-up the one at the
   // plane (P1): never both in one pass, so they share a unit.
   logic signed [IDX_W-1:0] ia_x, ia_y, ie_x, ie_y;
