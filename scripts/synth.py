@@ -75,6 +75,8 @@ BLOCKS = [
           what="height cache, 64 KiB"),
     Block("traverse_setup", "traverse_setup", {"ID_W": 7},
           what="traverse unit's first mode (setup)"),
+    Block("traverse_loop", "traverse_loop", {"ID_W": 7},
+          what="traverse unit's second mode (the ring)"),
     Block("traverse_unit", "traverse_unit", {"ID_W": 7, "CNT_W": 48}, what="traverse unit"),
     Block("traverse_system", "traverse_system", {"RAY_ID_W": 7, "SETS": 512},
           what="traverse unit + height cache + AXI"),

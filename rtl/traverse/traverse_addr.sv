@@ -22,12 +22,14 @@ module traverse_addr
   output logic                              wide_o        // 1: a 2-byte (unorm16) lookup
 );
 
-  logic [LVL_W-1:0]  pitch_log2;  // log2 of level k's row pitch in texels: n - k
-  logic [ADDR_W-1:0] texel;       // byte offset of the texel inside its level
+  logic [LVL_W:0]    row_log2;  // log2 of level k's row pitch in bytes: n - k + bits16
+  logic [ADDR_W-1:0] texel;     // byte offset of the texel inside its level
 
-  assign pitch_log2 = n_i - k_i;
-  assign texel      = ((ADDR_W'(cy_i) << pitch_log2) + ADDR_W'(cx_i)) << bits16_i;
-  assign addr_o     = base_i + level_off_i[k_i] + texel;
+  // Two independent sums, then one more (not a chain of three): the level's address and the
+  // texel's offset in it, (cy << (n - k) + cx) * bytes = (cy << row_log2) + (cx << bits16).
+  assign row_log2 = (LVL_W+1)'(n_i - k_i) + (LVL_W+1)'(bits16_i);
+  assign texel    = (ADDR_W'(cy_i) << row_log2) + (ADDR_W'(cx_i) << bits16_i);
+  assign addr_o   = (base_i + level_off_i[k_i]) + texel;
   assign wide_o     = bits16_i;
 
 endmodule

@@ -1,19 +1,22 @@
 // traverse_level_decide: the level decisions of the second mode, purely combinational: the
 // functions traverse_pkg::level_cross and level_descend as a module (their unit test's form;
-// traverse_loop calls the functions where it registers their results, so that a simulator
-// evaluates them only for the passes that use them).  Two independent parts, for two stages of
-// traverse_loop:
+// traverse_loop calls the functions' parts where it registers their results, so that a simulator
+// evaluates them only for the passes that use them).  Two independent decisions, each in two
+// stages of traverse_loop (traverse_pkg: cross_pre in S10, cross_up in S11; the clip of the two
+// positions in S10, multi_level and descend_pick in S11); level_cross and level_descend compose
+// the parts, so this module's test covers them:
 //
-// Crossing (stage S10), mirrors model/traverse.py::crossing_step (the "Node crossing" block of
-// _trace): the neighbour n = c + (s where this axis's exit time is the node's exit time, else 0),
-// then the level-up policy:
+// Crossing (stages S10 - S11), mirrors model/traverse.py::crossing_step (the "Node crossing"
+// block of _trace): the neighbour n = c + (s where this axis's exit time is the node's exit time,
+// else 0), then the level-up policy:
 //   parent_changed = (nx >> 1 != cx >> 1) | (ny >> 1 != cy >> 1)
 //   up = none: 0 | tevs: parent_changed | drobot: 1 | coherent: parent_changed & prev_cross
 //      | selective: parent_changed & (max(|(p1x >> k) - cx|, |(p1y >> k) - cy|) != 1)
 //   up &= k < n;  new level k + up;  new cell up ? n >> 1 : n
 // (p1 = floor of the position where the ray meets the node's plane, level 0).
 //
-// Descent (stage S11), mirrors model/traverse.py::descent_level (the "Descent" block of _trace):
+// Descent (stages S10 - S11), mirrors model/traverse.py::descent_level (the "Descent" block of
+// _trace):
 //   one: k - 1
 //   multi (b): k - (crossed ? 1 : min(levels, k))
 //   xor: min(bitlen(max(ax ^ bx, ay ^ by)), multi's level), with a = floor(position at t_new) and
@@ -23,7 +26,7 @@
 module traverse_level_decide
   import traverse_pkg::*;
 (
-  // ---- crossing (S10) ----
+  // ---- crossing (S10 - S11) ----
   input  level_up_e               level_up_i,     // level-up policy (cfg policy.level_up)
   input  logic [LVL_W-1:0]        n_i,            // root level: no level-up above it
   input  logic [LVL_W-1:0]        xk_i,           // level of the node the ray leaves
@@ -40,7 +43,7 @@ module traverse_level_decide
   output logic [CELL_W-1:0]       xcx_o,          // new cell at the new level
   output logic [CELL_W-1:0]       xcy_o,
   output logic                    up_o,           // the crossing went up a level
-  // ---- descent (S11) ----
+  // ---- descent (S10 - S11) ----
   input  descent_e                descent_i,      // descent policy (cfg policy.descent)
   input  logic [1:0]              levels_i,       // (b) levels per descent until the first crossing
   input  logic [LVL_W-1:0]        dk_i,           // level of the node the ray descends from

@@ -16,57 +16,76 @@
 //   - the per-ray constants u0, v0, du, dv, 1/du, 1/dv, directions, t_map and the ray id, written
 //     when the ray enters the ring (a hit overwrites u0 / v0 with the hit position);
 //   - the traversal state (level, cell, t, flags, iterations), written on entry and by S16;
-//   - what one pass computes for a later stage of the same pass (t_exit, t_new, the action, the
-//     crossing, the hit position and the descent): written by the stage that computes it, only
-//     for the passes that read it, and read up to 10 stages later (before the slot comes round).
-// A few activity bits per stage do move with the slots: the slot holds a live ray (S1 - S2), the
-// height read returned data (ok) or an error (S3 - S16), the pass hits or descends (S8 - S10), the
-// pass descends (S8 - S15).
+//   - what one pass computes for a stage far later in the same pass (t_new, the action, the
+//     crossing and the hit position): written by the stage that computes it, only for the passes
+//     that read it, and read up to 10 stages later (before the slot comes round).
+// A few activity bits per stage do move with the slots: the slot holds a live ray (S1 - S3), the
+// height read returned data (ok) or an error (S3 - S16), the pass hits or descends (S8 - S11), the
+// pass descends (S8 - S17); and so do the per-pass values that live a few stages only.
 //
 // Clock enables: a unit advances only while its stages hold a pass that uses its result, and
 // holds its registers otherwise (less switching, and less work for a simulator).  Before the
-// height arrives (S0 - S2) that is a live ray; from S3 on a pass whose height read returned data
-// (ok); the positions at t_new only for a pass that hits or descends, the floor of that position
-// and the child's boundaries only for a descent.  The units that only some methods use advance
-// only for those methods: the positions at t_end (the XOR descent), those at the plane (the
-// selective level-up), and the 8-bit or the 16-bit height conversion.
+// height arrives (S0 - S3) that is a live ray; from S3 on a pass whose height read returned data
+// (ok): the positions at t and at the plane too (whether the pass hits or descends is decided in
+// S7, after they start); the floor of the position at t_new and the child's boundaries only for
+// a descent, the floor of the position at the plane only for a crossing of the selective
+// level-up.  The positions at t_end (and their floor) advance only for the XOR descent.
+//
+// Registered operands: a float unit takes its operands from registers (a unit's result, or a
+// table read made one clock earlier into a register, name ending in the stage that uses it, _q),
+// never through a slot-table read (an 18:1 read multiplexer) or a comparison, min, max, clip,
+// add or shift in the same clock: the units are only just fast enough for 100 MHz from registers.
+// Integer logic that feeds a unit has a stage of its own, and so does every comparison the next
+// stage acts on.  Short-lived per-pass values move with the slot in small pipelines (cheaper than
+// an 18-entry field for a few stages).  For S0 the tail (S17) registers the ray that comes round:
+// the node S16 wrote, the descent's node (corrected in S17 itself), or the new ray from setup.
 //
 // Stage schedule (a unit "a -> b" takes operands in Sa and delivers in Sb):
+//   S17  (previous pass) node, directions of the ray entering S0   -> n0_q, d0_q
 //   S0   height address base + off[k] + (cy * side_k + cx) * bytes  -> lk_* registers (S1)
-//        (traverse_addr)
-//        exit boundaries bx = (cx + (sx > 0)) << k                  f24_from_int S0 -> S1
+//        (traverse_addr); exit boundary integer (cx + (sx > 0)) << k -> S1
 //   S1   lookup presented (lk_valid_o, lk_addr_o, lk_wide_o)
-//        bx - u0                                                    f24_add      S1 -> S3
+//        exit boundaries bx                                         f24_from_int S1 -> S2
+//   S2   bx - u0                                                    f24_add      S2 -> S4
 //   S3   response {valid, hit, err, data} (LOOKUP_LAT = 2 after S1)
-//        H = code / (2^bits - 1)                                    f24_from_unorm S3 -> S4
-//        tx = (bx - u0) * (1/du)                                    f24_mul      S3 -> S4
-//   S4   plane = 1 - H                                              f24_add      S4 -> S6
-//        t_exit = min(tx, ty) (inf on an axis that does not move)
-//   S5   t_end = min(min(t_exit, t_map), 1); du * t_end             f24_mul      S5 -> S6
-//   S6   t_new = max(t, plane); u0 + du t_end                       f24_add      S6 -> S8
-//        du * plane                                                 f24_mul      S6 -> S7
-//   S7   inside / miss / hit / down / cross; du * t_new             f24_mul      S7 -> S8
-//        u0 + du plane                                              f24_add      S7 -> S9
-//   S8   u0 + du t_new (= the hit's u)                              f24_add      S8 -> S10
-//        floor(position at t_end)                                   f24_to_index S8 -> S9
-//   S9   floor(position at plane) (selective's P1)                  f24_to_index S9 -> S10
-//   S10  crossing: neighbour cell, level-up policy                  floor(position at t_new)
-//        (traverse_pkg::level_cross)
-//                                                                   f24_to_index S10 -> S11
-//   S11  descent: new level (one; multi: `levels` until the first crossing; XOR of the ends)
-//        (traverse_pkg::level_descend)
-//   S12  child estimate floor(p) >> k', clip; its entry / exit      f24_from_int S12 -> S13
-//        and the three cells locate's correction chooses from
-//   S13  boundary - u0                                              f24_add      S13 -> S15
-//   S15  (boundary - u0) * (1/du)                                   f24_mul      S15 -> S16
-//   S16  locate's correction; next state (hit / miss / down / cross / lookup miss / cap)
-//   S17  retire to the result FIFO, or merge with a new ray, -> S0
+//        H = code / (2^bits - 1) (unorm8 as unorm16 code * 257)     f24_from_unorm S3 -> S4
+//   S4   tx = (bx - u0) * (1/du)                                    f24_mul      S4 -> S5
+//        plane = 1 - H                                              f24_add      S4 -> S6
+//        min(t_map, 1)
+//   S5   t_exit = min(tx, ty) (inf on an axis that does not move); t_end = min(t_exit,
+//        min(t_map, 1)) (= min(min(t_exit, t_map), 1): min is associative, NaN and ties too)
+//   S6   t_new = max(t, plane); min(t_exit, t_map)
+//        du * t, du * plane (the two candidates of du * t_new)      f24_mul      S6 -> S7
+//        du * t_end                                                 f24_mul      S6 -> S7
+//   S7   inside / miss / hit / down / cross
+//        u0 + du t, u0 + du plane                                   f24_add      S7 -> S9
+//        u0 + du t_end                                              f24_add      S7 -> S9
+//   S9   position at t_new (u0 + du t or u0 + du plane: the one t_new is; the hit's u)
+//        floor(position at t_new) (a descent) or floor(position at
+//        plane) (selective's P1 for a crossing)                     f24_to_index S9 -> S10
+//        floor(position at t_end)                                   f24_to_index S9 -> S10
+//   S10  crossing's time; crossing, part 1: neighbour cell, parent, selective's stay
+//        (traverse_pkg::cross_pre); descent: the two positions clipped to the node
+//   S11  crossing, part 2: level-up policy (cross_up); descent: new level (one; multi: `levels`
+//        until the first crossing; XOR of the ends) (descend_pick)
+//   S12  child estimate c = floor(p) >> k' (p clipped to the node); its entry / exit
+//        boundary integers (c + (s < 0 / s > 0)) << k'; the child's range at level k'
+//   S13  entry / exit boundaries                                    f24_from_int S13 -> S14
+//        the three cells locate's correction chooses from
+//   S14  boundary - u0                                              f24_add      S14 -> S16
+//   S15  the state's registered reads for S16
+//   S16  (boundary - u0) * (1/du)                                   f24_mul      S16 -> S17
+//        next state (hit / miss / down / cross / lookup miss / cap)
+//   S17  locate's correction (the descent's cell); retire to the result FIFO, or merge with a
+//        new ray, -> S0
 // Positions on an axis that does not move are u0 itself (the model's np.where(s != 0, p, p0)).
-// Float units per axis pair: 6 f24_from_int, 13 f24_add, 12 f24_mul, 6 f24_to_index, 2
+// Float units per axis pair: 6 f24_from_int, 13 f24_add, 12 f24_mul, 4 f24_to_index, 1
 // f24_from_unorm.  Up to three positions per axis are computed in a pass (at t_end for the XOR
-// descent, at the plane for selective's P1, at t_new for locate and the hit); the ring is 18 deep
-// (the paper's is 15) because the descent's locate (position, floor, two crossing times,
-// correction) follows t_new as a dependent chain of about 9 clocks.
+// descent, at t and at the plane, one of which is the position at t_new for locate and the hit,
+// the other selective's P1); the ring is 18 deep (the paper's is 15) because the descent's locate
+// (position, floor, clip, level, boundaries, two crossing times, correction) follows t_new as a
+// dependent chain of 11 clocks (S6 - S17), computing the position at t_new from both candidates
+// of t_new in parallel with the comparison that picks one.
 //
 // Lookup misses: the ray keeps its state and goes round again; the iteration is not counted
 // (iterations = height reads that returned data).  A read error finishes the ray with err = 1.
@@ -152,13 +171,17 @@ module traverse_loop
     logic is_hit, down, miss;      // (cross = none of them)
   } act_t;
   typedef struct packed {
-    logic signed [IDX_W-1:0] x, y;
-  } idx_pair_t;
+    sidx_t x, y;
+  } sidx_pair_t;
   typedef struct packed {
     logic [CELL_W-1:0] back;       // t before the estimate's entry: one cell back (clipped)
     logic [CELL_W-1:0] est;        // the estimate itself
     logic [CELL_W-1:0] fwd;        // t at or after its exit: one cell on (clipped)
   } locate_t;
+  typedef struct packed {
+    logic [LVL_W-1:0] nk;          // the descent's new level
+    locate_t          x, y;        // locate's candidates per axis
+  } desc_t;
 
   // Per ray.
   logic [ID_W-1:0]  id_q     [D];
@@ -167,30 +190,25 @@ module traverse_loop
   f24_pair_t        inv_q    [D];  // 1 / du, 1 / dv
   dirs_t            dir_q    [D];
   f24_t             tmap_q   [D];  // time of leaving the map's extent
-  node_t            node_q   [D];
+  node_t            node_q   [D];  // (S16 a crossing, S17 a descent, S17 a new ray)
   tval_t            t_q      [D];  // time the ray is at (hit time once done with a hit)
   status_t          stat_q   [D];
   // Per pass: [the stage that writes it, on the passes named] the stages that read it.  "ok": the
   // height read returned data; "inside": the pass hits or descends.
-  exit_t            exit_q   [D];  // [S4 ok]          S5, S10
-  tmin_t            tmin_q   [D];  // [S5 ok]          S7
-  tval_t            t_new_q  [D];  // [S6 ok]          S7, S16: max(t, plane)
-  act_t             act_q    [D];  // [S7 ok]          S16
-  idx_pair_t        ie_q     [D];  // [S9 XOR descent] S11: floor(position at t_end)
+  tval_t            t_new_q  [D];  // [S6 ok]              S16: max(t, plane)
+  act_t             act_q    [D];  // [S7 ok]              S15
+  f24_pair_t        pos_q    [D];  // [S9 inside]          S16: position at t_new (the hit's u, v)
   tval_t            xt_q     [D];  // [S10 ok, not inside] S16: the crossing's time max(t, t_exit)
-  cross_node_t      cross_q  [D];  // [S10 ok, not inside] S16: the crossing's new node, up
-  f24_pair_t        pos_q    [D];  // [S10 inside]     S16: position at t_new (the hit's u, v)
-  logic [LVL_W-1:0] nk_q     [D];  // [S11 descent]    S12, S16: the descent's new level
-  locate_t          locx_q   [D];  // [S12 descent]    S16
-  locate_t          locy_q   [D];
+  cross_node_t      cross_q  [D];  // [S11 ok, not inside] S16: the crossing's new node, up
 
   // ---- ring position, pass activity (see the header) ----------------------------------------
   logic [D-1:0] v_q;               // v_q[s]: the slot in stage s holds a ray
   logic         ok3, err3;         // the height read of the ray in S3 returned data / an error
   logic [16:4]  ok_q, err_q;       // ok3, err3 of the ray in stage s (meaningful with v_q[s])
-  logic [10:8]  in_q;              // in_q[s]: ok, and the pass hits or descends (inside its node)
-  logic [15:8]  dn_q;              // dn_q[s]: ok, and the pass descends
-  logic [2:1]   lv_q;              // lv_q[s]: the slot in stage s holds a live ray (not done)
+  logic [11:8]  in_q;              // in_q[s]: ok, and the pass hits or descends (inside its node)
+  logic [17:8]  dn_q;              // dn_q[s]: ok, and the pass descends
+  logic [3:1]   lv_q;              // lv_q[s]: the slot in stage s holds a live ray (not done)
+  logic [9:7]   ts_q;              // ts_q[s]: ok, and t_new is t (not the plane)
   logic         xor_desc, sel_up;  // the method uses the XOR descent / the selective level-up
   slot_idx_t    ph_q;              // phase: stage s holds the slot of entry (ph_q - s) mod D
   slot_idx_t    sl [D];            // sl[s] = (ph_q - s) mod D
@@ -206,12 +224,51 @@ module traverse_loop
     else         ph_q <= (ph_q == SW'(D - 1)) ? '0 : ph_q + SW'(1);
   end
 
-  // ---- S0: height address, exit boundaries -----------------------------------------------------
-  node_t n0;
-  dirs_t d0;
-  assign n0 = node_q[sl[0]];
-  assign d0 = dir_q[sl[0]];
+  assign xor_desc = (cfg_i.policy.descent == DESC_XOR);
+  assign sel_up   = (cfg_i.policy.level_up == UP_SELECTIVE);
 
+  // ---- registered reads and short pipelines (see the header) ---------------------------------
+  node_t      n0_q;                // S0: registered by S17 (the merge)
+  dirs_t      d0_q;
+  logic       live0_q;             // S0 holds a live ray: it looks its height up
+  logic [IDX_W-1:0] kbx1_q, kby1_q;  // S1: exit boundary integers
+  f24_pair_t  uv2_q;               // S2
+  f24_pair_t  inv4_q;              // S4
+  dirs_t      d5_q;                // S5
+  tval_t      tmap5_q, tm1_5_q;    // S5: t_map, min(t_map, 1)
+  exit_t      ex_q [10:6];         // S6 - S10: t_exit (computed in S5)
+  f24_t       tend6_q;             // S6: t_end (computed in S5)
+  tval_t      tmap6_q;             // S6: t_map
+  tval_t      t6_q;                // S6
+  f24_pair_t  duv6_q;              // S6
+  f24_ord_t   t_new7_q;            // S7: max(t, plane) (computed in S6), comparable
+  tmin_t      tmin7_q;             // S7 (computed in S6)
+  logic       leaf7_q;             // S7: the node is at level 0
+  f24_pair_t  uv7_q;               // S7
+  logic       ut9_q;               // S9: the position at t_new is u0 + du t, floor it (a descent)
+  f24_pair_t  uv9_q;               // S9
+  dirs_t      d9_q, d10_q, d11_q, d12_q, d13_q;  // S9 - S13
+  node_t      n9_q, n10_q, n11_q, n12_q;         // S9 - S12
+  sidx_pair_t lo10_q, hi10_q;      // S10: the node's level-0 cells (computed in S9)
+  logic       crossed10_q, prev10_q, prev11_q;   // S10, S11: status bits
+  tval_t      t10_q;               // S10
+  cross_pre_t xpre11_q;            // S11: crossing, part 1 (computed in S10)
+  sidx_pair_t a11_q, b11_q;        // S11: positions at t_new, t_end clipped to the node
+  logic [4:0] nkm11_q;             // S11: multi's new level
+  sidx_pair_t a12_q;               // S12
+  logic [LVL_W-1:0] nk12_q, nk13_q;  // S12, S13: the descent's new level (computed in S11)
+  logic [IDX_W-1:0] kben_x13_q, kbex_x13_q, kben_y13_q, kbex_y13_q;  // S13 (computed in S12)
+  sidx_pair_t c13_q, lo13_q, hi13_q;  // S13: child estimate, the child's range at level k'
+  f24_pair_t  uv14_q;              // S14
+  desc_t      dsc_q [17:14];       // S14 - S17: new level, locate's candidates (from S13)
+  f24_pair_t  inv16_q;             // S16
+  status_t    st16_q;              // S16
+  logic [ITER_W-1:0] it16_q;       // S16: iterations + 1
+  act_t       act16_q;             // S16
+  f24_ord_t   t_new17_q;           // S17: t_new, comparable
+  logic       down17_q, done17_q;  // S17: the pass descended (not capped); the ray is done
+
+  // ---- S0: height address, exit boundary integers ----------------------------------------------
   logic [ADDR_W-1:0] addr0;
   logic              wide0;
   traverse_addr u_addr (
@@ -219,60 +276,52 @@ module traverse_loop
     .level_off_i(cfg_i.level_off),
     .n_i        (cfg_i.n),
     .bits16_i   (cfg_i.bits16),
-    .k_i        (n0.k),
-    .cx_i       (n0.cx),
-    .cy_i       (n0.cy),
+    .k_i        (n0_q.k),
+    .cx_i       (n0_q.cx),
+    .cy_i       (n0_q.cy),
     .addr_o     (addr0),
     .wide_o     (wide0)
   );
 
-  logic live0;  // the slot in S0 holds a live ray: it looks its height up
-  assign live0 = v_q[0] && !stat_q[sl[0]].done;
-
   always_ff @(posedge clk_i) begin
     if (!rst_ni) lk_valid_o <= 1'b0;
-    else         lk_valid_o <= live0;
+    else         lk_valid_o <= live0_q;
   end
   always_ff @(posedge clk_i) begin
     lk_addr_o <= addr0;
     lk_wide_o <= wide0;
+    if (live0_q) begin
+      kbx1_q <= IDX_W'((sidx_t'(n0_q.cx) + sidx_t'(d0_q.sx.mv && !d0_q.sx.neg)) <<< n0_q.k);
+      kby1_q <= IDX_W'((sidx_t'(n0_q.cy) + sidx_t'(d0_q.sy.mv && !d0_q.sy.neg)) <<< n0_q.k);
+    end
   end
 
-  assign xor_desc = (cfg_i.policy.descent == DESC_XOR);
-  assign sel_up   = (cfg_i.policy.level_up == UP_SELECTIVE);
-
-  f24_t bx_f, by_f;
-  f24_from_int #(.W(IDX_W)) u_bx (.clk_i, .en_i(live0),
-    .k_i(IDX_W'((sidx_t'(n0.cx) + sidx_t'(d0.sx.mv && !d0.sx.neg)) <<< n0.k)), .y_o(bx_f));
-  f24_from_int #(.W(IDX_W)) u_by (.clk_i, .en_i(live0),
-    .k_i(IDX_W'((sidx_t'(n0.cy) + sidx_t'(d0.sy.mv && !d0.sy.neg)) <<< n0.k)), .y_o(by_f));
-
-  // ---- S1 ------------------------------------------------------------------------------------
-  f24_pair_t uv1;
-  f24_t      dx_f, dy_f;
-  assign uv1 = uv_q[sl[1]];
-  f24_add u_dx (.clk_i, .en_i(lv_q[1] || lv_q[2]), .a_i(bx_f), .b_i(f24_neg(uv1.u)), .y_o(dx_f));
-  f24_add u_dy (.clk_i, .en_i(lv_q[1] || lv_q[2]), .a_i(by_f), .b_i(f24_neg(uv1.v)), .y_o(dy_f));
+  // ---- S1, S2: bx - u0 -------------------------------------------------------------------------
+  f24_t bx_f, by_f, dx_f, dy_f;
+  f24_from_int #(.W(IDX_W)) u_bx (.clk_i, .en_i(lv_q[1]), .k_i(kbx1_q), .y_o(bx_f));
+  f24_from_int #(.W(IDX_W)) u_by (.clk_i, .en_i(lv_q[1]), .k_i(kby1_q), .y_o(by_f));
+  f24_add u_dx (.clk_i, .en_i(lv_q[2] || lv_q[3]), .a_i(bx_f), .b_i(f24_neg(uv2_q.u)), .y_o(dx_f));
+  f24_add u_dy (.clk_i, .en_i(lv_q[2] || lv_q[3]), .a_i(by_f), .b_i(f24_neg(uv2_q.v)), .y_o(dy_f));
 
   // ---- S3: the height arrives ------------------------------------------------------------------
-  f24_pair_t inv3;
-  f24_t      h8, h16, tx_raw, ty_raw;
-  assign inv3 = inv_q[sl[3]];
+  // One 16-bit conversion for both widths: code / 255 = (code * 257) / 65535, the same number, so
+  // the same rounded f24 (a multiplexer in front of the fast unit, not of the plane's adder).
+  f24_t h, tx_raw, ty_raw, plane;
   assign ok3  = rs_valid_i && rs_hit_i && !rs_err_i;
   assign err3 = rs_valid_i && rs_err_i;
-  f24_from_unorm #(.W(8))  u_h8  (.clk_i, .en_i(ok3 && !cfg_i.bits16), .k_i(rs_data_i[7:0]),
-                                  .y_o(h8));
-  f24_from_unorm #(.W(16)) u_h16 (.clk_i, .en_i(ok3 && cfg_i.bits16), .k_i(rs_data_i), .y_o(h16));
-  f24_mul u_tx (.clk_i, .en_i(ok3), .a_i(dx_f), .b_i(inv3.u), .y_o(tx_raw));
-  f24_mul u_ty (.clk_i, .en_i(ok3), .a_i(dy_f), .b_i(inv3.v), .y_o(ty_raw));
+  f24_from_unorm #(.W(16)) u_h (.clk_i, .en_i(ok3),
+    .k_i(cfg_i.bits16 ? rs_data_i : {rs_data_i[7:0], rs_data_i[7:0]}), .y_o(h));
 
-  // ---- S4: plane, t_exit -----------------------------------------------------------------------
-  f24_t  plane;
-  dirs_t d4;
-  assign d4 = dir_q[sl[4]];
-  f24_add u_plane (.clk_i, .en_i(ok_q[4] || ok_q[5]), .a_i(F24_ONE),
-                   .b_i(f24_neg(cfg_i.bits16 ? h16 : h8)), .y_o(plane));
+  // ---- S4: tx, plane -------------------------------------------------------------------------
+  f24_mul u_tx (.clk_i, .en_i(ok_q[4]), .a_i(dx_f), .b_i(inv4_q.u), .y_o(tx_raw));
+  f24_mul u_ty (.clk_i, .en_i(ok_q[4]), .a_i(dy_f), .b_i(inv4_q.v), .y_o(ty_raw));
+  f24_add u_plane (.clk_i, .en_i(ok_q[4] || ok_q[5]), .a_i(F24_ONE), .b_i(f24_neg(h)), .y_o(plane));
 
+  function automatic tval_t tval(input f24_t t);
+    return '{t: t, ord: f24_ord(t)};
+  endfunction
+
+  // ---- S5: t_exit, t_end -----------------------------------------------------------------------
   // t_exit = min(tx, ty), and whether tx / ty equal it (knowing which one it is).
   function automatic exit_t exit_of(input f24_t tx, input f24_t ty);
     f24_ord_t ox, oy;
@@ -285,201 +334,115 @@ module traverse_loop
              eqx: x_first ? !ox.nan : eq_xy, eqy: x_first ? eq_xy : !oy.nan};
   endfunction
 
-  // ---- S5: t_end -------------------------------------------------------------------------------
-  f24_pair_t duv5;
-  f24_t      tmap5, t_end, due_x, due_y;
-  tval_t     te5, tmin5;
-  f24_ord_t  otmap5;
-  tmin_t     tmin5_d;
-  assign te5     = exit_q[sl[5]].te;
-  assign tmap5   = tmap_q[sl[5]];
-  assign duv5    = duv_q[sl[5]];
-  assign otmap5  = f24_ord(tmap5);
-  assign tmin5   = ord_min_first(te5.ord, otmap5) ? te5 : '{t: tmap5, ord: otmap5};
-  assign t_end   = ord_min_first(tmin5.ord, f24_ord(F24_ONE)) ? tmin5.t : F24_ONE;
-  assign tmin5_d = '{tmin: tmin5, miss_pre: ord_le(otmap5, te5.ord)};
-  f24_mul u_due_x (.clk_i, .en_i(xor_desc && ok_q[5]), .a_i(duv5.u), .b_i(t_end), .y_o(due_x));
-  f24_mul u_due_y (.clk_i, .en_i(xor_desc && ok_q[5]), .a_i(duv5.v), .b_i(t_end), .y_o(due_y));
-
-  // ---- S6: t_new, position at t_end, du * plane ------------------------------------------------
-  f24_pair_t uv6;
-  f24_pair_t duv6;
-  f24_t      pose_x, pose_y, dup_x, dup_y;
-  assign uv6     = uv_q[sl[6]];
-  assign duv6    = duv_q[sl[6]];
-  logic pose_en;  // S6 - S7 hold a pass of the XOR descent whose height read returned data
-  assign pose_en = xor_desc && (ok_q[6] || ok_q[7]);
-  f24_add u_pose_x (.clk_i, .en_i(pose_en), .a_i(uv6.u), .b_i(due_x), .y_o(pose_x));
-  f24_add u_pose_y (.clk_i, .en_i(pose_en), .a_i(uv6.v), .b_i(due_y), .y_o(pose_y));
-  f24_mul u_dup_x (.clk_i, .en_i(sel_up && ok_q[6]), .a_i(duv6.u), .b_i(plane), .y_o(dup_x));
-  f24_mul u_dup_y (.clk_i, .en_i(sel_up && ok_q[6]), .a_i(duv6.v), .b_i(plane), .y_o(dup_y));
-
-  // max(a, b), for t_new = max(t, plane)
-  function automatic tval_t t_max(input tval_t a, input f24_t b);
-    f24_ord_t ob;
-    ob = f24_ord(b);
-    return ord_max_first(a.ord, ob) ? a : '{t: b, ord: ob};
+  // min(min(a, b), c), the three comparisons side by side.
+  function automatic f24_t min3(input f24_t a, input f24_t b, input tval_t c);
+    f24_ord_t oa, ob;
+    logic     a_first, a_c, b_c;
+    oa      = f24_ord(a);
+    ob      = f24_ord(b);
+    a_first = ord_min_first(oa, ob);     // min(a, b) is a
+    a_c     = ord_min_first(oa, c.ord);  // min(a, c) is a
+    b_c     = ord_min_first(ob, c.ord);
+    return (a_first ? a_c : b_c) ? (a_first ? a : b) : c.t;
   endfunction
 
-  // ---- S7: decisions, du * t_new, position at plane --------------------------------------------
-  f24_pair_t uv7;
-  f24_pair_t duv7;
-  tmin_t     tm7;
-  tval_t     t_new7;
-  f24_t      dun_x, dun_y, posp_x, posp_y;
-  logic      inside7, leaf7;
-  act_t      act7;
-  assign uv7     = uv_q[sl[7]];
-  assign duv7    = duv_q[sl[7]];
-  assign tm7     = tmin_q[sl[7]];
-  assign t_new7  = t_new_q[sl[7]];
-  assign inside7 = ord_lt(t_new7.ord, tm7.tmin.ord);
-  assign leaf7   = (node_q[sl[7]].k == '0);
-  assign act7    = '{is_hit: inside7 && leaf7, down: inside7 && !leaf7,
-                     miss: !inside7 && tm7.miss_pre};
-  f24_mul u_dun_x (.clk_i, .en_i(ok_q[7] && inside7), .a_i(duv7.u), .b_i(t_new7.t), .y_o(dun_x));
-  f24_mul u_dun_y (.clk_i, .en_i(ok_q[7] && inside7), .a_i(duv7.v), .b_i(t_new7.t), .y_o(dun_y));
-  logic posp_en;  // S7 - S8 hold a pass of the selective level-up whose height read returned data
-  assign posp_en = sel_up && (ok_q[7] || ok_q[8]);
-  f24_add u_posp_x (.clk_i, .en_i(posp_en), .a_i(uv7.u), .b_i(dup_x), .y_o(posp_x));
-  f24_add u_posp_y (.clk_i, .en_i(posp_en), .a_i(uv7.v), .b_i(dup_y), .y_o(posp_y));
+  f24_t tx5, ty5;  // inf on an axis that does not move
+  assign tx5 = d5_q.sx.mv ? tx_raw : F24_POS_INF;
+  assign ty5 = d5_q.sy.mv ? ty_raw : F24_POS_INF;
 
-  // ---- S8: position at t_new, floor(position at t_end) -----------------------------------------
-  f24_pair_t uv8;
-  f24_t posn_x, posn_y;
-  logic signed [IDX_W-1:0] ie_x, ie_y;
-  logic unused_sat_ex, unused_sat_ey;
-  assign uv8 = uv_q[sl[8]];
-  f24_add u_posn_x (.clk_i, .en_i(in_q[8] || in_q[9]), .a_i(uv8.u), .b_i(dun_x), .y_o(posn_x));
-  f24_add u_posn_y (.clk_i, .en_i(in_q[8] || in_q[9]), .a_i(uv8.v), .b_i(dun_y), .y_o(posn_y));
-  f24_to_index #(.W(IDX_W)) u_ie_x (.clk_i, .en_i(xor_desc && dn_q[8]),
-    .a_i(dir_q[sl[8]].sx.mv ? pose_x : uv8.u), .idx_o(ie_x), .sat_o(unused_sat_ex));
-  f24_to_index #(.W(IDX_W)) u_ie_y (.clk_i, .en_i(xor_desc && dn_q[8]),
-    .a_i(dir_q[sl[8]].sy.mv ? pose_y : uv8.v), .idx_o(ie_y), .sat_o(unused_sat_ey));
+  // ---- S6: t_new, min(t_exit, t_map); du * t, du * plane, du * t_end ----------------------------
+  f24_t dut_x, dut_y, dup_x, dup_y, due_x, due_y;
+  f24_mul u_dut_x (.clk_i, .en_i(ok_q[6]), .a_i(duv6_q.u), .b_i(t6_q.t), .y_o(dut_x));
+  f24_mul u_dut_y (.clk_i, .en_i(ok_q[6]), .a_i(duv6_q.v), .b_i(t6_q.t), .y_o(dut_y));
+  f24_mul u_dup_x (.clk_i, .en_i(ok_q[6]), .a_i(duv6_q.u), .b_i(plane), .y_o(dup_x));
+  f24_mul u_dup_y (.clk_i, .en_i(ok_q[6]), .a_i(duv6_q.v), .b_i(plane), .y_o(dup_y));
+  f24_mul u_due_x (.clk_i, .en_i(xor_desc && ok_q[6]), .a_i(duv6_q.u), .b_i(tend6_q),
+                   .y_o(due_x));
+  f24_mul u_due_y (.clk_i, .en_i(xor_desc && ok_q[6]), .a_i(duv6_q.v), .b_i(tend6_q),
+                   .y_o(due_y));
 
-  // ---- S9: floor(position at plane) ------------------------------------------------------------
-  f24_pair_t uv9;
-  logic signed [IDX_W-1:0] ip_x, ip_y;
-  logic unused_sat_px, unused_sat_py;
-  assign uv9 = uv_q[sl[9]];
-  f24_to_index #(.W(IDX_W)) u_ip_x (.clk_i, .en_i(sel_up && ok_q[9] && !in_q[9]),
-    .a_i(dir_q[sl[9]].sx.mv ? posp_x : uv9.u), .idx_o(ip_x), .sat_o(unused_sat_px));
-  f24_to_index #(.W(IDX_W)) u_ip_y (.clk_i, .en_i(sel_up && ok_q[9] && !in_q[9]),
-    .a_i(dir_q[sl[9]].sy.mv ? posp_y : uv9.v), .idx_o(ip_y), .sat_o(unused_sat_py));
+  // ---- S7: decisions; u0 + du t, u0 + du plane, u0 + du t_end -----------------------------------
+  logic inside7;
+  act_t act7;
+  assign inside7 = ord_lt(t_new7_q, tmin7_q.tmin.ord);
+  assign act7    = '{is_hit: inside7 && leaf7_q, down: inside7 && !leaf7_q,
+                     miss: !inside7 && tmin7_q.miss_pre};
+  f24_t post_x, post_y, posp_x, posp_y, pose_x, pose_y;
+  logic pos_en, pose_en;  // S7 - S8 hold a pass whose height read returned data (of XOR)
+  assign pos_en  = ok_q[7] || ok_q[8];
+  assign pose_en = xor_desc && pos_en;
+  f24_add u_post_x (.clk_i, .en_i(pos_en), .a_i(uv7_q.u), .b_i(dut_x), .y_o(post_x));
+  f24_add u_post_y (.clk_i, .en_i(pos_en), .a_i(uv7_q.v), .b_i(dut_y), .y_o(post_y));
+  f24_add u_posp_x (.clk_i, .en_i(pos_en), .a_i(uv7_q.u), .b_i(dup_x), .y_o(posp_x));
+  f24_add u_posp_y (.clk_i, .en_i(pos_en), .a_i(uv7_q.v), .b_i(dup_y), .y_o(posp_y));
+  f24_add u_pose_x (.clk_i, .en_i(pose_en), .a_i(uv7_q.u), .b_i(due_x), .y_o(pose_x));
+  f24_add u_pose_y (.clk_i, .en_i(pose_en), .a_i(uv7_q.v), .b_i(due_y), .y_o(pose_y));
 
-  // ---- S10: floor(position at t_new) ----------------------------------------------------------
-  f24_pair_t uv10;
-  dirs_t     d10;
-  logic signed [IDX_W-1:0] in_x, in_y;
-  logic unused_sat_nx, unused_sat_ny;
-  assign uv10 = uv_q[sl[10]];
-  assign d10  = dir_q[sl[10]];
-  f24_to_index #(.W(IDX_W)) u_in_x (.clk_i, .en_i(dn_q[10]),
-    .a_i(d10.sx.mv ? posn_x : uv10.u), .idx_o(in_x), .sat_o(unused_sat_nx));
-  f24_to_index #(.W(IDX_W)) u_in_y (.clk_i, .en_i(dn_q[10]),
-    .a_i(d10.sy.mv ? posn_y : uv10.v), .idx_o(in_y), .sat_o(unused_sat_ny));
+  // ---- S9: floors of the positions at t_new (or the plane), at t_end ----------------------------
+  // A descent floors the position at t_new, a crossing of the selective level-up the one at the
+  // plane (P1): never both in one pass, so they share a unit.
+  logic signed [IDX_W-1:0] ia_x, ia_y, ie_x, ie_y;
+  logic unused_sat_ax, unused_sat_ay, unused_sat_ex, unused_sat_ey;
+  logic ia_en;
+  assign ia_en = dn_q[9] || (sel_up && ok_q[9] && !in_q[9]);
+  f24_to_index #(.W(IDX_W)) u_ia_x (.clk_i, .en_i(ia_en),
+    .a_i(d9_q.sx.mv ? (ut9_q ? post_x : posp_x) : uv9_q.u), .idx_o(ia_x), .sat_o(unused_sat_ax));
+  f24_to_index #(.W(IDX_W)) u_ia_y (.clk_i, .en_i(ia_en),
+    .a_i(d9_q.sy.mv ? (ut9_q ? post_y : posp_y) : uv9_q.v), .idx_o(ia_y), .sat_o(unused_sat_ay));
+  f24_to_index #(.W(IDX_W)) u_ie_x (.clk_i, .en_i(xor_desc && dn_q[9]),
+    .a_i(d9_q.sx.mv ? pose_x : uv9_q.u), .idx_o(ie_x), .sat_o(unused_sat_ex));
+  f24_to_index #(.W(IDX_W)) u_ie_y (.clk_i, .en_i(xor_desc && dn_q[9]),
+    .a_i(d9_q.sy.mv ? pose_y : uv9_q.v), .idx_o(ie_y), .sat_o(unused_sat_ey));
 
-  // ---- S10: crossing (neighbour, level-up); S11: descent level --------------------------------
-  // The decisions themselves (traverse_pkg::level_cross, level_descend) are made where their
-  // results are registered (cross_q, nk_q, below), only for the passes that use them.
-  node_t   n10, n11;
-  exit_t   ex10;
-  /* verilator lint_off UNUSEDSIGNAL */  // the crossing reads prev_cross, the descent crossed
-  status_t st10, st11;
-  /* verilator lint_on UNUSEDSIGNAL */
-  idx_pair_t ie11;
-  tval_t     t10;
-  assign n10  = node_q[sl[10]];
-  assign ex10 = exit_q[sl[10]];
-  assign st10 = stat_q[sl[10]];
-  assign n11  = node_q[sl[11]];
-  assign st11 = stat_q[sl[11]];
-  assign ie11 = ie_q[sl[11]];
-  assign t10     = t_q[sl[10]];
+  // ---- S12: child estimate, its entry / exit boundaries, the child's range --------------------
+  // c = clip(floor(p) >> k', child range) = clip(floor(p), node) >> k' (the node's range is
+  // whole cells of level k'), so c << k' is the clipped p with its low k' bits cleared.
+  function automatic logic [IDX_W-1:0] child_bound(input sidx_t a, input logic [LVL_W-1:0] nk,
+                                                   input logic inc);
+    return IDX_W'((a & ~low_mask(nk)) + (sidx_t'(inc) <<< nk));  // ((a >> nk) + inc) << nk
+  endfunction
 
+  logic [LVL_W-1:0] dd12;  // levels descended
+  assign dd12 = n12_q.k - nk12_q;
 
-  // ---- S12: child estimate, its entry / exit boundaries, locate's three candidates -----------
-  sidx_t            iax_q, iay_q;  // floor(position at t_new), registered S11 -> S12
-  node_t            n12;
-  dirs_t            d12;
-  logic [LVL_W-1:0] nk12, dd;
-  sidx_t            c12x, c12y, lox, hix, loy, hiy, stepx, stepy;
-  locate_t          loc12x, loc12y;
-  assign n12   = node_q[sl[12]];
-  assign d12   = dir_q[sl[12]];
-  assign nk12  = nk_q[sl[12]];
-  assign dd    = n12.k - nk12;
-  assign lox   = sidx_t'(n12.cx) <<< dd;
-  assign hix   = ((sidx_t'(n12.cx) + sidx_t'(1)) <<< dd) - sidx_t'(1);
-  assign loy   = sidx_t'(n12.cy) <<< dd;
-  assign hiy   = ((sidx_t'(n12.cy) + sidx_t'(1)) <<< dd) - sidx_t'(1);
-  assign c12x  = clip_idx(iax_q >>> nk12, lox, hix);
-  assign c12y  = clip_idx(iay_q >>> nk12, loy, hiy);
-  assign stepx = dir_val(d12.sx);
-  assign stepy = dir_val(d12.sy);
-  assign loc12x = '{back: CELL_W'(clip_idx(c12x - stepx, lox, hix)), est: CELL_W'(c12x),
-                    fwd: CELL_W'(clip_idx(c12x + stepx, lox, hix))};
-  assign loc12y = '{back: CELL_W'(clip_idx(c12y - stepy, loy, hiy)), est: CELL_W'(c12y),
-                    fwd: CELL_W'(clip_idx(c12y + stepy, loy, hiy))};
-
+  // ---- S13, S14, S16: crossing times of the child's boundaries -------------------------------
   f24_t ben_x, bex_x, ben_y, bex_y;
-  f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(dn_q[12]),
-    .k_i(IDX_W'((c12x + sidx_t'(d12.sx.mv && d12.sx.neg)) <<< nk12)), .y_o(ben_x));
-  f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(dn_q[12]),
-    .k_i(IDX_W'((c12x + sidx_t'(d12.sx.mv && !d12.sx.neg)) <<< nk12)), .y_o(bex_x));
-  f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(dn_q[12]),
-    .k_i(IDX_W'((c12y + sidx_t'(d12.sy.mv && d12.sy.neg)) <<< nk12)), .y_o(ben_y));
-  f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(dn_q[12]),
-    .k_i(IDX_W'((c12y + sidx_t'(d12.sy.mv && !d12.sy.neg)) <<< nk12)), .y_o(bex_y));
+  f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(dn_q[13]), .k_i(kben_x13_q), .y_o(ben_x));
+  f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(dn_q[13]), .k_i(kbex_x13_q), .y_o(bex_x));
+  f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(dn_q[13]), .k_i(kben_y13_q), .y_o(ben_y));
+  f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(dn_q[13]), .k_i(kbex_y13_q), .y_o(bex_y));
 
-  // ---- S13, S15: crossing times of the child's boundaries --------------------------------------
-  f24_pair_t uv13;
-  f24_pair_t inv15;
-  f24_t      den_x, dex_x, den_y, dex_y, ten_x, tex_x, ten_y, tex_y;
-  assign uv13  = uv_q[sl[13]];
-  assign inv15 = inv_q[sl[15]];
-  logic bd_en;  // S13 - S14 hold a descent
-  assign bd_en = dn_q[13] || dn_q[14];
-  f24_add u_den_x (.clk_i, .en_i(bd_en), .a_i(ben_x), .b_i(f24_neg(uv13.u)), .y_o(den_x));
-  f24_add u_dex_x (.clk_i, .en_i(bd_en), .a_i(bex_x), .b_i(f24_neg(uv13.u)), .y_o(dex_x));
-  f24_add u_den_y (.clk_i, .en_i(bd_en), .a_i(ben_y), .b_i(f24_neg(uv13.v)), .y_o(den_y));
-  f24_add u_dex_y (.clk_i, .en_i(bd_en), .a_i(bex_y), .b_i(f24_neg(uv13.v)), .y_o(dex_y));
-  f24_mul u_ten_x (.clk_i, .en_i(dn_q[15]), .a_i(den_x), .b_i(inv15.u), .y_o(ten_x));
-  f24_mul u_tex_x (.clk_i, .en_i(dn_q[15]), .a_i(dex_x), .b_i(inv15.u), .y_o(tex_x));
-  f24_mul u_ten_y (.clk_i, .en_i(dn_q[15]), .a_i(den_y), .b_i(inv15.v), .y_o(ten_y));
-  f24_mul u_tex_y (.clk_i, .en_i(dn_q[15]), .a_i(dex_y), .b_i(inv15.v), .y_o(tex_y));
+  f24_t den_x, dex_x, den_y, dex_y, ten_x, tex_x, ten_y, tex_y;
+  logic bd_en;  // S14 - S15 hold a descent
+  assign bd_en = dn_q[14] || dn_q[15];
+  f24_add u_den_x (.clk_i, .en_i(bd_en), .a_i(ben_x), .b_i(f24_neg(uv14_q.u)), .y_o(den_x));
+  f24_add u_dex_x (.clk_i, .en_i(bd_en), .a_i(bex_x), .b_i(f24_neg(uv14_q.u)), .y_o(dex_x));
+  f24_add u_den_y (.clk_i, .en_i(bd_en), .a_i(ben_y), .b_i(f24_neg(uv14_q.v)), .y_o(den_y));
+  f24_add u_dex_y (.clk_i, .en_i(bd_en), .a_i(bex_y), .b_i(f24_neg(uv14_q.v)), .y_o(dex_y));
+  f24_mul u_ten_x (.clk_i, .en_i(dn_q[16]), .a_i(den_x), .b_i(inv16_q.u), .y_o(ten_x));
+  f24_mul u_tex_x (.clk_i, .en_i(dn_q[16]), .a_i(dex_x), .b_i(inv16_q.u), .y_o(tex_x));
+  f24_mul u_ten_y (.clk_i, .en_i(dn_q[16]), .a_i(den_y), .b_i(inv16_q.v), .y_o(ten_y));
+  f24_mul u_tex_y (.clk_i, .en_i(dn_q[16]), .a_i(dex_y), .b_i(inv16_q.v), .y_o(tex_y));
 
   // ---- S16: next state -----------------------------------------------------------------------
-  // locate's correction: the cell whose crossing times bracket t (cells are half-open in t).
-  function automatic logic [CELL_W-1:0] correct(input locate_t c, input f24_ord_t t_entry,
-                                                input f24_ord_t t_exit, input f24_ord_t t);
-    return ord_lt(t, t_entry) ? c.back : ord_le(t_exit, t) ? c.fwd : c.est;
-  endfunction
-
   /* verilator lint_off UNUSEDSIGNAL */  // a live ray has no final flag (hit, ...) set: not read
   status_t st16;
   /* verilator lint_on UNUSEDSIGNAL */
   status_t nst16;
-  act_t    act16;
   cross_node_t x16;
-  tval_t   t_new16;
-  logic [ITER_W-1:0] it1;
   logic live16, err16, iter16, hit16, miss16, down16, cross16, cap16;
-  assign st16    = stat_q[sl[16]];
-  assign act16   = act_q[sl[16]];
+  assign st16    = st16_q;
   assign x16     = cross_q[sl[16]];
-  assign t_new16 = t_new_q[sl[16]];
-  assign it1     = st16.iters + ITER_W'(1);
   // A ray finished earlier (waiting for room in the result FIFO) is left untouched, and so is
   // one whose lookup missed in the cache (same state, round again).
   assign live16  = v_q[16] && !st16.done;
   assign err16   = live16 && err_q[16];
   assign iter16  = live16 && !err_q[16] && ok_q[16];
-  assign hit16   = iter16 && act16.is_hit;
-  assign miss16  = iter16 && !act16.is_hit && act16.miss;
-  assign down16  = iter16 && !act16.is_hit && !act16.miss && act16.down;
-  assign cross16 = iter16 && !act16.is_hit && !act16.miss && !act16.down;
-  assign cap16   = iter16 && !act16.is_hit && !act16.miss && (it1 >= cfg_i.iter_cap);
+  assign hit16   = iter16 && act16_q.is_hit;
+  assign miss16  = iter16 && !act16_q.is_hit && act16_q.miss;
+  assign down16  = iter16 && !act16_q.is_hit && !act16_q.miss && act16_q.down;
+  assign cross16 = iter16 && !act16_q.is_hit && !act16_q.miss && !act16_q.down;
+  assign cap16   = iter16 && !act16_q.is_hit && !act16_q.miss && (it16_q >= cfg_i.iter_cap);
   // (written for a live ray only, which has none of the final flags set yet)
   assign nst16   = '{crossed:    st16.crossed || cross16,
                      prev_cross: cross16 ? !x16.up : (st16.prev_cross && !down16),
@@ -488,20 +451,32 @@ module traverse_loop
                      invalid:    1'b0,
                      capped:     cap16,
                      err:        err16,
-                     iters:      iter16 ? it1 : st16.iters};
+                     iters:      iter16 ? it16_q : st16.iters};
 
   assign st_iter_o  = iter16;
   assign st_down_o  = down16;
   assign st_cross_o = cross16;
   assign st_up_o    = cross16 && x16.up;
 
-  // ---- S17: retire, merge ----------------------------------------------------------------------
+  // ---- S17: the descent's cell, retire, merge ------------------------------------------------
+  // locate's correction: the cell whose crossing times bracket t (cells are half-open in t).
+  function automatic logic [CELL_W-1:0] correct(input locate_t c, input f24_ord_t t_entry,
+                                                input f24_ord_t t_exit, input f24_ord_t t);
+    return ord_lt(t, t_entry) ? c.back : ord_le(t_exit, t) ? c.fwd : c.est;
+  endfunction
+
+  node_t ndn17, n_new;
+  assign ndn17 = '{k:  dsc_q[17].nk,
+                   cx: correct(dsc_q[17].x, f24_ord(ten_x), f24_ord(tex_x), t_new17_q),
+                   cy: correct(dsc_q[17].y, f24_ord(ten_y), f24_ord(tex_y), t_new17_q)};
+  assign n_new = '{k: new_ray_i.k, cx: new_ray_i.cx, cy: new_ray_i.cy};
+
   /* verilator lint_off UNUSEDSIGNAL */  // the tail reads the result flags only
   status_t st17;
   /* verilator lint_on UNUSEDSIGNAL */
   logic    retire, bypass, admit;
   assign st17   = stat_q[sl[D-1]];
-  assign retire = v_q[D-1] && st17.done && !res_full_i;
+  assign retire = v_q[D-1] && done17_q && !res_full_i;
   // A ray that setup already finished (invalid, or never enters the map) goes straight to the
   // result FIFO when the tail does not use it this clock.
   assign bypass = !retire && new_valid_i && new_ray_i.done && !res_full_i;
@@ -521,16 +496,130 @@ module traverse_loop
   // ---- ring and slot table -------------------------------------------------------------------
   // S17 -> S0: the ray re-circulates (priority), or a new ray fills the bubble.
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) v_q <= '0;
-    else         v_q <= {v_q[D-2:0], (v_q[D-1] && !retire) || admit};
+    if (!rst_ni) begin
+      v_q     <= '0;
+      live0_q <= 1'b0;
+    end else begin
+      v_q     <= {v_q[D-2:0], (v_q[D-1] && !retire) || admit};
+      live0_q <= admit || (v_q[D-1] && !done17_q);
+    end
   end
 
   always_ff @(posedge clk_i) begin
     ok_q  <= {ok_q[15:4], ok3};
     err_q <= {err_q[15:4], err3};
-    in_q  <= {in_q[9:8], ok_q[7] && inside7};
-    dn_q  <= {dn_q[14:8], ok_q[7] && act7.down};
-    lv_q  <= {lv_q[1], v_q[0] && !stat_q[sl[0]].done};
+    in_q  <= {in_q[10:8], ok_q[7] && inside7};
+    dn_q  <= {dn_q[16:8], ok_q[7] && act7.down};
+    lv_q  <= {lv_q[2:1], live0_q};
+    ts_q  <= {ts_q[8:7], ord_max_first(t6_q.ord, f24_ord(plane))};
+  end
+
+  // The registered reads and the pipelines; each loads while the stage before its reader holds a
+  // pass that uses it.
+  always_ff @(posedge clk_i) begin
+    // S17 -> S0: the ray coming round (S16 wrote a crossing's node), its descent's node, or the
+    // new ray
+    n0_q <= admit ? n_new : down17_q ? ndn17 : node_q[sl[D-1]];
+    d0_q <= admit ? dirs_t'{sx: new_ray_i.sx, sy: new_ray_i.sy} : dir_q[sl[D-1]];
+    if (lv_q[1]) uv2_q  <= uv_q[sl[1]];
+    if (lv_q[3]) inv4_q <= inv_q[sl[3]];
+    if (ok_q[4]) begin
+      d5_q    <= dir_q[sl[4]];
+      tmap5_q <= tval(tmap_q[sl[4]]);
+      tm1_5_q <= ord_min_first(f24_ord(tmap_q[sl[4]]), f24_ord(F24_ONE)) ? tval(tmap_q[sl[4]])
+                                                                        : tval(F24_ONE);
+    end
+    if (ok_q[5]) begin
+      ex_q[6] <= exit_of(tx5, ty5);
+      tend6_q <= min3(tx5, ty5, tm1_5_q);
+      tmap6_q <= tmap5_q;
+      t6_q    <= t_q[sl[5]];
+      duv6_q  <= duv_q[sl[5]];
+    end
+    if (ok_q[6]) begin
+      t_new7_q <= ord_max_first(t6_q.ord, f24_ord(plane)) ? t6_q.ord : f24_ord(plane);
+      tmin7_q  <= '{tmin: ord_min_first(ex_q[6].te.ord, tmap6_q.ord) ? ex_q[6].te : tmap6_q,
+                    miss_pre: ord_le(tmap6_q.ord, ex_q[6].te.ord)};
+      leaf7_q  <= (node_q[sl[6]].k == '0);
+      uv7_q    <= uv_q[sl[6]];
+    end
+    for (int s = 6; s < 10; s++) begin
+      if (ok_q[s]) ex_q[s+1] <= ex_q[s];
+    end
+    if (ok_q[8]) begin
+      ut9_q <= in_q[8] && ts_q[8];
+      uv9_q <= uv_q[sl[8]];
+      d9_q  <= dir_q[sl[8]];
+      n9_q  <= node_q[sl[8]];
+    end
+    if (ok_q[9]) begin
+      d10_q       <= d9_q;
+      n10_q       <= n9_q;
+      lo10_q      <= '{x: node_lo(n9_q.k, n9_q.cx), y: node_lo(n9_q.k, n9_q.cy)};
+      hi10_q      <= '{x: node_hi(n9_q.k, n9_q.cx), y: node_hi(n9_q.k, n9_q.cy)};
+      crossed10_q <= stat_q[sl[9]].crossed;
+      prev10_q    <= stat_q[sl[9]].prev_cross;
+      t10_q       <= t_q[sl[9]];
+    end
+    // S10 -> S11: the crossing's first part, the descent's clipped positions
+    if (ok_q[10] && !in_q[10]) begin
+      xpre11_q <= cross_pre(n10_q.k, n10_q.cx, n10_q.cy, ex_q[10].eqx, ex_q[10].eqy, d10_q.sx,
+                            d10_q.sy, ia_x, ia_y);
+      prev11_q <= prev10_q;
+    end
+    if (dn_q[10]) begin
+      a11_q   <= '{x: clip_idx(sidx_t'(ia_x), lo10_q.x, hi10_q.x),
+                   y: clip_idx(sidx_t'(ia_y), lo10_q.y, hi10_q.y)};
+      b11_q   <= '{x: clip_idx(sidx_t'(ie_x), lo10_q.x, hi10_q.x),
+                   y: clip_idx(sidx_t'(ie_y), lo10_q.y, hi10_q.y)};
+      nkm11_q <= multi_level(cfg_i.policy.levels, n10_q.k, crossed10_q);
+      n11_q   <= n10_q;
+      d11_q   <= d10_q;
+    end
+    // S11 -> S12: the new level
+    if (dn_q[11]) begin
+      nk12_q <= descend_pick(cfg_i.policy.descent, n11_q.k, nkm11_q, a11_q.x, b11_q.x, a11_q.y,
+                             b11_q.y);
+      a12_q  <= a11_q;
+      n12_q  <= n11_q;
+      d12_q  <= d11_q;
+    end
+    // S12 -> S13: the child's boundary integers, estimate and range
+    if (dn_q[12]) begin
+      kben_x13_q <= child_bound(a12_q.x, nk12_q, d12_q.sx.mv && d12_q.sx.neg);
+      kbex_x13_q <= child_bound(a12_q.x, nk12_q, d12_q.sx.mv && !d12_q.sx.neg);
+      kben_y13_q <= child_bound(a12_q.y, nk12_q, d12_q.sy.mv && d12_q.sy.neg);
+      kbex_y13_q <= child_bound(a12_q.y, nk12_q, d12_q.sy.mv && !d12_q.sy.neg);
+      c13_q      <= '{x: a12_q.x >>> nk12_q, y: a12_q.y >>> nk12_q};
+      lo13_q     <= '{x: node_lo(dd12, n12_q.cx), y: node_lo(dd12, n12_q.cy)};
+      hi13_q     <= '{x: node_hi(dd12, n12_q.cx), y: node_hi(dd12, n12_q.cy)};
+      nk13_q     <= nk12_q;
+      d13_q      <= d12_q;
+    end
+    // S13 -> S14: locate's three candidates
+    if (dn_q[13]) begin
+      uv14_q    <= uv_q[sl[13]];
+      dsc_q[14] <= '{nk: nk13_q,
+        x: '{back: CELL_W'(clip_idx(c13_q.x - dir_val(d13_q.sx), lo13_q.x, hi13_q.x)),
+             est:  CELL_W'(c13_q.x),
+             fwd:  CELL_W'(clip_idx(c13_q.x + dir_val(d13_q.sx), lo13_q.x, hi13_q.x))},
+        y: '{back: CELL_W'(clip_idx(c13_q.y - dir_val(d13_q.sy), lo13_q.y, hi13_q.y)),
+             est:  CELL_W'(c13_q.y),
+             fwd:  CELL_W'(clip_idx(c13_q.y + dir_val(d13_q.sy), lo13_q.y, hi13_q.y))}};
+    end
+    for (int s = 14; s < 17; s++) begin
+      if (dn_q[s]) dsc_q[s+1] <= dsc_q[s];
+    end
+    if (dn_q[15]) inv16_q <= inv_q[sl[15]];
+    if (v_q[15]) begin
+      st16_q  <= stat_q[sl[15]];
+      it16_q  <= stat_q[sl[15]].iters + ITER_W'(1);
+      act16_q <= act_q[sl[15]];
+    end
+    // S16 -> S17
+    if (dn_q[16]) t_new17_q <= t_new_q[sl[16]].ord;
+    down17_q <= down16 && !cap16;  // (a capped ray is done: its node is never read again)
+    done17_q <= (err16 || iter16) ? nst16.done : st16.done;
   end
 
   always_ff @(posedge clk_i) begin
@@ -542,56 +631,34 @@ module traverse_loop
       inv_q[sl[D-1]]  <= '{u: new_ray_i.inv_du, v: new_ray_i.inv_dv};
       dir_q[sl[D-1]]  <= '{sx: new_ray_i.sx, sy: new_ray_i.sy};
       tmap_q[sl[D-1]] <= new_ray_i.t_map;
-      node_q[sl[D-1]] <= '{k: new_ray_i.k, cx: new_ray_i.cx, cy: new_ray_i.cy};
-      t_q[sl[D-1]]    <= '{t: new_ray_i.t, ord: f24_ord(new_ray_i.t)};
+      node_q[sl[D-1]] <= n_new;
+      t_q[sl[D-1]]    <= tval(new_ray_i.t);
       stat_q[sl[D-1]] <= '{crossed: new_ray_i.crossed, prev_cross: new_ray_i.prev_cross,
                            done: new_ray_i.done, hit: new_ray_i.hit,
                            invalid: new_ray_i.invalid, capped: new_ray_i.capped,
                            err: new_ray_i.err, iters: new_ray_i.iters};
     end
+    // S17: a descent's node (a ray that goes on: never where a new ray enters).
+    if (down17_q) node_q[sl[D-1]] <= ndn17;
     // S16: the next state (only a live ray whose lookup answered changes).
     if (err16 || iter16) stat_q[sl[16]] <= nst16;
-    if (hit16 || down16) t_q[sl[16]] <= t_new16;
+    if (hit16 || down16) t_q[sl[16]] <= t_new_q[sl[16]];
     if (cross16) begin
       t_q[sl[16]]    <= xt_q[sl[16]];
       node_q[sl[16]] <= '{k: x16.k, cx: x16.cx, cy: x16.cy};
     end
-    if (down16) node_q[sl[16]] <= '{k:  nk_q[sl[16]],
-                                    cx: correct(locx_q[sl[16]], f24_ord(ten_x), f24_ord(tex_x),
-                                                t_new16.ord),
-                                    cy: correct(locy_q[sl[16]], f24_ord(ten_y), f24_ord(tex_y),
-                                                t_new16.ord)};
     if (hit16) uv_q[sl[16]] <= pos_q[sl[16]];
     // What this pass computes for its later stages.
     // (only the passes whose height read returned data: the others use none of it)
-    if (ok_q[4]) exit_q[sl[4]]  <= exit_of(d4.sx.mv ? tx_raw : F24_POS_INF,
-                                           d4.sy.mv ? ty_raw : F24_POS_INF);
-    if (ok_q[5]) tmin_q[sl[5]]  <= tmin5_d;
-    if (ok_q[6]) t_new_q[sl[6]] <= t_max(t_q[sl[6]], plane);
+    if (ok_q[6]) t_new_q[sl[6]] <= ord_max_first(t6_q.ord, f24_ord(plane)) ? t6_q : tval(plane);
     if (ok_q[7]) act_q[sl[7]]   <= act7;
-    // (only the passes that use them later: XOR descents, crossings, hits, descents)
-    if (dn_q[9] && xor_desc) ie_q[sl[9]] <= '{x: ie_x, y: ie_y};
+    // (only the passes that use them later: hits and descents, crossings)
+    if (in_q[9]) pos_q[sl[9]] <= ts_q[9] ? '{u: post_x, v: post_y} : '{u: posp_x, v: posp_y};
     if (ok_q[10] && !in_q[10]) begin
-      xt_q[sl[10]]    <= ord_max_first(t10.ord, ex10.te.ord) ? t10 : ex10.te;
-      cross_q[sl[10]] <= level_cross(cfg_i.policy.level_up, cfg_i.n, n10.k, n10.cx, n10.cy,
-                                     ex10.eqx, ex10.eqy, d10.sx, d10.sy, st10.prev_cross, ip_x,
-                                     ip_y);
+      xt_q[sl[10]] <= ord_max_first(t10_q.ord, ex_q[10].te.ord) ? t10_q : ex_q[10].te;
     end
-    if (in_q[10])      pos_q[sl[10]]  <= '{u: posn_x, v: posn_y};
-    if (dn_q[11])      nk_q[sl[11]]   <= level_descend(cfg_i.policy.descent,
-                                                       cfg_i.policy.levels, n11.k, n11.cx,
-                                                       n11.cy, st11.crossed, in_x, in_y, ie11.x,
-                                                       ie11.y);
-    if (dn_q[12]) begin
-      locx_q[sl[12]] <= loc12x;
-      locy_q[sl[12]] <= loc12y;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (dn_q[11]) begin
-      iax_q <= sidx_t'(in_x);
-      iay_q <= sidx_t'(in_y);
+    if (ok_q[11] && !in_q[11]) begin
+      cross_q[sl[11]] <= cross_up(cfg_i.policy.level_up, cfg_i.n, xpre11_q, prev11_q);
     end
   end
 
@@ -614,6 +681,9 @@ module traverse_loop
   // A ray that is not done has none of the final flags (S16 relies on it).
   live_ray_has_no_result: assert property (@(posedge clk_i) disable iff (!rst_ni)
       live16 |-> !(st16.hit || st16.invalid || st16.capped || st16.err));
+  // The descent's node and a new ray never take one entry in one clock.
+  descent_not_admitted: assert property (@(posedge clk_i) disable iff (!rst_ni)
+                                         down17_q |-> !admit);
 `endif
 
 endmodule

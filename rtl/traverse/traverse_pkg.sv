@@ -238,6 +238,28 @@ package traverse_pkg;
 
 
   // ---- level decisions of the second mode (traverse_level_decide has the full description) ---
+  // Each decision is split where traverse_loop registers it (one clock each): the crossing into
+  // cross_pre (the neighbour, whether the parent changed, selective's "stay") and cross_up (the
+  // policy), the descent into the clip of the two positions to the node (node_lo, node_hi,
+  // clip_idx), multi_level and descend_pick.  level_cross and level_descend compose the parts
+  // (traverse_level_decide, the parts' unit test).
+
+  // Low-bit mask 2^k - 1, bit by bit (each bit a function of k only: no carry chain).
+  function automatic sidx_t low_mask(input logic [LVL_W-1:0] k);
+    sidx_t m;
+    for (int i = 0; i < $bits(sidx_t); i++) m[i] = (i < int'(k));
+    return m;
+  endfunction
+
+  // A node's level-0 cells [c << k, ((c + 1) << k) - 1] (c >= 0, so its low k bits are free).
+  function automatic sidx_t node_lo(input logic [LVL_W-1:0] k, input logic [CELL_W-1:0] c);
+    return sidx_t'(c) <<< k;
+  endfunction
+
+  function automatic sidx_t node_hi(input logic [LVL_W-1:0] k, input logic [CELL_W-1:0] c);
+    return (sidx_t'(c) <<< k) | low_mask(k);
+  endfunction
+
   // Crossing: the neighbour cell and the level-up policy; the new node and whether it went up.
   typedef struct packed {
     logic [LVL_W-1:0]  k;   // new level
@@ -246,61 +268,94 @@ package traverse_pkg;
     logic              up;  // the crossing went up a level
   } cross_node_t;
 
+  // The crossing's first part: the neighbour n, whether its parent differs, and selective's stay.
+  typedef struct packed {
+    logic [LVL_W-1:0] k;               // level of the node the ray leaves
+    sidx_t            nx, ny;          // the neighbour at level k
+    logic             parent_changed;  // (nx >> 1 != cx >> 1) | (ny >> 1 != cy >> 1)
+    logic             stay;            // selective: P1 is in the very next node
+  } cross_pre_t;
+
+  function automatic cross_pre_t cross_pre(
+      input logic [LVL_W-1:0] k, input logic [CELL_W-1:0] xcx, input logic [CELL_W-1:0] xcy,
+      input logic eqx, input logic eqy, input dir_t sx, input dir_t sy,
+      input logic signed [IDX_W-1:0] p1x_i, input logic signed [IDX_W-1:0] p1y_i);
+    sidx_t cx, cy, nx, ny, p1x, p1y;
+    logic  nearx, neary;
+    cx  = sidx_t'(xcx);
+    cy  = sidx_t'(xcy);
+    nx  = cx + (eqx ? dir_val(sx) : '0);
+    ny  = cy + (eqy ? dir_val(sy) : '0);
+    // selective: P1 (where the ray meets this node's plane), in cells of level k; the ray stays
+    // when P1 is in the very next node: max(|p1x - cx|, |p1y - cy|) == 1, i.e. both differences
+    // in {-1, 0, 1} and not both 0 (equality tests, no subtraction in front of them)
+    p1x   = sidx_t'(p1x_i) >>> k;
+    p1y   = sidx_t'(p1y_i) >>> k;
+    nearx = (p1x == cx) || (p1x == cx + sidx_t'(1)) || (p1x == cx - sidx_t'(1));
+    neary = (p1y == cy) || (p1y == cy + sidx_t'(1)) || (p1y == cy - sidx_t'(1));
+    return '{k: k, nx: nx, ny: ny,
+             parent_changed: ((nx >>> 1) != (cx >>> 1)) || ((ny >>> 1) != (cy >>> 1)),
+             stay: nearx && neary && !((p1x == cx) && (p1y == cy))};
+  endfunction
+
+  function automatic cross_node_t cross_up(input level_up_e level_up, input logic [LVL_W-1:0] n,
+                                           input cross_pre_t x, input logic prev_cross);
+    logic up;
+    up  = (x.k < n)
+       && ((level_up == UP_TEVS)      ? x.parent_changed
+         : (level_up == UP_DROBOT)    ? 1'b1
+         : (level_up == UP_SELECTIVE) ? x.parent_changed && !x.stay
+         : (level_up == UP_COHERENT)  ? x.parent_changed && prev_cross
+         :                              1'b0);
+    return '{k: x.k + LVL_W'(up), cx: CELL_W'(up ? (x.nx >>> 1) : x.nx),
+             cy: CELL_W'(up ? (x.ny >>> 1) : x.ny), up: up};
+  endfunction
+
   function automatic cross_node_t level_cross(
       input level_up_e level_up, input logic [LVL_W-1:0] n, input logic [LVL_W-1:0] k,
       input logic [CELL_W-1:0] xcx, input logic [CELL_W-1:0] xcy, input logic eqx,
       input logic eqy, input dir_t sx, input dir_t sy, input logic prev_cross,
       input logic signed [IDX_W-1:0] p1x_i, input logic signed [IDX_W-1:0] p1y_i);
-    sidx_t cx, cy, nx, ny, p1x, p1y, dfx, dfy;
-    logic  parent_changed, selective_stay, up;
-    cx  = sidx_t'(xcx);
-    cy  = sidx_t'(xcy);
-    nx  = cx + (eqx ? dir_val(sx) : '0);
-    ny  = cy + (eqy ? dir_val(sy) : '0);
-    parent_changed = ((nx >>> 1) != (cx >>> 1)) || ((ny >>> 1) != (cy >>> 1));
-    // selective: P1 (where the ray meets this node's plane), in cells of level k; the ray stays
-    // when P1 is in the very next node: max(|p1x - cx|, |p1y - cy|) == 1
-    p1x = sidx_t'(p1x_i) >>> k;
-    p1y = sidx_t'(p1y_i) >>> k;
-    dfx = (p1x >= cx) ? p1x - cx : cx - p1x;
-    dfy = (p1y >= cy) ? p1y - cy : cy - p1y;
-    selective_stay = (((dfx > dfy) ? dfx : dfy) == sidx_t'(1));
-    up  = (k < n)
-       && ((level_up == UP_TEVS)      ? parent_changed
-         : (level_up == UP_DROBOT)    ? 1'b1
-         : (level_up == UP_SELECTIVE) ? parent_changed && !selective_stay
-         : (level_up == UP_COHERENT)  ? parent_changed && prev_cross
-         :                              1'b0);
-    return '{k: k + LVL_W'(up), cx: CELL_W'(up ? (nx >>> 1) : nx),
-             cy: CELL_W'(up ? (ny >>> 1) : ny), up: up};
+    return cross_up(level_up, n, cross_pre(k, xcx, xcy, eqx, eqy, sx, sy, p1x_i, p1y_i),
+                    prev_cross);
   endfunction
 
-  // Descent: the new level.
-  function automatic logic [LVL_W-1:0] level_descend(
-      input descent_e descent, input logic [1:0] levels, input logic [LVL_W-1:0] k,
-      input logic [CELL_W-1:0] dcx, input logic [CELL_W-1:0] dcy, input logic crossed,
-      input logic signed [IDX_W-1:0] ax_i, input logic signed [IDX_W-1:0] ay_i,
-      input logic signed [IDX_W-1:0] bx_i, input logic signed [IDX_W-1:0] by_i);
-    sidx_t       lox, hix, loy, hiy, ax, bx, ay, by;
-    logic [4:0]  step, nk_multi, bl;
-    lox  = sidx_t'(dcx) <<< k;
-    hix  = ((sidx_t'(dcx) + sidx_t'(1)) <<< k) - sidx_t'(1);
-    loy  = sidx_t'(dcy) <<< k;
-    hiy  = ((sidx_t'(dcy) + sidx_t'(1)) <<< k) - sidx_t'(1);
-    ax   = clip_idx(sidx_t'(ax_i), lox, hix);
-    bx   = clip_idx(sidx_t'(bx_i), lox, hix);
-    ay   = clip_idx(sidx_t'(ay_i), loy, hiy);
-    by   = clip_idx(sidx_t'(by_i), loy, hiy);
-    // bitlen(max(a, b)) = bitlen(a | b): the lowest node holding both ends
-    bl   = bitlen16(16'(ax ^ bx) | 16'(ay ^ by));
-    // (b): `levels` levels per descent until the first crossing, then one (never below 0)
+  // Descent, multi (b): `levels` levels per descent until the first crossing, then one (never
+  // below 0); k >= 1 for a descending ray.
+  function automatic logic [4:0] multi_level(input logic [1:0] levels, input logic [LVL_W-1:0] k,
+                                             input logic crossed);
+    logic [4:0] step;
     step = crossed ? 5'd1 : (k < 4'(levels)) ? 5'(k) : 5'(levels);
-    nk_multi = 5'(k) - step;   // k >= 1 for a descending ray
+    return 5'(k) - step;
+  endfunction
+
+  // Descent: the new level from multi's level and the two positions clipped to the node.
+  function automatic logic [LVL_W-1:0] descend_pick(
+      input descent_e descent, input logic [LVL_W-1:0] k, input logic [4:0] nk_multi,
+      input sidx_t ax, input sidx_t bx, input sidx_t ay, input sidx_t by);
+    logic [4:0] bl;
+    // bitlen(max(a, b)) = bitlen(a | b): the lowest node holding both ends
+    bl = bitlen16(16'(ax ^ bx) | 16'(ay ^ by));
     // not a descending ray (k = 0): 0, to keep the level in range
     return (k == '0)                ? '0
          : (descent == DESC_MULTI) ? LVL_W'(nk_multi)
          : (descent == DESC_XOR)   ? LVL_W'((bl < nk_multi) ? bl : nk_multi)
          :                           k - LVL_W'(1);
+  endfunction
+
+  function automatic logic [LVL_W-1:0] level_descend(
+      input descent_e descent, input logic [1:0] levels, input logic [LVL_W-1:0] k,
+      input logic [CELL_W-1:0] dcx, input logic [CELL_W-1:0] dcy, input logic crossed,
+      input logic signed [IDX_W-1:0] ax_i, input logic signed [IDX_W-1:0] ay_i,
+      input logic signed [IDX_W-1:0] bx_i, input logic signed [IDX_W-1:0] by_i);
+    sidx_t lox, hix, loy, hiy;
+    lox = node_lo(k, dcx);
+    hix = node_hi(k, dcx);
+    loy = node_lo(k, dcy);
+    hiy = node_hi(k, dcy);
+    return descend_pick(descent, k, multi_level(levels, k, crossed),
+                        clip_idx(sidx_t'(ax_i), lox, hix), clip_idx(sidx_t'(bx_i), lox, hix),
+                        clip_idx(sidx_t'(ay_i), loy, hiy), clip_idx(sidx_t'(by_i), loy, hiy));
   endfunction
 
 endpackage
