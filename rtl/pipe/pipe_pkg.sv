@@ -47,10 +47,10 @@ package pipe_pkg;
   localparam int unsigned TEX_ADDR_W  = 32;  // byte address of a texel (default of tex_addr)
   localparam int unsigned TEX_IDX_W   = 20;  // f24_to_index / f24_from_int width (INDEX_W)
   localparam int unsigned TEXEL_W     = 32;  // an RGBA unorm8 texel: R in bits 7:0 .. A in 31:24
-  // u scale (mul); 2^-L (exponent arithmetic, no register) and - 0.5 (add); floor (to_index);
+  // u scale (mul); 2^-L (exponent arithmetic, one register); - 0.5 (add); floor (to_index);
   // from_int; fx = x - j0 (add).  The addresses are ready in the same stage.
-  localparam int unsigned TEX_ADDR_LAT = F24_MUL_LAT + F24_ADD_LAT + F24_TO_INDEX_LAT
-                                       + F24_FROM_INT_LAT + F24_ADD_LAT;  // 7
+  localparam int unsigned TEX_ADDR_LAT = F24_MUL_LAT + 1 + F24_ADD_LAT + F24_TO_INDEX_LAT
+                                       + F24_FROM_INT_LAT + F24_ADD_LAT;  // 8
   // from_unorm; per row sub, mul, add (top, bot); then sub, mul, add (between the rows).
   localparam int unsigned TEX_FILTER_LAT = F24_FROM_UNORM_LAT
                                          + 2 * (F24_ADD_LAT + F24_MUL_LAT + F24_ADD_LAT);  // 11

@@ -20,10 +20,10 @@
 // (the product is exact unless it falls below 2^-62, where f24_mul flushes to a signed zero;
 // Inf stays Inf, NaN gives F24_NAN, zeros and subnormal patterns give a signed zero).
 //
-// Fully pipelined, fixed latency TEX_ADDR_LAT = 7 enabled clocks (pipe_pkg), one lookup per clock,
+// Fully pipelined, fixed latency TEX_ADDR_LAT = 8 enabled clocks (pipe_pkg), one lookup per clock,
 // the conventions of view_calc: every register advances only while en_i is 1 (the enclosing
 // pipeline's stall), valid is reset by rst_ni (synchronous, active low), data registers have no
-// reset; a lookup taken on an enabled edge with valid_i = 1 shows at the outputs after 7 enabled
+// reset; a lookup taken on an enabled edge with valid_i = 1 shows at the outputs after 8 enabled
 // edges and holds while en_i is 0.  Configuration (cfg_*) must be static while busy.
 //
 // Configuration of one texture (model.texture.Texture): su, sv = Texture.scale_for (engine words),
@@ -35,15 +35,17 @@
 // Stage schedule (S0 = the input ports; "a -> b": a unit takes operands in Sa, result in Sb):
 //   S0  ut = mul(u, su), vt = mul(v, sv)                           2 f24_mul       S0 -> S1
 //       L (saturated to 0 .. 15) delayed S0 -> S4
-//   S1  x = add(ut 2^-L, -0.5), y likewise (2^-L: exponent arithmetic) 2 f24_add   S1 -> S3
-//   S3  j0 = floor(x), i0 = floor(y)                                2 f24_to_index  S3 -> S4
-//       x, y delayed S3 -> S5; W_L, H_L read                        register        S3 -> S4
-//   S4  from_int(j0), from_int(i0)                                  2 f24_from_int  S4 -> S5
-//       clamps: j0c, dj = j1c - j0c (0 or 1), i0c, di; base + level_off[L]   register S4 -> S5
-//   S5  fx = add(x, -from_int(j0)), fy likewise                     2 f24_add       S5 -> S7
-//       r = i0c W_L + j0c; rs = di ? W_L : 0                         register        S5 -> S6
-//   S6  addr = base + off + 4 (r + {0, dj, rs, rs + dj})             register        S6 -> S7
-//   S7  outputs (straight from registers)
+//   S1  ut 2^-L, vt 2^-L (exponent arithmetic, in a register of its own: in front of the
+//       adder it cost the adder's clock)                             register        S1 -> S2
+//   S2  x = add(ut 2^-L, -0.5), y likewise                           2 f24_add       S2 -> S4
+//   S4  j0 = floor(x), i0 = floor(y)                                2 f24_to_index  S4 -> S5
+//       x, y delayed S4 -> S6; W_L, H_L read                        register        S4 -> S5
+//   S5  from_int(j0), from_int(i0)                                  2 f24_from_int  S5 -> S6
+//       clamps: j0c, dj = j1c - j0c (0 or 1), i0c, di; base + level_off[L]   register S5 -> S6
+//   S6  fx = add(x, -from_int(j0)), fy likewise                     2 f24_add       S6 -> S8
+//       r = i0c W_L + j0c; rs = di ? W_L : 0                         register        S6 -> S7
+//   S7  addr = base + off + 4 (r + {0, dj, rs, rs + dj})             register        S7 -> S8
+//   S8  outputs (straight from registers)
 // Float units: 2 f24_mul, 4 f24_add, 2 f24_to_index, 2 f24_from_int; one 16 x 16 multiplier
 // (the second row's address is the first's plus 4 W_L: i1c - i0c is 0 or 1).
 module tex_addr
@@ -80,12 +82,13 @@ module tex_addr
 );
 
   // Stage numbers (pipe_pkg latencies); S_OUT = TEX_ADDR_LAT.
-  localparam int unsigned S_X   = F24_MUL_LAT;              // 1: 2^-L, - 0.5
-  localparam int unsigned S_IDX = S_X + F24_ADD_LAT;        // 3: floor; W_L, H_L read
-  localparam int unsigned S_CLP = S_IDX + F24_TO_INDEX_LAT; // 4: from_int; clamps
-  localparam int unsigned S_FX  = S_CLP + F24_FROM_INT_LAT; // 5: fx; row product
-  localparam int unsigned S_SUM = S_FX + 1;                 // 6: address sums
-  localparam int unsigned S_OUT = S_FX + F24_ADD_LAT;       // 7
+  localparam int unsigned S_P2  = F24_MUL_LAT;              // 1: 2^-L
+  localparam int unsigned S_X   = S_P2 + 1;                 // 2: - 0.5
+  localparam int unsigned S_IDX = S_X + F24_ADD_LAT;        // 4: floor; W_L, H_L read
+  localparam int unsigned S_CLP = S_IDX + F24_TO_INDEX_LAT; // 5: from_int; clamps
+  localparam int unsigned S_FX  = S_CLP + F24_FROM_INT_LAT; // 6: fx; row product
+  localparam int unsigned S_SUM = S_FX + 1;                 // 7: address sums
+  localparam int unsigned S_OUT = S_FX + F24_ADD_LAT;       // 8
   if (S_OUT != TEX_ADDR_LAT || S_SUM + 1 != S_OUT) begin : g_check_lat
     $error("tex_addr: stage schedule does not add up to TEX_ADDR_LAT");
   end
@@ -129,46 +132,47 @@ module tex_addr
                                                           : lvl_t'(level_i);
   f24_mul u_ut (.clk_i, .en_i, .a_i(u_i), .b_i(cfg_su_i), .y_o(ut));
   f24_mul u_vt (.clk_i, .en_i, .a_i(v_i), .b_i(cfg_sv_i), .y_o(vt));
-  lvl_t lvl_q [1:S_CLP];                       // L in stages S1 .. S4
+  lvl_t lvl_q [1:S_CLP];                       // L in stages S1 .. S5
 
-  // ---- S1: 2^-L and - 0.5 --------------------------------------------------------------------
-  f24_t x, y;                                  // S3
-  f24_add u_x (.clk_i, .en_i, .a_i(f24_pow2_down(ut, lvl_q[S_X])), .b_i(F24_NEG_HALF), .y_o(x));
-  f24_add u_y (.clk_i, .en_i, .a_i(f24_pow2_down(vt, lvl_q[S_X])), .b_i(F24_NEG_HALF), .y_o(y));
+  // ---- S1: 2^-L; S2: - 0.5 -------------------------------------------------------------------
+  f24_t ul_q, vl_q;                            // S2: ut 2^-L, vt 2^-L
+  f24_t x, y;                                  // S4
+  f24_add u_x (.clk_i, .en_i, .a_i(ul_q), .b_i(F24_NEG_HALF), .y_o(x));
+  f24_add u_y (.clk_i, .en_i, .a_i(vl_q), .b_i(F24_NEG_HALF), .y_o(y));
 
-  // ---- S3: floor; the level's size ------------------------------------------------------------
-  idx_t j0, i0;                                // S4
+  // ---- S4: floor; the level's size ------------------------------------------------------------
+  idx_t j0, i0;                                // S5
   logic unused_sat_j, unused_sat_i;            // saturation flags: the clamps cover them
   f24_to_index #(.W(TEX_IDX_W)) u_j0 (.clk_i, .en_i, .a_i(x), .idx_o(j0),
                                       .sat_o(unused_sat_j));
   f24_to_index #(.W(TEX_IDX_W)) u_i0 (.clk_i, .en_i, .a_i(y), .idx_o(i0),
                                       .sat_o(unused_sat_i));
-  f24_t x_q [S_IDX+1:S_FX];                    // x, y in stages S4 .. S5
+  f24_t x_q [S_IDX+1:S_FX];                    // x, y in stages S5 .. S6
   f24_t y_q [S_IDX+1:S_FX];
-  dim_t w_q [S_CLP:S_FX];                      // W_L in stages S4 .. S5
-  dim_t h_q;                                   // H_L in stage S4
+  dim_t w_q [S_CLP:S_FX];                      // W_L in stages S5 .. S6
+  dim_t h_q;                                   // H_L in stage S5
 
-  // ---- S4: from_int; clamps; the level's start ----------------------------------------------
-  f24_t fj, fi;                                // S5
+  // ---- S5: from_int; clamps; the level's start ----------------------------------------------
+  f24_t fj, fi;                                // S6
   f24_from_int #(.W(TEX_IDX_W)) u_fj (.clk_i, .en_i, .k_i(j0), .y_o(fj));
   f24_from_int #(.W(TEX_IDX_W)) u_fi (.clk_i, .en_i, .k_i(i0), .y_o(fi));
   logic [TEX_DIM_W:0] jc, ic;                  // {step, clamped index}
   assign jc = clamp_pair(j0, w_q[S_CLP]);
   assign ic = clamp_pair(i0, h_q);
-  dim_t              j0c_q, i0c_q;             // S5
-  logic              dj_q [S_FX:S_SUM];        // j1c - j0c in stages S5 .. S6
-  logic              di_q;                     // i1c - i0c in stage S5
-  logic [ADDR_W-1:0] lb_q [S_FX:S_SUM];        // base + level_off[L] in stages S5 .. S6
+  dim_t              j0c_q, i0c_q;             // S6
+  logic              dj_q [S_FX:S_SUM];        // j1c - j0c in stages S6 .. S7
+  logic              di_q;                     // i1c - i0c in stage S6
+  logic [ADDR_W-1:0] lb_q [S_FX:S_SUM];        // base + level_off[L] in stages S6 .. S7
 
-  // ---- S5: fx, fy; the row product ------------------------------------------------------------
+  // ---- S6: fx, fy; the row product ------------------------------------------------------------
   f24_add u_fx (.clk_i, .en_i, .a_i(x_q[S_FX]), .b_i({~fj[23], fj[22:0]}), .y_o(fx_o));
   f24_add u_fy (.clk_i, .en_i, .a_i(y_q[S_FX]), .b_i({~fi[23], fi[22:0]}), .y_o(fy_o));
-  logic [ROW_W-1:0] r_q;                       // S6: i0c W_L + j0c
-  dim_t             rs_q;                      // S6: i1c - i0c = 1 ? W_L : 0
+  logic [ROW_W-1:0] r_q;                       // S7: i0c W_L + j0c
+  dim_t             rs_q;                      // S7: i1c - i0c = 1 ? W_L : 0
 
-  // ---- S6: the four addresses -----------------------------------------------------------------
+  // ---- S7: the four addresses -----------------------------------------------------------------
   logic [ADDR_W-1:0] a00, rs4, dj4;
-  logic [ADDR_W-1:0] addr_q [4];               // S7
+  logic [ADDR_W-1:0] addr_q [4];               // S8
   assign a00 = lb_q[S_SUM] + (ADDR_W'(r_q) << 2);
   assign rs4 = ADDR_W'(rs_q) << 2;
   assign dj4 = ADDR_W'(dj_q[S_SUM]) << 2;
@@ -182,26 +186,29 @@ module tex_addr
     if (en_i) begin
       lvl_q[1] <= lvl_in;
       for (int s = 2; s <= S_CLP; s++) lvl_q[s] <= lvl_q[s-1];
+      // S1 -> S2
+      ul_q <= f24_pow2_down(ut, lvl_q[S_P2]);
+      vl_q <= f24_pow2_down(vt, lvl_q[S_P2]);
       x_q[S_IDX+1] <= x;
       y_q[S_IDX+1] <= y;
       for (int s = S_IDX + 2; s <= S_FX; s++) begin
         x_q[s] <= x_q[s-1];
         y_q[s] <= y_q[s-1];
       end
-      // S3 -> S4
+      // S4 -> S5
       w_q[S_CLP] <= cfg_width_i[lvl_q[S_IDX]];
       h_q        <= cfg_height_i[lvl_q[S_IDX]];
-      // S4 -> S5
+      // S5 -> S6
       w_q[S_FX]  <= w_q[S_CLP];
       {dj_q[S_FX], j0c_q} <= jc;
       {di_q, i0c_q}       <= ic;
       lb_q[S_FX] <= cfg_base_i + cfg_level_off_i[lvl_q[S_CLP]];
-      // S5 -> S6
+      // S6 -> S7
       r_q  <= ROW_W'(i0c_q) * ROW_W'(w_q[S_FX]) + ROW_W'(j0c_q);
       rs_q <= di_q ? w_q[S_FX] : '0;
       dj_q[S_SUM] <= dj_q[S_FX];
       lb_q[S_SUM] <= lb_q[S_FX];
-      // S6 -> S7
+      // S7 -> S8
       addr_q[0] <= a00;
       addr_q[1] <= a00 + dj4;
       addr_q[2] <= a00 + rs4;

@@ -35,7 +35,7 @@ from model.arith import ENGINES
 from tb.common import fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 
-LATENCY = 7  # pipe_pkg::TEX_ADDR_LAT
+LATENCY = 8  # pipe_pkg::TEX_ADDR_LAT
 TEX_LEVELS = 16  # pipe_pkg::TEX_LEVELS
 DIM_W = 16  # pipe_pkg::TEX_DIM_W
 INS = ["u_i", "v_i", "level_i"]
