@@ -34,7 +34,8 @@
 //       u0 + du t_end                                           f24_add T12 -> T14
 //   T14 (boundary - u0) * (1/du): crossing times                f24_mul T14 -> T15
 //       floor(position at t_end) (u0 if sx = 0)                 f24_to_index T14 -> T15
-//   T15 locate correction by the crossing times, clip to [-1, N]
+//       locate's three candidates (the estimate, one cell back, one on; clipped to [-1, N])
+//   T15 locate correction: the candidate the crossing times choose
 //   T16 start cell and end cell clipped to the map, outside, XOR     traverse_start_level
 //   T17 start level k by bit length (leading-zero count)             T16 -> T18
 //   T18 gone |= start cell outside the map; cell >> k: out
@@ -162,8 +163,12 @@ module traverse_setup
   logic [IDX_W-1:0] kben_x_q, kbex_x_q, kben_y_q, kbex_y_q;  // T(C+5): computed in T(C+4)
   f24_pair_t uv6_q;                         // T(C+6)
   f24_pair_t uv8_q, inv8_q;                 // T(C+8)
-  dirs_t     dir8_q, dir9_q;                // T(C+8), T(C+9)
-  sidx_t     estx9_q, esty9_q;              // T(C+9)
+  dirs_t     dir8_q;                        // T(C+8)
+  // locate's candidates: one cell back, the estimate, one cell on (each clipped to [-1, N]).
+  typedef struct packed {
+    sidx_t back, est, fwd;
+  } cand_t;
+  cand_t     locx9_q, locy9_q;              // T(C+9): computed in T(C+8)
   logic signed [IDX_W-1:0] ipe_x10_q, ipe_y10_q;  // T(C+10)
   f24_pair_t duv_r;                         // the table read for T(C+0)
 
@@ -255,12 +260,17 @@ module traverse_setup
   f24_to_index #(.W(IDX_W)) u_ipe_y (.clk_i, .en_i(vs[8]),
     .a_i(dir8_q.sy.mv ? pose_y : uv8_q.v), .idx_o(ipe_y), .sat_o(unused_sat_pey));
 
-  // locate's correction: the cell whose crossing times bracket t (cells are half-open in t).
-  function automatic sidx_t correct(input sidx_t c, input dir_t s, input f24_ord_t t_entry,
-                                    input f24_ord_t t_exit, input f24_ord_t t, input sidx_t lo,
-                                    input sidx_t hi);
-    return clip_idx(ord_lt(t, t_entry) ? c - dir_val(s) : ord_le(t_exit, t) ? c + dir_val(s) : c,
-                    lo, hi);
+  // locate's correction: the cell whose crossing times bracket t (cells are half-open in t),
+  // from the estimate c: c - s if t is before the estimate's entry, c + s if at or after its
+  // exit, else c, clipped to [lo, hi].  The candidates are formed a stage before the choice
+  // (the crossing times arrive in the choosing stage); the estimate is already in [lo, hi].
+  function automatic cand_t candidates(input sidx_t c, input dir_t s, input sidx_t lo,
+                                       input sidx_t hi);
+    return '{back: clip_idx(c - dir_val(s), lo, hi), est: c, fwd: clip_idx(c + dir_val(s), lo, hi)};
+  endfunction
+  function automatic sidx_t correct(input cand_t c, input f24_ord_t t_entry,
+                                    input f24_ord_t t_exit, input f24_ord_t t);
+    return ord_lt(t, t_entry) ? c.back : ord_le(t_exit, t) ? c.fwd : c.est;
   endfunction
 
   // The registered reads.  Each loads while the stage before the reader holds a ray.
@@ -295,9 +305,8 @@ module traverse_setup
       dir8_q <= dir_q[ss[7]];
     end
     if (vs[8]) begin
-      dir9_q  <= dir8_q;
-      estx9_q <= estx_q[ss[8]];
-      esty9_q <= esty_q[ss[8]];
+      locx9_q <= candidates(estx_q[ss[8]], dir8_q.sx, -sidx_t'(1), size_s);
+      locy9_q <= candidates(esty_q[ss[8]], dir8_q.sy, -sidx_t'(1), size_s);
     end
     if (vs[9]) begin
       ipe_x10_q <= ipe_x;
@@ -350,10 +359,8 @@ module traverse_setup
     if (vs[5]) gone_q[ss[5]] <= ord_le(f24_ord(t_map_q[ss[5]]), ot0);
     // T(C+9) -> T(C+10): locate's correction
     if (vs[9]) begin
-      c0x_q <= correct(estx9_q, dir9_q.sx, f24_ord(ten_x), f24_ord(tex_x), ot0, -sidx_t'(1),
-                       size_s);
-      c0y_q <= correct(esty9_q, dir9_q.sy, f24_ord(ten_y), f24_ord(tex_y), ot0, -sidx_t'(1),
-                       size_s);
+      c0x_q <= correct(locx9_q, f24_ord(ten_x), f24_ord(tex_x), ot0);
+      c0y_q <= correct(locy9_q, f24_ord(ten_y), f24_ord(tex_y), ot0);
     end
   end
 
