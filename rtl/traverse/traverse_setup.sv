@@ -224,10 +224,21 @@ module traverse_setup
   f24_t  t_map4, t_end4;
   assign est_x  = clip_idx(sidx_t'(ip0x), -sidx_t'(1), size_s);
   assign est_y  = clip_idx(sidx_t'(ip0y), -sidx_t'(1), size_s);
-  assign t_map4 = f24_min(dir4_q.sx.mv ? tmx_raw : F24_POS_INF,
-                          dir4_q.sy.mv ? tmy_raw : F24_POS_INF);
-  assign t_end4 = (cfg_i.policy.clip && !ord_min_first(f24_ord(F24_ONE), f24_ord(t_map4)))
-                ? t_map4 : F24_ONE;
+  // t_map = min(tx, ty) (inf on an axis that does not move); t_end = t_map unless 1 < t_map.
+  // Whether 1 < t_map is taken from 1 < tx and 1 < ty beside the comparison of tx and ty (the
+  // three comparisons side by side, not two in series).
+  f24_t     tmx4, tmy4;
+  f24_ord_t otmx4, otmy4;
+  logic     x_first4;                 // t_map is tx
+  assign tmx4     = dir4_q.sx.mv ? tmx_raw : F24_POS_INF;
+  assign tmy4     = dir4_q.sy.mv ? tmy_raw : F24_POS_INF;
+  assign otmx4    = f24_ord(tmx4);
+  assign otmy4    = f24_ord(tmy4);
+  assign x_first4 = ord_min_first(otmx4, otmy4);
+  assign t_map4   = x_first4 ? tmx4 : tmy4;
+  assign t_end4   = (cfg_i.policy.clip && !(x_first4 ? ord_lt(f24_ord(F24_ONE), otmx4)
+                                                     : ord_lt(f24_ord(F24_ONE), otmy4)))
+                  ? t_map4 : F24_ONE;
 
   // T(C+5)
   f24_t      due_x, due_y, ben_x, bex_x, ben_y, bex_y;
