@@ -49,25 +49,25 @@ TRAVERSE: list[tuple[str, list[Sig]]] = [
         ("u_unit.su_ray.invalid", 1, BIN), ("u_unit.su_ray.done", 1, BIN)]),
     ("loop: v_q[s] stage s holds a ray, which is slot (ph_q - s) mod 18; S0 looks its height up", [
         ("u_unit.u_loop.v_q", 18, BIN), ("u_unit.u_loop.ph_q", 5, DEC),
-        ("u_unit.u_loop.live0", 1, BIN), ("u_unit.u_loop.addr0", 32, HEX)]),
+        ("u_unit.u_loop.live0_q", 1, BIN), ("u_unit.u_loop.addr0", 32, HEX)]),
     ("S1 height lookup -> S3 response (LOOKUP_LAT 2; rs_hit 0: goes round again)", [
         ("u_unit.lk_valid_o", 1, BIN), ("u_unit.lk_addr_o", 32, HEX), ("u_unit.lk_wide_o", 1, BIN),
         ("u_unit.rs_valid_i", 1, BIN), ("u_unit.rs_hit_i", 1, BIN), ("u_unit.rs_err_i", 1, BIN),
         ("u_unit.rs_data_i", 16, HEX)]),
     ("S3-S7: H, plane = 1 - H, crossing times, t_end", [
-        ("u_unit.u_loop.h8", 24, HEX), ("u_unit.u_loop.plane", 24, HEX),
+        ("u_unit.u_loop.h", 24, HEX), ("u_unit.u_loop.plane", 24, HEX),
         ("u_unit.u_loop.tx_raw", 24, HEX), ("u_unit.u_loop.ty_raw", 24, HEX),
         ("u_unit.u_loop.t_end", 24, HEX),
         ("u_unit.u_loop.inside7", 1, BIN)]),
     ("S12: descent (the new level, levels descended)", [
-        ("u_unit.u_loop.nk12", 4, DEC), ("u_unit.u_loop.dd", 4, DEC)]),
+        ("u_unit.u_loop.nk12_q", 4, DEC), ("u_unit.u_loop.dd12", 4, DEC)]),
     ("S16: the iteration's action and the next state", [
-        ("u_unit.u_loop.live16", 1, BIN), ("u_unit.u_loop.act16.is_hit", 1, BIN),
-        ("u_unit.u_loop.act16.down", 1, BIN), ("u_unit.u_loop.act16.miss", 1, BIN),
+        ("u_unit.u_loop.live16", 1, BIN), ("u_unit.u_loop.act16_q.is_hit", 1, BIN),
+        ("u_unit.u_loop.act16_q.down", 1, BIN), ("u_unit.u_loop.act16_q.miss", 1, BIN),
         ("u_unit.u_loop.iter16", 1, BIN), ("u_unit.u_loop.hit16", 1, BIN),
         ("u_unit.u_loop.down16", 1, BIN), ("u_unit.u_loop.cross16", 1, BIN),
         ("u_unit.u_loop.miss16", 1, BIN), ("u_unit.u_loop.err16", 1, BIN),
-        ("u_unit.u_loop.cap16", 1, BIN), ("u_unit.u_loop.it1", 16, DEC)]),
+        ("u_unit.u_loop.cap16", 1, BIN), ("u_unit.u_loop.it16_q", 16, DEC)]),
     ("S17: retire / admit a new ray", [
         ("u_unit.u_loop.retire", 1, BIN), ("u_unit.u_loop.admit", 1, BIN),
         ("u_unit.u_loop.bypass", 1, BIN), ("u_unit.u_loop.busy_o", 5, DEC)]),
