@@ -57,7 +57,7 @@ TRAVERSE: list[tuple[str, list[Sig]]] = [
     ("S3-S7: H, plane = 1 - H, crossing times, t_end", [
         ("u_unit.u_loop.h", 24, HEX), ("u_unit.u_loop.plane", 24, HEX),
         ("u_unit.u_loop.tx_raw", 24, HEX), ("u_unit.u_loop.ty_raw", 24, HEX),
-        ("u_unit.u_loop.t_end", 24, HEX),
+        ("u_unit.u_loop.tend6_q", 24, HEX),
         ("u_unit.u_loop.inside7", 1, BIN)]),
     ("S12: descent (the new level, levels descended)", [
         ("u_unit.u_loop.nk12_q", 4, DEC), ("u_unit.u_loop.dd12", 4, DEC)]),
