@@ -16,9 +16,11 @@
 // Organisation: SETS sets x WAYS ways of LINE_BYTES-byte lines; set index = addr[OFF_W +: SET_W],
 // tag = the bits above.  Per way two simple dual-port RAMs (cache_sdp_ram): the tags, and the
 // lines, written a whole line at a time and read one 16-bit word (the one holding the texel) at a
-// time; valid bits and replacement state are flops.  Replacement: an invalid way first (lowest
-// index), else tree pseudo-LRU (WAYS - 1 bits per set; exact LRU for WAYS = 2), updated by hits and
-// fills.  The lookup path is plain data flow, nowhere wider than 64 bits: a lookup reads one
+// time; valid bits and replacement state are flops (the replacement state is written the clock
+// after the hit or fill that updates it, from registers, with the pending update forwarded to the
+// next fill's victim choice: the same victims as an update in its own clock, see "directory
+// update").  Replacement: an invalid way first (lowest index), else tree pseudo-LRU (WAYS - 1
+// bits per set; exact LRU for WAYS = 2), updated by hits and fills.  The lookup path is plain data flow, nowhere wider than 64 bits: a lookup reads one
 // 16-bit word per way, never a whole line.
 //
 // Misses (stage 1, rs_hit_o = 0):
@@ -184,6 +186,13 @@ module height_cache
   // Fill (the clock after a line's last good beat).
   logic              fill_q;
   logic [MIDX_W-1:0] fill_idx_q;
+  logic [LA_W-1:0]   fill_la_q;   // its line address, registered with the last beat
+
+  // Directory updates of the previous clock, written into plru_q this clock (see "directory
+  // update"): a hit's way, then a fill's way.
+  logic              pu_hit_q, pu_fill_q;
+  logic [SET_W-1:0]  pu_hset_q, pu_fset_q;
+  logic [WAY_W-1:0]  pu_hway_q, pu_fway_q;
 
   // Pipeline.
   logic              s1_valid_q, s1_wide_q, s1_conflict_q;
@@ -202,13 +211,22 @@ module height_cache
   logic [TAG_W-1:0]  fill_tag;
   logic [WAY_W-1:0]  fill_way;
   logic [WAYS-1:0]   fill_vbits;
+  logic [PLRU_W-1:0] plru_wh, plru_wf, fill_plru;
 
-  assign fill_la    = mshr_la_q[fill_idx_q];
+  // The line address comes from a register loaded in the clock of the last beat (the MSHR's
+  // address cannot change from then until it is freed by this fill), so the fill clock starts
+  // from registers: set, tag, and the valid bits and replacement state read at that set.
+  assign fill_la    = fill_la_q;
   assign fill_set   = fill_la[SET_W-1:0];
   assign fill_tag   = fill_la[LA_W-1:SET_W];
   assign fill_vbits = valid_q[fill_set];
+  // The replacement state of the fill's set as of the end of the previous clock: plru_q plus
+  // the updates of the previous clock that are being written this clock.
+  assign fill_plru  = (pu_fill_q && pu_fset_q == fill_set) ? plru_wf
+                    : (pu_hit_q && pu_hset_q == fill_set)  ? plru_wh
+                    :                                        plru_q[fill_set];
   always_comb begin
-    fill_way = plru_victim(plru_q[fill_set]);
+    fill_way = plru_victim(fill_plru);
     for (int w = WAYS - 1; w >= 0; w--) begin
       if (!fill_vbits[w]) fill_way = WAY_W'(w);  // an invalid way first, the lowest
     end
@@ -330,11 +348,29 @@ module height_cache
 
   // ---------------------------------------------------------------- directory update
   // A hit marks its way most recently used; a fill (after the hit, on the same set) marks the
-  // filled way.
-  logic [PLRU_W-1:0] plru_hit, plru_fill;
-  assign plru_hit  = plru_touch(plru_q[s1_set], hit_way);
-  assign plru_fill = plru_touch((s1_hit && s1_set == fill_set) ? plru_hit : plru_q[fill_set],
-                                fill_way);
+  // filled way.  The valid bit is set in the fill clock; the replacement state is written one
+  // clock later, from registers (pu_*_q: the hit's set and way, the fill's set and way), so
+  // neither the tag compare behind a hit nor the victim choice of a fill drives the 512 sets'
+  // state registers.  Nothing reads plru_q in between except the next fill's victim choice,
+  // which sees the pending updates through fill_plru: the victim of every fill, and so every
+  // result, is the same as with the updates written in their own clock.
+  assign plru_wh = plru_touch(plru_q[pu_hset_q], pu_hway_q);
+  assign plru_wf = plru_touch((pu_hit_q && pu_hset_q == pu_fset_q) ? plru_wh : plru_q[pu_fset_q],
+                              pu_fway_q);
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      pu_hit_q  <= 1'b0;
+      pu_fill_q <= 1'b0;
+    end else begin
+      pu_hit_q  <= s1_hit;
+      pu_fill_q <= fill_q;
+    end
+    pu_hset_q <= s1_set;
+    pu_hway_q <= hit_way;
+    pu_fset_q <= fill_set;
+    pu_fway_q <= fill_way;
+  end
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -343,11 +379,9 @@ module height_cache
         plru_q[s]  <= '0;
       end
     end else begin
-      if (s1_hit) plru_q[s1_set] <= plru_hit;
-      if (fill_q) begin  // after the hit update: the filled way is the most recently used
-        plru_q[fill_set]            <= plru_fill;
-        valid_q[fill_set][fill_way] <= 1'b1;
-      end
+      if (pu_hit_q) plru_q[pu_hset_q] <= plru_wh;
+      if (pu_fill_q) plru_q[pu_fset_q] <= plru_wf;  // after the hit's: the filled way is the MRU
+      if (fill_q) valid_q[fill_set][fill_way] <= 1'b1;
     end
   end
 
@@ -413,6 +447,10 @@ module height_cache
       fill_q     <= r_acc && r_last_beat && !r_bad;
       fill_idx_q <= r_idx;
     end
+  end
+
+  always_ff @(posedge clk_i) begin
+    fill_la_q <= mshr_la_q[r_idx];
   end
 
   always_ff @(posedge clk_i) begin
@@ -497,8 +535,8 @@ module height_cache
       ($countones(mshr_busy) <= MSHRS) && (32'(arq_cnt_q) <= $countones(mshr_busy)))
     else $error("height_cache: MSHR / AR queue count out of range");
   fill_is_mshr_fill: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      fill_q |-> (mshr_state_q[fill_idx_q] == MSHR_FILL))
-    else $error("height_cache: fill without an MSHR in MSHR_FILL");
+      fill_q |-> (mshr_state_q[fill_idx_q] == MSHR_FILL) && (fill_la_q == mshr_la_q[fill_idx_q]))
+    else $error("height_cache: fill without an MSHR in MSHR_FILL, or of another line");
   hit_not_in_mshr: assert property (@(posedge clk_i) disable iff (!rst_ni)
       s1_hit |-> !(|mshr_match))
     else $error("height_cache: a line both in the cache and in an MSHR");
