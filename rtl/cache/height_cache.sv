@@ -211,20 +211,33 @@ module height_cache
   logic [TAG_W-1:0]  fill_tag;
   logic [WAY_W-1:0]  fill_way;
   logic [WAYS-1:0]   fill_vbits;
-  logic [PLRU_W-1:0] plru_wh, plru_wf, fill_plru;
+  logic [PLRU_W-1:0] plru_wh, plru_wf, fill_plru, fill_p1;
+  logic [SET_W-1:0]  pre_set;      // last-beat clock: the set of the line being completed
+  logic [WAYS-1:0]   pre_vbits_q;  // fill clock: that set's valid bits, read a clock earlier
+  logic [PLRU_W-1:0] pre_plru_q;   // ... and its replacement state (with the updates pending then)
 
-  // The line address comes from a register loaded in the clock of the last beat (the MSHR's
-  // address cannot change from then until it is freed by this fill), so the fill clock starts
-  // from registers: set, tag, and the valid bits and replacement state read at that set.
+  // The fill clock starts from registers.  The line address is loaded in the clock of the last
+  // beat (the MSHR's address cannot change from then until this fill frees it), and so are the
+  // set's valid bits and replacement state (the SETS-way reads), as they were at the start of
+  // that clock with the replacement updates then pending; the fill clock adds the updates of the
+  // last-beat clock itself (a fill's valid bit; a hit's, then a fill's way touched), which are in
+  // pu_*_q now.  So the victim is chosen from exactly the state an update in its own clock gives.
+  assign pre_set    = mshr_la_q[r_idx][SET_W-1:0];
   assign fill_la    = fill_la_q;
   assign fill_set   = fill_la[SET_W-1:0];
   assign fill_tag   = fill_la[LA_W-1:SET_W];
-  assign fill_vbits = valid_q[fill_set];
-  // The replacement state of the fill's set as of the end of the previous clock: plru_q plus
-  // the updates of the previous clock that are being written this clock.
-  assign fill_plru  = (pu_fill_q && pu_fset_q == fill_set) ? plru_wf
-                    : (pu_hit_q && pu_hset_q == fill_set)  ? plru_wh
-                    :                                        plru_q[fill_set];
+  assign fill_vbits = pre_vbits_q | ((pu_fill_q && pu_fset_q == fill_set)
+                                     ? WAYS'(1) << pu_fway_q : '0);
+  assign fill_p1    = (pu_hit_q && pu_hset_q == fill_set) ? plru_touch(pre_plru_q, pu_hway_q)
+                                                          : pre_plru_q;
+  assign fill_plru  = (pu_fill_q && pu_fset_q == fill_set) ? plru_touch(fill_p1, pu_fway_q)
+                                                           : fill_p1;
+  always_ff @(posedge clk_i) begin
+    pre_vbits_q <= valid_q[pre_set];
+    pre_plru_q  <= (pu_fill_q && pu_fset_q == pre_set) ? plru_wf
+                 : (pu_hit_q && pu_hset_q == pre_set)  ? plru_wh
+                 :                                       plru_q[pre_set];
+  end
   always_comb begin
     fill_way = plru_victim(fill_plru);
     for (int w = WAYS - 1; w >= 0; w--) begin
