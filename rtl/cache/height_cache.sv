@@ -187,6 +187,7 @@ module height_cache
   logic              fill_q;
   logic [MIDX_W-1:0] fill_idx_q;
   logic [LA_W-1:0]   fill_la_q;   // its line address, registered with the last beat
+  logic [MIDX_W-1:0] r_idx;       // the MSHR an R beat belongs to (R channel, below)
 
   // Directory updates of the previous clock, written into plru_q this clock (see "directory
   // update"): a hit's way, then a fill's way.
@@ -399,7 +400,6 @@ module height_cache
   end
 
   // ---------------------------------------------------------------- R channel
-  logic [MIDX_W-1:0]  r_idx;
   logic [EPOCH_W-1:0] r_epoch;
   logic               r_acc, r_last_beat, r_bad;
 
