@@ -513,10 +513,12 @@ module height_cache
       st_bytes_q  <= '0;
       st_lines_q  <= '0;
     end else begin
-      st_hits_q   <= st_hits_q + 48'(s1_hit);
-      st_misses_q <= st_misses_q + 48'(s1_valid_q && !s1_hit);
-      st_lines_q  <= st_lines_q + 48'(ar_pop);
-      if (r_acc) st_bytes_q <= st_bytes_q + 48'(BEAT_BYTES);
+      // The count + 1 from the register, the event as its enable: the hit (after the tag RAM
+      // read and the compare) does not enter a 48-bit carry chain.
+      if (s1_hit)                st_hits_q   <= st_hits_q + 48'd1;
+      if (s1_valid_q && !s1_hit) st_misses_q <= st_misses_q + 48'd1;
+      if (ar_pop)                st_lines_q  <= st_lines_q + 48'd1;
+      if (r_acc)                 st_bytes_q  <= st_bytes_q + 48'(BEAT_BYTES);
     end
   end
 
