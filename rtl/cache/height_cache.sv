@@ -16,12 +16,12 @@
 // Organisation: SETS sets x WAYS ways of LINE_BYTES-byte lines; set index = addr[OFF_W +: SET_W],
 // tag = the bits above.  Per way two simple dual-port RAMs (cache_sdp_ram): the tags, and the
 // lines, written a whole line at a time and read one 16-bit word (the one holding the texel) at a
-// time; valid bits and replacement state are flops (the replacement state is written the clock
-// after the hit or fill that updates it, from registers, with the pending update forwarded to the
-// next fill's victim choice: the same victims as an update in its own clock, see "directory
-// update").  Replacement: an invalid way first (lowest index), else tree pseudo-LRU (WAYS - 1
-// bits per set; exact LRU for WAYS = 2), updated by hits and fills.  The lookup path is plain data flow, nowhere wider than 64 bits: a lookup reads one
-// 16-bit word per way, never a whole line.
+// time; valid bits and replacement state are flops.  Replacement: an invalid way first (lowest
+// index), else tree pseudo-LRU (WAYS - 1 bits per set; exact LRU for WAYS = 2), updated by hits
+// and fills.  Timing only, results unchanged: a fill's set state is read in the last-beat clock
+// and the replacement state is written the clock after its update, with the pending updates
+// forwarded (see "fill" and "directory update").  The lookup path is plain data flow, nowhere
+// wider than 64 bits: a lookup reads one 16-bit word per way, never a whole line.
 //
 // Misses (stage 1, rs_hit_o = 0):
 //   - the line is already held by an MSHR (being read, or errored): merged, no new read;
