@@ -15,6 +15,13 @@ This is :func:`tb.common.fp_unit.check_pipeline` with that side band:
 * the data outputs of valid slots are compared bit for bit with the expected arrays at the end,
   and the count is recorded with :func:`tb.common.report.record` (mismatches included).
 
+Units that turn one operand set into several results (``jobs`` > 1: mip_level gives the colour
+texture's level, then the normal map's) show result ``j`` of an operand set ``latency + j``
+enabled edges after it, and need ``spacing`` >= ``jobs`` enabled clocks between operand sets:
+after a valid slot the driver puts ``spacing - 1`` bubbles; the expected arrays then hold
+``jobs`` entries per operand set (operand set ``k``'s result ``j`` at ``k * jobs + j``) and
+``tag_o`` repeats the tag.
+
 The unit's pipeline must hold only bubbles when :meth:`ValidPipe.run` starts: after
 :meth:`ValidPipe.reset` or a previous :meth:`run` (which stops when its last operand set came
 out, so that only bubbles follow it).  Configuration inputs are set by the caller between runs.
@@ -38,8 +45,12 @@ class ValidPipe:
     """One unit under test; starts its clock and keeps the count of vectors checked."""
 
     def __init__(self, dut, latency: int, data_in: list[str], data_out: list[str],
-                 report_what: str) -> None:
+                 report_what: str, jobs: int = 1, spacing: int = 1) -> None:
+        if spacing < jobs:
+            raise ValueError("spacing must be at least jobs (results would overlap)")
         self.dut = dut
+        self.jobs = jobs            # results per operand set, in consecutive enabled clocks
+        self.spacing = spacing      # enabled clocks from one operand set to the next, at least
         self.report_what = report_what  # the comparison's name in tb/common/report.py's table
         self.latency = latency
         self.data_in = data_in
@@ -73,8 +84,8 @@ class ValidPipe:
         d = self.dut
         d.rst_ni.value = 1
         d.en_i.value = 1
-        for _ in range(self.latency):
-            d.valid_i.value = 1
+        for i in range(self.latency):
+            d.valid_i.value = int(i % self.spacing == 0)
             d.tag_i.value = int(rng.integers(0, 1 << self.tag_w))
             await RisingEdge(d.clk_i)
             await FallingEdge(d.clk_i)
@@ -86,7 +97,7 @@ class ValidPipe:
         assert int(d.valid_o.value) == 0, "rst_ni with en_i = 0 did not clear valid_o"
         d.rst_ni.value = 1
         d.valid_i.value = 0
-        for _ in range(self.latency + 2):
+        for _ in range(self.latency + self.jobs + 2):
             d.en_i.value = 1
             await RisingEdge(d.clk_i)
             await FallingEdge(d.clk_i)
@@ -101,7 +112,7 @@ class ValidPipe:
         stream on any mismatch (up to 10 reported per output; a mismatching operand set counts
         once).  Returns the count checked."""
         d = self.dut
-        lat = self.latency
+        lat, jobs = self.latency, self.jobs
         n = len(next(iter(inputs.values())))
         in_lists = {k: [int(x) for x in inputs[k]] for k in self.data_in}
         tags = rng.integers(0, 1 << self.tag_w, n)
@@ -112,17 +123,22 @@ class ValidPipe:
         junk_idx = rng.integers(0, n, m).tolist()
         junk_valid = rng.integers(0, 2, m).tolist()
         junk_tag = rng.integers(0, 1 << self.tag_w, m).tolist()
-        hist: collections.deque = collections.deque([-1] * lat, maxlen=lat)  # -1: a bubble
+        # The operand set of each of the last lat + jobs - 1 enabled clocks (-1: a bubble).
+        depth = lat + jobs - 1
+        hist: collections.deque = collections.deque([-1] * depth, maxlen=depth)
         got: dict[str, list[int]] = {k: [] for k in ["tag_o"] + self.data_out}
         got_idx: list[int] = []
         d.rst_ni.value = 1
         prev = self.sample()
         issued = cyc = 0
-        while len(got_idx) < n:
+        gap = 0  # enabled clocks still to leave empty after the last operand set
+        while len(got_idx) < n * jobs:
             j = cyc % m
             cyc += 1
             en = en_seq[j]
-            take = en and issued < n and not bub_seq[j]
+            take = en and issued < n and not bub_seq[j] and gap == 0
+            if en:
+                gap = self.spacing - 1 if take else max(gap - 1, 0)
             k = issued if take else junk_idx[j]
             for name, s in self.in_sigs.items():
                 s.value = in_lists[name][k]
@@ -136,7 +152,9 @@ class ValidPipe:
                 hist.append(issued if take else -1)
                 if take:
                     issued += 1
-                slot = hist[0]
+                # result jb of the operand set taken lat + jb enabled edges ago
+                slot = next((hist[depth - lat - jb] * jobs + jb for jb in range(jobs)
+                             if hist[depth - lat - jb] >= 0), -1)
                 if now["valid_o"] != int(slot >= 0):
                     raise AssertionError(f"{what}: valid_o = {now['valid_o']} at clock {cyc}, "
                                          f"expected {int(slot >= 0)}")
@@ -151,24 +169,28 @@ class ValidPipe:
         d.valid_i.value = 0
         d.en_i.value = 0
         order = np.array(got_idx)
-        assert np.array_equal(order, np.arange(n)), f"{what}: operand sets out of order"
+        assert np.array_equal(order, np.arange(n * jobs)), f"{what}: operand sets out of order"
         expect = dict(outputs)
-        expect["tag_o"] = tags
+        expect["tag_o"] = np.repeat(tags, jobs)
         mism = []
         for name in got:
             g = np.array(got[name], dtype=np.int64)
             e = np.asarray(expect[name], dtype=np.int64)
             bad = np.nonzero(g != e)[0]
             for b in bad[:10]:
-                desc = describe(int(b)) if describe else ", ".join(
-                    f"{kk}=0x{int(v[b]):06x}" for kk, v in inputs.items())
+                k = int(b) // jobs
+                desc = describe(k) if describe else ", ".join(
+                    f"{kk}=0x{int(v[k]):06x}" for kk, v in inputs.items())
+                if jobs > 1:
+                    desc += f" (result {int(b) % jobs})"
                 mism.append(f"{what}: {name}: {desc}: got 0x{int(g[b]):06x} "
                             f"expected 0x{int(e[b]):06x}")
             if len(bad):
-                mism.append(f"{what}: {name}: {len(bad)} mismatches of {n}")
+                mism.append(f"{what}: {name}: {len(bad)} mismatches of {n * jobs}")
         bad_any = np.zeros(n, dtype=bool)
         for name in got:
-            bad_any |= np.array(got[name], dtype=np.int64) != np.asarray(expect[name], np.int64)
+            bad = np.array(got[name], dtype=np.int64) != np.asarray(expect[name], np.int64)
+            bad_any |= bad.reshape(n, jobs).any(axis=1)
         nbad = int(bad_any.sum())
         self.checked += n
         self.mismatches += nbad
