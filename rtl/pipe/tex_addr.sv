@@ -26,15 +26,24 @@
 // reset; a lookup taken on an enabled edge with valid_i = 1 shows at the outputs after 8 enabled
 // edges and holds while en_i is 0.  Configuration (cfg_*) must be static while busy.
 //
-// Configuration of one texture (model.texture.Texture): su, sv = Texture.scale_for (engine words),
-// per level k < TEX_LEVELS its width W_k and height H_k (1 .. 32768; level_sizes), the base byte
-// address and per-level byte offsets (Texture.level_offsets).  Only levels 0 .. levels - 1 of the
-// texture are meaningful: level_i comes from mip_level, clamped to levels - 1 <= TEX_LEVELS - 1
-// (a level_i above TEX_LEVELS - 1 is read as TEX_LEVELS - 1).
+// Configuration of each of NTEX textures (model.texture.Texture; index t of every cfg_* array is
+// texture t): su, sv = Texture.scale_for (engine words), per level k < TEX_LEVELS its width W_k
+// and height H_k (1 .. 32768; level_sizes), the base byte address and per-level byte offsets
+// (Texture.level_offsets).  Only levels 0 .. levels - 1 of a texture are meaningful: level_i
+// comes from mip_level, clamped to levels - 1 <= TEX_LEVELS - 1 (a level_i above TEX_LEVELS - 1
+// is read as TEX_LEVELS - 1).
+//
+// Textures sharing the unit (NTEX > 1): each lookup names its texture with tex_i, which travels
+// down the pipeline with the level; each stage reads the configuration of its own lookup's
+// texture (su, sv in S0, W_L and H_L in S4, base and level_off in S5), so lookups of different
+// textures may follow each other clock by clock.  dm_pipeline uses one unit for the colour
+// texture (0) and the normal map (1).  A tex_i of NTEX or more reads texture NTEX - 1; with NTEX
+// = 1 tex_i is ignored.  With NTEX > 1 the inputs and the selected scales are registered first,
+// so the latency is TEX_ADDR_LAT + 1 (the stage numbers below count from that register).
 //
 // Stage schedule (S0 = the input ports; "a -> b": a unit takes operands in Sa, result in Sb):
-//   S0  ut = mul(u, su), vt = mul(v, sv)                           2 f24_mul       S0 -> S1
-//       L (saturated to 0 .. 15) delayed S0 -> S4
+//   S0  ut = mul(u, su), vt = mul(v, sv)  (su, sv of texture tex_i) 2 f24_mul       S0 -> S1
+//       L (saturated to 0 .. 15) and the texture delayed S0 -> S5
 //   S1  ut 2^-L, vt 2^-L (exponent arithmetic, in a register of its own: in front of the
 //       adder it cost the adder's clock)                             register        S1 -> S2
 //   S2  x = add(ut 2^-L, -0.5), y likewise                           2 f24_add       S2 -> S4
@@ -53,21 +62,24 @@ module tex_addr
   import pipe_pkg::*;
 #(
   parameter int unsigned TAG_W  = 8,          // side-band bits carried from tag_i to tag_o
-  parameter int unsigned ADDR_W = TEX_ADDR_W  // byte address width (addresses wrap modulo 2^ADDR_W)
+  parameter int unsigned ADDR_W = TEX_ADDR_W, // byte address width (addresses wrap modulo 2^ADDR_W)
+  parameter int unsigned NTEX   = 1,          // textures sharing the unit (lookups pick by tex_i)
+  parameter int unsigned SEL_W  = (NTEX > 1) ? $clog2(NTEX) : 1  // tex_i width
 ) (
   input  logic                                 clk_i,
   input  logic                                 rst_ni,           // synchronous, active low: valid
   input  logic                                 en_i,             // clock enable (0 = stall)
-  // configuration of the texture (static while busy)
-  input  f24_t                                 cfg_su_i,         // u scale: engine(Wt / W)
-  input  f24_t                                 cfg_sv_i,         // v scale: engine(Ht / H)
-  input  logic [TEX_LEVELS-1:0][TEX_DIM_W-1:0] cfg_width_i,      // W_k of level k, >= 1
-  input  logic [TEX_LEVELS-1:0][TEX_DIM_W-1:0] cfg_height_i,     // H_k of level k, >= 1
-  input  logic [ADDR_W-1:0]                    cfg_base_i,       // byte address of the texture
-  input  logic [TEX_LEVELS-1:0][ADDR_W-1:0]    cfg_level_off_i,  // byte offset of level k
+  // configuration of the textures (static while busy), [t] = texture t
+  input  f24_t [NTEX-1:0]                      cfg_su_i,         // u scale: engine(Wt / W)
+  input  f24_t [NTEX-1:0]                      cfg_sv_i,         // v scale: engine(Ht / H)
+  input  logic [NTEX-1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0] cfg_width_i,  // W_k of level k, >= 1
+  input  logic [NTEX-1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0] cfg_height_i, // H_k of level k, >= 1
+  input  logic [NTEX-1:0][ADDR_W-1:0]          cfg_base_i,       // byte address of the texture
+  input  logic [NTEX-1:0][TEX_LEVELS-1:0][ADDR_W-1:0] cfg_level_off_i, // byte offset of level k
   // lookups
   input  logic                                 valid_i,
   input  logic [TAG_W-1:0]                     tag_i,
+  input  logic [SEL_W-1:0]                     tex_i,            // the texture (NTEX > 1)
   input  f24_t                                 u_i,              // hit u, v in level-0 texel
   input  f24_t                                 v_i,              // units of the height map
   input  logic [MIP_LEVEL_W-1:0]               level_i,          // level L (mip_level)
@@ -125,14 +137,51 @@ module tex_addr
          :              {1'b1, dim_t'(k)};
   endfunction
 
-  // ---- S0: the scales; the level -------------------------------------------------------------
+  // ---- S0: the texture; the scales; the level -------------------------------------------------
+  typedef logic [SEL_W-1:0] sel_t;
+  sel_t tex_in;
   lvl_t lvl_in;
   f24_t ut, vt;                                // S1
+  if (NTEX > 1 && (1 << SEL_W) == NTEX) begin : g_sel_pow2
+    assign tex_in = tex_i;                     // every tex_i names a texture
+  end else if (NTEX > 1) begin : g_sel
+    assign tex_in = (tex_i > sel_t'(NTEX - 1)) ? sel_t'(NTEX - 1) : tex_i;
+  end else begin : g_one
+    logic unused_tex;                          // one texture: tex_i is ignored
+    assign unused_tex = ^tex_i;
+    assign tex_in = '0;
+  end
   assign lvl_in = (level_i > MIP_LEVEL_W'(TEX_LEVELS - 1)) ? lvl_t'(TEX_LEVELS - 1)
                                                           : lvl_t'(level_i);
-  f24_mul u_ut (.clk_i, .en_i, .a_i(u_i), .b_i(cfg_su_i), .y_o(ut));
-  f24_mul u_vt (.clk_i, .en_i, .a_i(v_i), .b_i(cfg_sv_i), .y_o(vt));
+  // The multipliers' operands: the ports (NTEX = 1), or with NTEX > 1 the input register, which
+  // holds the lookup and its texture's scales (selected by tex_i in front of the register, not
+  // in front of the multipliers: that select cost the unit its clock, 92.9 MHz out of context).
+  f24_t u0, v0, su0, sv0;
+  lvl_t lvl0;
+  sel_t tex0;
+  if (NTEX > 1) begin : g_in_reg
+    always_ff @(posedge clk_i) begin
+      if (en_i) begin
+        u0   <= u_i;
+        v0   <= v_i;
+        su0  <= cfg_su_i[tex_in];
+        sv0  <= cfg_sv_i[tex_in];
+        lvl0 <= lvl_in;
+        tex0 <= tex_in;
+      end
+    end
+  end else begin : g_in_wire
+    assign u0   = u_i;
+    assign v0   = v_i;
+    assign su0  = cfg_su_i[0];
+    assign sv0  = cfg_sv_i[0];
+    assign lvl0 = lvl_in;
+    assign tex0 = tex_in;
+  end
+  f24_mul u_ut (.clk_i, .en_i, .a_i(u0), .b_i(su0), .y_o(ut));
+  f24_mul u_vt (.clk_i, .en_i, .a_i(v0), .b_i(sv0), .y_o(vt));
   lvl_t lvl_q [1:S_CLP];                       // L in stages S1 .. S5
+  sel_t tex_q [1:S_CLP];                       // the texture in stages S1 .. S5
 
   // ---- S1: 2^-L; S2: - 0.5 -------------------------------------------------------------------
   f24_t ul_q, vl_q;                            // S2: ut 2^-L, vt 2^-L
@@ -184,8 +233,12 @@ module tex_addr
   // ---- registers ------------------------------------------------------------------------------
   always_ff @(posedge clk_i) begin
     if (en_i) begin
-      lvl_q[1] <= lvl_in;
-      for (int s = 2; s <= S_CLP; s++) lvl_q[s] <= lvl_q[s-1];
+      lvl_q[1] <= lvl0;
+      tex_q[1] <= tex0;
+      for (int s = 2; s <= S_CLP; s++) begin
+        lvl_q[s] <= lvl_q[s-1];
+        tex_q[s] <= tex_q[s-1];
+      end
       // S1 -> S2
       ul_q <= f24_pow2_down(ut, lvl_q[S_P2]);
       vl_q <= f24_pow2_down(vt, lvl_q[S_P2]);
@@ -196,13 +249,13 @@ module tex_addr
         y_q[s] <= y_q[s-1];
       end
       // S4 -> S5
-      w_q[S_CLP] <= cfg_width_i[lvl_q[S_IDX]];
-      h_q        <= cfg_height_i[lvl_q[S_IDX]];
+      w_q[S_CLP] <= cfg_width_i[tex_q[S_IDX]][lvl_q[S_IDX]];
+      h_q        <= cfg_height_i[tex_q[S_IDX]][lvl_q[S_IDX]];
       // S5 -> S6
       w_q[S_FX]  <= w_q[S_CLP];
       {dj_q[S_FX], j0c_q} <= jc;
       {di_q, i0c_q}       <= ic;
-      lb_q[S_FX] <= cfg_base_i + cfg_level_off_i[lvl_q[S_CLP]];
+      lb_q[S_FX] <= cfg_base_i[tex_q[S_CLP]] + cfg_level_off_i[tex_q[S_CLP]][lvl_q[S_CLP]];
       // S6 -> S7
       r_q  <= ROW_W'(i0c_q) * ROW_W'(w_q[S_FX]) + ROW_W'(j0c_q);
       rs_q <= di_q ? w_q[S_FX] : '0;
@@ -217,7 +270,7 @@ module tex_addr
   end
 
   // ---- valid and tag ---------------------------------------------------------------------------
-  pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(S_OUT)) u_valid_tag (
+  pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(S_OUT + ((NTEX > 1) ? 1 : 0))) u_valid_tag (
     .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o);
 
 endmodule

@@ -11,6 +11,11 @@ Textures (only their level sizes matter here: zero-stride stand-ins for the larg
   map (scale 2), 20000 x 32768 (16 levels: the largest configuration, 3.5 GB; level_i 16 .. 31
   read as 15),
   and a texture whose addresses wrap past 2^ADDR_W.
+With NTEX > 1 (the unit shared by several textures, as dm_pipeline shares one for the colour
+texture and the normal map) each phase configures NTEX of these textures at once and streams
+their lookups interleaved in random order, each with its texture in tex_i (and, when tex_i has
+more codes than textures, codes above NTEX - 1 that must read texture NTEX - 1); with NTEX = 1
+tex_i carries random bits that must be ignored.
 Lookups per texture (every level):
   random       u, v uniform over the map and 10% beyond it on each side, random level
   centres      texel centres and halfway points of every level (exact with scale 1)
@@ -35,10 +40,10 @@ from model.arith import ENGINES
 from tb.common import fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 
-LATENCY = 8  # pipe_pkg::TEX_ADDR_LAT
+LATENCY = 8  # pipe_pkg::TEX_ADDR_LAT (+ 1 with NTEX > 1)
 TEX_LEVELS = 16  # pipe_pkg::TEX_LEVELS
 DIM_W = 16  # pipe_pkg::TEX_DIM_W
-INS = ["u_i", "v_i", "level_i"]
+INS = ["u_i", "v_i", "level_i", "tex_i"]
 OUTS = ["addr00_o", "addr01_o", "addr10_o", "addr11_o", "fx_o", "fy_o"]
 AR = ENGINES["f24"]
 
@@ -139,28 +144,34 @@ def expected(tex: texture.Texture, ins: dict[str, np.ndarray], su: int, sv: int,
     return out
 
 
-def configure(dut, rng: np.random.Generator, tex: texture.Texture, su: int, sv: int,
-              base: int) -> None:
-    """Drive the cfg_* ports (levels beyond the texture's: random junk)."""
-    addr_w = len(dut.cfg_base_i)
-    offs = tex.level_offsets()
-    wv = hv = ov = 0
-    for k in range(TEX_LEVELS):
-        if k < tex.n_levels:
-            w, h = tex.level_size(k)
-            o = offs[k]
-        else:
-            w, h = (int(x) for x in rng.integers(1, 1 << DIM_W, 2))
-            o = int(rng.integers(0, 1 << addr_w))
-        wv |= w << (DIM_W * k)
-        hv |= h << (DIM_W * k)
-        ov |= o << (addr_w * k)
+def configure(dut, rng: np.random.Generator,
+              textures: list[tuple[texture.Texture, int, int, int]]) -> None:
+    """Drive the cfg_* ports with (texture, su, sv, base) per texture index (levels beyond a
+    texture's own: random junk)."""
+    ntex = len(textures)
+    addr_w = len(dut.cfg_base_i) // ntex
+    su = sv = wv = hv = ov = bv = 0
+    for t, (tex, su_t, sv_t, base) in enumerate(textures):
+        offs = tex.level_offsets()
+        for k in range(TEX_LEVELS):
+            if k < tex.n_levels:
+                w, h = tex.level_size(k)
+                o = offs[k]
+            else:
+                w, h = (int(x) for x in rng.integers(1, 1 << DIM_W, 2))
+                o = int(rng.integers(0, 1 << addr_w))
+            wv |= w << (DIM_W * (t * TEX_LEVELS + k))
+            hv |= h << (DIM_W * (t * TEX_LEVELS + k))
+            ov |= o << (addr_w * (t * TEX_LEVELS + k))
+        su |= su_t << (24 * t)
+        sv |= sv_t << (24 * t)
+        bv |= base << (addr_w * t)
     dut.cfg_su_i.value = su
     dut.cfg_sv_i.value = sv
     dut.cfg_width_i.value = wv
     dut.cfg_height_i.value = hv
     dut.cfg_level_off_i.value = ov
-    dut.cfg_base_i.value = base
+    dut.cfg_base_i.value = bv
 
 
 def configs(rng: np.random.Generator, addr_w: int) -> list[tuple[str, texture.Texture, int, int,
@@ -191,35 +202,59 @@ def configs(rng: np.random.Generator, addr_w: int) -> list[tuple[str, texture.Te
 async def tex_addr_random_and_directed(dut):
     rng = np.random.default_rng(fp_unit.seed())
     addr_w = len(dut.addr00_o)
-    pipe = ValidPipe(dut, LATENCY, INS, OUTS, "RTL vs model.texture.lookup_addresses (f24)")
+    ntex = len(dut.cfg_su_i) // 24
+    sel_codes = 1 << len(dut.tex_i)
+    # NTEX > 1: one clock more (the input register that selects the texture's scales)
+    pipe = ValidPipe(dut, LATENCY + (ntex > 1), INS, OUTS,
+                     "RTL vs model.texture.lookup_addresses (f24)")
     await pipe.reset()
+    cfgs = configs(rng, addr_w)
     total, lines = 0, []
-    for i, (name, tex, mw, mh, base) in enumerate(configs(rng, addr_w)):
-        su_v, sv_v = tex.scale_for(AR, mw, mh)
-        su, sv = int(f24w(su_v)[0]), int(f24w(sv_v)[0])
-        scale = (float(su_v[0]), float(sv_v[0]))
-        sweep = scale == (1.0, 1.0)
-        ins, counts = lookups(rng, tex, mw, mh, scale, fp_unit.vectors() if i == 0 else 3000,
-                              sweep, tex.n_levels == TEX_LEVELS)
+    for i in range(len(cfgs)):
+        group = [cfgs[(i + t) % len(cfgs)] for t in range(ntex)]  # texture t of this phase
+        textures, parts, names = [], [], []
+        for t, (name, tex, mw, mh, base) in enumerate(group):
+            su_v, sv_v = tex.scale_for(AR, mw, mh)
+            su, sv = int(f24w(su_v)[0]), int(f24w(sv_v)[0])
+            scale = (float(su_v[0]), float(sv_v[0]))
+            sweep = scale == (1.0, 1.0)
+            n_random = fp_unit.vectors() if i == 0 else 3000
+            ins_t, counts = lookups(rng, tex, mw, mh, scale, n_random // ntex, sweep,
+                                    tex.n_levels == TEX_LEVELS)
+            n = len(ins_t["u_i"])
+            if ntex == 1:
+                sel = rng.integers(0, sel_codes, n)            # ignored by the unit
+            elif t == ntex - 1 and sel_codes > ntex:           # codes above NTEX - 1: the last
+                sel = np.where(rng.random(n) < 0.3, rng.integers(ntex, sel_codes, n), t)
+            else:
+                sel = np.full(n, t)
+            ins_t["tex_i"] = sel.astype(np.int64)
+            textures.append((tex, su, sv, base))
+            exp_t = expected(tex, ins_t, su, sv, base, addr_w)
+            parts.append((ins_t, exp_t))
+            names.append(f"{name} (su=0x{su:06x} sv=0x{sv:06x}, {tex.n_levels} levels)")
+            lines.append(f"{name}: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
+        ins = {k: np.concatenate([p[0][k] for p in parts]) for k in INS}
+        exp = {k: np.concatenate([p[1][k] for p in parts]) for k in OUTS}
         perm = rng.permutation(len(ins["u_i"]))
         ins = {k: v[perm] for k, v in ins.items()}
-        configure(dut, rng, tex, su, sv, base)  # pipeline drained: only bubbles in flight
-        exp = expected(tex, ins, su, sv, base, addr_w)
+        exp = {k: v[perm] for k, v in exp.items()}
+        configure(dut, rng, textures)  # pipeline drained: only bubbles in flight
 
-        def describe(k: int, ins=ins, name=name) -> str:
-            return (f"[{name}] u=0x{int(ins['u_i'][k]):06x} v=0x{int(ins['v_i'][k]):06x} "
-                    f"L={int(ins['level_i'][k])}")
+        def describe(k: int, ins=ins, names=names) -> str:
+            t = min(int(ins["tex_i"][k]), ntex - 1) if ntex > 1 else 0
+            return (f"[{names[t]}] tex_i={int(ins['tex_i'][k])} u=0x{int(ins['u_i'][k]):06x} "
+                    f"v=0x{int(ins['v_i'][k]):06x} L={int(ins['level_i'][k])}")
 
         nan = int(np.count_nonzero(f24.is_nan(exp["fx_o"]) | f24.is_nan(exp["fy_o"])))
-        total += await pipe.run(f"{name} (su=0x{su:06x} sv=0x{sv:06x}, {tex.n_levels} levels, "
-                                f"{nan} NaN weights)", ins, exp, rng, describe=describe)
-        lines.append(f"{name}: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
+        total += await pipe.run(" + ".join(names) + f", {nan} NaN weights", ins, exp, rng,
+                                describe=describe)
         if i == 1:
             await pipe.flush_check(rng)
     for ln in lines:
         dut._log.info("  %s", ln)
-    dut._log.info("VECTORS tex_addr: %d lookups over %d textures, 0 mismatches", total,
-                  len(lines))
+    dut._log.info("VECTORS tex_addr: %d lookups over %d textures (NTEX %d), 0 mismatches", total,
+                  len(lines), ntex)
 
 
 def test_tex_addr():
@@ -229,3 +264,15 @@ def test_tex_addr():
 def test_tex_addr_tag1_addr40():
     runner.run("tex_addr", "test_tex_addr", Path(__file__).parent,
                parameters={"TAG_W": 1, "ADDR_W": 40}, extra_env={"VECTORS": "3000"})
+
+
+def test_tex_addr_ntex2():
+    """Two textures sharing the unit, as in dm_pipeline (colour and normal map)."""
+    runner.run("tex_addr", "test_tex_addr", Path(__file__).parent,
+               parameters={"TAG_W": 9, "NTEX": 2}, extra_env={"VECTORS": "6000"})
+
+
+def test_tex_addr_ntex3():
+    """Three textures: tex_i = 3 must read texture 2."""
+    runner.run("tex_addr", "test_tex_addr", Path(__file__).parent,
+               parameters={"NTEX": 3}, extra_env={"VECTORS": "3000"})
