@@ -108,9 +108,9 @@ PIPELINE_BACK: list[tuple[str, list[Sig]]] = [
         ("res_hit", 1, BIN), ("res_t", 24, HEX), ("res_u", 24, HEX), ("res_v", 24, HEX),
         ("res_iters", 16, DEC), ("hit_adm", 1, BIN), ("miss_wr", 1, BIN),
         ("req_cnt", 5, DEC), ("hit_cnt", 7, DEC)]),
-    ("MIP level -> texture address units", [
-        ("mip_valid", 1, BIN), ("lvl_c", 5, DEC), ("lvl_n", 5, DEC),
-        ("ta_valid", 2, BIN)]),
+    ("MIP level -> texture address unit (colour, then normal map)", [
+        ("mip_valid", 1, BIN), ("mip_tex", 1, BIN), ("mip_lvl", 5, DEC),
+        ("ta_valid", 1, BIN), ("ta_tex", 1, BIN), ("ta_slot", "SLOT", DEC)]),
     ("texture cache requests / responses", [
         ("tc_req_valid", 1, BIN), ("tc_req_ready", 1, BIN), ("rq_sel_q", 1, BIN),
         ("rq_slot", "SLOT", DEC), ("tc_rsp_valid", 1, BIN), ("tc_rsp_err", 1, BIN),

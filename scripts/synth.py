@@ -67,7 +67,7 @@ BLOCKS = [
     Block("f24_to_index", "f24_to_index", what="float -> int20 (floor)"),
     Block("view_calc", "view_calc", {"TAG_W": 55}, what="view calculation"),
     Block("mip_level", "mip_level", {"TAG_W": 55, "TRIS": 16}, what="MIP level (+ triangle table)"),
-    Block("tex_addr", "tex_addr", {"TAG_W": 7}, what="texture address (one of two)"),
+    Block("tex_addr", "tex_addr", {"TAG_W": 8, "NTEX": 2}, what="texture address (both textures)"),
     Block("tex_filter", "tex_filter", {"TAG_W": 9}, what="bilinear filter"),
     Block("shade_unit", "shade_unit", {"TAG_W": 8}, what="colour (Blinn-Phong)"),
     Block("height_cache", "height_cache",
@@ -98,7 +98,7 @@ PAPER_TABLE1 = {
 PAPER_ROWS = {
     "View calc.": ("u_view",),
     "Traverse": ("u_trav",),
-    "Addr. calc.": ("u_mip", "g_addr"),
+    "Addr. calc.": ("u_mip", "u_addr"),
     "Color calc.": ("u_filter", "u_shade"),
 }
 UNIT_KINDS = ["f24_add", "f24_mul", "f24_div", "f24_cmp", "f24_sqrt", "f24_rsqrt", "f24_log2",

@@ -10,12 +10,16 @@
 // a negative Pl (log2 NaN) or lod NaN give level 0; Pl = +-0 (log2 = -Inf) gives level 0;
 // Pl = +Inf gives levels - 1.
 //
-// Fully pipelined, fixed latency MIP_LAT = 12 enabled clocks (pipe_pkg), one hit per clock, with
-// the conventions of view_calc: every register advances only while en_i is 1 (the enclosing
-// pipeline's stall), valid is reset by rst_ni (synchronous, active low), data registers have no
-// reset, a hit taken on an enabled edge with valid_i = 1 shows at the outputs after 12 enabled
-// edges and holds while en_i is 0.  Configuration (cfg_*, the table contents) must be static
-// while busy; the table's write port works whatever en_i is.
+// Fully pipelined, fixed latency, one hit every other enabled clock at most: the two textures
+// share one lod datapath.  A hit taken on an enabled edge with valid_i = 1 gives two results,
+// each a valid_o clock with the hit's tag: the colour texture's level (tex_o = 0) MIP_LAT = 13
+// enabled edges later (pipe_pkg) and the normal map's (tex_o = 1) on the next enabled edge.
+// valid_i must not be 1 on two consecutive enabled clocks (asserted; dm_pipeline admits a hit
+// at most every other clock).  The conventions of view_calc otherwise: every register advances
+// only while en_i is 1 (the enclosing pipeline's stall), valid is reset by rst_ni (synchronous,
+// active low), data registers have no reset, results hold while en_i is 0.  Configuration
+// (cfg_*, the table contents) must be static while busy; the table's write port works whatever
+// en_i is.
 //
 // Stage schedule (S0 = the input ports; "a -> b": a unit takes operands in Sa, result in Sb):
 //   S0   t seg                                                     f24_mul      S0 -> S1
@@ -23,14 +27,18 @@
 //   S1   Pl = Pl0 + t seg                                          f24_add      S1 -> S3
 //   S3   log2(Pl)                                                  f24_log2     S3 -> S6
 //   S5   triangle table read (both textures)                       tri_table    S5 -> S6
-//   S6   lod = log2(Pl) - log2Pb (colour, normal)                  2 f24_add    S6 -> S8
-//   S8   lod + 0.5                                                 2 f24_add    S8 -> S10
-//   S10  floor                                                     2 f24_to_index S10 -> S11
-//   S11  clamp to [0, levels - 1], mip_en                          register     S11 -> S12
-//   S12  outputs (straight from registers)
+//   S6   the job register: the colour job {log2(Pl), log2Pb colour} now, the normal map's
+//        {log2(Pl), log2Pb normal} held and taken the next enabled clock   register  S6 -> S7
+//   S7   lod = log2(Pl) - log2Pb                                   f24_add      S7 -> S9
+//   S9   lod + 0.5                                                 f24_add      S9 -> S11
+//   S11  floor                                                     f24_to_index S11 -> S12
+//   S12  clamp to [0, levels[tex] - 1], mip_en                     register     S12 -> S13
+//   S13  outputs (straight from registers); the normal map's a clock after the colour's
 // log2 runs at LAT = F24_LOG2_LAT = 3 (table / product + sum / normalise + round: over 100 MHz;
 // at its 2 clocks it limits the unit to about 50 MHz); the result is the same at either LAT.
-// Float units: 1 f24_mul, 5 f24_add, 1 f24_log2, 2 f24_to_index; a 2 x TRIS-word tri_table.
+// Float units: 1 f24_mul, 3 f24_add, 1 f24_log2, 1 f24_to_index; a 2 x TRIS-word tri_table.
+// (Before the textures shared the lod datapath: 5 f24_add and 2 f24_to_index, both levels of a
+// hit per clock, MIP_LAT 12.)
 module mip_level
   import f24_pkg::*;
   import pipe_pkg::*;
@@ -59,21 +67,22 @@ module mip_level
   input  f24_t                   seg_i,                // world length per unit t (view_calc)
   input  f24_t                   pl0_i,                // eye to entry point (world = texels)
   input  logic [TRI_W-1:0]       tri_i,                // triangle id
-  output logic                   valid_o,
-  output logic [TAG_W-1:0]       tag_o,
-  output logic [MIP_LEVEL_W-1:0] level_colour_o,
-  output logic [MIP_LEVEL_W-1:0] level_normal_o
+  output logic                   valid_o,              // a texture's level (two per hit)
+  output logic [TAG_W-1:0]       tag_o,                // the hit's tag (both results)
+  output logic                   tex_o,                // 0: colour texture, 1: normal map
+  output logic [MIP_LEVEL_W-1:0] level_o
 );
 
-  // Stage numbers (pipe_pkg latencies); S_OUT = MIP_LAT.
+  // Stage numbers (pipe_pkg latencies); S_OUT = MIP_LAT (the colour result).
   localparam int unsigned S_PL   = F24_MUL_LAT;              // 1
   localparam int unsigned S_LOG  = S_PL + F24_ADD_LAT;       // 3
-  localparam int unsigned S_LOD  = S_LOG + F24_LOG2_LAT;     // 6
-  localparam int unsigned S_TT   = S_LOD - TRI_TABLE_LAT;    // 5
-  localparam int unsigned S_HALF = S_LOD + F24_ADD_LAT;      // 8
-  localparam int unsigned S_IDX  = S_HALF + F24_ADD_LAT;     // 10
-  localparam int unsigned S_CLMP = S_IDX + F24_TO_INDEX_LAT; // 11
-  localparam int unsigned S_OUT  = S_CLMP + 1;               // 12
+  localparam int unsigned S_JOB  = S_LOG + F24_LOG2_LAT;     // 6
+  localparam int unsigned S_TT   = S_JOB - TRI_TABLE_LAT;    // 5
+  localparam int unsigned S_LOD  = S_JOB + 1;                // 7
+  localparam int unsigned S_HALF = S_LOD + F24_ADD_LAT;      // 9
+  localparam int unsigned S_IDX  = S_HALF + F24_ADD_LAT;     // 11
+  localparam int unsigned S_CLMP = S_IDX + F24_TO_INDEX_LAT; // 12
+  localparam int unsigned S_OUT  = S_CLMP + 1;               // 13
   if (S_OUT != MIP_LAT) begin : g_check_lat
     $error("mip_level: stage schedule does not add up to MIP_LAT");
   end
@@ -95,40 +104,77 @@ module mip_level
     .clk_i, .we_i(tt_we_i), .waddr_i(tt_waddr_i), .wdata_i(tt_wdata_i),
     .re_i(en_i), .raddr_i(tri_q[S_TT]), .rdata_colour_o(pb[0]), .rdata_normal_o(pb[1]));
 
-  // ---- S6 .. S12, per texture ----------------------------------------------------------------
-  logic [MIP_LEVEL_W:0]   levels [2];
-  logic [MIP_LEVEL_W-1:0] lvl_q  [2];   // S12
-  assign levels[0] = cfg_levels_colour_i;
-  assign levels[1] = cfg_levels_normal_i;
+  // ---- S6: the job register --------------------------------------------------------------
+  // The hit's valid and tag reach S6 through u_hit; its colour job goes into the job register
+  // at once, its normal-map job (held in nrm_*) the enabled clock after.
+  logic             v6;                 // a hit in S6
+  logic [TAG_W-1:0] tag6;
+  logic             nrm_pend_q;         // the held normal-map job waits
+  logic [TAG_W-1:0] nrm_tag_q;
+  f24_t             nrm_l2_q, nrm_pb_q;
+  logic             job_valid_q, job_tex_q;
+  logic [TAG_W-1:0] job_tag_q;
+  f24_t             job_l2_q, job_pb_q;  // S7: the adder's operands
 
-  for (genvar x = 0; x < 2; x++) begin : g_tex
-    f24_t lod, lodh;
-    logic signed [MIP_IDX_W-1:0] idx;
-    logic                        unused_sat;
-    logic [MIP_LEVEL_W-1:0]      top;    // levels - 1 (0 for a count of 0)
-    logic [MIP_LEVEL_W-1:0]      lvl;
-    // S6: lod = log2(Pl) - log2Pb (subtract: flip the sign bit)
-    f24_add u_lod (.clk_i, .en_i, .a_i(l2), .b_i({~pb[x][23], pb[x][22:0]}), .y_o(lod));
-    // S8: lod + 0.5
-    f24_add u_half (.clk_i, .en_i, .a_i(lod), .b_i(F24_HALF), .y_o(lodh));
-    // S10: floor
-    f24_to_index #(.W(MIP_IDX_W)) u_idx (.clk_i, .en_i, .a_i(lodh), .idx_o(idx),
-                                         .sat_o(unused_sat));
-    // S11: clamp(idx, 0, levels - 1); level 0 with MIP mapping off
-    // (a count of 0 acts as 1, one above 2^MIP_LEVEL_W as 2^MIP_LEVEL_W)
-    assign top = (levels[x] == '0)         ? '0
-               : levels[x][MIP_LEVEL_W]    ? '1
-               :                             MIP_LEVEL_W'(levels[x] - 1'b1);
-    assign lvl = (!cfg_mip_en_i || idx < 0)         ? '0
-               : (idx > $signed(MIP_IDX_W'(top))) ? top
-               :                                    MIP_LEVEL_W'(idx);
-    always_ff @(posedge clk_i) begin
-      if (en_i) lvl_q[x] <= lvl;
+  pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(S_JOB)) u_hit (
+    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o(v6), .tag_o(tag6));
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      nrm_pend_q  <= 1'b0;
+      job_valid_q <= 1'b0;
+    end else if (en_i) begin
+      nrm_pend_q  <= v6;
+      job_valid_q <= v6 || nrm_pend_q;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (en_i) begin
+      if (v6) begin
+        nrm_tag_q <= tag6;
+        nrm_l2_q  <= l2;
+        nrm_pb_q  <= pb[1];
+      end
+      job_tex_q <= !v6;
+      job_tag_q <= v6 ? tag6  : nrm_tag_q;
+      job_l2_q  <= v6 ? l2    : nrm_l2_q;
+      job_pb_q  <= v6 ? pb[0] : nrm_pb_q;
     end
   end
 
-  assign level_colour_o = lvl_q[0];
-  assign level_normal_o = lvl_q[1];
+  // ---- S7 .. S13: the job's texture ---------------------------------------------------------
+  f24_t lod, lodh;
+  logic signed [MIP_IDX_W-1:0] idx;
+  logic                        unused_sat;
+  logic                        tex_q [S_LOD+1:S_CLMP];  // the job's texture in stages S8 .. S12
+  logic [MIP_LEVEL_W:0]        levels;
+  logic [MIP_LEVEL_W-1:0]      top;    // levels - 1 (0 for a count of 0)
+  logic [MIP_LEVEL_W-1:0]      lvl, lvl_q;
+  // S7: lod = log2(Pl) - log2Pb (subtract: flip the sign bit)
+  f24_add u_lod (.clk_i, .en_i, .a_i(job_l2_q), .b_i({~job_pb_q[23], job_pb_q[22:0]}),
+                 .y_o(lod));
+  // S9: lod + 0.5
+  f24_add u_half (.clk_i, .en_i, .a_i(lod), .b_i(F24_HALF), .y_o(lodh));
+  // S11: floor
+  f24_to_index #(.W(MIP_IDX_W)) u_idx (.clk_i, .en_i, .a_i(lodh), .idx_o(idx),
+                                       .sat_o(unused_sat));
+  // S12: clamp(idx, 0, levels - 1); level 0 with MIP mapping off
+  // (a count of 0 acts as 1, one above 2^MIP_LEVEL_W as 2^MIP_LEVEL_W)
+  assign levels = tex_q[S_CLMP] ? cfg_levels_normal_i : cfg_levels_colour_i;
+  assign top = (levels == '0)         ? '0
+             : levels[MIP_LEVEL_W]    ? '1
+             :                          MIP_LEVEL_W'(levels - 1'b1);
+  assign lvl = (!cfg_mip_en_i || idx < 0)         ? '0
+             : (idx > $signed(MIP_IDX_W'(top))) ? top
+             :                                    MIP_LEVEL_W'(idx);
+  always_ff @(posedge clk_i) begin
+    if (en_i) begin
+      tex_q[S_LOD+1] <= job_tex_q;
+      for (int s = S_LOD + 2; s <= S_CLMP; s++) tex_q[s] <= tex_q[s-1];
+      lvl_q <= lvl;
+    end
+  end
+  assign level_o = lvl_q;
 
   // ---- delay lines: Pl0 to S1, tri to S5 -------------------------------------------------------
   always_ff @(posedge clk_i) begin
@@ -140,8 +186,20 @@ module mip_level
     end
   end
 
-  // ---- valid and tag ---------------------------------------------------------------------------
-  pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(S_OUT)) u_valid_tag (
-    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o);
+  // ---- valid, texture and tag of the job, S7 -> S13 ---------------------------------------
+  pipe_valid_tag #(.TAG_W(TAG_W + 1), .DEPTH(S_OUT - S_LOD)) u_valid_tag (
+    .clk_i, .rst_ni, .en_i, .valid_i(job_valid_q), .tag_i({job_tex_q, job_tag_q}), .valid_o,
+    .tag_o({tex_o, tag_o}));
+
+`ifndef SYNTHESIS
+  // The textures share the lod datapath: no hit on the enabled clock after another.
+  logic hit_last_q;  // the last enabled clock took a hit
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni)   hit_last_q <= 1'b0;
+    else if (en_i) hit_last_q <= valid_i;
+  end
+  hit_spacing: assert property (@(posedge clk_i) disable iff (!rst_ni)
+    en_i && valid_i |-> !hit_last_q);
+`endif
 
 endmodule

@@ -1,8 +1,8 @@
 // dm_pipeline: the displacement-mapping unit of Park et al. 2013, Fig. 6, from fragments to colours.
 //
 //   fragments -> [slot + context] -> view_calc -> FIFO #0 -> traverse_system (traverse unit,
-//   height cache, AXI port H) -> hit: mip_level -> tex_addr (colour, normal map) -> request
-//   FIFOs -> tex_cache (AXI port T) -> tex_filter -> shade_unit -> out FIFO \
+//   height cache, AXI port H) -> hit: mip_level -> tex_addr (colour, then normal map) ->
+//   request FIFOs -> tex_cache (AXI port T) -> tex_filter -> shade_unit -> out FIFO \
 //                                 miss / invalid: -> miss FIFO ------------------> arbiter -> pixels
 //
 // The model it mirrors: model/shade.py render_pixels (view unit, trace, MIP level, two bilinear
@@ -23,7 +23,12 @@
 //     hit between admission and the FIFOs (< REQ_DEPTH) and the out FIFO has room for
 //     every hit not yet out (< OUT_DEPTH); tex_cache's responses are then always taken
 //     (rsp_ready = 1) because the filter and shader behind it cannot back up;
-//   - a miss / invalid ray leaves traverse_system when the miss FIFO has room.
+//   - a miss / invalid ray leaves traverse_system when the miss FIFO has room;
+//   - a hit is not admitted in the clock after another: mip_level's lod datapath and one
+//     tex_addr serve both textures, the colour texture's level and lookup and the normal map's
+//     in consecutive clocks (the traversal delivers a hit per 3.4 clocks at best, README
+//     "Pipeline performance": the frames of bench_pipeline.py take the same clocks as with a
+//     datapath per texture).
 // The colour and normal-map requests of a pixel are pushed together into two FIFOs and sent to
 // the cache alternately (colour first), so its responses come in pairs.
 //
@@ -282,7 +287,13 @@ module dm_pipeline
   logic              req_room, hit_room;
   logic              hit_adm, req_done, hit_out;
 
-  assign res_ready = res_hit ? (req_room && hit_room) : !miss_full;
+  // A hit is not admitted in the clock after one (the shared address unit takes two clocks).
+  logic hit_adm_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) hit_adm_q <= 1'b0;
+    else         hit_adm_q <= hit_adm;
+  end
+  assign res_ready = res_hit ? (req_room && hit_room && !hit_adm_q) : !miss_full;
   assign hit_adm   = res_valid && res_ready && res_hit;
   assign miss_wr   = res_valid && res_ready && !res_hit;
 
@@ -300,37 +311,38 @@ module dm_pipeline
 
   // hit -> mip_level (context read at admission: Pl0, triangle, seg)
   localparam int unsigned MIP_TAG_W = SLOT_W + 48;
-  logic                 mip_valid;
+  logic                 mip_valid, mip_tex;
   logic [MIP_TAG_W-1:0] mip_tag;
-  logic [MIP_LEVEL_W-1:0] lvl_c, lvl_n;
+  logic [MIP_LEVEL_W-1:0] mip_lvl;
 
   mip_level #(.TAG_W(MIP_TAG_W), .TRIS(TRIS)) u_mip (
     .clk_i, .rst_ni, .en_i(1'b1), .cfg_mip_en_i, .cfg_levels_colour_i, .cfg_levels_normal_i,
     .tt_we_i, .tt_waddr_i, .tt_wdata_i,
     .valid_i(hit_adm), .tag_i({res_id, res_u, res_v}), .t_i(res_t), .seg_i(ctx_seg_q[res_id]),
     .pl0_i(ctx_pl0_q[res_id]), .tri_i(ctx_tri_q[res_id]),
-    .valid_o(mip_valid), .tag_o(mip_tag), .level_colour_o(lvl_c), .level_normal_o(lvl_n));
+    .valid_o(mip_valid), .tag_o(mip_tag), .tex_o(mip_tex), .level_o(mip_lvl));
 
-  // mip -> two address units (colour, normal map)
+  // mip -> one address unit for both textures: mip_level gives a hit's colour level (texture 0)
+  // and, the clock after, its normal map's (texture 1); each goes straight into tex_addr, which
+  // registers its inputs (NTEX = 2).  Hits are admitted at most every other clock, so the two
+  // never overlap with the next hit's.
   localparam int unsigned REQ_W = 4 * TEX_ADDR_W + 48;  // {fx, fy, a11, a10, a01, a00}
-  logic [1:0]              ta_valid;
-  logic [1:0][SLOT_W-1:0]  ta_slot;
-  logic [1:0][REQ_W-1:0]   ta_req;
+  logic                    ta_valid, ta_tex;
+  logic [SLOT_W-1:0]       ta_slot;
+  logic [REQ_W-1:0]        ta_req;
+  logic [TEX_ADDR_W-1:0]   ta_a00, ta_a01, ta_a10, ta_a11;
+  f24_t                    ta_fx, ta_fy;
 
-  for (genvar x = 0; x < 2; x++) begin : g_addr
-    logic [TEX_ADDR_W-1:0] a00, a01, a10, a11;
-    f24_t                  fx, fy;
-    tex_addr #(.TAG_W(SLOT_W), .ADDR_W(TEX_ADDR_W)) u_addr (
-      .clk_i, .rst_ni, .en_i(1'b1),
-      .cfg_su_i(cfg_tex_su_i[x]), .cfg_sv_i(cfg_tex_sv_i[x]), .cfg_width_i(cfg_tex_width_i[x]),
-      .cfg_height_i(cfg_tex_height_i[x]), .cfg_base_i(cfg_tex_base_i[x]),
-      .cfg_level_off_i(cfg_tex_level_off_i[x]),
-      .valid_i(mip_valid), .tag_i(mip_tag[MIP_TAG_W-1 -: SLOT_W]), .u_i(mip_tag[47:24]),
-      .v_i(mip_tag[23:0]), .level_i(x == 0 ? lvl_c : lvl_n),
-      .valid_o(ta_valid[x]), .tag_o(ta_slot[x]), .addr00_o(a00), .addr01_o(a01),
-      .addr10_o(a10), .addr11_o(a11), .fx_o(fx), .fy_o(fy));
-    assign ta_req[x] = {fx, fy, a11, a10, a01, a00};
-  end
+  tex_addr #(.TAG_W(SLOT_W + 1), .ADDR_W(TEX_ADDR_W), .NTEX(2)) u_addr (
+    .clk_i, .rst_ni, .en_i(1'b1),
+    .cfg_su_i(cfg_tex_su_i), .cfg_sv_i(cfg_tex_sv_i), .cfg_width_i(cfg_tex_width_i),
+    .cfg_height_i(cfg_tex_height_i), .cfg_base_i(cfg_tex_base_i),
+    .cfg_level_off_i(cfg_tex_level_off_i),
+    .valid_i(mip_valid), .tag_i({mip_tag[MIP_TAG_W-1 -: SLOT_W], mip_tex}), .tex_i(mip_tex),
+    .u_i(mip_tag[47:24]), .v_i(mip_tag[23:0]), .level_i(mip_lvl),
+    .valid_o(ta_valid), .tag_o({ta_slot, ta_tex}), .addr00_o(ta_a00), .addr01_o(ta_a01),
+    .addr10_o(ta_a10), .addr11_o(ta_a11), .fx_o(ta_fx), .fy_o(ta_fy));
+  assign ta_req = {ta_fx, ta_fy, ta_a11, ta_a10, ta_a01, ta_a00};
 
   // request FIFOs: colour {slot, request}, normal {request}; sent alternately, colour first
   logic              rq_c_empty, rq_n_empty, rq_c_full, rq_n_full, rq_sel_q;
@@ -341,11 +353,11 @@ module dm_pipeline
   logic [REQ_CW-1:0] rq_c_count, rq_n_count;
 
   traverse_fifo #(.W(SLOT_W + REQ_W), .DEPTH(REQ_DEPTH)) u_rq_c (
-    .clk_i, .rst_ni, .wr_i(ta_valid[0]), .wr_data_i({ta_slot[0], ta_req[0]}),
+    .clk_i, .rst_ni, .wr_i(ta_valid && !ta_tex), .wr_data_i({ta_slot, ta_req}),
     .rd_i(tc_req_valid && tc_req_ready && !rq_sel_q), .rd_data_o(rq_c_head), .full_o(rq_c_full),
     .empty_o(rq_c_empty), .count_o(rq_c_count));
   traverse_fifo #(.W(REQ_W), .DEPTH(REQ_DEPTH)) u_rq_n (
-    .clk_i, .rst_ni, .wr_i(ta_valid[1]), .wr_data_i(ta_req[1]),
+    .clk_i, .rst_ni, .wr_i(ta_valid && ta_tex), .wr_data_i(ta_req),
     .rd_i(tc_req_valid && tc_req_ready && rq_sel_q), .rd_data_o(rq_n_head), .full_o(rq_n_full),
     .empty_o(rq_n_empty), .count_o(rq_n_count));
 
@@ -521,7 +533,7 @@ module dm_pipeline
   logic unused;
   assign unused = ^{t_cycles, t_rays_in, t_rays_out, t_lookups, t_cross, t_ups, t_desc, t_idle,
                     res_capped, tc_lookups, free_full, rq_c_full, rq_n_full, out_full,
-                    f0_full, h_lines, miss_count, vc_cnt, req_cnt, hit_cnt, ta_slot[1],
+                    f0_full, h_lines, miss_count, vc_cnt, req_cnt, hit_cnt,
                     rq_c_count, rq_n_count, tf_a, out_count};
 
 `ifndef SYNTHESIS
@@ -531,7 +543,12 @@ module dm_pipeline
   // The credits hold: the FIFOs behind fixed-latency units never see a write while full.
   fifo0_credit: assert property (@(posedge clk_i) disable iff (!rst_ni) f0_wr |-> !f0_full);
   req_credit:   assert property (@(posedge clk_i) disable iff (!rst_ni)
-    ta_valid[0] |-> !rq_c_full && !rq_n_full);
+    ta_valid |-> (ta_tex ? !rq_n_full : !rq_c_full));
+  // One address unit serves both textures: a hit every other clock at most, its two lookups
+  // in consecutive clocks, colour first.
+  hit_spacing:  assert property (@(posedge clk_i) disable iff (!rst_ni) hit_adm |=> !hit_adm);
+  addr_pairs:   assert property (@(posedge clk_i) disable iff (!rst_ni)
+    ta_valid && !ta_tex |=> ta_valid && ta_tex && ta_slot == $past(ta_slot));
   out_credit:   assert property (@(posedge clk_i) disable iff (!rst_ni) sh_valid |-> !out_full);
   // The pixel stream's payload holds while stalled; the texture request too.
   px_stable:    assert property (@(posedge clk_i) disable iff (!rst_ni)

@@ -34,10 +34,12 @@ package pipe_pkg;
   localparam int unsigned TRI_TABLE_LAT = 1;   // registered read
   localparam int unsigned MIP_IDX_W     = 20;  // f24_to_index width: model.arith.INDEX_W
   localparam int unsigned MIP_LEVEL_W   = 5;   // level output width: levels 0 .. 31
-  // Pl = Pl0 + t seg (mul, add); log2; lod = - log2Pb (add); + 0.5 (add); floor (to_index);
-  // clamp to the level range and the mip_en select (one register).
-  localparam int unsigned MIP_LAT = F24_MUL_LAT + F24_ADD_LAT + F24_LOG2_LAT + 2 * F24_ADD_LAT
-                                  + F24_TO_INDEX_LAT + 1;  // 12
+  // Pl = Pl0 + t seg (mul, add); log2; the texture's job register (colour, then the normal map
+  // a clock later); lod = - log2Pb (add); + 0.5 (add); floor (to_index); clamp to the level
+  // range and the mip_en select (one register).  The colour level's latency; the normal map's
+  // is MIP_LAT + 1.
+  localparam int unsigned MIP_LAT = F24_MUL_LAT + F24_ADD_LAT + F24_LOG2_LAT + 1
+                                  + 2 * F24_ADD_LAT + F24_TO_INDEX_LAT + 1;  // 13
 
   // ---- tex_addr / tex_filter (model/texture.py lookup_addresses, filter_texels) --------------
   localparam int unsigned TEX_LEVELS  = 16;  // levels a texture configuration holds: textures up

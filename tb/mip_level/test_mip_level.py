@@ -2,8 +2,10 @@
 
 Each phase writes the triangle table through the write port (log2 Pb words for both textures,
 with en_i random or held at 0), sets the configuration (mip_en, the two level counts) and
-streams hits with random en_i gaps and valid bubbles (tb/common/valid_pipe.py); the levels
-must equal the model's bit for bit:
+streams hits with random en_i gaps and valid bubbles, a hit every other enabled clock at most
+(tb/common/valid_pipe.py with jobs = spacing = 2: the two textures share the lod datapath, and
+each hit gives its colour level, tex_o = 0, MIP_LAT enabled edges later and its normal map's,
+tex_o = 1, on the next one); the levels must equal the model's bit for bit:
   random       realistic t, seg, Pl0 and table words: lod from far below 0 to beyond the levels;
                every triangle id
   boundaries   table words k/4 and Pl0 chosen (with the model) so that lod + 0.5 lies within
@@ -28,9 +30,9 @@ from model.arith import ENGINES
 from tb.common import fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 
-LATENCY = 12  # pipe_pkg::MIP_LAT (f24_log2 at pipe_pkg::F24_LOG2_LAT = 3)
+LATENCY = 13  # pipe_pkg::MIP_LAT (f24_log2 at pipe_pkg::F24_LOG2_LAT = 3): the colour level
 INS = ["t_i", "seg_i", "pl0_i", "tri_i"]
-OUTS = ["level_colour_o", "level_normal_o"]
+OUTS = ["tex_o", "level_o"]  # two results per hit: colour (tex_o 0), then the normal map (1)
 AR = ENGINES["f24"]
 
 
@@ -40,18 +42,25 @@ def logu(rng: np.random.Generator, lo: float, hi: float, n: int) -> np.ndarray:
 
 
 def expected(ins: dict[str, np.ndarray], table: np.ndarray, levels: tuple[int, int],
-             mip: bool) -> dict[str, np.ndarray]:
-    """The model on the patterns' values: Pl = ray_length, L = mip_level per texture."""
+             mip: bool) -> list[np.ndarray]:
+    """The model on the patterns' values: Pl = ray_length, L = mip_level per texture (colour,
+    normal map)."""
     t, seg, pl0 = (f24.to_float(ins[k]) for k in ("t_i", "seg_i", "pl0_i"))
     pl = texture.ray_length(AR, pl0, t, seg)
-    out = {}
-    for x, name in enumerate(OUTS):
+    out = []
+    for x in range(2):
         if mip:
             pb = f24.to_float(table[ins["tri_i"].astype(np.int64), x])
-            out[name] = texture.mip_level(AR, pl, pb, levels[x])
+            out.append(np.asarray(texture.mip_level(AR, pl, pb, levels[x]), dtype=np.int64))
         else:
-            out[name] = np.zeros(len(t), dtype=np.int64)
+            out.append(np.zeros(len(t), dtype=np.int64))
     return out
+
+
+def results(per_tex: list[np.ndarray]) -> dict[str, np.ndarray]:
+    """The unit's result stream: per hit the colour level, then the normal map's."""
+    n = len(per_tex[0])
+    return {"tex_o": np.tile([0, 1], n), "level_o": np.stack(per_tex, axis=1).ravel()}
 
 
 async def write_table(dut, table: np.ndarray, rng: np.random.Generator, en_random: bool) -> None:
@@ -139,7 +148,8 @@ async def mip_level_random_and_directed(dut):
     rng = np.random.default_rng(fp_unit.seed())
     tris = 1 << len(dut.tri_i)  # the test runs power-of-two TRIS (tb/tri_table: the others)
     nvec = fp_unit.vectors()
-    pipe = ValidPipe(dut, LATENCY, INS, OUTS, "RTL vs model.texture.mip_level (f24)")
+    pipe = ValidPipe(dut, LATENCY, INS, OUTS, "RTL vs model.texture.mip_level (f24)", jobs=2,
+                     spacing=2)
     dut.tt_we_i.value = 0
     await pipe.reset()
     specials_tab = np.array([f24.NAN, f24.POS_INF, f24.NEG_INF, f24.MAX_FINITE, 0xFEFFFF,
@@ -172,7 +182,7 @@ async def mip_level_random_and_directed(dut):
         dut.cfg_mip_en_i.value = int(mip)
         dut.cfg_levels_colour_i.value = cfg_counts.get(name, levels)[0]
         dut.cfg_levels_normal_i.value = cfg_counts.get(name, levels)[1]
-        exp = expected(hits, table, levels, mip)
+        per_tex = expected(hits, table, levels, mip)
 
         def describe(k: int, h=hits, tab=table) -> str:
             tri = int(h["tri_i"][k])
@@ -180,10 +190,10 @@ async def mip_level_random_and_directed(dut):
                     f"pl0=0x{int(h['pl0_i'][k]):06x} tri={tri} log2pb=0x{int(tab[tri, 0]):06x},"
                     f"0x{int(tab[tri, 1]):06x}")
 
-        hists = [np.bincount(exp[o], minlength=lv).tolist() for o, lv in zip(OUTS, levels)]
+        hists = [np.bincount(e, minlength=lv).tolist() for e, lv in zip(per_tex, levels)]
         total += await pipe.run(f"{name} (levels {levels}, mip {int(mip)}; hits per level: "
-                                f"colour {hists[0]}, normal {hists[1]})", hits, exp, rng,
-                                describe=describe)
+                                f"colour {hists[0]}, normal {hists[1]})", hits, results(per_tex),
+                                rng, describe=describe)
         if i == 0:
             await pipe.flush_check(rng)
     dut._log.info("VECTORS mip_level TRIS=%d: %d hits in %d phases, 0 mismatches", tris, total,
