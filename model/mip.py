@@ -32,7 +32,7 @@ engine's floor, saturating to +-2^19 in f24 (``model.arith.INDEX_W``) with NaN -
 t, Pl0 or seg, a negative or NaN Pl and Pl = 0 (log2 = -Inf) all give level 0, Pl = +Inf gives
 levels - 1.  :func:`level` is this per-hit sequence as one call (the composition
 ``model.shade.render_pixels`` uses); ``rtl/mip/mip_level.sv`` computes it for both textures of
-one hit per clock.
+a hit, one after the other on one datapath (a hit every other clock at most).
 """
 from __future__ import annotations
 

@@ -1,5 +1,6 @@
 // mip_level: the MIP-level unit after Park et al., IEICE Electronics Express 2011, eq. (2), for
-// the colour texture and the normal map of one hit per clock.  Specification: model/mip.py
+// the colour texture and the normal map of a hit (a hit every other clock at most, the two
+// levels in consecutive clocks).  Specification: model/mip.py
 // (model/texture.py ray_length and mip_level) in the f24 engine, bit for bit:
 //   Pl  = add(Pl0, mul(t, seg))                 eye-to-hit ray length
 //   lod = sub(log2(Pl), log2Pb[tri][tex])       log2: the approximate unit f24_log2
