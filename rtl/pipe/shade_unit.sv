@@ -25,7 +25,9 @@
 // light vector l (three components), AMBIENT, KD, KS, D and D2 = mul(D, D).  Hard-wired
 // (shade_pkg): EPS = 2^-40, 1, 0, 255 and 0.5; the constant 2 only appears as mul(M_c, 2).
 //
-// Fully pipelined, fixed latency SHADE_LAT = 38 enabled clocks (shade_pkg), one pixel per clock.
+// Fully pipelined, fixed latency SHADE_LAT = 40 enabled clocks (shade_pkg), one pixel every other
+// enabled clock at most (valid_i must not be 1 on two consecutive enabled clocks; asserted).  In
+// dm_pipeline a pixel needs two filtered quads, which come one per clock at most.
 // Every register (valid, tag, data, the float units) advances only while en_i is 1, so the
 // enclosing pipeline stalls the whole unit with en_i = 0.  A pixel is taken on an enabled edge with
 // valid_i = 1; its result shows at valid_o / tag_o / rgb_o after SHADE_LAT enabled edges and holds
@@ -71,19 +73,26 @@
 //   S25  ndh = max(dot(n, h), 0)                                     reg          S25 -> S26
 //   S26  s = ndh^2, ^4, ^8, ^16 (four squarings)                     f24_mul x4   S26 -> S30
 //   S30  sp = KS * s                                                 f24_mul      S30 -> S31
-//   S31  c_c = C_c a + sp                                            f24_add x3   S31 -> S33
-//   S33  min(max(c_c, 0), 1)                                         reg          S33 -> S34
-//   S34  c_c * 255                                                   f24_mul x3   S34 -> S35
-//   S35  + 0.5                                                       f24_add x3   S35 -> S37
-//   S37  floor -> unorm8                                             f24_to_index S37 -> S38
-//   S38  outputs (straight from registers); valid and tag delayed S0 -> S38
+//   The tail (steps 12-14 after C_c a) runs on two lanes: lane 0 takes R in S31 and B (its
+//   C_c a and sp a clock older) in S32, lane 1 takes G; the pixel after is two clocks away at
+//   least (valid_i never on two consecutive enabled clocks; asserted), so lane 0 is free then.
+//   S31  the lanes' operand registers: {C_R a, sp}, {C_G a, sp}; S32: {C_B a, sp}  reg
+//   S32  c_c = C_c a + sp                                            f24_add x2   S32 -> S34
+//   S34  min(max(c_c, 0), 1)                                         reg          S34 -> S35
+//   S35  c_c * 255                                                   f24_mul x2   S35 -> S36
+//   S36  + 0.5                                                       f24_add x2   S36 -> S38
+//   S38  floor -> unorm8                                             f24_to_index S38 -> S39
+//        (B a clock behind on lane 0: its floor S39 -> S40)
+//   S39  R and G held                                                reg          S39 -> S40
+//   S40  outputs (R, G from the hold registers, B from lane 0's floor); valid and tag delayed
+//        S0 -> S40
 // The three f24_rsqrt run at LAT = pipe_pkg::F24_RSQRT_LAT = 3 (table / product + sum / round:
 // over 120 MHz; at their 2 clocks they limit the unit to below 60 MHz), with the same results;
 // the schedule above is written for that latency (checked at elaboration).
 //
-// Float units: 35 f24_mul, 23 f24_add, 3 f24_rsqrt, 3 f24_to_index #(9); no f24_cmp.  Exact logic
-// (no rounding involved, each into one register): 3 doublers, max(nn, EPS), 2 x max(., 0) and 3
-// clamps.
+// Float units: 34 f24_mul, 21 f24_add, 3 f24_rsqrt, 2 f24_to_index #(9); no f24_cmp (35, 23, 3
+// and 3 before the tail shared lane 0 between R and B).  Exact logic (no rounding involved, each
+// into one register): 3 doublers, max(nn, EPS), 2 x max(., 0) and 2 clamps.
 //
 // Exact parts, bit-identical to the model:
 // - mul(M_c, 2) is an exponent increment: e = 126 overflows to Inf, zeros and subnormal patterns
@@ -123,8 +132,8 @@ module shade_unit
   // The three f24_rsqrt: the schedule (header) is written for 3 clocks each (rv S5 -> S8, rn
   // S9 -> S12, rh S16 -> S19); another latency needs the stages below renumbered.
   localparam int unsigned RSQRT_LAT = pipe_pkg::F24_RSQRT_LAT;
-  if (RSQRT_LAT != 3 || NS != 38) begin : g_check_lat
-    $error("shade_unit: the stage schedule is written for F24_RSQRT_LAT = 3, SHADE_LAT = 38");
+  if (RSQRT_LAT != 3 || NS != 40) begin : g_check_lat
+    $error("shade_unit: the stage schedule is written for F24_RSQRT_LAT = 3, SHADE_LAT = 40");
   end
 
   localparam f24_t NEG_ONE = SHADE_ONE ^ 24'h800000;  // sub(x, 1) = add(x, -1)
@@ -169,9 +178,22 @@ module shade_unit
   f24_t [2:0] light;
   assign light = {cfg_i.light_z, cfg_i.light_y, cfg_i.light_x};
 
-  // ---- valid and tag: S1 .. S38 --------------------------------------------------------------
+  // ---- valid and tag: S1 .. S40 --------------------------------------------------------------
   pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(NS)) u_valid_tag (
     .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o);
+
+  // valid bits of the stages the tail needs (a pixel in stage s)
+  logic v_q [1:39];
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      for (int k = 1; k <= 39; k++) v_q[k] <= 1'b0;
+    end else if (en_i) begin
+      v_q[1] <= valid_i;
+      for (int k = 2; k <= 39; k++) v_q[k] <= v_q[k-1];
+    end
+  end
+  logic [1:0][7:0] rg_q;            // S40: R and G held a clock for B
+  logic signed [8:0] idx [2];       // floor(c 255 + 0.5) per lane, in 0 .. 255 (S39; B in S40)
 
   // ---- float-unit outputs (named by the stage where they appear) ------------------------------
   f24_t [2:0] n_s3;                 // 2M - 1
@@ -191,8 +213,8 @@ module shade_unit
   f24_t       kdl_s20, a_s22, nhxy_s23, dnh_s25;
   f24_t [2:0] ca_s23;               // C_c a
   f24_t       s_s27, s_s28, s_s29, s_s30, sp_s31;
-  f24_t [2:0] cc_s33;               // C_c a + sp
-  f24_t [2:0] k_s35, kh_s37;        // c 255, c 255 + 0.5
+  f24_t [1:0] cc_s34;               // C_c a + sp, per lane (lane 0: R, then B a clock later)
+  f24_t [1:0] k_s36, kh_s38;        // c 255, c 255 + 0.5
 
   // ---- stage registers of the data path (no reset) --------------------------------------------
   f24_t [2:0] m2_q;                 // S1: 2M
@@ -210,7 +232,10 @@ module shade_unit
   f24_t       nhz_q  [22:23];       // nz hz
   f24_t       ndh_q;                // S26: max(dot(n, h), 0)
   f24_t [2:0] ca_q   [24:31];       // C_c a
-  f24_t [2:0] cl_q;                 // S34: clamped colour
+  f24_t       cab_q;                // S32: C_B a (lane 0's second operand set)
+  f24_t       sp_q;                 // S32: sp
+  f24_t [1:0] ta_q, tb_q;           // S32: the lanes' adder operands
+  f24_t [1:0] cl_q;                 // S35: clamped colour, per lane
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
@@ -242,7 +267,19 @@ module shade_unit
       ndh_q <= max_np(dnh_s25, SHADE_ZERO);
       ca_q[24] <= ca_s23;
       for (int s = 25; s <= 31; s++) ca_q[s] <= ca_q[s-1];
-      for (int c = 0; c < 3; c++) cl_q[c] <= min_np(max_np(cc_s33[c], SHADE_ZERO), SHADE_ONE);
+      // the tail: R (lane 0) and G (lane 1) in S31, B on lane 0 in S32 (a pixel is in S31 iff
+      // v_q[31]; the clock after, lane 0 takes B, which waited a clock in cab_q / sp_q)
+      cab_q <= ca_q[31][2];
+      sp_q  <= sp_s31;
+      ta_q[0] <= v_q[31] ? ca_q[31][0] : cab_q;
+      tb_q[0] <= v_q[31] ? sp_s31      : sp_q;
+      ta_q[1] <= ca_q[31][1];
+      tb_q[1] <= sp_s31;
+      for (int l = 0; l < 2; l++) cl_q[l] <= min_np(max_np(cc_s34[l], SHADE_ZERO), SHADE_ONE);
+      if (v_q[39]) begin
+        rg_q[0] <= idx[0][7:0];
+        rg_q[1] <= idx[1][7:0];
+      end
     end
   end
 
@@ -283,8 +320,6 @@ module shade_unit
   f24_mul u_sp   (.clk_i, .en_i, .a_i(cfg_i.ks), .b_i(s_s30), .y_o(sp_s31));
 
   // per component
-  logic signed [8:0] idx [3];  // floor(c 255 + 0.5), in 0 .. 255
-
   for (genvar c = 0; c < 3; c++) begin : g_c
     // 1: decode; 2: squares; 4: normalise
     f24_add u_n   (.clk_i, .en_i, .a_i(m2_q[c]), .b_i(NEG_ONE), .y_o(n_s3[c]));
@@ -299,15 +334,25 @@ module shade_unit
     f24_mul u_nh  (.clk_i, .en_i, .a_i(nu_q[20][c]), .b_i(hu_s20[c]), .y_o(nh_s21[c]));
     // 12: colour
     f24_mul u_ca  (.clk_i, .en_i, .a_i(col_q[22][c]), .b_i(a_s22), .y_o(ca_s23[c]));
-    f24_add u_cc  (.clk_i, .en_i, .a_i(ca_q[31][c]), .b_i(sp_s31), .y_o(cc_s33[c]));
-    // 14: unorm8
-    f24_mul u_k   (.clk_i, .en_i, .a_i(cl_q[c]), .b_i(SHADE_255), .y_o(k_s35[c]));
-    f24_add u_kh  (.clk_i, .en_i, .a_i(k_s35[c]), .b_i(SHADE_HALF), .y_o(kh_s37[c]));
-    /* verilator lint_off PINCONNECTEMPTY */  // sat_o: the operand is in [0.5, 255.5] or NaN
-    f24_to_index #(.W(9)) u_idx (.clk_i, .en_i, .a_i(kh_s37[c]), .idx_o(idx[c]), .sat_o());
-    /* verilator lint_on PINCONNECTEMPTY */
-    assign rgb_o[c] = idx[c][7:0];
   end
 
+  // the tail, per lane: 12: + sp; 13: clamp; 14: unorm8
+  for (genvar l = 0; l < 2; l++) begin : g_lane
+    f24_add u_cc  (.clk_i, .en_i, .a_i(ta_q[l]), .b_i(tb_q[l]), .y_o(cc_s34[l]));
+    f24_mul u_k   (.clk_i, .en_i, .a_i(cl_q[l]), .b_i(SHADE_255), .y_o(k_s36[l]));
+    f24_add u_kh  (.clk_i, .en_i, .a_i(k_s36[l]), .b_i(SHADE_HALF), .y_o(kh_s38[l]));
+    /* verilator lint_off PINCONNECTEMPTY */  // sat_o: the operand is in [0.5, 255.5] or NaN
+    f24_to_index #(.W(9)) u_idx (.clk_i, .en_i, .a_i(kh_s38[l]), .idx_o(idx[l]), .sat_o());
+    /* verilator lint_on PINCONNECTEMPTY */
+  end
+  logic unused_idx;                 // bit 8: the index is in 0 .. 255 (see the header)
+  assign unused_idx = idx[0][8] ^ idx[1][8];
+  assign rgb_o = {idx[0][7:0], rg_q[1], rg_q[0]};
+
+`ifndef SYNTHESIS
+  // Lane 0 serves R and then B: no pixel on the enabled clock after one.
+  pixel_spacing: assert property (@(posedge clk_i) disable iff (!rst_ni)
+    en_i && valid_i |-> !v_q[1]);
+`endif
 
 endmodule

@@ -12,8 +12,10 @@ from straight above or from below the surface, AMBIENT > 1):
 - random: realistic pixels (colours and normals in [0, 1], rays up to several D) and, for one
   tenth, random bit patterns in every input word.
 
-Pixels stream in with random valid bubbles (random data on the ports while valid_i = 0) and en_i
-dropped at random (20% or 60% of the clocks, by configuration); after every clock valid_o, tag_o and rgb_o must be those of the pixel (or
+Pixels stream in with random valid bubbles (random data on the ports while valid_i = 0), a
+pixel every other enabled clock at most (the unit's blue channel takes the red channel's lane a
+clock later), and en_i dropped at random (20% or 60% of the clocks, by configuration); after
+every clock valid_o, tag_o and rgb_o must be those of the pixel (or
 bubble) presented exactly SHADE_LAT enabled clocks earlier, and hold while en_i = 0.  The
 pipeline is drained between configurations (the configuration is static while busy).  A reset
 with pixels in flight (en_i = 0 during the reset) must clear valid.  The hard-wired constants of
@@ -251,9 +253,10 @@ class Bench:
         sent = 0
         drain_left = SHADE_LAT + 1
         cyc = 0
+        took = False  # the last enabled clock took a pixel: a pixel every other one at most
         while drain_left > 0:
             en = en_seq[cyc % m]
-            valid = sent < n and val_seq[cyc % m]
+            valid = sent < n and val_seq[cyc % m] and not took
             if valid:
                 tag = sent % (1 << TAG_W)
                 self.what[tag] = (f"[{cfg.name}] pixel {sent}: C/M/du/dv = "
@@ -276,6 +279,7 @@ class Bench:
             await FallingEdge(d.clk_i)
             cyc += 1
             if en:
+                took = valid
                 self.enabled += 1
                 self.entries.append((valid, tag, rgb[sent] if valid else 0))
                 if valid:
@@ -331,9 +335,9 @@ async def shade_random_and_directed(dut):
     cfg = cfgs[0]
     d = dut
     d.cfg_i.value = cfg.packed()
-    d.valid_i.value = 1
     d.en_i.value = 1
-    for r in x[:SHADE_LAT // 2]:
+    for k, r in enumerate(x[:SHADE_LAT // 2]):
+        d.valid_i.value = int(k % 2 == 0)  # a pixel every other clock
         d.col_i.value = (int(r[2]) << 48) | (int(r[1]) << 24) | int(r[0])
         await RisingEdge(d.clk_i)
         await FallingEdge(d.clk_i)
