@@ -18,8 +18,15 @@ from model.cli import Parser  # noqa: E402
 from tb.common.runner import rtl_index  # noqa: E402
 
 
+# The one waiver: an output connected as `.port()` is how this RTL says "not needed here" (lowRISC
+# style: unused outputs are named, not left out), so Verilator's PINCONNECTEMPTY would only flag
+# the intent.  Leaving a port out entirely still warns (PINMISSING).
+WAIVERS = ["-Wno-PINCONNECTEMPTY"]
+
+
 def lint_one(verilator: str, top: str, files: list[Path]) -> tuple[str, int, str]:
-    cmd = [verilator, "--lint-only", "-Wall", "--quiet", "--top-module", top] + [str(f) for f in files]
+    cmd = ([verilator, "--lint-only", "-Wall", *WAIVERS, "--quiet", "--top-module", top]
+           + [str(f) for f in files])
     p = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
     return top, p.returncode, (p.stdout + p.stderr).strip()
 

@@ -118,7 +118,7 @@ module mip_level
   f24_t             job_l2_q, job_pb_q;  // S7: the adder's operands
 
   pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(S_JOB)) u_hit (
-    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o(v6), .tag_o(tag6));
+    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o(v6), .tag_o(tag6), .stage_valid_o());
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -190,7 +190,7 @@ module mip_level
   // ---- valid, texture and tag of the job, S7 -> S13 ---------------------------------------
   pipe_valid_tag #(.TAG_W(TAG_W + 1), .DEPTH(S_OUT - S_LOD)) u_valid_tag (
     .clk_i, .rst_ni, .en_i, .valid_i(job_valid_q), .tag_i({job_tex_q, job_tag_q}), .valid_o,
-    .tag_o({tex_o, tag_o}));
+    .tag_o({tex_o, tag_o}), .stage_valid_o());
 
 `ifndef SYNTHESIS
   // The textures share the lod datapath: no hit on the enabled clock after another.

@@ -178,20 +178,13 @@ module shade_unit
   f24_t [2:0] light;
   assign light = {cfg_i.light_z, cfg_i.light_y, cfg_i.light_x};
 
-  // ---- valid and tag: S1 .. S40 --------------------------------------------------------------
+  // ---- valid and tag: S1 .. S40 (stage_v[k]: a pixel in stage k; the tail reads them) ------------
+  /* verilator lint_off UNUSEDSIGNAL */  // the schedule reads stages 1, 31 and 39 of the 40
+  logic [NS:1] stage_v;
+  /* verilator lint_on UNUSEDSIGNAL */
   pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(NS)) u_valid_tag (
-    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o);
+    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o, .stage_valid_o(stage_v));
 
-  // valid bits of the stages the tail needs (a pixel in stage s)
-  logic v_q [1:39];
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      for (int k = 1; k <= 39; k++) v_q[k] <= 1'b0;
-    end else if (en_i) begin
-      v_q[1] <= valid_i;
-      for (int k = 2; k <= 39; k++) v_q[k] <= v_q[k-1];
-    end
-  end
   logic [1:0][7:0] rg_q;            // S40: R and G held a clock for B
   logic signed [8:0] idx [2];       // floor(c 255 + 0.5) per lane, in 0 .. 255 (S39; B in S40)
 
@@ -268,15 +261,15 @@ module shade_unit
       ca_q[24] <= ca_s23;
       for (int s = 25; s <= 31; s++) ca_q[s] <= ca_q[s-1];
       // the tail: R (lane 0) and G (lane 1) in S31, B on lane 0 in S32 (a pixel is in S31 iff
-      // v_q[31]; the clock after, lane 0 takes B, which waited a clock in cab_q / sp_q)
+      // stage_v[31]; the clock after, lane 0 takes B, which waited a clock in cab_q / sp_q)
       cab_q <= ca_q[31][2];
       sp_q  <= sp_s31;
-      ta_q[0] <= v_q[31] ? ca_q[31][0] : cab_q;
-      tb_q[0] <= v_q[31] ? sp_s31      : sp_q;
+      ta_q[0] <= stage_v[31] ? ca_q[31][0] : cab_q;
+      tb_q[0] <= stage_v[31] ? sp_s31      : sp_q;
       ta_q[1] <= ca_q[31][1];
       tb_q[1] <= sp_s31;
       for (int l = 0; l < 2; l++) cl_q[l] <= min_np(max_np(cc_s34[l], SHADE_ZERO), SHADE_ONE);
-      if (v_q[39]) begin
+      if (stage_v[39]) begin
         rg_q[0] <= idx[0][7:0];
         rg_q[1] <= idx[1][7:0];
       end
@@ -341,9 +334,8 @@ module shade_unit
     f24_add u_cc  (.clk_i, .en_i, .a_i(ta_q[l]), .b_i(tb_q[l]), .y_o(cc_s34[l]));
     f24_mul u_k   (.clk_i, .en_i, .a_i(cl_q[l]), .b_i(SHADE_255), .y_o(k_s36[l]));
     f24_add u_kh  (.clk_i, .en_i, .a_i(k_s36[l]), .b_i(SHADE_HALF), .y_o(kh_s38[l]));
-    /* verilator lint_off PINCONNECTEMPTY */  // sat_o: the operand is in [0.5, 255.5] or NaN
+    // sat_o is not needed: the operand is in [0.5, 255.5] or NaN
     f24_to_index #(.W(9)) u_idx (.clk_i, .en_i, .a_i(kh_s38[l]), .idx_o(idx[l]), .sat_o());
-    /* verilator lint_on PINCONNECTEMPTY */
   end
   logic unused_idx;                 // bit 8: the index is in 0 .. 255 (see the header)
   assign unused_idx = idx[0][8] ^ idx[1][8];
@@ -352,7 +344,7 @@ module shade_unit
 `ifndef SYNTHESIS
   // Lane 0 serves R and then B: no pixel on the enabled clock after one.
   pixel_spacing: assert property (@(posedge clk_i) disable iff (!rst_ni)
-    en_i && valid_i |-> !v_q[1]);
+    en_i && valid_i |-> !stage_v[1]);
 `endif
 
 endmodule

@@ -271,6 +271,6 @@ module tex_addr
 
   // ---- valid and tag ---------------------------------------------------------------------------
   pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(S_OUT + ((NTEX > 1) ? 1 : 0))) u_valid_tag (
-    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o);
+    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o, .stage_valid_o());
 
 endmodule

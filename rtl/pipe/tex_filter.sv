@@ -150,6 +150,6 @@ module tex_filter
 
   // ---- valid and tag ---------------------------------------------------------------------------
   pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(S_OUT)) u_valid_tag (
-    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o);
+    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o, .stage_valid_o());
 
 endmodule

@@ -88,16 +88,8 @@ module view_calc
     $error("view_calc: stage schedule does not add up to VIEW_CALC_LAT");
   end
 
-  // ---- valid bits of the stages the schedule needs (the tag goes through u_valid_tag) -------
-  logic v_q [1:S_DU];                   // a fragment in stage s
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      for (int s = 1; s <= S_DU; s++) v_q[s] <= 1'b0;
-    end else if (en_i) begin
-      v_q[1] <= valid_i;
-      for (int s = 2; s <= S_DU; s++) v_q[s] <= v_q[s-1];
-    end
-  end
+  // ---- valid bits of the stages (stage_v[s]: a fragment in stage s) and the tag: u_valid_tag ----
+  logic [S_OUT:1] stage_v;
 
   // ---- lane N (S0 -> S5): z = dot(N, V) from the ports -------------------------------------
   // ---- lane TB (S1 -> S6, S2 -> S7): x = dot(T, V), then y = dot(B, V) ---------------------
@@ -171,19 +163,19 @@ module view_calc
       // S14: x with ks for a fragment in S14; the clock after, y (which runs a clock behind x,
       // so it is in the same register then) with the fragment's ks, one stage on by then
       sa_q <= xy_q[S_SC];
-      sb_q <= v_q[S_SC] ? ks_q[S_SC] : ks_q[S_SC+1];
-      if (v_q[S_DU]) du_q <= dxy;
+      sb_q <= stage_v[S_SC] ? ks_q[S_SC] : ks_q[S_SC+1];
+      if (stage_v[S_DU]) du_q <= dxy;
     end
   end
 
   // ---- valid and tag ---------------------------------------------------------------------------
   pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(S_OUT)) u_valid_tag (
-    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o);
+    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o, .stage_valid_o(stage_v));
 
 `ifndef SYNTHESIS
   // x and y share lane TB and the scale multiplier: no fragment on the enabled clock after one.
   frag_spacing: assert property (@(posedge clk_i) disable iff (!rst_ni)
-    en_i && valid_i |-> !v_q[1]);
+    en_i && valid_i |-> !stage_v[1]);
 `endif
 
 endmodule
