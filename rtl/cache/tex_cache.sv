@@ -36,8 +36,10 @@
 // MIP chains of textures 100 .. 1920 texels wide; odd widths of a few texels are the worst).
 // Each sub-cache: SETS sets x WAYS ways of lines; set = la[1 +: S] ^ la[1 + S +: S] (S = log2 SETS,
 // an XOR fold, so that rows of power-of-two pitch spread over the sets), tag = la >> (1 + S).
-// Tags, valid bits, pseudo-LRU bits, reference counts and the pending / error bits are flops;
-// the lines are in one cache_sdp_ram per sub-cache (SETS * WAYS lines, address {set, way}).
+// The valid, pending and error bits are flops; the tags, the reference counts and the pseudo-LRU
+// bits are in LUT RAM, one memory per sub-cache and way (per sub-cache for the pseudo-LRU bits),
+// each written from one place (see "Directory" at the state); the lines are in one cache_sdp_ram
+// per sub-cache (SETS * WAYS lines, address {set, way}).
 //
 // Why this organisation: a quad needs up to four line lookups and four data reads every clock.
 // Four single-ported sub-caches do that only if the lines of a quad never share one, which needs
@@ -87,8 +89,10 @@
 // loses its valid bit: the passes already waiting for it answer rsp_err_o = 1 (nothing hangs), a
 // later request reads the line again.
 // Reset (rst_ni low, synchronous): empties the entry register, the FIFO, the output, the MSHRs and
-// the AR queue, clears the valid, pending and error bits, the reference counts, the pseudo-LRU bits
-// and the statistics; requests not yet answered are dropped; req_ready_o and m_axi_arvalid are 0.
+// the AR queue, clears the valid, pending and error bits and the statistics; requests not yet
+// answered are dropped; req_ready_o and m_axi_arvalid are 0.  The tags, reference counters and
+// pseudo-LRU bits (LUT RAM) keep whatever they hold, which the valid and error bits make harmless
+// (see "Directory" at the state): the cache behaves as if they had been cleared.
 // Reads issued before the reset still return (rready stays 1) and are ignored: the arid's
 // EPOCH_W = ID_W - log2(MSHRS) epoch bits advance at each reset.  Requirement: a read returns before
 // 2^EPOCH_W - 1 further resets.
@@ -249,13 +253,25 @@ module tex_cache
   endfunction
 
   // ---------------------------------------------------------------- state
-  // Per sub-cache directory (flops).
-  logic [TAGB-1:0]   tag_q     [NSUB][SETS][WAYS];  // no reset (valid_q qualifies it)
-  logic [WAYS-1:0]   valid_q   [NSUB][SETS];
-  logic [WAYS-1:0]   pend_q    [NSUB][SETS];        // allocated, line not yet written
-  logic [WAYS-1:0]   err_q     [NSUB][SETS];        // the last fill came back with an error
-  logic [RC_W-1:0]   rc_q      [NSUB][SETS][WAYS];  // passes in the FIFO that read the slot
-  logic [PLRU_W-1:0] plru_q    [NSUB][SETS];
+  // Directory.  Flops, cleared at reset: per slot the valid, pending and error bits.  A slot is
+  // live when it is valid or has the error bit: allocated since the reset (reset clears both, an
+  // allocation sets valid, only a failed fill clears it, and that sets the error bit).
+  // LUT RAM (g_dir below), not reset, each memory written from one place:
+  //  - the tags (per sub-cache and way), which count only with the valid bit;
+  //  - the reference count rc = inc - dec (modulo 2^RC_W) of a slot: the passes in the FIFO that
+  //    read it.  inc counts at the entry (per sub-cache and way), dec at the head (likewise).  An
+  //    allocation writes inc = dec + 1 (its own reference), so the pair is exact from the slot's
+  //    first allocation since the reset on; a slot that is not live is unreferenced (free) whatever
+  //    the two hold;
+  //  - the pseudo-LRU bits of a set (per sub-cache).  The entry reads them only when every way of
+  //    the set is live (a way that is not live is free and invalid, so it is taken first), so each
+  //    way has been allocated, and touched, since the reset; a touch writes every node on the
+  //    way's path, so every node of the tree has been written since the reset.
+  // (Packed, with each bit's update decoded explicitly: as unpacked arrays they would be memories
+  // with five write ports, which synthesis maps to flops through a multiplexer chain per port.)
+  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] valid_q;
+  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] pend_q;   // allocated, line not yet written
+  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] err_q;    // the last fill came back with an error
 
   // Entry register (the request being looked up).
   logic                   s0_valid_q;
@@ -390,18 +406,28 @@ module tex_cache
   logic [NSUB-1:0][MIDX_W-1:0] lk_mshr;   // MSHR of a miss
   logic                       mshr_short; // not enough free MSHRs for the pass's misses
   logic [NSUB-1:0][WAYS-1:0]  way_hit, way_free;
+  // the directory's LUT RAM read at the looked-up set (g_dir)
+  logic [NSUB-1:0][WAYS-1:0][TAGB-1:0] set_tag;
+  logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] set_inc, set_dec;
+  logic [NSUB-1:0][PLRU_W-1:0]         set_plru;
+
+  always_comb begin
+    for (int c = 0; c < NSUB; c++) begin
+      lk_set[c] = set_of(lk_la[c]);
+      lk_tag[c] = lk_la[c][LA_W-1 -: TAGB];  // the bits above the low set field
+    end
+  end
 
   always_comb begin
     logic [MSHRS-1:0] avail;
     logic             found;
     found = 1'b0;
     for (int c = 0; c < NSUB; c++) begin
-      lk_set[c] = set_of(lk_la[c]);
-      lk_tag[c] = lk_la[c][LA_W-1 -: TAGB];  // the bits above the low set field
       lk_way[c] = '0;
       for (int w = 0; w < WAYS; w++) begin
-        way_hit[c][w]  = valid_q[c][lk_set[c]][w] && (tag_q[c][lk_set[c]][w] == lk_tag[c]);
-        way_free[c][w] = (rc_q[c][lk_set[c]][w] == '0);
+        way_hit[c][w]  = valid_q[c][lk_set[c]][w] && (set_tag[c][w] == lk_tag[c]);
+        way_free[c][w] = !(valid_q[c][lk_set[c]][w] || err_q[c][lk_set[c]][w])
+                         || set_inc[c][w] == set_dec[c][w];
         if (way_hit[c][w]) lk_way[c] = WAY_W'(w);
       end
       lk_alloc[c]   = lk_v[c] && !(|way_hit[c]);
@@ -413,7 +439,7 @@ module tex_cache
             if (way_free[c][w] && !valid_q[c][lk_set[c]][w]) lk_way[c] = WAY_W'(w);
           end
         end else begin
-          lk_way[c] = plru_pick(plru_q[c][lk_set[c]], way_free[c]);
+          lk_way[c] = plru_pick(set_plru[c], way_free[c]);
         end
       end
     end
@@ -619,50 +645,89 @@ module tex_cache
   assign m_axi_rready = 1'b1;
 
   // ---------------------------------------------------------------- directory updates
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      for (int c = 0; c < NSUB; c++) begin
-        for (int s = 0; s < SETS; s++) begin
-          valid_q[c][s] <= '0;
-          pend_q[c][s]  <= '0;
-          err_q[c][s]   <= '0;
-          plru_q[c][s]  <= '0;
-          for (int w = 0; w < WAYS; w++) rc_q[c][s][w] <= '0;
+  // The valid, pending and error bits: the slot an allocation takes, and the slot a line arrives
+  // in (a pending slot: never the one allocated in this clock).
+  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] slot_alloc, slot_fill;
+
+  always_comb begin
+    for (int c = 0; c < NSUB; c++) begin
+      for (int s = 0; s < SETS; s++) begin
+        for (int w = 0; w < WAYS; w++) begin
+          slot_alloc[c][s][w] = e_fire && lk_alloc[c] && lk_set[c] == SET_W'(s)
+                                && lk_way[c] == WAY_W'(w);
+          slot_fill[c][s][w]  = fill_v && fill_sub == 2'(c) && fill_set == SET_W'(s)
+                                && fill_way == WAY_W'(w);
         end
-      end
-    end else begin
-      for (int c = 0; c < NSUB; c++) begin
-        if (e_fire && lk_v[c]) begin
-          plru_q[c][lk_set[c]] <= plru_touch(plru_q[c][lk_set[c]], lk_way[c]);
-          if (lk_alloc[c]) begin
-            valid_q[c][lk_set[c]][lk_way[c]] <= 1'b1;
-            pend_q[c][lk_set[c]][lk_way[c]]  <= 1'b1;
-            err_q[c][lk_set[c]][lk_way[c]]   <= 1'b0;
-          end
-        end
-        // reference counts: +1 for the pass entering, -1 for the pass read at the head
-        if (e_fire && lk_v[c] && h_pop && hd.used[c]
-            && lk_set[c] == hd.set[c] && lk_way[c] == hd.way[c]) begin
-          // both: unchanged
-        end else begin
-          if (e_fire && lk_v[c])
-            rc_q[c][lk_set[c]][lk_way[c]] <= rc_q[c][lk_set[c]][lk_way[c]] + RC_W'(1);
-          if (h_pop && hd.used[c])
-            rc_q[c][hd.set[c]][hd.way[c]] <= rc_q[c][hd.set[c]][hd.way[c]] - RC_W'(1);
-        end
-      end
-      // the line arrives (a pending slot: never the one allocated in this clock)
-      if (fill_v) begin
-        pend_q[fill_sub][fill_set][fill_way] <= 1'b0;
-        err_q[fill_sub][fill_set][fill_way]  <= fill_bad;
-        if (fill_bad) valid_q[fill_sub][fill_set][fill_way] <= 1'b0;
       end
     end
   end
 
   always_ff @(posedge clk_i) begin
-    for (int c = 0; c < NSUB; c++) begin
-      if (rst_ni && e_fire && lk_alloc[c]) tag_q[c][lk_set[c]][lk_way[c]] <= lk_tag[c];
+    if (!rst_ni) begin
+      valid_q <= '0;
+      pend_q  <= '0;
+      err_q   <= '0;
+    end else begin
+      for (int c = 0; c < NSUB; c++) begin
+        for (int s = 0; s < SETS; s++) begin
+          for (int w = 0; w < WAYS; w++) begin
+            if (slot_alloc[c][s][w]) begin
+              valid_q[c][s][w] <= 1'b1;
+              pend_q[c][s][w]  <= 1'b1;
+              err_q[c][s][w]   <= 1'b0;
+            end
+            if (slot_fill[c][s][w]) begin
+              pend_q[c][s][w] <= 1'b0;
+              err_q[c][s][w]  <= fill_bad;
+              if (fill_bad) valid_q[c][s][w] <= 1'b0;
+            end
+          end
+        end
+      end
+    end
+  end
+
+  // The LUT RAM part (see "Directory" at the state).  Per sub-cache: the entry touches the
+  // looked-up set's pseudo-LRU bits and takes a reference to the hit or victim way (an allocation
+  // also writes the tag); the head releases the reference of each slot its pass reads.
+  for (genvar c = 0; c < NSUB; c++) begin : g_dir
+    logic              take;             // the entry's pass reads sub-cache c
+    logic              give;             // the head's pass read sub-cache c
+    logic [PLRU_W-1:0] plru_mem [SETS];
+
+    assign take = e_fire && lk_v[c];     // (e_fire implies rst_ni)
+    assign give = h_pop && hd.used[c];
+
+    always_ff @(posedge clk_i) begin
+      if (take) plru_mem[lk_set[c]] <= plru_touch(set_plru[c], lk_way[c]);
+    end
+    assign set_plru[c] = plru_mem[lk_set[c]];
+
+    for (genvar w = 0; w < WAYS; w++) begin : g_way
+      logic [TAGB-1:0] tag_mem [SETS];
+      logic [RC_W-1:0] inc_mem [SETS];
+      logic [RC_W-1:0] dec_mem [SETS];
+      logic [RC_W-1:0] hd_dec;           // dec of the head's slot
+
+      always_ff @(posedge clk_i) begin
+        if (take && lk_way[c] == WAY_W'(w)) begin
+          if (lk_alloc[c]) tag_mem[lk_set[c]] <= lk_tag[c];
+          inc_mem[lk_set[c]] <= (lk_alloc[c] ? set_dec[c][w] : set_inc[c][w]) + RC_W'(1);
+        end
+        if (give && hd.way[c] == WAY_W'(w)) dec_mem[hd.set[c]] <= hd_dec + RC_W'(1);
+      end
+      assign set_tag[c][w] = tag_mem[lk_set[c]];
+      assign set_inc[c][w] = inc_mem[lk_set[c]];
+      assign set_dec[c][w] = dec_mem[lk_set[c]];
+      assign hd_dec        = dec_mem[hd.set[c]];
+
+`ifndef SYNTHESIS
+      // whole-directory views for the assertions below
+      for (genvar s = 0; s < SETS; s++) begin : g_view
+        assign dir_tag[c][s][w] = tag_mem[s];
+        assign dir_rc[c][s][w]  = inc_mem[s] - dec_mem[s];
+      end
+`endif
     end
   end
 
@@ -804,6 +869,19 @@ module tex_cache
 
 `ifndef SYNTHESIS
   // ------------------------------------------------------------------ assertions
+  // The directory as the assertions see it (from g_dir): every slot's tag and reference count
+  // (the count is meaningful for a live slot only: valid_q || err_q).
+  logic [TAGB-1:0] dir_tag [NSUB][SETS][WAYS];
+  logic [RC_W-1:0] dir_rc  [NSUB][SETS][WAYS];
+  logic [NSUB-1:0] lk_live, hd_live;  // the entry's / the head's slot is live
+
+  always_comb begin
+    for (int c = 0; c < NSUB; c++) begin
+      lk_live[c] = valid_q[c][lk_set[c]][lk_way[c]] || err_q[c][lk_set[c]][lk_way[c]];
+      hd_live[c] = valid_q[c][hd.set[c]][hd.way[c]] || err_q[c][hd.set[c]][hd.way[c]];
+    end
+  end
+
   // Streams: payload stable while stalled (the request side is the client's contract).
   req_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
       req_valid_i && !req_ready_o |=> req_valid_i && $stable({req_addr_i, req_tag_i}))
@@ -866,12 +944,12 @@ module tex_cache
       for (int c = 0; c < NSUB; c++) begin
         for (int s = 0; s < SETS; s++) begin
           for (int w = 0; w < WAYS; w++) begin
-            pending_referenced: assert (!pend_q[c][s][w] || rc_q[c][s][w] != '0)
+            pending_referenced: assert (!pend_q[c][s][w] || dir_rc[c][s][w] != '0)
               else $error("tex_cache: sub-cache %0d set %0d way %0d pending but unreferenced",
                           c, s, w);
             for (int v = w + 1; v < WAYS; v++) begin
               tag_unique: assert (!(valid_q[c][s][w] && valid_q[c][s][v]
-                                    && tag_q[c][s][w] == tag_q[c][s][v]))
+                                    && dir_tag[c][s][w] == dir_tag[c][s][v]))
                 else $error("tex_cache: sub-cache %0d set %0d holds a line twice", c, s);
             end
           end
@@ -880,17 +958,19 @@ module tex_cache
       for (int c = 0; c < NSUB; c++) begin
         // No eviction of a referenced line: a victim is unreferenced (hence not pending).
         if (e_fire && lk_alloc[c]) begin
-          victim_unreferenced: assert (rc_q[c][lk_set[c]][lk_way[c]] == '0
+          victim_unreferenced: assert ((!lk_live[c]
+                                        || dir_rc[c][lk_set[c]][lk_way[c]] == '0)
                                        && !pend_q[c][lk_set[c]][lk_way[c]])
             else $error("tex_cache: sub-cache %0d evicts a referenced line", c);
         end
         // Reference counts never wrap.
         if (e_fire && lk_v[c]) begin
-          rc_no_overflow: assert (rc_q[c][lk_set[c]][lk_way[c]] != '1)
+          rc_no_overflow: assert (lk_alloc[c] || dir_rc[c][lk_set[c]][lk_way[c]] != '1)
             else $error("tex_cache: reference count overflow");
         end
         if (h_pop && hd.used[c]) begin
-          rc_no_underflow: assert (rc_q[c][hd.set[c]][hd.way[c]] != '0)
+          rc_no_underflow: assert (hd_live[c]
+                                   && dir_rc[c][hd.set[c]][hd.way[c]] != '0)
             else $error("tex_cache: reference count underflow");
           // The slot read at the head holds the line the pass looked up (unless it errored).
           head_reads_its_line: assert (err_q[c][hd.set[c]][hd.way[c]]
@@ -908,7 +988,8 @@ module tex_cache
         if (mshr_busy_q[m]) begin
           mshr_slot_pending: assert (pend_q[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]]
               && valid_q[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]]
-              && tag_q[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]] == mshr_la_q[m][LA_W-1 -: TAGB]
+              && dir_tag[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]]
+                 == mshr_la_q[m][LA_W-1 -: TAGB]
               && set_of(mshr_la_q[m]) == mshr_set_q[m])
             else $error("tex_cache: MSHR %0d does not own a pending slot of its line", m);
           for (int n = m + 1; n < MSHRS; n++) begin
@@ -934,7 +1015,7 @@ module tex_cache
     sim_victim_redirect = 1'b0;  // a reference made the victim differ from the plain policy
     for (int c = 0; c < NSUB; c++) begin
       if (e_fire && lk_v[c] && !lk_alloc[c] && pend_q[c][lk_set[c]][lk_way[c]]) sim_merge = 1'b1;
-      free_way = plru_pick(plru_q[c][lk_set[c]], '1);
+      free_way = plru_pick(set_plru[c], '1);
       for (int w = WAYS - 1; w >= 0; w--) begin
         if (!valid_q[c][lk_set[c]][w]) free_way = WAY_W'(w);
       end

@@ -20,6 +20,8 @@ err flag is expected), rsp_err_o = 1 exactly for the quads with a line that answ
 response left over; the statistics (requests, line lookups = model.tex_cache.passes, line misses =
 AR handshakes, bytes = misses * LINE_BYTES); the RTL's SVA (Verilator --assert), among them no
 eviction of a referenced line and a simulation-only check that each slot read holds its line.
+State the cache does not reset (the LUT-RAM tags, reference counters and pseudo-LRU bits, the data
+RAMs) starts from random values (Verilator's +verilator+rand+reset+2, seeded by SEED).
 
 Measured (``realistic_throughput``): quads per clock and hit rates on the camera stream with a
 fixed latency of 20 clocks, no pauses, no back-pressure (TC_VIEWS views of 64x64 pixels).
@@ -729,10 +731,14 @@ SCALES = {"default": 1.0, "small": 0.5}
 
 
 def _run(name: str) -> None:
+    # One seed for the stimulus and for the random start of the state the cache does not reset
+    # (its LUT-RAM directory: tags, reference counters, pseudo-LRU bits; the data RAMs).
+    seed = int(os.environ.get("SEED", random.randrange(1, 1 << 31)))
+    print(f"tex_cache-{name}: SEED={seed}")
     cfg = CONFIGS[name]
     runner.run("tex_cache", "test_tex_cache", HERE, parameters=cfg.params(),
-               name=f"tex_cache-{name}",
-               extra_env={"TC_CFG": json.dumps(cfg.__dict__),
+               name=f"tex_cache-{name}", rand_reset_seed=seed,
+               extra_env={"TC_CFG": json.dumps(cfg.__dict__), "SEED": str(seed),
                           "TC_SCALE": os.environ.get("TC_SCALE", str(SCALES[name]))})
 
 
