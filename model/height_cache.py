@@ -204,7 +204,8 @@ class HeightCacheModel:
         """Advance one clock with inputs ``i``; returns what happened (for the test's counts)."""
         c = self.cfg
         ev = {"alloc": False, "ar": False, "beat": False, "fill": False, "err_line": False,
-              "conflict": False, "merge": False, "full": False, "stale_beat": False}
+              "conflict": False, "merge": False, "full": False, "stale_beat": False,
+              "hit_fill_set": False}
         fill = self._fill_target() if self.fill_q else None
         if not i.rst_n:
             if not self.in_rst and self.epoch is not None:
@@ -277,6 +278,8 @@ class HeightCacheModel:
             self.plru[fset] = plru_touch(c, self.plru[fset], fway)
             self.valid[fset][fway] = True
             ev["fill"] = True
+            # a hit and a fill touch the same set's pseudo-LRU bits in one clock (the fill last)
+            ev["hit_fill_set"] = hit and fset == s1set
 
         # ---- MSHRs
         for k, m in enumerate(self.mshr):

@@ -161,8 +161,11 @@ module height_cache
 
   // ---------------------------------------------------------------- state
   // Cache directory (flops) and RAM read ports.
-  logic [WAYS-1:0]   valid_q [SETS];
-  logic [PLRU_W-1:0] plru_q  [SETS];
+  // (Packed, each set's update decoded explicitly: as unpacked arrays, cleared in a reset loop and
+  // written from three places, they would be memories that synthesis maps to flops through a
+  // multiplexer chain per write port.)
+  logic [SETS-1:0][WAYS-1:0]   valid_q;
+  logic [SETS-1:0][PLRU_W-1:0] plru_q;
   logic [TAG_W-1:0]  tag_rd  [WAYS];  // the tag of each way at the looked-up set
   logic [15:0]       word_rd [WAYS];  // the 16-bit word holding the texel, of each way
 
@@ -388,14 +391,17 @@ module height_cache
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      for (int s = 0; s < SETS; s++) begin
-        valid_q[s] <= '0;
-        plru_q[s]  <= '0;
-      end
+      valid_q <= '0;
+      plru_q  <= '0;
     end else begin
-      if (pu_hit_q) plru_q[pu_hset_q] <= plru_wh;
-      if (pu_fill_q) plru_q[pu_fset_q] <= plru_wf;  // after the hit's: the filled way is the MRU
-      if (fill_q) valid_q[fill_set][fill_way] <= 1'b1;
+      for (int s = 0; s < SETS; s++) begin
+        // the fill's update after the hit's: the filled way is the MRU
+        if (pu_fill_q && pu_fset_q == SET_W'(s))     plru_q[s] <= plru_wf;
+        else if (pu_hit_q && pu_hset_q == SET_W'(s)) plru_q[s] <= plru_wh;
+        for (int w = 0; w < WAYS; w++) begin
+          if (fill_q && fill_set == SET_W'(s) && fill_way == WAY_W'(w)) valid_q[s][w] <= 1'b1;
+        end
+      end
     end
   end
 

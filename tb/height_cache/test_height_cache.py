@@ -181,6 +181,18 @@ def scan(size: int, n: int, wide: bool):
     return target
 
 
+def few_sets(rng: random.Random, cfg: CacheConfig, size: int, sets=2, lines=3):
+    """Texels of ``lines`` x WAYS lines that all fall into ``sets`` sets: every set full and
+    evicting, hits and fills on one set in the same clock (the pseudo-LRU's two updates)."""
+    tags = min(lines * cfg.ways, size // (cfg.sets * cfg.line_bytes))
+
+    def target(r, prev):
+        a = ((rng.randrange(tags) * cfg.sets + rng.randrange(sets)) * cfg.line_bytes
+             + rng.randrange(cfg.line_bytes))
+        return (a, 0)
+    return target
+
+
 class Harness:
     def __init__(self, dut, rng: random.Random, mem_size=1 << 18, slave="ram",
                  p_ar_pause=0.3, p_r_pause=0.3, **ooo):
@@ -579,6 +591,22 @@ async def merge_and_mshr_limit(dut):
     # the lines that had an MSHR hit; the others miss (and are read now)
     assert st["hits"] == len(seq) - (len(lines) - c.mshrs), st
     h.finish("merge and MSHR limit")
+
+
+@cocotb.test()
+async def set_pressure(dut):
+    """Lookups confined to two sets, three lines per way competing: the victim choice (pseudo-LRU
+    after a hit and a fill of the same set in one clock) decides every later hit."""
+    rng = random.Random(seed())
+    h = Harness(dut, rng)
+    rays = Rays(rng, 16, 3000, few_sets(rng, h.cfg, h.size))
+    await h.reset()
+    await h.run(rays, 200000)
+    await h.drain()
+    h.check_stats()
+    summary(h, rays, "set pressure")
+    assert h.cov["hit_fill_set"] >= 20, h.cov
+    h.finish("set pressure")
 
 
 @cocotb.test()
