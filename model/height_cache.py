@@ -7,6 +7,8 @@ compare the RTL with it clock by clock.  The behaviour (see the RTL header for t
 
 - lookups answer LOOKUP_LAT = 2 clocks later; hit = tag match in a valid way of the set, unless a
   line fill wrote that set in the clock the lookup was presented (then: miss, no allocation);
+- reset clears the valid bits by a sweep of SETS clocks after it (one set a clock): a lookup
+  presented during the sweep answers a miss and allocates nothing, like one that meets a fill;
 - a miss to a line held by an MSHR merges; else the lowest free MSHR is allocated and its AR queued;
   with every MSHR busy the miss is not recorded;
 - replacement: the lowest invalid way, else tree pseudo-LRU (touched by hits and fills);
@@ -154,9 +156,12 @@ class HeightCacheModel:
         self.arq: deque[int] = deque()
         self.fill_q = False
         self.fill_idx = 0
-        # stage 1: (addr, wide, vbits, conflict, rd) while s1_valid
+        self.sweep = c.sets  # clocks of the valid bits' reset sweep still to run
+        # stage 1: (addr, wide, vbits, conflict, rd, swept) while s1_valid; conflict: a fill wrote
+        # the set in the lookup's clock; swept: the lookup came during the reset sweep
         self.s1_valid = False
-        self.s1: tuple[int, int, list[bool], bool, list[tuple[int, bytes] | None]] | None = None
+        self.s1: tuple[int, int, list[bool], bool, list[tuple[int, bytes] | None], bool] | None \
+            = None
         self.rs = (0, 0, 0, 0)
         self.stats = {"hits": 0, "misses": 0, "bytes": 0, "lines": 0}
 
@@ -205,7 +210,7 @@ class HeightCacheModel:
         c = self.cfg
         ev = {"alloc": False, "ar": False, "beat": False, "fill": False, "err_line": False,
               "conflict": False, "merge": False, "full": False, "stale_beat": False,
-              "hit_fill_set": False}
+              "hit_fill_set": False, "sweep": False}
         fill = self._fill_target() if self.fill_q else None
         if not i.rst_n:
             if not self.in_rst and self.epoch is not None:
@@ -214,6 +219,10 @@ class HeightCacheModel:
             self._clear()  # (a pending fill still writes the RAM; its way stays invalid)
             return ev
         self.in_rst = False
+        swept = self.sweep > 0  # the valid bits' reset sweep runs in this clock
+        if swept:
+            self.sweep -= 1
+            ev["sweep"] = True
 
         # ---- stage 0: the RAM read sees the contents before this edge's fill write
         new_s1 = None
@@ -221,14 +230,15 @@ class HeightCacheModel:
             _, set0, _, _ = self._split(i.lk_addr)
             new_s1 = (i.lk_addr, i.lk_wide, list(self.valid[set0]),
                       fill is not None and fill[0] == set0,
-                      [self.ram[w][set0] for w in range(c.ways)])
+                      [self.ram[w][set0] for w in range(c.ways)], swept)
 
         # ---- stage 1
         hit = err = alloc = False
         data = hit_way = s1set = alloc_idx = 0
         match = [False] * c.mshrs
         if self.s1_valid:
-            addr, wide, vbits, conflict, rd = self.s1
+            addr, wide, vbits, fill_conflict, rd, s1_swept = self.s1
+            conflict = fill_conflict or s1_swept
             la, s1set, tag, off = self._split(addr)
             way_hit = [bool(vbits[w]) and rd[w] is not None and rd[w][0] == tag
                        for w in range(c.ways)]
@@ -249,7 +259,7 @@ class HeightCacheModel:
             alloc = (not conflict) and not any(way_hit) and not any(match) and bool(free)
             if alloc:
                 alloc_idx = free[0]
-            ev["conflict"] = conflict
+            ev["conflict"] = fill_conflict
             ev["merge"] = not hit and any(match)
             ev["full"] = not conflict and not any(way_hit) and not any(match) and not free
 

@@ -16,7 +16,8 @@
 // Organisation: SETS sets x WAYS ways of LINE_BYTES-byte lines; set index = addr[OFF_W +: SET_W],
 // tag = the bits above.  Per way two simple dual-port RAMs (cache_sdp_ram): the tags, and the
 // lines, written a whole line at a time and read one 16-bit word (the one holding the texel) at a
-// time; valid bits and replacement state are flops.  Replacement: an invalid way first (lowest
+// time; the valid bits are a RAM too (a word of WAYS bits per set, two copies for two read
+// ports), the replacement state is flops.  Replacement: an invalid way first (lowest
 // index), else tree pseudo-LRU (WAYS - 1 bits per set; exact LRU for WAYS = 2), updated by hits
 // and fills.  Timing only, results unchanged: a fill's set state is read in the last-beat clock
 // and the replacement state is written the clock after its update, with the pending updates
@@ -41,8 +42,11 @@
 //   ERR_HOLD clocks (so all the rays that were waiting for the line, retrying once per pass, learn
 //   of the error); then the MSHR is freed and a later lookup to the line reads it again.  The MSHR
 //   waits for its first erroring lookup however long that takes, so an error is never lost.
-// Reset (rst_ni low, synchronous): clears the valid bits, replacement state, MSHRs, the AR queue,
-//   the lookup pipeline and the statistics; m_axi_arvalid is 0 while rst_ni is low.  Reads
+// Reset (rst_ni low, synchronous): clears the replacement state, MSHRs, the AR queue, the lookup
+//   pipeline and the statistics, and starts the valid bits' sweep: for the SETS clocks after
+//   rst_ni rises one set a clock is cleared, and a lookup presented in those clocks answers a
+//   miss and allocates nothing (the ray retries; SETS = 512: 512 clocks); m_axi_arvalid is 0
+//   while rst_ni is low.  Reads
 //   issued before the reset may still return: rready stays 1 and their beats are ignored, because
 //   the arid carries an EPOCH_W-bit epoch (EPOCH_W = ID_W - log2(MSHRS), 2 by default) that
 //   advances at each reset.  Requirement: a read issued before a reset returns before 2^EPOCH_W - 1
@@ -161,10 +165,11 @@ module height_cache
 
   // ---------------------------------------------------------------- state
   // Cache directory (flops) and RAM read ports.
-  // (Packed, each set's update decoded explicitly: as unpacked arrays, cleared in a reset loop and
-  // written from three places, they would be memories that synthesis maps to flops through a
-  // multiplexer chain per write port.)
-  logic [SETS-1:0][WAYS-1:0]   valid_q;
+  // The valid bits are RAM (u_valid_lk / u_valid_fill: one copy per read port), cleared by a
+  // sweep after reset (see "valid bits").  The pseudo-LRU bits are flops, packed, each set's
+  // update decoded explicitly (as an unpacked array, cleared in a reset loop and written from two
+  // places, it would be a memory that synthesis maps to flops through a multiplexer chain per
+  // write port).
   logic [SETS-1:0][PLRU_W-1:0] plru_q;
   logic [TAG_W-1:0]  tag_rd  [WAYS];  // the tag of each way at the looked-up set
   logic [15:0]       word_rd [WAYS];  // the 16-bit word holding the texel, of each way
@@ -198,12 +203,16 @@ module height_cache
   logic [SET_W-1:0]  pu_hset_q, pu_fset_q;
   logic [WAY_W-1:0]  pu_hway_q, pu_fway_q;
 
+  // The valid bits' reset sweep (see "valid bits").
+  logic              sweep_q;          // the sweep is running
+  logic [SET_W-1:0]  sweep_set_q;      // the set it clears in this clock
+
   // Pipeline.
   logic              s1_valid_q, s1_wide_q, s1_conflict_q;
   /* verilator lint_off UNUSEDSIGNAL */  // the word within the line was chosen in stage 0
   logic [ADDR_W-1:0] s1_addr_q;
   /* verilator lint_on UNUSEDSIGNAL */
-  logic [WAYS-1:0]   s1_vbits_q;
+  logic [WAYS-1:0]   s1_vbits;
   logic              rs_valid_q, rs_hit_q, rs_err_q;
   logic [15:0]       rs_data_q;
 
@@ -217,7 +226,7 @@ module height_cache
   logic [WAYS-1:0]   fill_vbits;
   logic [PLRU_W-1:0] plru_wh, plru_wf, fill_plru, fill_p1;
   logic [SET_W-1:0]  pre_set;      // last-beat clock: the set of the line being completed
-  logic [WAYS-1:0]   pre_vbits_q;  // fill clock: that set's valid bits, read a clock earlier
+  logic [WAYS-1:0]   pre_vbits;  // fill clock: that set's valid bits, read a clock earlier
   logic [PLRU_W-1:0] pre_plru_q;   // ... and its replacement state (with the updates pending then)
 
   // The fill clock starts from registers.  The line address is loaded in the clock of the last
@@ -230,14 +239,13 @@ module height_cache
   assign fill_la    = fill_la_q;
   assign fill_set   = fill_la[SET_W-1:0];
   assign fill_tag   = fill_la[LA_W-1:SET_W];
-  assign fill_vbits = pre_vbits_q | ((pu_fill_q && pu_fset_q == fill_set)
+  assign fill_vbits = pre_vbits | ((pu_fill_q && pu_fset_q == fill_set)
                                      ? WAYS'(1) << pu_fway_q : '0);
   assign fill_p1    = (pu_hit_q && pu_hset_q == fill_set) ? plru_touch(pre_plru_q, pu_hway_q)
                                                           : pre_plru_q;
   assign fill_plru  = (pu_fill_q && pu_fset_q == fill_set) ? plru_touch(fill_p1, pu_fway_q)
                                                            : fill_p1;
   always_ff @(posedge clk_i) begin
-    pre_vbits_q <= valid_q[pre_set];
     pre_plru_q  <= (pu_fill_q && pu_fset_q == pre_set) ? plru_wf
                  : (pu_hit_q && pu_hset_q == pre_set)  ? plru_wh
                  :                                       plru_q[pre_set];
@@ -286,8 +294,7 @@ module height_cache
     if (lk_valid_i) begin
       s1_addr_q     <= lk_addr_i;
       s1_wide_q     <= lk_wide_i;
-      s1_vbits_q    <= valid_q[lk_set];
-      s1_conflict_q <= fill_q && (fill_set == lk_set);
+      s1_conflict_q <= (fill_q && (fill_set == lk_set)) || sweep_q;
     end
   end
 
@@ -308,7 +315,7 @@ module height_cache
   assign s1_la  = s1_addr_q[ADDR_W-1:OFF_W];
 
   for (genvar w = 0; w < WAYS; w++) begin : g_hit
-    assign way_hit[w] = s1_vbits_q[w] && (tag_rd[w] == s1_tag);
+    assign way_hit[w] = s1_vbits[w] && (tag_rd[w] == s1_tag);
   end
 
   always_comb begin
@@ -391,19 +398,51 @@ module height_cache
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      valid_q <= '0;
-      plru_q  <= '0;
+      plru_q <= '0;
     end else begin
       for (int s = 0; s < SETS; s++) begin
         // the fill's update after the hit's: the filled way is the MRU
         if (pu_fill_q && pu_fset_q == SET_W'(s))     plru_q[s] <= plru_wf;
         else if (pu_hit_q && pu_hset_q == SET_W'(s)) plru_q[s] <= plru_wh;
-        for (int w = 0; w < WAYS; w++) begin
-          if (fill_q && fill_set == SET_W'(s) && fill_way == WAY_W'(w)) valid_q[s][w] <= 1'b1;
-        end
       end
     end
   end
+
+  // ---------------------------------------------------------------- valid bits
+  // Per set a word of WAYS valid bits in two RAM copies with a synchronous read each: u_valid_lk
+  // read by the lookup's stage 0 (like the tags), u_valid_fill by the last-beat clock of a line
+  // (pre_vbits).  A fill writes the whole word of its set: fill_vbits (the set's bits as they
+  // are before this fill) with the filled way set.  Reset starts a sweep: for the SETS clocks
+  // after rst_ni rises, sweep_q is 1 and one set a clock is written to 0; a lookup presented in
+  // those clocks answers a miss and allocates nothing (like a lookup that meets a fill of its
+  // set), and with no MSHR allocated no fill can happen.  A read of the word written in the same
+  // clock is either discarded (a lookup meeting a fill: a miss) or corrected (pre_vbits, by
+  // the pending fill in fill_vbits), so the RAM may return the old or the new word.
+  logic             vb_we;
+  logic [SET_W-1:0] vb_waddr;
+  logic [WAYS-1:0]  vb_wdata;
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      sweep_q     <= 1'b1;
+      sweep_set_q <= '0;
+    end else if (sweep_q) begin
+      sweep_set_q <= sweep_set_q + SET_W'(1);
+      if (sweep_set_q == SET_W'(SETS - 1)) sweep_q <= 1'b0;
+    end
+  end
+
+  // (no fill during the sweep: every MSHR is free from the reset on until the sweep ends)
+  assign vb_we    = rst_ni && (sweep_q || fill_q);
+  assign vb_waddr = sweep_q ? sweep_set_q : fill_set;
+  assign vb_wdata = sweep_q ? '0 : (fill_vbits | (WAYS'(1) << fill_way));
+
+  cache_sdp_ram #(.DEPTH(SETS), .WIDTH(WAYS)) u_valid_lk (
+    .clk_i, .we_i(vb_we), .waddr_i(vb_waddr), .wdata_i(vb_wdata),
+    .re_i(lk_valid_i), .raddr_i(lk_set), .rlane_i('0), .rdata_o(s1_vbits));
+  cache_sdp_ram #(.DEPTH(SETS), .WIDTH(WAYS)) u_valid_fill (
+    .clk_i, .we_i(vb_we), .waddr_i(vb_waddr), .wdata_i(vb_wdata),
+    .re_i(1'b1), .raddr_i(pre_set), .rlane_i('0), .rdata_o(pre_vbits));
 
   // ---------------------------------------------------------------- R channel
   logic [EPOCH_W-1:0] r_epoch;
@@ -558,6 +597,9 @@ module height_cache
   fill_is_mshr_fill: assert property (@(posedge clk_i) disable iff (!rst_ni)
       fill_q |-> (mshr_state_q[fill_idx_q] == MSHR_FILL) && (fill_la_q == mshr_la_q[fill_idx_q]))
     else $error("height_cache: fill without an MSHR in MSHR_FILL, or of another line");
+  no_fill_in_sweep: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      sweep_q |-> !fill_q && !s1_alloc)
+    else $error("height_cache: a fill or an allocation during the valid bits' reset sweep");
   hit_not_in_mshr: assert property (@(posedge clk_i) disable iff (!rst_ni)
       s1_hit |-> !(|mshr_match))
     else $error("height_cache: a line both in the cache and in an MSHR");
