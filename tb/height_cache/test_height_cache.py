@@ -12,9 +12,6 @@ the memory, no lookup waits longer than LIVELOCK clocks, the statistics against 
 against counts taken from the ports (hits, misses, AR handshakes, beats; bytes = lines *
 LINE_BYTES when idle), and the SVA assertions in the RTL (Verilator --assert).
 
-State the cache does not reset starts from random values (Verilator's +verilator+rand+reset+2,
-seeded by SEED): the valid bits' RAM must read as cleared once the reset sweep is over.
-
 Environment: SEED, HC_LOOKUPS (completed lookups for the random test, default 6000), WAVES=1.
 """
 from __future__ import annotations
@@ -645,7 +642,7 @@ def _run(name: str) -> None:
     print(f"height_cache-{name}: SEED={s}")
     cfg = CONFIGS[name]
     runner.run("height_cache", "test_height_cache", Path(__file__).parent,
-               parameters=cfg.params(), name=f"height_cache-{name}", rand_reset_seed=s,
+               parameters=cfg.params(), name=f"height_cache-{name}",
                extra_env={"HC_CFG": json.dumps(cfg.__dict__), "SEED": str(s)})
 
 
