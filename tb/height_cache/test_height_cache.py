@@ -636,8 +636,7 @@ async def sequential_scan(dut):
 
 
 def _run(name: str) -> None:
-    # One seed for the stimulus and for the random start of what the cache does not reset (the
-    # valid bits' RAM, cleared by the sweep after reset; the tag and line RAMs).
+    # one seed for every test of the run (printed)
     s = int(os.environ.get("SEED", random.randrange(1, 1 << 31)))
     print(f"height_cache-{name}: SEED={s}")
     cfg = CONFIGS[name]

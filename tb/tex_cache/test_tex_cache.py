@@ -731,8 +731,7 @@ SCALES = {"default": 1.0, "small": 0.5}
 
 
 def _run(name: str) -> None:
-    # One seed for the stimulus and for the random start of the state the cache does not reset
-    # (its LUT-RAM directory: tags, reference counters, pseudo-LRU bits; the data RAMs).
+    # one seed for every test of the run (printed)
     seed = int(os.environ.get("SEED", random.randrange(1, 1 << 31)))
     print(f"tex_cache-{name}: SEED={seed}")
     cfg = CONFIGS[name]
