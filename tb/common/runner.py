@@ -94,14 +94,11 @@ def verilator_args(waves: bool, coverage: bool = False) -> list[str]:
 def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, object] | None = None,
         name: str | None = None, extra_env: Mapping[str, str] | None = None,
         testcase: str | None = None, extra_sources: Sequence[str] = (),
-        rtl_top: str | None = None, rand_reset_seed: int | None = None) -> None:
+        rtl_top: str | None = None) -> None:
     """Build ``top`` (with ``parameters``) and run the cocotb tests in ``test_module``.
 
     ``extra_sources`` are testbench files (e.g. a wrapper that is ``top``); ``rtl_top`` names the
-    RTL module whose sources are needed when ``top`` is such a wrapper.  ``rand_reset_seed``:
-    every variable without a reset (flops and memories alike) starts from random values drawn
-    from this seed (Verilator's ``+verilator+rand+reset+2``) instead of zeros, for a design that
-    claims not to need the reset of some state.
+    RTL module whose sources are needed when ``top`` is such a wrapper.
     """
     parameters = dict(parameters or {})
     name = name or top + "".join(f"-{k}{v}" for k, v in sorted(parameters.items()))
@@ -129,8 +126,6 @@ def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, obj
         dat.parent.mkdir(parents=True, exist_ok=True)
         dat.unlink(missing_ok=True)
         plusargs.append(f"+verilator+coverage+file+{dat}")
-    if rand_reset_seed is not None:
-        plusargs += ["+verilator+rand+reset+2", f"+verilator+seed+{rand_reset_seed}"]
     runner.test(
         hdl_toplevel=top,
         test_module=test_module,

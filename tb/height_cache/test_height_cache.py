@@ -201,7 +201,7 @@ class Harness:
         self.model = HeightCacheModel(self.cfg)
         self.mem = rng.randbytes(mem_size)
         self.size = mem_size
-        dut.rst_ni.value = 0     # in reset from the first edge on (the state starts random)
+        dut.rst_ni.value = 0     # in reset from the first edge on
         dut.lk_valid_i.value = 0
         cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start(start_high=False))
         self.ooo = None
@@ -222,9 +222,6 @@ class Harness:
         self.now = 0
         self.rst_prev = 0
         self.clr_prev = 0
-        # The outputs are compared from the first clock after a reset edge on (before it the
-        # registers hold their random start values).
-        self.reset_seen = False
         self.snap: tuple[dict, dict] = ({}, {})
         self.pipe: deque = deque([None, None])  # lookups presented 2 and 1 clocks ago
         # counts taken at the ports since the last reset / clear
@@ -271,9 +268,8 @@ class Harness:
         if arvalid and m.epoch is None:
             m.learn_epoch(arid)
             o = m.outputs(self.rst_prev)
-        if self.reset_seen and (rs != (o.rs_valid, o.rs_hit, o.rs_err, o.rs_data)
-                                or arvalid != o.arvalid
-                                or (arvalid and (araddr != o.araddr or arid != o.arid))):
+        if (rs != (o.rs_valid, o.rs_hit, o.rs_err, o.rs_data) or arvalid != o.arvalid
+                or (arvalid and (araddr != o.araddr or arid != o.arid))):
             raise AssertionError(
                 f"clock {self.now}: RTL rs={rs} ar=({arvalid}, {araddr:#x}, {arid}) vs model "
                 f"rs={(o.rs_valid, o.rs_hit, o.rs_err, o.rs_data)} "
@@ -303,7 +299,7 @@ class Harness:
                 kind = "miss"
             if rays is not None and r is not None:
                 rays.answer(r, self.now, kind)
-        elif rs[0] and self.reset_seen:
+        elif rs[0]:
             raise AssertionError(f"clock {self.now}: rs_valid_o without a lookup")
         if rs[0] and self.rst_prev and not self.clr_prev:
             self.cnt["hits" if rs[1] else "misses"] += 1
@@ -352,8 +348,6 @@ class Harness:
             self.cnt["bytes"] += self.cfg.beat_bytes * int(ev["beat"])
         self.rst_prev = rst_n
         self.clr_prev = clr
-        if not rst_n:
-            self.reset_seen = True
 
     def reset_allowed(self) -> bool:
         """The RTL's documented requirement: a reset must not bring the epoch back to that of a

@@ -175,7 +175,7 @@ class Harness:
         # do not depend on how many clocks earlier runs took
         self.dut, self.rng = dut, random.Random(rng.randrange(1 << 62))
         self.cfg = config()
-        dut.rst_ni.value = 0      # in reset from the first edge on (the state starts random)
+        dut.rst_ni.value = 0      # in reset from the first edge on
         dut.req_valid_i.value = 0
         cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start(start_high=False))
         # the memory's own generator: the streams do not depend on how many draws it makes
