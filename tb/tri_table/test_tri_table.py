@@ -39,7 +39,7 @@ async def tri_table_random(dut):
         dut.wdata_i.value = int(mem[a >> 1, a & 1])
         await RisingEdge(dut.clk_i)
         await FallingEdge(dut.clk_i)
-    n = fp_unit.vectors()
+    n = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE)
     we = (rng.random(n) < 0.5).tolist()
     re = (rng.random(n) < 0.7).tolist()
     waddr = rng.integers(0, 2 * ids, n).tolist()
