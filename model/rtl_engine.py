@@ -174,7 +174,9 @@ def verilator_env() -> dict[str, str]:
                                    env.get("PATH", "")])
     # Verilator's makefiles prefix each compile with $(OBJCACHE): tb/common/objcache.py compiles
     # the runtime library once for every variant (OBJCACHE= empty turns it off).
-    env.setdefault("OBJCACHE", f"{sys.executable} {ROOT / 'tb' / 'common' / 'objcache.py'}")
+    from tb.common import objcache  # only its path and the interpreter: no cocotb needed
+
+    env.setdefault("OBJCACHE", objcache.COMMAND)
     return env
 
 

@@ -13,7 +13,7 @@ import cocotb
 import numpy as np
 
 from model import f24, f24_vectors as vec
-from tb.common import fp_unit
+from tb.common import fp_unit, runner
 
 #: The latencies the units are built and checked at (their LAT parameter; 2 is the default).
 LATS = (2, 3)
@@ -26,7 +26,7 @@ EXPONENTS_OTHER_LAT = (63, 64)
 
 def exponents(latency: int) -> tuple[int, ...]:
     """The exponents whose every fraction is checked at ``latency``."""
-    return EXPONENTS if latency == 2 or os.environ.get("TB_LONG") == "1" else EXPONENTS_OTHER_LAT
+    return EXPONENTS if latency == 2 or runner.long_stimulus() else EXPONENTS_OTHER_LAT
 
 
 def every_fraction(exps: tuple[int, ...]) -> np.ndarray:

@@ -16,7 +16,7 @@ import numpy as np
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
-from tb.common import report
+from tb.common import report, runner
 
 #: Random seed for stimulus: printed by every test, settable with SEED=...
 def seed() -> int:
@@ -37,7 +37,7 @@ def vectors(default: int = VECTORS) -> int:
     with TB_LONG=1)."""
     if "VECTORS" in os.environ:
         return int(os.environ["VECTORS"])
-    return max(default, VECTORS) if os.environ.get("TB_LONG") == "1" else default
+    return max(default, VECTORS) if runner.long_stimulus() else default
 
 
 async def check_pipeline(dut, latency: int, inputs: Mapping[str, np.ndarray],

@@ -3,7 +3,8 @@
 Every testbench build compiles Verilator's runtime (``verilated.cpp``, ``verilated_vpi.cpp``,
 ``verilated_threads.cpp``, ...) and cocotb's ``verilator.cpp`` again, although their text is the
 same in every build: about 20 s of the 30 s a small unit's build takes.  Verilator's makefiles put
-``$(OBJCACHE)`` in front of each compiler call, so :mod:`tb.common.runner` sets ``OBJCACHE`` to::
+``$(OBJCACHE)`` in front of each compiler call, so :mod:`tb.common.runner` and
+:mod:`model.rtl_engine` set ``OBJCACHE`` to :data:`COMMAND`::
 
     <python> tb/common/objcache.py
 
@@ -11,8 +12,9 @@ and this script receives ``<compiler> <arguments...>``.  For a ``-c`` compile it
 source with the same arguments (``-E``, dependency options removed) and hashes the compiler's
 path and version, the arguments and the preprocessed text.  A hit copies the stored object and
 dependency file into place; a miss runs the real compile and stores both.  Anything else (links,
-``-E`` calls, several sources, profile-guided compiles) runs unchanged.  The preprocessed text holds the path of every
-header it read, so an object is only reused where it was built from the same files.
+``-E`` calls, several sources, profile-guided compiles) runs unchanged.  The preprocessed text
+holds the path of every header it read, so an object is only reused where it was built from the
+same files.
 
 The store is ``build/objcache`` (``OBJCACHE_DIR`` overrides it); entries are written to a
 temporary name and renamed, so parallel builds (pytest-xdist) can share it.  ``OBJCACHE_STATS=1``
@@ -29,6 +31,8 @@ import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+#: The value of OBJCACHE that puts this script in front of Verilator's compiles.
+COMMAND = f"{sys.executable} {Path(__file__).resolve()}"
 SOURCE_SUFFIXES = (".c", ".cc", ".cpp", ".cxx")
 DEP_OPTIONS_WITH_ARG = ("-MF", "-MT", "-MQ")
 DEP_OPTIONS = ("-MD", "-MMD", "-MP")

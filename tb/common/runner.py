@@ -20,11 +20,12 @@ from __future__ import annotations
 import hashlib
 import os
 import re
-import sys
 from pathlib import Path
 from typing import Mapping, Sequence
 
 from cocotb_tools.runner import get_runner
+
+from tb.common import objcache
 
 ROOT = Path(__file__).resolve().parents[2]
 RTL = ROOT / "rtl"
@@ -32,8 +33,11 @@ BUILD = ROOT / "build" / "sim"
 COVERAGE_DIR = ROOT / "build" / "coverage"
 #: Verilator options of a coverage build (scripts/coverage.py reads the counters they produce).
 COVERAGE_ARGS = ("--coverage-line", "--coverage-toggle")
-#: Compiler-call prefix for Verilator's makefiles: our object cache (tb/common/objcache.py).
-OBJCACHE = f"{sys.executable} {Path(__file__).resolve().parent / 'objcache.py'}"
+
+
+def long_stimulus() -> bool:
+    """True under ``make test-long`` (``TB_LONG=1``): the testbenches' longer stimulus."""
+    return os.environ.get("TB_LONG") == "1"
 
 _MODULE_RE = re.compile(r"^\s*(?:module|package)\s+(\w+)", re.M)
 
@@ -115,7 +119,7 @@ def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, obj
     build_dir = BUILD / (name + ("-waves" if waves else "-cov" if cov else ""))
     # Verilator's makefiles prefix every compile with $(OBJCACHE): the runtime and cocotb's main
     # are compiled once, not in every build (set OBJCACHE= empty to compile everything again).
-    os.environ.setdefault("OBJCACHE", OBJCACHE)
+    os.environ.setdefault("OBJCACHE", objcache.COMMAND)
     runner = get_runner("verilator")
     runner.build(
         sources=[str(p) for p in sources_for(rtl_top or top, extra_sources)],

@@ -423,7 +423,7 @@ async def random_lookups(dut):
     """Random localised / random-jump lookups, 8/16-bit, AxiRamRead with random pauses."""
     rng = random.Random(seed())
     h = Harness(dut, rng)
-    quota = int(os.environ.get("HC_LOOKUPS", 6000 if os.environ.get("TB_LONG") == "1" else 3000))
+    quota = int(os.environ.get("HC_LOOKUPS", 6000 if runner.long_stimulus() else 3000))
     rays = Rays(rng, 24, quota, walk(rng, h.size))
     await h.reset()
     await h.run(rays, 60 * quota)

@@ -737,7 +737,7 @@ def _run(name: str) -> None:
     seed = int(os.environ.get("SEED", random.randrange(1, 1 << 31)))
     print(f"tex_cache-{name}: SEED={seed}")
     cfg = CONFIGS[name]
-    scales = LONG_SCALES if os.environ.get("TB_LONG") == "1" else SCALES
+    scales = LONG_SCALES if runner.long_stimulus() else SCALES
     runner.run("tex_cache", "test_tex_cache", HERE, parameters=cfg.params(),
                name=f"tex_cache-{name}",
                extra_env={"TC_CFG": json.dumps(cfg.__dict__), "SEED": str(seed),

@@ -76,7 +76,7 @@ def seed() -> int:
 
 def scale(n: int) -> int:
     """``n`` rays times SYS_SCALE (default 0.5 in make test, 1.0 with TB_LONG=1)."""
-    default = "1.0" if os.environ.get("TB_LONG") == "1" else "0.5"
+    default = "1.0" if runner.long_stimulus() else "0.5"
     return max(16, int(n * float(os.environ.get("SYS_SCALE", default))))
 
 

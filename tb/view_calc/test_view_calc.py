@@ -134,7 +134,8 @@ async def view_calc_random_and_directed(dut):
     await pipe.reset()
     total, classes = 0, {}
     for i, (dname, dword) in enumerate(DEPTHS.items()):
-        words, counts = stimulus(rng, fp_unit.vectors(fp_unit.VECTORS_COMPOSITE) if i == 0 else 2000)
+        n_random = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE) if i == 0 else 2000
+        words, counts = stimulus(rng, n_random)
         if i == 0:
             classes = counts
         words = words[rng.permutation(len(words))]
