@@ -5,10 +5,14 @@ estimate of the rest.
 
 - :func:`passes`: how a request (four texel byte addresses c00, c01, c10, c11) is split into
   passes and which line each sub-cache looks up in each pass, exactly as the RTL does: the row bit
-  is bit j of each address, j a function of the pitch R = addr[2] - addr[0]
-  (:func:`row_bit_position`; 0 when R = 0); sub-cache = (row bit, line parity); a pass is the
+  of a texel is bit j of its row's first address (c00 or c10), j a function of the pitch
+  R = addr[2] - addr[0] (:func:`row_bit_position`; 0 when R = 0); sub-cache = (row bit, line parity); a pass is the
   greedy subset (texel order) of the remaining texels whose lines are in distinct sub-caches or
-  equal.  So the RTL's
+  equal, and, within one line, in the window the sub-cache reads: a sub-cache reads one window of
+  ``win_words`` + 1 words of its line per pass (window k: words k * win_words .. (k + 1) *
+  win_words, the last shared with window k + 1), the window of the pass's first texel in that
+  sub-cache (:func:`window_fits`).  A quad's horizontal pair (words w, w + 1 of one line) always
+  fits one window, so real quads never split for it.  So the RTL's
   ``stat_lookups_o`` equals the sum of ``len(lines)`` over the passes.  ``stat_texel_hits_o``
   counts the texels (four per request) whose pass's lookup in their sub-cache hit.
 - :class:`TexCacheModel`: the directory without timing (XOR-folded sets, tree pseudo-LRU, an
@@ -21,7 +25,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
-from .height_cache import CacheConfig, plru_touch, plru_victim
+from .height_cache import CacheConfig, clog2, plru_touch, plru_victim
 
 
 @dataclass(frozen=True)
@@ -35,6 +39,12 @@ class TexCacheConfig(CacheConfig):
     id_w: int = 6
     fifo_depth: int = 64
     tag_w: int = 8
+    win_words: int = 8
+
+    @property
+    def window_words(self) -> int:
+        """Words per data-RAM window (WIN_WORDS, at most the line's words)."""
+        return min(self.win_words, self.line_bytes // 4)
 
     @property
     def capacity(self) -> int:
@@ -45,7 +55,8 @@ class TexCacheConfig(CacheConfig):
         """As RTL parameters."""
         return {"ADDR_W": self.addr_w, "DATA_W": self.data_w, "LINE_BYTES": self.line_bytes,
                 "SETS": self.sets, "WAYS": self.ways, "MSHRS": self.mshrs,
-                "FIFO_DEPTH": self.fifo_depth, "ID_W": self.id_w, "TAG_W": self.tag_w}
+                "FIFO_DEPTH": self.fifo_depth, "ID_W": self.id_w, "TAG_W": self.tag_w,
+                "WIN_WORDS": self.win_words}
 
 
 #: Bits below a candidate row-bit position that judge it (the RTL's ROW_P).
@@ -55,13 +66,16 @@ ROW_P = 3
 def row_bit_position(pitch: int, cfg: TexCacheConfig) -> int | None:
     """The address bit j used as row bit for a quad of row pitch ``pitch`` (None: pitch 0).
 
-    Among j = log2(LINE_BYTES) + 1 .. ADDR_W - 1, the j where the pitch is closest to an odd
-    multiple of 2^j, judged by the ROW_P bits below j: e = pitch[j-1 -: ROW_P] if pitch[j] else
-    its complement; the smallest e, the lowest j on ties."""
+    Among j = log2(4 * window_words) .. ADDR_W - 1, the j where the pitch is closest to an odd multiple of 2^j, judged by the ROW_P bits below j:
+    e = pitch[j-1 -: ROW_P] if pitch[j] else its complement; the smallest e, the lowest j on
+    ties.  Bits below the line size are candidates so that the two rows of a small level, which
+    share a line, go to two sub-caches when they are in different windows of it; the line parity
+    bit is one too (for a pitch of one line) because the row bit is taken per row."""
     if pitch == 0:
         return None
     best = None
-    for j in range(cfg.off_w + 1, cfg.addr_w):
+    lo = clog2(4 * cfg.window_words)
+    for j in range(lo, cfg.addr_w):
         f = (pitch >> (j - ROW_P)) & ((1 << ROW_P) - 1)
         e = f if (pitch >> j) & 1 else (1 << ROW_P) - 1 - f
         if best is None or e < best[0]:
@@ -71,13 +85,14 @@ def row_bit_position(pitch: int, cfg: TexCacheConfig) -> int | None:
 
 
 def row_bits(addrs: Sequence[int], cfg: TexCacheConfig) -> list[int]:
-    """The row bit of each texel: bit j of its address (:func:`row_bit_position` of the pitch
-    addr[2] - addr[0]), or 0 when the pitch is 0."""
+    """The row bit of each texel: bit j (:func:`row_bit_position` of the pitch addr[2] - addr[0])
+    of its row's first texel, c00 for c00 and c01, c10 for c10 and c11; 0 when the pitch is 0."""
     mask = (1 << cfg.addr_w) - 1
     j = row_bit_position((addrs[2] - addrs[0]) & mask, cfg)
     if j is None:
         return [0, 0, 0, 0]
-    return [(a >> j) & 1 for a in addrs]
+    top, bottom = (addrs[0] >> j) & 1, (addrs[2] >> j) & 1
+    return [top, top, bottom, bottom]
 
 
 @dataclass
@@ -85,24 +100,36 @@ class Pass:
     mask: int                               # texels served (bit t = texel t)
     lines: dict[int, int] = field(default_factory=dict)  # sub-cache -> line address
     sub: list[int] = field(default_factory=list)         # sub-cache of each texel (all four)
+    win: dict[int, int] = field(default_factory=dict)    # sub-cache -> window read
+
+
+def window_fits(word: int, win: int, cfg: TexCacheConfig) -> bool:
+    """Whether word ``word`` of a line lies in its read window ``win`` (words win * W ..
+    (win + 1) * W, W = window_words)."""
+    ww = cfg.window_words
+    return word // ww == win or word == (win + 1) * ww
 
 
 def passes(addrs: Sequence[int], cfg: TexCacheConfig) -> list[Pass]:
     """The RTL's passes for one request."""
     rows = row_bits(addrs, cfg)
     la = [a >> cfg.off_w for a in addrs]
+    word = [(a >> 2) & ((cfg.line_bytes >> 2) - 1) for a in addrs]
     sub = [(rows[t] << 1) | (la[t] & 1) for t in range(4)]
     todo = 0xF
     out: list[Pass] = []
     while todo:
-        p = Pass(0, {}, sub)
+        p = Pass(0, {}, sub, {})
         for t in range(4):
             if not (todo >> t) & 1:
                 continue
             c = sub[t]
-            if c in p.lines and p.lines[c] != la[t]:
+            if c in p.lines and (p.lines[c] != la[t]
+                                 or not window_fits(word[t], p.win[c], cfg)):
                 continue
-            p.lines.setdefault(c, la[t])
+            if c not in p.lines:
+                p.lines[c] = la[t]
+                p.win[c] = word[t] // cfg.window_words
             p.mask |= 1 << t
         todo &= ~p.mask
         out.append(p)

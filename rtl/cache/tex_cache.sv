@@ -19,27 +19,36 @@
 // ---- Organisation: four sub-caches, one lookup and one data read each per clock -----------------
 // A line holds LINE_BYTES / 4 consecutive texels.  Texel t lies in line la = addr >> log2(LINE_BYTES)
 // and goes to sub-cache {r, la[0]}: la[0] is the line-index parity and r a "row bit", bit j of the
-// texel's address, j chosen from the quad's row pitch R = req_addr_i[2] - req_addr_i[0] (4 W for
-// a level W texels wide; 0 when the rows are clamped, then r = 0): the address bit above the line
-// parity that adding R flips most reliably (see "row bits" below; for R = 2^k it is bit k).
+// address of the texel's row's first texel (c00 for the top row, c10 for the bottom one), j chosen
+// from the quad's row pitch R = req_addr_i[2] - req_addr_i[0] (4 W for a level W texels wide; 0
+// when the rows are clamped, then r = 0): the address bit from the data window's size up that
+// adding R flips most reliably (see "row bits" below; for R = 2^k it is bit k).
 // The cache cannot know a texel's row parity from its address (that needs the level's width and
-// base), so the row bit is read from the quad itself.  For a power-of-two width the bottom row's
-// lines are the top row's plus R, which flips bit j: the up to four lines of the quad (top L, L or
-// L + 1; bottom L', L' or L' + 1) fall into four different sub-caches.  Levels of at most
-// 2 * LINE_BYTES / 4 texels need at most two lines, of different parity or equal.  Every quad of a
-// level carries the same R, so a line always goes to the same sub-cache; a quad with clamped rows
-// uses r = 0, so an edge row's line may be held twice (the cache is read-only: harmless).
+// base), so the row bit is read from the quad itself.  For a power-of-two width the bottom row
+// starts R after the top row, which flips bit j: the top row's texels go to the sub-caches {r, *}
+// and the bottom row's to {~r, *}, and within a row the two texels are in one line or in two of
+// different parity, so the quad's lines fall into distinct sub-caches or are equal and windowed
+// alike (below).  A line may be held in two sub-caches (rows of a small level share lines; rows
+// clamped use r = 0): the cache is read-only, so that is harmless.
+// Data windows: a sub-cache's RAM holds a line as NWIN = LINE_BYTES / 4 / WW windows of WW =
+// min(WIN_WORDS, LINE_BYTES / 4) words, and a pass reads one window plus the word after it
+// (an overlap word), so the texels of one line a pass may take from a sub-cache are those in
+// the window of its first one there: a quad's horizontal pair always is, and a small level's two
+// rows are either in one window or have different row bits (for R < 4 WW bytes, j is the window
+// bit WB + 2).  So every quad of a power-of-two-wide level is one pass.
 // Any other input is served too, only slower: the request is split into passes, each a greedy
-// (texel order) subset of its texels whose lines are in distinct sub-caches or are the same line;
-// one pass per clock.  Real quads of widths that are not powers of two take two passes when a
-// carry defeats the row bit (model.tex_cache.passes: about 1.00 - 1.06 passes per quad over the
-// MIP chains of textures 100 .. 1920 texels wide; odd widths of a few texels are the worst).
+// (texel order) subset of its texels whose lines are in distinct sub-caches, or the same line and
+// in the window its first texel in that sub-cache reads; one pass per clock.  Real quads of widths
+// that are not powers of two take two passes when a carry defeats the row bit
+// (model.tex_cache.passes: 1.01 - 1.08 passes per quad over the MIP chains of textures 37 .. 1920
+// texels wide; odd widths of a few texels are the worst).
 // Each sub-cache: SETS sets x WAYS ways of lines; set = la[1 +: S] ^ la[1 + S +: S] (S = log2 SETS,
 // an XOR fold, so that rows of power-of-two pitch spread over the sets), tag = la >> (1 + S).
 // The valid, pending and error bits are flops; the tags, the reference counts and the pseudo-LRU
 // bits are in LUT RAM, one memory per sub-cache and way (per sub-cache for the pseudo-LRU bits),
-// each written from one place (see "Directory" at the state); the lines are in one cache_sdp_ram
-// per sub-cache (SETS * WAYS lines, address {set, way}).
+// each written from one place (see "Directory" at the state); the lines are in block RAM
+// (cache_sdp_ram), per sub-cache one RAM per DATA_W lane of a window and one for the overlap
+// words, SETS * WAYS * NWIN deep (address {set, way, window}; see "Data RAMs").
 //
 // Why this organisation: a quad needs up to four line lookups and four data reads every clock.
 // Four single-ported sub-caches do that only if the lines of a quad never share one, which needs
@@ -47,9 +56,11 @@
 // address-only alternative, two banks by line parity each with a duplicated (two-read-port) data
 // RAM, is conflict-free for every width but needs twice the RAM for the same capacity; a fixed
 // address hash over four banks cannot separate rows of every pitch (about a third of the quads
-// would take a second clock).  Fills are written when the line arrives (at most one per clock, the
-// R channel's rate) rather than in order at the FIFO head as in Igehy et al., where a quad missing
+// would take a second clock).  Fills are written as the beats arrive (one per clock, the R
+// channel's rate) rather than in order at the FIFO head as in Igehy et al., where a quad missing
 // two lines of one bank would need two write clocks; reference counts then keep lines in use.
+// The windows keep the texel select at (WW + 1) * 4 words per texel, not a line's words * 4, and
+// let block RAM's depth hold the lines instead of its width.
 //
 // ---- Pipeline ------------------------------------------------------------------------------------
 //   clock 0   request accepted into the entry register (row bits computed from req_addr_i).
@@ -59,7 +70,7 @@
 //             MSHR is missing for one of its misses, or while every way of a missed set is
 //             referenced.
 //   clock 2   head: when the lines of the head pass are present (no pending fill), the pass
-//             leaves the FIFO and reads the data RAMs (one line per sub-cache).
+//             leaves the FIFO and reads the data RAMs (one window per sub-cache).
 //   clock 3   the texels are selected (and merged with earlier passes of the request).
 //   clock 4   rsp_valid_o (a 2-entry output buffer).
 // So a request that hits answers 4 clocks after its handshake; full throughput is one pass per
@@ -82,11 +93,11 @@
 // One INCR burst per line (arlen = LINE_BYTES * 8 / DATA_W - 1, arsize = log2(DATA_W / 8)),
 // line-aligned (never crossing 4 KiB); arid = {epoch, MSHR index}; the ARs of one clock leave in
 // sub-cache order, those of different clocks in allocation order (a queue of MSHR indices).
-// rready is 1: each MSHR buffers its own line, so beats of different IDs may interleave.  On the
-// line's last beat the line is written into its slot and the MSHR is free again (MSHRS reads in
-// flight at most).
-// Errors: a line whose beats carry SLVERR / DECERR is not written; its slot gets the error bit and
-// loses its valid bit: the passes already waiting for it answer rsp_err_o = 1 (nothing hangs), a
+// rready is 1: each beat is written into its MSHR's slot as it arrives (the slot is pending, so
+// nothing reads it), so beats of different IDs may interleave.  On the line's last beat the slot
+// stops pending and the MSHR is free again (MSHRS reads in flight at most).
+// Errors: a line whose beats carry SLVERR / DECERR stays partly written; its slot gets the error
+// bit and loses its valid bit: the passes already waiting for it answer rsp_err_o = 1 (nothing hangs), a
 // later request reads the line again.
 // Reset (rst_ni low, synchronous): empties the entry register, the FIFO, the output, the MSHRs and
 // the AR queue, clears the valid, pending and error bits and the statistics; requests not yet
@@ -119,7 +130,10 @@ module tex_cache
   parameter int unsigned FIFO_DEPTH = 64,  // request FIFO (passes; power of two, >= 2): the
                                            // requests that can wait for memory at full rate
   parameter int unsigned ID_W       = 6,   // AXI ID width (> log2(MSHRS): the rest is the epoch)
-  parameter int unsigned TAG_W      = 8    // side-band width (req_tag_i -> rsp_tag_o)
+  parameter int unsigned TAG_W      = 8,   // side-band width (req_tag_i -> rsp_tag_o)
+  parameter int unsigned WIN_WORDS  = 8    // data-RAM window: words a sub-cache reads per pass,
+                                           // plus one (power of two >= 2; capped at the line's
+                                           // words); DATA_W <= 32 * that
 ) (
   input  logic                     clk_i,
   input  logic                     rst_ni,
@@ -165,7 +179,6 @@ module tex_cache
   localparam int unsigned WSEL_W     = OFF_W - 2;                // texel within a line
   localparam int unsigned BEATS      = LINE_W / DATA_W;          // beats per line read
   localparam int unsigned BEAT_W     = (BEATS > 1) ? $clog2(BEATS) : 1;
-  localparam int unsigned BUF_BEATS  = (BEATS > 1) ? BEATS - 1 : 1;  // the last beat is not kept
   localparam int unsigned BEAT_BYTES = DATA_W / 8;
   localparam int unsigned SET_W      = $clog2(SETS);
   localparam int unsigned WAY_W      = $clog2(WAYS);
@@ -178,6 +191,19 @@ module tex_cache
   localparam int unsigned FP_W       = $clog2(FIFO_DEPTH);
   localparam int unsigned FC_W       = $clog2(FIFO_DEPTH + 1);
   localparam int unsigned OUT_DEPTH  = 2;
+  // data RAM windows (see "Data RAMs" below)
+  localparam int unsigned LWORDS     = LINE_BYTES / 4;           // words per line
+  localparam int unsigned WW         = (WIN_WORDS < LWORDS) ? WIN_WORDS : LWORDS;
+  localparam int unsigned NWIN       = LWORDS / WW;              // windows per line
+  localparam int unsigned WB         = $clog2(WW);               // log2 words per window
+  localparam int unsigned WIN_W      = (NWIN > 1) ? $clog2(NWIN) : 1;
+  localparam int unsigned TOFF_W     = WB + 1;                   // word in a read window, 0 .. WW
+  localparam int unsigned NLANE      = WW * 32 / DATA_W;         // beats per window
+  localparam int unsigned LANE_B     = (NLANE > 1) ? $clog2(NLANE) : 1;
+  localparam int unsigned OVL_W      = (DATA_W < 32) ? DATA_W : 32;  // overlap-word lane width
+  localparam int unsigned NOVL       = 32 / OVL_W;               // beats per overlap word
+  localparam int unsigned RAM_DEPTH  = SETS * WAYS * NWIN;
+  localparam int unsigned RAM_AW     = $clog2(RAM_DEPTH);
 
   if (LINE_BYTES < 8 || LINE_BYTES > 4096 || (1 << OFF_W) != LINE_BYTES) begin : g_check_line
     $error("tex_cache: LINE_BYTES must be a power of two in 8..4096");
@@ -200,6 +226,10 @@ module tex_cache
   end
   if (TAG_W < 1) begin : g_check_tag
     $error("tex_cache: TAG_W must be >= 1");
+  end
+  if (WIN_WORDS < 2 || (1 << $clog2(WIN_WORDS)) != WIN_WORDS || DATA_W > 32 * WW)
+  begin : g_check_win
+    $error("tex_cache: WIN_WORDS must be a power of two >= 2, DATA_W <= 32 * its window");
   end
 
   // ---------------------------------------------------------------- helpers
@@ -287,8 +317,9 @@ module tex_cache
     logic [NSUB-1:0][SET_W-1:0]  set;
     logic [NSUB-1:0][WAY_W-1:0]  way;
     logic [3:0]                  tsel;  // texels served by the pass
+    logic [NSUB-1:0][WIN_W-1:0]  win;   // the window each sub-cache reads
     logic [3:0][1:0]             tsub;  // their sub-cache
-    logic [3:0][WSEL_W-1:0]      tword; // their word in the line
+    logic [3:0][TOFF_W-1:0]      toff;  // their word in that window (0 .. WW)
     logic [TAG_W-1:0]            tag;
     logic                        last;  // the request's last pass
   } pass_t;
@@ -301,7 +332,7 @@ module tex_cache
   logic              h1_valid_q, h1_last_q, h1_err_q;
   logic [3:0]        h1_tsel_q;
   logic [3:0][1:0]   h1_tsub_q;
-  logic [3:0][WSEL_W-1:0] h1_tword_q;
+  logic [3:0][TOFF_W-1:0] h1_toff_q;
   logic [TAG_W-1:0]  h1_tag_q;
   logic [3:0][31:0]  acc_texel_q;  // texels of the earlier passes of the request
   logic              acc_err_q;
@@ -325,7 +356,6 @@ module tex_cache
   logic [WAY_W-1:0]             mshr_way_q  [MSHRS];
   logic [BEAT_W-1:0]            mshr_beat_q [MSHRS];
   logic                         mshr_rerr_q [MSHRS];  // an earlier beat had an error
-  logic [BUF_BEATS-1:0][DATA_W-1:0] mshr_buf_q [MSHRS];
 
   // AR queue (MSHR indices in allocation order).
   logic [MIDX_W-1:0] arq_q [MSHRS];
@@ -339,12 +369,15 @@ module tex_cache
   logic [47:0] st_req_q, st_qhit_q, st_lk_q, st_miss_q, st_thit_q, st_bytes_q;
 
   // ---------------------------------------------------------------- row bits (at the input)
-  // Row-bit position j: among the address bits j = OFF_W + 1 .. ADDR_W - 1, the one where the
-  // pitch R is closest to an odd multiple of 2^j, judged by the ROW_P bits below bit j: the
-  // distance is e = R[j-1 -: ROW_P] when R[j] = 1, else its complement (2^ROW_P - 1 - that);
-  // the smallest e wins, the lowest j on ties.  Adding R then flips bit j of an address unless a
-  // carry (or borrow) from below bit j interferes, which happens with probability about
-  // e / 2^ROW_P: never when R is a power of two (e = 0 at its only one).
+  // Row-bit position j: among the address bits j = WB + 2 .. ADDR_W - 1 (from the window's
+  // size up), the one where the pitch R is closest to an odd multiple of 2^j, judged by the
+  // ROW_P bits below bit j: the distance is e = R[j-1 -: ROW_P] when R[j] = 1, else its
+  // complement (2^ROW_P - 1 - that); the smallest e wins, the lowest j on ties.  Adding R then
+  // flips bit j of an address unless a carry (or borrow) from below bit j interferes, which
+  // happens with probability about e / 2^ROW_P: never when R is a power of two (e = 0 at its
+  // only one; for R below a window's bytes, j = WB + 2, which flips exactly when the bottom row
+  // is in the next window).  The row bit of a texel is bit j of its row's first texel (c00 for
+  // c00, c01; c10 for c10, c11), so that j may be the line-parity bit (R = LINE_BYTES).
   localparam int unsigned ROW_P = 3;
   logic [ADDR_W-1:0] in_pitch;
   logic [3:0]        in_row;
@@ -356,45 +389,67 @@ module tex_cache
     in_row   = '0;
     best_e   = '1;
     found    = 1'b0;
-    for (int unsigned j = OFF_W + 1; j < ADDR_W; j++) begin
+    for (int unsigned j = WB + 2; j < ADDR_W; j++) begin
       e = in_pitch[j - 1 -: ROW_P];
       if (!in_pitch[j]) e = ~e;
       if (!found || e < best_e) begin
         found  = 1'b1;
         best_e = e;
-        for (int t = 0; t < 4; t++) in_row[t] = req_addr_i[t][j];
+        for (int t = 0; t < 4; t++) in_row[t] = req_addr_i[t & 2][j];
       end
     end
     if (in_pitch == '0) in_row = '0;  // rows clamped: one row
   end
 
   // ---------------------------------------------------------------- entry: pass selection
-  logic [3:0][LA_W-1:0] e_la;
-  logic [3:0][1:0]      e_sub;
-  logic [3:0]           e_sel;
-  logic [NSUB-1:0]      lk_v;
-  logic [NSUB-1:0][LA_W-1:0] lk_la;
+  logic [3:0][LA_W-1:0]   e_la;
+  logic [3:0][1:0]        e_sub;
+  logic [3:0][WSEL_W-1:0] e_word;   // word in the line
+  logic [3:0]             e_sel;
+  logic [3:0][TOFF_W-1:0] e_toff;   // word in the window its sub-cache reads
+  logic [NSUB-1:0]        lk_v;
+  logic [NSUB-1:0][LA_W-1:0]  lk_la;
+  logic [NSUB-1:0][WIN_W-1:0] lk_win;
+
+  // window of a word (the window it starts in)
+  function automatic logic [WIN_W-1:0] win_of(input logic [WSEL_W-1:0] w);
+    return WIN_W'(32'(w) >> WB);
+  endfunction
 
   always_comb begin
+    logic lead;
     for (int t = 0; t < 4; t++) begin
-      e_la[t]  = s0_addr_q[t][ADDR_W-1:OFF_W];
-      e_sub[t] = {s0_row_q[t], e_la[t][0]};
+      e_la[t]   = s0_addr_q[t][ADDR_W-1:OFF_W];
+      e_sub[t]  = {s0_row_q[t], e_la[t][0]};
+      e_word[t] = s0_addr_q[t][OFF_W-1:2];
     end
-    // greedy, in texel order: a texel joins unless an earlier member uses its sub-cache for
-    // another line (the first texel still to do always joins)
+    // greedy, in texel order: a texel joins unless its sub-cache's first member (the leader,
+    // which chose the line and the window) has another line, or a window the texel's word is
+    // not in (window k holds words k * WW .. k * WW + WW); the first texel to do always joins
     for (int t = 0; t < 4; t++) begin
       e_sel[t] = s0_valid_q && s0_todo_q[t];
+      lead     = 1'b0;
       for (int u = 0; u < t; u++) begin
-        if (e_sel[u] && e_sub[u] == e_sub[t] && e_la[u] != e_la[t]) e_sel[t] = 1'b0;
+        if (!lead && e_sel[u] && e_sub[u] == e_sub[t]) begin
+          lead = 1'b1;
+          if (e_la[u] != e_la[t]
+              || !(win_of(e_word[t]) == win_of(e_word[u])
+                   || 32'(e_word[t]) == (32'(win_of(e_word[u])) + 1) * WW)) e_sel[t] = 1'b0;
+        end
       end
     end
-    lk_v  = '0;
-    lk_la = '0;
-    for (int t = 3; t >= 0; t--) begin
+    lk_v   = '0;
+    lk_la  = '0;
+    lk_win = '0;
+    for (int t = 3; t >= 0; t--) begin  // the lowest member of a sub-cache is its leader
       if (e_sel[t]) begin
-        lk_v[e_sub[t]]  = 1'b1;
-        lk_la[e_sub[t]] = e_la[t];
+        lk_v[e_sub[t]]   = 1'b1;
+        lk_la[e_sub[t]]  = e_la[t];
+        lk_win[e_sub[t]] = win_of(e_word[t]);
       end
+    end
+    for (int t = 0; t < 4; t++) begin
+      e_toff[t] = TOFF_W'(32'(e_word[t]) - 32'(lk_win[e_sub[t]]) * WW);
     end
   end
 
@@ -505,8 +560,9 @@ module tex_cache
     e_pass.set  = lk_set;
     e_pass.way  = lk_way;
     e_pass.tsel = e_sel;
+    e_pass.win  = lk_win;
     e_pass.tsub = e_sub;
-    for (int t = 0; t < 4; t++) e_pass.tword[t] = s0_addr_q[t][OFF_W-1:2];
+    e_pass.toff = e_toff;
     e_pass.tag  = s0_tag_q;
     e_pass.last = e_last;
   end
@@ -544,24 +600,74 @@ module tex_cache
                  && (32'(out_cnt_q) - 32'(out_pop) + 32'(h1_valid_q) + 1 <= OUT_DEPTH);
 
   // ---------------------------------------------------------------- data RAMs
+  // A sub-cache stores a line as NWIN windows of WW words at RAM address {set, way, window}; a
+  // pass reads one window and the word after it (the overlap word, kept in a second RAM at the
+  // same address: word (k + 1) * WW of the line for window k), so a horizontal pair w, w + 1 is
+  // always in one read.  Each R beat is written where it belongs as it arrives, one RAM per beat
+  // lane (the beat's lane of the window; the overlap RAM takes the first 32 bits of a window
+  // from its beats, for the window before).  The slot is pending until the last beat, so nothing
+  // reads the partial line; a line that fails keeps its partial write, which the error bit makes
+  // harmless (the slot is not valid).
+  logic [MIDX_W-1:0]  r_idx;
+  logic [EPOCH_W-1:0] r_epoch;
+  logic               r_acc, r_last_beat;
   logic [LA_W-1:0]   r_la;
   logic [1:0]        fill_sub;
   logic [SET_W-1:0]  fill_set;
   logic [WAY_W-1:0]  fill_way;
-  logic [LINE_W-1:0] fill_line;
+  logic [BEAT_W-1:0] r_beat;       // the beat's index in the line
+  logic [WIN_W-1:0]  r_win;        // its window
+  logic [LANE_B-1:0] r_lane;       // its lane in the window
   logic              fill_v, fill_bad;
-  logic [LINE_W-1:0] ram_rd [NSUB];
+  logic [WW:0][31:0] ram_rd [NSUB];  // window words 0 .. WW-1, then the overlap word
+
+  function automatic logic [RAM_AW-1:0] ram_addr(input logic [SET_W-1:0] s,
+                                                 input logic [WAY_W-1:0] w,
+                                                 input logic [WIN_W-1:0] k);
+    return RAM_AW'((32'(s) * WAYS + 32'(w)) * NWIN + ((NWIN > 1) ? 32'(k) : 0));
+  endfunction
+
+  always_comb begin
+    r_win  = WIN_W'(32'(r_beat) / NLANE);
+    r_lane = LANE_B'(32'(r_beat) % NLANE);
+  end
 
   for (genvar c = 0; c < NSUB; c++) begin : g_sub
-    cache_sdp_ram #(.DEPTH(SETS * WAYS), .WIDTH(LINE_W)) u_ram (
-      .clk_i   (clk_i),
-      .we_i    (fill_v && !fill_bad && fill_sub == 2'(c)),
-      .waddr_i ({fill_set, fill_way}),
-      .wdata_i (fill_line),
-      .re_i    (h_pop && hd.used[c]),
-      .raddr_i ({hd.set[c], hd.way[c]}),
-      .rdata_o (ram_rd[c])
-    );
+    logic [RAM_AW-1:0] waddr, raddr;
+    logic              wsub, rd;
+    logic [WW*32-1:0]  rd_win;      // the window's words
+    logic [31:0]       rd_ovl;      // the overlap word
+    assign ram_rd[c] = {rd_ovl, rd_win};
+    assign wsub  = r_acc && fill_sub == 2'(c);
+    assign waddr = ram_addr(fill_set, fill_way, r_win);
+    assign rd    = h_pop && hd.used[c];
+    assign raddr = ram_addr(hd.set[c], hd.way[c], hd.win[c]);
+    for (genvar l = 0; l < NLANE; l++) begin : g_lane
+      cache_sdp_ram #(.DEPTH(RAM_DEPTH), .WIDTH(DATA_W)) u_ram (
+        .clk_i   (clk_i),
+        .we_i    (wsub && 32'(r_lane) == l),
+        .waddr_i (waddr),
+        .wdata_i (m_axi_rdata),
+        .re_i    (rd),
+        .raddr_i (raddr),
+        .rdata_o (rd_win[l * DATA_W +: DATA_W])
+      );
+    end
+    if (NWIN > 1) begin : g_ovl
+      for (genvar o = 0; o < NOVL; o++) begin : g_lane
+        cache_sdp_ram #(.DEPTH(RAM_DEPTH), .WIDTH(OVL_W)) u_ram (
+          .clk_i   (clk_i),
+          .we_i    (wsub && r_win != '0 && 32'(r_lane) == o),
+          .waddr_i (RAM_AW'(waddr - RAM_AW'(1))),  // the window before, same slot
+          .wdata_i (m_axi_rdata[OVL_W-1:0]),
+          .re_i    (rd),
+          .raddr_i (raddr),
+          .rdata_o (rd_ovl[o * OVL_W +: OVL_W])
+        );
+      end
+    end else begin : g_no_ovl
+      assign rd_ovl = '0;  // a window is the whole line: offset WW is never read
+    end
   end
 
   // ---------------------------------------------------------------- select, merge, output
@@ -571,7 +677,7 @@ module tex_cache
   always_comb begin
     for (int t = 0; t < 4; t++) begin
       h1_texel[t] = acc_texel_q[t];
-      if (h1_tsel_q[t]) h1_texel[t] = ram_rd[h1_tsub_q[t]][32 * h1_tword_q[t] +: 32];
+      if (h1_tsel_q[t]) h1_texel[t] = ram_rd[h1_tsub_q[t]][h1_toff_q[t]];
     end
     h1_rsp.texel = h1_texel;
     h1_rsp.err   = acc_err_q || h1_err_q;
@@ -609,7 +715,7 @@ module tex_cache
       h1_err_q   <= |hd_err;
       h1_tsel_q  <= hd.tsel;
       h1_tsub_q  <= hd.tsub;
-      h1_tword_q <= hd.tword;
+      h1_toff_q  <= hd.toff;
       h1_tag_q   <= hd.tag;
     end
     if (out_push) out_q[out_wp_q] <= h1_rsp;
@@ -621,9 +727,6 @@ module tex_cache
   assign rsp_tag_o   = out_q[out_rp_q].tag;
 
   // ---------------------------------------------------------------- R channel, fills
-  logic [MIDX_W-1:0]  r_idx;
-  logic [EPOCH_W-1:0] r_epoch;
-  logic               r_acc, r_last_beat;
 
   always_comb begin
     r_idx       = m_axi_rid[MIDX_W-1:0];
@@ -637,9 +740,7 @@ module tex_cache
     fill_sub    = mshr_sub_q[r_idx];
     fill_set    = mshr_set_q[r_idx];
     fill_way    = mshr_way_q[r_idx];
-    fill_line   = '0;
-    for (int b = 0; b < BEATS - 1; b++) fill_line[b * DATA_W +: DATA_W] = mshr_buf_q[r_idx][b];
-    fill_line[(BEATS - 1) * DATA_W +: DATA_W] = m_axi_rdata;
+    r_beat      = mshr_beat_q[r_idx];
   end
 
   assign m_axi_rready = 1'b1;
@@ -771,7 +872,6 @@ module tex_cache
         mshr_way_q[lk_mshr[c]] <= lk_way[c];
       end
     end
-    if (r_acc && !r_last_beat) mshr_buf_q[r_idx][mshr_beat_q[r_idx]] <= m_axi_rdata;
   end
 
   function automatic logic [MIDX_W-1:0] arq_add(input logic [MIDX_W-1:0] p, input int unsigned k);
@@ -1007,7 +1107,7 @@ module tex_cache
   // Coverage points, read by tb/tex_cache (simulation only; nothing in the design reads them).
   /* verilator lint_off UNUSEDSIGNAL */
   logic sim_merge, sim_victim_wait, sim_mshr_wait, sim_fifo_full, sim_split, sim_stale_beat,
-        sim_err_fill, sim_err_pass, sim_victim_redirect;
+        sim_err_fill, sim_err_pass, sim_victim_redirect, sim_win_split, sim_overlap;
   /* verilator lint_on UNUSEDSIGNAL */
   always_comb begin
     logic [WAY_W-1:0] free_way;
@@ -1020,6 +1120,15 @@ module tex_cache
         if (!valid_q[c][lk_set[c]][w]) free_way = WAY_W'(w);
       end
       if (e_fire && lk_alloc[c] && free_way != lk_way[c]) sim_victim_redirect = 1'b1;
+    end
+    // a texel left for a later pass although its line is the one its sub-cache reads (the
+    // window does not hold its word); a texel read at the window's overlap word
+    sim_win_split = 1'b0;
+    sim_overlap   = 1'b0;
+    for (int t = 0; t < 4; t++) begin
+      if (e_fire && s0_todo_q[t] && !e_sel[t] && lk_v[e_sub[t]] && lk_la[e_sub[t]] == e_la[t])
+        sim_win_split = 1'b1;
+      if (h_pop && hd.tsel[t] && 32'(hd.toff[t]) == WW) sim_overlap = 1'b1;
     end
   end
   assign sim_victim_wait = rst_ni && s0_valid_q && (|lk_blocked);  // every way referenced

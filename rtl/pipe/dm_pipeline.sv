@@ -59,7 +59,7 @@ module dm_pipeline
   parameter int unsigned H_LINE_BYTES = 32, // height_cache line (one AXI burst per fill)
   parameter int unsigned H_SETS     = 512,  // height_cache sets (power of two)
   parameter int unsigned H_WAYS     = 4,    // height_cache ways: 512 x 4 x 32 B = 64 KiB
-  parameter int unsigned AXI_DATA_W = 64,   // AXI data width (both ports)
+  parameter int unsigned AXI_DATA_W = 64,   // AXI data width (both ports; <= 256: tex_cache window)
   parameter int unsigned TRI_W      = (TRIS > 1) ? $clog2(TRIS) : 1  // triangle id width
 ) (
   input  logic                                 clk_i,

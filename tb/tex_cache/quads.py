@@ -9,6 +9,8 @@ orders a renderer produces them.
 - :func:`random_quads`: quads at random levels and positions, a fifth of them on clamped edges,
   some repeated several times in a row.
 - :func:`random_addrs`: four unrelated texel addresses (not a quad: exercises the split passes).
+- :func:`random_lines`: four texels in one or two neighbouring lines (passes split by the data
+  RAM's windows, reads of a window's overlap word).
 """
 from __future__ import annotations
 
@@ -150,4 +152,16 @@ def random_addrs(rng: random.Random, texs: list[Placed], n: int) -> list[Quad]:
             p = rng.choice(texs)
             q.append(p.base + 4 * rng.randrange(p.size // 4))
         out.append(tuple(q))  # type: ignore[arg-type]
+    return out
+
+
+def random_lines(rng: random.Random, texs: list[Placed], n: int, line_bytes: int) -> list[Quad]:
+    """Four texels at random words of one line or two neighbouring lines: pairs of one line in
+    different windows (split passes) and at a window's last word + 1 (the overlap word)."""
+    out: list[Quad] = []
+    for _ in range(n):
+        p = rng.choice(texs)
+        base = p.base + line_bytes * rng.randrange(max(1, p.size // line_bytes - 1))
+        span = 2 * line_bytes if rng.random() < 0.3 else line_bytes
+        out.append(tuple(base + 4 * rng.randrange(span // 4) for _ in range(4)))  # type: ignore[misc]
     return out

@@ -45,7 +45,7 @@ from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 from cocotbext.axi import AxiRamRead, AxiReadBus
 
-from model.tex_cache import TexCacheConfig, TexCacheModel, passes
+from model.tex_cache import TexCacheConfig, TexCacheModel, passes, window_fits
 from tb.common import report, runner
 
 import quads as Q
@@ -54,14 +54,15 @@ HERE = Path(__file__).resolve().parent
 PERF = runner.BUILD / "tex_cache" / "perf.jsonl"
 CONFIGS = {
     "default": TexCacheConfig(),
-    # 2 KiB, 64-byte lines over a 32-bit bus, 8-pass FIFO, 4 MSHRs: pinned ways, MSHR waits
+    # 2 KiB, 64-byte lines over a 32-bit bus read in 4 windows of 4 words, 8-pass FIFO, 4 MSHRs:
+    # pinned ways, MSHR waits, window splits
     "small": TexCacheConfig(data_w=32, line_bytes=64, sets=4, ways=2, mshrs=4, fifo_depth=8,
-                            id_w=4, tag_w=6),
+                            id_w=4, tag_w=6, win_words=4),
 }
 BASES = (0x1000_0000, 0x1040_0000, 0x2000_0000)
 #: The RTL's simulation-only coverage points (sim_<name>), counted per clock.
 COVER = ("merge", "victim_wait", "mshr_wait", "fifo_full", "split", "stale_beat", "err_fill",
-         "err_pass", "victim_redirect")
+         "err_pass", "victim_redirect", "win_split", "overlap")
 
 
 #: The statistics outputs (stat_<name>_o) and the counter register behind each.
@@ -536,10 +537,12 @@ async def stress(h: Harness, rng: random.Random, what: str, errors: bool, events
     cam = Q.camera(rng, h.texs[:2], 1, 48, 48) + Q.camera(rng, [h.texs[2], h.texs[1]], 1, 32, 32)
     rq = Q.random_quads(rng, h.texs, scale(3000))
     ra = Q.random_addrs(rng, h.texs, scale(600))
+    rl = Q.random_lines(rng, h.texs, scale(600), h.cfg.line_bytes)
     chunks = [cam[i:i + 64] for i in range(0, len(cam), 64)] + \
-             [rq[i:i + 32] for i in range(0, len(rq), 32)] + [ra[i:i + 8] for i in range(0, len(ra), 8)]
+             [rq[i:i + 32] for i in range(0, len(rq), 32)] + \
+             [x[i:i + 8] for x in (ra, rl) for i in range(0, len(x), 8)]
     rng.shuffle(chunks)
-    stream = [q for ch in chunks for q in ch][:scale(len(cam) + len(rq) + len(ra))]
+    stream = [q for ch in chunks for q in ch][:scale(len(cam) + len(rq) + len(ra) + len(rl))]
     if errors:
         lb = h.cfg.line_bytes
         used = sorted({a & ~(lb - 1) for q in stream for a in q})
@@ -576,7 +579,9 @@ async def random_stress(dut):
     h, rng = new_harness(dut)
     await h.reset()
     await stress(h, rng, "random stress", errors=False)
-    h.finish("random stress", need=("merge", "split", "mshr_wait", "fifo_full"))
+    # windows (more than one per line): a pass split by them, a read of the overlap word
+    windows = ("win_split", "overlap") if h.cfg.window_words < h.cfg.line_bytes // 4 else ()
+    h.finish("random stress", need=("merge", "split", "mshr_wait", "fifo_full") + windows)
 
 
 @cocotb.test()
@@ -682,14 +687,14 @@ async def counters_wrap(dut):
 
 def test_model_passes():
     """The organisation's claim, on model.tex_cache (what the RTL's lookup count is checked
-    against): every quad of a power-of-two-wide level, clamped or not, is one pass; any request's
-    passes serve each texel once with one line per sub-cache; widths that are not powers of two
-    stay near one pass per quad."""
+    against): every quad of a power-of-two-wide level, clamped or not, is one pass (whatever the
+    data RAM's window); any request's passes serve each texel once with one line and one window
+    per sub-cache; widths that are not powers of two stay near one pass per quad."""
     rng = random.Random(5)
     nrng = np.random.default_rng(5)
     checked = 0
-    for lb in (8, 32, 64, 128):
-        cfg = TexCacheConfig(line_bytes=lb, data_w=min(64, lb * 8))
+    for lb, ww in ((8, 8), (32, 8), (32, 2), (64, 4), (128, 8), (128, 2)):
+        cfg = TexCacheConfig(line_bytes=lb, data_w=min(64, lb * 8, 32 * ww), win_words=ww)
         for w, h in ((1, 1), (2, 4), (4, 2), (8, 8), (16, 4), (64, 32), (256, 256), (1024, 8)):
             p = Q.Placed(Q.random_texture(nrng, h, w), 64 * rng.randrange(1 << 20), "pot")
             for lvl in range(p.tex.n_levels):
@@ -702,6 +707,8 @@ def test_model_passes():
             q = [4 * rng.randrange(1 << 28) for _ in range(4)]
             if rng.random() < 0.3:
                 q[1] = q[0] + rng.choice([0, 4, lb])
+            if rng.random() < 0.3:  # four texels of one line: window splits
+                q = [(q[0] & ~(lb - 1)) + 4 * rng.randrange(lb // 4) for _ in range(4)]
             seen = 0
             for ps in passes(q, cfg):
                 assert ps.mask and not (ps.mask & seen)
@@ -709,6 +716,7 @@ def test_model_passes():
                 for t in range(4):
                     if ps.mask >> t & 1:
                         assert ps.lines[ps.sub[t]] == q[t] >> cfg.off_w
+                        assert window_fits((q[t] % lb) // 4, ps.win[ps.sub[t]], cfg)
             assert seen == 0xF
             checked += 1
     cfg = TexCacheConfig()
