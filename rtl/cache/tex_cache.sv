@@ -379,25 +379,40 @@ module tex_cache
   // is in the next window).  The row bit of a texel is bit j of its row's first texel (c00 for
   // c00, c01; c10 for c10, c11), so that j may be the line-parity bit (R = LINE_BYTES).
   localparam int unsigned ROW_P = 3;
+  localparam int unsigned ROW_NJ = ADDR_W - WB - 2;              // candidate positions
+  localparam int unsigned ROW_NT = 1 << $clog2(ROW_NJ);          // leaves of the choice tree
   logic [ADDR_W-1:0] in_pitch;
   logic [3:0]        in_row;
 
+  // The choice as a balanced tree of pairwise minima (a left subtree holds the lower positions
+  // and wins ties), not a chain along the address: log2 of the candidates levels deep.  Each
+  // node carries its best e and that position's row bits of c00 and c10.
   always_comb begin
-    logic [ROW_P-1:0] e, best_e;
-    logic             found;
+    logic [2*ROW_NT-1:1]             nd_v;
+    logic [2*ROW_NT-1:1][ROW_P-1:0]  nd_e;
+    logic [2*ROW_NT-1:1][1:0]        nd_r;
     in_pitch = req_addr_i[2] - req_addr_i[0];
-    in_row   = '0;
-    best_e   = '1;
-    found    = 1'b0;
-    for (int unsigned j = WB + 2; j < ADDR_W; j++) begin
-      e = in_pitch[j - 1 -: ROW_P];
-      if (!in_pitch[j]) e = ~e;
-      if (!found || e < best_e) begin
-        found  = 1'b1;
-        best_e = e;
-        for (int t = 0; t < 4; t++) in_row[t] = req_addr_i[t & 2][j];
+    nd_v = '0;
+    nd_e = '1;
+    nd_r = '0;
+    for (int unsigned i = 0; i < ROW_NJ; i++) begin
+      nd_v[ROW_NT + i] = 1'b1;
+      nd_e[ROW_NT + i] = in_pitch[WB + 2 + i] ? in_pitch[WB + 1 + i -: ROW_P]
+                                              : ~in_pitch[WB + 1 + i -: ROW_P];
+      nd_r[ROW_NT + i] = {req_addr_i[2][WB + 2 + i], req_addr_i[0][WB + 2 + i]};
+    end
+    for (int unsigned n = ROW_NT - 1; n >= 1; n--) begin
+      if (!nd_v[2 * n] || (nd_v[2 * n + 1] && nd_e[2 * n + 1] < nd_e[2 * n])) begin
+        nd_v[n] = nd_v[2 * n + 1];
+        nd_e[n] = nd_e[2 * n + 1];
+        nd_r[n] = nd_r[2 * n + 1];
+      end else begin
+        nd_v[n] = nd_v[2 * n];
+        nd_e[n] = nd_e[2 * n];
+        nd_r[n] = nd_r[2 * n];
       end
     end
+    in_row = {nd_r[1][1], nd_r[1][1], nd_r[1][0], nd_r[1][0]};
     if (in_pitch == '0) in_row = '0;  // rows clamped: one row
   end
 
