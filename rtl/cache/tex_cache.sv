@@ -488,10 +488,11 @@ module tex_cache
     end
   end
 
+  logic [NSUB-1:0][MIDX_W-1:0] free_idx;  // the lowest free MSHRs (below)
+  logic [NSUB-1:0]             free_ok;
+
   always_comb begin
-    logic [MSHRS-1:0] avail;
-    logic             found;
-    found = 1'b0;
+    logic [2:0] n_before;  // misses of the pass in the sub-caches before
     for (int c = 0; c < NSUB; c++) begin
       lk_way[c] = '0;
       for (int w = 0; w < WAYS; w++) begin
@@ -513,21 +514,35 @@ module tex_cache
         end
       end
     end
-    // MSHRs for the misses: the lowest free ones, in sub-cache order
-    for (int m = 0; m < MSHRS; m++) avail[m] = !mshr_busy_q[m];
+    // MSHRs for the misses: the lowest free ones, in sub-cache order (the k-th miss of the
+    // pass takes the k-th free MSHR, found beside the lookup from the registers alone)
     mshr_short = 1'b0;
     lk_mshr    = '0;
     for (int c = 0; c < NSUB; c++) begin
-      if (lk_alloc[c]) begin
-        found = 1'b0;
-        for (int m = 0; m < MSHRS; m++) begin
-          if (!found && avail[m]) begin
-            found      = 1'b1;
-            lk_mshr[c] = MIDX_W'(m);
-            avail[m]   = 1'b0;
-          end
+      n_before = '0;
+      for (int d = 0; d < c; d++) n_before = n_before + 3'(lk_alloc[d]);
+      lk_mshr[c] = free_idx[n_before[1:0]];
+      if (lk_alloc[c] && !free_ok[n_before[1:0]]) mshr_short = 1'b1;
+    end
+  end
+
+  // The NSUB lowest free MSHRs: free_idx[k] is the free MSHR with k free ones below it
+  // (free_ok[k]: there is one), by the rank of each free MSHR among the free ones.
+  always_comb begin
+    logic [MSHRS-1:0] free, below;
+    int unsigned      rank;
+    for (int m = 0; m < MSHRS; m++) free[m] = !mshr_busy_q[m];
+    free_idx = '0;
+    free_ok  = '0;
+    for (int m = 0; m < MSHRS; m++) begin
+      below = '0;
+      for (int u = 0; u < m; u++) below[u] = free[u];
+      rank = 32'($countones(below));  // an adder tree per MSHR
+      for (int k = 0; k < NSUB; k++) begin
+        if (free[m] && rank == k) begin
+          free_idx[k] = free_idx[k] | MIDX_W'(m);  // one m per k: an OR of one-hot terms
+          free_ok[k]  = 1'b1;
         end
-        if (!found) mshr_short = 1'b1;
       end
     end
   end
