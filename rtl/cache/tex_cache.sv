@@ -64,16 +64,19 @@
 //
 // ---- Pipeline ------------------------------------------------------------------------------------
 //   clock 0   request accepted into the entry register (row bits computed from req_addr_i).
-//   clock 1   entry: tag lookup in the four sub-caches; a miss picks a victim way and allocates a
-//             line read (MSHR); the pass is pushed into the request FIFO (FIFO_DEPTH passes).  All
-//             or nothing: the pass waits in the entry register while the FIFO is full, while an
-//             MSHR is missing for one of its misses, or while every way of a missed set is
+//   clock 1   pass selection: the request's next pass (texels, one line and window per
+//             sub-cache, set indices, tags) moves into the pass register; a request of several
+//             passes stays in the entry register until its last one has moved.
+//   clock 2   lookup: tag lookup in the four sub-caches; a miss picks a victim way and allocates
+//             a line read (MSHR); the pass is pushed into the request FIFO (FIFO_DEPTH passes).
+//             All or nothing: the pass waits in the pass register while the FIFO is full, while
+//             an MSHR is missing for one of its misses, or while every way of a missed set is
 //             referenced.
-//   clock 2   head: when the lines of the head pass are present (no pending fill), the pass
+//   clock 3   head: when the lines of the head pass are present (no pending fill), the pass
 //             leaves the FIFO and reads the data RAMs (one window per sub-cache).
-//   clock 3   the texels are selected (and merged with earlier passes of the request).
-//   clock 4   rsp_valid_o (a 2-entry output buffer).
-// So a request that hits answers 4 clocks after its handshake; full throughput is one pass per
+//   clock 4   the texels are selected (and merged with earlier passes of the request).
+//   clock 5   rsp_valid_o (a 2-entry output buffer).
+// So a request that hits answers 5 clocks after its handshake; full throughput is one pass per
 // clock.  A miss answers 3 clocks after its line's last beat.  Sizing: the FIFO lets requests
 // run ahead of the head by FIFO_DEPTH passes, so it should exceed the memory latency plus a line's
 // beats and the queueing of bursts of misses; MSHRS about FIFO_DEPTH / 4.  Measured on camera
@@ -309,7 +312,7 @@ module tex_cache
   logic [TAG_W-1:0]       s0_tag_q;
   logic [3:0]             s0_todo_q;   // texels not yet sent in a pass
   logic [3:0]             s0_row_q;    // row bit per texel
-  logic                   s0_missed_q; // an earlier pass of this request missed
+  logic                   e_missed_q;  // an earlier pass of the request in the lookup missed
 
   // Request FIFO (one entry per pass).
   typedef struct packed {
@@ -417,14 +420,16 @@ module tex_cache
   end
 
   // ---------------------------------------------------------------- entry: pass selection
+  // From the entry register: the request's next pass (sl_*), loaded into the pass register.
   logic [3:0][LA_W-1:0]   e_la;
   logic [3:0][1:0]        e_sub;
   logic [3:0][WSEL_W-1:0] e_word;   // word in the line
-  logic [3:0]             e_sel;
-  logic [3:0][TOFF_W-1:0] e_toff;   // word in the window its sub-cache reads
-  logic [NSUB-1:0]        lk_v;
-  logic [NSUB-1:0][LA_W-1:0]  lk_la;
-  logic [NSUB-1:0][WIN_W-1:0] lk_win;
+  logic [3:0]             sl_sel;   // texels of the pass
+  logic [3:0][TOFF_W-1:0] sl_toff;  // word in the window its sub-cache reads
+  logic [NSUB-1:0]        sl_v;     // sub-caches the pass reads
+  logic [NSUB-1:0][LA_W-1:0]  sl_la;
+  logic [NSUB-1:0][WIN_W-1:0] sl_win;
+  logic                   sl_last;  // the request's last pass
 
   // window of a word (the window it starts in)
   function automatic logic [WIN_W-1:0] win_of(input logic [WSEL_W-1:0] w);
@@ -442,35 +447,76 @@ module tex_cache
     // which chose the line and the window) has another line, or a window the texel's word is
     // not in (window k holds words k * WW .. k * WW + WW); the first texel to do always joins
     for (int t = 0; t < 4; t++) begin
-      e_sel[t] = s0_valid_q && s0_todo_q[t];
-      lead     = 1'b0;
+      sl_sel[t] = s0_valid_q && s0_todo_q[t];
+      lead      = 1'b0;
       for (int u = 0; u < t; u++) begin
-        if (!lead && e_sel[u] && e_sub[u] == e_sub[t]) begin
+        if (!lead && sl_sel[u] && e_sub[u] == e_sub[t]) begin
           lead = 1'b1;
           if (e_la[u] != e_la[t]
               || !(win_of(e_word[t]) == win_of(e_word[u])
-                   || 32'(e_word[t]) == (32'(win_of(e_word[u])) + 1) * WW)) e_sel[t] = 1'b0;
+                   || 32'(e_word[t]) == (32'(win_of(e_word[u])) + 1) * WW)) sl_sel[t] = 1'b0;
         end
       end
     end
-    lk_v   = '0;
-    lk_la  = '0;
-    lk_win = '0;
+    sl_v   = '0;
+    sl_la  = '0;
+    sl_win = '0;
     for (int t = 3; t >= 0; t--) begin  // the lowest member of a sub-cache is its leader
-      if (e_sel[t]) begin
-        lk_v[e_sub[t]]   = 1'b1;
-        lk_la[e_sub[t]]  = e_la[t];
-        lk_win[e_sub[t]] = win_of(e_word[t]);
+      if (sl_sel[t]) begin
+        sl_v[e_sub[t]]   = 1'b1;
+        sl_la[e_sub[t]]  = e_la[t];
+        sl_win[e_sub[t]] = win_of(e_word[t]);
       end
     end
     for (int t = 0; t < 4; t++) begin
-      e_toff[t] = TOFF_W'(32'(e_word[t]) - 32'(lk_win[e_sub[t]]) * WW);
+      sl_toff[t] = TOFF_W'(32'(e_word[t]) - 32'(sl_win[e_sub[t]]) * WW);
+    end
+    sl_last = (s0_todo_q & ~sl_sel) == '0;
+  end
+
+  // ---------------------------------------------------------------- pass register
+  // The pass being looked up (the lookup below reads only these registers and the directory).
+  logic                       p_valid_q;
+  logic [NSUB-1:0]            lk_v;      // sub-caches the pass reads
+  logic [NSUB-1:0][LA_W-1:0]  lk_la;
+  logic [NSUB-1:0][SET_W-1:0] lk_set;
+  logic [NSUB-1:0][TAGB-1:0]  lk_tag;
+  logic [NSUB-1:0][WIN_W-1:0] lk_win;
+  logic [3:0]                 e_sel;     // texels of the pass
+  logic [3:0][1:0]            e_psub;    // their sub-caches
+  logic [3:0][TOFF_W-1:0]     e_toff;
+  logic [TAG_W-1:0]           e_tag;
+  logic                       e_last;
+  logic                       p_load;    // the next pass moves into the pass register
+  logic                       e_fire;    // the pass in the register enters the FIFO
+
+  assign p_load = rst_ni && s0_valid_q && (!p_valid_q || e_fire);
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      p_valid_q <= 1'b0;
+    end else if (p_load) begin
+      p_valid_q <= 1'b1;
+    end else if (e_fire) begin
+      p_valid_q <= 1'b0;
+    end
+    if (p_load) begin
+      lk_v   <= sl_v;
+      lk_la  <= sl_la;
+      for (int c = 0; c < NSUB; c++) begin
+        lk_set[c] <= set_of(sl_la[c]);
+        lk_tag[c] <= sl_la[c][LA_W-1 -: TAGB];  // the bits above the low set field
+      end
+      lk_win <= sl_win;
+      e_sel  <= sl_sel;
+      e_psub <= e_sub;
+      e_toff <= sl_toff;
+      e_tag  <= s0_tag_q;
+      e_last <= sl_last;
     end
   end
 
-  // ---------------------------------------------------------------- entry: tag lookup, victims
-  logic [NSUB-1:0][SET_W-1:0] lk_set;
-  logic [NSUB-1:0][TAGB-1:0]  lk_tag;
+  // ---------------------------------------------------------------- lookup: tags, victims
   logic [NSUB-1:0]            lk_alloc, lk_blocked;
   logic [NSUB-1:0][WAY_W-1:0] lk_way;     // the hit way or the victim
   logic [NSUB-1:0][MIDX_W-1:0] lk_mshr;   // MSHR of a miss
@@ -480,13 +526,6 @@ module tex_cache
   logic [NSUB-1:0][WAYS-1:0][TAGB-1:0] set_tag;
   logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] set_inc, set_dec;
   logic [NSUB-1:0][PLRU_W-1:0]         set_plru;
-
-  always_comb begin
-    for (int c = 0; c < NSUB; c++) begin
-      lk_set[c] = set_of(lk_la[c]);
-      lk_tag[c] = lk_la[c][LA_W-1 -: TAGB];  // the bits above the low set field
-    end
-  end
 
   logic [NSUB-1:0][MIDX_W-1:0] free_idx;  // the lowest free MSHRs (below)
   logic [NSUB-1:0]             free_ok;
@@ -547,12 +586,9 @@ module tex_cache
     end
   end
 
-  logic e_fire, e_last;
-
-  assign e_last      = (s0_todo_q & ~e_sel) == '0;
-  assign e_fire      = rst_ni && s0_valid_q && (fifo_cnt_q != FC_W'(FIFO_DEPTH))
+  assign e_fire      = rst_ni && p_valid_q && (fifo_cnt_q != FC_W'(FIFO_DEPTH))
                        && !(|lk_blocked) && !mshr_short;
-  assign req_ready_o = rst_ni && (!s0_valid_q || (e_fire && e_last));
+  assign req_ready_o = rst_ni && (!s0_valid_q || (p_load && sl_last));
 
   logic req_fire;
   assign req_fire = req_valid_i && req_ready_o;
@@ -561,17 +597,16 @@ module tex_cache
     if (!rst_ni) begin
       s0_valid_q  <= 1'b0;
       s0_todo_q   <= '0;
-      s0_missed_q <= 1'b0;
+      e_missed_q  <= 1'b0;
     end else begin
       if (req_fire) begin
         s0_valid_q  <= 1'b1;
         s0_todo_q   <= 4'hf;
-        s0_missed_q <= 1'b0;
-      end else if (e_fire) begin  // a pass of a request with more to do
-        s0_todo_q   <= s0_todo_q & ~e_sel;
-        s0_missed_q <= s0_missed_q || (|lk_alloc);
-        if (e_last) s0_valid_q <= 1'b0;
+      end else if (p_load) begin  // a pass of a request with more to do
+        s0_todo_q   <= s0_todo_q & ~sl_sel;
+        if (sl_last) s0_valid_q <= 1'b0;
       end
+      if (e_fire) e_missed_q <= !e_last && (e_missed_q || (|lk_alloc));
     end
     if (req_fire) begin
       s0_addr_q <= req_addr_i;
@@ -591,9 +626,9 @@ module tex_cache
     e_pass.way  = lk_way;
     e_pass.tsel = e_sel;
     e_pass.win  = lk_win;
-    e_pass.tsub = e_sub;
+    e_pass.tsub = e_psub;
     e_pass.toff = e_toff;
-    e_pass.tag  = s0_tag_q;
+    e_pass.tag  = e_tag;
     e_pass.last = e_last;
   end
 
@@ -960,7 +995,7 @@ module tex_cache
   always_comb begin
     e_texel_hits = '0;
     for (int t = 0; t < 4; t++) begin
-      e_texel_hits = e_texel_hits + 3'(e_sel[t] && !lk_alloc[e_sub[t]]);
+      e_texel_hits = e_texel_hits + 3'(e_sel[t] && !lk_alloc[e_psub[t]]);
     end
   end
 
@@ -978,7 +1013,7 @@ module tex_cache
         st_lk_q   <= st_lk_q + 48'($countones(lk_v));
         st_miss_q <= st_miss_q + 48'($countones(lk_alloc));
         st_thit_q <= st_thit_q + 48'(e_texel_hits);
-        if (e_last && !s0_missed_q && !(|lk_alloc)) st_qhit_q <= st_qhit_q + 48'd1;
+        if (e_last && !e_missed_q && !(|lk_alloc)) st_qhit_q <= st_qhit_q + 48'd1;
       end
       if (r_acc) st_bytes_q <= st_bytes_q + 48'(BEAT_BYTES);
     end
@@ -1156,14 +1191,14 @@ module tex_cache
     sim_win_split = 1'b0;
     sim_overlap   = 1'b0;
     for (int t = 0; t < 4; t++) begin
-      if (e_fire && s0_todo_q[t] && !e_sel[t] && lk_v[e_sub[t]] && lk_la[e_sub[t]] == e_la[t])
+      if (p_load && s0_todo_q[t] && !sl_sel[t] && sl_v[e_sub[t]] && sl_la[e_sub[t]] == e_la[t])
         sim_win_split = 1'b1;
       if (h_pop && hd.tsel[t] && 32'(hd.toff[t]) == WW) sim_overlap = 1'b1;
     end
   end
-  assign sim_victim_wait = rst_ni && s0_valid_q && (|lk_blocked);  // every way referenced
-  assign sim_mshr_wait   = rst_ni && s0_valid_q && mshr_short;
-  assign sim_fifo_full   = rst_ni && s0_valid_q && fifo_cnt_q == FC_W'(FIFO_DEPTH);
+  assign sim_victim_wait = rst_ni && p_valid_q && (|lk_blocked);   // every way referenced
+  assign sim_mshr_wait   = rst_ni && p_valid_q && mshr_short;
+  assign sim_fifo_full   = rst_ni && p_valid_q && fifo_cnt_q == FC_W'(FIFO_DEPTH);
   assign sim_split       = e_fire && !e_last;                        // a request of 2+ passes
   assign sim_stale_beat  = m_axi_rvalid && r_epoch != epoch_q;       // a read from before a reset
   assign sim_err_fill    = fill_v && fill_bad;
