@@ -651,8 +651,19 @@ module tex_cache
 
   assign out_pop = rsp_valid_o && rsp_ready_i;
 
+  // The head entry in a register (hd = fifo_q[fifo_rp_q] whenever the FIFO holds a pass): after a
+  // pop the entry behind it (read at fifo_rp_q + 1), or the pass entering an empty FIFO.
+  pass_t           hd_q;
+  logic [FP_W-1:0] rp_plus1;
+  assign rp_plus1 = fifo_rp_q + FP_W'(1);
+
+  always_ff @(posedge clk_i) begin
+    if (h_pop) hd_q <= (e_fire && fifo_wp_q == rp_plus1) ? e_pass : fifo_q[rp_plus1];
+    else if (e_fire && fifo_wp_q == fifo_rp_q) hd_q <= e_pass;
+  end
+
   always_comb begin
-    hd      = fifo_q[fifo_rp_q];
+    hd      = hd_q;
     h_ready = (fifo_cnt_q != '0);
     for (int c = 0; c < NSUB; c++) begin
       if (hd.used[c] && pend_q[c][hd.set[c]][hd.way[c]]) h_ready = 1'b0;
@@ -1066,6 +1077,9 @@ module tex_cache
   fifo_no_underflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
       h_pop |-> fifo_cnt_q != '0)
     else $error("tex_cache: request FIFO underflow");
+  fifo_head: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      fifo_cnt_q != '0 |-> hd_q == fifo_q[fifo_rp_q])
+    else $error("tex_cache: head register differs from the FIFO's head entry");
   fifo_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
       32'(fifo_cnt_q) <= FIFO_DEPTH && FP_W'(fifo_wp_q - fifo_rp_q) == FP_W'(fifo_cnt_q))
     else $error("tex_cache: request FIFO pointers inconsistent");
