@@ -67,16 +67,19 @@
 //   clock 1   pass selection: the request's next pass (texels, one line and window per
 //             sub-cache, set indices, tags) moves into the pass register; a request of several
 //             passes stays in the entry register until its last one has moved.
-//   clock 2   lookup: tag lookup in the four sub-caches; a miss picks a victim way and allocates
-//             a line read (MSHR); the pass is pushed into the request FIFO (FIFO_DEPTH passes).
+//   clock 2   lookup: tag lookup in the four sub-caches; a miss picks a victim way and an MSHR.
 //             All or nothing: the pass waits in the pass register while the FIFO is full, while
 //             an MSHR is missing for one of its misses, or while every way of a missed set is
 //             referenced.
-//   clock 3   head: when the lines of the head pass are present (no pending fill), the pass
+//   clock 3   commit: the pass's directory writes (tags, references, pseudo-LRU, valid and
+//             pending bits), its MSHRs and line reads, and its push into the request FIFO
+//             (FIFO_DEPTH passes) happen from the commit register, so no write waits on the
+//             lookup's outcome in its own clock; the next pass's lookup sees them forwarded.
+//   clock 4   head: when the lines of the head pass are present (no pending fill), the pass
 //             leaves the FIFO and reads the data RAMs (one window per sub-cache).
-//   clock 4   the texels are selected (and merged with earlier passes of the request).
-//   clock 5   rsp_valid_o (a 2-entry output buffer).
-// So a request that hits answers 5 clocks after its handshake; full throughput is one pass per
+//   clock 5   the texels are selected (and merged with earlier passes of the request).
+//   clock 6   rsp_valid_o (a 2-entry output buffer).
+// So a request that hits answers 6 clocks after its handshake; full throughput is one pass per
 // clock.  A miss answers 3 clocks after its line's last beat.  Sizing: the FIFO lets requests
 // run ahead of the head by FIFO_DEPTH passes, so it should exceed the memory latency plus a line's
 // beats and the queueing of bursts of misses; MSHRS about FIFO_DEPTH / 4.  Measured on camera
@@ -113,6 +116,7 @@
 //
 // ---- Statistics (48-bit; cleared by reset and by clr_stats_i, a clock with clr_stats_i counts
 // nothing) -----------------------------------------------------------------------------------------
+// (The lookup counters count in the commit clock, one clock after the lookup.)
 //   stat_requests_o    requests accepted (req_valid_i && req_ready_o)
 //   stat_quad_hits_o   requests whose every line lookup hit (a line in flight counts as a hit)
 //   stat_lookups_o     line lookups (distinct lines per pass)
@@ -530,26 +534,60 @@ module tex_cache
   logic [NSUB-1:0][MIDX_W-1:0] free_idx;  // the lowest free MSHRs (below)
   logic [NSUB-1:0]             free_ok;
 
+  // Commit register (below): the pass that entered in the clock before, whose directory, MSHR
+  // and FIFO writes happen in this clock.
+  logic                        cm_valid_q;
+  logic [NSUB-1:0]             cm_v_q, cm_alloc_q;
+  logic [NSUB-1:0][SET_W-1:0]  cm_set_q;
+  logic [NSUB-1:0][WAY_W-1:0]  cm_way_q;
+  logic [NSUB-1:0][TAGB-1:0]   cm_tag_q;
+  logic [NSUB-1:0][LA_W-1:0]   cm_la_q;
+  logic [NSUB-1:0][MIDX_W-1:0] cm_mshr_q;
+  logic [NSUB-1:0][RC_W-1:0]   cm_inc_q;   // the slot's new reference-taken count
+  logic [NSUB-1:0][PLRU_W-1:0] cm_plru_q;  // the set's new pseudo-LRU bits
+
+  // The directory at the looked-up set as the lookup must see it: what the RAMs and flops hold,
+  // with the commit register's writes (not yet done) forwarded.
+  logic [NSUB-1:0][WAYS-1:0]           f_vld, f_err, f_pnd;
+  logic [NSUB-1:0][WAYS-1:0][TAGB-1:0] f_tag;
+  logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] f_inc;
+  logic [NSUB-1:0][PLRU_W-1:0]         f_plru;
+
+  always_comb begin
+    logic fw, fw_alloc;
+    for (int c = 0; c < NSUB; c++) begin
+      fw        = cm_valid_q && cm_v_q[c] && cm_set_q[c] == lk_set[c];
+      f_plru[c] = fw ? cm_plru_q[c] : set_plru[c];
+      for (int w = 0; w < WAYS; w++) begin
+        fw_alloc     = fw && cm_alloc_q[c] && cm_way_q[c] == WAY_W'(w);
+        f_vld[c][w]  = fw_alloc || valid_q[c][lk_set[c]][w];
+        f_pnd[c][w]  = fw_alloc || pend_q[c][lk_set[c]][w];
+        f_err[c][w]  = !fw_alloc && err_q[c][lk_set[c]][w];
+        f_tag[c][w]  = fw_alloc ? cm_tag_q[c] : set_tag[c][w];
+        f_inc[c][w]  = (fw && cm_way_q[c] == WAY_W'(w)) ? cm_inc_q[c] : set_inc[c][w];
+      end
+    end
+  end
+
   always_comb begin
     logic [2:0] n_before;  // misses of the pass in the sub-caches before
     for (int c = 0; c < NSUB; c++) begin
       lk_way[c] = '0;
       for (int w = 0; w < WAYS; w++) begin
-        way_hit[c][w]  = valid_q[c][lk_set[c]][w] && (set_tag[c][w] == lk_tag[c]);
-        way_free[c][w] = !(valid_q[c][lk_set[c]][w] || err_q[c][lk_set[c]][w])
-                         || set_inc[c][w] == set_dec[c][w];
+        way_hit[c][w]  = f_vld[c][w] && (f_tag[c][w] == lk_tag[c]);
+        way_free[c][w] = !(f_vld[c][w] || f_err[c][w]) || f_inc[c][w] == set_dec[c][w];
         if (way_hit[c][w]) lk_way[c] = WAY_W'(w);
       end
       lk_alloc[c]   = lk_v[c] && !(|way_hit[c]);
       lk_blocked[c] = lk_alloc[c] && !(|way_free[c]);
       if (!(|way_hit[c])) begin
         // an unreferenced invalid way first (the lowest), else pseudo-LRU among the unreferenced
-        if (|(way_free[c] & ~valid_q[c][lk_set[c]])) begin
+        if (|(way_free[c] & ~f_vld[c])) begin
           for (int w = WAYS - 1; w >= 0; w--) begin
-            if (way_free[c][w] && !valid_q[c][lk_set[c]][w]) lk_way[c] = WAY_W'(w);
+            if (way_free[c][w] && !f_vld[c][w]) lk_way[c] = WAY_W'(w);
           end
         end else begin
-          lk_way[c] = plru_pick(set_plru[c], way_free[c]);
+          lk_way[c] = plru_pick(f_plru[c], way_free[c]);
         end
       end
     end
@@ -571,6 +609,9 @@ module tex_cache
     logic [MSHRS-1:0] free, below;
     int unsigned      rank;
     for (int m = 0; m < MSHRS; m++) free[m] = !mshr_busy_q[m];
+    for (int c = 0; c < NSUB; c++) begin
+      if (cm_valid_q && cm_alloc_q[c]) free[cm_mshr_q[c]] = 1'b0;  // taken, not yet busy
+    end
     free_idx = '0;
     free_ok  = '0;
     for (int m = 0; m < MSHRS; m++) begin
@@ -586,8 +627,36 @@ module tex_cache
     end
   end
 
-  assign e_fire      = rst_ni && p_valid_q && (fifo_cnt_q != FC_W'(FIFO_DEPTH))
+  assign e_fire      = rst_ni && p_valid_q && (32'(fifo_cnt_q) + 32'(cm_valid_q) < FIFO_DEPTH)
                        && !(|lk_blocked) && !mshr_short;
+
+  // ---------------------------------------------------------------- commit register
+  // Loaded every clock (cm_valid_q says whether it holds a pass), so the lookup's outcome
+  // drives no enable here; the writes it describes happen in the next clock.
+  pass_t      e_pass;      // the pass as it enters the FIFO (request FIFO, below)
+  pass_t      cm_pass_q;
+  logic [2:0] cm_texel_hits_q;
+  logic       cm_qhit_q;
+  logic [2:0] e_texel_hits;
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) cm_valid_q <= 1'b0;
+    else         cm_valid_q <= e_fire;
+    cm_v_q          <= lk_v;
+    cm_alloc_q      <= lk_alloc;
+    cm_set_q        <= lk_set;
+    cm_way_q        <= lk_way;
+    cm_tag_q        <= lk_tag;
+    cm_la_q         <= lk_la;
+    cm_mshr_q       <= lk_mshr;
+    for (int c = 0; c < NSUB; c++) begin
+      cm_plru_q[c] <= plru_touch(f_plru[c], lk_way[c]);
+      cm_inc_q[c]  <= (lk_alloc[c] ? set_dec[c][lk_way[c]] : f_inc[c][lk_way[c]]) + RC_W'(1);
+    end
+    cm_pass_q       <= e_pass;
+    cm_texel_hits_q <= e_texel_hits;
+    cm_qhit_q       <= e_last && !e_missed_q && !(|lk_alloc);
+  end
   assign req_ready_o = rst_ni && (!s0_valid_q || (p_load && sl_last));
 
   logic req_fire;
@@ -618,7 +687,6 @@ module tex_cache
   // ---------------------------------------------------------------- request FIFO
   logic  h_pop, h_ready;
   pass_t hd;
-  pass_t e_pass;
 
   always_comb begin
     e_pass.used = lk_v;
@@ -638,11 +706,11 @@ module tex_cache
       fifo_rp_q  <= '0;
       fifo_cnt_q <= '0;
     end else begin
-      if (e_fire) fifo_wp_q <= fifo_wp_q + FP_W'(1);
-      if (h_pop)  fifo_rp_q <= fifo_rp_q + FP_W'(1);
-      fifo_cnt_q <= fifo_cnt_q + FC_W'(e_fire) - FC_W'(h_pop);
+      if (cm_valid_q) fifo_wp_q <= fifo_wp_q + FP_W'(1);
+      if (h_pop)      fifo_rp_q <= fifo_rp_q + FP_W'(1);
+      fifo_cnt_q <= fifo_cnt_q + FC_W'(cm_valid_q) - FC_W'(h_pop);
     end
-    if (e_fire) fifo_q[fifo_wp_q] <= e_pass;
+    if (cm_valid_q) fifo_q[fifo_wp_q] <= cm_pass_q;
   end
 
   // ---------------------------------------------------------------- head: wait, pop, read
@@ -658,8 +726,8 @@ module tex_cache
   assign rp_plus1 = fifo_rp_q + FP_W'(1);
 
   always_ff @(posedge clk_i) begin
-    if (h_pop) hd_q <= (e_fire && fifo_wp_q == rp_plus1) ? e_pass : fifo_q[rp_plus1];
-    else if (e_fire && fifo_wp_q == fifo_rp_q) hd_q <= e_pass;
+    if (h_pop) hd_q <= (cm_valid_q && fifo_wp_q == rp_plus1) ? cm_pass_q : fifo_q[rp_plus1];
+    else if (cm_valid_q && fifo_wp_q == fifo_rp_q) hd_q <= cm_pass_q;
   end
 
   always_comb begin
@@ -830,8 +898,8 @@ module tex_cache
     for (int c = 0; c < NSUB; c++) begin
       for (int s = 0; s < SETS; s++) begin
         for (int w = 0; w < WAYS; w++) begin
-          slot_alloc[c][s][w] = e_fire && lk_alloc[c] && lk_set[c] == SET_W'(s)
-                                && lk_way[c] == WAY_W'(w);
+          slot_alloc[c][s][w] = cm_valid_q && cm_alloc_q[c] && cm_set_q[c] == SET_W'(s)
+                                && cm_way_q[c] == WAY_W'(w);
           slot_fill[c][s][w]  = fill_v && fill_sub == 2'(c) && fill_set == SET_W'(s)
                                 && fill_way == WAY_W'(w);
         end
@@ -864,7 +932,7 @@ module tex_cache
     end
   end
 
-  // The LUT RAM part (see "Directory" at the state).  Per sub-cache: the entry touches the
+  // The LUT RAM part (see "Directory" at the state).  Per sub-cache: the commit touches the
   // looked-up set's pseudo-LRU bits and takes a reference to the hit or victim way (an allocation
   // also writes the tag); the head releases the reference of each slot its pass reads.
   for (genvar c = 0; c < NSUB; c++) begin : g_dir
@@ -872,11 +940,11 @@ module tex_cache
     logic              give;             // the head's pass read sub-cache c
     logic [PLRU_W-1:0] plru_mem [SETS];
 
-    assign take = e_fire && lk_v[c];     // (e_fire implies rst_ni)
+    assign take = cm_valid_q && cm_v_q[c];  // (cm_valid_q is 0 in reset)
     assign give = h_pop && hd.used[c];
 
     always_ff @(posedge clk_i) begin
-      if (take) plru_mem[lk_set[c]] <= plru_touch(set_plru[c], lk_way[c]);
+      if (take) plru_mem[cm_set_q[c]] <= cm_plru_q[c];
     end
     assign set_plru[c] = plru_mem[lk_set[c]];
 
@@ -887,9 +955,9 @@ module tex_cache
       logic [RC_W-1:0] hd_dec;           // dec of the head's slot
 
       always_ff @(posedge clk_i) begin
-        if (take && lk_way[c] == WAY_W'(w)) begin
-          if (lk_alloc[c]) tag_mem[lk_set[c]] <= lk_tag[c];
-          inc_mem[lk_set[c]] <= (lk_alloc[c] ? set_dec[c][w] : set_inc[c][w]) + RC_W'(1);
+        if (take && cm_way_q[c] == WAY_W'(w)) begin
+          if (cm_alloc_q[c]) tag_mem[cm_set_q[c]] <= cm_tag_q[c];
+          inc_mem[cm_set_q[c]] <= cm_inc_q[c];
         end
         if (give && hd.way[c] == WAY_W'(w)) dec_mem[hd.set[c]] <= hd_dec + RC_W'(1);
       end
@@ -903,6 +971,7 @@ module tex_cache
       for (genvar s = 0; s < SETS; s++) begin : g_view
         assign dir_tag[c][s][w] = tag_mem[s];
         assign dir_rc[c][s][w]  = inc_mem[s] - dec_mem[s];
+        assign dir_inc[c][s][w] = inc_mem[s];
       end
 `endif
     end
@@ -930,10 +999,10 @@ module tex_cache
         end
       end
       for (int c = 0; c < NSUB; c++) begin
-        if (e_fire && lk_alloc[c]) begin  // a free MSHR: never the one finishing now
-          mshr_busy_q[lk_mshr[c]] <= 1'b1;
-          mshr_beat_q[lk_mshr[c]] <= '0;
-          mshr_rerr_q[lk_mshr[c]] <= 1'b0;
+        if (cm_valid_q && cm_alloc_q[c]) begin  // a free MSHR: never the one finishing now
+          mshr_busy_q[cm_mshr_q[c]] <= 1'b1;
+          mshr_beat_q[cm_mshr_q[c]] <= '0;
+          mshr_rerr_q[cm_mshr_q[c]] <= 1'b0;
         end
       end
     end
@@ -941,11 +1010,11 @@ module tex_cache
 
   always_ff @(posedge clk_i) begin
     for (int c = 0; c < NSUB; c++) begin
-      if (e_fire && lk_alloc[c]) begin
-        mshr_la_q[lk_mshr[c]]  <= lk_la[c];
-        mshr_sub_q[lk_mshr[c]] <= 2'(c);
-        mshr_set_q[lk_mshr[c]] <= lk_set[c];
-        mshr_way_q[lk_mshr[c]] <= lk_way[c];
+      if (cm_valid_q && cm_alloc_q[c]) begin
+        mshr_la_q[cm_mshr_q[c]]  <= cm_la_q[c];
+        mshr_sub_q[cm_mshr_q[c]] <= 2'(c);
+        mshr_set_q[cm_mshr_q[c]] <= cm_set_q[c];
+        mshr_way_q[cm_mshr_q[c]] <= cm_way_q[c];
       end
     end
   end
@@ -965,7 +1034,7 @@ module tex_cache
     arq_n = '0;
     for (int c = 0; c < NSUB; c++) begin
       arq_pos[c] = arq_add(arq_wp_q, 32'(arq_n));
-      if (e_fire && lk_alloc[c]) arq_n = arq_n + 3'd1;
+      if (cm_valid_q && cm_alloc_q[c]) arq_n = arq_n + 3'd1;
     end
   end
 
@@ -980,7 +1049,7 @@ module tex_cache
       arq_cnt_q <= arq_cnt_q + QCNT_W'(arq_n) - QCNT_W'(ar_pop);
     end
     for (int c = 0; c < NSUB; c++) begin
-      if (e_fire && lk_alloc[c]) arq_q[arq_pos[c]] <= lk_mshr[c];
+      if (cm_valid_q && cm_alloc_q[c]) arq_q[arq_pos[c]] <= cm_mshr_q[c];
     end
   end
 
@@ -1002,7 +1071,6 @@ module tex_cache
 
   // ---------------------------------------------------------------- statistics
   // texels of this pass whose sub-cache lookup hit
-  logic [2:0] e_texel_hits;
   always_comb begin
     e_texel_hits = '0;
     for (int t = 0; t < 4; t++) begin
@@ -1020,11 +1088,11 @@ module tex_cache
       st_bytes_q <= '0;
     end else begin
       st_req_q <= st_req_q + 48'(req_fire);
-      if (e_fire) begin
-        st_lk_q   <= st_lk_q + 48'($countones(lk_v));
-        st_miss_q <= st_miss_q + 48'($countones(lk_alloc));
-        st_thit_q <= st_thit_q + 48'(e_texel_hits);
-        if (e_last && !e_missed_q && !(|lk_alloc)) st_qhit_q <= st_qhit_q + 48'd1;
+      if (cm_valid_q) begin
+        st_lk_q   <= st_lk_q + 48'($countones(cm_v_q));
+        st_miss_q <= st_miss_q + 48'($countones(cm_alloc_q));
+        st_thit_q <= st_thit_q + 48'(cm_texel_hits_q);
+        if (cm_qhit_q) st_qhit_q <= st_qhit_q + 48'd1;
       end
       if (r_acc) st_bytes_q <= st_bytes_q + 48'(BEAT_BYTES);
     end
@@ -1049,11 +1117,12 @@ module tex_cache
   // (the count is meaningful for a live slot only: valid_q || err_q).
   logic [TAGB-1:0] dir_tag [NSUB][SETS][WAYS];
   logic [RC_W-1:0] dir_rc  [NSUB][SETS][WAYS];
-  logic [NSUB-1:0] lk_live, hd_live;  // the entry's / the head's slot is live
+  logic [RC_W-1:0] dir_inc [NSUB][SETS][WAYS];
+  logic [NSUB-1:0] lk_live, hd_live;  // the committing pass's / the head's slot is live
 
   always_comb begin
     for (int c = 0; c < NSUB; c++) begin
-      lk_live[c] = valid_q[c][lk_set[c]][lk_way[c]] || err_q[c][lk_set[c]][lk_way[c]];
+      lk_live[c] = valid_q[c][cm_set_q[c]][cm_way_q[c]] || err_q[c][cm_set_q[c]][cm_way_q[c]];
       hd_live[c] = valid_q[c][hd.set[c]][hd.way[c]] || err_q[c][hd.set[c]][hd.way[c]];
     end
   end
@@ -1072,7 +1141,7 @@ module tex_cache
     else $error("tex_cache: response dropped or changed while stalled");
   // FIFOs.
   fifo_no_overflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      e_fire |-> (fifo_cnt_q < FC_W'(FIFO_DEPTH)) || h_pop)
+      cm_valid_q |-> (fifo_cnt_q < FC_W'(FIFO_DEPTH)) || h_pop)
     else $error("tex_cache: request FIFO overflow");
   fifo_no_underflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
       h_pop |-> fifo_cnt_q != '0)
@@ -1107,7 +1176,7 @@ module tex_cache
   logic [NSUB-1:0] sh_slot_ok [SETS][WAYS];  // the slot has been written since reset
 
   always_ff @(posedge clk_i) begin
-    if (e_fire) sh_pass_la[fifo_wp_q] <= lk_la;
+    if (cm_valid_q) sh_pass_la[fifo_wp_q] <= cm_la_q;
     if (!rst_ni) begin
       for (int s = 0; s < SETS; s++) for (int w = 0; w < WAYS; w++) sh_slot_ok[s][w] <= '0;
     end else if (fill_v) begin
@@ -1135,17 +1204,24 @@ module tex_cache
         end
       end
       for (int c = 0; c < NSUB; c++) begin
-        // No eviction of a referenced line: a victim is unreferenced (hence not pending).
-        if (e_fire && lk_alloc[c]) begin
+        // No eviction of a referenced line: a victim is unreferenced (hence not pending), in
+        // the directory as its allocation is written (the commit clock).
+        if (cm_valid_q && cm_alloc_q[c]) begin
           victim_unreferenced: assert ((!lk_live[c]
-                                        || dir_rc[c][lk_set[c]][lk_way[c]] == '0)
-                                       && !pend_q[c][lk_set[c]][lk_way[c]])
+                                        || dir_rc[c][cm_set_q[c]][cm_way_q[c]] == '0)
+                                       && !pend_q[c][cm_set_q[c]][cm_way_q[c]])
             else $error("tex_cache: sub-cache %0d evicts a referenced line", c);
         end
         // Reference counts never wrap.
-        if (e_fire && lk_v[c]) begin
-          rc_no_overflow: assert (lk_alloc[c] || dir_rc[c][lk_set[c]][lk_way[c]] != '1)
+        if (cm_valid_q && cm_v_q[c]) begin
+          rc_no_overflow: assert (cm_alloc_q[c] || dir_rc[c][cm_set_q[c]][cm_way_q[c]] != '1)
             else $error("tex_cache: reference count overflow");
+        end
+        // The forwarded view is what the directory holds once the commit is written.
+        if (cm_valid_q && cm_v_q[c]) begin
+          commit_inc: assert (cm_alloc_q[c]
+                              || cm_inc_q[c] == dir_inc[c][cm_set_q[c]][cm_way_q[c]] + RC_W'(1))
+            else $error("tex_cache: sub-cache %0d commits a stale reference count", c);
         end
         if (h_pop && hd.used[c]) begin
           rc_no_underflow: assert (hd_live[c]
@@ -1193,10 +1269,10 @@ module tex_cache
     sim_merge           = 1'b0;  // a pass enters with a line that is still being read
     sim_victim_redirect = 1'b0;  // a reference made the victim differ from the plain policy
     for (int c = 0; c < NSUB; c++) begin
-      if (e_fire && lk_v[c] && !lk_alloc[c] && pend_q[c][lk_set[c]][lk_way[c]]) sim_merge = 1'b1;
-      free_way = plru_pick(set_plru[c], '1);
+      if (e_fire && lk_v[c] && !lk_alloc[c] && f_pnd[c][lk_way[c]]) sim_merge = 1'b1;
+      free_way = plru_pick(f_plru[c], '1);
       for (int w = WAYS - 1; w >= 0; w--) begin
-        if (!valid_q[c][lk_set[c]][w]) free_way = WAY_W'(w);
+        if (!f_vld[c][w]) free_way = WAY_W'(w);
       end
       if (e_fire && lk_alloc[c] && free_way != lk_way[c]) sim_victim_redirect = 1'b1;
     end
