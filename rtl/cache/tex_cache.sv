@@ -116,7 +116,8 @@
 //
 // ---- Statistics (48-bit; cleared by reset and by clr_stats_i, a clock with clr_stats_i counts
 // nothing) -----------------------------------------------------------------------------------------
-// (The lookup counters count in the commit clock, one clock after the lookup.)
+// (The lookup counters count in the commit clock, one clock after the lookup, and the request
+// counter the clock after the handshake.)
 //   stat_requests_o    requests accepted (req_valid_i && req_ready_o)
 //   stat_quad_hits_o   requests whose every line lookup hit (a line in flight counts as a hit)
 //   stat_lookups_o     line lookups (distinct lines per pass)
@@ -1078,6 +1079,13 @@ module tex_cache
     end
   end
 
+  // A request is counted the clock after its handshake (the handshake is late in its clock);
+  // one accepted in a clock with clr_stats_i is not counted, as if counted and then cleared.
+  logic st_req_ev_q;
+  always_ff @(posedge clk_i) begin
+    st_req_ev_q <= rst_ni && req_fire && !clr_stats_i;
+  end
+
   always_ff @(posedge clk_i) begin
     if (!rst_ni || clr_stats_i) begin
       st_req_q   <= '0;
@@ -1087,7 +1095,7 @@ module tex_cache
       st_thit_q  <= '0;
       st_bytes_q <= '0;
     end else begin
-      st_req_q <= st_req_q + 48'(req_fire);
+      st_req_q <= st_req_q + 48'(st_req_ev_q);
       if (cm_valid_q) begin
         st_lk_q   <= st_lk_q + 48'($countones(cm_v_q));
         st_miss_q <= st_miss_q + 48'($countones(cm_alloc_q));
