@@ -105,9 +105,9 @@
 // Errors: a line whose beats carry SLVERR / DECERR stays partly written; its slot gets the error
 // bit and loses its valid bit: the passes already waiting for it answer rsp_err_o = 1 (nothing hangs), a
 // later request reads the line again.
-// Reset (rst_ni low, synchronous): empties the entry register, the FIFO, the output, the MSHRs and
-// the AR queue, clears the valid, pending and error bits and the statistics; requests not yet
-// answered are dropped; req_ready_o and m_axi_arvalid are 0.  The tags, reference counters and
+// Reset (rst_ni low, synchronous): empties the entry, pass and commit registers, the FIFO, the
+// output, the MSHRs and the AR queue, clears the valid, pending and error bits and the
+// statistics; requests not yet answered are dropped; req_ready_o and m_axi_arvalid are 0.  The tags, reference counters and
 // pseudo-LRU bits (LUT RAM) keep whatever they hold, which the valid and error bits make harmless
 // (see "Directory" at the state): the cache behaves as if they had been cleared.
 // Reads issued before the reset still return (rready stays 1) and are ignored: the arid's
@@ -297,11 +297,11 @@ module tex_cache
   // LUT RAM (g_dir below), not reset, each memory written from one place:
   //  - the tags (per sub-cache and way), which count only with the valid bit;
   //  - the reference count rc = inc - dec (modulo 2^RC_W) of a slot: the passes in the FIFO that
-  //    read it.  inc counts at the entry (per sub-cache and way), dec at the head (likewise).  An
+  //    read it.  inc counts at the commit (per sub-cache and way), dec at the head (likewise).  An
   //    allocation writes inc = dec + 1 (its own reference), so the pair is exact from the slot's
   //    first allocation since the reset on; a slot that is not live is unreferenced (free) whatever
   //    the two hold;
-  //  - the pseudo-LRU bits of a set (per sub-cache).  The entry reads them only when every way of
+  //  - the pseudo-LRU bits of a set (per sub-cache).  The lookup uses them only when every way of
   //    the set is live (a way that is not live is free and invalid, so it is taken first), so each
   //    way has been allocated, and touched, since the reset; a touch writes every node on the
   //    way's path, so every node of the tree has been written since the reset.
@@ -538,9 +538,9 @@ module tex_cache
   // Commit register (below): the pass that entered in the clock before, whose directory, MSHR
   // and FIFO writes happen in this clock.
   logic                        cm_valid_q;
-  logic [NSUB-1:0]             cm_v_q, cm_alloc_q;
-  logic [NSUB-1:0][SET_W-1:0]  cm_set_q;
-  logic [NSUB-1:0][WAY_W-1:0]  cm_way_q;
+  pass_t                       e_pass;      // the pass as it enters the FIFO (request FIFO)
+  pass_t                       cm_pass_q;   // ... and as it is written there
+  logic [NSUB-1:0]             cm_alloc_q;  // (its sub-caches, sets and ways: in cm_pass_q)
   logic [NSUB-1:0][TAGB-1:0]   cm_tag_q;
   logic [NSUB-1:0][LA_W-1:0]   cm_la_q;
   logic [NSUB-1:0][MIDX_W-1:0] cm_mshr_q;
@@ -557,15 +557,15 @@ module tex_cache
   always_comb begin
     logic fw, fw_alloc;
     for (int c = 0; c < NSUB; c++) begin
-      fw        = cm_valid_q && cm_v_q[c] && cm_set_q[c] == lk_set[c];
+      fw        = cm_valid_q && cm_pass_q.used[c] && cm_pass_q.set[c] == lk_set[c];
       f_plru[c] = fw ? cm_plru_q[c] : set_plru[c];
       for (int w = 0; w < WAYS; w++) begin
-        fw_alloc     = fw && cm_alloc_q[c] && cm_way_q[c] == WAY_W'(w);
+        fw_alloc     = fw && cm_alloc_q[c] && cm_pass_q.way[c] == WAY_W'(w);
         f_vld[c][w]  = fw_alloc || valid_q[c][lk_set[c]][w];
         f_pnd[c][w]  = fw_alloc || pend_q[c][lk_set[c]][w];
         f_err[c][w]  = !fw_alloc && err_q[c][lk_set[c]][w];
         f_tag[c][w]  = fw_alloc ? cm_tag_q[c] : set_tag[c][w];
-        f_inc[c][w]  = (fw && cm_way_q[c] == WAY_W'(w)) ? cm_inc_q[c] : set_inc[c][w];
+        f_inc[c][w]  = (fw && cm_pass_q.way[c] == WAY_W'(w)) ? cm_inc_q[c] : set_inc[c][w];
       end
     end
   end
@@ -634,8 +634,6 @@ module tex_cache
   // ---------------------------------------------------------------- commit register
   // Loaded every clock (cm_valid_q says whether it holds a pass), so the lookup's outcome
   // drives no enable here; the writes it describes happen in the next clock.
-  pass_t      e_pass;      // the pass as it enters the FIFO (request FIFO, below)
-  pass_t      cm_pass_q;
   logic [2:0] cm_texel_hits_q;
   logic       cm_qhit_q;
   logic [2:0] e_texel_hits;
@@ -643,10 +641,7 @@ module tex_cache
   always_ff @(posedge clk_i) begin
     if (!rst_ni) cm_valid_q <= 1'b0;
     else         cm_valid_q <= e_fire;
-    cm_v_q          <= lk_v;
     cm_alloc_q      <= lk_alloc;
-    cm_set_q        <= lk_set;
-    cm_way_q        <= lk_way;
     cm_tag_q        <= lk_tag;
     cm_la_q         <= lk_la;
     cm_mshr_q       <= lk_mshr;
@@ -899,8 +894,8 @@ module tex_cache
     for (int c = 0; c < NSUB; c++) begin
       for (int s = 0; s < SETS; s++) begin
         for (int w = 0; w < WAYS; w++) begin
-          slot_alloc[c][s][w] = cm_valid_q && cm_alloc_q[c] && cm_set_q[c] == SET_W'(s)
-                                && cm_way_q[c] == WAY_W'(w);
+          slot_alloc[c][s][w] = cm_valid_q && cm_alloc_q[c] && cm_pass_q.set[c] == SET_W'(s)
+                                && cm_pass_q.way[c] == WAY_W'(w);
           slot_fill[c][s][w]  = fill_v && fill_sub == 2'(c) && fill_set == SET_W'(s)
                                 && fill_way == WAY_W'(w);
         end
@@ -937,15 +932,15 @@ module tex_cache
   // looked-up set's pseudo-LRU bits and takes a reference to the hit or victim way (an allocation
   // also writes the tag); the head releases the reference of each slot its pass reads.
   for (genvar c = 0; c < NSUB; c++) begin : g_dir
-    logic              take;             // the entry's pass reads sub-cache c
+    logic              take;             // the committing pass reads sub-cache c
     logic              give;             // the head's pass read sub-cache c
     logic [PLRU_W-1:0] plru_mem [SETS];
 
-    assign take = cm_valid_q && cm_v_q[c];  // (cm_valid_q is 0 in reset)
+    assign take = cm_valid_q && cm_pass_q.used[c];  // (cm_valid_q is 0 in reset)
     assign give = h_pop && hd.used[c];
 
     always_ff @(posedge clk_i) begin
-      if (take) plru_mem[cm_set_q[c]] <= cm_plru_q[c];
+      if (take) plru_mem[cm_pass_q.set[c]] <= cm_plru_q[c];
     end
     assign set_plru[c] = plru_mem[lk_set[c]];
 
@@ -956,9 +951,9 @@ module tex_cache
       logic [RC_W-1:0] hd_dec;           // dec of the head's slot
 
       always_ff @(posedge clk_i) begin
-        if (take && cm_way_q[c] == WAY_W'(w)) begin
-          if (cm_alloc_q[c]) tag_mem[cm_set_q[c]] <= cm_tag_q[c];
-          inc_mem[cm_set_q[c]] <= cm_inc_q[c];
+        if (take && cm_pass_q.way[c] == WAY_W'(w)) begin
+          if (cm_alloc_q[c]) tag_mem[cm_pass_q.set[c]] <= cm_tag_q[c];
+          inc_mem[cm_pass_q.set[c]] <= cm_inc_q[c];
         end
         if (give && hd.way[c] == WAY_W'(w)) dec_mem[hd.set[c]] <= hd_dec + RC_W'(1);
       end
@@ -1014,8 +1009,8 @@ module tex_cache
       if (cm_valid_q && cm_alloc_q[c]) begin
         mshr_la_q[cm_mshr_q[c]]  <= cm_la_q[c];
         mshr_sub_q[cm_mshr_q[c]] <= 2'(c);
-        mshr_set_q[cm_mshr_q[c]] <= cm_set_q[c];
-        mshr_way_q[cm_mshr_q[c]] <= cm_way_q[c];
+        mshr_set_q[cm_mshr_q[c]] <= cm_pass_q.set[c];
+        mshr_way_q[cm_mshr_q[c]] <= cm_pass_q.way[c];
       end
     end
   end
@@ -1097,7 +1092,7 @@ module tex_cache
     end else begin
       st_req_q <= st_req_q + 48'(st_req_ev_q);
       if (cm_valid_q) begin
-        st_lk_q   <= st_lk_q + 48'($countones(cm_v_q));
+        st_lk_q   <= st_lk_q + 48'($countones(cm_pass_q.used));
         st_miss_q <= st_miss_q + 48'($countones(cm_alloc_q));
         st_thit_q <= st_thit_q + 48'(cm_texel_hits_q);
         if (cm_qhit_q) st_qhit_q <= st_qhit_q + 48'd1;
@@ -1130,7 +1125,7 @@ module tex_cache
 
   always_comb begin
     for (int c = 0; c < NSUB; c++) begin
-      lk_live[c] = valid_q[c][cm_set_q[c]][cm_way_q[c]] || err_q[c][cm_set_q[c]][cm_way_q[c]];
+      lk_live[c] = valid_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]] || err_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]];
       hd_live[c] = valid_q[c][hd.set[c]][hd.way[c]] || err_q[c][hd.set[c]][hd.way[c]];
     end
   end
@@ -1216,19 +1211,19 @@ module tex_cache
         // the directory as its allocation is written (the commit clock).
         if (cm_valid_q && cm_alloc_q[c]) begin
           victim_unreferenced: assert ((!lk_live[c]
-                                        || dir_rc[c][cm_set_q[c]][cm_way_q[c]] == '0)
-                                       && !pend_q[c][cm_set_q[c]][cm_way_q[c]])
+                                        || dir_rc[c][cm_pass_q.set[c]][cm_pass_q.way[c]] == '0)
+                                       && !pend_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]])
             else $error("tex_cache: sub-cache %0d evicts a referenced line", c);
         end
         // Reference counts never wrap.
-        if (cm_valid_q && cm_v_q[c]) begin
-          rc_no_overflow: assert (cm_alloc_q[c] || dir_rc[c][cm_set_q[c]][cm_way_q[c]] != '1)
+        if (cm_valid_q && cm_pass_q.used[c]) begin
+          rc_no_overflow: assert (cm_alloc_q[c] || dir_rc[c][cm_pass_q.set[c]][cm_pass_q.way[c]] != '1)
             else $error("tex_cache: reference count overflow");
         end
         // The forwarded view is what the directory holds once the commit is written.
-        if (cm_valid_q && cm_v_q[c]) begin
+        if (cm_valid_q && cm_pass_q.used[c]) begin
           commit_inc: assert (cm_alloc_q[c]
-                              || cm_inc_q[c] == dir_inc[c][cm_set_q[c]][cm_way_q[c]] + RC_W'(1))
+                              || cm_inc_q[c] == dir_inc[c][cm_pass_q.set[c]][cm_pass_q.way[c]] + RC_W'(1))
             else $error("tex_cache: sub-cache %0d commits a stale reference count", c);
         end
         if (h_pop && hd.used[c]) begin
