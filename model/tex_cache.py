@@ -6,14 +6,14 @@ estimate of the rest.
 - :func:`passes`: how a request (four texel byte addresses c00, c01, c10, c11) is split into
   passes and which line each sub-cache looks up in each pass, exactly as the RTL does: the row bit
   of a texel is bit j of its row's first address (c00 or c10), j a function of the pitch
-  R = addr[2] - addr[0] (:func:`row_bit_position`; 0 when R = 0); sub-cache = (row bit, line parity); a pass is the
-  greedy subset (texel order) of the remaining texels whose lines are in distinct sub-caches or
-  equal, and, within one line, in the window the sub-cache reads: a sub-cache reads one window of
-  ``win_words`` + 1 words of its line per pass (window k: words k * win_words .. (k + 1) *
-  win_words, the last shared with window k + 1), the window of the pass's first texel in that
-  sub-cache (:func:`window_fits`).  A quad's horizontal pair (words w, w + 1 of one line) always
-  fits one window, so real quads never split for it.  So the RTL's
-  ``stat_lookups_o`` equals the sum of ``len(lines)`` over the passes.  ``stat_texel_hits_o``
+  R = addr[2] - addr[0] (:func:`row_bit_position`; 0 when R = 0); sub-cache = (row bit, line
+  parity); a pass is the greedy subset (texel order) of the remaining texels whose lines are in
+  distinct sub-caches or equal, and, within one line, in the window the sub-cache reads: a
+  sub-cache reads one window of ``win_words`` + 1 words of its line per pass (window k: words k *
+  win_words .. (k + 1) * win_words, the last shared with window k + 1), the window of the pass's
+  first texel in that sub-cache (:func:`window_fits`). A quad's horizontal pair (words w, w + 1 of
+  one line) always fits one window, so real quads never split for it. So the RTL's
+  ``stat_lookups_o`` equals the sum of ``len(lines)`` over the passes. ``stat_texel_hits_o``
   counts the texels (four per request) whose pass's lookup in their sub-cache hit.
 - :class:`TexCacheModel`: the directory without timing (XOR-folded sets, tree pseudo-LRU, an
   invalid way first, a line allocated at lookup).  The RTL also skips ways that queued requests
@@ -66,11 +66,12 @@ ROW_P = 3
 def row_bit_position(pitch: int, cfg: TexCacheConfig) -> int | None:
     """The address bit j used as row bit for a quad of row pitch ``pitch`` (None: pitch 0).
 
-    Among j = log2(4 * window_words) .. ADDR_W - 1, the j where the pitch is closest to an odd multiple of 2^j, judged by the ROW_P bits below j:
-    e = pitch[j-1 -: ROW_P] if pitch[j] else its complement; the smallest e, the lowest j on
-    ties.  Bits below the line size are candidates so that the two rows of a small level, which
-    share a line, go to two sub-caches when they are in different windows of it; the line parity
-    bit is one too (for a pitch of one line) because the row bit is taken per row."""
+    Among j = log2(4 * window_words) .. ADDR_W - 1, the j where the pitch is closest to an odd
+    multiple of 2^j, judged by the ROW_P bits below j: e = pitch[j-1 -: ROW_P] if pitch[j] else
+    its complement; the smallest e, the lowest j on ties. Bits below the line size are candidates
+    so that the two rows of a small level, which share a line, go to two sub-caches when they are
+    in different windows of it; the line parity bit is one too (for a pitch of one line) because
+    the row bit is taken per row."""
     if pitch == 0:
         return None
     best = None

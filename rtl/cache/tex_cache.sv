@@ -103,13 +103,14 @@
 // nothing reads it), so beats of different IDs may interleave.  On the line's last beat the slot
 // stops pending and the MSHR is free again (MSHRS reads in flight at most).
 // Errors: a line whose beats carry SLVERR / DECERR stays partly written; its slot gets the error
-// bit and loses its valid bit: the passes already waiting for it answer rsp_err_o = 1 (nothing hangs), a
-// later request reads the line again.
+// bit and loses its valid bit: the passes already waiting for it answer rsp_err_o = 1 (nothing
+// hangs), a later request reads the line again.
 // Reset (rst_ni low, synchronous): empties the entry, pass and commit registers, the FIFO, the
 // output, the MSHRs and the AR queue, clears the valid, pending and error bits and the
-// statistics; requests not yet answered are dropped; req_ready_o and m_axi_arvalid are 0.  The tags, reference counters and
-// pseudo-LRU bits (LUT RAM) keep whatever they hold, which the valid and error bits make harmless
-// (see "Directory" at the state): the cache behaves as if they had been cleared.
+// statistics; requests not yet answered are dropped; req_ready_o and m_axi_arvalid are 0.  The
+// tags, reference counters and pseudo-LRU bits (LUT RAM) keep whatever they hold, which the
+// valid and error bits make harmless (see "Directory" at the state): the cache behaves as if they
+// had been cleared.
 // Reads issued before the reset still return (rready stays 1) and are ignored: the arid's
 // EPOCH_W = ID_W - log2(MSHRS) epoch bits advance at each reset.  Requirement: a read returns before
 // 2^EPOCH_W - 1 further resets.
@@ -1123,9 +1124,14 @@ module tex_cache
   logic [RC_W-1:0] dir_inc [NSUB][SETS][WAYS];
   logic [NSUB-1:0] lk_live, hd_live;  // the committing pass's / the head's slot is live
 
+  logic [NSUB-1:0][SET_W-1:0] cm_set;  // the committing pass's slots
+  logic [NSUB-1:0][WAY_W-1:0] cm_way;
+  assign cm_set = cm_pass_q.set;
+  assign cm_way = cm_pass_q.way;
+
   always_comb begin
     for (int c = 0; c < NSUB; c++) begin
-      lk_live[c] = valid_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]] || err_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]];
+      lk_live[c] = valid_q[c][cm_set[c]][cm_way[c]] || err_q[c][cm_set[c]][cm_way[c]];
       hd_live[c] = valid_q[c][hd.set[c]][hd.way[c]] || err_q[c][hd.set[c]][hd.way[c]];
     end
   end
@@ -1211,19 +1217,19 @@ module tex_cache
         // the directory as its allocation is written (the commit clock).
         if (cm_valid_q && cm_alloc_q[c]) begin
           victim_unreferenced: assert ((!lk_live[c]
-                                        || dir_rc[c][cm_pass_q.set[c]][cm_pass_q.way[c]] == '0)
-                                       && !pend_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]])
+                                        || dir_rc[c][cm_set[c]][cm_way[c]] == '0)
+                                       && !pend_q[c][cm_set[c]][cm_way[c]])
             else $error("tex_cache: sub-cache %0d evicts a referenced line", c);
         end
         // Reference counts never wrap.
         if (cm_valid_q && cm_pass_q.used[c]) begin
-          rc_no_overflow: assert (cm_alloc_q[c] || dir_rc[c][cm_pass_q.set[c]][cm_pass_q.way[c]] != '1)
+          rc_no_overflow: assert (cm_alloc_q[c] || dir_rc[c][cm_set[c]][cm_way[c]] != '1)
             else $error("tex_cache: reference count overflow");
         end
         // The forwarded view is what the directory holds once the commit is written.
         if (cm_valid_q && cm_pass_q.used[c]) begin
           commit_inc: assert (cm_alloc_q[c]
-                              || cm_inc_q[c] == dir_inc[c][cm_pass_q.set[c]][cm_pass_q.way[c]] + RC_W'(1))
+                              || cm_inc_q[c] == dir_inc[c][cm_set[c]][cm_way[c]] + RC_W'(1))
             else $error("tex_cache: sub-cache %0d commits a stale reference count", c);
         end
         if (h_pop && hd.used[c]) begin

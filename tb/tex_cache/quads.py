@@ -163,5 +163,6 @@ def random_lines(rng: random.Random, texs: list[Placed], n: int, line_bytes: int
         p = rng.choice(texs)
         base = p.base + line_bytes * rng.randrange(max(1, p.size // line_bytes - 1))
         span = 2 * line_bytes if rng.random() < 0.3 else line_bytes
-        out.append(tuple(base + 4 * rng.randrange(span // 4) for _ in range(4)))  # type: ignore[misc]
+        q = tuple(base + 4 * rng.randrange(span // 4) for _ in range(4))
+        out.append(q)  # type: ignore[arg-type]
     return out
