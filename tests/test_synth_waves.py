@@ -131,6 +131,10 @@ def test_report_markdown(tmp_path):
     report["settings"]["ecp5_opts"] = "-nowidelut"   # --ecp5-opts is named in the report
     synth.write_md(report, tmp_path / "r.md")
     assert "counts from `synth_ecp5 -nowidelut`," in (tmp_path / "r.md").read_text()
+    report["settings"]["abc9_delay_ps"] = 6000       # so is --abc9-delay
+    synth.write_md(report, tmp_path / "r.md")
+    assert ("counts from `synth_ecp5 -nowidelut` with abc9 delay target 6000 ps,"
+            in (tmp_path / "r.md").read_text())
 
 
 def test_synth_bad_arguments():
@@ -140,6 +144,8 @@ def test_synth_bad_arguments():
     assert p.returncode == 2 and "inside the repository" in p.stdout
     p = run("scripts/synth.py", "--blocks", "f24_add", "--ecp5-opts=-nowidelut; tee x")
     assert p.returncode == 2 and "--ecp5-opts" in p.stdout and len(p.stdout.splitlines()) == 1
+    p = run("scripts/synth.py", "--blocks", "f24_add", "--abc9-delay", "-5")
+    assert p.returncode == 2 and "--abc9-delay" in p.stdout and len(p.stdout.splitlines()) == 1
 
 
 def test_blocks_are_rtl_modules():
