@@ -65,12 +65,15 @@
 // ---- Pipeline ------------------------------------------------------------------------------------
 //   clock 0   request accepted into the entry register (row bits computed from req_addr_i).
 //   clock 1   pass selection: the request's next pass (texels, one line and window per
-//             sub-cache, set indices, tags) moves into the pass register; a request of several
-//             passes stays in the entry register until its last one has moved.
-//   clock 2   lookup: tag lookup in the four sub-caches; a miss picks a victim way and an MSHR.
-//             All or nothing: the pass waits in the pass register while the FIFO is full, while
-//             an MSHR is missing for one of its misses, or while every way of a missed set is
-//             referenced.
+//             sub-cache, set indices, tags) moves into the pass queue (two entries) while it has
+//             room; a request of several passes stays in the entry register until its last one
+//             has moved.
+//   clock 2   lookup of the oldest pass in the queue: tag lookup in the four sub-caches; a miss
+//             picks a victim way and an MSHR.  All or nothing: the pass waits in the queue while
+//             the FIFO is full, while an MSHR is missing for one of its misses, or while every
+//             way of a missed set is referenced.  The queue's room is judged from its count
+//             register, so the lookup's outcome steers no enable of the entry register or of the
+//             queue's entries in its own clock (only the queue's read pointer and count).
 //   clock 3   commit: the pass's directory writes (tags, references, pseudo-LRU, valid and
 //             pending bits), its MSHRs and line reads, and its push into the request FIFO
 //             (FIFO_DEPTH passes) happen from the commit register, so no write waits on the
@@ -426,7 +429,7 @@ module tex_cache
   end
 
   // ---------------------------------------------------------------- entry: pass selection
-  // From the entry register: the request's next pass (sl_*), loaded into the pass register.
+  // From the entry register: the request's next pass (sl_*), written into the pass queue.
   logic [3:0][LA_W-1:0]   e_la;
   logic [3:0][1:0]        e_sub;
   logic [3:0][WSEL_W-1:0] e_word;   // word in the line
@@ -480,46 +483,87 @@ module tex_cache
     sl_last = (s0_todo_q & ~sl_sel) == '0;
   end
 
-  // ---------------------------------------------------------------- pass register
-  // The pass being looked up (the lookup below reads only these registers and the directory).
-  logic                       p_valid_q;
-  logic [NSUB-1:0]            lk_v;      // sub-caches the pass reads
+  // ---------------------------------------------------------------- pass queue
+  // The passes selected and not yet looked up: two registers used as a queue (pq_q, written at
+  // pq_wp_q, read at pq_rp_q).  The lookup below reads only the entry at the read pointer and the
+  // directory.  A pass moves in while the queue has a free entry, judged from pq_cnt_q alone, so
+  // neither the selection nor req_ready_o waits on the lookup's outcome in the same clock: the
+  // lookup's handshake (e_fire) only steps the read pointer and the count.  Two entries keep one
+  // pass per clock going: a pass is selected while the one before it is looked up; after a stall
+  // (both entries full) the lookup takes the second entry while the first one's place refills.
+  typedef struct packed {
+    logic [NSUB-1:0]            v;     // sub-caches the pass reads
+    logic [NSUB-1:0][LA_W-1:0]  la;
+    logic [NSUB-1:0][SET_W-1:0] set;
+    logic [NSUB-1:0][TAGB-1:0]  tag;   // the line address bits above the low set field
+    logic [NSUB-1:0][WIN_W-1:0] win;
+    logic [3:0]                 sel;   // texels of the pass
+    logic [3:0][1:0]            psub;  // their sub-caches
+    logic [3:0][TOFF_W-1:0]     toff;
+    logic [TAG_W-1:0]           rtag;  // the request's tag
+    logic                       last;  // the request's last pass
+  } pq_t;
+
+  pq_t [1:0]                  pq_q;
+  logic                       pq_wp_q, pq_rp_q;
+  logic [1:0]                 pq_cnt_q;  // passes in the queue, 0 .. 2
+  pq_t                        pq_d;      // the selected pass as it is written
+  logic                       p_valid_q; // the entry at the read pointer holds a pass
+  logic [NSUB-1:0]            lk_v;      // that entry's fields, as the lookup uses them
   logic [NSUB-1:0][LA_W-1:0]  lk_la;
   logic [NSUB-1:0][SET_W-1:0] lk_set;
   logic [NSUB-1:0][TAGB-1:0]  lk_tag;
   logic [NSUB-1:0][WIN_W-1:0] lk_win;
-  logic [3:0]                 e_sel;     // texels of the pass
-  logic [3:0][1:0]            e_psub;    // their sub-caches
+  logic [3:0]                 e_sel;
+  logic [3:0][1:0]            e_psub;
   logic [3:0][TOFF_W-1:0]     e_toff;
   logic [TAG_W-1:0]           e_tag;
   logic                       e_last;
-  logic                       p_load;    // the next pass moves into the pass register
-  logic                       e_fire;    // the pass in the register enters the FIFO
+  logic                       p_load;    // the next pass moves into the queue
+  logic                       e_fire;    // the pass at the read pointer enters the FIFO
 
-  assign p_load = rst_ni && s0_valid_q && (!p_valid_q || e_fire);
+  assign p_load    = rst_ni && s0_valid_q && pq_cnt_q != 2'd2;
+  assign p_valid_q = pq_cnt_q != 2'd0;
+
+  always_comb begin
+    pq_d.v    = sl_v;
+    pq_d.la   = sl_la;
+    for (int c = 0; c < NSUB; c++) begin
+      pq_d.set[c] = set_of(sl_la[c]);
+      pq_d.tag[c] = sl_la[c][LA_W-1 -: TAGB];
+    end
+    pq_d.win  = sl_win;
+    pq_d.sel  = sl_sel;
+    pq_d.psub = e_sub;
+    pq_d.toff = sl_toff;
+    pq_d.rtag = s0_tag_q;
+    pq_d.last = sl_last;
+  end
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      p_valid_q <= 1'b0;
-    end else if (p_load) begin
-      p_valid_q <= 1'b1;
-    end else if (e_fire) begin
-      p_valid_q <= 1'b0;
+      pq_wp_q  <= 1'b0;
+      pq_rp_q  <= 1'b0;
+      pq_cnt_q <= '0;
+    end else begin
+      if (p_load) pq_wp_q <= !pq_wp_q;
+      if (e_fire) pq_rp_q <= !pq_rp_q;
+      pq_cnt_q <= pq_cnt_q + 2'(p_load) - 2'(e_fire);
     end
-    if (p_load) begin
-      lk_v   <= sl_v;
-      lk_la  <= sl_la;
-      for (int c = 0; c < NSUB; c++) begin
-        lk_set[c] <= set_of(sl_la[c]);
-        lk_tag[c] <= sl_la[c][LA_W-1 -: TAGB];  // the bits above the low set field
-      end
-      lk_win <= sl_win;
-      e_sel  <= sl_sel;
-      e_psub <= e_sub;
-      e_toff <= sl_toff;
-      e_tag  <= s0_tag_q;
-      e_last <= sl_last;
-    end
+    if (p_load) pq_q[pq_wp_q] <= pq_d;
+  end
+
+  always_comb begin
+    lk_v   = pq_q[pq_rp_q].v;
+    lk_la  = pq_q[pq_rp_q].la;
+    lk_set = pq_q[pq_rp_q].set;
+    lk_tag = pq_q[pq_rp_q].tag;
+    lk_win = pq_q[pq_rp_q].win;
+    e_sel  = pq_q[pq_rp_q].sel;
+    e_psub = pq_q[pq_rp_q].psub;
+    e_toff = pq_q[pq_rp_q].toff;
+    e_tag  = pq_q[pq_rp_q].rtag;
+    e_last = pq_q[pq_rp_q].last;
   end
 
   // ---------------------------------------------------------------- lookup: tags, victims
@@ -1161,6 +1205,9 @@ module tex_cache
   fifo_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
       32'(fifo_cnt_q) <= FIFO_DEPTH && FP_W'(fifo_wp_q - fifo_rp_q) == FP_W'(fifo_cnt_q))
     else $error("tex_cache: request FIFO pointers inconsistent");
+  pass_queue_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      pq_cnt_q <= 2'd2 && (pq_cnt_q == 2'd1) == (pq_wp_q != pq_rp_q))
+    else $error("tex_cache: pass queue pointers inconsistent");
   out_no_overflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
       out_push |-> (out_cnt_q < 2'(OUT_DEPTH)) || out_pop)
     else $error("tex_cache: output buffer overflow");
