@@ -12,12 +12,14 @@ package shade_pkg;
   // Each user reads only the constants it needs.
   /* verilator lint_off UNUSEDPARAM */
 
-  // Critical path: view vector (mul 1, add 2, add 2, rsqrt 3, mul 1), half vector (add 2, mul 1,
-  // add 2, add 2, rsqrt 3, mul 1), n.h (mul 1, add 2, add 2), max 1, four squarings 4, KS mul 1,
-  // the tail's operand register 1, colour add 2, clamp 1, x255 mul 1, +0.5 add 2, floor 1, and
-  // one clock more for the blue channel, which takes the red channel's lane a clock later.
+  // Critical path: view vector (input register 1, mul 1, add 2, add 2, rsqrt 3, mul 1), half
+  // vector (add 2, mul 1, add 2, add 2, rsqrt 3, mul 1), n.h (mul 1, add 2, add 2), max 1, four
+  // squarings 4, KS mul 1, colour add 2, clamp 1, x255 mul 1, +0.5 add 2, floor 1, one clock
+  // more for the blue channel, which takes the red channel's lane a clock later, and one for the
+  // alignment (a pixel that comes on an odd clock enters the core a clock late; the others wait
+  // at the output).
   // rsqrt: f24_rsqrt #(.LAT(3)) (pipe_pkg::F24_RSQRT_LAT).
-  localparam int unsigned SHADE_LAT = 40;
+  localparam int unsigned SHADE_LAT = 41;
 
   // Per-frame configuration: every field is the f24 pattern of the model's const(...) of that
   // quantity (model.f24.from_float of the float64 value; the driver precomputes them), static

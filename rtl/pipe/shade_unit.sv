@@ -25,74 +25,84 @@
 // light vector l (three components), AMBIENT, KD, KS, D and D2 = mul(D, D).  Hard-wired
 // (shade_pkg): EPS = 2^-40, 1, 0, 255 and 0.5; the constant 2 only appears as mul(M_c, 2).
 //
-// Fully pipelined, fixed latency SHADE_LAT = 40 enabled clocks (shade_pkg), one pixel every other
+// Fully pipelined, fixed latency SHADE_LAT = 41 enabled clocks (shade_pkg), one pixel every other
 // enabled clock at most (valid_i must not be 1 on two consecutive enabled clocks; asserted).  In
 // dm_pipeline a pixel needs two filtered quads, which come one per clock at most.
 // Every register (valid, tag, data, the float units) advances only while en_i is 1, so the
 // enclosing pipeline stalls the whole unit with en_i = 0.  A pixel is taken on an enabled edge with
 // valid_i = 1; its result shows at valid_o / tag_o / rgb_o after SHADE_LAT enabled edges and holds
-// while en_i is 0.  valid is reset by rst_ni (synchronous, active low, independent of en_i); data
-// and tag registers have no reset.
+// while en_i is 0.  valid (and the core's valid bits, the phase and the hold flag) are reset by
+// rst_ni (synchronous, active low, independent of en_i); data and tag registers have no reset.
 //
-// Stage schedule (S0 = the input ports; "a -> b": a unit takes operands in Sa, result in Sb;
-// "reg" = exact logic into one register):
-//   S0   M_c * 2 (exact doubling, see below)                          reg          S0 -> S1
-//        du*du, dv*dv                                                f24_mul      S0 -> S1
-//        du, dv delayed S0 -> S8; C delayed S0 -> S22
-//   S1   n_c = 2M_c - 1                                              f24_add x3   S1 -> S3
-//        du2 + dv2                                                   f24_add      S1 -> S3
-//   S3   n_c * n_c                                                   f24_mul x3   S3 -> S4
-//        (du2 + dv2) + D2 = vv                                       f24_add      S3 -> S5
-//        n delayed S3 -> S12
-//   S4   nx2 + ny2 (nz2 delayed S4 -> S6)                            f24_add      S4 -> S6
-//   S5   rv = rsqrt(vv)                                              f24_rsqrt    S5 -> S8
-//   S6   nn = (nx2 + ny2) + nz2                                      f24_add      S6 -> S8
-//   S8   v = (-du rv, -dv rv, D rv)                                  f24_mul x3   S8 -> S9
-//        max(nn, EPS)                                                reg          S8 -> S9
-//   S9   h_c = l_c + v_c                                             f24_add x3   S9 -> S11
-//        rn = rsqrt(nn)                                              f24_rsqrt    S9 -> S12
-//   S11  h_c * h_c                                                   f24_mul x3   S11 -> S12
-//        h delayed S11 -> S19
-//   S12  n_c * rn (unit normal)                                      f24_mul x3   S12 -> S13
-//        hx2 + hy2 (hz2 delayed S12 -> S14)                          f24_add      S12 -> S14
-//   S13  n_c * l_c                                                   f24_mul x3   S13 -> S14
-//        unit normal delayed S13 -> S20
-//   S14  hh = (hx2 + hy2) + hz2                                      f24_add      S14 -> S16
-//        nlx + nly (nlz delayed S14 -> S16)                          f24_add      S14 -> S16
-//   S16  rh = rsqrt(hh)                                              f24_rsqrt    S16 -> S19
-//        dot(n, l) = (nlx + nly) + nlz                               f24_add      S16 -> S18
-//   S18  ndl = max(dot(n, l), 0)                                     reg          S18 -> S19
-//   S19  h_c * rh (unit half vector)                                 f24_mul x3   S19 -> S20
-//        KD * ndl                                                    f24_mul      S19 -> S20
-//   S20  n_c * h_c                                                   f24_mul x3   S20 -> S21
-//        a = AMBIENT + KD ndl                                        f24_add      S20 -> S22
-//   S21  nhx + nhy (nhz delayed S21 -> S23)                          f24_add      S21 -> S23
-//   S22  C_c * a                                                     f24_mul x3   S22 -> S23
-//        C_c a delayed S23 -> S31
-//   S23  dot(n, h) = (nhx + nhy) + nhz                               f24_add      S23 -> S25
-//   S25  ndh = max(dot(n, h), 0)                                     reg          S25 -> S26
-//   S26  s = ndh^2, ^4, ^8, ^16 (four squarings)                     f24_mul x4   S26 -> S30
-//   S30  sp = KS * s                                                 f24_mul      S30 -> S31
-//   The tail (steps 12-14 after C_c a) runs on two lanes: lane 0 takes R in S31 and B (its
-//   C_c a and sp a clock older) in S32, lane 1 takes G; the pixel after is two clocks away at
-//   least (valid_i never on two consecutive enabled clocks; asserted), so lane 0 is free then.
-//   S31  the lanes' operand registers: {C_R a, sp}, {C_G a, sp}; S32: {C_B a, sp}  reg
-//   S32  c_c = C_c a + sp                                            f24_add x2   S32 -> S34
-//   S34  min(max(c_c, 0), 1)                                         reg          S34 -> S35
-//   S35  c_c * 255                                                   f24_mul x2   S35 -> S36
-//   S36  + 0.5                                                       f24_add x2   S36 -> S38
-//   S38  floor -> unorm8                                             f24_to_index S38 -> S39
+// Alignment: ph_q toggles on every enabled clock.  A pixel that comes with ph_q = 0 enters core
+// stage S1 at once, one that comes with ph_q = 1 waits a clock in hold registers and enters then;
+// at the output an odd pixel is in core S40, an even one in core S41 (its floors held a clock), so
+// the latency is fixed.  Every two pixels in the core are thus an even number of clocks apart, and
+// a float unit serves two operations of a pixel whose stages differ by an odd number: pixel p at
+// Sa and Sb, any later pixel at Sa + 2j and Sb + 2j, never in the same clock (asserted:
+// core_aligned).  Without the alignment only consecutive stages could share (pixels may come 3,
+// 5, ... clocks apart).  A shared unit's operands are registers, or a 2:1 select between two
+// registers by cv_q[a] (a pixel in core stage a: the first operation, else the second).
+// Three-component values run as two lanes: lane 0 carries x in stage s and z in s+1 through the
+// same registers ("stream"), lane 1 carries y in s.
+//
+// Core stage schedule (S0 = the input ports or the hold registers; "a -> b": a unit takes operands
+// in Sa, result in Sb; "@a / @b": a unit's two operations; "reg" = exact logic into one register):
+//   S0   2M_c (exact doubling, see below; 2M_z waits a clock for lane 0) reg          S0 -> S1
+//        du, dv delayed S0 -> S9; C_x, C_z as a stream S0 -> S29, C_y S0 -> S30
+//   S1   du^2 @1 / h_y^2 @12                                           f24_mul      -> S2 / S13
+//        dv^2 @1 / C_y a @30                                           f24_mul      -> S2 / S31
+//        n_x - 1 @1 / n_z - 1 @2 (lane 0, n = 2M - 1)                  f24_add      -> S3 / S4
+//        n_y - 1 @1 / du^2 + dv^2 @2                                   f24_add      -> S3 / S4
+//        n delayed S3 -> S19 (lanes)
+//   S4   vv = (du^2 + dv^2) + D2 @4 / hh = (hx2 + hy2) + hz2 @15       f24_add      -> S6 / S17
+//   S6   rv = rsqrt(vv) @6                                             f24_rsqrt    -> S9
+//   S8   n_x^2 @8 / n_z^2 @9                                           f24_mul      -> S9 / S10
+//        n_y^2 @8 / v_y = -dv rv @9                                    f24_mul      -> S9 / S10
+//   S9   v_x = -du rv @9 / v_z = D rv @10 (rv held a clock)            f24_mul      -> S10 / S11
+//        nx2 + ny2 @9 / h_y = l_y + v_y @10                            f24_add      -> S11 / S12
+//   S10  h_x = l_x + v_x @10 / h_z = l_z + v_z @11                     f24_add      -> S12 / S13
+//        h delayed S12 -> S20 (lanes)
+//   S12  h_x^2 @12 / h_z^2 @13                                         f24_mul      -> S13 / S14
+//        nn = (nx2 + ny2) + nz2 @12 / hx2 + hy2 @13                    f24_add      -> S14 / S15
+//   S14  max(nn, EPS), held S15 -> S16                                 reg          S14 -> S15
+//   S16  rn = rsqrt(nn) @16 / rh = rsqrt(hh) @17                       f24_rsqrt    -> S19 / S20
+//   S19  n_x rn @19 / n_z rn @20 (unit normal, lane 0)                 f24_mul      -> S20 / S21
+//        n_y rn @19 / n_y l_y @20                                      f24_mul      -> S20 / S21
+//   S20  n_x l_x @20 / n_z l_z @21                                     f24_mul      -> S21 / S22
+//        h_x rh @20 / h_z rh @21 (unit half vector, lane 0)            f24_mul      -> S21 / S22
+//        h_y rh @20 / n_y h_y @21                                      f24_mul      -> S21 / S22
+//   S21  n_x h_x @21 / n_z h_z @22                                     f24_mul      -> S22 / S23
+//        nlx + nly @21 / nhx + nhy @22                                 f24_add      -> S23 / S24
+//   S23  dot(n, l) = (nlx + nly) + nlz @23 / dot(n, h) @24             f24_add      -> S25 / S26
+//        (nlz, then nhz, wait a clock in one register)
+//   S25  ndl = max(dot(n, l), 0) -> S26, ndh = max(dot(n, h), 0) -> S27   reg (one)
+//   S26  KD ndl @26 / s = ndh^2 @27                                    f24_mul      -> S27 / S28
+//   S27  a = AMBIENT + KD ndl @27 / c_G = C_y a + sp @32               f24_add      -> S29 / S34
+//   S28  s^4 @28 / s^8 @29                                             f24_mul      -> S29 / S30
+//   S29  C_x a @29 / C_z a @30 (a held a clock)                        f24_mul      -> S30 / S31
+//        C_x a, C_z a delayed S30 -> S32; C_y a S31 -> S32
+//   S30  s^16 @30 / sp = KS s^16 @31                                   f24_mul      -> S31 / S32
+//   The tail (steps 12-14 after C_c a) runs on the two lanes: lane 0 takes R in S32 and B a
+//   clock later, lane 1 takes G (its add is the a / c_G adder above).
+//   S32  c_c = C_c a + sp (lane 0: sp held a clock for B)              f24_add      -> S34
+//   S34  min(max(c_c, 0), 1)                                           reg          S34 -> S35
+//   S35  c_c * 255                                                     f24_mul x2   -> S36
+//   S36  + 0.5                                                         f24_add x2   -> S38
+//   S38  floor -> unorm8                                               f24_to_index -> S39
 //        (B a clock behind on lane 0: its floor S39 -> S40)
-//   S39  R and G held                                                reg          S39 -> S40
-//   S40  outputs (R, G from the hold registers, B from lane 0's floor); valid and tag delayed
-//        S0 -> S40
-// The three f24_rsqrt run at LAT = pipe_pkg::F24_RSQRT_LAT = 3 (table / product + sum / round:
+//   S39  R and G held (S40), and again with B (S41)                    reg
+//   Output: an odd pixel's R, G, B from core S40 (the hold registers, lane 0's floor), an even
+//   pixel's from core S41 (selected by ph_q); valid and tag delayed S0 -> S41 (pipe_valid_tag).
+// The two f24_rsqrt run at LAT = pipe_pkg::F24_RSQRT_LAT = 3 (table / product + sum / round:
 // over 120 MHz; at their 2 clocks they limit the unit to below 60 MHz), with the same results;
 // the schedule above is written for that latency (checked at elaboration).
 //
-// Float units: 34 f24_mul, 21 f24_add, 3 f24_rsqrt, 2 f24_to_index #(9); no f24_cmp (35, 23, 3
-// and 3 before the tail shared lane 0 between R and B).  Exact logic (no rounding involved, each
-// into one register): 3 doublers, max(nn, EPS), 2 x max(., 0) and 2 clamps.
+// Float units: 18 f24_mul (17 with two operations), 12 f24_add (11 with two), 2 f24_rsqrt (one with
+// two), 2 f24_to_index #(9) (lane 0 with two); no f24_cmp (34, 21, 3 and 2 before the units served
+// two operations beyond the tail).  The single-operation units: the lane-1 tail's multiply and
+// + 0.5, and rv's rsqrt.  Exact logic (no rounding involved, each into one register): 3 doublers,
+// max(nn, EPS), one max(., 0) for ndl then ndh, and 2 clamps.
 //
 // Exact parts, bit-identical to the model:
 // - mul(M_c, 2) is an exponent increment: e = 126 overflows to Inf, zeros and subnormal patterns
@@ -127,13 +137,14 @@ module shade_unit
   output logic [2:0][7:0]  rgb_o     // unorm8 codes (R, G, B at 0, 1, 2)
 );
 
-  localparam int unsigned NS = SHADE_LAT;  // S1 .. S38 are registers
+  localparam int unsigned NS = SHADE_LAT;  // stages S1 .. S41
+  localparam int unsigned CS = NS - 1;     // core stages S1 .. S40
 
   // The three f24_rsqrt: the schedule (header) is written for 3 clocks each (rv S5 -> S8, rn
   // S9 -> S12, rh S16 -> S19); another latency needs the stages below renumbered.
   localparam int unsigned RSQRT_LAT = pipe_pkg::F24_RSQRT_LAT;
-  if (RSQRT_LAT != 3 || NS != 40) begin : g_check_lat
-    $error("shade_unit: the stage schedule is written for F24_RSQRT_LAT = 3, SHADE_LAT = 40");
+  if (RSQRT_LAT != 3 || NS != 41) begin : g_check_lat
+    $error("shade_unit: the stage schedule is written for F24_RSQRT_LAT = 3, SHADE_LAT = 41");
   end
 
   localparam f24_t NEG_ONE = SHADE_ONE ^ 24'h800000;  // sub(x, 1) = add(x, -1)
@@ -178,160 +189,262 @@ module shade_unit
   f24_t [2:0] light;
   assign light = {cfg_i.light_z, cfg_i.light_y, cfg_i.light_x};
 
-  // ---- valid and tag: S1 .. S40 (stage_v[k]: a pixel in stage k; the tail reads them) ------------
-  /* verilator lint_off UNUSEDSIGNAL */  // the schedule reads stages 1, 31 and 39 of the 40
+  // ---- valid and tag: S1 .. S41 (stage_v[k]: a pixel entered k enabled clocks ago) ---------
+  /* verilator lint_off UNUSEDSIGNAL */  // the assertion reads stage 1
   logic [NS:1] stage_v;
   /* verilator lint_on UNUSEDSIGNAL */
   pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(NS)) u_valid_tag (
     .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o, .stage_valid_o(stage_v));
 
-  logic [1:0][7:0] rg_q;            // S40: R and G held a clock for B
+  // ---- alignment: the core takes pixels on every other enabled clock only --------------------
+  // ph_q toggles on every enabled clock.  A pixel that comes with ph_q = 0 ("even") enters core
+  // stage 1 at once; one that comes with ph_q = 1 ("odd") waits a clock in the hold registers
+  // (hodd_q) and enters then, so every pixel in the core is an even number of clocks from every
+  // other one, and cv_q[k] = 1 (a pixel in core stage k) only when ph_q = k mod 2.
+  logic            ph_q;            // enabled-clock parity
+  logic            hodd_q;          // an odd pixel waits in the hold registers
+  logic [CS:1]     cv_q;            // core stage valid bits
+  f24_t [2:0]      hnrm_q, hcol_q;  // the hold registers (no reset)
+  f24_t            hdu_q, hdv_q;
+  f24_t [2:0]      in_nrm, in_col;  // the pixel entering core stage 1
+  f24_t            in_du, in_dv;
+  assign in_nrm = hodd_q ? hnrm_q : nrm_i;
+  assign in_col = hodd_q ? hcol_q : col_i;
+  assign in_du  = hodd_q ? hdu_q  : du_i;
+  assign in_dv  = hodd_q ? hdv_q  : dv_i;
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      ph_q   <= 1'b0;
+      hodd_q <= 1'b0;
+      cv_q   <= '0;
+    end else if (en_i) begin
+      ph_q   <= !ph_q;
+      hodd_q <= valid_i && ph_q;
+      cv_q   <= {cv_q[CS-1:1], hodd_q || (valid_i && !ph_q)};
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (en_i) begin
+      hnrm_q <= nrm_i;
+      hcol_q <= col_i;
+      hdu_q  <= du_i;
+      hdv_q  <= dv_i;
+    end
+  end
+
+  logic [1:0][7:0] rg_q;            // core S40: R and G held a clock for B
+  logic [1:0][7:0] rg2_q;           // core S41: R and G held again (an even pixel's output)
+  logic [7:0]      b_q;             // core S41: B held (an even pixel's output)
   logic signed [8:0] idx [2];       // floor(c 255 + 0.5) per lane, in 0 .. 255 (S39; B in S40)
 
-  // ---- float-unit outputs (named by the stage where they appear) ------------------------------
-  f24_t [2:0] n_s3;                 // 2M - 1
-  f24_t [2:0] nsq_s4;               // n_c^2
-  f24_t       nxy_s6, nn_s8;
-  f24_t       du2_s1, dv2_s1, duv_s3, vv_s5, rv_s8;
-  f24_t [2:0] v_s9;                 // unit view vector
-  f24_t       rn_s12;
-  f24_t [2:0] h_s11;                // l + v
-  f24_t [2:0] hsq_s12;
-  f24_t [2:0] nu_s13;               // unit normal
-  f24_t       hxy_s14, hh_s16, rh_s19;
-  f24_t [2:0] nl_s14;               // n_c l_c
-  f24_t       nlxy_s16, dnl_s18;
-  f24_t [2:0] hu_s20;               // unit half vector
-  f24_t [2:0] nh_s21;               // n_c h_c
-  f24_t       kdl_s20, a_s22, nhxy_s23, dnh_s25;
-  f24_t [2:0] ca_s23;               // C_c a
-  f24_t       s_s27, s_s28, s_s29, s_s30, sp_s31;
+  // ---- float-unit outputs (named by their two results and the stages they appear in) --------
+  f24_t uv2hy2_s213;                // du^2 (S2), h_y^2 (S13)
+  f24_t dv2cy_s231;                 // dv^2 (S2), C_y a (S31)
+  f24_t na_s34;                     // n_x (S3), n_z (S4)
+  f24_t n1uv_s34;                   // n_y (S3), du^2 + dv^2 (S4)
+  f24_t vvhh_s617;                  // vv (S6), hh (S17)
+  f24_t rv_s9;
+  f24_t nsqa_s910;                  // n_x^2 (S9), n_z^2 (S10)
+  f24_t nsq1v1_s910;                // n_y^2 (S9), v_y (S10)
+  f24_t va_s1011;                   // v_x (S10), v_z (S11)
+  f24_t nxyh1_s1112;                // nx2 + ny2 (S11), h_y (S12)
+  f24_t ha_s1213;                   // h_x (S12), h_z (S13)
+  f24_t hsqa_s1314;                 // h_x^2 (S13), h_z^2 (S14)
+  f24_t nnhxy_s1415;                // nn (S14), hx2 + hy2 (S15)
+  f24_t rnh_s1920;                  // rn (S19), rh (S20)
+  f24_t nua_s2021;                  // unit normal x (S20), z (S21)
+  f24_t nunl1_s2021;                // unit normal y (S20), n_y l_y (S21)
+  f24_t nla_s2122;                  // n_x l_x (S21), n_z l_z (S22)
+  f24_t hua_s2122;                  // unit half vector x (S21), z (S22)
+  f24_t hunh1_s2122;                // unit half vector y (S21), n_y h_y (S22)
+  f24_t nha_s2223;                  // n_x h_x (S22), n_z h_z (S23)
+  f24_t dxy_s2324;                  // nlx + nly (S23), nhx + nhy (S24)
+  f24_t dot_s2526;                  // dot(n, l) (S25), dot(n, h) (S26)
+  f24_t kds1_s2728;                 // KD ndl (S27), ndh^2 (S28)
+  f24_t acc1_s2934;                 // a (S29), C_y a + sp (S34)
+  f24_t s23_s2930;                  // ndh^4 (S29), ndh^8 (S30)
+  f24_t s4sp_s3132;                 // ndh^16 (S31), sp (S32)
+  f24_t caa_s3031;                  // C_x a (S30), C_z a (S31)
   f24_t [1:0] cc_s34;               // C_c a + sp, per lane (lane 0: R, then B a clock later)
   f24_t [1:0] k_s36, kh_s38;        // c 255, c 255 + 0.5
 
-  // ---- stage registers of the data path (no reset) --------------------------------------------
-  f24_t [2:0] m2_q;                 // S1: 2M
-  f24_t       du_q   [1:8];         // S1 .. S8
-  f24_t       dv_q   [1:8];
-  f24_t [2:0] col_q  [1:22];        // S1 .. S22
-  f24_t       nsqz_q [5:6];         // nz^2, S5 .. S6
-  f24_t [2:0] n_q    [4:12];        // 2M - 1, S4 .. S12
-  f24_t       nnm_q;                // S9: max(nn, EPS)
-  f24_t       hsqz_q [13:14];       // hz^2
-  f24_t [2:0] h_q    [12:19];       // l + v
-  f24_t       nlz_q  [15:16];       // nz lz
-  f24_t [2:0] nu_q   [14:20];       // unit normal
-  f24_t       ndl_q;                // S19: max(dot(n, l), 0)
-  f24_t       nhz_q  [22:23];       // nz hz
-  f24_t       ndh_q;                // S26: max(dot(n, h), 0)
-  f24_t [2:0] ca_q   [24:31];       // C_c a
-  f24_t       cab_q;                // S32: C_B a (lane 0's second operand set)
-  f24_t       sp_q;                 // S32: sp
-  f24_t [1:0] ta_q, tb_q;           // S32: the lanes' adder operands
+  // ---- stage registers of the data path (no reset; "stream": lane 0, x then z a clock later) --
+  f24_t       m2a_q;                // S1 / S2 stream: 2M_x, 2M_z
+  f24_t       m2z_q;                // S1: 2M_z, waiting a clock
+  f24_t       m2y_q;                // S1: 2M_y
+  f24_t       du_q   [1:9];         // S1 .. S9
+  f24_t       dv_q   [1:9];
+  f24_t       cola_q [1:29];        // stream C_x, C_z: S1 .. S29
+  f24_t       colz_q;               // S1: C_z, waiting a clock
+  f24_t       col1_q [1:30];        // C_y: S1 .. S30
+  f24_t       na_q   [4:19];        // stream n_x, n_z
+  f24_t       n1_q   [4:19];        // n_y
+  f24_t       rv_q;                 // S10: rv
+  f24_t       nxy_q;                // S12: nx2 + ny2
+  f24_t       nsq2_q [11:12];       // nz2
+  f24_t       h1_q   [13:20];       // h_y
+  f24_t       ha_q   [13:20];       // stream h_x, h_z
+  f24_t       hsq2_q;               // S15: hz2
+  f24_t       nnm_q;                // S15: max(nn, EPS)
+  f24_t       nnm2_q;               // S16
+  f24_t       rq_q;                 // rn (S20), then rh (S21)
+  f24_t       nu1_q;                // S21: unit normal y
+  f24_t       nua_q;                // stream unit normal x, z: S21 / S22
+  f24_t       z_q;                  // nlz (S23), then nhz (S24)
+  f24_t       m_q;                  // ndl = max(dot(n, l), 0) (S26), then ndh (S27)
+  f24_t       a_q;                  // S30: a
+  f24_t       ca_q   [31:32];       // stream C_x a, C_z a
+  f24_t       ca1_q;                // S32: C_y a
+  f24_t       sp_q;                 // S33: sp
   f24_t [1:0] cl_q;                 // S35: clamped colour, per lane
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
-      for (int c = 0; c < 3; c++) m2_q[c] <= dbl(nrm_i[c]);
-      du_q[1] <= du_i;
-      dv_q[1] <= dv_i;
-      for (int s = 2; s <= 8; s++) begin
+      // the lane-0 streams of the inputs: x when the pixel enters S1, z (held a clock) in S2
+      m2z_q <= dbl(in_nrm[2]);
+      m2a_q <= cv_q[1] ? m2z_q : dbl(in_nrm[0]);
+      m2y_q <= dbl(in_nrm[1]);
+      colz_q    <= in_col[2];
+      cola_q[1] <= cv_q[1] ? colz_q : in_col[0];
+      col1_q[1] <= in_col[1];
+      for (int s = 2; s <= 29; s++) cola_q[s] <= cola_q[s-1];
+      for (int s = 2; s <= 30; s++) col1_q[s] <= col1_q[s-1];
+      du_q[1] <= in_du;
+      dv_q[1] <= in_dv;
+      for (int s = 2; s <= 9; s++) begin
         du_q[s] <= du_q[s-1];
         dv_q[s] <= dv_q[s-1];
       end
-      col_q[1] <= col_i;
-      for (int s = 2; s <= 22; s++) col_q[s] <= col_q[s-1];
-      nsqz_q[5] <= nsq_s4[2];
-      nsqz_q[6] <= nsqz_q[5];
-      n_q[4] <= n_s3;
-      for (int s = 5; s <= 12; s++) n_q[s] <= n_q[s-1];
-      nnm_q <= max_np(nn_s8, SHADE_EPS);
-      hsqz_q[13] <= hsq_s12[2];
-      hsqz_q[14] <= hsqz_q[13];
-      h_q[12] <= h_s11;
-      for (int s = 13; s <= 19; s++) h_q[s] <= h_q[s-1];
-      nlz_q[15] <= nl_s14[2];
-      nlz_q[16] <= nlz_q[15];
-      nu_q[14] <= nu_s13;
-      for (int s = 15; s <= 20; s++) nu_q[s] <= nu_q[s-1];
-      ndl_q <= max_np(dnl_s18, SHADE_ZERO);
-      nhz_q[22] <= nh_s21[2];
-      nhz_q[23] <= nhz_q[22];
-      ndh_q <= max_np(dnh_s25, SHADE_ZERO);
-      ca_q[24] <= ca_s23;
-      for (int s = 25; s <= 31; s++) ca_q[s] <= ca_q[s-1];
-      // the tail: R (lane 0) and G (lane 1) in S31, B on lane 0 in S32 (a pixel is in S31 iff
-      // stage_v[31]; the clock after, lane 0 takes B, which waited a clock in cab_q / sp_q)
-      cab_q <= ca_q[31][2];
-      sp_q  <= sp_s31;
-      ta_q[0] <= stage_v[31] ? ca_q[31][0] : cab_q;
-      tb_q[0] <= stage_v[31] ? sp_s31      : sp_q;
-      ta_q[1] <= ca_q[31][1];
-      tb_q[1] <= sp_s31;
-      for (int l = 0; l < 2; l++) cl_q[l] <= min_np(max_np(cc_s34[l], SHADE_ZERO), SHADE_ONE);
-      if (stage_v[39]) begin
-        rg_q[0] <= idx[0][7:0];
-        rg_q[1] <= idx[1][7:0];
+      na_q[4] <= na_s34;
+      n1_q[4] <= n1uv_s34;
+      for (int s = 5; s <= 19; s++) begin
+        na_q[s] <= na_q[s-1];
+        n1_q[s] <= n1_q[s-1];
       end
+      rv_q <= rv_s9;
+      nxy_q <= nxyh1_s1112;
+      nsq2_q[11] <= nsqa_s910;
+      nsq2_q[12] <= nsq2_q[11];
+      h1_q[13] <= nxyh1_s1112;
+      ha_q[13] <= ha_s1213;
+      for (int s = 14; s <= 20; s++) begin
+        h1_q[s] <= h1_q[s-1];
+        ha_q[s] <= ha_q[s-1];
+      end
+      hsq2_q <= hsqa_s1314;
+      nnm_q  <= max_np(nnhxy_s1415, SHADE_EPS);
+      nnm2_q <= nnm_q;
+      rq_q   <= rnh_s1920;
+      nu1_q  <= nunl1_s2021;
+      nua_q  <= nua_s2021;
+      // nlz is lane 0's output when the pixel is in S22, nhz the clock after (no pixel in S22 then)
+      z_q <= cv_q[22] ? nla_s2122 : nha_s2223;
+      m_q <= max_np(dot_s2526, SHADE_ZERO);
+      a_q <= acc1_s2934;
+      ca_q[31]  <= caa_s3031;
+      ca_q[32]  <= ca_q[31];
+      ca1_q <= dv2cy_s231;
+      sp_q <= s4sp_s3132;
+      for (int l = 0; l < 2; l++) cl_q[l] <= min_np(max_np(cc_s34[l], SHADE_ZERO), SHADE_ONE);
+      // R and G are the lanes' floors in core S39, B lane 0's in S40; an odd pixel is at the
+      // output (S41) in core S40, an even one in core S41, a clock later
+      rg_q  <= {idx[1][7:0], idx[0][7:0]};
+      rg2_q <= rg_q;
+      b_q   <= idx[0][7:0];
     end
   end
 
   // ---- float units ----------------------------------------------------------------------------
-  // 5-6: the view vector
-  f24_mul u_du2 (.clk_i, .en_i, .a_i(du_i), .b_i(du_i), .y_o(du2_s1));
-  f24_mul u_dv2 (.clk_i, .en_i, .a_i(dv_i), .b_i(dv_i), .y_o(dv2_s1));
-  f24_add u_duv (.clk_i, .en_i, .a_i(du2_s1), .b_i(dv2_s1), .y_o(duv_s3));
-  f24_add u_vv  (.clk_i, .en_i, .a_i(duv_s3), .b_i(cfg_i.d2), .y_o(vv_s5));
-  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rv (.clk_i, .en_i, .a_i(vv_s5), .y_o(rv_s8));
-  f24_mul u_vx  (.clk_i, .en_i, .a_i({~du_q[8][23], du_q[8][22:0]}), .b_i(rv_s8), .y_o(v_s9[0]));
-  f24_mul u_vy  (.clk_i, .en_i, .a_i({~dv_q[8][23], dv_q[8][22:0]}), .b_i(rv_s8), .y_o(v_s9[1]));
-  f24_mul u_vz  (.clk_i, .en_i, .a_i(cfg_i.d), .b_i(rv_s8), .y_o(v_s9[2]));
+  // Operand selects: cv_q[a] = 1 means the unit's first operation (core stage a), else its
+  // second (a stage of the other parity; see the header).  -du, -dv: the sign bit flipped.
+  f24_t neg_du9, neg_dv9;
+  assign neg_du9 = {~du_q[9][23], du_q[9][22:0]};
+  assign neg_dv9 = {~dv_q[9][23], dv_q[9][22:0]};
 
-  // 2-4: |n|^2, its reciprocal square root
-  f24_add u_nxy (.clk_i, .en_i, .a_i(nsq_s4[0]), .b_i(nsq_s4[1]), .y_o(nxy_s6));
-  f24_add u_nn  (.clk_i, .en_i, .a_i(nxy_s6), .b_i(nsqz_q[6]), .y_o(nn_s8));
-  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rn (.clk_i, .en_i, .a_i(nnm_q), .y_o(rn_s12));
+  // 5: du^2 @1 / 7: h_y^2 @12; dv^2 @1 / 12: C_y a @30
+  f24_t uh_sel;
+  assign uh_sel = cv_q[1] ? du_q[1] : nxyh1_s1112;
+  f24_mul u_uv2hy2 (.clk_i, .en_i, .a_i(uh_sel), .b_i(uh_sel), .y_o(uv2hy2_s213));
+  f24_mul u_dv2cy (.clk_i, .en_i, .a_i(cv_q[1] ? dv_q[1] : col1_q[30]),
+                   .b_i(cv_q[1] ? dv_q[1] : a_q), .y_o(dv2cy_s231));
 
-  // 7-8: |h|^2, its reciprocal square root
-  f24_add u_hxy (.clk_i, .en_i, .a_i(hsq_s12[0]), .b_i(hsq_s12[1]), .y_o(hxy_s14));
-  f24_add u_hh  (.clk_i, .en_i, .a_i(hxy_s14), .b_i(hsqz_q[14]), .y_o(hh_s16));
-  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rh (.clk_i, .en_i, .a_i(hh_s16), .y_o(rh_s19));
+  // 1: n_x - 1 @1 / n_z - 1 @2; n_y - 1 @1 / 5: du^2 + dv^2 @2
+  f24_add u_na   (.clk_i, .en_i, .a_i(m2a_q), .b_i(NEG_ONE), .y_o(na_s34));
+  f24_add u_n1uv (.clk_i, .en_i, .a_i(cv_q[1] ? m2y_q : uv2hy2_s213),
+                  .b_i(cv_q[1] ? NEG_ONE : dv2cy_s231), .y_o(n1uv_s34));
 
-  // 9, 11: n.l, the diffuse term a = AMBIENT + KD ndl
-  f24_add u_nlxy (.clk_i, .en_i, .a_i(nl_s14[0]), .b_i(nl_s14[1]), .y_o(nlxy_s16));
-  f24_add u_dnl  (.clk_i, .en_i, .a_i(nlxy_s16), .b_i(nlz_q[16]), .y_o(dnl_s18));
-  f24_mul u_kdl  (.clk_i, .en_i, .a_i(cfg_i.kd), .b_i(ndl_q), .y_o(kdl_s20));
-  f24_add u_a    (.clk_i, .en_i, .a_i(cfg_i.ambient), .b_i(kdl_s20), .y_o(a_s22));
+  // 5: vv @4 / 7: hh @15; 6: rv @6
+  f24_add u_vvhh (.clk_i, .en_i, .a_i(cv_q[4] ? n1uv_s34 : nnhxy_s1415),
+                  .b_i(cv_q[4] ? cfg_i.d2 : hsq2_q), .y_o(vvhh_s617));
+  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rv (.clk_i, .en_i, .a_i(vvhh_s617), .y_o(rv_s9));
 
-  // 9-11: n.h, s = ndh^16, sp = KS s
-  f24_add u_nhxy (.clk_i, .en_i, .a_i(nh_s21[0]), .b_i(nh_s21[1]), .y_o(nhxy_s23));
-  f24_add u_dnh  (.clk_i, .en_i, .a_i(nhxy_s23), .b_i(nhz_q[23]), .y_o(dnh_s25));
-  f24_mul u_s1   (.clk_i, .en_i, .a_i(ndh_q), .b_i(ndh_q), .y_o(s_s27));
-  f24_mul u_s2   (.clk_i, .en_i, .a_i(s_s27), .b_i(s_s27), .y_o(s_s28));
-  f24_mul u_s3   (.clk_i, .en_i, .a_i(s_s28), .b_i(s_s28), .y_o(s_s29));
-  f24_mul u_s4   (.clk_i, .en_i, .a_i(s_s29), .b_i(s_s29), .y_o(s_s30));
-  f24_mul u_sp   (.clk_i, .en_i, .a_i(cfg_i.ks), .b_i(s_s30), .y_o(sp_s31));
+  // 2: n_x^2 @8 / n_z^2 @9; n_y^2 @8 / 6: v_y @9
+  f24_mul u_nsqa   (.clk_i, .en_i, .a_i(na_q[8]), .b_i(na_q[8]), .y_o(nsqa_s910));
+  f24_mul u_nsq1v1 (.clk_i, .en_i, .a_i(cv_q[8] ? n1_q[8] : neg_dv9),
+                    .b_i(cv_q[8] ? n1_q[8] : rv_s9), .y_o(nsq1v1_s910));
+  // 6: v_x @9 / v_z @10
+  f24_mul u_va (.clk_i, .en_i, .a_i(cv_q[9] ? neg_du9 : cfg_i.d),
+                .b_i(cv_q[9] ? rv_s9 : rv_q), .y_o(va_s1011));
 
-  // per component
-  for (genvar c = 0; c < 3; c++) begin : g_c
-    // 1: decode; 2: squares; 4: normalise
-    f24_add u_n   (.clk_i, .en_i, .a_i(m2_q[c]), .b_i(NEG_ONE), .y_o(n_s3[c]));
-    f24_mul u_nsq (.clk_i, .en_i, .a_i(n_s3[c]), .b_i(n_s3[c]), .y_o(nsq_s4[c]));
-    f24_mul u_nu  (.clk_i, .en_i, .a_i(n_q[12][c]), .b_i(rn_s12), .y_o(nu_s13[c]));
-    // 7-8: half vector, its squares, normalise
-    f24_add u_h   (.clk_i, .en_i, .a_i(light[c]), .b_i(v_s9[c]), .y_o(h_s11[c]));
-    f24_mul u_hsq (.clk_i, .en_i, .a_i(h_s11[c]), .b_i(h_s11[c]), .y_o(hsq_s12[c]));
-    f24_mul u_hu  (.clk_i, .en_i, .a_i(h_q[19][c]), .b_i(rh_s19), .y_o(hu_s20[c]));
-    // 9: the dot products' products
-    f24_mul u_nl  (.clk_i, .en_i, .a_i(nu_s13[c]), .b_i(light[c]), .y_o(nl_s14[c]));
-    f24_mul u_nh  (.clk_i, .en_i, .a_i(nu_q[20][c]), .b_i(hu_s20[c]), .y_o(nh_s21[c]));
-    // 12: colour
-    f24_mul u_ca  (.clk_i, .en_i, .a_i(col_q[22][c]), .b_i(a_s22), .y_o(ca_s23[c]));
-  end
+  // 2: nx2 + ny2 @9 / 7: h_y = l_y + v_y @10
+  f24_add u_nxyh1 (.clk_i, .en_i, .a_i(cv_q[9] ? nsqa_s910 : light[1]), .b_i(nsq1v1_s910),
+                   .y_o(nxyh1_s1112));
+  // 7: h_x @10 / h_z @11
+  f24_add u_ha (.clk_i, .en_i, .a_i(cv_q[10] ? light[0] : light[2]), .b_i(va_s1011),
+                .y_o(ha_s1213));
+  // 7: h_x^2 @12 / h_z^2 @13; h_y^2 @12
+  f24_mul u_hsqa (.clk_i, .en_i, .a_i(ha_s1213), .b_i(ha_s1213), .y_o(hsqa_s1314));
+  // 2: nn @12 / 7: hx2 + hy2 @13
+  f24_add u_nnhxy (.clk_i, .en_i, .a_i(cv_q[12] ? nxy_q : hsqa_s1314),
+                   .b_i(cv_q[12] ? nsq2_q[12] : uv2hy2_s213), .y_o(nnhxy_s1415));
+  // 4: rn @16 / 8: rh @17
+  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rnh (.clk_i, .en_i, .a_i(cv_q[16] ? nnm2_q : vvhh_s617),
+                                      .y_o(rnh_s1920));
 
-  // the tail, per lane: 12: + sp; 13: clamp; 14: unorm8
+  // 4: n_x rn @19 / n_z rn @20; n_y rn @19 / 9: n_y l_y @20
+  f24_mul u_nua (.clk_i, .en_i, .a_i(na_q[19]), .b_i(cv_q[19] ? rnh_s1920 : rq_q),
+                 .y_o(nua_s2021));
+  f24_mul u_nunl1 (.clk_i, .en_i, .a_i(cv_q[19] ? n1_q[19] : nunl1_s2021),
+                   .b_i(cv_q[19] ? rnh_s1920 : light[1]), .y_o(nunl1_s2021));
+  // 9: n_x l_x @20 / n_z l_z @21
+  f24_mul u_nla (.clk_i, .en_i, .a_i(nua_s2021), .b_i(cv_q[20] ? light[0] : light[2]),
+                 .y_o(nla_s2122));
+  // 8: h_x rh @20 / h_z rh @21; h_y rh @20 / 9: n_y h_y @21
+  f24_mul u_hua (.clk_i, .en_i, .a_i(ha_q[20]), .b_i(cv_q[20] ? rnh_s1920 : rq_q),
+                 .y_o(hua_s2122));
+  f24_mul u_hunh1 (.clk_i, .en_i, .a_i(cv_q[20] ? h1_q[20] : nu1_q),
+                   .b_i(cv_q[20] ? rnh_s1920 : hunh1_s2122), .y_o(hunh1_s2122));
+  // 9: n_x h_x @21 / n_z h_z @22
+  f24_mul u_nha (.clk_i, .en_i, .a_i(nua_q), .b_i(hua_s2122), .y_o(nha_s2223));
+  // 9: nlx + nly @21 / nhx + nhy @22
+  f24_add u_dxy (.clk_i, .en_i, .a_i(cv_q[21] ? nla_s2122 : nha_s2223),
+                 .b_i(cv_q[21] ? nunl1_s2021 : hunh1_s2122), .y_o(dxy_s2324));
+  // 9: dot(n, l) @23 / dot(n, h) @24
+  f24_add u_dot (.clk_i, .en_i, .a_i(dxy_s2324), .b_i(z_q), .y_o(dot_s2526));
+
+  // 11: KD ndl @26 / 10: ndh^2 @27; a @27 / 12: C_y a + sp @32 (lane 1 of the tail)
+  f24_mul u_kds1 (.clk_i, .en_i, .a_i(cv_q[26] ? cfg_i.kd : m_q), .b_i(m_q),
+                  .y_o(kds1_s2728));
+  f24_add u_acc1 (.clk_i, .en_i, .a_i(cv_q[27] ? cfg_i.ambient : ca1_q),
+                  .b_i(cv_q[27] ? kds1_s2728 : s4sp_s3132), .y_o(acc1_s2934));
+  assign cc_s34[1] = acc1_s2934;
+  // 10: ^4 @28 / ^8 @29; ^16 @30 / 11: sp = KS s @31
+  f24_t s2_sel;
+  assign s2_sel = cv_q[28] ? kds1_s2728 : s23_s2930;
+  f24_mul u_s23 (.clk_i, .en_i, .a_i(s2_sel), .b_i(s2_sel), .y_o(s23_s2930));
+  f24_mul u_s4sp (.clk_i, .en_i, .a_i(cv_q[30] ? s23_s2930 : cfg_i.ks),
+                  .b_i(cv_q[30] ? s23_s2930 : s4sp_s3132), .y_o(s4sp_s3132));
+  // 12: C_x a @29 / C_z a @30
+  f24_mul u_caa (.clk_i, .en_i, .a_i(cola_q[29]), .b_i(cv_q[29] ? acc1_s2934 : a_q),
+                 .y_o(caa_s3031));
+
+  // the tail, per lane: 12: + sp @32 (lane 0: R, then B @33; lane 1's add is u_acc1); 13: clamp;
+  // 14: unorm8
+  f24_add u_cc0 (.clk_i, .en_i, .a_i(ca_q[32]), .b_i(cv_q[32] ? s4sp_s3132 : sp_q),
+                 .y_o(cc_s34[0]));
   for (genvar l = 0; l < 2; l++) begin : g_lane
-    f24_add u_cc  (.clk_i, .en_i, .a_i(ta_q[l]), .b_i(tb_q[l]), .y_o(cc_s34[l]));
     f24_mul u_k   (.clk_i, .en_i, .a_i(cl_q[l]), .b_i(SHADE_255), .y_o(k_s36[l]));
     f24_add u_kh  (.clk_i, .en_i, .a_i(k_s36[l]), .b_i(SHADE_HALF), .y_o(kh_s38[l]));
     // sat_o is not needed: the operand is in [0.5, 255.5] or NaN
@@ -339,12 +452,23 @@ module shade_unit
   end
   logic unused_idx;                 // bit 8: the index is in 0 .. 255 (see the header)
   assign unused_idx = idx[0][8] ^ idx[1][8];
-  assign rgb_o = {idx[0][7:0], rg_q[1], rg_q[0]};
+  assign rgb_o = ph_q ? {b_q, rg2_q} : {idx[0][7:0], rg_q};  // ph_q = 1: an even pixel (core S41)
 
 `ifndef SYNTHESIS
-  // Lane 0 serves R and then B: no pixel on the enabled clock after one.
+  // The core stages of one parity: bit k set for odd k (odd = 1) or even k (odd = 0).
+  function automatic logic [CS:1] stage_parity(input logic odd);
+    logic [CS:1] m;
+    for (int k = 1; k <= CS; k++) m[k] = ((k % 2) == 1) == odd;
+    return m;
+  endfunction
+
+  // No pixel on the enabled clock after one, so the hold registers are free when a pixel comes.
   pixel_spacing: assert property (@(posedge clk_i) disable iff (!rst_ni)
-    en_i && valid_i |-> !stage_v[1]);
+    en_i && valid_i |-> !stage_v[1] && !hodd_q);
+  // The core's pixels are all in odd or all in even stages (ph_q = 1: odd), so a unit that takes
+  // its two operations in stages of different parity is never asked for two in one clock.
+  core_aligned: assert property (@(posedge clk_i) disable iff (!rst_ni)
+    (cv_q & ~stage_parity(ph_q)) == '0);
 `endif
 
 endmodule
