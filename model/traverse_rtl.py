@@ -25,9 +25,9 @@ ADDR_W = 32
 #: Clocks from a lookup request to its response.
 LOOKUP_LAT = 2
 #: Stages of the loop ring (one ray slot each) and of the setup pipeline (traverse_pkg::SETUP_LAT:
-#: the pipelined divider's f24_pkg::F24_DIV_LAT = 8 clocks, then 11 more stages).
+#: the pipelined divider's f24_pkg::F24_DIV_LAT = 8 clocks, then 12 more stages).
 LOOP_DEPTH = 18
-SETUP_DEPTH = 19
+SETUP_DEPTH = 20
 
 
 #: What ``traverse_pkg::decode_method`` implements for each method code, in the fields of

@@ -22,9 +22,9 @@ package traverse_pkg;
   localparam int unsigned ADDR_W     = 32;  // byte address of a height lookup
   localparam int unsigned CODE_W     = 16;  // a height code (unorm8 in the low byte, or unorm16)
   localparam int unsigned LOOKUP_LAT = 2;   // clocks from lk_valid_o to rs_valid_i
-  // traverse_setup: the reciprocals (f24_div, F24_DIV_LAT clocks), then 11 more stages (its
+  // traverse_setup: the reciprocals (f24_div, F24_DIV_LAT clocks), then 12 more stages (its
   // header); busy_o counts the rays in it, 0 .. SETUP_LAT.
-  localparam int unsigned SETUP_LAT    = F24_DIV_LAT + 11;  // 19
+  localparam int unsigned SETUP_LAT    = F24_DIV_LAT + 12;  // 20
   localparam int unsigned SETUP_BUSY_W = $clog2(SETUP_LAT + 1);
 
   localparam f24_t F24_POS_ZERO = 24'h000000;

@@ -1,13 +1,16 @@
 // traverse_unit: ray / height-field intersection through the max-mipmap pyramid, bit-exact with
 // model.traverse.trace(pyr, rays, method, "f24") (hit, t, u, v, invalid, iterations).
 //
-//   ray stream -> traverse_setup (first mode, SETUP_LAT = 19 stages) -> setup FIFO
+//   ray stream -> traverse_setup (first mode, SETUP_LAT = 20 stages) -> setup FIFO
 //              -> traverse_loop (second mode, 18-slot ring, one height lookup per pass)
 //              -> result FIFO -> result stream (rays leave in completion order, not input order)
 //
 // Flow control (valid never depends on ready):
 //   - ray_ready_o: a credit counter covers setup and the setup FIFO (SETUP_FIFO_DEPTH rays), so
-//     the setup pipeline never stalls and its FIFO never overflows.
+//     the setup pipeline never stalls and its FIFO never overflows.  It is also 0 in the clock
+//     after a ray is taken: traverse_setup computes a ray's u and v axes on one set of float
+//     units in consecutive clocks, so it takes a ray every other clock at most (far above what
+//     the loop finishes: a ray takes several passes of the 18-slot ring).
 //   - The loop takes a new ray only into an empty slot at its entry (re-circulating rays first).
 //   - Result back-pressure never loses a ray: a finished ray leaves the ring only when the result
 //     FIFO has room, otherwise it keeps circulating (no lookups) and tries again a pass later; an
@@ -29,7 +32,7 @@ module traverse_unit
   import traverse_pkg::*;
 #(
   parameter int unsigned ID_W             = 16,
-  parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > SETUP_LAT (19) for full rate
+  parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > SETUP_LAT (20)
   parameter int unsigned RES_FIFO_DEPTH   = 16,  // power of two
   parameter int unsigned CNT_W            = 32   // statistics counters
 ) (
@@ -105,11 +108,17 @@ module traverse_unit
   logic in_fire, out_fire;
   logic [SF_AW:0] sf_used_q;  // rays in setup and in the setup FIFO
   logic           sf_pop;
-  assign ray_ready_o = (sf_used_q < (SF_AW+1)'(SETUP_FIFO_DEPTH));
+  logic           in_fire_q;  // a ray was taken in the clock before
+  assign ray_ready_o = (sf_used_q < (SF_AW+1)'(SETUP_FIFO_DEPTH)) && !in_fire_q;
   assign in_fire     = ray_valid_i && ray_ready_o;
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) sf_used_q <= '0;
-    else         sf_used_q <= sf_used_q + (SF_AW+1)'(in_fire) - (SF_AW+1)'(sf_pop);
+    if (!rst_ni) begin
+      sf_used_q <= '0;
+      in_fire_q <= 1'b0;
+    end else begin
+      sf_used_q <= sf_used_q + (SF_AW+1)'(in_fire) - (SF_AW+1)'(sf_pop);
+      in_fire_q <= in_fire;
+    end
   end
 
   // ---- first mode ----------------------------------------------------------------------------
