@@ -22,8 +22,13 @@
 //     another (view_calc computes x and y in consecutive clocks on the same float units);
 //   - a hit leaves traverse_system only if the texture-request FIFOs have room for it and every
 //     hit between admission and the FIFOs (< REQ_DEPTH) and the out FIFO has room for
-//     every hit not yet out (< OUT_DEPTH); tex_cache's responses are then always taken
-//     (rsp_ready = 1) because the filter and shader behind it cannot back up;
+//     every hit not yet out (< OUT_DEPTH);
+//   - tex_filter takes a quad every other clock at most (its float units serve two clocks'
+//     operations), so tex_cache's responses are taken at its ready (rsp_ready = the filter's
+//     ready_o, a register, 1 on every other clock); until then a response waits in the cache's
+//     output buffer, and a full cache queue stops taking requests (the request FIFOs and their
+//     credit hold the hits back).  Nothing behind the filter backs up: shade_unit and the out
+//     FIFO take every filtered quad (the out credit above);
 //   - a miss / invalid ray leaves traverse_system when the miss FIFO has room;
 //   - a hit is not admitted in the clock after another: mip_level's lod datapath and one
 //     tex_addr serve both textures, the colour texture's level and lookup and the normal map's
@@ -31,7 +36,9 @@
 //     "Pipeline performance": the frames of bench_pipeline.py take the same clocks as with a
 //     datapath per texture).
 // The colour and normal-map requests of a pixel are pushed together into two FIFOs and sent to
-// the cache alternately (colour first), so its responses come in pairs.
+// the cache alternately (colour first), so its responses, and the filter's results, come in
+// pairs in that order (the cache and the filter keep order; asserted: tf_pairs); a pixel reaches
+// shade_unit every four clocks at most.
 //
 // Outputs.  Pixels leave in completion order with their pixel id (px_id_o); px_hit_o /
 // px_invalid_o / px_err_o (a height or texel read returned an AXI error) / px_iters_o describe
@@ -386,6 +393,7 @@ module dm_pipeline
   // tex_cache: tag = {slot, normal?, fx, fy}
   localparam int unsigned TC_TAG_W = SLOT_W + 1 + 48;
   logic                 tc_rsp_valid, tc_rsp_err;
+  logic                 tf_ready;       // the filter takes the response at the edge
   logic [3:0][31:0]     tc_rsp_texel;
   logic [TC_TAG_W-1:0]  tc_rsp_tag;
   logic [47:0]          tc_lookups;
@@ -396,7 +404,7 @@ module dm_pipeline
     .req_valid_i(tc_req_valid), .req_ready_o(tc_req_ready),
     .req_addr_i(rq_head[4*TEX_ADDR_W-1:0]),  // [0] a00, [1] a01, [2] a10, [3] a11
     .req_tag_i({rq_slot, rq_sel_q, rq_head[REQ_W-1 -: 48]}),
-    .rsp_valid_o(tc_rsp_valid), .rsp_ready_i(1'b1), .rsp_texel_o(tc_rsp_texel),
+    .rsp_valid_o(tc_rsp_valid), .rsp_ready_i(tf_ready), .rsp_texel_o(tc_rsp_texel),
     .rsp_err_o(tc_rsp_err), .rsp_tag_o(tc_rsp_tag),
     .m_axi_arid(m_axi_t_arid), .m_axi_araddr(m_axi_t_araddr), .m_axi_arlen(m_axi_t_arlen),
     .m_axi_arsize(m_axi_t_arsize), .m_axi_arburst(m_axi_t_arburst),
@@ -407,14 +415,14 @@ module dm_pipeline
     .stat_lookups_o(tc_lookups), .stat_line_misses_o(stat_t_line_misses_o),
     .stat_texel_hits_o(stat_t_texel_hits_o), .stat_bytes_o(stat_t_bytes_o));
 
-  // tex_filter (one quad per clock; tag = {slot, normal?, err})
+  // tex_filter (a quad every other clock at most, at its ready_o; tag = {slot, normal?, err})
   localparam int unsigned TF_TAG_W = SLOT_W + 2;
   logic                tf_valid;
   logic [TF_TAG_W-1:0] tf_tag;
   f24_t                tf_r, tf_g, tf_b, tf_a;
 
   tex_filter #(.TAG_W(TF_TAG_W)) u_filter (
-    .clk_i, .rst_ni, .en_i(1'b1), .valid_i(tc_rsp_valid),
+    .clk_i, .rst_ni, .en_i(1'b1), .valid_i(tc_rsp_valid), .ready_o(tf_ready),
     .tag_i({tc_rsp_tag[TC_TAG_W-1 -: SLOT_W + 1], tc_rsp_err}),
     .t00_i(tc_rsp_texel[0]), .t01_i(tc_rsp_texel[1]), .t10_i(tc_rsp_texel[2]),
     .t11_i(tc_rsp_texel[3]), .fx_i(tc_rsp_tag[47:24]), .fy_i(tc_rsp_tag[23:0]),
@@ -562,6 +570,17 @@ module dm_pipeline
     px_valid_o && !px_ready_i |=> px_valid_o && $stable(px_id_o) && $stable(px_rgb_o));
   tc_req_held: assert property (@(posedge clk_i) disable iff (!rst_ni)
     tc_req_valid && !tc_req_ready |=> tc_req_valid);
+  // The filter's results alternate colour, normal map, and a normal-map result belongs to the
+  // pixel of the colour result before it (what the pairing into shade_unit relies on).
+  logic              tf_col_pend_q;   // a colour result waits for its normal-map result
+  logic [SLOT_W-1:0] tf_col_slot_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) tf_col_pend_q <= 1'b0;
+    else if (tf_valid) tf_col_pend_q <= !tf_tag[1];
+    if (tf_valid && !tf_tag[1]) tf_col_slot_q <= sh_in_slot;
+  end
+  tf_pairs: assert property (@(posedge clk_i) disable iff (!rst_ni)
+    tf_valid |-> (tf_tag[1] ? tf_col_pend_q && tf_col_slot_q == sh_in_slot : !tf_col_pend_q));
 `endif
 
 endmodule

@@ -53,9 +53,12 @@ package pipe_pkg;
   // from_int; fx = x - j0 (add).  The addresses are ready in the same stage.
   localparam int unsigned TEX_ADDR_LAT = F24_MUL_LAT + 1 + F24_ADD_LAT + F24_TO_INDEX_LAT
                                        + F24_FROM_INT_LAT + F24_ADD_LAT;  // 8
-  // from_unorm; per row sub, mul, add (top, bot); then sub, mul, add (between the rows).
-  localparam int unsigned TEX_FILTER_LAT = F24_FROM_UNORM_LAT
-                                         + 2 * (F24_ADD_LAT + F24_MUL_LAT + F24_ADD_LAT);  // 11
+  // from_unorm; per row sub, mul, add (top, then bot a clock later on the same units); then sub,
+  // mul, add (between the rows), the last adder's two operations from operand registers and an
+  // odd number of clocks apart (m delayed a clock).
+  localparam int unsigned TEX_FILTER_LAT = F24_FROM_UNORM_LAT + 1
+                                         + 2 * (F24_ADD_LAT + F24_MUL_LAT + F24_ADD_LAT)
+                                         + 3;  // 15
 
   /* verilator lint_on UNUSEDPARAM */
 

@@ -1,8 +1,14 @@
 """tex_filter against model.texture.filter_texels in the f24 engine, bit for bit.
 
 Texels are driven as the little-endian 32-bit words of their memory bytes (R in bits 7:0, G 15:8,
-B 23:16, A 31:24); the model gets the codes.  Stimulus, streamed with random en_i gaps and valid
-bubbles (tb/common/valid_pipe.py):
+B 23:16, A 31:24); the model gets the codes.  The unit takes a lookup on an edge with valid_i &&
+ready_o (ready_o = en_i and every other enabled clock: its float units serve two clocks'
+operations); the driver here (HandshakePipe) offers each lookup until it is taken, in segments of
+random en_i gaps and valid bubbles and of lookups offered back to back (the next one offered in
+the clock after a take, so ready_o's gating decides), drives junk with a random valid_i on stalled
+clocks, and checks every clock: ready_o alternates over enabled clocks and is 0 while en_i is 0;
+valid_o shows the take TEX_FILTER_LAT enabled edges earlier; the outputs hold while stalled.
+Stimulus:
   lookups      the real path: random textures (37 x 100, 100 x 37, 1 x 1, 16 x 16), lookups at
                random u, v, every level, scale 1 and != 1 through model.texture.lookup_addresses;
                the texel words read from Texture.memory_image at the four addresses; the expected
@@ -11,22 +17,27 @@ bubbles (tb/common/valid_pipe.py):
   random       random texel words, weights uniform in [0, 1] (and exact 0, 1, 0.5, k / 2^16)
   extremes     codes 0 and 255 mixed, equal texels, one texel different
   specials     NaN / Inf / zero / subnormal / negative / above-1 / huge weights, random patterns
-and a reset of a full pipeline while stalled.  ALPHA = 1 checks all four channels; the ALPHA = 0
-build checks R, G, B and that a_o is 0.
+and directed: a lookup offered while ready_o is 0 (in the clock after a take, and again across
+a stall) is held and taken at the next ready, exactly once, its result at the fixed latency; a
+reset of a full pipeline while stalled.  ALPHA = 1 checks all four channels; the ALPHA = 0 build
+checks R, G, B and that a_o is 0.
 """
 from __future__ import annotations
 
+import collections
 from pathlib import Path
+from typing import Callable, Mapping
 
 import cocotb
 import numpy as np
+from cocotb.clock import Clock
+from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
 from model import f24, f24_vectors as vec, texture
 from model.arith import ENGINES
-from tb.common import fp_unit, runner
-from tb.common.valid_pipe import ValidPipe
+from tb.common import fp_unit, report, runner
 
-LATENCY = 11  # pipe_pkg::TEX_FILTER_LAT
+LATENCY = 15  # pipe_pkg::TEX_FILTER_LAT
 TEXELS = ["t00_i", "t01_i", "t10_i", "t11_i"]
 INS = TEXELS + ["fx_i", "fy_i"]
 OUTS = ["r_o", "g_o", "b_o", "a_o"]
@@ -133,11 +144,200 @@ def expected(ins: dict[str, np.ndarray], alpha: bool) -> dict[str, np.ndarray]:
     return out
 
 
+class HandshakePipe:
+    """tex_filter under test with its valid / ready handshake; starts the clock and checks every
+    clock: ready_o is 0 while en_i is 0 and alternates over enabled clocks (1 on the first
+    enabled clock after a reset); valid_o after an enabled edge is the take LATENCY enabled edges
+    earlier (a take: an edge with valid_i && ready_o, en_i is part of ready_o); every output holds
+    over a stalled edge."""
+
+    def __init__(self, dut) -> None:
+        self.dut = dut
+        self.tag_w = len(dut.tag_i)
+        self.in_sigs = {k: getattr(dut, k) for k in INS}
+        self.out_sigs = {k: getattr(dut, k) for k in ["valid_o", "tag_o"] + OUTS}
+        self.hist: collections.deque = collections.deque([-1] * LATENCY, maxlen=LATENCY)
+        self.last_ready = 0   # ready_o on the last enabled clock (after a reset: as if 0)
+        self.cyc = 0
+        self.prev = self.sample()
+        cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+
+    def sample(self) -> dict[str, int]:
+        return {k: int(s.value) for k, s in self.out_sigs.items()}
+
+    async def reset(self, cycles: int = 2) -> None:
+        """rst_ni low for ``cycles`` edges with en_i = 0 and valid_i = 1 (the reset does not wait
+        for en_i and nothing is taken)."""
+        d = self.dut
+        d.rst_ni.value = 0
+        d.en_i.value = 0
+        d.valid_i.value = 1
+        await FallingEdge(d.clk_i)
+        for _ in range(cycles):
+            await RisingEdge(d.clk_i)
+            await FallingEdge(d.clk_i)
+            assert int(d.valid_o.value) == 0, "valid_o not cleared by rst_ni"
+        d.rst_ni.value = 1
+        d.valid_i.value = 0
+        self.hist.extend([-1] * LATENCY)
+        self.last_ready = 0
+        self.prev = self.sample()
+
+    async def step(self, en: bool, valid: int, data: Mapping[str, int], tag: int,
+                   ident: int = -1) -> tuple[bool, dict[str, int], int]:
+        """One clock from a falling edge: drive, check ready_o, clock, check the outputs.
+        ``ident`` names the lookup offered (>= 0 with valid = 1).  Returns (taken, outputs after
+        the edge, the ident of the lookup whose result shows, or -1)."""
+        d = self.dut
+        for name, s in self.in_sigs.items():
+            s.value = data[name]
+        d.valid_i.value = valid
+        d.tag_i.value = tag
+        d.en_i.value = int(en)
+        await Timer(1, unit="ns")
+        ready = int(d.ready_o.value)
+        self.cyc += 1
+        if not en:
+            if ready:
+                raise AssertionError(f"ready_o = 1 while en_i = 0 (clock {self.cyc})")
+        else:
+            if ready == self.last_ready:
+                raise AssertionError(f"ready_o = {ready} on two enabled clocks in a row (clock "
+                                     f"{self.cyc}): a lookup every other enabled clock")
+            self.last_ready = ready
+        taken = bool(en and valid and ready)
+        await RisingEdge(d.clk_i)
+        await FallingEdge(d.clk_i)
+        now = self.sample()
+        out = -1
+        if en:
+            self.hist.append(ident if taken else -1)
+            out = self.hist[0]
+            if now["valid_o"] != int(out >= 0):
+                raise AssertionError(f"valid_o = {now['valid_o']} at clock {self.cyc}, expected "
+                                     f"{int(out >= 0)}")
+        elif now != self.prev:
+            raise AssertionError(f"outputs changed while en_i = 0 (clock {self.cyc}): "
+                                 f"{self.prev} -> {now}")
+        self.prev = now
+        return taken, now, out
+
+    async def run(self, what: str, inputs: Mapping[str, np.ndarray],
+                  outputs: Mapping[str, np.ndarray], rng: np.random.Generator,
+                  describe: Callable[[int], str] | None = None) -> int:
+        """Offer the lookups ``inputs[name][k]`` in order, each until taken, and compare every
+        result with ``outputs[name][k]`` (and tag_o with the tag offered) bit for bit.  Clocks
+        come in segments (50 to 400 clocks) of one of four kinds: random en_i gaps and bubbles,
+        back to back (en_i = 1, the next lookup offered at once), back to back with stalls, and
+        sparse.  On a stalled clock a pending lookup is held or junk is driven with a random
+        valid_i.  Raises after the stream on any mismatch (up to 10 reported per output).
+        Returns the count checked."""
+        d = self.dut
+        n = len(next(iter(inputs.values())))
+        in_lists = {k: [int(x) for x in inputs[k]] for k in INS}
+        tags = rng.integers(0, 1 << self.tag_w, n)
+        kinds = ((0.8, 0.2), (1.0, 0.0), (0.75, 0.0), (0.9, 0.6))  # (P(en_i), P(bubble))
+        m = 4 * n + 4 * LATENCY + 64
+        u_en = rng.random(m).tolist()
+        u_bub = rng.random(m).tolist()
+        hold = (rng.random(m) < 0.5).tolist()
+        junk_idx = rng.integers(0, n, m).tolist()
+        junk_valid = rng.integers(0, 2, m).tolist()
+        junk_tag = rng.integers(0, 1 << self.tag_w, m).tolist()
+        got: dict[str, list[int]] = {k: [] for k in ["tag_o"] + OUTS}
+        got_idx: list[int] = []
+        issued = 0          # the next lookup to offer
+        offered = False     # lookup `issued` is being offered (until taken)
+        waits = 0           # enabled clocks a lookup was offered while ready_o was 0
+        seg_left = 0
+        p_en, p_bub = kinds[0]
+        c0 = self.cyc
+        j = 0
+        while len(got_idx) < n:
+            if seg_left == 0:
+                seg_left = int(rng.integers(50, 401))
+                p_en, p_bub = kinds[int(rng.integers(0, len(kinds)))]
+            seg_left -= 1
+            jj = j % m
+            j += 1
+            en = u_en[jj] < p_en
+            if en and not offered and issued < n and u_bub[jj] >= p_bub:
+                offered = True
+            if offered and (en or hold[jj]):
+                k, valid, tag, ident = issued, 1, int(tags[issued]), issued
+            else:
+                k = junk_idx[jj]
+                valid = 0 if en else junk_valid[jj]
+                tag, ident = junk_tag[jj], -1
+            data = {name: in_lists[name][k] for name in INS}
+            taken, now, out = await self.step(en, valid, data, tag, ident)
+            if en and offered and not taken:
+                waits += 1
+            if taken:
+                issued += 1
+                offered = False
+            if out >= 0:
+                got_idx.append(out)
+                for name in got:
+                    got[name].append(now[name])
+        d.valid_i.value = 0
+        d.en_i.value = 0
+        order = np.array(got_idx)
+        assert np.array_equal(order, np.arange(n)), f"{what}: lookups out of order or lost"
+        expect = dict(outputs)
+        expect["tag_o"] = tags
+        mism = []
+        bad_any = np.zeros(n, dtype=bool)
+        for name in got:
+            g = np.array(got[name], dtype=np.int64)
+            e = np.asarray(expect[name], dtype=np.int64)
+            bad = np.nonzero(g != e)[0]
+            bad_any |= g != e
+            for b in bad[:10]:
+                desc = describe(int(b)) if describe else str(int(b))
+                mism.append(f"{what}: {name}: {desc}: got 0x{int(g[b]):06x} "
+                            f"expected 0x{int(e[b]):06x}")
+            if len(bad):
+                mism.append(f"{what}: {name}: {len(bad)} mismatches of {n}")
+        nbad = int(bad_any.sum())
+        report.record(d._name, "RTL vs model.texture.filter_texels (f24)", n, nbad)
+        d._log.info("%s: %d lookups in %d clocks (latency %d, %d enabled clocks offered while "
+                    "not ready), %d mismatches", what, n, self.cyc - c0, LATENCY, waits, nbad)
+        if mism:
+            raise AssertionError("\n".join(mism))
+        assert waits > 0, f"{what}: no lookup was ever offered while ready_o was 0"
+        return n
+
+    async def flush_check(self, rng: np.random.Generator, data: Mapping[str, int]) -> None:
+        """Fill the pipeline (a lookup offered on every clock), reset it while stalled: nothing
+        may come out, and ready_o is 1 on the first enabled clock after the reset."""
+        d = self.dut
+        d.rst_ni.value = 1
+        shown = False
+        for _ in range(LATENCY + 2):
+            _, now, _ = await self.step(True, 1, data, int(rng.integers(0, 1 << self.tag_w)), 0)
+            shown |= bool(now["valid_o"])
+        assert shown, "valid_o should show the first lookup taken"
+        assert any(x >= 0 for x in self.hist), "the pipeline should hold lookups"
+        d.en_i.value = 0
+        d.valid_i.value = 1
+        d.rst_ni.value = 0
+        await RisingEdge(d.clk_i)
+        await FallingEdge(d.clk_i)
+        assert int(d.valid_o.value) == 0, "rst_ni with en_i = 0 did not clear valid_o"
+        d.rst_ni.value = 1
+        self.hist.extend([-1] * LATENCY)
+        self.last_ready = 0
+        self.prev = self.sample()
+        for _ in range(LATENCY + 2):
+            await self.step(True, 0, data, 0)  # step checks valid_o = 0 and ready_o's phase
+
+
 @cocotb.test()
 async def tex_filter_random_and_directed(dut):
     rng = np.random.default_rng(fp_unit.seed())
     alpha = bool(int(dut.ALPHA.value))
-    pipe = ValidPipe(dut, LATENCY, INS, OUTS, "RTL vs model.texture.filter_texels (f24)")
+    pipe = HandshakePipe(dut)
     await pipe.reset()
     ins, counts = stimulus(rng, fp_unit.vectors(fp_unit.VECTORS_COMPOSITE))
     perm = rng.permutation(len(ins["fx_i"]))
@@ -157,9 +357,49 @@ async def tex_filter_random_and_directed(dut):
                                 part, {n: v[sl] for n, v in exp.items()}, rng,
                                 describe=describe)
         if k == 0:
-            await pipe.flush_check(rng)
+            await pipe.flush_check(rng, {n: int(v[0]) for n, v in ins.items()})
     dut._log.info("VECTORS tex_filter: %d lookups (%s), 0 mismatches", total,
                   ", ".join(f"{k} {v}" for k, v in counts.items()))
+
+
+@cocotb.test()
+async def tex_filter_held_while_not_ready(dut):
+    """Directed: lookups offered while ready_o is 0 (the clock after a take; across a stall) are
+    held, taken at the next ready exactly once, and come out at the fixed latency, right."""
+    rng = np.random.default_rng(fp_unit.seed())
+    alpha = bool(int(dut.ALPHA.value))
+    pipe = HandshakePipe(dut)
+    await pipe.reset()
+    ins, _ = stimulus(rng, 200)
+    pick = rng.choice(len(ins["fx_i"]), 4, replace=False)
+    ins = {k: v[pick] for k, v in ins.items()}
+    exp = expected(ins, alpha)
+    tags = rng.integers(0, 1 << pipe.tag_w, 4).tolist()
+    zero = {n: 0 for n in INS}
+    # (en_i, lookup offered or -1): A at once; B in the clock after (not ready), held; C after B,
+    # held over three stalled clocks; D after C, held over one stalled clock.
+    plan = [(1, 0), (1, 1), (1, 1), (1, 2), (0, 2), (0, 2), (0, 2), (1, 2), (1, 3), (0, 3),
+            (1, 3)] + [(1, -1)] * (LATENCY + 2)
+    takes, seen, outs = [], [], {k: [] for k in ["tag_o"] + OUTS}
+    for clock, (en, q) in enumerate(plan, start=1):
+        data = {n: int(ins[n][q]) for n in INS} if q >= 0 else zero
+        taken, now, out = await pipe.step(bool(en), int(q >= 0), data, tags[q] if q >= 0 else 0,
+                                          q)
+        if taken:
+            takes.append((clock, q))
+        if out >= 0:
+            seen.append(out)
+            for name in outs:
+                outs[name].append(now[name])
+    assert takes == [(1, 0), (3, 1), (8, 2), (11, 3)], f"takes (clock, lookup): {takes}"
+    assert seen == [0, 1, 2, 3], f"results came for lookups {seen}"
+    expect = dict(exp)
+    expect["tag_o"] = np.array(tags)
+    for name, g in outs.items():
+        assert [int(x) for x in expect[name]] == g, (
+            f"{name}: got {[hex(x) for x in g]} expected {[hex(int(x)) for x in expect[name]]}")
+    report.record(dut._name, "RTL vs model.texture.filter_texels (f24), held lookups", 4, 0)
+    dut._log.info("held while not ready: takes %s, 4 results at latency %d", takes, LATENCY)
 
 
 def test_tex_filter():
