@@ -16,11 +16,13 @@
 // each a valid_o clock with the hit's tag: the colour texture's level (tex_o = 0) MIP_LAT = 13
 // enabled edges later (pipe_pkg) and the normal map's (tex_o = 1) on the next enabled edge.
 // valid_i must not be 1 on two consecutive enabled clocks (asserted; dm_pipeline admits a hit
-// at most every other clock).  The conventions of view_calc otherwise: every register advances
-// only while en_i is 1 (the enclosing pipeline's stall), valid is reset by rst_ni (synchronous,
-// active low), data registers have no reset, results hold while en_i is 0.  Configuration
-// (cfg_*, the table contents) must be static while busy; the table's write port works whatever
-// en_i is.
+// at most every 4th clock).  tag_o holds the hit's tag from its colour result until the next
+// hit's colour result (the job register's tag holds the normal map's between jobs): dm_pipeline
+// reads it for the normal map's lookup, held a clock, a clock after that result.  The
+// conventions of view_calc otherwise: every register advances only while en_i is 1 (the
+// enclosing pipeline's stall), valid is reset by rst_ni (synchronous, active low), data
+// registers have no reset, results hold while en_i is 0.  Configuration (cfg_*, the table
+// contents) must be static while busy; the table's write port works whatever en_i is.
 //
 // Stage schedule (S0 = the input ports; "a -> b": a unit takes operands in Sa, result in Sb):
 //   S0   t seg                                                     f24_mul      S0 -> S1

@@ -30,11 +30,13 @@
 //     credit hold the hits back).  Nothing behind the filter backs up: shade_unit and the out
 //     FIFO take every filtered quad (the out credit above);
 //   - a miss / invalid ray leaves traverse_system when the miss FIFO has room;
-//   - a hit is not admitted in the clock after another: mip_level's lod datapath and one
-//     tex_addr serve both textures, the colour texture's level and lookup and the normal map's
-//     in consecutive clocks (the traversal delivers a hit per 3.4 clocks at best, README
-//     "Pipeline performance": the frames of bench_pipeline.py take the same clocks as with a
-//     datapath per texture).
+//   - a hit is admitted at most every 4th clock: a hit needs two filtered quads and the filter
+//     takes one per two clocks, so the back end takes a hit per 4 clocks at most and admitting
+//     hits more often gains nothing.  That leaves room for the shared units in front of it:
+//     mip_level's lod datapath serves both textures (the colour level, the normal map's the
+//     clock after) and one tex_addr both lookups, each lookup as two axis items (u, v) in
+//     consecutive clocks, so a hit's two lookups fill 4 clocks (colour, then the normal map's
+//     held a clock: nl_*).
 // The colour and normal-map requests of a pixel are pushed together into two FIFOs and sent to
 // the cache alternately (colour first), so its responses, and the filter's results, come in
 // pairs in that order (the cache and the filter keep order; asserted: tf_pairs); a pixel reaches
@@ -301,13 +303,13 @@ module dm_pipeline
   logic              req_room, hit_room;
   logic              hit_adm, req_done, hit_out;
 
-  // A hit is not admitted in the clock after one (the shared address unit takes two clocks).
-  logic hit_adm_q;
+  // A hit is not admitted in the 3 clocks after one (its two lookups take 4 clocks of tex_addr).
+  logic [2:0] hit_adm_q;  // [k]: a hit was admitted k + 1 clocks ago
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) hit_adm_q <= 1'b0;
-    else         hit_adm_q <= hit_adm;
+    if (!rst_ni) hit_adm_q <= '0;
+    else         hit_adm_q <= {hit_adm_q[1:0], hit_adm};
   end
-  assign res_ready = res_hit ? (req_room && hit_room && !hit_adm_q) : !miss_full;
+  assign res_ready = res_hit ? (req_room && hit_room && hit_adm_q == '0) : !miss_full;
   assign hit_adm   = res_valid && res_ready && res_hit;
   assign miss_wr   = res_valid && res_ready && !res_hit;
 
@@ -337,9 +339,14 @@ module dm_pipeline
     .valid_o(mip_valid), .tag_o(mip_tag), .tex_o(mip_tex), .level_o(mip_lvl));
 
   // mip -> one address unit for both textures: mip_level gives a hit's colour level (texture 0)
-  // and, the clock after, its normal map's (texture 1); each goes straight into tex_addr, which
-  // registers its inputs (NTEX = 2).  Hits are admitted at most every other clock, so the two
-  // never overlap with the next hit's.
+  // and, the clock after, its normal map's (texture 1).  tex_addr (NTEX = 2) takes a lookup every
+  // other clock at most (u, then v on its units), so the colour lookup goes straight in and the
+  // normal map's waits a clock: only its level and valid bit are held (nl_*), since mip_level's
+  // tag_o (slot, u, v) holds the hit's tag from its colour result until the next hit's colour
+  // result, 4 clocks later at the earliest (asserted: nl_tag_held).  Hits are admitted at most
+  // every 4th clock, so the held lookup never meets the next hit's colour lookup.  (Holding
+  // the normal map's result in mip_level instead would cost one register less but give
+  // mip_level's two results a clock apart; holding the tag here another 55 registers.)
   localparam int unsigned REQ_W = 4 * TEX_ADDR_W + 48;  // {fx, fy, a11, a10, a01, a00}
   logic                    ta_valid, ta_tex;
   logic [SLOT_W-1:0]       ta_slot;
@@ -347,13 +354,25 @@ module dm_pipeline
   logic [TEX_ADDR_W-1:0]   ta_a00, ta_a01, ta_a10, ta_a11;
   f24_t                    ta_fx, ta_fy;
 
+  logic                   nl_valid_q;  // the normal map's lookup, held a clock
+  logic [MIP_LEVEL_W-1:0] nl_lvl_q;
+  logic                   ta_in_valid;
+  logic [MIP_LEVEL_W-1:0] ta_in_lvl;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) nl_valid_q <= 1'b0;
+    else         nl_valid_q <= mip_valid && mip_tex;
+  end
+  always_ff @(posedge clk_i) nl_lvl_q <= mip_lvl;
+  assign ta_in_valid = (mip_valid && !mip_tex) || nl_valid_q;
+  assign ta_in_lvl   = nl_valid_q ? nl_lvl_q : mip_lvl;
+
   tex_addr #(.TAG_W(SLOT_W + 1), .ADDR_W(TEX_ADDR_W), .NTEX(2)) u_addr (
     .clk_i, .rst_ni, .en_i(1'b1),
     .cfg_su_i(cfg_tex_su_i), .cfg_sv_i(cfg_tex_sv_i), .cfg_width_i(cfg_tex_width_i),
     .cfg_height_i(cfg_tex_height_i), .cfg_base_i(cfg_tex_base_i),
     .cfg_level_off_i(cfg_tex_level_off_i),
-    .valid_i(mip_valid), .tag_i({mip_tag[MIP_TAG_W-1 -: SLOT_W], mip_tex}), .tex_i(mip_tex),
-    .u_i(mip_tag[47:24]), .v_i(mip_tag[23:0]), .level_i(mip_lvl),
+    .valid_i(ta_in_valid), .tag_i({mip_tag[MIP_TAG_W-1 -: SLOT_W], nl_valid_q}),
+    .tex_i(nl_valid_q), .u_i(mip_tag[47:24]), .v_i(mip_tag[23:0]), .level_i(ta_in_lvl),
     .valid_o(ta_valid), .tag_o({ta_slot, ta_tex}), .addr00_o(ta_a00), .addr01_o(ta_a01),
     .addr10_o(ta_a10), .addr11_o(ta_a11), .fx_o(ta_fx), .fy_o(ta_fy));
   assign ta_req = {ta_fx, ta_fy, ta_a11, ta_a10, ta_a01, ta_a00};
@@ -559,11 +578,29 @@ module dm_pipeline
   fifo0_credit: assert property (@(posedge clk_i) disable iff (!rst_ni) f0_wr |-> !f0_full);
   req_credit:   assert property (@(posedge clk_i) disable iff (!rst_ni)
     ta_valid |-> (ta_tex ? !rq_n_full : !rq_c_full));
-  // One address unit serves both textures: a hit every other clock at most, its two lookups
-  // in consecutive clocks, colour first.
-  hit_spacing:  assert property (@(posedge clk_i) disable iff (!rst_ni) hit_adm |=> !hit_adm);
+  // One address unit serves both textures: a hit every 4th clock at most (counted here apart
+  // from hit_adm_q), its two lookups 2 clocks apart, colour first.
+  logic [1:0] hit_age_q;  // clocks since the last hit admitted, saturating at 3
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni)      hit_age_q <= 2'd3;
+    else if (hit_adm) hit_age_q <= 2'd0;
+    else if (hit_age_q != 2'd3) hit_age_q <= hit_age_q + 2'd1;
+  end
+  hit_spacing:  assert property (@(posedge clk_i) disable iff (!rst_ni)
+    hit_adm |-> hit_age_q == 2'd3);
+  // The held normal-map lookup reads mip_level's tag a clock after its result: still the hit's.
+  nl_tag_held:  assert property (@(posedge clk_i) disable iff (!rst_ni)
+    nl_valid_q |-> $stable(mip_tag));
+  logic [1:0]        ta_col_q;  // [k]: a colour lookup came out of tex_addr k + 1 clocks ago
+  logic [SLOT_W-1:0] ta_col_slot_q [2];
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) ta_col_q <= '0;
+    else         ta_col_q <= {ta_col_q[0], ta_valid && !ta_tex};
+    ta_col_slot_q[0] <= ta_slot;
+    ta_col_slot_q[1] <= ta_col_slot_q[0];
+  end
   addr_pairs:   assert property (@(posedge clk_i) disable iff (!rst_ni)
-    ta_valid && !ta_tex |=> ta_valid && ta_tex && ta_slot == $past(ta_slot));
+    (ta_valid && ta_tex) == ta_col_q[1] && (ta_col_q[1] -> ta_slot == ta_col_slot_q[1]));
   out_credit:   assert property (@(posedge clk_i) disable iff (!rst_ni) sh_valid |-> !out_full);
   // The pixel stream's payload holds while stalled; the texture request too.
   px_stable:    assert property (@(posedge clk_i) disable iff (!rst_ni)

@@ -49,10 +49,11 @@ package pipe_pkg;
   localparam int unsigned TEX_ADDR_W  = 32;  // byte address of a texel (default of tex_addr)
   localparam int unsigned TEX_IDX_W   = 20;  // f24_to_index / f24_from_int width (INDEX_W)
   localparam int unsigned TEXEL_W     = 32;  // an RGBA unorm8 texel: R in bits 7:0 .. A in 31:24
-  // u scale (mul); 2^-L (exponent arithmetic, one register); - 0.5 (add); floor (to_index);
-  // from_int; fx = x - j0 (add).  The addresses are ready in the same stage.
-  localparam int unsigned TEX_ADDR_LAT = F24_MUL_LAT + 1 + F24_ADD_LAT + F24_TO_INDEX_LAT
-                                       + F24_FROM_INT_LAT + F24_ADD_LAT;  // 8
+  // the item register (u, then v a clock later on the same units); scale (mul); 2^-L (exponent
+  // arithmetic, one register); - 0.5 (add); floor (to_index); from_int; fx = x - j0 (add); fy a
+  // clock after fx.  The addresses are ready in the same stage.
+  localparam int unsigned TEX_ADDR_LAT = 1 + F24_MUL_LAT + 1 + F24_ADD_LAT + F24_TO_INDEX_LAT
+                                       + F24_FROM_INT_LAT + F24_ADD_LAT + 1;  // 10
   // from_unorm; per row sub, mul, add (top, then bot a clock later on the same units); then sub,
   // mul, add (between the rows), the last adder's two operations from operand registers and an
   // odd number of clocks apart (m delayed a clock).

@@ -1,7 +1,7 @@
 // tex_addr: the texture address calculation of the texture path (Park et al. 2013, Fig. 6, after
-// the MIP-level unit): one bilinear lookup per clock, the four texel byte addresses and the two
-// weights.  Specification: model/texture.py lookup_addresses (steps 1-5 of the module docstring's
-// "Bilinear lookup at level L") in the f24 engine, bit for bit:
+// the MIP-level unit): one bilinear lookup every other clock at most, the four texel byte
+// addresses and the two weights.  Specification: model/texture.py lookup_addresses (steps 1-5
+// of the module docstring's "Bilinear lookup at level L") in the f24 engine, bit for bit:
 //   ut = mul(u, su);  vt = mul(v, sv)                      su, sv: the texture's scale words
 //   x = sub(mul(ut, 2^-L), 0.5);  y = sub(mul(vt, 2^-L), 0.5)
 //   j0 = to_index(x);  i0 = to_index(y)                    floor, W = 20, saturating, NaN -> 0
@@ -20,11 +20,14 @@
 // (the product is exact unless it falls below 2^-62, where f24_mul flushes to a signed zero;
 // Inf stays Inf, NaN gives F24_NAN, zeros and subnormal patterns give a signed zero).
 //
-// Fully pipelined, fixed latency TEX_ADDR_LAT = 8 enabled clocks (pipe_pkg), one lookup per clock,
-// the conventions of view_calc: every register advances only while en_i is 1 (the enclosing
-// pipeline's stall), valid is reset by rst_ni (synchronous, active low), data registers have no
-// reset; a lookup taken on an enabled edge with valid_i = 1 shows at the outputs after 8 enabled
-// edges and holds while en_i is 0.  Configuration (cfg_*) must be static while busy.
+// Fixed latency TEX_ADDR_LAT = 10 enabled clocks (pipe_pkg) whatever NTEX, one lookup every
+// other enabled clock at most: valid_i must not be 1 on two consecutive enabled clocks (asserted:
+// lookup_spacing; dm_pipeline admits a hit every 4th clock at most, its two lookups 2 clocks
+// apart).  The conventions of view_calc otherwise: every register advances only while en_i is 1
+// (the enclosing pipeline's stall), valid is reset by rst_ni (synchronous, active low), data
+// registers have no reset; a lookup taken on an enabled edge with valid_i = 1 shows at the
+// outputs after 10 enabled edges and holds while en_i is 0.  Configuration (cfg_*) must be
+// static while busy.
 //
 // Configuration of each of NTEX textures (model.texture.Texture; index t of every cfg_* array is
 // texture t): su, sv = Texture.scale_for (engine words), per level k < TEX_LEVELS its width W_k
@@ -35,28 +38,45 @@
 //
 // Textures sharing the unit (NTEX > 1): each lookup names its texture with tex_i, which travels
 // down the pipeline with the level; each stage reads the configuration of its own lookup's
-// texture (su, sv in S0, W_L and H_L in S4, base and level_off in S5), so lookups of different
-// textures may follow each other clock by clock.  dm_pipeline uses one unit for the colour
-// texture (0) and the normal map (1).  A tex_i of NTEX or more reads texture NTEX - 1; with NTEX
-// = 1 tex_i is ignored.  With NTEX > 1 the inputs and the selected scales are registered first,
-// so the latency is TEX_ADDR_LAT + 1 (the stage numbers below count from that register).
+// texture (su or sv in front of the item register, W_L or H_L in I5, base and level_off in I7),
+// so lookups of different textures may follow each other.  dm_pipeline uses one unit for the
+// colour texture (0) and the normal map (1).  A tex_i of NTEX or more reads texture NTEX - 1;
+// with NTEX = 1 tex_i is ignored.
 //
-// Stage schedule (S0 = the input ports; "a -> b": a unit takes operands in Sa, result in Sb):
-//   S0  ut = mul(u, su), vt = mul(v, sv)  (su, sv of texture tex_i) 2 f24_mul       S0 -> S1
-//       L (saturated to 0 .. 15) and the texture delayed S0 -> S5
-//   S1  ut 2^-L, vt 2^-L (exponent arithmetic, in a register of its own: in front of the
-//       adder it cost the adder's clock)                             register        S1 -> S2
-//   S2  x = add(ut 2^-L, -0.5), y likewise                           2 f24_add       S2 -> S4
-//   S4  j0 = floor(x), i0 = floor(y)                                2 f24_to_index  S4 -> S5
-//       x, y delayed S4 -> S6; W_L, H_L read                        register        S4 -> S5
-//   S5  from_int(j0), from_int(i0)                                  2 f24_from_int  S5 -> S6
-//       clamps: j0c, dj = j1c - j0c (0 or 1), i0c, di; base + level_off[L]   register S5 -> S6
-//   S6  fx = add(x, -from_int(j0)), fy likewise                     2 f24_add       S6 -> S8
-//       r = i0c W_L + j0c; rs = di ? W_L : 0                         register        S6 -> S7
-//   S7  addr = base + off + 4 (r + {0, dj, rs, rs + dj})             register        S7 -> S8
-//   S8  outputs (straight from registers)
-// Float units: 2 f24_mul, 4 f24_add, 2 f24_to_index, 2 f24_from_int; one 16 x 16 multiplier
-// (the second row's address is the first's plus 4 W_L: i1c - i0c is 0 or 1).
+// Axis items (as in traverse_setup).  A lookup is two items on one set of float units: its u
+// item (u, su, W_L: x, j0, fx) enters the item register with the lookup, its v item (v, sv, H_L:
+// y, i0, fy) on the next enabled clock, from hold registers of v_i, the level and the texture
+// (loaded on every enabled clock; the v item's clock takes no lookup).  So one multiplier, two
+// adders, one to_index and one from_int serve both axes, each fully used at a lookup per two
+// clocks.  Item stage Ik holds the u item of the lookup taken k enabled clocks ago or the v item
+// of the one taken k + 1 ago; the item's axis, level and texture travel with it (ax_q, lvl_q,
+// tex_q).  Where the axes meet (the row product, the address sums) the u item's clamp and W_L
+// are held a clock (cu_q, w_q) and met by the v item's in I7; fx, the u item's weight, is held a
+// clock (fx_q) to come out with fy.  The item register (one clock) is where the u / v select and
+// the texture's scale select sit, not in front of the multiplier (the scale select there cost
+// the unit its clock, 92.9 MHz out of context).
+//
+// Stage schedule (S0 = the input ports; Ik: item stages, the u item's clock k, the v item's
+// k + 1; "a -> b": a unit takes operands in Ia, result in Ib):
+//   S0  the u item: u, su of texture tex_i; the v item (next clock): v, sv held  register  -> I1
+//       L saturated to 0 .. 15, the texture and the axis travel I1 -> I7
+//   I1  t = mul(u, su) (mul(v, sv))                                  f24_mul      I1 -> I2
+//   I2  t 2^-L (exponent arithmetic, in a register of its own: in front of the adder it cost
+//       the adder's clock)                                           register     I2 -> I3
+//   I3  x = add(t 2^-L, -0.5) (y)                                    f24_add      I3 -> I5
+//   I5  j0 = floor(x) (i0)                                           f24_to_index I5 -> I6
+//       x delayed I5 -> I7; W_L (H_L for the v item) read            register     I5 -> I6
+//   I6  from_int(j0) (i0)                                            f24_from_int I6 -> I7
+//       clamp: {dj, j0c} ({di, i0c}); W_L held for the v item (w_q)  register     I6 -> I7
+//   I7  fx = add(x, -from_int(j0)) (fy)                              f24_add      I7 -> I9
+//       u item: {dj, j0c} held a clock (cu_q)
+//       v item: r = i0c W_L + j0c; rs = di ? W_L : 0; base + level_off[L]  register  -> I8
+//   I8  (v item) addr = base + off + 4 (r + {0, dj, rs, rs + dj})    register     I8 -> I9
+//   I9  u item: fx held a clock (fx_q); v item: the outputs (straight from registers), the
+//       lookup's clock 10
+// Float units: 1 f24_mul, 2 f24_add, 1 f24_to_index, 1 f24_from_int (before the axes shared
+// them: 2, 4, 2, 2, latency 8, 9 with NTEX > 1); one 16 x 16 multiplier (the second row's
+// address is the first's plus 4 W_L: i1c - i0c is 0 or 1).
 module tex_addr
   import f24_pkg::*;
   import pipe_pkg::*;
@@ -93,15 +113,16 @@ module tex_addr
   output f24_t                                 fy_o              // weight along v (i0 -> i1)
 );
 
-  // Stage numbers (pipe_pkg latencies); S_OUT = TEX_ADDR_LAT.
-  localparam int unsigned S_P2  = F24_MUL_LAT;              // 1: 2^-L
-  localparam int unsigned S_X   = S_P2 + 1;                 // 2: - 0.5
-  localparam int unsigned S_IDX = S_X + F24_ADD_LAT;        // 4: floor; W_L, H_L read
-  localparam int unsigned S_CLP = S_IDX + F24_TO_INDEX_LAT; // 5: from_int; clamps
-  localparam int unsigned S_FX  = S_CLP + F24_FROM_INT_LAT; // 6: fx; row product
-  localparam int unsigned S_SUM = S_FX + 1;                 // 7: address sums
-  localparam int unsigned S_OUT = S_FX + F24_ADD_LAT;       // 8
-  if (S_OUT != TEX_ADDR_LAT || S_SUM + 1 != S_OUT) begin : g_check_lat
+  // Item stage numbers (pipe_pkg latencies); the outputs at the lookup's clock TEX_ADDR_LAT.
+  localparam int unsigned I_MUL = 1;                         // 1: the item register, mul
+  localparam int unsigned I_P2  = I_MUL + F24_MUL_LAT;       // 2: 2^-L
+  localparam int unsigned I_X   = I_P2 + 1;                  // 3: - 0.5
+  localparam int unsigned I_IDX = I_X + F24_ADD_LAT;         // 5: floor; W_L / H_L read
+  localparam int unsigned I_CLP = I_IDX + F24_TO_INDEX_LAT;  // 6: from_int; clamp
+  localparam int unsigned I_FX  = I_CLP + F24_FROM_INT_LAT;  // 7: fx; the axes meet
+  localparam int unsigned I_SUM = I_FX + 1;                  // 8: address sums (v item)
+  localparam int unsigned I_OUT = I_FX + F24_ADD_LAT;        // 9: the v item's clock 10
+  if (I_OUT + 1 != TEX_ADDR_LAT || I_SUM + 1 != I_OUT) begin : g_check_lat
     $error("tex_addr: stage schedule does not add up to TEX_ADDR_LAT");
   end
   if (TEX_IDX_W <= TEX_DIM_W) begin : g_check_w
@@ -137,11 +158,10 @@ module tex_addr
          :              {1'b1, dim_t'(k)};
   endfunction
 
-  // ---- S0: the texture; the scales; the level -------------------------------------------------
+  // ---- S0: the texture; the level; the item register ------------------------------------------
   typedef logic [SEL_W-1:0] sel_t;
   sel_t tex_in;
   lvl_t lvl_in;
-  f24_t ut, vt;                                // S1
   if (NTEX > 1 && (1 << SEL_W) == NTEX) begin : g_sel_pow2
     assign tex_in = tex_i;                     // every tex_i names a texture
   end else if (NTEX > 1) begin : g_sel
@@ -153,78 +173,56 @@ module tex_addr
   end
   assign lvl_in = (level_i > MIP_LEVEL_W'(TEX_LEVELS - 1)) ? lvl_t'(TEX_LEVELS - 1)
                                                           : lvl_t'(level_i);
-  // The multipliers' operands: the ports (NTEX = 1), or with NTEX > 1 the input register, which
-  // holds the lookup and its texture's scales (selected by tex_i in front of the register, not
-  // in front of the multipliers: that select cost the unit its clock, 92.9 MHz out of context).
-  f24_t u0, v0, su0, sv0;
-  lvl_t lvl0;
-  sel_t tex0;
-  if (NTEX > 1) begin : g_in_reg
-    always_ff @(posedge clk_i) begin
-      if (en_i) begin
-        u0   <= u_i;
-        v0   <= v_i;
-        su0  <= cfg_su_i[tex_in];
-        sv0  <= cfg_sv_i[tex_in];
-        lvl0 <= lvl_in;
-        tex0 <= tex_in;
-      end
-    end
-  end else begin : g_in_wire
-    assign u0   = u_i;
-    assign v0   = v_i;
-    assign su0  = cfg_su_i[0];
-    assign sv0  = cfg_sv_i[0];
-    assign lvl0 = lvl_in;
-    assign tex0 = tex_in;
-  end
-  f24_mul u_ut (.clk_i, .en_i, .a_i(u0), .b_i(su0), .y_o(ut));
-  f24_mul u_vt (.clk_i, .en_i, .a_i(v0), .b_i(sv0), .y_o(vt));
-  lvl_t lvl_q [1:S_CLP];                       // L in stages S1 .. S5
-  sel_t tex_q [1:S_CLP];                       // the texture in stages S1 .. S5
+  // The v item's inputs, held from the lookup's clock to its own (loaded on every enabled clock:
+  // only the one after a lookup reads them).
+  f24_t vh_q;
+  lvl_t lvlh_q;
+  sel_t texh_q;
+  // The item register: the multiplier's operands, and the item's axis (1: v), level, texture in
+  // item stages I1 .. I7.  A clock without a lookup loads the v item (or a bubble's junk).
+  f24_t a1_q, b1_q;
+  logic ax_q  [I_MUL:I_FX];
+  lvl_t lvl_q [I_MUL:I_FX];
+  sel_t tex_q [I_MUL:I_FX];
+  f24_t t;                                     // I2: u su (v sv)
+  f24_mul u_t (.clk_i, .en_i, .a_i(a1_q), .b_i(b1_q), .y_o(t));
 
-  // ---- S1: 2^-L; S2: - 0.5 -------------------------------------------------------------------
-  f24_t ul_q, vl_q;                            // S2: ut 2^-L, vt 2^-L
-  f24_t x, y;                                  // S4
-  f24_add u_x (.clk_i, .en_i, .a_i(ul_q), .b_i(F24_NEG_HALF), .y_o(x));
-  f24_add u_y (.clk_i, .en_i, .a_i(vl_q), .b_i(F24_NEG_HALF), .y_o(y));
+  // ---- I2: 2^-L; I3: - 0.5 ---------------------------------------------------------------------
+  f24_t tl_q;                                  // I3: t 2^-L
+  f24_t x;                                     // I5: x (y)
+  f24_add u_x (.clk_i, .en_i, .a_i(tl_q), .b_i(F24_NEG_HALF), .y_o(x));
 
-  // ---- S4: floor; the level's size ------------------------------------------------------------
-  idx_t j0, i0;                                // S5
-  logic unused_sat_j, unused_sat_i;            // saturation flags: the clamps cover them
-  f24_to_index #(.W(TEX_IDX_W)) u_j0 (.clk_i, .en_i, .a_i(x), .idx_o(j0),
-                                      .sat_o(unused_sat_j));
-  f24_to_index #(.W(TEX_IDX_W)) u_i0 (.clk_i, .en_i, .a_i(y), .idx_o(i0),
-                                      .sat_o(unused_sat_i));
-  f24_t x_q [S_IDX+1:S_FX];                    // x, y in stages S5 .. S6
-  f24_t y_q [S_IDX+1:S_FX];
-  dim_t w_q [S_CLP:S_FX];                      // W_L in stages S5 .. S6
-  dim_t h_q;                                   // H_L in stage S5
+  // ---- I5: floor; the level's size -----------------------------------------------------------
+  idx_t k0;                                    // I6: j0 (i0)
+  logic unused_sat;                            // saturation flag: the clamp covers it
+  f24_to_index #(.W(TEX_IDX_W)) u_k0 (.clk_i, .en_i, .a_i(x), .idx_o(k0), .sat_o(unused_sat));
+  f24_t x_q [I_IDX+1:I_FX];                    // x in item stages I6 .. I7
+  dim_t n_q;                                   // I6: W_L (H_L)
 
-  // ---- S5: from_int; clamps; the level's start ----------------------------------------------
-  f24_t fj, fi;                                // S6
-  f24_from_int #(.W(TEX_IDX_W)) u_fj (.clk_i, .en_i, .k_i(j0), .y_o(fj));
-  f24_from_int #(.W(TEX_IDX_W)) u_fi (.clk_i, .en_i, .k_i(i0), .y_o(fi));
-  logic [TEX_DIM_W:0] jc, ic;                  // {step, clamped index}
-  assign jc = clamp_pair(j0, w_q[S_CLP]);
-  assign ic = clamp_pair(i0, h_q);
-  dim_t              j0c_q, i0c_q;             // S6
-  logic              dj_q [S_FX:S_SUM];        // j1c - j0c in stages S6 .. S7
-  logic              di_q;                     // i1c - i0c in stage S6
-  logic [ADDR_W-1:0] lb_q [S_FX:S_SUM];        // base + level_off[L] in stages S6 .. S7
+  // ---- I6: from_int; clamp -------------------------------------------------------------------
+  f24_t fk;                                    // I7: from_int(j0) (i0)
+  f24_from_int #(.W(TEX_IDX_W)) u_fk (.clk_i, .en_i, .k_i(k0), .y_o(fk));
+  logic [TEX_DIM_W:0] cl_q;                    // I7: {dj, j0c} ({di, i0c})
+  logic [TEX_DIM_W:0] cu_q;                    // the u item's {dj, j0c}, a clock later
+  dim_t               w_q;                     // W_L of the last u item in I6
 
-  // ---- S6: fx, fy; the row product ------------------------------------------------------------
-  f24_add u_fx (.clk_i, .en_i, .a_i(x_q[S_FX]), .b_i({~fj[23], fj[22:0]}), .y_o(fx_o));
-  f24_add u_fy (.clk_i, .en_i, .a_i(y_q[S_FX]), .b_i({~fi[23], fi[22:0]}), .y_o(fy_o));
-  logic [ROW_W-1:0] r_q;                       // S7: i0c W_L + j0c
-  dim_t             rs_q;                      // S7: i1c - i0c = 1 ? W_L : 0
+  // ---- I7: fx, fy; the axes meet: the row product ----------------------------------------------
+  f24_t f;                                     // I9: fx (fy)
+  f24_t fx_q;                                  // fx, a clock later
+  f24_add u_f (.clk_i, .en_i, .a_i(x_q[I_FX]), .b_i({~fk[23], fk[22:0]}), .y_o(f));
+  logic [ROW_W-1:0]  r_q;                      // I8: i0c W_L + j0c
+  dim_t              rs_q;                     // I8: i1c - i0c = 1 ? W_L : 0
+  logic              dj_q;                     // I8: j1c - j0c
+  logic [ADDR_W-1:0] lb_q;                     // I8: base + level_off[L]
+  assign fx_o = fx_q;
+  assign fy_o = f;
 
-  // ---- S7: the four addresses -----------------------------------------------------------------
+  // ---- I8: the four addresses ------------------------------------------------------------------
   logic [ADDR_W-1:0] a00, rs4, dj4;
-  logic [ADDR_W-1:0] addr_q [4];               // S8
-  assign a00 = lb_q[S_SUM] + (ADDR_W'(r_q) << 2);
+  logic [ADDR_W-1:0] addr_q [4];               // I9
+  assign a00 = lb_q + (ADDR_W'(r_q) << 2);
   assign rs4 = ADDR_W'(rs_q) << 2;
-  assign dj4 = ADDR_W'(dj_q[S_SUM]) << 2;
+  assign dj4 = ADDR_W'(dj_q) << 2;
   assign addr00_o = addr_q[0];
   assign addr01_o = addr_q[1];
   assign addr10_o = addr_q[2];
@@ -233,44 +231,59 @@ module tex_addr
   // ---- registers ------------------------------------------------------------------------------
   always_ff @(posedge clk_i) begin
     if (en_i) begin
-      lvl_q[1] <= lvl0;
-      tex_q[1] <= tex0;
-      for (int s = 2; s <= S_CLP; s++) begin
+      // S0 -> I1: the u item of a lookup, else the v item of the last one
+      vh_q   <= v_i;
+      lvlh_q <= lvl_in;
+      texh_q <= tex_in;
+      a1_q   <= valid_i ? u_i : vh_q;
+      b1_q   <= valid_i ? cfg_su_i[tex_in] : cfg_sv_i[texh_q];
+      ax_q[I_MUL]  <= !valid_i;
+      lvl_q[I_MUL] <= valid_i ? lvl_in : lvlh_q;
+      tex_q[I_MUL] <= valid_i ? tex_in : texh_q;
+      for (int s = I_MUL + 1; s <= I_FX; s++) begin
+        ax_q[s]  <= ax_q[s-1];
         lvl_q[s] <= lvl_q[s-1];
         tex_q[s] <= tex_q[s-1];
       end
-      // S1 -> S2
-      ul_q <= f24_pow2_down(ut, lvl_q[S_P2]);
-      vl_q <= f24_pow2_down(vt, lvl_q[S_P2]);
-      x_q[S_IDX+1] <= x;
-      y_q[S_IDX+1] <= y;
-      for (int s = S_IDX + 2; s <= S_FX; s++) begin
-        x_q[s] <= x_q[s-1];
-        y_q[s] <= y_q[s-1];
-      end
-      // S4 -> S5
-      w_q[S_CLP] <= cfg_width_i[tex_q[S_IDX]][lvl_q[S_IDX]];
-      h_q        <= cfg_height_i[tex_q[S_IDX]][lvl_q[S_IDX]];
-      // S5 -> S6
-      w_q[S_FX]  <= w_q[S_CLP];
-      {dj_q[S_FX], j0c_q} <= jc;
-      {di_q, i0c_q}       <= ic;
-      lb_q[S_FX] <= cfg_base_i[tex_q[S_CLP]] + cfg_level_off_i[tex_q[S_CLP]][lvl_q[S_CLP]];
-      // S6 -> S7
-      r_q  <= ROW_W'(i0c_q) * ROW_W'(w_q[S_FX]) + ROW_W'(j0c_q);
-      rs_q <= di_q ? w_q[S_FX] : '0;
-      dj_q[S_SUM] <= dj_q[S_FX];
-      lb_q[S_SUM] <= lb_q[S_FX];
-      // S7 -> S8
+      // I2 -> I3
+      tl_q <= f24_pow2_down(t, lvl_q[I_P2]);
+      // I5 -> I6
+      x_q[I_IDX+1] <= x;
+      for (int s = I_IDX + 2; s <= I_FX; s++) x_q[s] <= x_q[s-1];
+      n_q <= ax_q[I_IDX] ? cfg_height_i[tex_q[I_IDX]][lvl_q[I_IDX]]
+                         : cfg_width_i[tex_q[I_IDX]][lvl_q[I_IDX]];
+      // I6 -> I7
+      cl_q <= clamp_pair(k0, n_q);
+      if (!ax_q[I_CLP]) w_q <= n_q;            // held while the v item passes I6
+      // I7 -> I8 (the v item in I7 meets the u item's clamp in cu_q and its W_L in w_q)
+      cu_q <= cl_q;
+      r_q  <= ROW_W'(cl_q[TEX_DIM_W-1:0]) * ROW_W'(w_q) + ROW_W'(cu_q[TEX_DIM_W-1:0]);
+      rs_q <= cl_q[TEX_DIM_W] ? w_q : '0;
+      dj_q <= cu_q[TEX_DIM_W];
+      lb_q <= cfg_base_i[tex_q[I_FX]] + cfg_level_off_i[tex_q[I_FX]][lvl_q[I_FX]];
+      // I8 -> I9
       addr_q[0] <= a00;
       addr_q[1] <= a00 + dj4;
       addr_q[2] <= a00 + rs4;
       addr_q[3] <= a00 + rs4 + dj4;
+      // I9: fx waits for fy
+      fx_q <= f;
     end
   end
 
   // ---- valid and tag ---------------------------------------------------------------------------
-  pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(S_OUT + ((NTEX > 1) ? 1 : 0))) u_valid_tag (
+  pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(TEX_ADDR_LAT)) u_valid_tag (
     .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o, .stage_valid_o());
+
+`ifndef SYNTHESIS
+  // The axes share the float units: no lookup on the enabled clock after another (its v item's).
+  logic took_q;  // the last enabled clock took a lookup
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni)   took_q <= 1'b0;
+    else if (en_i) took_q <= valid_i;
+  end
+  lookup_spacing: assert property (@(posedge clk_i) disable iff (!rst_ni)
+    en_i && valid_i |-> !took_q);
+`endif
 
 endmodule

@@ -2,8 +2,11 @@
 
 Each phase sets one texture configuration (scales su, sv = Texture.scale_for's f24 words; per
 level W_k, H_k and byte offsets, the base address; the unused levels of the configuration filled
-with junk) and streams lookups with random en_i gaps and valid bubbles (tb/common/valid_pipe.py).
-The four addresses (modulo 2^ADDR_W) and fx, fy must equal the model's.
+with junk) and streams lookups with random en_i gaps and valid bubbles, a lookup every other
+enabled clock at most (tb/common/valid_pipe.py, spacing 2: the u and v axes share the float units
+a clock apart).  The four addresses (modulo 2^ADDR_W) and fx, fy must equal the model's.
+Directed: lookups at the minimum spacing, a lookup on every other clock with en_i = 1 and no
+bubbles, then every other enabled clock with en_i gaps (the first phase's lookups again).
 
 Textures (only their level sizes matter here: zero-stride stand-ins for the large ones):
   37 x 100 and 100 x 37 (non-square, not powers of two: 8 levels), scale 1 and scale != 1 (the
@@ -40,7 +43,8 @@ from model.arith import ENGINES
 from tb.common import fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 
-LATENCY = 8  # pipe_pkg::TEX_ADDR_LAT (+ 1 with NTEX > 1)
+LATENCY = 10  # pipe_pkg::TEX_ADDR_LAT (any NTEX)
+SPACING = 2  # enabled clocks from one lookup to the next, at least (u, then v on the same units)
 TEX_LEVELS = 16  # pipe_pkg::TEX_LEVELS
 DIM_W = 16  # pipe_pkg::TEX_DIM_W
 INS = ["u_i", "v_i", "level_i", "tex_i"]
@@ -204,9 +208,8 @@ async def tex_addr_random_and_directed(dut):
     addr_w = len(dut.addr00_o)
     ntex = len(dut.cfg_su_i) // 24
     sel_codes = 1 << len(dut.tex_i)
-    # NTEX > 1: one clock more (the input register that selects the texture's scales)
-    pipe = ValidPipe(dut, LATENCY + (ntex > 1), INS, OUTS,
-                     "RTL vs model.texture.lookup_addresses (f24)")
+    pipe = ValidPipe(dut, LATENCY, INS, OUTS, "RTL vs model.texture.lookup_addresses (f24)",
+                     spacing=SPACING)
     await pipe.reset()
     cfgs = configs(rng, addr_w)
     total, lines = 0, []
@@ -249,6 +252,14 @@ async def tex_addr_random_and_directed(dut):
         nan = int(np.count_nonzero(f24.is_nan(exp["fx_o"]) | f24.is_nan(exp["fy_o"])))
         total += await pipe.run(" + ".join(names) + f", {nan} NaN weights", ins, exp, rng,
                                 describe=describe)
+        if i == 0:  # the minimum spacing: back to back without stalls, then with en_i gaps
+            m = min(len(ins["u_i"]), 4000)
+            ins_m = {k: v[:m] for k, v in ins.items()}
+            exp_m = {k: v[:m] for k, v in exp.items()}
+            total += await pipe.run(f"minimum spacing, en_i = 1: {names[0]}", ins_m, exp_m, rng,
+                                    en_prob=1.0, bubble=0.0, describe=describe)
+            total += await pipe.run(f"minimum spacing, en_i gaps: {names[0]}", ins_m, exp_m, rng,
+                                    en_prob=0.6, bubble=0.0, describe=describe)
         if i == 1:
             await pipe.flush_check(rng)
     for ln in lines:
