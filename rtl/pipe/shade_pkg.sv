@@ -14,12 +14,12 @@ package shade_pkg;
 
   // Critical path: view vector (input register 1, mul 1, add 2, add 2, rsqrt 3, mul 1), half
   // vector (add 2, mul 1, add 2, add 2, rsqrt 3, mul 1), n.h (mul 1, add 2, add 2), max 1, four
-  // squarings 4, KS mul 1, colour add 2, clamp 1, x255 mul 1, +0.5 add 2, floor 1, one clock
-  // more for the blue channel, which takes the red channel's lane a clock later, and one for the
-  // alignment (a pixel that comes on an odd clock enters the core a clock late; the others wait
+  // squarings 4, KS mul 1, colour add 2, clamp 1, x255 mul 1, +0.5 add 2, floor 1, two clocks
+  // more for G and B, which follow R on one lane a clock apart each, and three for the
+  // alignment (a pixel enters the core on phase 0 mod 4, up to 3 clocks late; the others wait
   // at the output).
   // rsqrt: f24_rsqrt #(.LAT(3)) (pipe_pkg::F24_RSQRT_LAT).
-  localparam int unsigned SHADE_LAT = 41;
+  localparam int unsigned SHADE_LAT = 44;
 
   // Per-frame configuration: every field is the f24 pattern of the model's const(...) of that
   // quantity (model.f24.from_float of the float64 value; the driver precomputes them), static

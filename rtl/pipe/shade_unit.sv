@@ -25,84 +25,80 @@
 // light vector l (three components), AMBIENT, KD, KS, D and D2 = mul(D, D).  Hard-wired
 // (shade_pkg): EPS = 2^-40, 1, 0, 255 and 0.5; the constant 2 only appears as mul(M_c, 2).
 //
-// Fully pipelined, fixed latency SHADE_LAT = 41 enabled clocks (shade_pkg), one pixel every other
-// enabled clock at most (valid_i must not be 1 on two consecutive enabled clocks; asserted).  In
-// dm_pipeline a pixel needs two filtered quads, which come one per clock at most.
+// Fully pipelined, fixed latency SHADE_LAT = 44 enabled clocks (shade_pkg), one pixel every 4th
+// enabled clock at most (valid_i must not be 1 within 3 enabled clocks after a pixel; asserted:
+// pixel_spacing).  In dm_pipeline a pixel needs two filtered quads, which come one per two
+// clocks at most.
 // Every register (valid, tag, data, the float units) advances only while en_i is 1, so the
 // enclosing pipeline stalls the whole unit with en_i = 0.  A pixel is taken on an enabled edge with
 // valid_i = 1; its result shows at valid_o / tag_o / rgb_o after SHADE_LAT enabled edges and holds
 // while en_i is 0.  valid (and the core's valid bits, the phase and the hold flag) are reset by
 // rst_ni (synchronous, active low, independent of en_i); data and tag registers have no reset.
 //
-// Alignment: ph_q toggles on every enabled clock.  A pixel that comes with ph_q = 0 enters core
-// stage S1 at once, one that comes with ph_q = 1 waits a clock in hold registers and enters then;
-// at the output an odd pixel is in core S40, an even one in core S41 (its floors held a clock), so
-// the latency is fixed.  Every two pixels in the core are thus an even number of clocks apart, and
-// a float unit serves two operations of a pixel whose stages differ by an odd number: pixel p at
-// Sa and Sb, any later pixel at Sa + 2j and Sb + 2j, never in the same clock (asserted:
-// core_aligned).  Without the alignment only consecutive stages could share (pixels may come 3,
-// 5, ... clocks apart).  A shared unit's operands are registers, or a 2:1 select between two
-// registers by cv_q[a] (a pixel in core stage a: the first operation, else the second).
+// Alignment: ph_q counts enabled clocks modulo 4.  A pixel that comes with ph_q = 0 enters core
+// stage S1 at once, one that comes with ph_q = 1, 2 or 3 waits 3, 2 or 1 clocks in hold registers
+// and enters with the next ph_q = 0.  The result is complete in core S41; a pixel that waited w
+// clocks is at the output in core S44 - w (res_q holds the result from S41 to S44), so the
+// latency is fixed.  Every two pixels in the core are thus a multiple of 4 clocks apart, and a
+// float unit serves up to four operations of a pixel whose stages differ pairwise by amounts not
+// divisible by 4: pixel p at Sa, Sb, ..., any later pixel at Sa + 4j, Sb + 4j, ..., never in the
+// same clock (asserted: core_aligned, and unit_once per shared unit).  A shared unit's operands
+// are registers, or a select between registers by cv_q[a] (a pixel in core stage a: that
+// operation).  The units with four operations are multipliers (2:1 to 4:1 selects); every adder
+// keeps the 2:1 select (or none) it had with two operations per unit.
 // Three-component values run as two lanes: lane 0 carries x in stage s and z in s+1 through the
-// same registers ("stream"), lane 1 carries y in s.
+// same registers ("stream"), lane 1 carries y in s; the tail runs R, G, B on one lane.
 //
 // Core stage schedule (S0 = the input ports or the hold registers; "a -> b": a unit takes operands
-// in Sa, result in Sb; "@a / @b": a unit's two operations; "reg" = exact logic into one register):
+// in Sa, result in Sb; "@a / @b": a unit's operations; "reg" = exact logic into one register):
 //   S0   2M_c (exact doubling, see below; 2M_z waits a clock for lane 0) reg          S0 -> S1
 //        du, dv delayed S0 -> S9; C_x, C_z as a stream S0 -> S29, C_y S0 -> S30
 //   S1   du^2 @1 / h_y^2 @12                                           f24_mul      -> S2 / S13
-//        dv^2 @1 / C_y a @30                                           f24_mul      -> S2 / S31
+//        dv^2 @1 / n_x rn @19 / n_z rn @20 / C_y a @30                 f24_mul      -> S2 / .. S31
 //        n_x - 1 @1 / n_z - 1 @2 (lane 0, n = 2M - 1)                  f24_add      -> S3 / S4
 //        n_y - 1 @1 / du^2 + dv^2 @2                                   f24_add      -> S3 / S4
 //        n delayed S3 -> S19 (lanes)
 //   S4   vv = (du^2 + dv^2) + D2 @4 / hh = (hx2 + hy2) + hz2 @15       f24_add      -> S6 / S17
-//   S6   rv = rsqrt(vv) @6                                             f24_rsqrt    -> S9
+//   S6   rv = rsqrt(vv) @6 / rn = rsqrt(nn) @16 / rh = rsqrt(hh) @17   f24_rsqrt    -> S9 / .. S20
 //   S8   n_x^2 @8 / n_z^2 @9                                           f24_mul      -> S9 / S10
 //        n_y^2 @8 / v_y = -dv rv @9                                    f24_mul      -> S9 / S10
 //   S9   v_x = -du rv @9 / v_z = D rv @10 (rv held a clock)            f24_mul      -> S10 / S11
 //        nx2 + ny2 @9 / h_y = l_y + v_y @10                            f24_add      -> S11 / S12
 //   S10  h_x = l_x + v_x @10 / h_z = l_z + v_z @11                     f24_add      -> S12 / S13
 //        h delayed S12 -> S20 (lanes)
-//   S12  h_x^2 @12 / h_z^2 @13                                         f24_mul      -> S13 / S14
+//   S12  h_x^2 @12 / h_z^2 @13 / KD ndl @26 / s = ndh^2 @27            f24_mul      -> S13 / .. S28
 //        nn = (nx2 + ny2) + nz2 @12 / hx2 + hy2 @13                    f24_add      -> S14 / S15
 //   S14  max(nn, EPS), held S15 -> S16                                 reg          S14 -> S15
-//   S16  rn = rsqrt(nn) @16 / rh = rsqrt(hh) @17                       f24_rsqrt    -> S19 / S20
-//   S19  n_x rn @19 / n_z rn @20 (unit normal, lane 0)                 f24_mul      -> S20 / S21
-//        n_y rn @19 / n_y l_y @20                                      f24_mul      -> S20 / S21
+//   S19  (n_x rn, n_z rn: above) n_y rn @19 / n_y l_y @20 / n_x h_x @21 / n_z h_z @22
+//                                                                      f24_mul      -> S20 / .. S23
 //   S20  n_x l_x @20 / n_z l_z @21                                     f24_mul      -> S21 / S22
 //        h_x rh @20 / h_z rh @21 (unit half vector, lane 0)            f24_mul      -> S21 / S22
 //        h_y rh @20 / n_y h_y @21                                      f24_mul      -> S21 / S22
-//   S21  n_x h_x @21 / n_z h_z @22                                     f24_mul      -> S22 / S23
-//        nlx + nly @21 / nhx + nhy @22                                 f24_add      -> S23 / S24
+//   S21  nlx + nly @21 / nhx + nhy @22                                 f24_add      -> S23 / S24
 //   S23  dot(n, l) = (nlx + nly) + nlz @23 / dot(n, h) @24             f24_add      -> S25 / S26
 //        (nlz, then nhz, wait a clock in one register)
 //   S25  ndl = max(dot(n, l), 0) -> S26, ndh = max(dot(n, h), 0) -> S27   reg (one)
-//   S26  KD ndl @26 / s = ndh^2 @27                                    f24_mul      -> S27 / S28
 //   S27  a = AMBIENT + KD ndl @27 / c_G = C_y a + sp @32               f24_add      -> S29 / S34
-//   S28  s^4 @28 / s^8 @29                                             f24_mul      -> S29 / S30
+//   S28  s^4 @28 / s^8 @29 / s^16 @30 / sp = KS s^16 @31               f24_mul      -> S29 / .. S32
 //   S29  C_x a @29 / C_z a @30 (a held a clock)                        f24_mul      -> S30 / S31
 //        C_x a, C_z a delayed S30 -> S32; C_y a S31 -> S32
-//   S30  s^16 @30 / sp = KS s^16 @31                                   f24_mul      -> S31 / S32
-//   The tail (steps 12-14 after C_c a) runs on the two lanes: lane 0 takes R in S32 and B a
-//   clock later, lane 1 takes G (its add is the a / c_G adder above).
-//   S32  c_c = C_c a + sp (lane 0: sp held a clock for B)              f24_add      -> S34
-//   S34  min(max(c_c, 0), 1)                                           reg          S34 -> S35
-//   S35  c_c * 255                                                     f24_mul x2   -> S36
-//   S36  + 0.5                                                         f24_add x2   -> S38
-//   S38  floor -> unorm8                                               f24_to_index -> S39
-//        (B a clock behind on lane 0: its floor S39 -> S40)
-//   S39  R and G held (S40), and again with B (S41)                    reg
-//   Output: an odd pixel's R, G, B from core S40 (the hold registers, lane 0's floor), an even
-//   pixel's from core S41 (selected by ph_q); valid and tag delayed S0 -> S41 (pipe_valid_tag).
-// The two f24_rsqrt run at LAT = pipe_pkg::F24_RSQRT_LAT = 3 (table / product + sum / round:
-// over 120 MHz; at their 2 clocks they limit the unit to below 60 MHz), with the same results;
+//   S32  c_c = C_c a + sp (lane 0: R @32, B @33, sp held a clock)      f24_add      -> S34 / S35
+//   S34  min(max(c_c, 0), 1): R (S34), G (S34, held), B (S35, held)    reg          -> S35 .. S37
+//   S35  c_c * 255: R @35 / G @36 / B @37                              f24_mul      -> S36 .. S38
+//   S36  + 0.5: R @36 / G @37 / B @38                                  f24_add      -> S38 .. S40
+//   S38  floor -> unorm8: R @38 / G @39 / B @40                        f24_to_index -> S39 .. S41
+//   S39  R held (S40, S41), G held (S41); with B the result is complete in S41
+//   Output: a pixel that waited 3 clocks shows its result from core S41 directly, the others
+//   from res_q (loaded in S41); valid and tag delayed S0 -> S44 (pipe_valid_tag).
+// The f24_rsqrt runs at LAT = pipe_pkg::F24_RSQRT_LAT = 3 (table / product + sum / round:
+// over 120 MHz; at 2 clocks it limits the unit to below 60 MHz), with the same results;
 // the schedule above is written for that latency (checked at elaboration).
 //
-// Float units: 18 f24_mul (17 with two operations), 12 f24_add (11 with two), 2 f24_rsqrt (one with
-// two), 2 f24_to_index #(9) (lane 0 with two); no f24_cmp (34, 21, 3 and 2 before the units served
-// two operations beyond the tail).  The single-operation units: the lane-1 tail's multiply and
-// + 0.5, and rv's rsqrt.  Exact logic (no rounding involved, each into one register): 3 doublers,
-// max(nn, EPS), one max(., 0) for ndl then ndh, and 2 clamps.
+// Float units: 13 f24_mul (12 shared: 4 with four operations, u_k with three, 7 with two), 11
+// f24_add (all shared: u_kh with three), 1 f24_rsqrt (three operations), 1 f24_to_index #(9)
+// (three); no f24_cmp (18, 12, 2 and 2 with two operations per unit; 34, 21, 3 and 2 before
+// sharing).  Exact logic (no rounding involved, each into one register): 3 doublers,
+// max(nn, EPS), one max(., 0) for ndl then ndh, and 1 clamp.
 //
 // Exact parts, bit-identical to the model:
 // - mul(M_c, 2) is an exponent increment: e = 126 overflows to Inf, zeros and subnormal patterns
@@ -137,14 +133,14 @@ module shade_unit
   output logic [2:0][7:0]  rgb_o     // unorm8 codes (R, G, B at 0, 1, 2)
 );
 
-  localparam int unsigned NS = SHADE_LAT;  // stages S1 .. S41
-  localparam int unsigned CS = NS - 1;     // core stages S1 .. S40
+  localparam int unsigned NS = SHADE_LAT;  // stages S1 .. S44
+  localparam int unsigned CS = NS - 3;     // core stages S1 .. S41
 
-  // The three f24_rsqrt: the schedule (header) is written for 3 clocks each (rv S5 -> S8, rn
-  // S9 -> S12, rh S16 -> S19); another latency needs the stages below renumbered.
+  // The f24_rsqrt: the schedule (header) is written for 3 clocks (rv S6 -> S9, rn S16 -> S19,
+  // rh S17 -> S20); another latency needs the stages below renumbered.
   localparam int unsigned RSQRT_LAT = pipe_pkg::F24_RSQRT_LAT;
-  if (RSQRT_LAT != 3 || NS != 41) begin : g_check_lat
-    $error("shade_unit: the stage schedule is written for F24_RSQRT_LAT = 3, SHADE_LAT = 41");
+  if (RSQRT_LAT != 3 || NS != 44) begin : g_check_lat
+    $error("shade_unit: the stage schedule is written for F24_RSQRT_LAT = 3, SHADE_LAT = 44");
   end
 
   localparam f24_t NEG_ONE = SHADE_ONE ^ 24'h800000;  // sub(x, 1) = add(x, -1)
@@ -196,37 +192,37 @@ module shade_unit
   pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(NS)) u_valid_tag (
     .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o, .stage_valid_o(stage_v));
 
-  // ---- alignment: the core takes pixels on every other enabled clock only --------------------
-  // ph_q toggles on every enabled clock.  A pixel that comes with ph_q = 0 ("even") enters core
-  // stage 1 at once; one that comes with ph_q = 1 ("odd") waits a clock in the hold registers
-  // (hodd_q) and enters then, so every pixel in the core is an even number of clocks from every
-  // other one, and cv_q[k] = 1 (a pixel in core stage k) only when ph_q = k mod 2.
-  logic            ph_q;            // enabled-clock parity
-  logic            hodd_q;          // an odd pixel waits in the hold registers
+  // ---- alignment: the core takes pixels on every 4th enabled clock only -----------------------
+  // ph_q counts enabled clocks modulo 4.  A pixel that comes with ph_q = 0 enters core stage 1 at
+  // once; one that comes with ph_q = 1, 2 or 3 waits in the hold registers (hv_q) until ph_q = 0
+  // (3, 2 or 1 clocks) and enters then, so every two pixels in the core are a multiple of 4
+  // clocks apart, and cv_q[k] = 1 (a pixel in core stage k) only when ph_q = k mod 4.
+  logic [1:0]      ph_q;            // enabled clocks modulo 4
+  logic            hv_q;            // a pixel waits in the hold registers
   logic [CS:1]     cv_q;            // core stage valid bits
   f24_t [2:0]      hnrm_q, hcol_q;  // the hold registers (no reset)
   f24_t            hdu_q, hdv_q;
   f24_t [2:0]      in_nrm, in_col;  // the pixel entering core stage 1
   f24_t            in_du, in_dv;
-  assign in_nrm = hodd_q ? hnrm_q : nrm_i;
-  assign in_col = hodd_q ? hcol_q : col_i;
-  assign in_du  = hodd_q ? hdu_q  : du_i;
-  assign in_dv  = hodd_q ? hdv_q  : dv_i;
+  assign in_nrm = hv_q ? hnrm_q : nrm_i;
+  assign in_col = hv_q ? hcol_q : col_i;
+  assign in_du  = hv_q ? hdu_q  : du_i;
+  assign in_dv  = hv_q ? hdv_q  : dv_i;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      ph_q   <= 1'b0;
-      hodd_q <= 1'b0;
-      cv_q   <= '0;
+      ph_q <= 2'd0;
+      hv_q <= 1'b0;
+      cv_q <= '0;
     end else if (en_i) begin
-      ph_q   <= !ph_q;
-      hodd_q <= valid_i && ph_q;
-      cv_q   <= {cv_q[CS-1:1], hodd_q || (valid_i && !ph_q)};
+      ph_q <= ph_q + 2'd1;
+      hv_q <= (ph_q == 2'd0) ? 1'b0 : (hv_q || valid_i);
+      cv_q <= {cv_q[CS-1:1], (ph_q == 2'd0) && (hv_q || valid_i)};
     end
   end
 
   always_ff @(posedge clk_i) begin
-    if (en_i) begin
+    if (en_i && valid_i && ph_q != 2'd0) begin
       hnrm_q <= nrm_i;
       hcol_q <= col_i;
       hdu_q  <= du_i;
@@ -234,41 +230,37 @@ module shade_unit
     end
   end
 
-  logic [1:0][7:0] rg_q;            // core S40: R and G held a clock for B
-  logic [1:0][7:0] rg2_q;           // core S41: R and G held again (an even pixel's output)
-  logic [7:0]      b_q;             // core S41: B held (an even pixel's output)
-  logic signed [8:0] idx [2];       // floor(c 255 + 0.5) per lane, in 0 .. 255 (S39; B in S40)
+  logic [7:0]      g_q;             // core S41: G (its floor held a clock)
+  logic [7:0]      r_q [40:41];     // core S40, S41: R (its floor held two clocks)
+  logic [2:0][7:0] res_q;           // the result held from core S41 to the output (S42 .. S44)
+  logic signed [8:0] idx;           // floor(c 255 + 0.5): R (S39), G (S40), B (S41); 0 .. 255
 
   // ---- float-unit outputs (named by their two results and the stages they appear in) --------
   f24_t uv2hy2_s213;                // du^2 (S2), h_y^2 (S13)
-  f24_t dv2cy_s231;                 // dv^2 (S2), C_y a (S31)
+  f24_t dvnc_s22131;                // dv^2 (S2), unit normal x (S20), z (S21), C_y a (S31)
   f24_t na_s34;                     // n_x (S3), n_z (S4)
   f24_t n1uv_s34;                   // n_y (S3), du^2 + dv^2 (S4)
   f24_t vvhh_s617;                  // vv (S6), hh (S17)
-  f24_t rv_s9;
   f24_t nsqa_s910;                  // n_x^2 (S9), n_z^2 (S10)
   f24_t nsq1v1_s910;                // n_y^2 (S9), v_y (S10)
   f24_t va_s1011;                   // v_x (S10), v_z (S11)
   f24_t nxyh1_s1112;                // nx2 + ny2 (S11), h_y (S12)
   f24_t ha_s1213;                   // h_x (S12), h_z (S13)
-  f24_t hsqa_s1314;                 // h_x^2 (S13), h_z^2 (S14)
+  f24_t hkd_s1328;                  // h_x^2 (S13), h_z^2 (S14), KD ndl (S27), ndh^2 (S28)
   f24_t nnhxy_s1415;                // nn (S14), hx2 + hy2 (S15)
-  f24_t rnh_s1920;                  // rn (S19), rh (S20)
-  f24_t nua_s2021;                  // unit normal x (S20), z (S21)
-  f24_t nunl1_s2021;                // unit normal y (S20), n_y l_y (S21)
+  f24_t rvnh_s91920;                // rv (S9), rn (S19), rh (S20)
+  f24_t nunh1_s2023;                // unit normal y (S20), n_y l_y (S21), n_x h_x (S22),
+                                    // n_z h_z (S23)
   f24_t nla_s2122;                  // n_x l_x (S21), n_z l_z (S22)
   f24_t hua_s2122;                  // unit half vector x (S21), z (S22)
   f24_t hunh1_s2122;                // unit half vector y (S21), n_y h_y (S22)
-  f24_t nha_s2223;                  // n_x h_x (S22), n_z h_z (S23)
   f24_t dxy_s2324;                  // nlx + nly (S23), nhx + nhy (S24)
   f24_t dot_s2526;                  // dot(n, l) (S25), dot(n, h) (S26)
-  f24_t kds1_s2728;                 // KD ndl (S27), ndh^2 (S28)
   f24_t acc1_s2934;                 // a (S29), C_y a + sp (S34)
-  f24_t s23_s2930;                  // ndh^4 (S29), ndh^8 (S30)
-  f24_t s4sp_s3132;                 // ndh^16 (S31), sp (S32)
+  f24_t ssp_s2932;                  // ndh^4 (S29), ndh^8 (S30), ndh^16 (S31), sp (S32)
   f24_t caa_s3031;                  // C_x a (S30), C_z a (S31)
   f24_t [1:0] cc_s34;               // C_c a + sp, per lane (lane 0: R, then B a clock later)
-  f24_t [1:0] k_s36, kh_s38;        // c 255, c 255 + 0.5
+  f24_t       k_s36, kh_s38;        // c 255, c 255 + 0.5 (R, then G and B a clock apart each)
 
   // ---- stage registers of the data path (no reset; "stream": lane 0, x then z a clock later) --
   f24_t       m2a_q;                // S1 / S2 stream: 2M_x, 2M_z
@@ -298,7 +290,9 @@ module shade_unit
   f24_t       ca_q   [31:32];       // stream C_x a, C_z a
   f24_t       ca1_q;                // S32: C_y a
   f24_t       sp_q;                 // S33: sp
-  f24_t [1:0] cl_q;                 // S35: clamped colour, per lane
+  f24_t       gh_q;                 // S35: c_G, held a clock
+  f24_t       bh_q;                 // S36: c_B, held a clock
+  f24_t       cl_q;                 // stream of the clamped colour: R (S35), G (S36), B (S37)
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
@@ -323,7 +317,7 @@ module shade_unit
         na_q[s] <= na_q[s-1];
         n1_q[s] <= n1_q[s-1];
       end
-      rv_q <= rv_s9;
+      rv_q <= rvnh_s91920;
       nxy_q <= nxyh1_s1112;
       nsq2_q[11] <= nsqa_s910;
       nsq2_q[12] <= nsq2_q[11];
@@ -333,60 +327,68 @@ module shade_unit
         h1_q[s] <= h1_q[s-1];
         ha_q[s] <= ha_q[s-1];
       end
-      hsq2_q <= hsqa_s1314;
+      hsq2_q <= hkd_s1328;
       nnm_q  <= max_np(nnhxy_s1415, SHADE_EPS);
       nnm2_q <= nnm_q;
-      rq_q   <= rnh_s1920;
-      nu1_q  <= nunl1_s2021;
-      nua_q  <= nua_s2021;
+      rq_q   <= rvnh_s91920;
+      nu1_q  <= nunh1_s2023;
+      nua_q  <= dvnc_s22131;
       // nlz is lane 0's output when the pixel is in S22, nhz the clock after (no pixel in S22 then)
-      z_q <= cv_q[22] ? nla_s2122 : nha_s2223;
+      z_q <= cv_q[22] ? nla_s2122 : nunh1_s2023;
       m_q <= max_np(dot_s2526, SHADE_ZERO);
       a_q <= acc1_s2934;
       ca_q[31]  <= caa_s3031;
       ca_q[32]  <= ca_q[31];
-      ca1_q <= dv2cy_s231;
-      sp_q <= s4sp_s3132;
-      for (int l = 0; l < 2; l++) cl_q[l] <= min_np(max_np(cc_s34[l], SHADE_ZERO), SHADE_ONE);
-      // R and G are the lanes' floors in core S39, B lane 0's in S40; an odd pixel is at the
-      // output (S41) in core S40, an even one in core S41, a clock later
-      rg_q  <= {idx[1][7:0], idx[0][7:0]};
-      rg2_q <= rg_q;
-      b_q   <= idx[0][7:0];
+      ca1_q <= dvnc_s22131;
+      sp_q <= ssp_s2932;
+      // the tail's stream: R (lane 0, S34), G (lane 1, S34, held a clock), B (lane 0, S35, held)
+      gh_q <= cc_s34[1];
+      bh_q <= cc_s34[0];
+      cl_q <= min_np(max_np(cv_q[34] ? cc_s34[0] : cv_q[35] ? gh_q : bh_q, SHADE_ZERO),
+                     SHADE_ONE);
+      // the floors come R (S39), G (S40), B (S41); the result is complete in core S41
+      r_q[40] <= idx[7:0];
+      r_q[41] <= r_q[40];
+      g_q     <= idx[7:0];
+      if (cv_q[41]) res_q <= {idx[7:0], g_q, r_q[41]};
     end
   end
 
   // ---- float units ----------------------------------------------------------------------------
-  // Operand selects: cv_q[a] = 1 means the unit's first operation (core stage a), else its
-  // second (a stage of the other parity; see the header).  -du, -dv: the sign bit flipped.
+  // Operand selects: cv_q[a] = 1 means the unit's operation of core stage a; the last operand
+  // of a select chain is the remaining operation's (stages of other phases mod 4; see the
+  // header).  -du, -dv: the sign bit flipped.
   f24_t neg_du9, neg_dv9;
   assign neg_du9 = {~du_q[9][23], du_q[9][22:0]};
   assign neg_dv9 = {~dv_q[9][23], dv_q[9][22:0]};
 
-  // 5: du^2 @1 / 7: h_y^2 @12; dv^2 @1 / 12: C_y a @30
+  // 5: du^2 @1 / 7: h_y^2 @12
   f24_t uh_sel;
   assign uh_sel = cv_q[1] ? du_q[1] : nxyh1_s1112;
   f24_mul u_uv2hy2 (.clk_i, .en_i, .a_i(uh_sel), .b_i(uh_sel), .y_o(uv2hy2_s213));
-  f24_mul u_dv2cy (.clk_i, .en_i, .a_i(cv_q[1] ? dv_q[1] : col1_q[30]),
-                   .b_i(cv_q[1] ? dv_q[1] : a_q), .y_o(dv2cy_s231));
+  // 5: dv^2 @1 / 4: n_x rn @19 / n_z rn @20 / 12: C_y a @30 (stages 1, 3, 0, 2 mod 4)
+  // (selected without cv_q[1], which already drives the selects of five units)
+  f24_mul u_dvnc (.clk_i, .en_i,
+                  .a_i(cv_q[30] ? col1_q[30] : (cv_q[19] || cv_q[20]) ? na_q[19] : dv_q[1]),
+                  .b_i(cv_q[30] ? a_q : cv_q[19] ? rvnh_s91920 : cv_q[20] ? rq_q : dv_q[1]),
+                  .y_o(dvnc_s22131));
 
   // 1: n_x - 1 @1 / n_z - 1 @2; n_y - 1 @1 / 5: du^2 + dv^2 @2
   f24_add u_na   (.clk_i, .en_i, .a_i(m2a_q), .b_i(NEG_ONE), .y_o(na_s34));
   f24_add u_n1uv (.clk_i, .en_i, .a_i(cv_q[1] ? m2y_q : uv2hy2_s213),
-                  .b_i(cv_q[1] ? NEG_ONE : dv2cy_s231), .y_o(n1uv_s34));
+                  .b_i(cv_q[1] ? NEG_ONE : dvnc_s22131), .y_o(n1uv_s34));
 
-  // 5: vv @4 / 7: hh @15; 6: rv @6
+  // 5: vv @4 / 7: hh @15
   f24_add u_vvhh (.clk_i, .en_i, .a_i(cv_q[4] ? n1uv_s34 : nnhxy_s1415),
                   .b_i(cv_q[4] ? cfg_i.d2 : hsq2_q), .y_o(vvhh_s617));
-  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rv (.clk_i, .en_i, .a_i(vvhh_s617), .y_o(rv_s9));
 
   // 2: n_x^2 @8 / n_z^2 @9; n_y^2 @8 / 6: v_y @9
   f24_mul u_nsqa   (.clk_i, .en_i, .a_i(na_q[8]), .b_i(na_q[8]), .y_o(nsqa_s910));
   f24_mul u_nsq1v1 (.clk_i, .en_i, .a_i(cv_q[8] ? n1_q[8] : neg_dv9),
-                    .b_i(cv_q[8] ? n1_q[8] : rv_s9), .y_o(nsq1v1_s910));
+                    .b_i(cv_q[8] ? n1_q[8] : rvnh_s91920), .y_o(nsq1v1_s910));
   // 6: v_x @9 / v_z @10
   f24_mul u_va (.clk_i, .en_i, .a_i(cv_q[9] ? neg_du9 : cfg_i.d),
-                .b_i(cv_q[9] ? rv_s9 : rv_q), .y_o(va_s1011));
+                .b_i(cv_q[9] ? rvnh_s91920 : rv_q), .y_o(va_s1011));
 
   // 2: nx2 + ny2 @9 / 7: h_y = l_y + v_y @10
   f24_add u_nxyh1 (.clk_i, .en_i, .a_i(cv_q[9] ? nsqa_s910 : light[1]), .b_i(nsq1v1_s910),
@@ -394,81 +396,103 @@ module shade_unit
   // 7: h_x @10 / h_z @11
   f24_add u_ha (.clk_i, .en_i, .a_i(cv_q[10] ? light[0] : light[2]), .b_i(va_s1011),
                 .y_o(ha_s1213));
-  // 7: h_x^2 @12 / h_z^2 @13; h_y^2 @12
-  f24_mul u_hsqa (.clk_i, .en_i, .a_i(ha_s1213), .b_i(ha_s1213), .y_o(hsqa_s1314));
+  // 7: h_x^2 @12 / h_z^2 @13 / 11: KD ndl @26 / 10: ndh^2 @27 (stages 0 .. 3 mod 4)
+  f24_mul u_hkd (.clk_i, .en_i, .a_i(cv_q[26] ? cfg_i.kd : cv_q[27] ? m_q : ha_s1213),
+                 .b_i((cv_q[26] || cv_q[27]) ? m_q : ha_s1213), .y_o(hkd_s1328));
   // 2: nn @12 / 7: hx2 + hy2 @13
-  f24_add u_nnhxy (.clk_i, .en_i, .a_i(cv_q[12] ? nxy_q : hsqa_s1314),
+  f24_add u_nnhxy (.clk_i, .en_i, .a_i(cv_q[12] ? nxy_q : hkd_s1328),
                    .b_i(cv_q[12] ? nsq2_q[12] : uv2hy2_s213), .y_o(nnhxy_s1415));
-  // 4: rn @16 / 8: rh @17
-  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rnh (.clk_i, .en_i, .a_i(cv_q[16] ? nnm2_q : vvhh_s617),
-                                      .y_o(rnh_s1920));
+  // 6: rv @6 / 4: rn @16 / 8: rh @17 (stages 2, 0, 1 mod 4; vv and hh are both u_vvhh's output)
+  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rvnh (.clk_i, .en_i, .a_i(cv_q[16] ? nnm2_q : vvhh_s617),
+                                       .y_o(rvnh_s91920));
 
-  // 4: n_x rn @19 / n_z rn @20; n_y rn @19 / 9: n_y l_y @20
-  f24_mul u_nua (.clk_i, .en_i, .a_i(na_q[19]), .b_i(cv_q[19] ? rnh_s1920 : rq_q),
-                 .y_o(nua_s2021));
-  f24_mul u_nunl1 (.clk_i, .en_i, .a_i(cv_q[19] ? n1_q[19] : nunl1_s2021),
-                   .b_i(cv_q[19] ? rnh_s1920 : light[1]), .y_o(nunl1_s2021));
+  // n_y rn @19 / 9: n_y l_y @20 / n_x h_x @21 / n_z h_z @22
+  f24_mul u_nunh1 (.clk_i, .en_i,
+                   .a_i(cv_q[19] ? n1_q[19] : cv_q[20] ? nunh1_s2023 : nua_q),
+                   .b_i(cv_q[19] ? rvnh_s91920 : cv_q[20] ? light[1] : hua_s2122),
+                   .y_o(nunh1_s2023));
   // 9: n_x l_x @20 / n_z l_z @21
-  f24_mul u_nla (.clk_i, .en_i, .a_i(nua_s2021), .b_i(cv_q[20] ? light[0] : light[2]),
+  f24_mul u_nla (.clk_i, .en_i, .a_i(dvnc_s22131), .b_i(cv_q[20] ? light[0] : light[2]),
                  .y_o(nla_s2122));
   // 8: h_x rh @20 / h_z rh @21; h_y rh @20 / 9: n_y h_y @21
-  f24_mul u_hua (.clk_i, .en_i, .a_i(ha_q[20]), .b_i(cv_q[20] ? rnh_s1920 : rq_q),
+  f24_mul u_hua (.clk_i, .en_i, .a_i(ha_q[20]), .b_i(cv_q[20] ? rvnh_s91920 : rq_q),
                  .y_o(hua_s2122));
   f24_mul u_hunh1 (.clk_i, .en_i, .a_i(cv_q[20] ? h1_q[20] : nu1_q),
-                   .b_i(cv_q[20] ? rnh_s1920 : hunh1_s2122), .y_o(hunh1_s2122));
-  // 9: n_x h_x @21 / n_z h_z @22
-  f24_mul u_nha (.clk_i, .en_i, .a_i(nua_q), .b_i(hua_s2122), .y_o(nha_s2223));
+                   .b_i(cv_q[20] ? rvnh_s91920 : hunh1_s2122), .y_o(hunh1_s2122));
   // 9: nlx + nly @21 / nhx + nhy @22
-  f24_add u_dxy (.clk_i, .en_i, .a_i(cv_q[21] ? nla_s2122 : nha_s2223),
-                 .b_i(cv_q[21] ? nunl1_s2021 : hunh1_s2122), .y_o(dxy_s2324));
+  f24_add u_dxy (.clk_i, .en_i, .a_i(cv_q[21] ? nla_s2122 : nunh1_s2023),
+                 .b_i(cv_q[21] ? nunh1_s2023 : hunh1_s2122), .y_o(dxy_s2324));
   // 9: dot(n, l) @23 / dot(n, h) @24
   f24_add u_dot (.clk_i, .en_i, .a_i(dxy_s2324), .b_i(z_q), .y_o(dot_s2526));
 
-  // 11: KD ndl @26 / 10: ndh^2 @27; a @27 / 12: C_y a + sp @32 (lane 1 of the tail)
-  f24_mul u_kds1 (.clk_i, .en_i, .a_i(cv_q[26] ? cfg_i.kd : m_q), .b_i(m_q),
-                  .y_o(kds1_s2728));
+  // 11: a @27 / 12: C_y a + sp @32 (lane 1 of the tail)
   f24_add u_acc1 (.clk_i, .en_i, .a_i(cv_q[27] ? cfg_i.ambient : ca1_q),
-                  .b_i(cv_q[27] ? kds1_s2728 : s4sp_s3132), .y_o(acc1_s2934));
+                  .b_i(cv_q[27] ? hkd_s1328 : ssp_s2932), .y_o(acc1_s2934));
   assign cc_s34[1] = acc1_s2934;
-  // 10: ^4 @28 / ^8 @29; ^16 @30 / 11: sp = KS s @31
+  // 10: ^4 @28 / ^8 @29 / ^16 @30 / 11: sp = KS s @31 (stages 0 .. 3 mod 4)
   f24_t s2_sel;
-  assign s2_sel = cv_q[28] ? kds1_s2728 : s23_s2930;
-  f24_mul u_s23 (.clk_i, .en_i, .a_i(s2_sel), .b_i(s2_sel), .y_o(s23_s2930));
-  f24_mul u_s4sp (.clk_i, .en_i, .a_i(cv_q[30] ? s23_s2930 : cfg_i.ks),
-                  .b_i(cv_q[30] ? s23_s2930 : s4sp_s3132), .y_o(s4sp_s3132));
+  assign s2_sel = cv_q[28] ? hkd_s1328 : ssp_s2932;
+  f24_mul u_ssp (.clk_i, .en_i, .a_i(cv_q[31] ? cfg_i.ks : s2_sel), .b_i(s2_sel),
+                 .y_o(ssp_s2932));
   // 12: C_x a @29 / C_z a @30
   f24_mul u_caa (.clk_i, .en_i, .a_i(cola_q[29]), .b_i(cv_q[29] ? acc1_s2934 : a_q),
                  .y_o(caa_s3031));
 
-  // the tail, per lane: 12: + sp @32 (lane 0: R, then B @33; lane 1's add is u_acc1); 13: clamp;
-  // 14: unorm8
-  f24_add u_cc0 (.clk_i, .en_i, .a_i(ca_q[32]), .b_i(cv_q[32] ? s4sp_s3132 : sp_q),
+  // the tail: 12: + sp @32 (R, then B @33; G's add is u_acc1); 13: clamp (cl_q: R, G, B a
+  // clock apart); 14: unorm8
+  f24_add u_cc0 (.clk_i, .en_i, .a_i(ca_q[32]), .b_i(cv_q[32] ? ssp_s2932 : sp_q),
                  .y_o(cc_s34[0]));
-  for (genvar l = 0; l < 2; l++) begin : g_lane
-    f24_mul u_k   (.clk_i, .en_i, .a_i(cl_q[l]), .b_i(SHADE_255), .y_o(k_s36[l]));
-    f24_add u_kh  (.clk_i, .en_i, .a_i(k_s36[l]), .b_i(SHADE_HALF), .y_o(kh_s38[l]));
-    // sat_o is not needed: the operand is in [0.5, 255.5] or NaN
-    f24_to_index #(.W(9)) u_idx (.clk_i, .en_i, .a_i(kh_s38[l]), .idx_o(idx[l]), .sat_o());
-  end
+  // one lane for the three channels, R, G and B a clock apart (operations @35 / @36 / @37, then
+  // @36 .. @38 and @38 .. @40)
+  f24_mul u_k  (.clk_i, .en_i, .a_i(cl_q), .b_i(SHADE_255), .y_o(k_s36));
+  f24_add u_kh (.clk_i, .en_i, .a_i(k_s36), .b_i(SHADE_HALF), .y_o(kh_s38));
+  // sat_o is not needed: the operand is in [0.5, 255.5] or NaN
+  f24_to_index #(.W(9)) u_idx (.clk_i, .en_i, .a_i(kh_s38), .idx_o(idx), .sat_o());
   logic unused_idx;                 // bit 8: the index is in 0 .. 255 (see the header)
-  assign unused_idx = idx[0][8] ^ idx[1][8];
-  assign rgb_o = ph_q ? {b_q, rg2_q} : {idx[0][7:0], rg_q};  // ph_q = 1: an even pixel (core S41)
+  assign unused_idx = idx[8];
+  // a pixel that waited 3 clocks is at the output in core S41, the others in S42 .. S44
+  assign rgb_o = cv_q[41] ? {idx[7:0], g_q, r_q[41]} : res_q;
 
 `ifndef SYNTHESIS
-  // The core stages of one parity: bit k set for odd k (odd = 1) or even k (odd = 0).
-  function automatic logic [CS:1] stage_parity(input logic odd);
+  // The core stages k with k mod 4 = r.
+  function automatic logic [CS:1] stage_phase(input logic [1:0] r);
     logic [CS:1] m;
-    for (int k = 1; k <= CS; k++) m[k] = ((k % 2) == 1) == odd;
+    for (int k = 1; k <= CS; k++) m[k] = (k % 4) == int'(r);
     return m;
   endfunction
 
-  // No pixel on the enabled clock after one, so the hold registers are free when a pixel comes.
+  // A shared unit's operation stages (0: none), as a mask of core stages.
+  function automatic logic [CS:1] ops(input int a, input int b, input int c, input int d);
+    logic [CS:1] m;
+    m = '0;
+    for (int k = 1; k <= CS; k++) m[k] = (k == a) || (k == b) || (k == c) || (k == d);
+    return m;
+  endfunction
+
+  // Every float unit with more than one operation: the stages it takes its operands in.
+  localparam int NSH = 26;
+  logic [CS:1] shared [NSH];
+  assign shared = '{
+    ops(1, 12, 0, 0),   ops(1, 19, 20, 30),  ops(8, 9, 0, 0),     ops(8, 9, 0, 0),    // mul
+    ops(9, 10, 0, 0),   ops(12, 13, 26, 27), ops(19, 20, 21, 22), ops(20, 21, 0, 0),
+    ops(20, 21, 0, 0),  ops(20, 21, 0, 0),   ops(28, 29, 30, 31), ops(29, 30, 0, 0),
+    ops(35, 36, 37, 0),
+    ops(1, 2, 0, 0),    ops(1, 2, 0, 0),     ops(4, 15, 0, 0),    ops(9, 10, 0, 0),   // add
+    ops(10, 11, 0, 0),  ops(12, 13, 0, 0),   ops(21, 22, 0, 0),   ops(23, 24, 0, 0),
+    ops(27, 32, 0, 0),  ops(32, 33, 0, 0),   ops(36, 37, 38, 0),
+    ops(6, 16, 17, 0),  ops(38, 39, 40, 0)};                                          // rsqrt, idx
+
+  // At least 4 enabled clocks between two pixels, so the hold registers are free when one comes.
   pixel_spacing: assert property (@(posedge clk_i) disable iff (!rst_ni)
-    en_i && valid_i |-> !stage_v[1] && !hodd_q);
-  // The core's pixels are all in odd or all in even stages (ph_q = 1: odd), so a unit that takes
-  // its two operations in stages of different parity is never asked for two in one clock.
+    en_i && valid_i |-> !(|stage_v[3:1]) && !hv_q);
+  // The core's pixels are all in stages k with k mod 4 = ph_q, so a unit whose operations are in
+  // stages that differ pairwise by amounts not divisible by 4 never gets two in one clock.
   core_aligned: assert property (@(posedge clk_i) disable iff (!rst_ni)
-    (cv_q & ~stage_parity(ph_q)) == '0);
+    (cv_q & ~stage_phase(ph_q)) == '0);
+  for (genvar u = 0; u < NSH; u++) begin : g_shared
+    unit_once: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      $onehot0(cv_q & shared[u]));
+  end
 `endif
 
 endmodule

@@ -13,10 +13,11 @@ from straight above or from below the surface, AMBIENT > 1):
   tenth, random bit patterns in every input word.
 
 Pixels stream in with random valid bubbles (random data on the ports while valid_i = 0), a
-pixel every other enabled clock at most (the unit's blue channel takes the red channel's lane a
-clock later), and en_i dropped at random (20% or 60% of the clocks, by configuration); after
-every clock valid_o, tag_o and rgb_o must be those of the pixel (or
-bubble) presented exactly SHADE_LAT enabled clocks earlier, and hold while en_i = 0.  The
+pixel every 4th enabled clock at most (the unit's float units serve up to four operations), at
+that minimum spacing and at random larger ones, so pixels come on every phase modulo 4 (counted
+and checked: the unit aligns them to phase 0), and en_i dropped at random (20% or 60% of the
+clocks, by configuration); after every clock valid_o, tag_o and rgb_o must be those of the pixel
+(or bubble) presented exactly SHADE_LAT enabled clocks earlier, and hold while en_i = 0.  The
 pipeline is drained between configurations (the configuration is static while busy).  A reset
 with pixels in flight (en_i = 0 during the reset) must clear valid.  The hard-wired constants of
 rtl/pipe/shade_pkg.sv are checked against the model's.
@@ -186,6 +187,9 @@ class Bench:
         self.checked = 0
         self.bad: list[str] = []
         self.nbad = 0
+        self.phases = [0] * 4    # pixels presented per phase (enabled edges since reset, mod 4)
+        self.gaps = [0] * 9      # pixels per spacing from the previous one (4 .. 7, 8 = 8 or more)
+        self.last = -100         # the enabled edge of the last pixel
         self.what: dict[int, str] = {}  # tag -> description, for mismatch reports
 
     async def start(self):
@@ -211,6 +215,7 @@ class Bench:
         await FallingEdge(d.clk_i)
         d.rst_ni.value = 1
         self.enabled = 0
+        self.last = -100
         self.entries = []
         if int(d.valid_o.value) != 0:
             raise AssertionError("valid_o is 1 after reset")
@@ -253,10 +258,10 @@ class Bench:
         sent = 0
         drain_left = SHADE_LAT + 1
         cyc = 0
-        took = False  # the last enabled clock took a pixel: a pixel every other one at most
+        since = 4  # enabled clocks since the last pixel: a pixel every 4th one at most
         while drain_left > 0:
             en = en_seq[cyc % m]
-            valid = sent < n and val_seq[cyc % m] and not took
+            valid = sent < n and val_seq[cyc % m] and since >= 4
             if valid:
                 tag = sent % (1 << TAG_W)
                 self.what[tag] = (f"[{cfg.name}] pixel {sent}: C/M/du/dv = "
@@ -279,7 +284,11 @@ class Bench:
             await FallingEdge(d.clk_i)
             cyc += 1
             if en:
-                took = valid
+                since = 1 if valid else since + 1
+                if valid:
+                    self.phases[self.enabled % 4] += 1
+                    self.gaps[min(self.enabled - self.last, 8)] += 1
+                    self.last = self.enabled
                 self.enabled += 1
                 self.entries.append((valid, tag, rgb[sent] if valid else 0))
                 if valid:
@@ -337,7 +346,7 @@ async def shade_random_and_directed(dut):
     d.cfg_i.value = cfg.packed()
     d.en_i.value = 1
     for k, r in enumerate(x[:SHADE_LAT // 2]):
-        d.valid_i.value = int(k % 2 == 0)  # a pixel every other clock
+        d.valid_i.value = int(k % 4 == 0)  # a pixel every 4th clock
         d.col_i.value = (int(r[2]) << 48) | (int(r[1]) << 24) | int(r[0])
         await RisingEdge(d.clk_i)
         await FallingEdge(d.clk_i)
@@ -355,6 +364,11 @@ async def shade_random_and_directed(dut):
                   "over %d configurations, %d checked at the output, %d mismatches", total,
                   counts["directed"], counts["random"], counts["wild"], len(cfgs), bench.checked,
                   bench.nbad)
+    dut._log.info("pixels per arrival phase (mod 4) %s, per spacing 4 .. 7, >= 8: %s",
+                  bench.phases, bench.gaps[4:])
+    assert all(bench.phases), f"a phase of arrival was never driven: {bench.phases}"
+    assert min(bench.gaps[4:]) > 0, f"a spacing was never driven: {bench.gaps}"
+    assert not any(bench.gaps[:4]), f"pixels closer than 4 enabled clocks: {bench.gaps}"
     assert bench.checked == total, f"{bench.checked} pixels came out, {total} went in"
     if bench.bad:
         raise AssertionError("\n".join(bench.bad + [f"{bench.nbad} mismatching pixels of {total}"]))
