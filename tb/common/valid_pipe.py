@@ -26,7 +26,7 @@ The unit's pipeline must hold only bubbles when :meth:`ValidPipe.run` starts: af
 :meth:`ValidPipe.reset` or a previous :meth:`run` (which stops when its last operand set came
 out, so that only bubbles follow it).  Configuration inputs are set by the caller between runs.
 
-(Used by tb/view_calc, tb/mip_level, tb/tex_addr and tb/tex_filter.)
+(Used by tb/view_calc, tb/mip_level, tb/tex_addr; tb/tex_filter, whose driver has a ready input, uses its reset.)
 """
 from __future__ import annotations
 

@@ -36,6 +36,7 @@ from cocotb.triggers import FallingEdge, RisingEdge, Timer
 from model import f24, f24_vectors as vec, texture
 from model.arith import ENGINES
 from tb.common import fp_unit, report, runner
+from tb.common.valid_pipe import ValidPipe
 
 LATENCY = 15  # pipe_pkg::TEX_FILTER_LAT
 TEXELS = ["t00_i", "t01_i", "t10_i", "t11_i"]
@@ -167,18 +168,8 @@ class HandshakePipe:
 
     async def reset(self, cycles: int = 2) -> None:
         """rst_ni low for ``cycles`` edges with en_i = 0 and valid_i = 1 (the reset does not wait
-        for en_i and nothing is taken)."""
-        d = self.dut
-        d.rst_ni.value = 0
-        d.en_i.value = 0
-        d.valid_i.value = 1
-        await FallingEdge(d.clk_i)
-        for _ in range(cycles):
-            await RisingEdge(d.clk_i)
-            await FallingEdge(d.clk_i)
-            assert int(d.valid_o.value) == 0, "valid_o not cleared by rst_ni"
-        d.rst_ni.value = 1
-        d.valid_i.value = 0
+        for en_i and nothing is taken): ValidPipe's reset, then this driver's state."""
+        await ValidPipe.reset(self, cycles)  # type: ignore[arg-type]  # uses only self.dut
         self.hist.extend([-1] * LATENCY)
         self.last_ready = 0
         self.prev = self.sample()
