@@ -11,7 +11,8 @@ compare the RTL with it clock by clock.  The behaviour (see the RTL header for t
   presented during the sweep answers a miss and allocates nothing, like one that meets a fill;
 - a miss to a line held by an MSHR merges; else the lowest free MSHR is allocated and its AR queued;
   with every MSHR busy the miss is not recorded;
-- replacement: the lowest invalid way, else tree pseudo-LRU (touched by hits and fills);
+- replacement: the lowest invalid way, else round robin per set (the way after the one last filled
+  in the set; only fills move it);
 - a line whose read had an AXI error is not cached; its MSHR answers rs_err to the first lookup of
   the line and to those of the next ERR_HOLD clocks, then frees;
 - arid = {epoch, MSHR index}; the epoch advances at each reset; beats of other epochs are ignored.
@@ -70,32 +71,11 @@ class CacheConfig:
     def epoch_w(self) -> int:
         return self.id_w - self.midx_w
 
-    @property
-    def way_lvls(self) -> int:
-        return clog2(self.ways)
-
     def params(self) -> dict[str, int]:
         """As RTL parameters."""
         return {"ADDR_W": self.addr_w, "DATA_W": self.data_w, "LINE_BYTES": self.line_bytes,
                 "SETS": self.sets, "WAYS": self.ways, "MSHRS": self.mshrs, "ID_W": self.id_w,
                 "ERR_HOLD": self.err_hold}
-
-
-def plru_victim(cfg: CacheConfig, bits: int) -> int:
-    n = 1
-    for _ in range(cfg.way_lvls):
-        n = 2 * n + ((bits >> (n - 1)) & 1)
-    return n - cfg.ways
-
-
-def plru_touch(cfg: CacheConfig, bits: int, way: int) -> int:
-    n = way + cfg.ways
-    for _ in range(cfg.way_lvls):
-        p = n >> 1
-        bit = 1 if n % 2 == 0 else 0  # point away from the accessed child
-        bits = (bits & ~(1 << (p - 1))) | (bit << (p - 1))
-        n = p
-    return bits
 
 
 @dataclass
@@ -151,7 +131,8 @@ class HeightCacheModel:
     def _clear(self) -> None:
         c = self.cfg
         self.valid = [[False] * c.ways for _ in range(c.sets)]
-        self.plru = [0] * c.sets
+        self.rr = [0] * c.sets  # round-robin pointer per set: the next victim among valid ways
+        self.last_fill_set: int | None = None  # the set of the previous clock's fill
         self.mshr = [Mshr(buf=[0] * c.beats) for _ in range(c.mshrs)]
         self.arq: deque[int] = deque()
         self.fill_q = False
@@ -199,7 +180,7 @@ class HeightCacheModel:
         c = self.cfg
         m = self.mshr[self.fill_idx]
         _, st, tag, _ = self._split(m.la << c.off_w)
-        way = plru_victim(c, self.plru[st])
+        way = self.rr[st]
         for w in range(c.ways - 1, -1, -1):
             if not self.valid[st][w]:
                 way = w
@@ -210,7 +191,7 @@ class HeightCacheModel:
         c = self.cfg
         ev = {"alloc": False, "ar": False, "beat": False, "fill": False, "err_line": False,
               "conflict": False, "merge": False, "full": False, "stale_beat": False,
-              "hit_fill_set": False, "sweep": False}
+              "hit_fill_set": False, "fill_fill_set": False, "sweep": False}
         fill = self._fill_target() if self.fill_q else None
         if not i.rst_n:
             if not self.in_rst and self.epoch is not None:
@@ -277,19 +258,22 @@ class HeightCacheModel:
                 raise AssertionError("model: rlast on a beat other than the last")
         ar_pop = len(self.arq) > 0 and bool(i.arready)
 
-        # ---- fill and directory (pseudo-LRU: the hit first, then the fill)
-        if hit:
-            self.plru[s1set] = plru_touch(c, self.plru[s1set], hit_way)
+        # ---- fill and directory
         if fill is not None:
             fset, ftag, fway = fill
             m = self.mshr[self.fill_idx]
             self.ram[fway][fset] = (ftag, b"".join(int(d).to_bytes(c.beat_bytes, "little")
                                                    for d in m.buf))
-            self.plru[fset] = plru_touch(c, self.plru[fset], fway)
+            self.rr[fset] = (fway + 1) % c.ways
             self.valid[fset][fway] = True
             ev["fill"] = True
-            # a hit and a fill touch the same set's pseudo-LRU bits in one clock (the fill last)
+            # a hit and a fill on the same set in one clock
             ev["hit_fill_set"] = hit and fset == s1set
+            # a fill on the set the previous clock's fill wrote (the RTL forwards that write)
+            ev["fill_fill_set"] = self.last_fill_set == fset
+            self.last_fill_set = fset
+        else:
+            self.last_fill_set = None
 
         # ---- MSHRs
         for k, m in enumerate(self.mshr):

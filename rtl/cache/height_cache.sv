@@ -17,12 +17,14 @@
 // tag = the bits above.  Per way two simple dual-port RAMs (cache_sdp_ram): the tags, and the
 // lines, written a whole line at a time and read one 16-bit word (the one holding the texel) at a
 // time; the valid bits are a RAM too (a word of WAYS bits per set, two copies for two read
-// ports), the replacement state is flops.  Replacement: an invalid way first (lowest
-// index), else tree pseudo-LRU (WAYS - 1 bits per set; exact LRU for WAYS = 2), updated by hits
-// and fills.  Timing only, results unchanged: a fill's set state is read in the last-beat clock
-// and the replacement state is written the clock after its update, with the pending updates
-// forwarded (see "fill" and "directory update").  The lookup path is plain data flow, nowhere
-// wider than 64 bits: a lookup reads one 16-bit word per way, never a whole line.
+// ports), and so is the replacement state, beside the valid bits in the fill's copy.
+// Replacement: an invalid way first (lowest index), else round robin per set (FIFO order: the
+// way after the one last filled in the set), so only fills write the replacement state and it
+// needs no port for hits.  (A tree pseudo-LRU touched by hits needs two writers a clock, a hit's
+// and a fill's, and three reads: as flip-flops, 512 sets x 3 bits, it was about 5,700 of the
+// pipeline's 91,000 LUT4s.)  Timing only, results unchanged: a fill's set state is read in the
+// last-beat clock, with the pending fill forwarded (see "fill").  The lookup path is plain data
+// flow, nowhere wider than 64 bits: a lookup reads one 16-bit word per way, never a whole line.
 //
 // Misses (stage 1, rs_hit_o = 0):
 //   - the line is already held by an MSHR (being read, or errored): merged, no new read;
@@ -64,7 +66,7 @@ module height_cache
   parameter int unsigned DATA_W     = 64,  // AXI data width
   parameter int unsigned LINE_BYTES = 32,  // cache line size (power of two, a multiple of DATA_W/8)
   parameter int unsigned SETS       = 64,  // sets (power of two, >= 2)
-  parameter int unsigned WAYS       = 2,   // associativity (power of two); tree pseudo-LRU
+  parameter int unsigned WAYS       = 2,   // associativity (power of two); round robin per set
   parameter int unsigned MSHRS      = 4,   // outstanding line reads (misses merged per line)
   parameter int unsigned ID_W       = 4,   // AXI ID width (> log2(MSHRS): the rest is the epoch)
   parameter int unsigned ERR_HOLD   = 64   // clocks an errored line keeps answering rs_err_o
@@ -110,8 +112,7 @@ module height_cache
   localparam int unsigned BEAT_W     = (BEATS > 1) ? $clog2(BEATS) : 1;
   localparam int unsigned BEAT_BYTES = DATA_W / 8;
   localparam int unsigned WAY_W      = (WAYS > 1) ? $clog2(WAYS) : 1;
-  localparam int unsigned WAY_LVLS   = $clog2(WAYS);             // pseudo-LRU tree depth
-  localparam int unsigned PLRU_W     = (WAYS > 1) ? WAYS - 1 : 1;
+  localparam int unsigned WAY_LVLS   = $clog2(WAYS);
   localparam int unsigned MIDX_W     = (MSHRS > 1) ? $clog2(MSHRS) : 1;
   localparam int unsigned EPOCH_W    = ID_W - MIDX_W;
   localparam int unsigned QCNT_W     = $clog2(MSHRS + 1);
@@ -139,38 +140,10 @@ module height_cache
     $error("height_cache: ERR_HOLD must be >= 1");
   end
 
-  // ---------------------------------------------------------------- pseudo-LRU (tree) helpers
-  // Node n of the tree (1 .. WAYS-1, children 2n and 2n+1, leaf WAYS + w is way w) is bit n-1:
-  // 0 = the next victim is in the left subtree, 1 = in the right one.
-  function automatic logic [WAY_W-1:0] plru_victim(input logic [PLRU_W-1:0] b);
-    int unsigned n;
-    n = 1;
-    for (int unsigned l = 0; l < WAY_LVLS; l++) n = 2 * n + (b[n-1] ? 1 : 0);
-    return WAY_W'(n - WAYS);
-  endfunction
-
-  // Mark way w most recently used: every node on its path points away from it.
-  function automatic logic [PLRU_W-1:0] plru_touch(input logic [PLRU_W-1:0] b,
-                                                   input logic [WAY_W-1:0] w);
-    int unsigned n;
-    logic [PLRU_W-1:0] r;
-    r = b;
-    n = int'(w) + WAYS;
-    for (int unsigned l = 0; l < WAY_LVLS; l++) begin
-      r[(n >> 1) - 1] = (n % 2 == 0);
-      n = n >> 1;
-    end
-    return r;
-  endfunction
-
   // ---------------------------------------------------------------- state
   // Cache directory (flops) and RAM read ports.
   // The valid bits are RAM (u_valid_lk / u_valid_fill: one copy per read port), cleared by a
-  // sweep after reset (see "valid bits").  The pseudo-LRU bits are flops, packed, each set's
-  // update decoded explicitly (as an unpacked array, cleared in a reset loop and written from two
-  // places, it would be a memory that synthesis maps to flops through a multiplexer chain per
-  // write port).
-  logic [SETS-1:0][PLRU_W-1:0] plru_q;
+  // sweep after reset (see "valid bits"); u_valid_fill also holds each set's round-robin pointer.
   logic [TAG_W-1:0]  tag_rd  [WAYS];  // the tag of each way at the looked-up set
   logic [15:0]       word_rd [WAYS];  // the 16-bit word holding the texel, of each way
 
@@ -197,11 +170,10 @@ module height_cache
   logic [LA_W-1:0]   fill_la_q;   // its line address, registered with the last beat
   logic [MIDX_W-1:0] r_idx;       // the MSHR an R beat belongs to (R channel, below)
 
-  // Directory updates of the previous clock, written into plru_q this clock (see "directory
-  // update"): a hit's way, then a fill's way.
-  logic              pu_hit_q, pu_fill_q;
-  logic [SET_W-1:0]  pu_hset_q, pu_fset_q;
-  logic [WAY_W-1:0]  pu_hway_q, pu_fway_q;
+  // The fill of the previous clock (its RAM write may not show in a read of its own clock).
+  logic              pu_fill_q;
+  logic [SET_W-1:0]  pu_fset_q;
+  logic [WAY_W-1:0]  pu_fway_q;
 
   // The valid bits' reset sweep (see "valid bits").
   logic              sweep_q;          // the sweep is running
@@ -224,34 +196,30 @@ module height_cache
   logic [TAG_W-1:0]  fill_tag;
   logic [WAY_W-1:0]  fill_way;
   logic [WAYS-1:0]   fill_vbits;
-  logic [PLRU_W-1:0] plru_wh, plru_wf, fill_plru, fill_p1;
+  logic [WAY_W-1:0]  fill_ptr;     // the set's round-robin pointer
   logic [SET_W-1:0]  pre_set;      // last-beat clock: the set of the line being completed
-  logic [WAYS-1:0]   pre_vbits;  // fill clock: that set's valid bits, read a clock earlier
-  logic [PLRU_W-1:0] pre_plru_q;   // ... and its replacement state (with the updates pending then)
+  logic [WAYS-1:0]   pre_vbits;    // fill clock: that set's valid bits, read a clock earlier
+  logic [WAY_W-1:0]  pre_ptr;      // ... and its round-robin pointer
+
+  // The way after w in round-robin order.
+  function automatic logic [WAY_W-1:0] rr_next(input logic [WAY_W-1:0] w);
+    return WAY_W'((32'(w) + 1) % WAYS);
+  endfunction
 
   // The fill clock starts from registers.  The line address is loaded in the clock of the last
-  // beat (the MSHR's address cannot change from then until this fill frees it), and so are the
-  // set's valid bits and replacement state (the SETS-way reads), as they were at the start of
-  // that clock with the replacement updates then pending; the fill clock adds the updates of the
-  // last-beat clock itself (a fill's valid bit; a hit's, then a fill's way touched), which are in
-  // pu_*_q now.  So the victim is chosen from exactly the state an update in its own clock gives.
+  // beat (the MSHR's address cannot change from then until this fill frees it), and the set's
+  // valid bits and round-robin pointer are read from RAM in that clock; the fill clock corrects
+  // them for the fill of the last-beat clock itself (pu_*_q), whose write that read may not have
+  // seen.  So the victim is chosen from exactly the state the fills before it left.
   assign pre_set    = mshr_la_q[r_idx][SET_W-1:0];
   assign fill_la    = fill_la_q;
   assign fill_set   = fill_la[SET_W-1:0];
   assign fill_tag   = fill_la[LA_W-1:SET_W];
   assign fill_vbits = pre_vbits | ((pu_fill_q && pu_fset_q == fill_set)
                                      ? WAYS'(1) << pu_fway_q : '0);
-  assign fill_p1    = (pu_hit_q && pu_hset_q == fill_set) ? plru_touch(pre_plru_q, pu_hway_q)
-                                                          : pre_plru_q;
-  assign fill_plru  = (pu_fill_q && pu_fset_q == fill_set) ? plru_touch(fill_p1, pu_fway_q)
-                                                           : fill_p1;
-  always_ff @(posedge clk_i) begin
-    pre_plru_q  <= (pu_fill_q && pu_fset_q == pre_set) ? plru_wf
-                 : (pu_hit_q && pu_hset_q == pre_set)  ? plru_wh
-                 :                                       plru_q[pre_set];
-  end
+  assign fill_ptr   = (pu_fill_q && pu_fset_q == fill_set) ? rr_next(pu_fway_q) : pre_ptr;
   always_comb begin
-    fill_way = plru_victim(fill_plru);
+    fill_way = fill_ptr;
     for (int w = WAYS - 1; w >= 0; w--) begin
       if (!fill_vbits[w]) fill_way = WAY_W'(w);  // an invalid way first, the lowest
     end
@@ -299,18 +267,15 @@ module height_cache
   end
 
   // ---------------------------------------------------------------- stage 1: compare
-  logic [SET_W-1:0]  s1_set;
   logic [TAG_W-1:0]  s1_tag;
   logic [LA_W-1:0]   s1_la;
   logic [WAYS-1:0]   way_hit;
-  logic [WAY_W-1:0]  hit_way;
   logic [15:0]       hit_word;  // the texel's word, ORed over the ways that hit (at most one)
   logic              s1_hit, s1_err, s1_alloc, free_any;
   logic [15:0]       s1_data;
   logic [MSHRS-1:0]  mshr_match, mshr_busy, mshr_err;
   logic [MIDX_W-1:0] alloc_idx;
 
-  assign s1_set = s1_addr_q[OFF_W +: SET_W];
   assign s1_tag = s1_addr_q[ADDR_W-1 -: TAG_W];
   assign s1_la  = s1_addr_q[ADDR_W-1:OFF_W];
 
@@ -320,10 +285,8 @@ module height_cache
 
   always_comb begin
     hit_word = '0;
-    hit_way  = '0;
     for (int w = 0; w < WAYS; w++) begin
       hit_word = hit_word | (way_hit[w] ? word_rd[w] : 16'h0000);
-      if (way_hit[w]) hit_way = WAY_W'(w);
     end
   end
 
@@ -370,57 +333,35 @@ module height_cache
   assign rs_err_o   = rs_err_q;
   assign rs_data_o  = rs_data_q;
 
-  // ---------------------------------------------------------------- directory update
-  // A hit marks its way most recently used; a fill (after the hit, on the same set) marks the
-  // filled way.  The valid bit is set in the fill clock; the replacement state is written one
-  // clock later, from registers (pu_*_q: the hit's set and way, the fill's set and way), so
-  // neither the tag compare behind a hit nor the victim choice of a fill drives the 512 sets'
-  // state registers.  Nothing reads plru_q in between except the next fill's victim choice,
-  // which sees the pending updates through fill_plru: the victim of every fill, and so every
-  // result, is the same as with the updates written in their own clock.
-  assign plru_wh = plru_touch(plru_q[pu_hset_q], pu_hway_q);
-  assign plru_wf = plru_touch((pu_hit_q && pu_hset_q == pu_fset_q) ? plru_wh : plru_q[pu_fset_q],
-                              pu_fway_q);
-
+  // ---------------------------------------------------------------- fill, registered
+  // The fill of this clock, seen by the next clock's victim choice (its RAM write may not show in
+  // the read of its own clock; see "fill").
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      pu_hit_q  <= 1'b0;
       pu_fill_q <= 1'b0;
     end else begin
-      pu_hit_q  <= s1_hit;
       pu_fill_q <= fill_q;
     end
-    pu_hset_q <= s1_set;
-    pu_hway_q <= hit_way;
     pu_fset_q <= fill_set;
     pu_fway_q <= fill_way;
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      plru_q <= '0;
-    end else begin
-      for (int s = 0; s < SETS; s++) begin
-        // the fill's update after the hit's: the filled way is the MRU
-        if (pu_fill_q && pu_fset_q == SET_W'(s))     plru_q[s] <= plru_wf;
-        else if (pu_hit_q && pu_hset_q == SET_W'(s)) plru_q[s] <= plru_wh;
-      end
-    end
   end
 
   // ---------------------------------------------------------------- valid bits
   // Per set a word of WAYS valid bits in two RAM copies with a synchronous read each: u_valid_lk
   // read by the lookup's stage 0 (like the tags), u_valid_fill by the last-beat clock of a line
-  // (pre_vbits).  A fill writes the whole word of its set: fill_vbits (the set's bits as they
-  // are before this fill) with the filled way set.  Reset starts a sweep: for the SETS clocks
-  // after rst_ni rises, sweep_q is 1 and one set a clock is written to 0; a lookup presented in
+  // (pre_vbits), whose word also holds the set's round-robin pointer (pre_ptr).  A fill writes
+  // the whole word of its set: fill_vbits (the set's bits as they are before this fill) with the
+  // filled way set, and the pointer to the way after the filled one.  Reset starts a sweep: for
+  // the SETS clocks after rst_ni rises, sweep_q is 1 and one set a clock is written to 0 (valid
+  // bits and pointer); a lookup presented in
   // those clocks answers a miss and allocates nothing (like a lookup that meets a fill of its
   // set), and with no MSHR allocated no fill can happen.  A read of the word written in the same
   // clock is either discarded (a lookup meeting a fill: a miss) or corrected (pre_vbits, by
-  // the pending fill in fill_vbits), so the RAM may return the old or the new word.
+  // the pending fill in fill_vbits and fill_ptr), so the RAM may return the old or the new word.
   logic             vb_we;
   logic [SET_W-1:0] vb_waddr;
   logic [WAYS-1:0]  vb_wdata;
+  logic [WAY_W-1:0] rr_wdata;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -436,13 +377,14 @@ module height_cache
   assign vb_we    = rst_ni && (sweep_q || fill_q);
   assign vb_waddr = sweep_q ? sweep_set_q : fill_set;
   assign vb_wdata = sweep_q ? '0 : (fill_vbits | (WAYS'(1) << fill_way));
+  assign rr_wdata = sweep_q ? '0 : rr_next(fill_way);
 
   cache_sdp_ram #(.DEPTH(SETS), .WIDTH(WAYS)) u_valid_lk (
     .clk_i, .we_i(vb_we), .waddr_i(vb_waddr), .wdata_i(vb_wdata),
     .re_i(lk_valid_i), .raddr_i(lk_set), .rlane_i('0), .rdata_o(s1_vbits));
-  cache_sdp_ram #(.DEPTH(SETS), .WIDTH(WAYS)) u_valid_fill (
-    .clk_i, .we_i(vb_we), .waddr_i(vb_waddr), .wdata_i(vb_wdata),
-    .re_i(1'b1), .raddr_i(pre_set), .rlane_i('0), .rdata_o(pre_vbits));
+  cache_sdp_ram #(.DEPTH(SETS), .WIDTH(WAY_W + WAYS)) u_valid_fill (
+    .clk_i, .we_i(vb_we), .waddr_i(vb_waddr), .wdata_i({rr_wdata, vb_wdata}),
+    .re_i(1'b1), .raddr_i(pre_set), .rlane_i('0), .rdata_o({pre_ptr, pre_vbits}));
 
   // ---------------------------------------------------------------- R channel
   logic [EPOCH_W-1:0] r_epoch;

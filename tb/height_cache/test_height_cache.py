@@ -184,7 +184,8 @@ def scan(size: int, n: int, wide: bool):
 
 def few_sets(rng: random.Random, cfg: CacheConfig, size: int, sets=2, lines=3):
     """Texels of ``lines`` x WAYS lines that all fall into ``sets`` sets: every set full and
-    evicting, hits and fills on one set in the same clock (the pseudo-LRU's two updates)."""
+    evicting, hits and fills on one set in the same clock, fills on one set in consecutive clocks
+    (the round-robin pointer's forwarded write)."""
     tags = min(lines * cfg.ways, size // (cfg.sets * cfg.line_bytes))
 
     def target(r, prev):
@@ -600,8 +601,8 @@ async def merge_and_mshr_limit(dut):
 
 @cocotb.test()
 async def set_pressure(dut):
-    """Lookups confined to two sets, three lines per way competing: the victim choice (pseudo-LRU
-    after a hit and a fill of the same set in one clock) decides every later hit."""
+    """Lookups confined to two sets, three lines per way competing: the victim choice (round robin
+    per set, including a fill on the set the previous clock's fill wrote) decides every later hit."""
     rng = random.Random(seed())
     h = Harness(dut, rng)
     rays = Rays(rng, 16, 3000, few_sets(rng, h.cfg, h.size))
@@ -612,6 +613,22 @@ async def set_pressure(dut):
     summary(h, rays, "set pressure")
     assert h.cov["hit_fill_set"] >= 20, h.cov
     h.finish("set pressure")
+
+
+@cocotb.test()
+async def set_pressure_ooo(dut):
+    """The same with interleaved responses, so that lines of one set complete in consecutive clocks:
+    the second fill's victim must see the first one's pointer update (forwarded, not yet in RAM)."""
+    rng = random.Random(seed())
+    h = Harness(dut, rng, slave="ooo")
+    rays = Rays(rng, 16, 3000, few_sets(rng, h.cfg, h.size))
+    await h.reset()
+    await h.run(rays, 200000)
+    await h.drain()
+    h.check_stats()
+    summary(h, rays, "set pressure, interleaved")
+    assert h.cov["fill_fill_set"] >= 5, h.cov
+    h.finish("set pressure, interleaved")
 
 
 @cocotb.test()
