@@ -382,13 +382,14 @@ def _design(stat: dict) -> dict:
 
 
 def ecp5_counts(stat: dict) -> dict:
-    """lut counts LUT4s: logic LUT4 cells, 2 per CCU2C carry cell, 4 per TRELLIS_DPR16X4 (the
-    storage LUTs of a 16x4 distributed RAM).  dsp: MULT18X18D (ALU54B listed apart); bram: DP16KD
-    (+ PDPW16KD) 18-Kbit EBRs."""
+    """lut counts LUT4s as nextpnr-ecp5 does before packing: logic LUT4 cells, 2 per CCU2C carry
+    cell, 6 per TRELLIS_DPR16X4 (a 16x4 distributed RAM: 4 storage LUTs and the 2 LUTs of the
+    slice that drives its write port, which nextpnr lists as "RAMW LUTs" and cannot use for
+    logic).  dsp: MULT18X18D (ALU54B listed apart); bram: DP16KD (+ PDPW16KD) 18-Kbit EBRs."""
     c = _design(stat)
     g = lambda k: int(c.get(k, 0))  # noqa: E731
     return {
-        "lut": g("LUT4") + 2 * g("CCU2C") + 4 * g("TRELLIS_DPR16X4"),
+        "lut": g("LUT4") + 2 * g("CCU2C") + 6 * g("TRELLIS_DPR16X4"),
         "ff": g("TRELLIS_FF"),
         "dsp": g("MULT18X18D"),
         "bram": g("DP16KD") + g("PDPW16KD"),
@@ -540,9 +541,10 @@ def write_md(report: dict, path: Path) -> None:
              f"target {a['target_mhz']:.0f} MHz (constraints/{Path(a['lpf']).name}), seed "
              f"{a['seed']}. Blocks placed and routed out of context (`--out-of-context`: no I/O, "
              f"clock on fabric routing); the top ({TOP}) placed and routed whole.\n")
-    L.append("ECP5 LUT = LUT4s (2 per CCU2C carry cell, 4 per 16x4 distributed RAM); DSP = "
-             "MULT18X18D; BRAM = 18-Kbit EBR (DP16KD). 7-series LUT = logic LUT1..6 (LUTRAM / SRL "
-             "apart); BRAM in RAMB36 (RAMB18 = 0.5).\n")
+    L.append("ECP5 LUT = LUT4s as nextpnr counts them (2 per CCU2C carry cell, 6 per 16x4 "
+             "distributed RAM: 4 storage and 2 write-port LUTs); DSP = MULT18X18D; BRAM = "
+             "18-Kbit EBR (DP16KD). 7-series LUT = logic LUT1..6 (LUTRAM / SRL apart); BRAM in "
+             "RAMB36 (RAMB18 = 0.5).\n")
     L.append("| block | what | ECP5 LUT | FF | DSP | BRAM | fmax MHz (OOC) | 7-series LUT | "
              "LUTRAM | FF | DSP48 | RAMB36 |")
     L.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
