@@ -25,7 +25,27 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
-from .height_cache import CacheConfig, clog2, plru_touch, plru_victim
+from .height_cache import CacheConfig, clog2
+
+
+def plru_victim(cfg: CacheConfig, bits: int) -> int:
+    """The way a tree pseudo-LRU state ``bits`` points at (node n = 1 .. WAYS-1 is bit n-1,
+    children 2n and 2n+1; 0: the next victim is in the left subtree)."""
+    n = 1
+    for _ in range(clog2(cfg.ways)):
+        n = 2 * n + ((bits >> (n - 1)) & 1)
+    return n - cfg.ways
+
+
+def plru_touch(cfg: CacheConfig, bits: int, way: int) -> int:
+    """``bits`` with way ``way`` marked most recently used (every node on its path points away)."""
+    n = way + cfg.ways
+    for _ in range(clog2(cfg.ways)):
+        p = n >> 1
+        bit = 1 if n % 2 == 0 else 0  # point away from the accessed child
+        bits = (bits & ~(1 << (p - 1))) | (bit << (p - 1))
+        n = p
+    return bits
 
 
 @dataclass(frozen=True)

@@ -153,6 +153,7 @@ module height_cache
   logic [BEAT_W-1:0]            mshr_beat_q  [MSHRS];  // beats received
   logic                         mshr_rerr_q  [MSHRS];  // an earlier beat had an error
   logic [ERRC_W-1:0]            mshr_errc_q  [MSHRS];  // MSHR_ERR: 0 = no lookup erred yet
+  (* ram_style = "block" *)  // (a 16x4 LUT RAM costs 6 LUT4s; EBRs are plentiful here)
   logic [BEATS-1:0][DATA_W-1:0] mshr_buf_q   [MSHRS];  // the line being read
 
   // AR queue: MSHR indices in allocation order.

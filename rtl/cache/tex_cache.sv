@@ -336,7 +336,8 @@ module tex_cache
     logic                        last;  // the request's last pass
   } pass_t;
 
-  pass_t             fifo_q [FIFO_DEPTH];
+  // (Block RAM: it is read only into fifo_rd_q, below; as LUT RAM it took 128 16x4 RAMs.)
+  (* ram_style = "block" *) pass_t fifo_q [FIFO_DEPTH];
   logic [FP_W-1:0]   fifo_wp_q, fifo_rp_q;
   logic [FC_W-1:0]   fifo_cnt_q;
 
@@ -356,7 +357,7 @@ module tex_cache
     logic [TAG_W-1:0] tag;
   } rsp_t;
 
-  rsp_t              out_q [OUT_DEPTH];
+  (* ram_style = "block" *) rsp_t out_q [OUT_DEPTH];  // 185 bits: 6 EBRs instead of 42 LUT RAMs
   logic              out_wp_q, out_rp_q;
   logic [1:0]        out_cnt_q;
 
@@ -760,19 +761,38 @@ module tex_cache
 
   assign out_pop = rsp_valid_o && rsp_ready_i;
 
-  // The head entry in a register (hd = fifo_q[fifo_rp_q] whenever the FIFO holds a pass): after a
-  // pop the entry behind it (read at fifo_rp_q + 1), or the pass entering an empty FIFO.
-  pass_t           hd_q;
+  // The head entry (hd = fifo_q[fifo_rp_q] whenever the FIFO holds a pass), from registers: the
+  // FIFO is read every clock at fifo_rp_q + 1 into fifo_rd_q (a block RAM's read register), which
+  // is the head the clock after a pop (hd_rd_q), unless the pass behind the popped one was
+  // written in the pop's clock (the read could not see it: then hd_q takes it from the commit
+  // register), and is copied into hd_q the clock after, while it stays the head; a pass entering
+  // an empty FIFO goes to hd_q.
+  pass_t           hd_q, fifo_rd_q;
+  logic            hd_rd_q;  // the head is fifo_rd_q (the clock after a pop)
   logic [FP_W-1:0] rp_plus1;
   assign rp_plus1 = fifo_rp_q + FP_W'(1);
 
   always_ff @(posedge clk_i) begin
-    if (h_pop) hd_q <= (cm_valid_q && fifo_wp_q == rp_plus1) ? cm_pass_q : fifo_q[rp_plus1];
-    else if (cm_valid_q && fifo_wp_q == fifo_rp_q) hd_q <= cm_pass_q;
+    fifo_rd_q <= fifo_q[rp_plus1];
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      hd_rd_q <= 1'b0;
+    end else begin
+      hd_rd_q <= h_pop && !(cm_valid_q && fifo_wp_q == rp_plus1);
+    end
+    if (h_pop) begin
+      if (cm_valid_q && fifo_wp_q == rp_plus1) hd_q <= cm_pass_q;
+    end else if (cm_valid_q && fifo_wp_q == fifo_rp_q) begin
+      hd_q <= cm_pass_q;                     // into an empty FIFO
+    end else if (hd_rd_q) begin
+      hd_q <= fifo_rd_q;
+    end
   end
 
   always_comb begin
-    hd      = hd_q;
+    hd      = hd_rd_q ? fifo_rd_q : hd_q;
     h_ready = (fifo_cnt_q != '0);
     for (int c = 0; c < NSUB; c++) begin
       if (hd.used[c] && pend_q[c][hd.set[c]][hd.way[c]]) h_ready = 1'b0;
@@ -1200,7 +1220,7 @@ module tex_cache
       h_pop |-> fifo_cnt_q != '0)
     else $error("tex_cache: request FIFO underflow");
   fifo_head: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      fifo_cnt_q != '0 |-> hd_q == fifo_q[fifo_rp_q])
+      fifo_cnt_q != '0 |-> hd == fifo_q[fifo_rp_q])
     else $error("tex_cache: head register differs from the FIFO's head entry");
   fifo_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
       32'(fifo_cnt_q) <= FIFO_DEPTH && FP_W'(fifo_wp_q - fifo_rp_q) == FP_W'(fifo_cnt_q))

@@ -181,7 +181,7 @@ module dm_pipeline
   logic [SLOT_W:0]   free_count;
   logic [SLOT_W:0]   live_q;          // slots in use (pixels inside)
 
-  traverse_fifo #(.W(SLOT_W), .DEPTH(SLOTS)) u_free (
+  traverse_fifo #(.W(SLOT_W), .DEPTH(SLOTS), .RAM_STYLE("block")) u_free (
     .clk_i, .rst_ni, .wr_i(free_push), .wr_data_i(free_push_id), .rd_i(free_pop),
     .rd_data_o(free_head), .full_o(free_full), .empty_o(free_empty), .count_o(free_count));
 
@@ -256,7 +256,7 @@ module dm_pipeline
   logic [F0_W-1:0] f0_head;
   assign f0_wr = vc_valid;
 
-  traverse_fifo #(.W(F0_W), .DEPTH(F0_DEPTH)) u_fifo0 (
+  traverse_fifo #(.W(F0_W), .DEPTH(F0_DEPTH), .RAM_STYLE("block")) u_fifo0 (
     .clk_i, .rst_ni, .wr_i(f0_wr), .wr_data_i({vc_tag, vc_du, vc_dv}), .rd_i(f0_rd),
     .rd_data_o(f0_head), .full_o(f0_full), .empty_o(f0_empty), .count_o(f0_count));
 
@@ -385,11 +385,12 @@ module dm_pipeline
   logic              tc_req_valid, tc_req_ready;
   logic [REQ_CW-1:0] rq_c_count, rq_n_count;
 
-  traverse_fifo #(.W(SLOT_W + REQ_W), .DEPTH(REQ_DEPTH)) u_rq_c (
+  traverse_fifo #(.W(SLOT_W + REQ_W), .DEPTH(REQ_DEPTH),
+                .RAM_STYLE("block")) u_rq_c (
     .clk_i, .rst_ni, .wr_i(ta_valid && !ta_tex), .wr_data_i({ta_slot, ta_req}),
     .rd_i(tc_req_valid && tc_req_ready && !rq_sel_q), .rd_data_o(rq_c_head), .full_o(rq_c_full),
     .empty_o(rq_c_empty), .count_o(rq_c_count));
-  traverse_fifo #(.W(REQ_W), .DEPTH(REQ_DEPTH)) u_rq_n (
+  traverse_fifo #(.W(REQ_W), .DEPTH(REQ_DEPTH), .RAM_STYLE("block")) u_rq_n (
     .clk_i, .rst_ni, .wr_i(ta_valid && ta_tex), .wr_data_i(ta_req),
     .rd_i(tc_req_valid && tc_req_ready && rq_sel_q), .rd_data_o(rq_n_head), .full_o(rq_n_full),
     .empty_o(rq_n_empty), .count_o(rq_n_count));

@@ -3,9 +3,17 @@
 // in the same clock (a write needs full_o = 0 even then).  Writing while full and reading while
 // empty are errors (asserted), never silently dropped or repeated: the users check full_o /
 // empty_o first.
+// RAM_STYLE only steers synthesis (Yosys's ram_style attribute on the storage): "auto" lets it
+// choose (LUT RAM for the small and shallow ones), "block" asks for block RAM (an ECP5 EBR):
+// synthesis reads it synchronously at the next read pointer (rp_q's register moves into the
+// RAM) and adds a bypass for a word written to that address in the same clock.  A 16x4 LUT RAM
+// costs six LUT4 sites, so a wide FIFO is cheaper in EBRs.  Simulation is the same either way.
 module traverse_fifo #(
   parameter int unsigned W     = 8,
-  parameter int unsigned DEPTH = 16   // power of two, >= 2
+  parameter int unsigned DEPTH = 16,      // power of two, >= 2
+  /* verilator lint_off UNUSEDPARAM */   // read only by synthesis (an attribute); see above
+  parameter string       RAM_STYLE = "auto"
+  /* verilator lint_on UNUSEDPARAM */
 ) (
   input  logic                      clk_i,
   input  logic                      rst_ni,
@@ -24,7 +32,7 @@ module traverse_fifo #(
     $error("traverse_fifo: DEPTH must be a power of two >= 2");
   end
 
-  logic [W-1:0]  mem_q [DEPTH];
+  (* ram_style = RAM_STYLE *) logic [W-1:0] mem_q [DEPTH];
   logic [AW-1:0] wp_q, rp_q;
   logic [AW:0]   cnt_q;
 

@@ -183,11 +183,12 @@ module traverse_loop
     locate_t          x, y;        // locate's candidates per axis
   } desc_t;
 
-  // Per ray.
+  // Per ray.  duv_q and inv_q are read only into registers, so synthesis can put them in block
+  // RAM (ram_style; a 16x4 LUT RAM costs 6 LUT4s); the other fields are read into logic.
   logic [ID_W-1:0]  id_q     [D];
   f24_pair_t        uv_q     [D];  // u0, v0 (the hit position once done with a hit)
-  f24_pair_t        duv_q    [D];  // du, dv
-  f24_pair_t        inv_q    [D];  // 1 / du, 1 / dv
+  (* ram_style = "block" *) f24_pair_t        duv_q    [D];  // du, dv
+  (* ram_style = "block" *) f24_pair_t        inv_q    [D];  // 1 / du, 1 / dv
   dirs_t            dir_q    [D];
   f24_t             tmap_q   [D];  // time of leaving the map's extent
   node_t            node_q   [D];  // (S16 a crossing, S17 a descent, S17 a new ray)

@@ -138,7 +138,7 @@ module traverse_unit
   logic [SF_AW:0]  sf_count;
   logic            unused_sf_full;
   assign unused_sf_full = sf_full;  // the credit counter keeps the setup FIFO from filling up
-  traverse_fifo #(.W(SF_W), .DEPTH(SETUP_FIFO_DEPTH)) u_setup_fifo (
+  traverse_fifo #(.W(SF_W), .DEPTH(SETUP_FIFO_DEPTH), .RAM_STYLE("block")) u_setup_fifo (
     .clk_i, .rst_ni, .wr_i(su_valid), .wr_data_i({su_id, su_ray}), .rd_i(sf_pop),
     .rd_data_o(sf_head), .full_o(sf_full), .empty_o(sf_empty), .count_o(sf_count)
   );
@@ -163,7 +163,7 @@ module traverse_unit
 
   // ---- results out ---------------------------------------------------------------------------
   result_t rf_res;
-  traverse_fifo #(.W(RF_W), .DEPTH(RES_FIFO_DEPTH)) u_res_fifo (
+  traverse_fifo #(.W(RF_W), .DEPTH(RES_FIFO_DEPTH), .RAM_STYLE("block")) u_res_fifo (
     .clk_i, .rst_ni, .wr_i(rf_push), .wr_data_i({lp_res_id, lp_res}), .rd_i(out_fire),
     .rd_data_o(rf_head), .full_o(rf_full), .empty_o(rf_empty), .count_o(rf_count)
   );
