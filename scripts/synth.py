@@ -21,6 +21,7 @@ import subprocess
 import sys
 import threading
 import time
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -109,6 +110,22 @@ class StepError(Exception):
     pass
 
 
+class NoFit(Exception):
+    """A tool stopped because the design does not fit the device: a result, not a flow error."""
+
+
+def placement_overfill(log_text: str) -> str | None:
+    """The reason nextpnr-ecp5 gave up placing an overfull design, from its log, or None when the
+    log does not show that ("Unable to find legal placement"; the packed TRELLIS_COMB count is
+    above the device's LUT4s because packing adds feed-through LUTs to the synthesised ones)."""
+    if "Unable to find legal placement" not in log_text:
+        return None
+    m = re.search(r"TRELLIS_COMB:\s*(\d+)/\s*(\d+)\s+(\d+)%", log_text)
+    used = f": {int(m.group(1)):,} TRELLIS_COMB of {int(m.group(2)):,} ({m.group(3)}%) after " \
+        "packing" if m else ""
+    return f"nextpnr found no legal placement{used}"
+
+
 def rel(p: Path) -> str:
     """YoWASP tools see the file system through WASI, rooted at their cwd (the repository)."""
     return os.path.relpath(p.resolve(), ROOT)
@@ -148,8 +165,10 @@ class Flow:
         with self.lock:
             print(f"synth: {msg}", flush=True)
 
-    def run(self, step: str, cmd: list[str], log: Path, heartbeat: float = 60.0) -> float:
-        """Run one tool with its output in `log`; raise StepError naming the step on failure."""
+    def run(self, step: str, cmd: list[str], log: Path, heartbeat: float = 60.0,
+            no_fit: Callable[[str], str | None] | None = None) -> float:
+        """Run one tool with its output in `log`; raise StepError naming the step on failure, or
+        NoFit when `no_fit` finds in the log that the design does not fit the device."""
         if self.stop.is_set():
             raise StepError(f"step '{step}' not started (an earlier step failed)")
         self.say(f"{step}: started (log {rel(log)})")
@@ -166,6 +185,9 @@ class Flow:
         dt = time.monotonic() - t0
         self.times[step] = round(dt, 1)
         if p.returncode != 0:
+            why = no_fit(log.read_text(errors="replace")) if no_fit else None
+            if why:
+                raise NoFit(why)
             self.stop.set()
             tail = "\n".join("    " + ln for ln in tail_lines(log, 12))
             raise StepError(f"step '{step}' failed (exit {p.returncode}) after {dt:.0f} s; "
@@ -307,7 +329,8 @@ class Flow:
             cmd.append("--out-of-context")
         log = self.logs / f"pnr_{b.name}.log"
         step = f"nextpnr {b.name}" + (" (out of context)" if ooc else "")
-        dt = self.run(step, cmd, log, heartbeat=120.0 if not ooc else 60.0)
+        dt = self.run(step, cmd, log, heartbeat=120.0 if not ooc else 60.0,
+                      no_fit=None if ooc else placement_overfill)
         try:
             r = pnr_summary(json.loads(rep.read_text()), log.read_text(errors="replace"))
         except (StepError, OSError, ValueError, KeyError) as e:
@@ -809,11 +832,20 @@ def main() -> int:
                                   "target_mhz": target}
                 new["fmax_mhz"] = None
             else:
-                p = flow.pnr(b, ooc=False)
-                p["fits"] = True
-                new["top_pnr"] = p
-                e["fmax_mhz"] = p["fmax_mhz"]
-                new["fmax_mhz"] = p["fmax_mhz"]
+                try:
+                    p = flow.pnr(b, ooc=False)
+                except NoFit as nf:
+                    # Under the device's count but over it once packed: a result too.
+                    flow.say(f"WARNING: {TOP} does not fit the {DEVICE[args.device]}: {nf} "
+                             f"(log {rel(flow.logs / f'pnr_{b.name}.log')})")
+                    new["top_pnr"] = {"fits": False, "reason": str(nf), "fmax_mhz": None,
+                                      "target_mhz": target}
+                    new["fmax_mhz"] = None
+                else:
+                    p["fits"] = True
+                    new["top_pnr"] = p
+                    e["fmax_mhz"] = p["fmax_mhz"]
+                    new["fmax_mhz"] = p["fmax_mhz"]
         save()
         if not args.no_xilinx:
             new["xilinx"][b.name] = flow.synth_xilinx(b)

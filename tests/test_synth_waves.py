@@ -41,6 +41,17 @@ def test_ecp5_and_xilinx_counts():
     assert (x["lut"], x["ff"], x["dsp"], x["bram"], x["lutram"]) == (6, 8, 2, 2.5, 9)
 
 
+def test_placement_overfill():
+    log = ("Info: Device utilisation:\nInfo: \t        TRELLIS_COMB:   86525/  83640   103%\n"
+           "ERROR: Unable to find legal placement for all cells, design is probably at "
+           "utilisation limit.\n")
+    assert synth.placement_overfill(log) == ("nextpnr found no legal placement: 86,525 "
+                                             "TRELLIS_COMB of 83,640 (103%) after packing")
+    assert synth.placement_overfill(log.replace("TRELLIS_COMB", "X")) == \
+        "nextpnr found no legal placement"
+    assert synth.placement_overfill("ERROR: Max frequency for clock not met\n") is None
+
+
 def _seg(kind, frm, to, delay, net=None, sources=()):
     s = {"type": kind, "delay": delay, "from": {"cell": frm, "port": "Q", "loc": [1, 1]},
          "to": {"cell": to, "port": "D", "loc": [2, 2]}}
