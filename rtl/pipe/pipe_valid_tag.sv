@@ -2,8 +2,8 @@
 // DEPTH enabled clocks beside its datapath (every pipe unit of rtl/pipe and rtl/mip uses one).
 // Valid clears on rst_ni low (synchronous, whatever en_i is); the tag needs no reset.
 // stage_valid_o[s] is the valid bit of stage s (an operand set entered s enabled clocks ago), for
-// units whose schedule shares a float unit between stages (view_calc, shade_unit); the others
-// leave it open.
+// units whose schedule shares a float unit between stages (view_calc, shade_unit, and the
+// spacing checks of tex_addr and mip_level); the others leave it open.
 module pipe_valid_tag #(
   parameter int unsigned TAG_W = 8,  // side-band bits carried from tag_i to tag_o
   parameter int unsigned DEPTH = 1   // latency in enabled clocks, >= 1

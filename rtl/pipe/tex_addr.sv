@@ -272,18 +272,16 @@ module tex_addr
   end
 
   // ---- valid and tag ---------------------------------------------------------------------------
+  /* verilator lint_off UNUSEDSIGNAL */  // only stage_v[1] is read (the spacing check)
+  logic [TEX_ADDR_LAT:1] stage_v;  // stage_v[1]: the last enabled clock took a lookup
+  /* verilator lint_on UNUSEDSIGNAL */
   pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(TEX_ADDR_LAT)) u_valid_tag (
-    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o, .stage_valid_o());
+    .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o, .stage_valid_o(stage_v));
 
 `ifndef SYNTHESIS
   // The axes share the float units: no lookup on the enabled clock after another (its v item's).
-  logic took_q;  // the last enabled clock took a lookup
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni)   took_q <= 1'b0;
-    else if (en_i) took_q <= valid_i;
-  end
   lookup_spacing: assert property (@(posedge clk_i) disable iff (!rst_ni)
-    en_i && valid_i |-> !took_q);
+    en_i && valid_i |-> !stage_v[1]);
 `endif
 
 endmodule
