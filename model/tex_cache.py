@@ -59,7 +59,7 @@ class TexCacheConfig(CacheConfig):
     id_w: int = 6
     fifo_depth: int = 64
     tag_w: int = 8
-    win_words: int = 8
+    win_words: int = 2
 
     @property
     def window_words(self) -> int:

@@ -143,7 +143,7 @@ module tex_cache
                                            // requests that can wait for memory at full rate
   parameter int unsigned ID_W       = 6,   // AXI ID width (> log2(MSHRS): the rest is the epoch)
   parameter int unsigned TAG_W      = 8,   // side-band width (req_tag_i -> rsp_tag_o)
-  parameter int unsigned WIN_WORDS  = 8    // data-RAM window: words a sub-cache reads per pass,
+  parameter int unsigned WIN_WORDS  = 2    // data-RAM window: words a sub-cache reads per pass,
                                            // plus one (power of two >= 2; capped at the line's
                                            // words); DATA_W <= 32 * that
 ) (

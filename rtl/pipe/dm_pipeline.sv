@@ -65,6 +65,7 @@ module dm_pipeline
   parameter int unsigned T_LINE_BYTES = 128, // tex_cache line (32 texels of one row)
   parameter int unsigned T_SETS     = 32,   // tex_cache sets per sub-cache (4 sub-caches)
   parameter int unsigned T_WAYS     = 4,    // tex_cache ways: 4 x 32 x 4 x 128 B = 64 KiB
+  parameter int unsigned T_WIN_WORDS = 2,   // tex_cache data-RAM window, words (+1 overlap word)
   parameter int unsigned H_LINE_BYTES = 32, // height_cache line (one AXI burst per fill)
   parameter int unsigned H_SETS     = 512,  // height_cache sets (power of two)
   parameter int unsigned H_WAYS     = 4,    // height_cache ways: 512 x 4 x 32 B = 64 KiB
@@ -419,7 +420,7 @@ module dm_pipeline
   logic [47:0]          tc_lookups;
 
   tex_cache #(.ADDR_W(TEX_ADDR_W), .DATA_W(AXI_DATA_W), .LINE_BYTES(T_LINE_BYTES), .SETS(T_SETS),
-              .WAYS(T_WAYS), .ID_W(T_ID_W), .TAG_W(TC_TAG_W)) u_tc (
+              .WAYS(T_WAYS), .ID_W(T_ID_W), .TAG_W(TC_TAG_W), .WIN_WORDS(T_WIN_WORDS)) u_tc (
     .clk_i, .rst_ni,
     .req_valid_i(tc_req_valid), .req_ready_o(tc_req_ready),
     .req_addr_i(rq_head[4*TEX_ADDR_W-1:0]),  // [0] a00, [1] a01, [2] a10, [3] a11

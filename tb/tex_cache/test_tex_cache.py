@@ -58,6 +58,8 @@ CONFIGS = {
     # pinned ways, MSHR waits, window splits
     "small": TexCacheConfig(data_w=32, line_bytes=64, sets=4, ways=2, mshrs=4, fifo_depth=8,
                             id_w=4, tag_w=6, win_words=4),
+    # the default cache with 8-word windows (4 beats per window, the select from 36 words)
+    "wide": TexCacheConfig(win_words=8),
 }
 BASES = (0x1000_0000, 0x1040_0000, 0x2000_0000)
 #: The RTL's simulation-only coverage points (sim_<name>), counted per clock.
@@ -736,8 +738,8 @@ def test_model_passes():
 #: Stream-length factor per configuration (TC_SCALE in the environment overrides it): the small
 #: cache's 32-bit bus makes each quad cost several times more clocks.  make test runs SCALES,
 #: make test-long (TB_LONG=1) twice as long streams.
-SCALES = {"default": 0.5, "small": 0.25}
-LONG_SCALES = {"default": 1.0, "small": 0.5}
+SCALES = {"default": 0.5, "small": 0.25, "wide": 0.25}
+LONG_SCALES = {"default": 1.0, "small": 0.5, "wide": 0.5}
 
 
 def _run(name: str) -> None:
@@ -759,6 +761,11 @@ def test_tex_cache():
 def test_tex_cache_small():
     """2 KiB: 64-byte lines over a 32-bit bus, SETS=4, WAYS=2, 4 MSHRs, an 8-pass FIFO."""
     _run("small")
+
+
+def test_tex_cache_wide():
+    """The default cache with WIN_WORDS = 8 (dm_pipeline uses 2, the module's default)."""
+    _run("wide")
 
 
 if __name__ == "__main__":
