@@ -14,7 +14,7 @@
 // changes entry while it circulates, and a stage reads only the fields it needs (a register file
 // of 18 entries with several read ports instead of 18 x ~270 bits of shift registers).  Per entry:
 //   - the per-ray constants u0, v0, du, dv, 1/du, 1/dv, directions, t_map and the ray id, written
-//     when the ray enters the ring (a hit overwrites u0 / v0 with the hit position);
+//     when the ray enters the ring (and only then: one write port, so LUT RAM);
 //   - the traversal state (level, cell, t, flags, iterations), written on entry and by S16;
 //   - what one pass computes for a stage far later in the same pass (t_new, the action, the
 //     crossing and the hit position): written by the stage that computes it, only for the passes
@@ -186,20 +186,22 @@ module traverse_loop
   // Per ray.  duv_q and inv_q are read only into registers, so synthesis can put them in block
   // RAM (ram_style; a 16x4 LUT RAM costs 6 LUT4s); the other fields are read into logic.
   logic [ID_W-1:0]  id_q     [D];
-  f24_pair_t        uv_q     [D];  // u0, v0 (the hit position once done with a hit)
+  f24_pair_t        uv_q     [D];  // u0, v0 (written on entry only)
   (* ram_style = "block" *) f24_pair_t        duv_q    [D];  // du, dv
   (* ram_style = "block" *) f24_pair_t        inv_q    [D];  // 1 / du, 1 / dv
   dirs_t            dir_q    [D];
   f24_t             tmap_q   [D];  // time of leaving the map's extent
   node_t            node_q   [D];  // (S16 a crossing, S17 a descent, S17 a new ray)
-  tval_t            t_q      [D];  // time the ray is at (hit time once done with a hit)
+  f24_t             t_q      [D];  // time the ray is at (hit time once done with a hit)
   status_t          stat_q   [D];
   // Per pass: [the stage that writes it, on the passes named] the stages that read it.  "ok": the
   // height read returned data; "inside": the pass hits or descends.
-  tval_t            t_new_q  [D];  // [S6 ok]              S16: max(t, plane)
+  f24_t             t_new_q  [D];  // [S6 ok]              S16: max(t, plane)
   act_t             act_q    [D];  // [S7 ok]              S15
-  f24_pair_t        pos_q    [D];  // [S9 inside]          S16: position at t_new (the hit's u, v)
-  tval_t            xt_q     [D];  // [S10 ok, not inside] S16: the crossing's time max(t, t_exit)
+  f24_pair_t        pos_q    [D];  // [S9 inside]          S17: position at t_new; a done ray
+                                   // reads no height, so after a hit it keeps the hit's u, v
+                                   // until the ray retires
+  f24_t             xt_q     [D];  // [S10 ok, not inside] S16: the crossing's time max(t, t_exit)
   cross_node_t      cross_q  [D];  // [S11 ok, not inside] S16: the crossing's new node, up
 
   // ---- ring position, pass activity (see the header) ----------------------------------------
@@ -245,7 +247,7 @@ module traverse_loop
   f24_ord_t   t_new7_q;            // S7: max(t, plane) (computed in S6), comparable
   tmin_t      tmin7_q;             // S7 (computed in S6)
   logic       leaf7_q;             // S7: the node is at level 0
-  f24_pair_t  uv7_q;               // S7
+  f24_pair_t  uv7_q, uv8_q;        // S7, S8
   logic       ut9_q;               // S9: the position at t_new is u0 + du t, floor it (a descent)
   f24_pair_t  uv9_q;               // S9
   dirs_t      d9_q, d10_q, d11_q, d12_q, d13_q;  // S9 - S13
@@ -477,6 +479,9 @@ module traverse_loop
   /* verilator lint_on UNUSEDSIGNAL */
   logic    retire, bypass, admit;
   assign st17   = stat_q[sl[D-1]];
+  // The result's u, v: the hit position (pos_q, written by the hit's pass) or u0, v0.
+  f24_pair_t res_uv17;
+  assign res_uv17 = st17.hit ? pos_q[sl[D-1]] : uv_q[sl[D-1]];
   assign retire = v_q[D-1] && done17_q && !res_full_i;
   // A ray that setup already finished (invalid, or never enters the map) goes straight to the
   // result FIFO when the tail does not use it this clock.
@@ -486,7 +491,7 @@ module traverse_loop
   assign new_pop_o  = bypass || admit;
   assign res_push_o = retire || bypass;
   assign res_id_o   = retire ? id_q[sl[D-1]] : new_id_i;
-  assign res_o      = retire ? '{t: t_q[sl[D-1]].t, u: uv_q[sl[D-1]].u, v: uv_q[sl[D-1]].v,
+  assign res_o      = retire ? '{t: t_q[sl[D-1]], u: res_uv17.u, v: res_uv17.v,
                                  hit: st17.hit, invalid: st17.invalid, capped: st17.capped,
                                  err: st17.err, iters: st17.iters}
                              : '{t: new_ray_i.t, u: new_ray_i.u0, v: new_ray_i.v0,
@@ -534,7 +539,7 @@ module traverse_loop
       ex_q[6] <= exit_of(tx5, ty5);
       tend6_q <= min3(tx5, ty5, tm1_5_q);
       tmap6_q <= tmap5_q;
-      t6_q    <= t_q[sl[5]];
+      t6_q    <= tval(t_q[sl[5]]);
       duv6_q  <= duv_q[sl[5]];
     end
     if (ok_q[6]) begin
@@ -547,9 +552,10 @@ module traverse_loop
     for (int s = 6; s < 10; s++) begin
       if (ok_q[s]) ex_q[s+1] <= ex_q[s];
     end
+    if (ok_q[7]) uv8_q <= uv7_q;
     if (ok_q[8]) begin
       ut9_q <= in_q[8] && ts_q[8];
-      uv9_q <= uv_q[sl[8]];
+      uv9_q <= uv8_q;
       d9_q  <= dir_q[sl[8]];
       n9_q  <= node_q[sl[8]];
     end
@@ -560,7 +566,7 @@ module traverse_loop
       hi10_q      <= '{x: node_hi(n9_q.k, n9_q.cx), y: node_hi(n9_q.k, n9_q.cy)};
       crossed10_q <= stat_q[sl[9]].crossed;
       prev10_q    <= stat_q[sl[9]].prev_cross;
-      t10_q       <= t_q[sl[9]];
+      t10_q       <= tval(t_q[sl[9]]);
     end
     // S10 -> S11: the crossing's first part, the descent's clipped positions
     if (ok_q[10] && !in_q[10]) begin
@@ -618,7 +624,7 @@ module traverse_loop
       act16_q <= act_q[sl[15]];
     end
     // S16 -> S17
-    if (dn_q[16]) t_new17_q <= t_new_q[sl[16]].ord;
+    if (dn_q[16]) t_new17_q <= f24_ord(t_new_q[sl[16]]);
     down17_q <= down16 && !cap16;  // (a capped ray is done: its node is never read again)
     done17_q <= (err16 || iter16) ? nst16.done : st16.done;
   end
@@ -633,7 +639,7 @@ module traverse_loop
       dir_q[sl[D-1]]  <= '{sx: new_ray_i.sx, sy: new_ray_i.sy};
       tmap_q[sl[D-1]] <= new_ray_i.t_map;
       node_q[sl[D-1]] <= n_new;
-      t_q[sl[D-1]]    <= tval(new_ray_i.t);
+      t_q[sl[D-1]]    <= new_ray_i.t;
       stat_q[sl[D-1]] <= '{crossed: new_ray_i.crossed, prev_cross: new_ray_i.prev_cross,
                            done: new_ray_i.done, hit: new_ray_i.hit,
                            invalid: new_ray_i.invalid, capped: new_ray_i.capped,
@@ -648,15 +654,14 @@ module traverse_loop
       t_q[sl[16]]    <= xt_q[sl[16]];
       node_q[sl[16]] <= '{k: x16.k, cx: x16.cx, cy: x16.cy};
     end
-    if (hit16) uv_q[sl[16]] <= pos_q[sl[16]];
     // What this pass computes for its later stages.
     // (only the passes whose height read returned data: the others use none of it)
-    if (ok_q[6]) t_new_q[sl[6]] <= ord_max_first(t6_q.ord, f24_ord(plane)) ? t6_q : tval(plane);
+    if (ok_q[6]) t_new_q[sl[6]] <= ord_max_first(t6_q.ord, f24_ord(plane)) ? t6_q.t : plane;
     if (ok_q[7]) act_q[sl[7]]   <= act7;
     // (only the passes that use them later: hits and descents, crossings)
     if (in_q[9]) pos_q[sl[9]] <= ts_q[9] ? '{u: post_x, v: post_y} : '{u: posp_x, v: posp_y};
     if (ok_q[10] && !in_q[10]) begin
-      xt_q[sl[10]] <= ord_max_first(t10_q.ord, ex_q[10].te.ord) ? t10_q : ex_q[10].te;
+      xt_q[sl[10]] <= ord_max_first(t10_q.ord, ex_q[10].te.ord) ? t10_q.t : ex_q[10].te.t;
     end
     if (ok_q[11] && !in_q[11]) begin
       cross_q[sl[11]] <= cross_up(cfg_i.policy.level_up, cfg_i.n, xpre11_q, prev11_q);
