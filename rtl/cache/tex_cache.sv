@@ -295,10 +295,18 @@ module tex_cache
   endfunction
 
   // ---------------------------------------------------------------- state
-  // Directory.  Flops, cleared at reset: per slot the valid, pending and error bits.  A slot is
-  // live when it is valid or has the error bit: allocated since the reset (reset clears both, an
-  // allocation sets valid, only a failed fill clears it, and that sets the error bit).
+  // Directory.  Flops, cleared at reset: per slot the live bit, set by an allocation: the slot
+  // has been allocated since the reset.
   // LUT RAM (g_dir below), not reset, each memory written from one place:
+  //  - the slot's state as two generation bits and an error bit (per sub-cache, a word per set
+  //    with a bit per way): ag, written by the commit (an allocation sets it to the inverse of
+  //    fg), and {fg, bad}, written by the fill (fg = ag, bad = the line came back with an error).
+  //    The slot is pending (allocated, line not yet written) when ag != fg, has the error bit
+  //    (err) when it is live, not pending and bad, and is valid when it is live and has not the
+  //    error bit (so valid while pending, as the lookup merges a miss with a line in flight).  A
+  //    slot is live when it is valid or has the error bit.  An allocation takes a slot that is not
+  //    pending (it is unreferenced), and a fill comes only for a pending one (stale beats from
+  //    before a reset are dropped), so ag and fg never differ by more than the one allocation;
   //  - the tags (per sub-cache and way), which count only with the valid bit;
   //  - the reference count rc = inc - dec (modulo 2^RC_W) of a slot: the passes in the FIFO that
   //    read it.  inc counts at the commit (per sub-cache and way), dec at the head (likewise).  An
@@ -309,11 +317,9 @@ module tex_cache
   //    the set is live (a way that is not live is free and invalid, so it is taken first), so each
   //    way has been allocated, and touched, since the reset; a touch writes every node on the
   //    way's path, so every node of the tree has been written since the reset.
-  // (Packed, with each bit's update decoded explicitly: as unpacked arrays they would be memories
-  // with five write ports, which synthesis maps to flops through a multiplexer chain per port.)
-  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] valid_q;
-  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] pend_q;   // allocated, line not yet written
-  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] err_q;    // the last fill came back with an error
+  // (The state bits were flops written by both the commit and the fill, 3 x NSUB x SETS x WAYS
+  // of them read through wide multiplexers; in LUT RAM each memory has one writer.)
+  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] live_q;
 
   // Entry register (the request being looked up).
   logic                   s0_valid_q;
@@ -577,6 +583,7 @@ module tex_cache
   logic [NSUB-1:0][WAYS-1:0][TAGB-1:0] set_tag;
   logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] set_inc, set_dec;
   logic [NSUB-1:0][PLRU_W-1:0]         set_plru;
+  logic [NSUB-1:0][WAYS-1:0]           set_ag, set_fg, set_bad;
 
   logic [NSUB-1:0][MIDX_W-1:0] free_idx;  // the lowest free MSHRs (below)
   logic [NSUB-1:0]             free_ok;
@@ -592,6 +599,7 @@ module tex_cache
   logic [NSUB-1:0][MIDX_W-1:0] cm_mshr_q;
   logic [NSUB-1:0][RC_W-1:0]   cm_inc_q;   // the slot's new reference-taken count
   logic [NSUB-1:0][PLRU_W-1:0] cm_plru_q;  // the set's new pseudo-LRU bits
+  logic [NSUB-1:0][WAYS-1:0]   cm_ag_q;    // the set's new ag bits (written on an allocation)
 
   // The directory at the looked-up set as the lookup must see it: what the RAMs and flops hold,
   // with the commit register's writes (not yet done) forwarded.
@@ -599,17 +607,21 @@ module tex_cache
   logic [NSUB-1:0][WAYS-1:0][TAGB-1:0] f_tag;
   logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] f_inc;
   logic [NSUB-1:0][PLRU_W-1:0]         f_plru;
+  logic [NSUB-1:0][WAYS-1:0]           f_ag;
 
   always_comb begin
-    logic fw, fw_alloc;
+    logic fw, fw_alloc, live, done_bad;
     for (int c = 0; c < NSUB; c++) begin
       fw        = cm_valid_q && cm_pass_q.used[c] && cm_pass_q.set[c] == lk_set[c];
       f_plru[c] = fw ? cm_plru_q[c] : set_plru[c];
+      f_ag[c]   = (fw && cm_alloc_q[c]) ? cm_ag_q[c] : set_ag[c];
       for (int w = 0; w < WAYS; w++) begin
         fw_alloc     = fw && cm_alloc_q[c] && cm_pass_q.way[c] == WAY_W'(w);
-        f_vld[c][w]  = fw_alloc || valid_q[c][lk_set[c]][w];
-        f_pnd[c][w]  = fw_alloc || pend_q[c][lk_set[c]][w];
-        f_err[c][w]  = !fw_alloc && err_q[c][lk_set[c]][w];
+        live         = live_q[c][lk_set[c]][w];
+        done_bad     = set_ag[c][w] == set_fg[c][w] && set_bad[c][w];  // not pending, bad
+        f_vld[c][w]  = fw_alloc || (live && !done_bad);
+        f_pnd[c][w]  = fw_alloc || (live && set_ag[c][w] != set_fg[c][w]);
+        f_err[c][w]  = !fw_alloc && live && done_bad;
         f_tag[c][w]  = fw_alloc ? cm_tag_q[c] : set_tag[c][w];
         f_inc[c][w]  = (fw && cm_pass_q.way[c] == WAY_W'(w)) ? cm_inc_q[c] : set_inc[c][w];
       end
@@ -693,6 +705,8 @@ module tex_cache
     cm_mshr_q       <= lk_mshr;
     for (int c = 0; c < NSUB; c++) begin
       cm_plru_q[c] <= plru_touch(f_plru[c], lk_way[c]);
+      cm_ag_q[c]   <= f_ag[c];
+      cm_ag_q[c][lk_way[c]] <= !set_fg[c][lk_way[c]];  // (the victim: not pending, no fill due)
       cm_inc_q[c]  <= (lk_alloc[c] ? set_dec[c][lk_way[c]] : f_inc[c][lk_way[c]]) + RC_W'(1);
     end
     cm_pass_q       <= e_pass;
@@ -758,6 +772,7 @@ module tex_cache
   // ---------------------------------------------------------------- head: wait, pop, read
   logic       out_pop;
   logic [NSUB-1:0] hd_err;
+  logic [NSUB-1:0] hd_pend, hd_bad;  // the head's slot per sub-cache: pending, bad (g_dir)
 
   assign out_pop = rsp_valid_o && rsp_ready_i;
 
@@ -795,8 +810,9 @@ module tex_cache
     hd      = hd_rd_q ? fifo_rd_q : hd_q;
     h_ready = (fifo_cnt_q != '0);
     for (int c = 0; c < NSUB; c++) begin
-      if (hd.used[c] && pend_q[c][hd.set[c]][hd.way[c]]) h_ready = 1'b0;
-      hd_err[c] = hd.used[c] && err_q[c][hd.set[c]][hd.way[c]];
+      // (the head's slots are live: allocated by this pass or hit as valid by it)
+      if (hd.used[c] && hd_pend[c]) h_ready = 1'b0;
+      hd_err[c] = hd.used[c] && !hd_pend[c] && hd_bad[c];
     end
   end
 
@@ -951,63 +967,68 @@ module tex_cache
   assign m_axi_rready = 1'b1;
 
   // ---------------------------------------------------------------- directory updates
-  // The valid, pending and error bits: the slot an allocation takes, and the slot a line arrives
-  // in (a pending slot: never the one allocated in this clock).
-  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] slot_alloc, slot_fill;
-
-  always_comb begin
-    for (int c = 0; c < NSUB; c++) begin
-      for (int s = 0; s < SETS; s++) begin
-        for (int w = 0; w < WAYS; w++) begin
-          slot_alloc[c][s][w] = cm_valid_q && cm_alloc_q[c] && cm_pass_q.set[c] == SET_W'(s)
-                                && cm_pass_q.way[c] == WAY_W'(w);
-          slot_fill[c][s][w]  = fill_v && fill_sub == 2'(c) && fill_set == SET_W'(s)
-                                && fill_way == WAY_W'(w);
-        end
-      end
-    end
-  end
-
+  // The live bits: set by an allocation, cleared by reset.
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      valid_q <= '0;
-      pend_q  <= '0;
-      err_q   <= '0;
+      live_q <= '0;
     end else begin
       for (int c = 0; c < NSUB; c++) begin
-        for (int s = 0; s < SETS; s++) begin
-          for (int w = 0; w < WAYS; w++) begin
-            if (slot_alloc[c][s][w]) begin
-              valid_q[c][s][w] <= 1'b1;
-              pend_q[c][s][w]  <= 1'b1;
-              err_q[c][s][w]   <= 1'b0;
-            end
-            if (slot_fill[c][s][w]) begin
-              pend_q[c][s][w] <= 1'b0;
-              err_q[c][s][w]  <= fill_bad;
-              if (fill_bad) valid_q[c][s][w] <= 1'b0;
-            end
-          end
-        end
+        if (cm_valid_q && cm_alloc_q[c]) live_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]] <= 1'b1;
       end
     end
   end
 
   // The LUT RAM part (see "Directory" at the state).  Per sub-cache: the commit touches the
   // looked-up set's pseudo-LRU bits and takes a reference to the hit or victim way (an allocation
-  // also writes the tag); the head releases the reference of each slot its pass reads.
+  // also writes the tag and the set's ag bits); the head releases the reference of each slot its
+  // pass reads; a line's last beat writes its set's fg and bad bits (fg = ag: not pending).
   for (genvar c = 0; c < NSUB; c++) begin : g_dir
     logic              take;             // the committing pass reads sub-cache c
     logic              give;             // the head's pass read sub-cache c
+    logic              fill;             // a line of sub-cache c completes
     logic [PLRU_W-1:0] plru_mem [SETS];
+    logic [WAYS-1:0]   ag_mem   [SETS];
+    logic [WAYS-1:0]   fg_mem   [SETS];
+    logic [WAYS-1:0]   bad_mem  [SETS];
+    logic [WAYS-1:0]   fl_ag, fl_fg, fl_bad, hd_ag, hd_fg, hd_bd;
 
     assign take = cm_valid_q && cm_pass_q.used[c];  // (cm_valid_q is 0 in reset)
     assign give = h_pop && hd.used[c];
+    assign fill = fill_v && fill_sub == 2'(c);
 
     always_ff @(posedge clk_i) begin
       if (take) plru_mem[cm_pass_q.set[c]] <= cm_plru_q[c];
+      if (take && cm_alloc_q[c]) ag_mem[cm_pass_q.set[c]] <= cm_ag_q[c];
+      if (fill) begin
+        fg_mem[fill_set]  <= fl_fg  ^ (fl_fg ^ fl_ag) & (WAYS'(1) << fill_way);
+        bad_mem[fill_set] <= (fl_bad & ~(WAYS'(1) << fill_way))
+                             | ({WAYS{fill_bad}} & (WAYS'(1) << fill_way));
+      end
     end
     assign set_plru[c] = plru_mem[lk_set[c]];
+    assign set_ag[c]   = ag_mem[lk_set[c]];
+    assign set_fg[c]   = fg_mem[lk_set[c]];
+    assign set_bad[c]  = bad_mem[lk_set[c]];
+    assign fl_ag       = ag_mem[fill_set];
+    assign fl_fg       = fg_mem[fill_set];
+    assign fl_bad      = bad_mem[fill_set];
+    assign hd_ag       = ag_mem[hd.set[c]];
+    assign hd_fg       = fg_mem[hd.set[c]];
+    assign hd_bd       = bad_mem[hd.set[c]];
+    assign hd_pend[c]  = hd_ag[hd.way[c]] != hd_fg[hd.way[c]];
+    assign hd_bad[c]   = hd_bd[hd.way[c]];
+
+`ifndef SYNTHESIS
+    // every slot's state bits for the assertions below
+    for (genvar s = 0; s < SETS; s++) begin : g_state_view
+      for (genvar w = 0; w < WAYS; w++) begin : g_w
+        assign pend_v[c][s][w]  = live_q[c][s][w] && ag_mem[s][w] != fg_mem[s][w];
+        assign err_v[c][s][w]   = live_q[c][s][w] && ag_mem[s][w] == fg_mem[s][w]
+                                  && bad_mem[s][w];
+        assign valid_v[c][s][w] = live_q[c][s][w] && !err_v[c][s][w];
+      end
+    end
+`endif
 
     for (genvar w = 0; w < WAYS; w++) begin : g_way
       logic [TAGB-1:0] tag_mem [SETS];
@@ -1182,11 +1203,43 @@ module tex_cache
 `ifndef SYNTHESIS
   // ------------------------------------------------------------------ assertions
   // The directory as the assertions see it (from g_dir): every slot's tag and reference count
-  // (the count is meaningful for a live slot only: valid_q || err_q).
+  // (the count is meaningful for a live slot only: valid or with the error bit); the state bits.
   logic [TAGB-1:0] dir_tag [NSUB][SETS][WAYS];
   logic [RC_W-1:0] dir_rc  [NSUB][SETS][WAYS];
   logic [RC_W-1:0] dir_inc [NSUB][SETS][WAYS];
   logic [NSUB-1:0] lk_live, hd_live;  // the committing pass's / the head's slot is live
+  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] valid_v, pend_v, err_v;  // the state bits (g_dir)
+
+  // Reference: the state bits as flops written directly by the commit and the fill (as they
+  // were before the generation bits); the generation bits must agree with them in every clock.
+  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] ref_valid_q, ref_pend_q, ref_err_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      ref_valid_q <= '0;
+      ref_pend_q  <= '0;
+      ref_err_q   <= '0;
+    end else begin
+      for (int c = 0; c < NSUB; c++) begin
+        if (cm_valid_q && cm_alloc_q[c]) begin
+          ref_valid_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]] <= 1'b1;
+          ref_pend_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]]  <= 1'b1;
+          ref_err_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]]   <= 1'b0;
+        end
+      end
+      if (fill_v) begin
+        ref_pend_q[fill_sub][fill_set][fill_way] <= 1'b0;
+        ref_err_q[fill_sub][fill_set][fill_way]  <= fill_bad;
+        if (fill_bad) ref_valid_q[fill_sub][fill_set][fill_way] <= 1'b0;
+      end
+    end
+  end
+  state_bits: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      valid_v == ref_valid_q && pend_v == ref_pend_q && err_v == ref_err_q)
+    else $error("tex_cache: directory state bits differ from their reference");
+  // The head's slots are live (its pending and error bits are read without the live bit).
+  head_live: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      fifo_cnt_q != '0 |-> (hd_live | ~hd.used) == '1)
+    else $error("tex_cache: the head reads a slot that is not live");
 
   logic [NSUB-1:0][SET_W-1:0] cm_set;  // the committing pass's slots
   logic [NSUB-1:0][WAY_W-1:0] cm_way;
@@ -1195,8 +1248,8 @@ module tex_cache
 
   always_comb begin
     for (int c = 0; c < NSUB; c++) begin
-      lk_live[c] = valid_q[c][cm_set[c]][cm_way[c]] || err_q[c][cm_set[c]][cm_way[c]];
-      hd_live[c] = valid_q[c][hd.set[c]][hd.way[c]] || err_q[c][hd.set[c]][hd.way[c]];
+      lk_live[c] = valid_v[c][cm_set[c]][cm_way[c]] || err_v[c][cm_set[c]][cm_way[c]];
+      hd_live[c] = valid_v[c][hd.set[c]][hd.way[c]] || err_v[c][hd.set[c]][hd.way[c]];
     end
   end
 
@@ -1268,11 +1321,11 @@ module tex_cache
       for (int c = 0; c < NSUB; c++) begin
         for (int s = 0; s < SETS; s++) begin
           for (int w = 0; w < WAYS; w++) begin
-            pending_referenced: assert (!pend_q[c][s][w] || dir_rc[c][s][w] != '0)
+            pending_referenced: assert (!pend_v[c][s][w] || dir_rc[c][s][w] != '0)
               else $error("tex_cache: sub-cache %0d set %0d way %0d pending but unreferenced",
                           c, s, w);
             for (int v = w + 1; v < WAYS; v++) begin
-              tag_unique: assert (!(valid_q[c][s][w] && valid_q[c][s][v]
+              tag_unique: assert (!(valid_v[c][s][w] && valid_v[c][s][v]
                                     && dir_tag[c][s][w] == dir_tag[c][s][v]))
                 else $error("tex_cache: sub-cache %0d set %0d holds a line twice", c, s);
             end
@@ -1285,7 +1338,7 @@ module tex_cache
         if (cm_valid_q && cm_alloc_q[c]) begin
           victim_unreferenced: assert ((!lk_live[c]
                                         || dir_rc[c][cm_set[c]][cm_way[c]] == '0)
-                                       && !pend_q[c][cm_set[c]][cm_way[c]])
+                                       && !pend_v[c][cm_set[c]][cm_way[c]])
             else $error("tex_cache: sub-cache %0d evicts a referenced line", c);
         end
         // Reference counts never wrap.
@@ -1304,7 +1357,7 @@ module tex_cache
                                    && dir_rc[c][hd.set[c]][hd.way[c]] != '0)
             else $error("tex_cache: reference count underflow");
           // The slot read at the head holds the line the pass looked up (unless it errored).
-          head_reads_its_line: assert (err_q[c][hd.set[c]][hd.way[c]]
+          head_reads_its_line: assert (err_v[c][hd.set[c]][hd.way[c]]
                                        || (sh_slot_ok[hd.set[c]][hd.way[c]][c]
                                            && sh_slot_la[c][hd.set[c]][hd.way[c]]
                                               == sh_pass_la[fifo_rp_q][c]))
@@ -1317,8 +1370,8 @@ module tex_cache
       // fill one slot; the AR queue holds at most the busy MSHRs.
       for (int m = 0; m < MSHRS; m++) begin
         if (mshr_busy_q[m]) begin
-          mshr_slot_pending: assert (pend_q[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]]
-              && valid_q[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]]
+          mshr_slot_pending: assert (pend_v[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]]
+              && valid_v[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]]
               && dir_tag[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]]
                  == mshr_la_q[m][LA_W-1 -: TAGB]
               && set_of(mshr_la_q[m]) == mshr_set_q[m])
