@@ -44,9 +44,10 @@
 // texels wide; odd widths of a few texels are the worst).
 // Each sub-cache: SETS sets x WAYS ways of lines; set = la[1 +: S] ^ la[1 + S +: S] (S = log2 SETS,
 // an XOR fold, so that rows of power-of-two pitch spread over the sets), tag = la >> (1 + S).
-// The valid, pending and error bits are flops; the tags, the reference counts and the pseudo-LRU
-// bits are in LUT RAM, one memory per sub-cache and way (per sub-cache for the pseudo-LRU bits),
-// each written from one place (see "Directory" at the state); the lines are in block RAM
+// The live bits (allocated since the reset) are flops; the tags and the reference counts are in
+// LUT RAM, one memory per sub-cache and way, the pseudo-LRU bits and the generation and error
+// bits that give each slot's valid, pending and error state one memory per sub-cache, each
+// written from one place (see "Directory" at the state); the lines are in block RAM
 // (cache_sdp_ram), per sub-cache one RAM per DATA_W lane of a window and one for the overlap
 // words, SETS * WAYS * NWIN deep (address {set, way, window}; see "Data RAMs").
 //
@@ -109,11 +110,11 @@
 // bit and loses its valid bit: the passes already waiting for it answer rsp_err_o = 1 (nothing
 // hangs), a later request reads the line again.
 // Reset (rst_ni low, synchronous): empties the entry, pass and commit registers, the FIFO, the
-// output, the MSHRs and the AR queue, clears the valid, pending and error bits and the
-// statistics; requests not yet answered are dropped; req_ready_o and m_axi_arvalid are 0.  The
-// tags, reference counters and pseudo-LRU bits (LUT RAM) keep whatever they hold, which the
-// valid and error bits make harmless (see "Directory" at the state): the cache behaves as if they
-// had been cleared.
+// output, the MSHRs and the AR queue, clears the live bits (so no slot is valid, pending or in
+// error) and the statistics; requests not yet answered are dropped; req_ready_o and
+// m_axi_arvalid are 0.  The tags, reference counters, pseudo-LRU, generation and error bits (LUT
+// RAM) keep whatever they hold, which the live bits make harmless (see "Directory" at the state):
+// the cache behaves as if they had been cleared.
 // Reads issued before the reset still return (rready stays 1) and are ignored: the arid's
 // EPOCH_W = ID_W - log2(MSHRS) epoch bits advance at each reset.  Requirement: a read returns before
 // 2^EPOCH_W - 1 further resets.
@@ -303,8 +304,8 @@ module tex_cache
   //    fg), and {fg, bad}, written by the fill (fg = ag, bad = the line came back with an error).
   //    The slot is pending (allocated, line not yet written) when ag != fg, has the error bit
   //    (err) when it is live, not pending and bad, and is valid when it is live and has not the
-  //    error bit (so valid while pending, as the lookup merges a miss with a line in flight).  A
-  //    slot is live when it is valid or has the error bit.  An allocation takes a slot that is not
+  //    error bit (so valid while pending, as the lookup merges a miss with a line in flight): a
+  //    live slot is valid or has the error bit, never both.  An allocation takes a slot that is not
   //    pending (it is unreferenced), and a fill comes only for a pending one (stale beats from
   //    before a reset are dropped), so ag and fg never differ by more than the one allocation;
   //  - the tags (per sub-cache and way), which count only with the valid bit;
