@@ -186,15 +186,24 @@ module dm_pipeline
     .clk_i, .rst_ni, .wr_i(free_push), .wr_data_i(free_push_id), .rd_i(free_pop),
     .rd_data_o(free_head), .full_o(free_full), .empty_o(free_empty), .count_o(free_count));
 
-  logic [PIX_W-1:0]  ctx_pix_q   [SLOTS];
-  f24_t              ctx_pl0_q   [SLOTS];
-  logic [TRI_W-1:0]  ctx_tri_q   [SLOTS];
+  // Per-slot context.  The fragment's id, its Pl0 and triangle, and the traversal's result flags
+  // are read only into registers (mip_level's first stage, the output register), so they are
+  // block RAM (a 128-deep LUT RAM costs about 16 LUT4s per bit and read port).
+  typedef struct packed {
+    f24_t             pl0;
+    logic [TRI_W-1:0] tri_id;
+  } ctx_frag_t;
+  typedef struct packed {
+    logic              inv;
+    logic              herr;
+    logic [ITER_W-1:0] iters;
+  } ctx_res_t;
+  (* ram_style = "block" *) logic [PIX_W-1:0] ctx_pix_q  [SLOTS];
+  (* ram_style = "block" *) ctx_frag_t        ctx_frag_q [SLOTS];
+  (* ram_style = "block" *) ctx_res_t         ctx_res_q  [SLOTS];
   f24_t              ctx_du_q    [SLOTS];
   f24_t              ctx_dv_q    [SLOTS];
   f24_t              ctx_seg_q   [SLOTS];
-  logic              ctx_inv_q   [SLOTS];
-  logic              ctx_herr_q  [SLOTS];
-  logic [ITER_W-1:0] ctx_iters_q [SLOTS];
 
   // ---- accept: fragment -> view_calc ---------------------------------------------------------
   logic [F0_CW-1:0]  vc_cnt;          // fragments inside view_calc
@@ -216,9 +225,8 @@ module dm_pipeline
 
   always_ff @(posedge clk_i) begin
     if (acc) begin
-      ctx_pix_q[free_head] <= frag_id_i;
-      ctx_pl0_q[free_head] <= frag_pl0_i;
-      ctx_tri_q[free_head] <= frag_tri_i;
+      ctx_pix_q[free_head]  <= frag_id_i;
+      ctx_frag_q[free_head] <= '{pl0: frag_pl0_i, tri_id: frag_tri_i};
     end
   end
 
@@ -316,9 +324,7 @@ module dm_pipeline
 
   always_ff @(posedge clk_i) begin
     if (res_valid && res_ready) begin
-      ctx_inv_q[res_id]   <= res_inv;
-      ctx_herr_q[res_id]  <= res_herr;
-      ctx_iters_q[res_id] <= res_iters;
+      ctx_res_q[res_id] <= '{inv: res_inv, herr: res_herr, iters: res_iters};
     end
   end
 
@@ -336,7 +342,7 @@ module dm_pipeline
     .clk_i, .rst_ni, .en_i(1'b1), .cfg_mip_en_i, .cfg_levels_colour_i, .cfg_levels_normal_i,
     .tt_we_i, .tt_waddr_i, .tt_wdata_i,
     .valid_i(hit_adm), .tag_i({res_id, res_u, res_v}), .t_i(res_t), .seg_i(ctx_seg_q[res_id]),
-    .pl0_i(ctx_pl0_q[res_id]), .tri_i(ctx_tri_q[res_id]),
+    .pl0_i(ctx_frag_q[res_id].pl0), .tri_i(ctx_frag_q[res_id].tri_id),
     .valid_o(mip_valid), .tag_o(mip_tag), .tex_o(mip_tex), .level_o(mip_lvl));
 
   // mip -> one address unit for both textures: mip_level gives a hit's colour level (texture 0)
@@ -497,6 +503,9 @@ module dm_pipeline
   logic [SLOT_W-1:0] o_slot_q;
   logic [2:0][7:0]   o_rgb_q;
   logic              o_load;
+  logic [SLOT_W-1:0] o_slot_d;        // the slot the output register loads
+  logic [PIX_W-1:0]  o_pix_q;         // its context, read as it loads (block RAM read registers)
+  ctx_res_t          o_res_q;
 
   assign o_load  = !o_valid_q || px_ready_i;
   assign out_rd  = o_load && !out_empty;
@@ -506,6 +515,13 @@ module dm_pipeline
   always_ff @(posedge clk_i) begin
     if (!rst_ni) o_valid_q <= 1'b0;
     else if (o_load) o_valid_q <= !out_empty || !miss_empty;
+  end
+  assign o_slot_d = out_rd ? out_head[OUT_W-1 -: SLOT_W] : miss_head;
+  always_ff @(posedge clk_i) begin
+    if (out_rd || miss_rd) begin
+      o_pix_q <= ctx_pix_q[o_slot_d];
+      o_res_q <= ctx_res_q[o_slot_d];
+    end
   end
   always_ff @(posedge clk_i) begin
     if (out_rd) begin
@@ -522,12 +538,12 @@ module dm_pipeline
   end
 
   assign px_valid_o   = o_valid_q;
-  assign px_id_o      = ctx_pix_q[o_slot_q];
+  assign px_id_o      = o_pix_q;
   assign px_rgb_o     = o_rgb_q;
   assign px_hit_o     = o_hit_q;
-  assign px_invalid_o = ctx_inv_q[o_slot_q];
-  assign px_err_o     = o_err_q | ctx_herr_q[o_slot_q];
-  assign px_iters_o   = ctx_iters_q[o_slot_q];
+  assign px_invalid_o = o_res_q.inv;
+  assign px_err_o     = o_err_q | o_res_q.herr;
+  assign px_iters_o   = o_res_q.iters;
 
   // ---- slot free list: init after reset, then one free per pixel out -------------------------
   logic px_done;
