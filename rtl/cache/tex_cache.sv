@@ -110,11 +110,12 @@
 // bit and loses its valid bit: the passes already waiting for it answer rsp_err_o = 1 (nothing
 // hangs), a later request reads the line again.
 // Reset (rst_ni low, synchronous): empties the entry, pass and commit registers, the FIFO, the
-// output, the MSHRs and the AR queue, clears the live bits (so no slot is valid, pending or in
-// error) and the statistics; requests not yet answered are dropped; req_ready_o and
-// m_axi_arvalid are 0.  The tags, reference counters, pseudo-LRU, generation and error bits (LUT
-// RAM) keep whatever they hold, which the live bits make harmless (see "Directory" at the state):
-// the cache behaves as if they had been cleared.
+// output, the MSHRs and the AR queue and the statistics; requests not yet answered are dropped;
+// req_ready_o and m_axi_arvalid are 0.  Then a sweep clears the live bits, one set per clock
+// (so no slot is valid, pending or in error): req_ready_o stays 0 for SETS more clocks.  The
+// tags, reference counters, pseudo-LRU, generation and error bits (LUT RAM) keep whatever they
+// hold, which the live bits make harmless (see "Directory" at the state): the cache behaves as
+// if they had been cleared.
 // Reads issued before the reset still return (rready stays 1) and are ignored: the arid's
 // EPOCH_W = ID_W - log2(MSHRS) epoch bits advance at each reset.  Requirement: a read returns before
 // 2^EPOCH_W - 1 further resets.
@@ -296,9 +297,11 @@ module tex_cache
   endfunction
 
   // ---------------------------------------------------------------- state
-  // Directory.  Flops, cleared at reset: per slot the live bit, set by an allocation: the slot
-  // has been allocated since the reset.
-  // LUT RAM (g_dir below), not reset, each memory written from one place:
+  // Directory, in LUT RAM (g_dir below), each memory written from one place:
+  //  - the live bits (per sub-cache, a word per set with a bit per way): a slot has been
+  //    allocated since the reset.  Written by the commit (an allocation sets its slot's bit) and
+  //    cleared after a reset by a sweep, one set per clock (SETS clocks, while req_ready_o is 0);
+  // the rest is not reset:
   //  - the slot's state as two generation bits and an error bit (per sub-cache, a word per set
   //    with a bit per way): ag, written by the commit (an allocation sets it to the inverse of
   //    fg), and {fg, bad}, written by the fill (fg = ag, bad = the line came back with an error).
@@ -320,7 +323,8 @@ module tex_cache
   //    way's path, so every node of the tree has been written since the reset.
   // (The state bits were flops written by both the commit and the fill, 3 x NSUB x SETS x WAYS
   // of them read through wide multiplexers; in LUT RAM each memory has one writer.)
-  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] live_q;
+  logic              swp_q;        // the live bits are being cleared (after a reset)
+  logic [SET_W-1:0]  swp_set_q;    // the set cleared in this clock
 
   // Entry register (the request being looked up).
   logic                   s0_valid_q;
@@ -584,7 +588,7 @@ module tex_cache
   logic [NSUB-1:0][WAYS-1:0][TAGB-1:0] set_tag;
   logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] set_inc, set_dec;
   logic [NSUB-1:0][PLRU_W-1:0]         set_plru;
-  logic [NSUB-1:0][WAYS-1:0]           set_ag, set_fg, set_bad;
+  logic [NSUB-1:0][WAYS-1:0]           set_live, set_ag, set_fg, set_bad;
 
   logic [NSUB-1:0][MIDX_W-1:0] free_idx;  // the lowest free MSHRs (below)
   logic [NSUB-1:0]             free_ok;
@@ -601,6 +605,7 @@ module tex_cache
   logic [NSUB-1:0][RC_W-1:0]   cm_inc_q;   // the slot's new reference-taken count
   logic [NSUB-1:0][PLRU_W-1:0] cm_plru_q;  // the set's new pseudo-LRU bits
   logic [NSUB-1:0][WAYS-1:0]   cm_ag_q;    // the set's new ag bits (written on an allocation)
+  logic [NSUB-1:0][WAYS-1:0]   cm_live_q;  // ... and live bits
 
   // The directory at the looked-up set as the lookup must see it: what the RAMs and flops hold,
   // with the commit register's writes (not yet done) forwarded.
@@ -608,7 +613,7 @@ module tex_cache
   logic [NSUB-1:0][WAYS-1:0][TAGB-1:0] f_tag;
   logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] f_inc;
   logic [NSUB-1:0][PLRU_W-1:0]         f_plru;
-  logic [NSUB-1:0][WAYS-1:0]           f_ag;
+  logic [NSUB-1:0][WAYS-1:0]           f_ag, f_live;
 
   always_comb begin
     logic fw, fw_alloc, live, done_bad;
@@ -616,9 +621,10 @@ module tex_cache
       fw        = cm_valid_q && cm_pass_q.used[c] && cm_pass_q.set[c] == lk_set[c];
       f_plru[c] = fw ? cm_plru_q[c] : set_plru[c];
       f_ag[c]   = (fw && cm_alloc_q[c]) ? cm_ag_q[c] : set_ag[c];
+      f_live[c] = (fw && cm_alloc_q[c]) ? cm_live_q[c] : set_live[c];
       for (int w = 0; w < WAYS; w++) begin
         fw_alloc     = fw && cm_alloc_q[c] && cm_pass_q.way[c] == WAY_W'(w);
-        live         = live_q[c][lk_set[c]][w];
+        live         = set_live[c][w];
         done_bad     = set_ag[c][w] == set_fg[c][w] && set_bad[c][w];  // not pending, bad
         f_vld[c][w]  = fw_alloc || (live && !done_bad);
         f_pnd[c][w]  = fw_alloc || (live && set_ag[c][w] != set_fg[c][w]);
@@ -708,13 +714,15 @@ module tex_cache
       cm_plru_q[c] <= plru_touch(f_plru[c], lk_way[c]);
       cm_ag_q[c]   <= f_ag[c];
       cm_ag_q[c][lk_way[c]] <= !set_fg[c][lk_way[c]];  // (the victim: not pending, no fill due)
+      cm_live_q[c]          <= f_live[c];
+      cm_live_q[c][lk_way[c]] <= 1'b1;
       cm_inc_q[c]  <= (lk_alloc[c] ? set_dec[c][lk_way[c]] : f_inc[c][lk_way[c]]) + RC_W'(1);
     end
     cm_pass_q       <= e_pass;
     cm_texel_hits_q <= e_texel_hits;
     cm_qhit_q       <= e_last && !e_missed_q && !(|lk_alloc);
   end
-  assign req_ready_o = rst_ni && (!s0_valid_q || (p_load && sl_last));
+  assign req_ready_o = rst_ni && !swp_q && (!s0_valid_q || (p_load && sl_last));
 
   logic req_fire;
   assign req_fire = req_valid_i && req_ready_o;
@@ -968,14 +976,14 @@ module tex_cache
   assign m_axi_rready = 1'b1;
 
   // ---------------------------------------------------------------- directory updates
-  // The live bits: set by an allocation, cleared by reset.
+  // The sweep that clears the live bits after a reset (one set per clock in every sub-cache).
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      live_q <= '0;
-    end else begin
-      for (int c = 0; c < NSUB; c++) begin
-        if (cm_valid_q && cm_alloc_q[c]) live_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]] <= 1'b1;
-      end
+      swp_q     <= 1'b1;
+      swp_set_q <= '0;
+    end else if (swp_q) begin
+      swp_set_q <= swp_set_q + SET_W'(1);
+      if (swp_set_q == SET_W'(SETS - 1)) swp_q <= 1'b0;
     end
   end
 
@@ -988,6 +996,7 @@ module tex_cache
     logic              give;             // the head's pass read sub-cache c
     logic              fill;             // a line of sub-cache c completes
     logic [PLRU_W-1:0] plru_mem [SETS];
+    logic [WAYS-1:0]   live_mem [SETS];
     logic [WAYS-1:0]   ag_mem   [SETS];
     logic [WAYS-1:0]   fg_mem   [SETS];
     logic [WAYS-1:0]   bad_mem  [SETS];
@@ -1000,6 +1009,9 @@ module tex_cache
     always_ff @(posedge clk_i) begin
       if (take) plru_mem[cm_pass_q.set[c]] <= cm_plru_q[c];
       if (take && cm_alloc_q[c]) ag_mem[cm_pass_q.set[c]] <= cm_ag_q[c];
+      // (no commit while the sweep runs: nothing is accepted until it ends)
+      if (swp_q) live_mem[swp_set_q] <= '0;
+      else if (take && cm_alloc_q[c]) live_mem[cm_pass_q.set[c]] <= cm_live_q[c];
       if (fill) begin
         fg_mem[fill_set]  <= fl_fg  ^ (fl_fg ^ fl_ag) & (WAYS'(1) << fill_way);
         bad_mem[fill_set] <= (fl_bad & ~(WAYS'(1) << fill_way))
@@ -1007,6 +1019,7 @@ module tex_cache
       end
     end
     assign set_plru[c] = plru_mem[lk_set[c]];
+    assign set_live[c] = live_mem[lk_set[c]];
     assign set_ag[c]   = ag_mem[lk_set[c]];
     assign set_fg[c]   = fg_mem[lk_set[c]];
     assign set_bad[c]  = bad_mem[lk_set[c]];
@@ -1023,10 +1036,10 @@ module tex_cache
     // every slot's state bits for the assertions below
     for (genvar s = 0; s < SETS; s++) begin : g_state_view
       for (genvar w = 0; w < WAYS; w++) begin : g_w
-        assign pend_v[c][s][w]  = live_q[c][s][w] && ag_mem[s][w] != fg_mem[s][w];
-        assign err_v[c][s][w]   = live_q[c][s][w] && ag_mem[s][w] == fg_mem[s][w]
+        assign pend_v[c][s][w]  = live_mem[s][w] && ag_mem[s][w] != fg_mem[s][w];
+        assign err_v[c][s][w]   = live_mem[s][w] && ag_mem[s][w] == fg_mem[s][w]
                                   && bad_mem[s][w];
-        assign valid_v[c][s][w] = live_q[c][s][w] && !err_v[c][s][w];
+        assign valid_v[c][s][w] = live_mem[s][w] && !err_v[c][s][w];
       end
     end
 `endif
@@ -1234,7 +1247,7 @@ module tex_cache
       end
     end
   end
-  state_bits: assert property (@(posedge clk_i) disable iff (!rst_ni)
+  state_bits: assert property (@(posedge clk_i) disable iff (!rst_ni || swp_q)
       valid_v == ref_valid_q && pend_v == ref_pend_q && err_v == ref_err_q)
     else $error("tex_cache: directory state bits differ from their reference");
   // The head's slots are live (its pending and error bits are read without the live bit).
@@ -1316,7 +1329,7 @@ module tex_cache
   end
 
   always @(posedge clk_i) begin
-    if (rst_ni) begin
+    if (rst_ni && !swp_q) begin  // (the live bits are cleared once the sweep ends)
       // Invariants of every slot: a pending slot is referenced (by its allocator at least);
       // valid tags of a set are unique.
       for (int c = 0; c < NSUB; c++) begin
