@@ -40,8 +40,9 @@
 // (texel order) subset of its texels whose lines are in distinct sub-caches, or the same line and
 // in the window its first texel in that sub-cache reads; one pass per clock.  Real quads of widths
 // that are not powers of two take two passes when a carry defeats the row bit
-// (model.tex_cache.passes: 1.01 - 1.08 passes per quad over the MIP chains of textures 37 .. 1920
-// texels wide; odd widths of a few texels are the worst).
+// (model.tex_cache.passes, 128-byte lines, over the MIP chains of textures 37 .. 1920 texels
+// wide: 1.01 - 1.10 passes per quad with the default 2-word windows, 1.01 - 1.06 with 8-word
+// ones; odd widths of a few texels are the worst).
 // Each sub-cache: SETS sets x WAYS ways of lines; set = la[1 +: S] ^ la[1 + S +: S] (S = log2 SETS,
 // an XOR fold, so that rows of power-of-two pitch spread over the sets), tag = la >> (1 + S).
 // The live bits (allocated since the reset) are flops; the tags and the reference counts are in
