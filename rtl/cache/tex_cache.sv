@@ -375,10 +375,28 @@ module tex_cache
 
   // MSHRs.
   logic                         mshr_busy_q [MSHRS];
-  logic [LA_W-1:0]              mshr_la_q   [MSHRS];
+  // An MSHR's sub-cache is a flop (a pass allocates up to four MSHRs in a clock, any of them to
+  // any sub-cache); its line and slot are in LUT RAM, one memory per sub-cache indexed by the
+  // MSHR (g_mshr below), so each has one writer: that sub-cache's allocation.  A read takes the
+  // word of the MSHR's sub-cache.
   logic [1:0]                   mshr_sub_q  [MSHRS];
-  logic [SET_W-1:0]             mshr_set_q  [MSHRS];
-  logic [WAY_W-1:0]             mshr_way_q  [MSHRS];
+  logic [NSUB-1:0][LA_W-1:0]    mshr_la_ar;   // each sub-cache's line of the MSHR at the AR head
+  logic [NSUB-1:0][SET_W+WAY_W-1:0] mshr_sw_r;  // ... slot (set, way) of the MSHR of the R beat
+  logic [NSUB-1:0][LA_W-1:0]    mshr_la_r;    // ... line of the MSHR of the R beat (simulation)
+`ifndef SYNTHESIS
+  // every MSHR's fields, for the assertions
+  logic [LA_W-1:0]              mshr_la_all [NSUB][MSHRS];
+  logic [SET_W+WAY_W-1:0]       mshr_sw_all [NSUB][MSHRS];
+  logic [LA_W-1:0]              mshr_la_v   [MSHRS];
+  logic [SET_W-1:0]             mshr_set_v  [MSHRS];
+  logic [WAY_W-1:0]             mshr_way_v  [MSHRS];
+  always_comb begin
+    for (int m = 0; m < MSHRS; m++) begin
+      mshr_la_v[m]                   = mshr_la_all[mshr_sub_q[m]][m];
+      {mshr_set_v[m], mshr_way_v[m]} = mshr_sw_all[mshr_sub_q[m]][m];
+    end
+  end
+`endif
   logic [BEAT_W-1:0]            mshr_beat_q [MSHRS];
   logic                         mshr_rerr_q [MSHRS];  // an earlier beat had an error
 
@@ -959,18 +977,17 @@ module tex_cache
 
   // ---------------------------------------------------------------- R channel, fills
 
+  assign r_idx   = m_axi_rid[MIDX_W-1:0];
+  assign r_epoch = m_axi_rid[ID_W-1:MIDX_W];
   always_comb begin
-    r_idx       = m_axi_rid[MIDX_W-1:0];
-    r_epoch     = m_axi_rid[ID_W-1:MIDX_W];
     r_acc       = rst_ni && m_axi_rvalid && (r_epoch == epoch_q) && (32'(r_idx) < MSHRS)
                   && mshr_busy_q[r_idx];
     r_last_beat = (mshr_beat_q[r_idx] == BEAT_W'(BEATS - 1));
-    r_la        = mshr_la_q[r_idx];
+    r_la        = mshr_la_r[mshr_sub_q[r_idx]];
     fill_v      = r_acc && r_last_beat;
     fill_bad    = m_axi_rresp[1] || mshr_rerr_q[r_idx];  // SLVERR / DECERR now or earlier
     fill_sub    = mshr_sub_q[r_idx];
-    fill_set    = mshr_set_q[r_idx];
-    fill_way    = mshr_way_q[r_idx];
+    {fill_set, fill_way} = mshr_sw_r[mshr_sub_q[r_idx]];
     r_beat      = mshr_beat_q[r_idx];
   end
 
@@ -1107,13 +1124,28 @@ module tex_cache
 
   always_ff @(posedge clk_i) begin
     for (int c = 0; c < NSUB; c++) begin
+      if (cm_valid_q && cm_alloc_q[c]) mshr_sub_q[cm_mshr_q[c]] <= 2'(c);
+    end
+  end
+
+  for (genvar c = 0; c < NSUB; c++) begin : g_mshr
+    logic [LA_W-1:0]        la_mem [MSHRS];
+    logic [SET_W+WAY_W-1:0] sw_mem [MSHRS];
+    always_ff @(posedge clk_i) begin
       if (cm_valid_q && cm_alloc_q[c]) begin
-        mshr_la_q[cm_mshr_q[c]]  <= cm_la_q[c];
-        mshr_sub_q[cm_mshr_q[c]] <= 2'(c);
-        mshr_set_q[cm_mshr_q[c]] <= cm_pass_q.set[c];
-        mshr_way_q[cm_mshr_q[c]] <= cm_pass_q.way[c];
+        la_mem[cm_mshr_q[c]] <= cm_la_q[c];
+        sw_mem[cm_mshr_q[c]] <= {cm_pass_q.set[c], cm_pass_q.way[c]};
       end
     end
+    assign mshr_la_ar[c] = la_mem[ar_idx];
+    assign mshr_sw_r[c]  = sw_mem[r_idx];
+    assign mshr_la_r[c]  = la_mem[r_idx];  // (read only by the simulation's shadow)
+`ifndef SYNTHESIS
+    for (genvar m = 0; m < MSHRS; m++) begin : g_view
+      assign mshr_la_all[c][m] = la_mem[m];
+      assign mshr_sw_all[c][m] = sw_mem[m];
+    end
+`endif
   end
 
   function automatic logic [MIDX_W-1:0] arq_add(input logic [MIDX_W-1:0] p, input int unsigned k);
@@ -1155,7 +1187,7 @@ module tex_cache
 
   assign m_axi_arvalid = rst_ni && (arq_cnt_q != '0);
   assign m_axi_arid    = {epoch_q, ar_idx};
-  assign m_axi_araddr  = {mshr_la_q[ar_idx], {OFF_W{1'b0}}};
+  assign m_axi_araddr  = {mshr_la_ar[mshr_sub_q[ar_idx]], {OFF_W{1'b0}}};
   assign m_axi_arlen   = 8'(BEATS - 1);
   assign m_axi_arsize  = 3'($clog2(BEAT_BYTES));
   assign m_axi_arburst = AXI_BURST_INCR;
@@ -1385,17 +1417,17 @@ module tex_cache
       // fill one slot; the AR queue holds at most the busy MSHRs.
       for (int m = 0; m < MSHRS; m++) begin
         if (mshr_busy_q[m]) begin
-          mshr_slot_pending: assert (pend_v[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]]
-              && valid_v[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]]
-              && dir_tag[mshr_sub_q[m]][mshr_set_q[m]][mshr_way_q[m]]
-                 == mshr_la_q[m][LA_W-1 -: TAGB]
-              && set_of(mshr_la_q[m]) == mshr_set_q[m])
+          mshr_slot_pending: assert (pend_v[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
+              && valid_v[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
+              && dir_tag[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
+                 == mshr_la_v[m][LA_W-1 -: TAGB]
+              && set_of(mshr_la_v[m]) == mshr_set_v[m])
             else $error("tex_cache: MSHR %0d does not own a pending slot of its line", m);
           for (int n = m + 1; n < MSHRS; n++) begin
             mshr_unique: assert (!(mshr_busy_q[n] && mshr_sub_q[n] == mshr_sub_q[m]
-                                   && (mshr_la_q[n] == mshr_la_q[m]
-                                       || (mshr_set_q[n] == mshr_set_q[m]
-                                           && mshr_way_q[n] == mshr_way_q[m]))))
+                                   && (mshr_la_v[n] == mshr_la_v[m]
+                                       || (mshr_set_v[n] == mshr_set_v[m]
+                                           && mshr_way_v[n] == mshr_way_v[m]))))
               else $error("tex_cache: MSHRs %0d and %0d read the same line / slot", m, n);
           end
         end
