@@ -383,6 +383,7 @@ module tex_cache
   logic [NSUB-1:0][LA_W-1:0]    mshr_la_ar;   // each sub-cache's line of the MSHR at the AR head
   logic [NSUB-1:0][SET_W+WAY_W-1:0] mshr_sw_r;  // ... slot (set, way) of the MSHR of the R beat
   logic [NSUB-1:0][LA_W-1:0]    mshr_la_r;    // ... line of the MSHR of the R beat (simulation)
+  logic [MIDX_W-1:0]            ar_idx;       // the MSHR at the AR queue's head
 `ifndef SYNTHESIS
   // every MSHR's fields, for the assertions
   logic [LA_W-1:0]              mshr_la_all [NSUB][MSHRS];
@@ -1182,7 +1183,6 @@ module tex_cache
     end
   end
 
-  logic [MIDX_W-1:0] ar_idx;
   assign ar_idx = arq_q[arq_rp_q];
 
   assign m_axi_arvalid = rst_ni && (arq_cnt_q != '0);
