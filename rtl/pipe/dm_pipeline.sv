@@ -186,9 +186,10 @@ module dm_pipeline
     .clk_i, .rst_ni, .wr_i(free_push), .wr_data_i(free_push_id), .rd_i(free_pop),
     .rd_data_o(free_head), .full_o(free_full), .empty_o(free_empty), .count_o(free_count));
 
-  // Per-slot context.  The fragment's id, its Pl0 and triangle, and the traversal's result flags
-  // are read only into registers (mip_level's first stage, the output register), so they are
-  // block RAM (a 128-deep LUT RAM costs about 16 LUT4s per bit and read port).
+  // Per-slot context.  The fragment's id and the traversal's result flags are read only into the
+  // output register, so they are block RAM (a 128-deep LUT RAM costs about 16 LUT4s per bit and
+  // read port).  Pl0 and the triangle go to mip_level's first stage, whose registers synthesis
+  // does not merge into a RAM read port (Yosys: "no valid mapping"), so they stay LUT RAM.
   typedef struct packed {
     f24_t             pl0;
     logic [TRI_W-1:0] tri_id;
@@ -199,7 +200,7 @@ module dm_pipeline
     logic [ITER_W-1:0] iters;
   } ctx_res_t;
   (* ram_style = "block" *) logic [PIX_W-1:0] ctx_pix_q  [SLOTS];
-  (* ram_style = "block" *) ctx_frag_t        ctx_frag_q [SLOTS];
+  ctx_frag_t                          ctx_frag_q [SLOTS];
   (* ram_style = "block" *) ctx_res_t         ctx_res_q  [SLOTS];
   f24_t              ctx_du_q    [SLOTS];
   f24_t              ctx_dv_q    [SLOTS];
