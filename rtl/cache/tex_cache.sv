@@ -297,6 +297,15 @@ module tex_cache
     return r;
   endfunction
 
+  // A set's word with way w's bit replaced by b (the state words of g_dir, a bit per way).
+  function automatic logic [WAYS-1:0] with_way(input logic [WAYS-1:0] word,
+                                                input logic [WAY_W-1:0] w, input logic b);
+    logic [WAYS-1:0] r;
+    r    = word;
+    r[w] = b;
+    return r;
+  endfunction
+
   // ---------------------------------------------------------------- state
   // Directory, in LUT RAM (g_dir below), each memory written from one place:
   //  - the live bits (per sub-cache, a word per set with a bit per way): a slot has been
@@ -732,10 +741,9 @@ module tex_cache
     cm_mshr_q       <= lk_mshr;
     for (int c = 0; c < NSUB; c++) begin
       cm_plru_q[c] <= plru_touch(f_plru[c], lk_way[c]);
-      cm_ag_q[c]   <= f_ag[c];
-      cm_ag_q[c][lk_way[c]] <= !set_fg[c][lk_way[c]];  // (the victim: not pending, no fill due)
-      cm_live_q[c]          <= f_live[c];
-      cm_live_q[c][lk_way[c]] <= 1'b1;
+      // (the victim: not pending, no fill due)
+      cm_ag_q[c]   <= with_way(f_ag[c], lk_way[c], !set_fg[c][lk_way[c]]);
+      cm_live_q[c] <= with_way(f_live[c], lk_way[c], 1'b1);
       cm_inc_q[c]  <= (lk_alloc[c] ? set_dec[c][lk_way[c]] : f_inc[c][lk_way[c]]) + RC_W'(1);
     end
     cm_pass_q       <= e_pass;
@@ -1032,9 +1040,8 @@ module tex_cache
       if (swp_q) live_mem[swp_set_q] <= '0;
       else if (take && cm_alloc_q[c]) live_mem[cm_pass_q.set[c]] <= cm_live_q[c];
       if (fill) begin
-        fg_mem[fill_set]  <= fl_fg  ^ (fl_fg ^ fl_ag) & (WAYS'(1) << fill_way);
-        bad_mem[fill_set] <= (fl_bad & ~(WAYS'(1) << fill_way))
-                             | ({WAYS{fill_bad}} & (WAYS'(1) << fill_way));
+        fg_mem[fill_set]  <= with_way(fl_fg, fill_way, fl_ag[fill_way]);
+        bad_mem[fill_set] <= with_way(fl_bad, fill_way, fill_bad);
       end
     end
     assign set_plru[c] = plru_mem[lk_set[c]];
