@@ -67,24 +67,28 @@
 // ---- Pipeline ------------------------------------------------------------------------------------
 //   clock 0   request accepted into the entry register (row bits computed from req_addr_i).
 //   clock 1   pass selection: the request's next pass (texels, one line and window per
-//             sub-cache, set indices, tags) moves into the pass queue (two entries) while it has
-//             room; a request of several passes stays in the entry register until its last one
-//             has moved.
-//   clock 2   lookup of the oldest pass in the queue: tag lookup in the four sub-caches; a miss
-//             picks a victim way and an MSHR.  All or nothing: the pass waits in the queue while
-//             the FIFO is full, while an MSHR is missing for one of its misses, or while every
-//             way of a missed set is referenced.  The queue's room is judged from its count
-//             register, so the lookup's outcome steers no enable of the entry register or of the
-//             queue's entries in its own clock (only the queue's read pointer and count).
-//   clock 3   commit: the pass's directory writes (tags, references, pseudo-LRU, valid and
+//             sub-cache, set indices, tags) moves into the pass queue (four entries) while it
+//             has room; a request of several passes stays in the entry register until its last
+//             one has moved.
+//   clock 2   lookup, read stage: the next pass in the queue reads the directory at its sets in
+//             the four sub-caches (tags, reference counts, pseudo-LRU and state bits) and
+//             compares each way's tag with its own.
+//   clock 3   lookup, decide stage: hit or miss per sub-cache; a miss picks a victim way and an
+//             MSHR.  All or nothing: the pass cannot go while the FIFO is full, while an MSHR is
+//             missing for one of its misses, or while every way of a missed set is referenced;
+//             then it and the pass behind it are read again (a replay, see "pass queue").  The
+//             queue's room is judged from its pointers, so the lookup's outcome steers no enable
+//             of the entry register or of the queue's entries in its own clock (only the
+//             queue's pointers and the stage valid bits).
+//   clock 4   commit: the pass's directory writes (tags, references, pseudo-LRU, valid and
 //             pending bits), its MSHRs and line reads, and its push into the request FIFO
 //             (FIFO_DEPTH passes) happen from the commit register, so no write waits on the
-//             lookup's outcome in its own clock; the next pass's lookup sees them forwarded.
-//   clock 4   head: when the lines of the head pass are present (no pending fill), the pass
+//             lookup's outcome in its own clock; the next passes' lookups see them forwarded.
+//   clock 5   head: when the lines of the head pass are present (no pending fill), the pass
 //             leaves the FIFO and reads the data RAMs (one window per sub-cache).
-//   clock 5   the texels are selected (and merged with earlier passes of the request).
-//   clock 6   rsp_valid_o (a 2-entry output buffer).
-// So a request that hits answers 6 clocks after its handshake; full throughput is one pass per
+//   clock 6   the texels are selected (and merged with earlier passes of the request).
+//   clock 7   rsp_valid_o (a 2-entry output buffer).
+// So a request that hits answers 7 clocks after its handshake; full throughput is one pass per
 // clock.  A miss answers 3 clocks after its line's last beat.  Sizing: the FIFO lets requests
 // run ahead of the head by FIFO_DEPTH passes, so it should exceed the memory latency plus a line's
 // beats and the queueing of bursts of misses; MSHRS about FIFO_DEPTH / 4.  Measured on camera
@@ -525,13 +529,19 @@ module tex_cache
   end
 
   // ---------------------------------------------------------------- pass queue
-  // The passes selected and not yet looked up: two registers used as a queue (pq_q, written at
-  // pq_wp_q, read at pq_rp_q).  The lookup below reads only the entry at the read pointer and the
-  // directory.  A pass moves in while the queue has a free entry, judged from pq_cnt_q alone, so
-  // neither the selection nor req_ready_o waits on the lookup's outcome in the same clock: the
-  // lookup's handshake (e_fire) only steps the read pointer and the count.  Two entries keep one
-  // pass per clock going: a pass is selected while the one before it is looked up; after a stall
-  // (both entries full) the lookup takes the second entry while the first one's place refills.
+  // The passes selected and not yet in the FIFO: PQ_DEPTH registers used as a queue (pq_q),
+  // written at pq_wp_q.  The lookup takes two clocks, a read stage and a decide stage (below):
+  // pq_ip_q is the next entry the read stage takes, pq_rp_q the oldest entry, the pass in the
+  // decide stage when it holds one (b_valid_q), freed when that pass enters the FIFO (e_fire).
+  // When the decide stage cannot let its pass go (the FIFO is full, an MSHR is missing, every way
+  // of a missed set is referenced), it drops it and the pass behind it in the read stage, and
+  // pq_ip_q goes back to pq_rp_q: the pass is read again from the directory as it then is (a
+  // replay: two clocks per retry, and no outcome of the decision steers more than the pointers
+  // and the stage valid bits).  A pass moves in while the queue has a free entry, judged from the
+  // pointers alone, so neither the selection nor req_ready_o waits on the lookup's outcome in the
+  // same clock.  Three entries keep one pass per clock going (one deciding, one being read, one
+  // being selected); the fourth makes the pointers plain binary counters.
+  localparam int unsigned PQ_DEPTH = 4;
   typedef struct packed {
     logic [NSUB-1:0]            v;     // sub-caches the pass reads
     logic [NSUB-1:0][LA_W-1:0]  la;
@@ -545,12 +555,15 @@ module tex_cache
     logic                       last;  // the request's last pass
   } pq_t;
 
-  pq_t [1:0]                  pq_q;
-  logic                       pq_wp_q, pq_rp_q;
-  logic [1:0]                 pq_cnt_q;  // passes in the queue, 0 .. 2
+  pq_t [PQ_DEPTH-1:0]         pq_q;
+  logic [2:0]                 pq_wp_q, pq_ip_q, pq_rp_q;  // (one bit above the index: full / empty)
   pq_t                        pq_d;      // the selected pass as it is written
-  logic                       p_valid_q; // the entry at the read pointer holds a pass
-  logic [NSUB-1:0]            lk_v;      // that entry's fields, as the lookup uses them
+  pq_t                        a_pass;    // the pass the read stage takes (pq_q[pq_ip_q])
+  logic                       a_issue;   // there is one
+  logic                       b_valid_q; // the decide stage holds a pass (pq_q[pq_rp_q])
+  pq_t                        b_pass_q;
+  logic                       replay;    // the decide stage drops its pass to read it again
+  logic [NSUB-1:0]            lk_v;      // the decide stage's pass, as the lookup uses it
   logic [NSUB-1:0][LA_W-1:0]  lk_la;
   logic [NSUB-1:0][SET_W-1:0] lk_set;
   logic [NSUB-1:0][TAGB-1:0]  lk_tag;
@@ -561,10 +574,12 @@ module tex_cache
   logic [TAG_W-1:0]           e_tag;
   logic                       e_last;
   logic                       p_load;    // the next pass moves into the queue
-  logic                       e_fire;    // the pass at the read pointer enters the FIFO
+  logic                       e_fire;    // the decide stage's pass enters the FIFO
 
-  assign p_load    = rst_ni && s0_valid_q && pq_cnt_q != 2'd2;
-  assign p_valid_q = pq_cnt_q != 2'd0;
+  assign p_load  = rst_ni && s0_valid_q && (pq_wp_q - pq_rp_q) != 3'(PQ_DEPTH);
+  assign a_issue = pq_ip_q != pq_wp_q;
+  assign a_pass  = pq_q[pq_ip_q[1:0]];
+  assign replay  = b_valid_q && !e_fire;
 
   always_comb begin
     pq_d.v    = sl_v;
@@ -583,28 +598,32 @@ module tex_cache
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      pq_wp_q  <= 1'b0;
-      pq_rp_q  <= 1'b0;
-      pq_cnt_q <= '0;
+      pq_wp_q   <= '0;
+      pq_ip_q   <= '0;
+      pq_rp_q   <= '0;
+      b_valid_q <= 1'b0;
     end else begin
-      if (p_load) pq_wp_q <= !pq_wp_q;
-      if (e_fire) pq_rp_q <= !pq_rp_q;
-      pq_cnt_q <= pq_cnt_q + 2'(p_load) - 2'(e_fire);
+      if (p_load) pq_wp_q <= pq_wp_q + 3'd1;
+      if (e_fire) pq_rp_q <= pq_rp_q + 3'd1;
+      if (replay)       pq_ip_q <= pq_rp_q;  // (pq_rp_q does not move: no e_fire)
+      else if (a_issue) pq_ip_q <= pq_ip_q + 3'd1;
+      b_valid_q <= a_issue && !replay;
     end
-    if (p_load) pq_q[pq_wp_q] <= pq_d;
+    if (p_load) pq_q[pq_wp_q[1:0]] <= pq_d;
+    b_pass_q <= a_pass;
   end
 
   always_comb begin
-    lk_v   = pq_q[pq_rp_q].v;
-    lk_la  = pq_q[pq_rp_q].la;
-    lk_set = pq_q[pq_rp_q].set;
-    lk_tag = pq_q[pq_rp_q].tag;
-    lk_win = pq_q[pq_rp_q].win;
-    e_sel  = pq_q[pq_rp_q].sel;
-    e_psub = pq_q[pq_rp_q].psub;
-    e_toff = pq_q[pq_rp_q].toff;
-    e_tag  = pq_q[pq_rp_q].rtag;
-    e_last = pq_q[pq_rp_q].last;
+    lk_v   = b_pass_q.v;
+    lk_la  = b_pass_q.la;
+    lk_set = b_pass_q.set;
+    lk_tag = b_pass_q.tag;
+    lk_win = b_pass_q.win;
+    e_sel  = b_pass_q.sel;
+    e_psub = b_pass_q.psub;
+    e_toff = b_pass_q.toff;
+    e_tag  = b_pass_q.rtag;
+    e_last = b_pass_q.last;
   end
 
   // ---------------------------------------------------------------- lookup: tags, victims
@@ -613,13 +632,13 @@ module tex_cache
   logic [NSUB-1:0][MIDX_W-1:0] lk_mshr;   // MSHR of a miss
   logic                       mshr_short; // not enough free MSHRs for the pass's misses
   logic [NSUB-1:0][WAYS-1:0]  way_hit, way_free;
-  // the directory's LUT RAM read at the looked-up set (g_dir)
+  // the directory's LUT RAM read at the read stage's set (g_dir)
   logic [NSUB-1:0][WAYS-1:0][TAGB-1:0] set_tag;
   logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] set_inc, set_dec;
   logic [NSUB-1:0][PLRU_W-1:0]         set_plru;
   logic [NSUB-1:0][WAYS-1:0]           set_live, set_ag, set_fg, set_bad;
 
-  logic [NSUB-1:0][MIDX_W-1:0] free_idx;  // the lowest free MSHRs (below)
+  logic [NSUB-1:0][MIDX_W-1:0] free_idx;  // free MSHRs for the pass's misses (free list, below)
   logic [NSUB-1:0]             free_ok;
 
   // Commit register (below): the pass that entered in the clock before, whose directory, MSHR
@@ -636,30 +655,95 @@ module tex_cache
   logic [NSUB-1:0][WAYS-1:0]   cm_ag_q;    // the set's new ag bits (written on an allocation)
   logic [NSUB-1:0][WAYS-1:0]   cm_live_q;  // ... and live bits
 
-  // The directory at the looked-up set as the lookup must see it: what the RAMs and flops hold,
-  // with the commit register's writes (not yet done) forwarded.
-  logic [NSUB-1:0][WAYS-1:0]           f_vld, f_err, f_pnd;
-  logic [NSUB-1:0][WAYS-1:0][TAGB-1:0] f_tag;
+  // Read stage.  The directory at the pass's sets as the decide stage must see it: what the
+  // RAMs hold with the commit register's writes (not yet done) forwarded, and what can be
+  // compared already: each way's tag against the pass's (hit), its reference counts (idle: no
+  // reference), and the pass's sets and tags against those of the pass now deciding, which is in
+  // the commit register in the next clock if it enters the FIFO.  The fill's and the head's
+  // writes of this clock are not seen (the decide stage sees them a clock later than a one-clock
+  // lookup would): a slot whose reference is released in this clock looks referenced (never a
+  // victim then), and a line completing in this clock looks pending, so a pass that hits a line
+  // just come back with an error answers rsp_err_o = 1 (its quad has a bad line: a new read of
+  // it would answer the same) rather than reading it again.
+  logic [NSUB-1:0][WAYS-1:0]           a_vld, a_err, a_pnd, a_hit, a_idle;
+  logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] a_inc;
+  logic [NSUB-1:0][PLRU_W-1:0]         a_plru;
+  logic [NSUB-1:0][WAYS-1:0]           a_ag, a_live;
+  logic [NSUB-1:0]                     a_seteq, a_tageq;
+
+  always_comb begin
+    logic                fw, fw_alloc, live, done_bad;
+    logic [TAGB-1:0]     tag;
+    for (int c = 0; c < NSUB; c++) begin
+      fw        = cm_valid_q && cm_pass_q.used[c] && cm_pass_q.set[c] == a_pass.set[c];
+      a_plru[c] = fw ? cm_plru_q[c] : set_plru[c];
+      a_ag[c]   = (fw && cm_alloc_q[c]) ? cm_ag_q[c] : set_ag[c];
+      a_live[c] = (fw && cm_alloc_q[c]) ? cm_live_q[c] : set_live[c];
+      for (int w = 0; w < WAYS; w++) begin
+        fw_alloc     = fw && cm_alloc_q[c] && cm_pass_q.way[c] == WAY_W'(w);
+        live         = set_live[c][w];
+        done_bad     = set_ag[c][w] == set_fg[c][w] && set_bad[c][w];  // not pending, bad
+        a_vld[c][w]  = fw_alloc || (live && !done_bad);
+        a_pnd[c][w]  = fw_alloc || (live && set_ag[c][w] != set_fg[c][w]);
+        a_err[c][w]  = !fw_alloc && live && done_bad;
+        tag          = fw_alloc ? cm_tag_q[c] : set_tag[c][w];
+        a_hit[c][w]  = a_vld[c][w] && tag == a_pass.tag[c];
+        a_inc[c][w]  = (fw && cm_pass_q.way[c] == WAY_W'(w)) ? cm_inc_q[c] : set_inc[c][w];
+        a_idle[c][w] = a_inc[c][w] == set_dec[c][w];
+      end
+      a_seteq[c] = lk_v[c] && lk_set[c] == a_pass.set[c];
+      a_tageq[c] = lk_tag[c] == a_pass.tag[c];
+    end
+  end
+
+  // Decide stage: the read stage's results, registered every clock (b_valid_q says whether they
+  // belong to a pass), with the commit register's writes forwarded once more.
+  logic [NSUB-1:0][WAYS-1:0]           b_vld_q, b_err_q, b_pnd_q, b_hit_q, b_idle_q, b_fg_q;
+  logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] b_inc_q, b_dec_q;
+  logic [NSUB-1:0][PLRU_W-1:0]         b_plru_q;
+  logic [NSUB-1:0][WAYS-1:0]           b_ag_q, b_live_q;
+  logic [NSUB-1:0]                     b_seteq_q, b_tageq_q;
+
+  always_ff @(posedge clk_i) begin
+    b_vld_q   <= a_vld;
+    b_err_q   <= a_err;
+    b_pnd_q   <= a_pnd;
+    b_hit_q   <= a_hit;
+    b_idle_q  <= a_idle;
+    b_fg_q    <= set_fg;
+    b_inc_q   <= a_inc;
+    b_dec_q   <= set_dec;
+    b_plru_q  <= a_plru;
+    b_ag_q    <= a_ag;
+    b_live_q  <= a_live;
+    b_seteq_q <= a_seteq;
+    b_tageq_q <= a_tageq;
+  end
+
+  // The directory at the looked-up set as the decision must see it (f_*): a pass in the decide
+  // stage was read while the pass now in the commit register was deciding, so that one's writes
+  // are forwarded here (the sets and tags compared in the read stage).
+  logic [NSUB-1:0][WAYS-1:0]           f_vld, f_err, f_pnd, f_hit, f_idle;
   logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] f_inc;
   logic [NSUB-1:0][PLRU_W-1:0]         f_plru;
   logic [NSUB-1:0][WAYS-1:0]           f_ag, f_live;
 
   always_comb begin
-    logic fw, fw_alloc, live, done_bad;
+    logic fw, fw_way, fw_alloc;
     for (int c = 0; c < NSUB; c++) begin
-      fw        = cm_valid_q && cm_pass_q.used[c] && cm_pass_q.set[c] == lk_set[c];
-      f_plru[c] = fw ? cm_plru_q[c] : set_plru[c];
-      f_ag[c]   = (fw && cm_alloc_q[c]) ? cm_ag_q[c] : set_ag[c];
-      f_live[c] = (fw && cm_alloc_q[c]) ? cm_live_q[c] : set_live[c];
+      fw        = cm_valid_q && b_seteq_q[c];
+      f_plru[c] = fw ? cm_plru_q[c] : b_plru_q[c];
+      f_ag[c]   = (fw && cm_alloc_q[c]) ? cm_ag_q[c] : b_ag_q[c];
+      f_live[c] = (fw && cm_alloc_q[c]) ? cm_live_q[c] : b_live_q[c];
       for (int w = 0; w < WAYS; w++) begin
-        fw_alloc     = fw && cm_alloc_q[c] && cm_pass_q.way[c] == WAY_W'(w);
-        live         = set_live[c][w];
-        done_bad     = set_ag[c][w] == set_fg[c][w] && set_bad[c][w];  // not pending, bad
-        f_vld[c][w]  = fw_alloc || (live && !done_bad);
-        f_pnd[c][w]  = fw_alloc || (live && set_ag[c][w] != set_fg[c][w]);
-        f_err[c][w]  = !fw_alloc && live && done_bad;
-        f_tag[c][w]  = fw_alloc ? cm_tag_q[c] : set_tag[c][w];
-        f_inc[c][w]  = (fw && cm_pass_q.way[c] == WAY_W'(w)) ? cm_inc_q[c] : set_inc[c][w];
+        fw_way       = fw && cm_pass_q.way[c] == WAY_W'(w);
+        fw_alloc     = fw_way && cm_alloc_q[c];
+        f_vld[c][w]  = fw_alloc || b_vld_q[c][w];
+        f_pnd[c][w]  = fw_alloc || b_pnd_q[c][w];
+        f_err[c][w]  = !fw_alloc && b_err_q[c][w];
+        f_hit[c][w]  = fw_alloc ? b_tageq_q[c] : b_hit_q[c][w];
+        f_inc[c][w]  = fw_way ? cm_inc_q[c] : b_inc_q[c][w];
+        f_idle[c][w] = fw_way ? cm_inc_q[c] == b_dec_q[c][w] : b_idle_q[c][w];
       end
     end
   end
@@ -669,8 +753,8 @@ module tex_cache
     for (int c = 0; c < NSUB; c++) begin
       lk_way[c] = '0;
       for (int w = 0; w < WAYS; w++) begin
-        way_hit[c][w]  = f_vld[c][w] && (f_tag[c][w] == lk_tag[c]);
-        way_free[c][w] = !(f_vld[c][w] || f_err[c][w]) || f_inc[c][w] == set_dec[c][w];
+        way_hit[c][w]  = f_hit[c][w];
+        way_free[c][w] = !(f_vld[c][w] || f_err[c][w]) || f_idle[c][w];
         if (way_hit[c][w]) lk_way[c] = WAY_W'(w);
       end
       lk_alloc[c]   = lk_v[c] && !(|way_hit[c]);
@@ -686,8 +770,8 @@ module tex_cache
         end
       end
     end
-    // MSHRs for the misses: the lowest free ones, in sub-cache order (the k-th miss of the
-    // pass takes the k-th free MSHR, found beside the lookup from the registers alone)
+    // MSHRs for the misses, in sub-cache order: the k-th miss of the pass takes the k-th free
+    // MSHR (free_idx, from registers)
     mshr_short = 1'b0;
     lk_mshr    = '0;
     for (int c = 0; c < NSUB; c++) begin
@@ -698,31 +782,18 @@ module tex_cache
     end
   end
 
-  // The NSUB lowest free MSHRs: free_idx[k] is the free MSHR with k free ones below it
-  // (free_ok[k]: there is one), by the rank of each free MSHR among the free ones.
+  // The free MSHRs are a queue of indices (fl_q, in the MSHR section below): the decide stage
+  // takes the ones after those the pass in the commit register takes in this clock (cm_n, its
+  // misses), free_idx[k] = fl_q[fl_hd_q + cm_n + k], from registers; a line's last beat puts
+  // its MSHR at the tail (seen from the next clock).
+  logic [2:0] cm_n;
+
   always_comb begin
-    logic [MSHRS-1:0] free, below;
-    int unsigned      rank;
-    for (int m = 0; m < MSHRS; m++) free[m] = !mshr_busy_q[m];
-    for (int c = 0; c < NSUB; c++) begin
-      if (cm_valid_q && cm_alloc_q[c]) free[cm_mshr_q[c]] = 1'b0;  // taken, not yet busy
-    end
-    free_idx = '0;
-    free_ok  = '0;
-    for (int m = 0; m < MSHRS; m++) begin
-      below = '0;
-      for (int u = 0; u < m; u++) below[u] = free[u];
-      rank = 32'($countones(below));  // an adder tree per MSHR
-      for (int k = 0; k < NSUB; k++) begin
-        if (free[m] && rank == k) begin
-          free_idx[k] = free_idx[k] | MIDX_W'(m);  // one m per k: an OR of one-hot terms
-          free_ok[k]  = 1'b1;
-        end
-      end
-    end
+    cm_n = '0;
+    for (int c = 0; c < NSUB; c++) cm_n = cm_n + 3'(cm_valid_q && cm_alloc_q[c]);
   end
 
-  assign e_fire      = rst_ni && p_valid_q && (32'(fifo_cnt_q) + 32'(cm_valid_q) < FIFO_DEPTH)
+  assign e_fire      = rst_ni && b_valid_q && (32'(fifo_cnt_q) + 32'(cm_valid_q) < FIFO_DEPTH)
                        && !(|lk_blocked) && !mshr_short;
 
   // ---------------------------------------------------------------- commit register
@@ -742,9 +813,9 @@ module tex_cache
     for (int c = 0; c < NSUB; c++) begin
       cm_plru_q[c] <= plru_touch(f_plru[c], lk_way[c]);
       // (the victim: not pending, no fill due)
-      cm_ag_q[c]   <= with_way(f_ag[c], lk_way[c], !set_fg[c][lk_way[c]]);
+      cm_ag_q[c]   <= with_way(f_ag[c], lk_way[c], !b_fg_q[c][lk_way[c]]);
       cm_live_q[c] <= with_way(f_live[c], lk_way[c], 1'b1);
-      cm_inc_q[c]  <= (lk_alloc[c] ? set_dec[c][lk_way[c]] : f_inc[c][lk_way[c]]) + RC_W'(1);
+      cm_inc_q[c]  <= (lk_alloc[c] ? b_dec_q[c][lk_way[c]] : f_inc[c][lk_way[c]]) + RC_W'(1);
     end
     cm_pass_q       <= e_pass;
     cm_texel_hits_q <= e_texel_hits;
@@ -813,38 +884,43 @@ module tex_cache
 
   assign out_pop = rsp_valid_o && rsp_ready_i;
 
-  // The head entry (hd = fifo_q[fifo_rp_q] whenever the FIFO holds a pass), from registers: the
-  // FIFO is read every clock at fifo_rp_q + 1 into fifo_rd_q (a block RAM's read register), which
-  // is the head the clock after a pop (hd_rd_q), unless the pass behind the popped one was
-  // written in the pop's clock (the read could not see it: then hd_q takes it from the commit
-  // register), and is copied into hd_q the clock after, while it stays the head; a pass entering
-  // an empty FIFO goes to hd_q.
-  pass_t           hd_q, fifo_rd_q;
-  logic            hd_rd_q;  // the head is fifo_rd_q (the clock after a pop)
-  logic [FP_W-1:0] rp_plus1;
-  assign rp_plus1 = fifo_rp_q + FP_W'(1);
+  // The head entry hd_q (= fifo_q[fifo_rp_q] while the FIFO holds a pass) and the one behind it,
+  // nx_q (= fifo_q[fifo_rp_q + 1] while it holds two), are registers, so the head's readiness
+  // (its lines present) and the pop start from flip-flops, not from the block RAM's output (4.3
+  // ns clock-to-out on the ECP5).  The block RAM is read every clock two entries ahead of the
+  // head after this clock's pop (fifo_rp_q + 2 + h_pop) into fifo_rd_q, which refills nx_q at a
+  // pop; a pass entering as the first or second goes straight to its register, and one written
+  // at the address read in the same clock (the read sees the old word) is taken from a copy of
+  // the commit register (byp_q).  So one pop per clock, from registers.
+  pass_t           hd_q, nx_q, fifo_rd_q, byp_q, rd_eff;
+  pass_t           hd_pop_d, hd_hold_d, nx_pop_d, nx_hold_d;
+  logic            byp_v_q;  // fifo_rd_q was read as byp_q was written there: take byp_q
+  logic [FP_W-1:0] rd_addr;
+  assign rd_addr = fifo_rp_q + FP_W'(2) + FP_W'(h_pop);
 
   always_ff @(posedge clk_i) begin
-    fifo_rd_q <= fifo_q[rp_plus1];
+    fifo_rd_q <= fifo_q[rd_addr];
+    byp_q     <= cm_pass_q;
+    byp_v_q   <= cm_valid_q && fifo_wp_q == rd_addr;
+  end
+
+  // the next head and next-behind-head with and without a pop (from registers), then the pop
+  // picks
+  always_comb begin
+    rd_eff    = byp_v_q ? byp_q : fifo_rd_q;
+    hd_pop_d  = (fifo_cnt_q >= FC_W'(2)) ? nx_q : cm_pass_q;    // entry rp + 1
+    nx_pop_d  = (fifo_cnt_q >= FC_W'(3)) ? rd_eff : cm_pass_q;  // entry rp + 2
+    hd_hold_d = (fifo_cnt_q == '0) ? cm_pass_q : hd_q;          // entry rp
+    nx_hold_d = (fifo_cnt_q == FC_W'(1)) ? cm_pass_q : nx_q;     // entry rp + 1
   end
 
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      hd_rd_q <= 1'b0;
-    end else begin
-      hd_rd_q <= h_pop && !(cm_valid_q && fifo_wp_q == rp_plus1);
-    end
-    if (h_pop) begin
-      if (cm_valid_q && fifo_wp_q == rp_plus1) hd_q <= cm_pass_q;
-    end else if (cm_valid_q && fifo_wp_q == fifo_rp_q) begin
-      hd_q <= cm_pass_q;                     // into an empty FIFO
-    end else if (hd_rd_q) begin
-      hd_q <= fifo_rd_q;
-    end
+    hd_q <= h_pop ? hd_pop_d : hd_hold_d;
+    nx_q <= h_pop ? nx_pop_d : nx_hold_d;
   end
 
   always_comb begin
-    hd      = hd_rd_q ? fifo_rd_q : hd_q;
+    hd      = hd_q;
     h_ready = (fifo_cnt_q != '0);
     for (int c = 0; c < NSUB; c++) begin
       // (the head's slots are live: allocated by this pass or hit as valid by it)
@@ -898,7 +974,7 @@ module tex_cache
     assign ram_rd[c] = {rd_ovl, rd_win};
     assign wsub  = r_acc && fill_sub == 2'(c);
     assign waddr = ram_addr(fill_set, fill_way, r_win);
-    assign rd    = h_pop && hd.used[c];
+    assign rd    = 1'b1;  // the head's window, every clock (used the clock after a pop)
     assign raddr = ram_addr(hd.set[c], hd.way[c], hd.win[c]);
     for (genvar l = 0; l < NLANE; l++) begin : g_lane
       cache_sdp_ram #(.DEPTH(RAM_DEPTH), .WIDTH(DATA_W)) u_ram (
@@ -968,14 +1044,14 @@ module tex_cache
       if (out_pop)  out_rp_q <= !out_rp_q;
       out_cnt_q <= out_cnt_q + 2'(out_push) - 2'(out_pop);
     end
-    if (h_pop) begin
-      h1_last_q  <= hd.last;
-      h1_err_q   <= |hd_err;
-      h1_tsel_q  <= hd.tsel;
-      h1_tsub_q  <= hd.tsub;
-      h1_toff_q  <= hd.toff;
-      h1_tag_q   <= hd.tag;
-    end
+    // (loaded every clock, like the data RAMs' read: they matter when h1_valid_q, the clock
+    // after a pop; so the pop, late in its clock, enables none of them)
+    h1_last_q  <= hd.last;
+    h1_err_q   <= |hd_err;
+    h1_tsel_q  <= hd.tsel;
+    h1_tsub_q  <= hd.tsub;
+    h1_toff_q  <= hd.toff;
+    h1_tag_q   <= hd.tag;
     if (out_push) out_q[out_wp_q] <= h1_rsp;
   end
 
@@ -1044,11 +1120,11 @@ module tex_cache
         bad_mem[fill_set] <= with_way(fl_bad, fill_way, fill_bad);
       end
     end
-    assign set_plru[c] = plru_mem[lk_set[c]];
-    assign set_live[c] = live_mem[lk_set[c]];
-    assign set_ag[c]   = ag_mem[lk_set[c]];
-    assign set_fg[c]   = fg_mem[lk_set[c]];
-    assign set_bad[c]  = bad_mem[lk_set[c]];
+    assign set_plru[c] = plru_mem[a_pass.set[c]];
+    assign set_live[c] = live_mem[a_pass.set[c]];
+    assign set_ag[c]   = ag_mem[a_pass.set[c]];
+    assign set_fg[c]   = fg_mem[a_pass.set[c]];
+    assign set_bad[c]  = bad_mem[a_pass.set[c]];
     assign fl_ag       = ag_mem[fill_set];
     assign fl_fg       = fg_mem[fill_set];
     assign fl_bad      = bad_mem[fill_set];
@@ -1083,9 +1159,9 @@ module tex_cache
         end
         if (give && hd.way[c] == WAY_W'(w)) dec_mem[hd.set[c]] <= hd_dec + RC_W'(1);
       end
-      assign set_tag[c][w] = tag_mem[lk_set[c]];
-      assign set_inc[c][w] = inc_mem[lk_set[c]];
-      assign set_dec[c][w] = dec_mem[lk_set[c]];
+      assign set_tag[c][w] = tag_mem[a_pass.set[c]];
+      assign set_inc[c][w] = inc_mem[a_pass.set[c]];
+      assign set_dec[c][w] = dec_mem[a_pass.set[c]];
       assign hd_dec        = dec_mem[hd.set[c]];
 
 `ifndef SYNTHESIS
@@ -1162,6 +1238,35 @@ module tex_cache
     if (q >= MSHRS) q = q - MSHRS;
     return MIDX_W'(q);
   endfunction
+
+  // Free MSHRs, a queue of indices: all of them after a reset; the commit takes cm_n from the
+  // head, a line's last beat returns its MSHR at the tail (one per clock at most).
+  logic [MIDX_W-1:0] fl_q [MSHRS];
+  logic [MIDX_W-1:0] fl_hd_q, fl_tl_q;
+  logic [QCNT_W-1:0] fl_cnt_q;
+
+  always_comb begin
+    for (int k = 0; k < NSUB; k++) begin
+      free_idx[k] = fl_q[arq_add(fl_hd_q, 32'(cm_n) + k)];
+      free_ok[k]  = 32'(fl_cnt_q) > 32'(cm_n) + k;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      for (int m = 0; m < MSHRS; m++) fl_q[m] <= MIDX_W'(m);
+      fl_hd_q  <= '0;
+      fl_tl_q  <= '0;
+      fl_cnt_q <= QCNT_W'(MSHRS);
+    end else begin
+      fl_hd_q  <= arq_add(fl_hd_q, 32'(cm_n));
+      if (fill_v) begin
+        fl_q[fl_tl_q] <= r_idx;
+        fl_tl_q       <= arq_add(fl_tl_q, 1);
+      end
+      fl_cnt_q <= fl_cnt_q - QCNT_W'(cm_n) + QCNT_W'(fill_v);
+    end
+  end
 
   // the misses of one pass join the queue in sub-cache order
   logic [NSUB-1:0][MIDX_W-1:0] arq_pos;
@@ -1329,12 +1434,19 @@ module tex_cache
   fifo_head: assert property (@(posedge clk_i) disable iff (!rst_ni)
       fifo_cnt_q != '0 |-> hd == fifo_q[fifo_rp_q])
     else $error("tex_cache: head register differs from the FIFO's head entry");
+  fifo_next: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      fifo_cnt_q >= FC_W'(2) |-> nx_q == fifo_q[FP_W'(fifo_rp_q + FP_W'(1))])
+    else $error("tex_cache: next-head register differs from the FIFO's second entry");
   fifo_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
       32'(fifo_cnt_q) <= FIFO_DEPTH && FP_W'(fifo_wp_q - fifo_rp_q) == FP_W'(fifo_cnt_q))
     else $error("tex_cache: request FIFO pointers inconsistent");
   pass_queue_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      pq_cnt_q <= 2'd2 && (pq_cnt_q == 2'd1) == (pq_wp_q != pq_rp_q))
+      3'(pq_wp_q - pq_rp_q) <= 3'(PQ_DEPTH) && 3'(pq_ip_q - pq_rp_q) == 3'(b_valid_q)
+      && 3'(pq_wp_q - pq_ip_q) <= 3'(pq_wp_q - pq_rp_q))
     else $error("tex_cache: pass queue pointers inconsistent");
+  decide_is_oldest: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      b_valid_q |-> b_pass_q == pq_q[pq_rp_q[1:0]])
+    else $error("tex_cache: the decide stage's pass is not the queue's oldest");
   out_no_overflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
       out_push |-> (out_cnt_q < 2'(OUT_DEPTH)) || out_pop)
     else $error("tex_cache: output buffer overflow");
@@ -1469,9 +1581,9 @@ module tex_cache
       if (h_pop && hd.tsel[t] && 32'(hd.toff[t]) == WW) sim_overlap = 1'b1;
     end
   end
-  assign sim_victim_wait = rst_ni && p_valid_q && (|lk_blocked);   // every way referenced
-  assign sim_mshr_wait   = rst_ni && p_valid_q && mshr_short;
-  assign sim_fifo_full   = rst_ni && p_valid_q && fifo_cnt_q == FC_W'(FIFO_DEPTH);
+  assign sim_victim_wait = rst_ni && b_valid_q && (|lk_blocked);   // every way referenced
+  assign sim_mshr_wait   = rst_ni && b_valid_q && mshr_short;
+  assign sim_fifo_full   = rst_ni && b_valid_q && fifo_cnt_q == FC_W'(FIFO_DEPTH);
   assign sim_split       = e_fire && !e_last;                        // a request of 2+ passes
   assign sim_stale_beat  = m_axi_rvalid && r_epoch != epoch_q;       // a read from before a reset
   assign sim_err_fill    = fill_v && fill_bad;
@@ -1485,6 +1597,20 @@ module tex_cache
   arq_within_busy: assert property (@(posedge clk_i) disable iff (!rst_ni)
       arq_cnt_q <= busy_cnt)
     else $error("tex_cache: AR queue holds more reads than busy MSHRs");
+  // The free list holds exactly the MSHRs that are not busy.
+  free_list_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      32'(busy_cnt) + 32'(fl_cnt_q) == MSHRS)
+    else $error("tex_cache: free-list count differs from the MSHRs not busy");
+  always @(posedge clk_i) begin
+    if (rst_ni) begin
+      for (int j = 0; j < MSHRS; j++) begin
+        if (j < 32'(fl_cnt_q)) begin
+          free_list_not_busy: assert (!mshr_busy_q[fl_q[arq_add(fl_hd_q, j)]])
+            else $error("tex_cache: busy MSHR %0d on the free list", fl_q[arq_add(fl_hd_q, j)]);
+        end
+      end
+    end
+  end
 `endif
 
 endmodule
