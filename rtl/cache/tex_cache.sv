@@ -347,6 +347,7 @@ module tex_cache
   logic [3:0]             s0_todo_q;   // texels not yet sent in a pass
   logic [3:0]             s0_row_q;    // row bit per texel
   logic                   e_missed_q;  // an earlier pass of the request in the lookup missed
+  logic [3:0][3:0]        s0_join_q;   // [u][t], u < t: texel t may share texel u's read (below)
 
   // Request FIFO (one entry per pass).
   typedef struct packed {
@@ -473,6 +474,29 @@ module tex_cache
     if (in_pitch == '0) in_row = '0;  // rows clamped: one row
   end
 
+  // window of a word (the window it starts in)
+  function automatic logic [WIN_W-1:0] win_of(input logic [WSEL_W-1:0] w);
+    return WIN_W'(32'(w) >> WB);
+  endfunction
+
+  // Which texels may share a read, compared at the input (registered with the request, so the
+  // pass selection below chains single bits): in_join[u][t] (u < t) when texel t is in texel u's
+  // line and in the window u's word starts (window k holds words k * WW .. k * WW + WW).
+  logic [3:0][3:0] in_join;
+  always_comb begin
+    logic [WSEL_W-1:0] wu, wt;
+    in_join = '0;
+    for (int u = 0; u < 4; u++) begin
+      for (int t = u + 1; t < 4; t++) begin
+        wu = req_addr_i[u][OFF_W-1:2];
+        wt = req_addr_i[t][OFF_W-1:2];
+        in_join[u][t] = req_addr_i[u][ADDR_W-1:OFF_W] == req_addr_i[t][ADDR_W-1:OFF_W]
+                        && (win_of(wt) == win_of(wu)
+                            || 32'(wt) == (32'(win_of(wu)) + 1) * WW);
+      end
+    end
+  end
+
   // ---------------------------------------------------------------- entry: pass selection
   // From the entry register: the request's next pass (sl_*), written into the pass queue.
   logic [3:0][LA_W-1:0]   e_la;
@@ -484,11 +508,6 @@ module tex_cache
   logic [NSUB-1:0][LA_W-1:0]  sl_la;
   logic [NSUB-1:0][WIN_W-1:0] sl_win;
   logic                   sl_last;  // the request's last pass
-
-  // window of a word (the window it starts in)
-  function automatic logic [WIN_W-1:0] win_of(input logic [WSEL_W-1:0] w);
-    return WIN_W'(32'(w) >> WB);
-  endfunction
 
   always_comb begin
     logic lead;
@@ -506,9 +525,7 @@ module tex_cache
       for (int u = 0; u < t; u++) begin
         if (!lead && sl_sel[u] && e_sub[u] == e_sub[t]) begin
           lead = 1'b1;
-          if (e_la[u] != e_la[t]
-              || !(win_of(e_word[t]) == win_of(e_word[u])
-                   || 32'(e_word[t]) == (32'(win_of(e_word[u])) + 1) * WW)) sl_sel[t] = 1'b0;
+          if (!s0_join_q[u][t]) sl_sel[t] = 1'b0;
         end
       end
     end
@@ -691,7 +708,7 @@ module tex_cache
         a_inc[c][w]  = (fw && cm_pass_q.way[c] == WAY_W'(w)) ? cm_inc_q[c] : set_inc[c][w];
         a_idle[c][w] = a_inc[c][w] == set_dec[c][w];
       end
-      a_seteq[c] = lk_v[c] && lk_set[c] == a_pass.set[c];
+      a_seteq[c] = b_valid_q && lk_v[c] && lk_set[c] == a_pass.set[c];
       a_tageq[c] = lk_tag[c] == a_pass.tag[c];
     end
   end
@@ -731,7 +748,9 @@ module tex_cache
   always_comb begin
     logic fw, fw_way, fw_alloc;
     for (int c = 0; c < NSUB; c++) begin
-      fw        = cm_valid_q && b_seteq_q[c];
+      // (no cm_valid_q: b_seteq_q holds only if this stage held a pass in the clock before, and
+      // that pass entered the FIFO, or the replay would have dropped this one)
+      fw        = b_seteq_q[c];
       f_plru[c] = fw ? cm_plru_q[c] : b_plru_q[c];
       f_ag[c]   = (fw && cm_alloc_q[c]) ? cm_ag_q[c] : b_ag_q[c];
       f_live[c] = (fw && cm_alloc_q[c]) ? cm_live_q[c] : b_live_q[c];
@@ -782,15 +801,14 @@ module tex_cache
     end
   end
 
-  // The free MSHRs are a queue of indices (fl_q, in the MSHR section below): the decide stage
-  // takes the ones after those the pass in the commit register takes in this clock (cm_n, its
-  // misses), free_idx[k] = fl_q[fl_hd_q + cm_n + k], from registers; a line's last beat puts
-  // its MSHR at the tail (seen from the next clock).
-  logic [2:0] cm_n;
+  // The free MSHRs are a queue of indices (fl_q, in the MSHR section below), taken from its
+  // head as a pass enters the FIFO: free_idx[k] = fl_q[fl_hd_q + k], from registers; a line's
+  // last beat puts its MSHR back at the tail (seen from the next clock).
+  logic [2:0] lk_n;  // the pass's misses
 
   always_comb begin
-    cm_n = '0;
-    for (int c = 0; c < NSUB; c++) cm_n = cm_n + 3'(cm_valid_q && cm_alloc_q[c]);
+    lk_n = '0;
+    for (int c = 0; c < NSUB; c++) lk_n = lk_n + 3'(lk_alloc[c]);
   end
 
   assign e_fire      = rst_ni && b_valid_q && (32'(fifo_cnt_q) + 32'(cm_valid_q) < FIFO_DEPTH)
@@ -845,6 +863,7 @@ module tex_cache
       s0_addr_q <= req_addr_i;
       s0_tag_q  <= req_tag_i;
       s0_row_q  <= in_row;
+      s0_join_q <= in_join;
     end
   end
 
@@ -1176,8 +1195,14 @@ module tex_cache
   end
 
   // ---------------------------------------------------------------- MSHRs and AR queue
-  logic ar_pop;
-  assign ar_pop = m_axi_arvalid && m_axi_arready;
+  // The AR channel is a register (ar_*_q), loaded from the AR queue's head while it is empty or
+  // its read is taken (ar_pop: the queue's head leaves), so no LUT RAM read or multiplexer drives
+  // the port.
+  logic              ar_pop;
+  logic              ar_v_q;
+  logic [ID_W-1:0]   ar_id_q;
+  logic [ADDR_W-1:0] ar_addr_q;
+  assign ar_pop = (arq_cnt_q != '0) && (!ar_v_q || m_axi_arready);
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -1239,16 +1264,17 @@ module tex_cache
     return MIDX_W'(q);
   endfunction
 
-  // Free MSHRs, a queue of indices: all of them after a reset; the commit takes cm_n from the
-  // head, a line's last beat returns its MSHR at the tail (one per clock at most).
+  // Free MSHRs, a queue of indices: all of them after a reset; a pass entering the FIFO takes
+  // one per miss from the head (they are busy from its commit clock on), a line's last beat
+  // returns its MSHR at the tail (one per clock at most).
   logic [MIDX_W-1:0] fl_q [MSHRS];
   logic [MIDX_W-1:0] fl_hd_q, fl_tl_q;
   logic [QCNT_W-1:0] fl_cnt_q;
 
   always_comb begin
     for (int k = 0; k < NSUB; k++) begin
-      free_idx[k] = fl_q[arq_add(fl_hd_q, 32'(cm_n) + k)];
-      free_ok[k]  = 32'(fl_cnt_q) > 32'(cm_n) + k;
+      free_idx[k] = fl_q[arq_add(fl_hd_q, k)];
+      free_ok[k]  = 32'(fl_cnt_q) > k;
     end
   end
 
@@ -1259,12 +1285,12 @@ module tex_cache
       fl_tl_q  <= '0;
       fl_cnt_q <= QCNT_W'(MSHRS);
     end else begin
-      fl_hd_q  <= arq_add(fl_hd_q, 32'(cm_n));
+      if (e_fire) fl_hd_q <= arq_add(fl_hd_q, 32'(lk_n));
       if (fill_v) begin
         fl_q[fl_tl_q] <= r_idx;
         fl_tl_q       <= arq_add(fl_tl_q, 1);
       end
-      fl_cnt_q <= fl_cnt_q - QCNT_W'(cm_n) + QCNT_W'(fill_v);
+      fl_cnt_q <= fl_cnt_q - (e_fire ? QCNT_W'(lk_n) : '0) + QCNT_W'(fill_v);
     end
   end
 
@@ -1297,9 +1323,18 @@ module tex_cache
 
   assign ar_idx = arq_q[arq_rp_q];
 
-  assign m_axi_arvalid = rst_ni && (arq_cnt_q != '0);
-  assign m_axi_arid    = {epoch_q, ar_idx};
-  assign m_axi_araddr  = {mshr_la_ar[mshr_sub_q[ar_idx]], {OFF_W{1'b0}}};
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni)                     ar_v_q <= 1'b0;
+    else if (!ar_v_q || m_axi_arready) ar_v_q <= arq_cnt_q != '0;
+    if (ar_pop) begin
+      ar_id_q   <= {epoch_q, ar_idx};
+      ar_addr_q <= {mshr_la_ar[mshr_sub_q[ar_idx]], {OFF_W{1'b0}}};
+    end
+  end
+
+  assign m_axi_arvalid = rst_ni && ar_v_q;  // (0 in reset from its first clock)
+  assign m_axi_arid    = ar_id_q;
+  assign m_axi_araddr  = ar_addr_q;
   assign m_axi_arlen   = 8'(BEATS - 1);
   assign m_axi_arsize  = 3'($clog2(BEAT_BYTES));
   assign m_axi_arburst = AXI_BURST_INCR;
@@ -1597,9 +1632,15 @@ module tex_cache
   arq_within_busy: assert property (@(posedge clk_i) disable iff (!rst_ni)
       arq_cnt_q <= busy_cnt)
     else $error("tex_cache: AR queue holds more reads than busy MSHRs");
-  // The free list holds exactly the MSHRs that are not busy.
+  // The free list holds exactly the MSHRs that are not busy and not taken by the pass in the
+  // commit register.
+  logic [2:0] cm_n;
+  always_comb begin
+    cm_n = '0;
+    for (int c = 0; c < NSUB; c++) cm_n = cm_n + 3'(cm_valid_q && cm_alloc_q[c]);
+  end
   free_list_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      32'(busy_cnt) + 32'(fl_cnt_q) == MSHRS)
+      32'(busy_cnt) + 32'(fl_cnt_q) + 32'(cm_n) == MSHRS)
     else $error("tex_cache: free-list count differs from the MSHRs not busy");
   always @(posedge clk_i) begin
     if (rst_ni) begin
