@@ -598,6 +598,22 @@ module tex_cache
   assign a_pass  = pq_q[pq_ip_q[1:0]];
   assign replay  = b_valid_q && !e_fire;
 
+  // The read stage's sets (the directory's read addresses) come from a register of their own,
+  // a_set_q = a_pass.set while a_issue, loaded with the entry the read stage takes next: three
+  // candidates from registers (the oldest entry for a replay, the one after pq_ip_q, or pq_ip_q
+  // again; an entry written in this clock from pq_d), of which the decision picks one.
+  logic [NSUB-1:0][SET_W-1:0] a_set_q, set_rp, set_next, set_hold;
+  always_comb begin
+    logic [2:0] ip1;
+    ip1      = pq_ip_q + 3'd1;
+    set_rp   = pq_q[pq_rp_q[1:0]].set;
+    set_next = (ip1 == pq_wp_q) ? pq_d.set : pq_q[ip1[1:0]].set;
+    set_hold = (pq_ip_q == pq_wp_q) ? pq_d.set : pq_q[pq_ip_q[1:0]].set;
+  end
+  always_ff @(posedge clk_i) begin
+    a_set_q <= replay ? set_rp : (a_issue ? set_next : set_hold);
+  end
+
   always_comb begin
     pq_d.v    = sl_v;
     pq_d.la   = sl_la;
@@ -692,7 +708,7 @@ module tex_cache
     logic                fw, fw_alloc, live, done_bad;
     logic [TAGB-1:0]     tag;
     for (int c = 0; c < NSUB; c++) begin
-      fw        = cm_valid_q && cm_pass_q.used[c] && cm_pass_q.set[c] == a_pass.set[c];
+      fw        = cm_valid_q && cm_pass_q.used[c] && cm_pass_q.set[c] == a_set_q[c];
       a_plru[c] = fw ? cm_plru_q[c] : set_plru[c];
       a_ag[c]   = (fw && cm_alloc_q[c]) ? cm_ag_q[c] : set_ag[c];
       a_live[c] = (fw && cm_alloc_q[c]) ? cm_live_q[c] : set_live[c];
@@ -708,7 +724,7 @@ module tex_cache
         a_inc[c][w]  = (fw && cm_pass_q.way[c] == WAY_W'(w)) ? cm_inc_q[c] : set_inc[c][w];
         a_idle[c][w] = a_inc[c][w] == set_dec[c][w];
       end
-      a_seteq[c] = b_valid_q && lk_v[c] && lk_set[c] == a_pass.set[c];
+      a_seteq[c] = b_valid_q && lk_v[c] && lk_set[c] == a_set_q[c];
       a_tageq[c] = lk_tag[c] == a_pass.tag[c];
     end
   end
@@ -1139,11 +1155,11 @@ module tex_cache
         bad_mem[fill_set] <= with_way(fl_bad, fill_way, fill_bad);
       end
     end
-    assign set_plru[c] = plru_mem[a_pass.set[c]];
-    assign set_live[c] = live_mem[a_pass.set[c]];
-    assign set_ag[c]   = ag_mem[a_pass.set[c]];
-    assign set_fg[c]   = fg_mem[a_pass.set[c]];
-    assign set_bad[c]  = bad_mem[a_pass.set[c]];
+    assign set_plru[c] = plru_mem[a_set_q[c]];
+    assign set_live[c] = live_mem[a_set_q[c]];
+    assign set_ag[c]   = ag_mem[a_set_q[c]];
+    assign set_fg[c]   = fg_mem[a_set_q[c]];
+    assign set_bad[c]  = bad_mem[a_set_q[c]];
     assign fl_ag       = ag_mem[fill_set];
     assign fl_fg       = fg_mem[fill_set];
     assign fl_bad      = bad_mem[fill_set];
@@ -1178,9 +1194,9 @@ module tex_cache
         end
         if (give && hd.way[c] == WAY_W'(w)) dec_mem[hd.set[c]] <= hd_dec + RC_W'(1);
       end
-      assign set_tag[c][w] = tag_mem[a_pass.set[c]];
-      assign set_inc[c][w] = inc_mem[a_pass.set[c]];
-      assign set_dec[c][w] = dec_mem[a_pass.set[c]];
+      assign set_tag[c][w] = tag_mem[a_set_q[c]];
+      assign set_inc[c][w] = inc_mem[a_set_q[c]];
+      assign set_dec[c][w] = dec_mem[a_set_q[c]];
       assign hd_dec        = dec_mem[hd.set[c]];
 
 `ifndef SYNTHESIS
@@ -1482,6 +1498,9 @@ module tex_cache
   decide_is_oldest: assert property (@(posedge clk_i) disable iff (!rst_ni)
       b_valid_q |-> b_pass_q == pq_q[pq_rp_q[1:0]])
     else $error("tex_cache: the decide stage's pass is not the queue's oldest");
+  read_set: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      a_issue |-> a_set_q == a_pass.set)
+    else $error("tex_cache: the read stage's set register differs from its pass");
   out_no_overflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
       out_push |-> (out_cnt_q < 2'(OUT_DEPTH)) || out_pop)
     else $error("tex_cache: output buffer overflow");
