@@ -721,7 +721,7 @@ module tex_cache
         a_pnd[c][w]  = fw_alloc || (live && set_ag[c][w] != set_fg[c][w]);
         a_err[c][w]  = !fw_alloc && live && done_bad;
         tag          = fw_alloc ? cm_tag_q[c] : set_tag[c][w];
-        a_hit[c][w]  = a_vld[c][w] && tag == a_pass.tag[c];
+        a_hit[c][w]  = tag == a_pass.tag[c];  // (a hit when valid too: in the decide stage)
         a_inc[c][w]  = (fw && cm_pass_q.way[c] == WAY_W'(w)) ? cm_inc_q[c] : set_inc[c][w];
         a_idle[c][w] = a_inc[c][w] == set_dec[c][w];
       end
@@ -777,7 +777,7 @@ module tex_cache
         f_vld[c][w]  = fw_alloc || b_vld_q[c][w];
         f_pnd[c][w]  = fw_alloc || b_pnd_q[c][w];
         f_err[c][w]  = !fw_alloc && b_err_q[c][w];
-        f_hit[c][w]  = fw_alloc ? b_tageq_q[c] : b_hit_q[c][w];
+        f_hit[c][w]  = fw_alloc ? b_tageq_q[c] : b_vld_q[c][w] && b_hit_q[c][w];
         f_inc[c][w]  = fw_way ? cm_inc_q[c] : b_inc_q[c][w];
         f_idle[c][w] = fw_way ? cm_inc_q[c] == b_dec_q[c][w] : b_idle_q[c][w];
       end
