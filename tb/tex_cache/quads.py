@@ -11,6 +11,8 @@ orders a renderer produces them.
 - :func:`random_addrs`: four unrelated texel addresses (not a quad: exercises the split passes).
 - :func:`random_lines`: four texels in one or two neighbouring lines (passes split by the data
   RAM's windows, reads of a window's overlap word).
+- :func:`set_conflicts`: one texel per quad, lines that all fall into one set of one sub-cache
+  (more of them than it has ways: with responses stalled, the lookup must wait for a victim).
 """
 from __future__ import annotations
 
@@ -20,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from model import texture
+from model.tex_cache import TexCacheConfig, set_of
 from model.arith import F64Arith
 
 Quad = tuple[int, int, int, int]
@@ -166,3 +169,18 @@ def random_lines(rng: random.Random, texs: list[Placed], n: int, line_bytes: int
         q = tuple(base + 4 * rng.randrange(span // 4) for _ in range(4))
         out.append(q)  # type: ignore[arg-type]
     return out
+
+
+def set_conflicts(texs: list[Placed], cfg: TexCacheConfig, rounds: int = 3) -> list[Quad]:
+    """Quads of one texel (all four addresses equal: rows clamped, row bit 0, so the sub-cache is
+    the line's parity) in ``cfg.ways + 2`` lines of the images that share a sub-cache and a set,
+    requested in turn ``rounds`` times."""
+    lb = cfg.line_bytes
+    groups: dict[tuple[int, int], list[int]] = {}
+    for p in texs:
+        for la in range(-(-p.base // lb), (p.base + p.size) // lb):
+            groups.setdefault((la & 1, set_of(la, cfg)), []).append(la)
+    lines = max(groups.values(), key=len)[:cfg.ways + 2]
+    if len(lines) < cfg.ways + 2:
+        raise ValueError("set_conflicts: the images hold too few lines of one set")
+    return [(a, a, a, a) for _ in range(rounds) for a in (la * lb for la in lines)]

@@ -655,6 +655,9 @@ async def backpressure(dut):
     h.ram.reorder = True
     stream = Q.random_quads(rng, h.texs, scale(800)) + Q.random_addrs(rng, h.texs, scale(200))
     rng.shuffle(stream)
+    # then more lines of one set than it has ways, while the FIFO is still full of passes that
+    # reference lines: the lookup must wait for a victim (sim_victim_wait), whatever the seed
+    stream += Q.set_conflicts(h.texs, h.cfg)
     r = await h.run(stream, valid_p=1.0, ready_p=0.1, what="back-pressure")
     await h.drain()
     st = h.check_stats("back-pressure")
