@@ -504,7 +504,6 @@ module tex_cache
   logic [3:0][1:0]        e_sub;
   logic [3:0][WSEL_W-1:0] e_word;   // word in the line
   logic [3:0]             sl_sel;   // texels of the pass
-  logic [3:0][TOFF_W-1:0] sl_toff;  // word in the window its sub-cache reads
   logic [NSUB-1:0]        sl_v;     // sub-caches the pass reads
   logic [NSUB-1:0][LA_W-1:0]  sl_la;
   logic [NSUB-1:0][WIN_W-1:0] sl_win;
@@ -540,9 +539,6 @@ module tex_cache
         sl_win[e_sub[t]] = win_of(e_word[t]);
       end
     end
-    for (int t = 0; t < 4; t++) begin
-      sl_toff[t] = TOFF_W'(32'(e_word[t]) - 32'(sl_win[e_sub[t]]) * WW);
-    end
     sl_last = (s0_todo_q & ~sl_sel) == '0;
   end
 
@@ -568,7 +564,7 @@ module tex_cache
     logic [NSUB-1:0][WIN_W-1:0] win;
     logic [3:0]                 sel;   // texels of the pass
     logic [3:0][1:0]            psub;  // their sub-caches
-    logic [3:0][TOFF_W-1:0]     toff;
+    logic [3:0][WSEL_W-1:0]     word;  // their words in the line
     logic [TAG_W-1:0]           rtag;  // the request's tag
     logic                       last;  // the request's last pass
   } pq_t;
@@ -625,7 +621,7 @@ module tex_cache
     pq_d.win  = sl_win;
     pq_d.sel  = sl_sel;
     pq_d.psub = e_sub;
-    pq_d.toff = sl_toff;
+    pq_d.word = e_word;
     pq_d.rtag = s0_tag_q;
     pq_d.last = sl_last;
   end
@@ -655,7 +651,10 @@ module tex_cache
     lk_win = b_pass_q.win;
     e_sel  = b_pass_q.sel;
     e_psub = b_pass_q.psub;
-    e_toff = b_pass_q.toff;
+    // a texel's word in the window its sub-cache reads (computed here, off the selection's path)
+    for (int t = 0; t < 4; t++) begin
+      e_toff[t] = TOFF_W'(32'(b_pass_q.word[t]) - 32'(b_pass_q.win[b_pass_q.psub[t]]) * WW);
+    end
     e_tag  = b_pass_q.rtag;
     e_last = b_pass_q.last;
   end
