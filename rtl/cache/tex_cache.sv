@@ -86,10 +86,11 @@
 //             lookup's outcome in its own clock; the next passes' lookups see them forwarded.
 //   clock 5   head: when the lines of the head pass are present (no pending fill), the pass
 //             leaves the FIFO and reads the data RAMs (one window per sub-cache).
-//   clock 6   the texels are selected (and merged with earlier passes of the request).
-//   clock 7   rsp_valid_o (a 2-entry output buffer).
-// So a request that hits answers 7 clocks after its handshake; full throughput is one pass per
-// clock.  A miss answers 3 clocks after its line's last beat.  Sizing: the FIFO lets requests
+//   clock 6   the data RAMs' words are registered (their 4.3 ns clock-to-out on the ECP5).
+//   clock 7   the texels are selected (and merged with earlier passes of the request).
+//   clock 8   rsp_valid_o (a 4-entry output buffer).
+// So a request that hits answers 8 clocks after its handshake; full throughput is one pass per
+// clock.  A miss answers 4 clocks after its line's last beat.  Sizing: the FIFO lets requests
 // run ahead of the head by FIFO_DEPTH passes, so it should exceed the memory latency plus a line's
 // beats and the queueing of bursts of misses; MSHRS about FIFO_DEPTH / 4.  Measured on camera
 // streams (tb/tex_cache, two 256x256 textures, 32-byte lines over 64 bits, one beat per clock):
@@ -210,7 +211,7 @@ module tex_cache
   localparam int unsigned RC_W       = $clog2(FIFO_DEPTH + 1);   // a slot is read once per pass
   localparam int unsigned FP_W       = $clog2(FIFO_DEPTH);
   localparam int unsigned FC_W       = $clog2(FIFO_DEPTH + 1);
-  localparam int unsigned OUT_DEPTH  = 2;
+  localparam int unsigned OUT_DEPTH  = 4;                        // (a power of two)
   // data RAM windows (see "Data RAMs" below)
   localparam int unsigned LWORDS     = LINE_BYTES / 4;           // words per line
   localparam int unsigned WW         = (WIN_WORDS < LWORDS) ? WIN_WORDS : LWORDS;
@@ -368,7 +369,13 @@ module tex_cache
   logic [FP_W-1:0]   fifo_wp_q, fifo_rp_q;
   logic [FC_W-1:0]   fifo_cnt_q;
 
-  // Head read stage (the clock after the pop: the RAMs show the lines).
+  // Head read stage (the clock after the pop: the RAMs read the lines).
+  logic              h0_valid_q, h0_last_q, h0_err_q;
+  logic [3:0]        h0_tsel_q;
+  logic [3:0][1:0]   h0_tsub_q;
+  logic [3:0][TOFF_W-1:0] h0_toff_q;
+  logic [TAG_W-1:0]  h0_tag_q;
+  // Select stage (the clock after: the RAMs' words in registers, ram_rd_q).
   logic              h1_valid_q, h1_last_q, h1_err_q;
   logic [3:0]        h1_tsel_q;
   logic [3:0][1:0]   h1_tsub_q;
@@ -385,8 +392,8 @@ module tex_cache
   } rsp_t;
 
   (* ram_style = "block" *) rsp_t out_q [OUT_DEPTH];  // 185 bits: 6 EBRs instead of 42 LUT RAMs
-  logic              out_wp_q, out_rp_q;
-  logic [1:0]        out_cnt_q;
+  logic [1:0]        out_wp_q, out_rp_q;
+  logic [2:0]        out_cnt_q;
 
   // MSHRs.
   logic                         mshr_busy_q [MSHRS];
@@ -395,7 +402,7 @@ module tex_cache
   // MSHR (g_mshr below), so each has one writer: that sub-cache's allocation.  A read takes the
   // word of the MSHR's sub-cache.
   logic [1:0]                   mshr_sub_q  [MSHRS];
-  logic [NSUB-1:0][LA_W-1:0]    mshr_la_ar;   // each sub-cache's line of the MSHR at the AR head
+  logic [NSUB-1:0][LA_W-1:0]    mshr_la_ar;   // each sub-cache's line of the MSHR in ap_idx_q
   logic [NSUB-1:0][SET_W+WAY_W-1:0] mshr_sw_r;  // ... slot (set, way) of the MSHR of the R beat
   logic [NSUB-1:0][LA_W-1:0]    mshr_la_r;    // ... line of the MSHR of the R beat (simulation)
   logic [MIDX_W-1:0]            ar_idx;       // the MSHR at the AR queue's head
@@ -931,7 +938,7 @@ module tex_cache
   pass_t           hd_pop_d, hd_hold_d, nx_pop_d, nx_hold_d;
   logic            byp_v_q;  // fifo_rd_q was read as byp_q was written there: take byp_q
   logic [FP_W-1:0] rd_addr;
-  assign rd_addr = fifo_rp_q + FP_W'(2) + FP_W'(h_pop);
+  assign rd_addr = h_pop ? fifo_rp_q + FP_W'(3) : fifo_rp_q + FP_W'(2);
 
   always_ff @(posedge clk_i) begin
     fifo_rd_q <= fifo_q[rd_addr];
@@ -964,9 +971,13 @@ module tex_cache
     end
   end
 
-  // room for the result in the output buffer the clock after the pop
+  // room in the output buffer for the result and those of the passes popped before it
+  // (out_cnt_q - out_pop + h0_valid_q + h1_valid_q + 1 <= OUT_DEPTH, with the registers' sum
+  // compared apart from the late out_pop)
+  logic [2:0] out_need;
+  assign out_need = out_cnt_q + 3'(h0_valid_q) + 3'(h1_valid_q);
   assign h_pop = rst_ni && h_ready
-                 && (32'(out_cnt_q) - 32'(out_pop) + 32'(h1_valid_q) + 1 <= OUT_DEPTH);
+                 && (out_need < 3'(OUT_DEPTH) || (out_need == 3'(OUT_DEPTH) && out_pop));
 
   // ---------------------------------------------------------------- data RAMs
   // A sub-cache stores a line as NWIN windows of WW words at RAM address {set, way, window}; a
@@ -989,6 +1000,7 @@ module tex_cache
   logic [LANE_B-1:0] r_lane;       // its lane in the window
   logic              fill_v, fill_bad;
   logic [WW:0][31:0] ram_rd [NSUB];  // window words 0 .. WW-1, then the overlap word
+  logic [WW:0][31:0] ram_rd_q [NSUB];  // ... registered (the block RAMs' 4.3 ns clock-to-out)
 
   function automatic logic [RAM_AW-1:0] ram_addr(input logic [SET_W-1:0] s,
                                                  input logic [WAY_W-1:0] w,
@@ -1046,7 +1058,7 @@ module tex_cache
   always_comb begin
     for (int t = 0; t < 4; t++) begin
       h1_texel[t] = acc_texel_q[t];
-      if (h1_tsel_q[t]) h1_texel[t] = ram_rd[h1_tsub_q[t]][h1_toff_q[t]];
+      if (h1_tsel_q[t]) h1_texel[t] = ram_rd_q[h1_tsub_q[t]][h1_toff_q[t]];
     end
     h1_rsp.texel = h1_texel;
     h1_rsp.err   = acc_err_q || h1_err_q;
@@ -1058,14 +1070,16 @@ module tex_cache
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
+      h0_valid_q  <= 1'b0;
       h1_valid_q  <= 1'b0;
       acc_err_q   <= 1'b0;
       acc_texel_q <= '0;
-      out_wp_q    <= 1'b0;
-      out_rp_q    <= 1'b0;
+      out_wp_q    <= '0;
+      out_rp_q    <= '0;
       out_cnt_q   <= '0;
     end else begin
-      h1_valid_q <= h_pop;
+      h0_valid_q <= h_pop;
+      h1_valid_q <= h0_valid_q;
       if (h1_valid_q) begin
         if (h1_last_q) begin
           acc_err_q   <= 1'b0;
@@ -1075,18 +1089,25 @@ module tex_cache
           acc_texel_q <= h1_texel;
         end
       end
-      if (out_push) out_wp_q <= !out_wp_q;
-      if (out_pop)  out_rp_q <= !out_rp_q;
-      out_cnt_q <= out_cnt_q + 2'(out_push) - 2'(out_pop);
+      if (out_push) out_wp_q <= out_wp_q + 2'd1;
+      if (out_pop)  out_rp_q <= out_rp_q + 2'd1;
+      out_cnt_q <= out_cnt_q + 3'(out_push) - 3'(out_pop);
     end
     // (loaded every clock, like the data RAMs' read: they matter when h1_valid_q, the clock
     // after a pop; so the pop, late in its clock, enables none of them)
-    h1_last_q  <= hd.last;
-    h1_err_q   <= |hd_err;
-    h1_tsel_q  <= hd.tsel;
-    h1_tsub_q  <= hd.tsub;
-    h1_toff_q  <= hd.toff;
-    h1_tag_q   <= hd.tag;
+    h0_last_q  <= hd.last;
+    h0_err_q   <= |hd_err;
+    h0_tsel_q  <= hd.tsel;
+    h0_tsub_q  <= hd.tsub;
+    h0_toff_q  <= hd.toff;
+    h0_tag_q   <= hd.tag;
+    h1_last_q  <= h0_last_q;
+    h1_err_q   <= h0_err_q;
+    h1_tsel_q  <= h0_tsel_q;
+    h1_tsub_q  <= h0_tsub_q;
+    h1_toff_q  <= h0_toff_q;
+    h1_tag_q   <= h0_tag_q;
+    ram_rd_q   <= ram_rd;
     if (out_push) out_q[out_wp_q] <= h1_rsp;
   end
 
@@ -1211,14 +1232,18 @@ module tex_cache
   end
 
   // ---------------------------------------------------------------- MSHRs and AR queue
-  // The AR channel is a register (ar_*_q), loaded from the AR queue's head while it is empty or
-  // its read is taken (ar_pop: the queue's head leaves), so no LUT RAM read or multiplexer drives
-  // the port.
-  logic              ar_pop;
-  logic              ar_v_q;
+  // The AR channel is a register (ar_*_q), loaded from a register of the next read's MSHR and
+  // sub-cache (ap_*_q), which is loaded from the AR queue's head (ar_pop: the head leaves); each
+  // moves on while the one after it is empty or moves on itself.  So no LUT RAM read or
+  // multiplexer drives the port, and the line's LUT RAM is read at a registered index.
+  logic              ar_pop, ap_go;
+  logic              ap_v_q, ar_v_q;
+  logic [MIDX_W-1:0] ap_idx_q;
+  logic [1:0]        ap_sub_q;
   logic [ID_W-1:0]   ar_id_q;
   logic [ADDR_W-1:0] ar_addr_q;
-  assign ar_pop = (arq_cnt_q != '0) && (!ar_v_q || m_axi_arready);
+  assign ap_go  = ap_v_q && (!ar_v_q || m_axi_arready);
+  assign ar_pop = (arq_cnt_q != '0) && (!ap_v_q || ap_go);
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -1262,7 +1287,7 @@ module tex_cache
         sw_mem[cm_mshr_q[c]] <= {cm_pass_q.set[c], cm_pass_q.way[c]};
       end
     end
-    assign mshr_la_ar[c] = la_mem[ar_idx];
+    assign mshr_la_ar[c] = la_mem[ap_idx_q];
     assign mshr_sw_r[c]  = sw_mem[r_idx];
     assign mshr_la_r[c]  = la_mem[r_idx];  // (read only by the simulation's shadow)
 `ifndef SYNTHESIS
@@ -1340,11 +1365,20 @@ module tex_cache
   assign ar_idx = arq_q[arq_rp_q];
 
   always_ff @(posedge clk_i) begin
-    if (!rst_ni)                     ar_v_q <= 1'b0;
-    else if (!ar_v_q || m_axi_arready) ar_v_q <= arq_cnt_q != '0;
+    if (!rst_ni) begin
+      ap_v_q <= 1'b0;
+      ar_v_q <= 1'b0;
+    end else begin
+      if (!ap_v_q || ap_go)            ap_v_q <= arq_cnt_q != '0;
+      if (!ar_v_q || m_axi_arready)    ar_v_q <= ap_v_q;
+    end
     if (ar_pop) begin
-      ar_id_q   <= {epoch_q, ar_idx};
-      ar_addr_q <= {mshr_la_ar[mshr_sub_q[ar_idx]], {OFF_W{1'b0}}};
+      ap_idx_q <= ar_idx;
+      ap_sub_q <= mshr_sub_q[ar_idx];
+    end
+    if (ap_go) begin
+      ar_id_q   <= {epoch_q, ap_idx_q};
+      ar_addr_q <= {mshr_la_ar[ap_sub_q], {OFF_W{1'b0}}};
     end
   end
 
@@ -1502,7 +1536,7 @@ module tex_cache
       a_issue |-> a_set_q == a_pass.set)
     else $error("tex_cache: the read stage's set register differs from its pass");
   out_no_overflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      out_push |-> (out_cnt_q < 2'(OUT_DEPTH)) || out_pop)
+      out_push |-> (out_cnt_q < 3'(OUT_DEPTH)) || out_pop)
     else $error("tex_cache: output buffer overflow");
   out_no_underflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
       out_pop |-> out_cnt_q != '0)
