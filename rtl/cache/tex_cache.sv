@@ -90,7 +90,7 @@
 //   clock 7   the texels are selected (and merged with earlier passes of the request).
 //   clock 8   rsp_valid_o (a 4-entry output buffer).
 // So a request that hits answers 8 clocks after its handshake; full throughput is one pass per
-// clock.  A miss answers 4 clocks after its line's last beat.  Sizing: the FIFO lets requests
+// clock.  A miss answers 5 clocks after its line's last beat.  Sizing: the FIFO lets requests
 // run ahead of the head by FIFO_DEPTH passes, so it should exceed the memory latency plus a line's
 // beats and the queueing of bursts of misses; MSHRS about FIFO_DEPTH / 4.  Measured on camera
 // streams (tb/tex_cache, two 256x256 textures, 32-byte lines over 64 bits, one beat per clock):
@@ -110,9 +110,10 @@
 // One INCR burst per line (arlen = LINE_BYTES * 8 / DATA_W - 1, arsize = log2(DATA_W / 8)),
 // line-aligned (never crossing 4 KiB); arid = {epoch, MSHR index}; the ARs of one clock leave in
 // sub-cache order, those of different clocks in allocation order (a queue of MSHR indices).
-// rready is 1: each beat is written into its MSHR's slot as it arrives (the slot is pending, so
-// nothing reads it), so beats of different IDs may interleave.  On the line's last beat the slot
-// stops pending and the MSHR is free again (MSHRS reads in flight at most).
+// rready is 1: each beat is written into its MSHR's slot the clock after it arrives (the slot is
+// pending, so nothing reads it), so beats of different IDs may interleave.  On the line's last
+// beat the MSHR is free again (MSHRS reads in flight at most), and the clock after, the slot
+// stops pending.
 // Errors: a line whose beats carry SLVERR / DECERR stays partly written; its slot gets the error
 // bit and loses its valid bit: the passes already waiting for it answer rsp_err_o = 1 (nothing
 // hangs), a later request reads the line again.
@@ -999,6 +1000,16 @@ module tex_cache
   logic [WIN_W-1:0]  r_win;        // its window
   logic [LANE_B-1:0] r_lane;       // its lane in the window
   logic              fill_v, fill_bad;
+  // The beat registered (w_*_q): the clock after its arrival it is written into its data RAM
+  // and, if it is the line's last, the slot's generation and error bits are written (so no
+  // write starts at the R channel's inputs through the MSHR's LUT RAM reads).
+  logic              w_acc_q, w_fill_q, w_bad_q;
+  logic [1:0]        w_sub_q;
+  logic [SET_W-1:0]  w_set_q;
+  logic [WAY_W-1:0]  w_way_q;
+  logic [BEAT_W-1:0] w_beat_q;
+  logic [DATA_W-1:0] w_data_q;
+  logic [LA_W-1:0]   w_la_q;
   logic [WW:0][31:0] ram_rd [NSUB];  // window words 0 .. WW-1, then the overlap word
   logic [WW:0][31:0] ram_rd_q [NSUB];  // ... registered (the block RAMs' 4.3 ns clock-to-out)
 
@@ -1009,8 +1020,8 @@ module tex_cache
   endfunction
 
   always_comb begin
-    r_win  = WIN_W'(32'(r_beat) / NLANE);
-    r_lane = LANE_B'(32'(r_beat) % NLANE);
+    r_win  = WIN_W'(32'(w_beat_q) / NLANE);
+    r_lane = LANE_B'(32'(w_beat_q) % NLANE);
   end
 
   for (genvar c = 0; c < NSUB; c++) begin : g_sub
@@ -1019,8 +1030,8 @@ module tex_cache
     logic [WW*32-1:0]  rd_win;      // the window's words
     logic [31:0]       rd_ovl;      // the overlap word
     assign ram_rd[c] = {rd_ovl, rd_win};
-    assign wsub  = r_acc && fill_sub == 2'(c);
-    assign waddr = ram_addr(fill_set, fill_way, r_win);
+    assign wsub  = w_acc_q && w_sub_q == 2'(c);
+    assign waddr = ram_addr(w_set_q, w_way_q, r_win);
     assign rd    = 1'b1;  // the head's window, every clock (used the clock after a pop)
     assign raddr = ram_addr(hd.set[c], hd.way[c], hd.win[c]);
     for (genvar l = 0; l < NLANE; l++) begin : g_lane
@@ -1028,7 +1039,7 @@ module tex_cache
         .clk_i   (clk_i),
         .we_i    (wsub && 32'(r_lane) == l),
         .waddr_i (waddr),
-        .wdata_i (m_axi_rdata),
+        .wdata_i (w_data_q),
         .re_i    (rd),
         .raddr_i (raddr),
         .rdata_o (rd_win[l * DATA_W +: DATA_W])
@@ -1040,7 +1051,7 @@ module tex_cache
           .clk_i   (clk_i),
           .we_i    (wsub && r_win != '0 && 32'(r_lane) == o),
           .waddr_i (RAM_AW'(waddr - RAM_AW'(1))),  // the window before, same slot
-          .wdata_i (m_axi_rdata[OVL_W-1:0]),
+          .wdata_i (w_data_q[OVL_W-1:0]),
           .re_i    (rd),
           .raddr_i (raddr),
           .rdata_o (rd_ovl[o * OVL_W +: OVL_W])
@@ -1134,6 +1145,23 @@ module tex_cache
 
   assign m_axi_rready = 1'b1;
 
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      w_acc_q  <= 1'b0;
+      w_fill_q <= 1'b0;
+    end else begin
+      w_acc_q  <= r_acc;
+      w_fill_q <= fill_v;
+    end
+    w_bad_q  <= fill_bad;
+    w_sub_q  <= fill_sub;
+    w_set_q  <= fill_set;
+    w_way_q  <= fill_way;
+    w_beat_q <= r_beat;
+    w_data_q <= m_axi_rdata;
+    w_la_q   <= r_la;
+  end
+
   // ---------------------------------------------------------------- directory updates
   // The sweep that clears the live bits after a reset (one set per clock in every sub-cache).
   always_ff @(posedge clk_i) begin
@@ -1163,7 +1191,7 @@ module tex_cache
 
     assign take = cm_valid_q && cm_pass_q.used[c];  // (cm_valid_q is 0 in reset)
     assign give = h_pop && hd.used[c];
-    assign fill = fill_v && fill_sub == 2'(c);
+    assign fill = w_fill_q && w_sub_q == 2'(c);
 
     always_ff @(posedge clk_i) begin
       if (take) plru_mem[cm_pass_q.set[c]] <= cm_plru_q[c];
@@ -1172,8 +1200,8 @@ module tex_cache
       if (swp_q) live_mem[swp_set_q] <= '0;
       else if (take && cm_alloc_q[c]) live_mem[cm_pass_q.set[c]] <= cm_live_q[c];
       if (fill) begin
-        fg_mem[fill_set]  <= with_way(fl_fg, fill_way, fl_ag[fill_way]);
-        bad_mem[fill_set] <= with_way(fl_bad, fill_way, fill_bad);
+        fg_mem[w_set_q]  <= with_way(fl_fg, w_way_q, fl_ag[w_way_q]);
+        bad_mem[w_set_q] <= with_way(fl_bad, w_way_q, w_bad_q);
       end
     end
     assign set_plru[c] = plru_mem[a_set_q[c]];
@@ -1181,9 +1209,9 @@ module tex_cache
     assign set_ag[c]   = ag_mem[a_set_q[c]];
     assign set_fg[c]   = fg_mem[a_set_q[c]];
     assign set_bad[c]  = bad_mem[a_set_q[c]];
-    assign fl_ag       = ag_mem[fill_set];
-    assign fl_fg       = fg_mem[fill_set];
-    assign fl_bad      = bad_mem[fill_set];
+    assign fl_ag       = ag_mem[w_set_q];
+    assign fl_fg       = fg_mem[w_set_q];
+    assign fl_bad      = bad_mem[w_set_q];
     assign hd_ag       = ag_mem[hd.set[c]];
     assign hd_fg       = fg_mem[hd.set[c]];
     assign hd_bd       = bad_mem[hd.set[c]];
@@ -1470,10 +1498,10 @@ module tex_cache
           ref_err_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]]   <= 1'b0;
         end
       end
-      if (fill_v) begin
-        ref_pend_q[fill_sub][fill_set][fill_way] <= 1'b0;
-        ref_err_q[fill_sub][fill_set][fill_way]  <= fill_bad;
-        if (fill_bad) ref_valid_q[fill_sub][fill_set][fill_way] <= 1'b0;
+      if (w_fill_q) begin
+        ref_pend_q[w_sub_q][w_set_q][w_way_q] <= 1'b0;
+        ref_err_q[w_sub_q][w_set_q][w_way_q]  <= w_bad_q;
+        if (w_bad_q) ref_valid_q[w_sub_q][w_set_q][w_way_q] <= 1'b0;
       end
     end
   end
@@ -1562,9 +1590,9 @@ module tex_cache
     if (cm_valid_q) sh_pass_la[fifo_wp_q] <= cm_la_q;
     if (!rst_ni) begin
       for (int s = 0; s < SETS; s++) for (int w = 0; w < WAYS; w++) sh_slot_ok[s][w] <= '0;
-    end else if (fill_v) begin
-      sh_slot_la[fill_sub][fill_set][fill_way] <= r_la;
-      sh_slot_ok[fill_set][fill_way][fill_sub] <= 1'b1;
+    end else if (w_fill_q) begin
+      sh_slot_la[w_sub_q][w_set_q][w_way_q] <= w_la_q;
+      sh_slot_ok[w_set_q][w_way_q][w_sub_q] <= 1'b1;
     end
   end
 
