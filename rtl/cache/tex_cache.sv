@@ -94,9 +94,9 @@
 // run ahead of the head by FIFO_DEPTH passes, so it should exceed the memory latency plus a line's
 // beats and the queueing of bursts of misses; MSHRS about FIFO_DEPTH / 4.  Measured on camera
 // streams (tb/tex_cache, two 256x256 textures, 32-byte lines over 64 bits, one beat per clock):
-// with the defaults 0.98 quads per clock at latency 20, 0.92 at 50, 0.63 at 100 (0.67 at 100
-// with a one-clock lookup and AR port; 0.97 at 100 with FIFO_DEPTH = 128, MSHRS = 32, measured
-// then).
+// with the defaults 0.98 quads per clock at latency 20, 0.91 at 50, 0.62 at 100 (0.92 and 0.67
+// with a one-clock lookup and unregistered AR and R channels; 0.97 at 100 with FIFO_DEPTH = 128,
+// MSHRS = 32, measured then).
 //
 // ---- Lines in use are never evicted (reference counts) ------------------------------------------
 // Every line slot has a reference count: +1 when a pass that reads it enters the FIFO, -1 when the
