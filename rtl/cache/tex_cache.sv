@@ -893,7 +893,6 @@ module tex_cache
 
   // ---------------------------------------------------------------- request FIFO
   logic  h_pop, h_ready;
-  pass_t hd;
 
   always_comb begin
     e_pass.used = lk_v;
@@ -963,12 +962,11 @@ module tex_cache
   end
 
   always_comb begin
-    hd      = hd_q;
     h_ready = (fifo_cnt_q != '0);
     for (int c = 0; c < NSUB; c++) begin
       // (the head's slots are live: allocated by this pass or hit as valid by it)
-      if (hd.used[c] && hd_pend[c]) h_ready = 1'b0;
-      hd_err[c] = hd.used[c] && !hd_pend[c] && hd_bad[c];
+      if (hd_q.used[c] && hd_pend[c]) h_ready = 1'b0;
+      hd_err[c] = hd_q.used[c] && !hd_pend[c] && hd_bad[c];
     end
   end
 
@@ -1033,7 +1031,7 @@ module tex_cache
     assign wsub  = w_acc_q && w_sub_q == 2'(c);
     assign waddr = ram_addr(w_set_q, w_way_q, r_win);
     assign rd    = 1'b1;  // the head's window, every clock (used the clock after a pop)
-    assign raddr = ram_addr(hd.set[c], hd.way[c], hd.win[c]);
+    assign raddr = ram_addr(hd_q.set[c], hd_q.way[c], hd_q.win[c]);
     for (genvar l = 0; l < NLANE; l++) begin : g_lane
       cache_sdp_ram #(.DEPTH(RAM_DEPTH), .WIDTH(DATA_W)) u_ram (
         .clk_i   (clk_i),
@@ -1104,14 +1102,14 @@ module tex_cache
       if (out_pop)  out_rp_q <= out_rp_q + 2'd1;
       out_cnt_q <= out_cnt_q + 3'(out_push) - 3'(out_pop);
     end
-    // (loaded every clock, like the data RAMs' read: they matter when h1_valid_q, the clock
-    // after a pop; so the pop, late in its clock, enables none of them)
-    h0_last_q  <= hd.last;
+    // (loaded every clock, like the data RAMs' read: they matter only where h0_valid_q and
+    // h1_valid_q say a popped pass is; so the pop, late in its clock, enables none of them)
+    h0_last_q  <= hd_q.last;
     h0_err_q   <= |hd_err;
-    h0_tsel_q  <= hd.tsel;
-    h0_tsub_q  <= hd.tsub;
-    h0_toff_q  <= hd.toff;
-    h0_tag_q   <= hd.tag;
+    h0_tsel_q  <= hd_q.tsel;
+    h0_tsub_q  <= hd_q.tsub;
+    h0_toff_q  <= hd_q.toff;
+    h0_tag_q   <= hd_q.tag;
     h1_last_q  <= h0_last_q;
     h1_err_q   <= h0_err_q;
     h1_tsel_q  <= h0_tsel_q;
@@ -1190,7 +1188,7 @@ module tex_cache
     logic [WAYS-1:0]   fl_ag, fl_fg, fl_bad, hd_ag, hd_fg, hd_bd;
 
     assign take = cm_valid_q && cm_pass_q.used[c];  // (cm_valid_q is 0 in reset)
-    assign give = h_pop && hd.used[c];
+    assign give = h_pop && hd_q.used[c];
     assign fill = w_fill_q && w_sub_q == 2'(c);
 
     always_ff @(posedge clk_i) begin
@@ -1212,11 +1210,11 @@ module tex_cache
     assign fl_ag       = ag_mem[w_set_q];
     assign fl_fg       = fg_mem[w_set_q];
     assign fl_bad      = bad_mem[w_set_q];
-    assign hd_ag       = ag_mem[hd.set[c]];
-    assign hd_fg       = fg_mem[hd.set[c]];
-    assign hd_bd       = bad_mem[hd.set[c]];
-    assign hd_pend[c]  = hd_ag[hd.way[c]] != hd_fg[hd.way[c]];
-    assign hd_bad[c]   = hd_bd[hd.way[c]];
+    assign hd_ag       = ag_mem[hd_q.set[c]];
+    assign hd_fg       = fg_mem[hd_q.set[c]];
+    assign hd_bd       = bad_mem[hd_q.set[c]];
+    assign hd_pend[c]  = hd_ag[hd_q.way[c]] != hd_fg[hd_q.way[c]];
+    assign hd_bad[c]   = hd_bd[hd_q.way[c]];
 
 `ifndef SYNTHESIS
     // every slot's state bits for the assertions below
@@ -1241,12 +1239,12 @@ module tex_cache
           if (cm_alloc_q[c]) tag_mem[cm_pass_q.set[c]] <= cm_tag_q[c];
           inc_mem[cm_pass_q.set[c]] <= cm_inc_q[c];
         end
-        if (give && hd.way[c] == WAY_W'(w)) dec_mem[hd.set[c]] <= hd_dec + RC_W'(1);
+        if (give && hd_q.way[c] == WAY_W'(w)) dec_mem[hd_q.set[c]] <= hd_dec + RC_W'(1);
       end
       assign set_tag[c][w] = tag_mem[a_set_q[c]];
       assign set_inc[c][w] = inc_mem[a_set_q[c]];
       assign set_dec[c][w] = dec_mem[a_set_q[c]];
-      assign hd_dec        = dec_mem[hd.set[c]];
+      assign hd_dec        = dec_mem[hd_q.set[c]];
 
 `ifndef SYNTHESIS
       // whole-directory views for the assertions below
@@ -1510,7 +1508,7 @@ module tex_cache
     else $error("tex_cache: directory state bits differ from their reference");
   // The head's slots are live (its pending and error bits are read without the live bit).
   head_live: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      fifo_cnt_q != '0 |-> (hd_live | ~hd.used) == '1)
+      fifo_cnt_q != '0 |-> (hd_live | ~hd_q.used) == '1)
     else $error("tex_cache: the head reads a slot that is not live");
 
   logic [NSUB-1:0][SET_W-1:0] cm_set;  // the committing pass's slots
@@ -1521,7 +1519,7 @@ module tex_cache
   always_comb begin
     for (int c = 0; c < NSUB; c++) begin
       lk_live[c] = valid_v[c][cm_set[c]][cm_way[c]] || err_v[c][cm_set[c]][cm_way[c]];
-      hd_live[c] = valid_v[c][hd.set[c]][hd.way[c]] || err_v[c][hd.set[c]][hd.way[c]];
+      hd_live[c] = valid_v[c][hd_q.set[c]][hd_q.way[c]] || err_v[c][hd_q.set[c]][hd_q.way[c]];
     end
   end
 
@@ -1545,7 +1543,7 @@ module tex_cache
       h_pop |-> fifo_cnt_q != '0)
     else $error("tex_cache: request FIFO underflow");
   fifo_head: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      fifo_cnt_q != '0 |-> hd == fifo_q[fifo_rp_q])
+      fifo_cnt_q != '0 |-> hd_q == fifo_q[fifo_rp_q])
     else $error("tex_cache: head register differs from the FIFO's head entry");
   fifo_next: assert property (@(posedge clk_i) disable iff (!rst_ni)
       fifo_cnt_q >= FC_W'(2) |-> nx_q == fifo_q[FP_W'(fifo_rp_q + FP_W'(1))])
@@ -1634,18 +1632,18 @@ module tex_cache
                               || cm_inc_q[c] == dir_inc[c][cm_set[c]][cm_way[c]] + RC_W'(1))
             else $error("tex_cache: sub-cache %0d commits a stale reference count", c);
         end
-        if (h_pop && hd.used[c]) begin
+        if (h_pop && hd_q.used[c]) begin
           rc_no_underflow: assert (hd_live[c]
-                                   && dir_rc[c][hd.set[c]][hd.way[c]] != '0)
+                                   && dir_rc[c][hd_q.set[c]][hd_q.way[c]] != '0)
             else $error("tex_cache: reference count underflow");
           // The slot read at the head holds the line the pass looked up (unless it errored).
-          head_reads_its_line: assert (err_v[c][hd.set[c]][hd.way[c]]
-                                       || (sh_slot_ok[hd.set[c]][hd.way[c]][c]
-                                           && sh_slot_la[c][hd.set[c]][hd.way[c]]
+          head_reads_its_line: assert (err_v[c][hd_q.set[c]][hd_q.way[c]]
+                                       || (sh_slot_ok[hd_q.set[c]][hd_q.way[c]][c]
+                                           && sh_slot_la[c][hd_q.set[c]][hd_q.way[c]]
                                               == sh_pass_la[fifo_rp_q][c]))
             else $error("tex_cache: head reads sub-cache %0d slot (%0d, %0d): line %h, not %h",
-                        c, hd.set[c], hd.way[c],
-                        sh_slot_la[c][hd.set[c]][hd.way[c]], sh_pass_la[fifo_rp_q][c]);
+                        c, hd_q.set[c], hd_q.way[c],
+                        sh_slot_la[c][hd_q.set[c]][hd_q.way[c]], sh_pass_la[fifo_rp_q][c]);
         end
       end
       // MSHRs: a busy MSHR's slot is valid, pending and tagged with its line; no two busy MSHRs
@@ -1694,7 +1692,7 @@ module tex_cache
     for (int t = 0; t < 4; t++) begin
       if (p_load && s0_todo_q[t] && !sl_sel[t] && sl_v[e_sub[t]] && sl_la[e_sub[t]] == e_la[t])
         sim_win_split = 1'b1;
-      if (h_pop && hd.tsel[t] && 32'(hd.toff[t]) == WW) sim_overlap = 1'b1;
+      if (h_pop && hd_q.tsel[t] && 32'(hd_q.toff[t]) == WW) sim_overlap = 1'b1;
     end
   end
   assign sim_victim_wait = rst_ni && b_valid_q && (|lk_blocked);   // every way referenced
