@@ -91,6 +91,15 @@ def test_pnr_summary():
         synth.pnr_summary({"fmax": {}}, "")
 
 
+def test_router_args():
+    # auto: router1 out of context, router2 (timing-driven rip-up) for the top
+    assert synth.router_args("auto", True) == ["--router", "router1"]
+    assert synth.router_args("auto", False) == ["--router", "router2", "--tmg-ripup"]
+    assert synth.router_args("router1", False) == ["--router", "router1"]
+    assert synth.router_args("router2", True) == ["--router", "router2", "--tmg-ripup"]
+    assert "router2" in synth.router_text("auto") and "router1" in synth.router_text("auto")
+
+
 def test_float_units_inventory():
     mods = {
         "\\dm_pipeline": {"num_cells_by_type": {"$add": 3, "view_calc$dm_pipeline.u_view": 1,
