@@ -10,9 +10,10 @@
 // Slot table: the ring moves only the slots' valid bits.  Everything else a slot holds lives in
 // one entry of a table of D = 18 entries, one per slot: a ray entering the ring is written into
 // its slot's entry, and because every slot advances one stage per clock, the entry of the slot in
-// stage s is (ph_q - s) mod 18, with ph_q a phase counter that steps every clock.  So a ray never
-// changes entry while it circulates, and a stage reads only the fields it needs (a register file
-// of 18 entries with several read ports instead of 18 x ~270 bits of shift registers).  Per entry:
+// stage s is (ph - s) mod 18, with ph a phase that steps every clock (each stage counts its own
+// index, sl_q[s]).  So a ray never changes entry while it circulates, and a stage reads only the
+// fields it needs (a register file of 18 entries with several read ports instead of 18 x ~270
+// bits of shift registers).  Per entry:
 //   - the per-ray constants u0, v0, du, dv, 1/du, 1/dv, directions, t_map and the ray id, written
 //     when the ray enters the ring (and only then: one write port, so LUT RAM);
 //   - the traversal state (level, cell, t, flags, iterations), written on entry and by S16;
@@ -184,7 +185,10 @@ module traverse_loop
   } desc_t;
 
   // Per ray.  duv_q and inv_q are read only into registers, so synthesis can put them in block
-  // RAM (ram_style; a 16x4 LUT RAM costs 6 LUT4s); the other fields are read into logic.
+  // RAM (ram_style; a 16x4 LUT RAM costs 6 LUT4s); the other fields are read into logic.  Their
+  // reads are made a stage early into the block RAM's own read register (duv5_q, inv3_q,
+  // inv15_q) and then copied into a fabric register next to the multipliers: the block RAM's
+  // 4.3 ns clock-to-out, routed into a multiplier, was the ring's slowest path (69 MHz).
   logic [ID_W-1:0]  id_q     [D];
   f24_pair_t        uv_q     [D];  // u0, v0 (written on entry only)
   (* ram_style = "block" *) f24_pair_t        duv_q    [D];  // du, dv
@@ -213,18 +217,20 @@ module traverse_loop
   logic [3:1]   lv_q;              // lv_q[s]: the slot in stage s holds a live ray (not done)
   logic [9:7]   ts_q;              // ts_q[s]: ok, and t_new is t (not the plane)
   logic         xor_desc, sel_up;  // the method uses the XOR descent / the selective level-up
-  slot_idx_t    ph_q;              // phase: stage s holds the slot of entry (ph_q - s) mod D
-  slot_idx_t    sl [D];            // sl[s] = (ph_q - s) mod D
+  slot_idx_t    sl_q [D];          // stage s holds the slot of entry sl_q[s] = (ph - s) mod D,
+                                   // ph = sl_q[0] the phase: one counter per stage
+  slot_idx_t    sl [D];
 
-  always_comb begin
-    for (int s = 0; s < D; s++) begin
-      sl[s] = (ph_q >= SW'(s)) ? ph_q - SW'(s) : ph_q + SW'(D - s);
+  // Each stage's slot index is a counter of its own rather than ph - s: its table reads then
+  // start at a register placed near them, not behind a subtraction and a shared net (the phase's
+  // fanout to every stage's subtraction was 70% of the ring's slowest path, 71 MHz).  The
+  // counters are not merged by synthesis: each has its own reset value.
+  for (genvar g = 0; g < D; g++) begin : g_sl
+    always_ff @(posedge clk_i) begin
+      if (!rst_ni) sl_q[g] <= SW'((D - g) % D);
+      else         sl_q[g] <= (sl_q[g] == SW'(D - 1)) ? '0 : sl_q[g] + SW'(1);
     end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) ph_q <= '0;
-    else         ph_q <= (ph_q == SW'(D - 1)) ? '0 : ph_q + SW'(1);
+    assign sl[g] = sl_q[g];
   end
 
   assign xor_desc = (cfg_i.policy.descent == DESC_XOR);
@@ -236,14 +242,14 @@ module traverse_loop
   logic       live0_q;             // S0 holds a live ray: it looks its height up
   logic [IDX_W-1:0] kbx1_q, kby1_q;  // S1: exit boundary integers
   f24_pair_t  uv2_q;               // S2
-  f24_pair_t  inv4_q;              // S4
+  f24_pair_t  inv3_q, inv4_q;      // S3 (block RAM read register), S4
   dirs_t      d5_q;                // S5
   tval_t      tmap5_q, tm1_5_q;    // S5: t_map, min(t_map, 1)
   exit_t      ex_q [10:6];         // S6 - S10: t_exit (computed in S5)
   f24_t       tend6_q;             // S6: t_end (computed in S5)
   tval_t      tmap6_q;             // S6: t_map
   tval_t      t6_q;                // S6
-  f24_pair_t  duv6_q;              // S6
+  f24_pair_t  duv5_q, duv6_q;      // S5 (block RAM read register), S6
   f24_ord_t   t_new7_q;            // S7: max(t, plane) (computed in S6), comparable
   tmin_t      tmin7_q;             // S7 (computed in S6)
   logic       leaf7_q;             // S7: the node is at level 0
@@ -264,7 +270,7 @@ module traverse_loop
   sidx_pair_t c13_q, lo13_q, hi13_q;  // S13: child estimate, the child's range at level k'
   f24_pair_t  uv14_q;              // S14
   desc_t      dsc_q [17:14];       // S14 - S17: new level, locate's candidates (from S13)
-  f24_pair_t  inv16_q;             // S16
+  f24_pair_t  inv15_q, inv16_q;    // S15 (block RAM read register), S16
   status_t    st16_q;              // S16
   logic [ITER_W-1:0] it16_q;       // S16: iterations + 1
   act_t       act16_q;             // S16
@@ -528,8 +534,10 @@ module traverse_loop
     n0_q <= admit ? n_new : down17_q ? ndn17 : node_q[sl[D-1]];
     d0_q <= admit ? dirs_t'{sx: new_ray_i.sx, sy: new_ray_i.sy} : dir_q[sl[D-1]];
     if (lv_q[1]) uv2_q  <= uv_q[sl[1]];
-    if (lv_q[3]) inv4_q <= inv_q[sl[3]];
+    if (lv_q[2]) inv3_q <= inv_q[sl[2]];
+    if (lv_q[3]) inv4_q <= inv3_q;
     if (ok_q[4]) begin
+      duv5_q  <= duv_q[sl[4]];
       d5_q    <= dir_q[sl[4]];
       tmap5_q <= tval(tmap_q[sl[4]]);
       tm1_5_q <= ord_min_first(f24_ord(tmap_q[sl[4]]), f24_ord(F24_ONE)) ? tval(tmap_q[sl[4]])
@@ -540,7 +548,7 @@ module traverse_loop
       tend6_q <= min3(tx5, ty5, tm1_5_q);
       tmap6_q <= tmap5_q;
       t6_q    <= tval(t_q[sl[5]]);
-      duv6_q  <= duv_q[sl[5]];
+      duv6_q  <= duv5_q;
     end
     if (ok_q[6]) begin
       t_new7_q <= ord_max_first(t6_q.ord, f24_ord(plane)) ? t6_q.ord : f24_ord(plane);
@@ -617,7 +625,8 @@ module traverse_loop
     for (int s = 14; s < 17; s++) begin
       if (dn_q[s]) dsc_q[s+1] <= dsc_q[s];
     end
-    if (dn_q[15]) inv16_q <= inv_q[sl[15]];
+    if (dn_q[14]) inv15_q <= inv_q[sl[14]];
+    if (dn_q[15]) inv16_q <= inv15_q;
     if (v_q[15]) begin
       st16_q  <= stat_q[sl[15]];
       it16_q  <= stat_q[sl[15]].iters + ITER_W'(1);
@@ -673,6 +682,11 @@ module traverse_loop
   end
 
 `ifndef SYNTHESIS
+  // Every stage's slot counter is (ph - s) mod D.
+  for (genvar g = 0; g < D; g++) begin : g_sl_check
+    slot_counter: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      32'(sl_q[g]) == (32'(sl_q[0]) + D - g) % D);
+  end
   // A response only ever answers a request made LOOKUP_LAT clocks earlier.
   logic lk_d1_q, lk_d2_q;
   always_ff @(posedge clk_i) begin
