@@ -43,8 +43,8 @@
 // float unit serves up to four operations of a pixel whose stages differ pairwise by amounts not
 // divisible by 4: pixel p at Sa, Sb, ..., any later pixel at Sa + 4j, Sb + 4j, ..., never in the
 // same clock (asserted: core_aligned, and unit_once per shared unit).  A shared unit's operands
-// are registers, or a select between registers by cv_q[a] (a pixel in core stage a: that
-// operation).  The units with four operations are multipliers (2:1 to 4:1 selects); every adder
+// are registers, or a select between registers by the phase a mod 4 of its operation in core
+// stage a (the unit's own copy of ph_q, see "phase replicas").  The units with four operations are multipliers (2:1 to 4:1 selects); every adder
 // keeps the 2:1 select (or none) it had with two operations per unit.
 // Three-component values run as two lanes: lane 0 carries x in stage s and z in s+1 through the
 // same registers ("stream"), lane 1 carries y in s; the tail runs R, G, B on one lane.
@@ -221,6 +221,34 @@ module shade_unit
     end
   end
 
+  // ---- phase replicas: the shared units' operand selects ----------------------------------------
+  // A shared unit's operation of core stage a is the only one it has when ph_q = a mod 4 (the
+  // core's pixels are all in stages of phase ph_q: core_aligned), so its operand select needs the
+  // phase only, not cv_q[a]: whichever operand it picks in a clock with no pixel at its stages is
+  // never read.  Each shared unit has a one-hot copy of ph_q of its own (ps_q[u][r] = (ph_q == r)),
+  // which the placer keeps next to it: a select driven by cv_q[1], shared by five units, was
+  // 2.5 ns of routing into an adder's stage 1 (77 MHz out of context).  The copies are not
+  // merged by synthesis: each register's next value is its own rotation.
+  localparam int unsigned NPS = 20;  // shared units with an operand select
+  localparam int unsigned PS_UV2HY2 = 0,  PS_DVNC = 1,   PS_N1UV = 2,   PS_VVHH = 3,
+                          PS_NSQ1V1 = 4,  PS_VA = 5,     PS_NXYH1 = 6,  PS_HA = 7,
+                          PS_HKD = 8,     PS_NNHXY = 9,  PS_RVNH = 10,  PS_NUNH1 = 11,
+                          PS_NLA = 12,    PS_HUA = 13,   PS_HUNH1 = 14, PS_DXY = 15,
+                          PS_ACC1 = 16,   PS_SSP = 17,   PS_CAA = 18,   PS_CC0 = 19;
+  logic [3:0] ps_q [NPS];
+
+  for (genvar u = 0; u < NPS; u++) begin : g_ps
+    always_ff @(posedge clk_i) begin
+      if (!rst_ni)   ps_q[u] <= 4'b0001;
+      else if (en_i) ps_q[u] <= {ps_q[u][2:0], ps_q[u][3]};
+    end
+  end
+
+  // The unit's operation of core stage a (given its phase replica p).
+  function automatic logic at(input logic [3:0] p, input int unsigned a);
+    return p[a % 4];
+  endfunction
+
   always_ff @(posedge clk_i) begin
     if (en_i && valid_i && ph_q != 2'd0) begin
       hnrm_q <= nrm_i;
@@ -355,92 +383,99 @@ module shade_unit
   end
 
   // ---- float units ----------------------------------------------------------------------------
-  // Operand selects: cv_q[a] = 1 means the unit's operation of core stage a; the last operand
-  // of a select chain is the remaining operation's (stages of other phases mod 4; see the
-  // header).  -du, -dv: the sign bit flipped.
+  // Operand selects: at(ps_q[PS_<unit>], a) = 1 means the unit's operation of core stage a (the
+  // phase is a mod 4; see "Phase replicas" above); the last operand of a select chain is the
+  // remaining operation's (stages of other phases mod 4; see the header).  -du, -dv: the sign
+  // bit flipped.
   f24_t neg_du9, neg_dv9;
   assign neg_du9 = {~du_q[9][23], du_q[9][22:0]};
   assign neg_dv9 = {~dv_q[9][23], dv_q[9][22:0]};
 
   // 5: du^2 @1 / 7: h_y^2 @12
   f24_t uh_sel;
-  assign uh_sel = cv_q[1] ? du_q[1] : nxyh1_s1112;
+  assign uh_sel = at(ps_q[PS_UV2HY2], 1) ? du_q[1] : nxyh1_s1112;
   f24_mul u_uv2hy2 (.clk_i, .en_i, .a_i(uh_sel), .b_i(uh_sel), .y_o(uv2hy2_s213));
   // 5: dv^2 @1 / 4: n_x rn @19 / n_z rn @20 / 12: C_y a @30 (stages 1, 3, 0, 2 mod 4)
-  // (selected without cv_q[1], which already drives the selects of five units)
   f24_mul u_dvnc (.clk_i, .en_i,
-                  .a_i(cv_q[30] ? col1_q[30] : (cv_q[19] || cv_q[20]) ? na_q[19] : dv_q[1]),
-                  .b_i(cv_q[30] ? a_q : cv_q[19] ? rvnh_s91920 : cv_q[20] ? rq_q : dv_q[1]),
+                  .a_i(at(ps_q[PS_DVNC], 30) ? col1_q[30]
+                     : (at(ps_q[PS_DVNC], 19) || at(ps_q[PS_DVNC], 20)) ? na_q[19] : dv_q[1]),
+                  .b_i(at(ps_q[PS_DVNC], 30) ? a_q : at(ps_q[PS_DVNC], 19) ? rvnh_s91920
+                     : at(ps_q[PS_DVNC], 20) ? rq_q : dv_q[1]),
                   .y_o(dvnc_s22131));
 
   // 1: n_x - 1 @1 / n_z - 1 @2; n_y - 1 @1 / 5: du^2 + dv^2 @2
   f24_add u_na   (.clk_i, .en_i, .a_i(m2a_q), .b_i(NEG_ONE), .y_o(na_s34));
-  f24_add u_n1uv (.clk_i, .en_i, .a_i(cv_q[1] ? m2y_q : uv2hy2_s213),
-                  .b_i(cv_q[1] ? NEG_ONE : dvnc_s22131), .y_o(n1uv_s34));
+  f24_add u_n1uv (.clk_i, .en_i, .a_i(at(ps_q[PS_N1UV], 1) ? m2y_q : uv2hy2_s213),
+                  .b_i(at(ps_q[PS_N1UV], 1) ? NEG_ONE : dvnc_s22131), .y_o(n1uv_s34));
 
   // 5: vv @4 / 7: hh @15
-  f24_add u_vvhh (.clk_i, .en_i, .a_i(cv_q[4] ? n1uv_s34 : nnhxy_s1415),
-                  .b_i(cv_q[4] ? cfg_i.d2 : hsq2_q), .y_o(vvhh_s617));
+  f24_add u_vvhh (.clk_i, .en_i, .a_i(at(ps_q[PS_VVHH], 4) ? n1uv_s34 : nnhxy_s1415),
+                  .b_i(at(ps_q[PS_VVHH], 4) ? cfg_i.d2 : hsq2_q), .y_o(vvhh_s617));
 
   // 2: n_x^2 @8 / n_z^2 @9; n_y^2 @8 / 6: v_y @9
   f24_mul u_nsqa   (.clk_i, .en_i, .a_i(na_q[8]), .b_i(na_q[8]), .y_o(nsqa_s910));
-  f24_mul u_nsq1v1 (.clk_i, .en_i, .a_i(cv_q[8] ? n1_q[8] : neg_dv9),
-                    .b_i(cv_q[8] ? n1_q[8] : rvnh_s91920), .y_o(nsq1v1_s910));
+  f24_mul u_nsq1v1 (.clk_i, .en_i, .a_i(at(ps_q[PS_NSQ1V1], 8) ? n1_q[8] : neg_dv9),
+                    .b_i(at(ps_q[PS_NSQ1V1], 8) ? n1_q[8] : rvnh_s91920), .y_o(nsq1v1_s910));
   // 6: v_x @9 / v_z @10
-  f24_mul u_va (.clk_i, .en_i, .a_i(cv_q[9] ? neg_du9 : cfg_i.d),
-                .b_i(cv_q[9] ? rvnh_s91920 : rv_q), .y_o(va_s1011));
+  f24_mul u_va (.clk_i, .en_i, .a_i(at(ps_q[PS_VA], 9) ? neg_du9 : cfg_i.d),
+                .b_i(at(ps_q[PS_VA], 9) ? rvnh_s91920 : rv_q), .y_o(va_s1011));
 
   // 2: nx2 + ny2 @9 / 7: h_y = l_y + v_y @10
-  f24_add u_nxyh1 (.clk_i, .en_i, .a_i(cv_q[9] ? nsqa_s910 : light[1]), .b_i(nsq1v1_s910),
-                   .y_o(nxyh1_s1112));
+  f24_add u_nxyh1 (.clk_i, .en_i, .a_i(at(ps_q[PS_NXYH1], 9) ? nsqa_s910 : light[1]),
+                   .b_i(nsq1v1_s910), .y_o(nxyh1_s1112));
   // 7: h_x @10 / h_z @11
-  f24_add u_ha (.clk_i, .en_i, .a_i(cv_q[10] ? light[0] : light[2]), .b_i(va_s1011),
+  f24_add u_ha (.clk_i, .en_i, .a_i(at(ps_q[PS_HA], 10) ? light[0] : light[2]), .b_i(va_s1011),
                 .y_o(ha_s1213));
   // 7: h_x^2 @12 / h_z^2 @13 / 11: KD ndl @26 / 10: ndh^2 @27 (stages 0 .. 3 mod 4)
-  f24_mul u_hkd (.clk_i, .en_i, .a_i(cv_q[26] ? cfg_i.kd : cv_q[27] ? m_q : ha_s1213),
-                 .b_i((cv_q[26] || cv_q[27]) ? m_q : ha_s1213), .y_o(hkd_s1328));
+  f24_mul u_hkd (.clk_i, .en_i,
+                 .a_i(at(ps_q[PS_HKD], 26) ? cfg_i.kd : at(ps_q[PS_HKD], 27) ? m_q : ha_s1213),
+                 .b_i((at(ps_q[PS_HKD], 26) || at(ps_q[PS_HKD], 27)) ? m_q : ha_s1213),
+                 .y_o(hkd_s1328));
   // 2: nn @12 / 7: hx2 + hy2 @13
-  f24_add u_nnhxy (.clk_i, .en_i, .a_i(cv_q[12] ? nxy_q : hkd_s1328),
-                   .b_i(cv_q[12] ? nsq2_q[12] : uv2hy2_s213), .y_o(nnhxy_s1415));
+  f24_add u_nnhxy (.clk_i, .en_i, .a_i(at(ps_q[PS_NNHXY], 12) ? nxy_q : hkd_s1328),
+                   .b_i(at(ps_q[PS_NNHXY], 12) ? nsq2_q[12] : uv2hy2_s213), .y_o(nnhxy_s1415));
   // 6: rv @6 / 4: rn @16 / 8: rh @17 (stages 2, 0, 1 mod 4; vv and hh are both u_vvhh's output)
-  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rvnh (.clk_i, .en_i, .a_i(cv_q[16] ? nnm2_q : vvhh_s617),
+  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rvnh (.clk_i, .en_i,
+                                       .a_i(at(ps_q[PS_RVNH], 16) ? nnm2_q : vvhh_s617),
                                        .y_o(rvnh_s91920));
 
   // n_y rn @19 / 9: n_y l_y @20 / n_x h_x @21 / n_z h_z @22
   f24_mul u_nunh1 (.clk_i, .en_i,
-                   .a_i(cv_q[19] ? n1_q[19] : cv_q[20] ? nunh1_s2023 : nua_q),
-                   .b_i(cv_q[19] ? rvnh_s91920 : cv_q[20] ? light[1] : hua_s2122),
+                   .a_i(at(ps_q[PS_NUNH1], 19) ? n1_q[19]
+                      : at(ps_q[PS_NUNH1], 20) ? nunh1_s2023 : nua_q),
+                   .b_i(at(ps_q[PS_NUNH1], 19) ? rvnh_s91920
+                      : at(ps_q[PS_NUNH1], 20) ? light[1] : hua_s2122),
                    .y_o(nunh1_s2023));
   // 9: n_x l_x @20 / n_z l_z @21
-  f24_mul u_nla (.clk_i, .en_i, .a_i(dvnc_s22131), .b_i(cv_q[20] ? light[0] : light[2]),
-                 .y_o(nla_s2122));
+  f24_mul u_nla (.clk_i, .en_i, .a_i(dvnc_s22131),
+                 .b_i(at(ps_q[PS_NLA], 20) ? light[0] : light[2]), .y_o(nla_s2122));
   // 8: h_x rh @20 / h_z rh @21; h_y rh @20 / 9: n_y h_y @21
-  f24_mul u_hua (.clk_i, .en_i, .a_i(ha_q[20]), .b_i(cv_q[20] ? rvnh_s91920 : rq_q),
+  f24_mul u_hua (.clk_i, .en_i, .a_i(ha_q[20]), .b_i(at(ps_q[PS_HUA], 20) ? rvnh_s91920 : rq_q),
                  .y_o(hua_s2122));
-  f24_mul u_hunh1 (.clk_i, .en_i, .a_i(cv_q[20] ? h1_q[20] : nu1_q),
-                   .b_i(cv_q[20] ? rvnh_s91920 : hunh1_s2122), .y_o(hunh1_s2122));
+  f24_mul u_hunh1 (.clk_i, .en_i, .a_i(at(ps_q[PS_HUNH1], 20) ? h1_q[20] : nu1_q),
+                   .b_i(at(ps_q[PS_HUNH1], 20) ? rvnh_s91920 : hunh1_s2122), .y_o(hunh1_s2122));
   // 9: nlx + nly @21 / nhx + nhy @22
-  f24_add u_dxy (.clk_i, .en_i, .a_i(cv_q[21] ? nla_s2122 : nunh1_s2023),
-                 .b_i(cv_q[21] ? nunh1_s2023 : hunh1_s2122), .y_o(dxy_s2324));
+  f24_add u_dxy (.clk_i, .en_i, .a_i(at(ps_q[PS_DXY], 21) ? nla_s2122 : nunh1_s2023),
+                 .b_i(at(ps_q[PS_DXY], 21) ? nunh1_s2023 : hunh1_s2122), .y_o(dxy_s2324));
   // 9: dot(n, l) @23 / dot(n, h) @24
   f24_add u_dot (.clk_i, .en_i, .a_i(dxy_s2324), .b_i(z_q), .y_o(dot_s2526));
 
   // 11: a @27 / 12: C_y a + sp @32 (lane 1 of the tail)
-  f24_add u_acc1 (.clk_i, .en_i, .a_i(cv_q[27] ? cfg_i.ambient : ca1_q),
-                  .b_i(cv_q[27] ? hkd_s1328 : ssp_s2932), .y_o(acc1_s2934));
+  f24_add u_acc1 (.clk_i, .en_i, .a_i(at(ps_q[PS_ACC1], 27) ? cfg_i.ambient : ca1_q),
+                  .b_i(at(ps_q[PS_ACC1], 27) ? hkd_s1328 : ssp_s2932), .y_o(acc1_s2934));
   assign cc_s34[1] = acc1_s2934;
   // 10: ^4 @28 / ^8 @29 / ^16 @30 / 11: sp = KS s @31 (stages 0 .. 3 mod 4)
   f24_t s2_sel;
-  assign s2_sel = cv_q[28] ? hkd_s1328 : ssp_s2932;
-  f24_mul u_ssp (.clk_i, .en_i, .a_i(cv_q[31] ? cfg_i.ks : s2_sel), .b_i(s2_sel),
+  assign s2_sel = at(ps_q[PS_SSP], 28) ? hkd_s1328 : ssp_s2932;
+  f24_mul u_ssp (.clk_i, .en_i, .a_i(at(ps_q[PS_SSP], 31) ? cfg_i.ks : s2_sel), .b_i(s2_sel),
                  .y_o(ssp_s2932));
   // 12: C_x a @29 / C_z a @30
-  f24_mul u_caa (.clk_i, .en_i, .a_i(cola_q[29]), .b_i(cv_q[29] ? acc1_s2934 : a_q),
+  f24_mul u_caa (.clk_i, .en_i, .a_i(cola_q[29]), .b_i(at(ps_q[PS_CAA], 29) ? acc1_s2934 : a_q),
                  .y_o(caa_s3031));
 
   // the tail: 12: + sp @32 (R, then B @33; G's add is u_acc1); 13: clamp (cl_q: R, G, B a
   // clock apart); 14: unorm8
-  f24_add u_cc0 (.clk_i, .en_i, .a_i(ca_q[32]), .b_i(cv_q[32] ? ssp_s2932 : sp_q),
+  f24_add u_cc0 (.clk_i, .en_i, .a_i(ca_q[32]), .b_i(at(ps_q[PS_CC0], 32) ? ssp_s2932 : sp_q),
                  .y_o(cc_s34[0]));
   // one lane for the three channels, R, G and B a clock apart (operations @35 / @36 / @37, then
   // @36 .. @38 and @38 .. @40)
@@ -489,6 +524,11 @@ module shade_unit
   // stages that differ pairwise by amounts not divisible by 4 never gets two in one clock.
   core_aligned: assert property (@(posedge clk_i) disable iff (!rst_ni)
     (cv_q & ~stage_phase(ph_q)) == '0);
+  // Every phase replica is ph_q, one-hot.
+  for (genvar u = 0; u < NPS; u++) begin : g_ps_check
+    phase_replica: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      ps_q[u] == (4'b0001 << ph_q));
+  end
   for (genvar u = 0; u < NSH; u++) begin : g_shared
     unit_once: assert property (@(posedge clk_i) disable iff (!rst_ni)
       $onehot0(cv_q & shared[u]));
