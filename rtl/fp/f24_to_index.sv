@@ -40,7 +40,11 @@ module f24_to_index
     // |a| * 2^16, exact for 1 <= |a| < 2^(W-1) (shift 0 .. W-2; larger exponents saturate below).
     // For 0 < |a| < 1 every fixed-point value in (0, 2^16) has the same floor (0, or -1 when
     // negated), so 1 stands for all of them.  Zeros give 0.
-    fix = (ea >= 7'd63) ? FW'({1'b1, a[15:0]}) << 6'(ea - 7'd63) : FW'(ea != 7'd0);
+    // The shift ea - 63 is ea[5:0] + 1 for ea >= 64: the significand shifted by one more, then
+    // by ea[5:0] straight from the operand's bits (no subtraction in front of the shifter).
+    fix = ea[6]         ? (FW'({1'b1, a[15:0]}) << 1) << ea[5:0]
+        : (ea == 7'd63) ? FW'({1'b1, a[15:0]})
+        :                 FW'(ea != 7'd0);
     // |a| >= 2^(W-1), Inf or NaN: saturate; only exactly -2^(W-1) is in range; NaN gives 0.
     // Else floor(a): the two's complement fixed-point value without its 16 fraction bits
     // (dropping them rounds toward minus infinity): -1.5 -> -2, -1.0 -> -1, -0.5 -> -1.
