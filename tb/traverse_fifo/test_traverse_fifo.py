@@ -75,8 +75,11 @@ async def traverse_fifo_random(dut):
         raise AssertionError("\n".join(msgs))
 
 
-@pytest.mark.parametrize("width,depth", [(16, 16), (7, 2), (33, 4)])
-def test_traverse_fifo(width: int, depth: int):
+@pytest.mark.parametrize("width,depth,out_reg", [(16, 16, 0), (7, 2, 0), (33, 4, 0),
+                                                 (16, 16, 1), (7, 2, 1), (33, 4, 1)])
+def test_traverse_fifo(width: int, depth: int, out_reg: int):
+    # out_reg 1: the head in a register (the default of the block-RAM FIFOs); the ports must
+    # behave clock for clock as without it
     runner.run("traverse_fifo", "test_traverse_fifo", Path(__file__).parent,
-               parameters={"W": width, "DEPTH": depth},
+               parameters={"W": width, "DEPTH": depth, "OUT_REG": out_reg},
                extra_env={"W": str(width), "DEPTH": str(depth), "VECTORS": "20000"})
