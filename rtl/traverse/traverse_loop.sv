@@ -219,7 +219,6 @@ module traverse_loop
   logic         xor_desc, sel_up;  // the method uses the XOR descent / the selective level-up
   slot_idx_t    sl_q [D];          // stage s holds the slot of entry sl_q[s] = (ph - s) mod D,
                                    // ph = sl_q[0] the phase: one counter per stage
-  slot_idx_t    sl [D];
 
   // Each stage's slot index is a counter of its own rather than ph - s: its table reads then
   // start at a register placed near them, not behind a subtraction and a shared net (the phase's
@@ -230,7 +229,6 @@ module traverse_loop
       if (!rst_ni) sl_q[g] <= SW'((D - g) % D);
       else         sl_q[g] <= (sl_q[g] == SW'(D - 1)) ? '0 : sl_q[g] + SW'(1);
     end
-    assign sl[g] = sl_q[g];
   end
 
   assign xor_desc = (cfg_i.policy.descent == DESC_XOR);
@@ -441,7 +439,7 @@ module traverse_loop
   cross_node_t x16;
   logic live16, err16, iter16, hit16, miss16, down16, cross16, cap16;
   assign st16    = st16_q;
-  assign x16     = cross_q[sl[16]];
+  assign x16     = cross_q[sl_q[16]];
   // A ray finished earlier (waiting for room in the result FIFO) is left untouched, and so is
   // one whose lookup missed in the cache (same state, round again).
   assign live16  = v_q[16] && !st16.done;
@@ -484,10 +482,10 @@ module traverse_loop
   status_t st17;
   /* verilator lint_on UNUSEDSIGNAL */
   logic    retire, bypass, admit;
-  assign st17   = stat_q[sl[D-1]];
+  assign st17   = stat_q[sl_q[D-1]];
   // The result's u, v: the hit position (pos_q, written by the hit's pass) or u0, v0.
   f24_pair_t res_uv17;
-  assign res_uv17 = st17.hit ? pos_q[sl[D-1]] : uv_q[sl[D-1]];
+  assign res_uv17 = st17.hit ? pos_q[sl_q[D-1]] : uv_q[sl_q[D-1]];
   assign retire = v_q[D-1] && done17_q && !res_full_i;
   // A ray that setup already finished (invalid, or never enters the map) goes straight to the
   // result FIFO when the tail does not use it this clock.
@@ -496,8 +494,8 @@ module traverse_loop
 
   assign new_pop_o  = bypass || admit;
   assign res_push_o = retire || bypass;
-  assign res_id_o   = retire ? id_q[sl[D-1]] : new_id_i;
-  assign res_o      = retire ? '{t: t_q[sl[D-1]], u: res_uv17.u, v: res_uv17.v,
+  assign res_id_o   = retire ? id_q[sl_q[D-1]] : new_id_i;
+  assign res_o      = retire ? '{t: t_q[sl_q[D-1]], u: res_uv17.u, v: res_uv17.v,
                                  hit: st17.hit, invalid: st17.invalid, capped: st17.capped,
                                  err: st17.err, iters: st17.iters}
                              : '{t: new_ray_i.t, u: new_ray_i.u0, v: new_ray_i.v0,
@@ -531,31 +529,31 @@ module traverse_loop
   always_ff @(posedge clk_i) begin
     // S17 -> S0: the ray coming round (S16 wrote a crossing's node), its descent's node, or the
     // new ray
-    n0_q <= admit ? n_new : down17_q ? ndn17 : node_q[sl[D-1]];
-    d0_q <= admit ? dirs_t'{sx: new_ray_i.sx, sy: new_ray_i.sy} : dir_q[sl[D-1]];
-    if (lv_q[1]) uv2_q  <= uv_q[sl[1]];
-    if (lv_q[2]) inv3_q <= inv_q[sl[2]];
+    n0_q <= admit ? n_new : down17_q ? ndn17 : node_q[sl_q[D-1]];
+    d0_q <= admit ? dirs_t'{sx: new_ray_i.sx, sy: new_ray_i.sy} : dir_q[sl_q[D-1]];
+    if (lv_q[1]) uv2_q  <= uv_q[sl_q[1]];
+    if (lv_q[2]) inv3_q <= inv_q[sl_q[2]];
     if (lv_q[3]) inv4_q <= inv3_q;
     if (ok_q[4]) begin
-      duv5_q  <= duv_q[sl[4]];
-      d5_q    <= dir_q[sl[4]];
-      tmap5_q <= tval(tmap_q[sl[4]]);
-      tm1_5_q <= ord_min_first(f24_ord(tmap_q[sl[4]]), f24_ord(F24_ONE)) ? tval(tmap_q[sl[4]])
+      duv5_q  <= duv_q[sl_q[4]];
+      d5_q    <= dir_q[sl_q[4]];
+      tmap5_q <= tval(tmap_q[sl_q[4]]);
+      tm1_5_q <= ord_min_first(f24_ord(tmap_q[sl_q[4]]), f24_ord(F24_ONE)) ? tval(tmap_q[sl_q[4]])
                                                                         : tval(F24_ONE);
     end
     if (ok_q[5]) begin
       ex_q[6] <= exit_of(tx5, ty5);
       tend6_q <= min3(tx5, ty5, tm1_5_q);
       tmap6_q <= tmap5_q;
-      t6_q    <= tval(t_q[sl[5]]);
+      t6_q    <= tval(t_q[sl_q[5]]);
       duv6_q  <= duv5_q;
     end
     if (ok_q[6]) begin
       t_new7_q <= ord_max_first(t6_q.ord, f24_ord(plane)) ? t6_q.ord : f24_ord(plane);
       tmin7_q  <= '{tmin: ord_min_first(ex_q[6].te.ord, tmap6_q.ord) ? ex_q[6].te : tmap6_q,
                     miss_pre: ord_le(tmap6_q.ord, ex_q[6].te.ord)};
-      leaf7_q  <= (node_q[sl[6]].k == '0);
-      uv7_q    <= uv_q[sl[6]];
+      leaf7_q  <= (node_q[sl_q[6]].k == '0);
+      uv7_q    <= uv_q[sl_q[6]];
     end
     for (int s = 6; s < 10; s++) begin
       if (ok_q[s]) ex_q[s+1] <= ex_q[s];
@@ -564,17 +562,17 @@ module traverse_loop
     if (ok_q[8]) begin
       ut9_q <= in_q[8] && ts_q[8];
       uv9_q <= uv8_q;
-      d9_q  <= dir_q[sl[8]];
-      n9_q  <= node_q[sl[8]];
+      d9_q  <= dir_q[sl_q[8]];
+      n9_q  <= node_q[sl_q[8]];
     end
     if (ok_q[9]) begin
       d10_q       <= d9_q;
       n10_q       <= n9_q;
       lo10_q      <= '{x: node_lo(n9_q.k, n9_q.cx), y: node_lo(n9_q.k, n9_q.cy)};
       hi10_q      <= '{x: node_hi(n9_q.k, n9_q.cx), y: node_hi(n9_q.k, n9_q.cy)};
-      crossed10_q <= stat_q[sl[9]].crossed;
-      prev10_q    <= stat_q[sl[9]].prev_cross;
-      t10_q       <= tval(t_q[sl[9]]);
+      crossed10_q <= stat_q[sl_q[9]].crossed;
+      prev10_q    <= stat_q[sl_q[9]].prev_cross;
+      t10_q       <= tval(t_q[sl_q[9]]);
     end
     // S10 -> S11: the crossing's first part, the descent's clipped positions
     if (ok_q[10] && !in_q[10]) begin
@@ -613,7 +611,7 @@ module traverse_loop
     end
     // S13 -> S14: locate's three candidates
     if (dn_q[13]) begin
-      uv14_q    <= uv_q[sl[13]];
+      uv14_q    <= uv_q[sl_q[13]];
       dsc_q[14] <= '{nk: nk13_q,
         x: '{back: CELL_W'(clip_idx(c13_q.x - dir_val(d13_q.sx), lo13_q.x, hi13_q.x)),
              est:  CELL_W'(c13_q.x),
@@ -625,15 +623,15 @@ module traverse_loop
     for (int s = 14; s < 17; s++) begin
       if (dn_q[s]) dsc_q[s+1] <= dsc_q[s];
     end
-    if (dn_q[14]) inv15_q <= inv_q[sl[14]];
+    if (dn_q[14]) inv15_q <= inv_q[sl_q[14]];
     if (dn_q[15]) inv16_q <= inv15_q;
     if (v_q[15]) begin
-      st16_q  <= stat_q[sl[15]];
-      it16_q  <= stat_q[sl[15]].iters + ITER_W'(1);
-      act16_q <= act_q[sl[15]];
+      st16_q  <= stat_q[sl_q[15]];
+      it16_q  <= stat_q[sl_q[15]].iters + ITER_W'(1);
+      act16_q <= act_q[sl_q[15]];
     end
     // S16 -> S17
-    if (dn_q[16]) t_new17_q <= f24_ord(t_new_q[sl[16]]);
+    if (dn_q[16]) t_new17_q <= f24_ord(t_new_q[sl_q[16]]);
     down17_q <= down16 && !cap16;  // (a capped ray is done: its node is never read again)
     done17_q <= (err16 || iter16) ? nst16.done : st16.done;
   end
@@ -641,39 +639,39 @@ module traverse_loop
   always_ff @(posedge clk_i) begin
     // S17: a new ray enters its slot's entry (that slot is in S0 next clock).
     if (admit) begin
-      id_q[sl[D-1]]   <= new_id_i;
-      uv_q[sl[D-1]]   <= '{u: new_ray_i.u0, v: new_ray_i.v0};
-      duv_q[sl[D-1]]  <= '{u: new_ray_i.du, v: new_ray_i.dv};
-      inv_q[sl[D-1]]  <= '{u: new_ray_i.inv_du, v: new_ray_i.inv_dv};
-      dir_q[sl[D-1]]  <= '{sx: new_ray_i.sx, sy: new_ray_i.sy};
-      tmap_q[sl[D-1]] <= new_ray_i.t_map;
-      node_q[sl[D-1]] <= n_new;
-      t_q[sl[D-1]]    <= new_ray_i.t;
-      stat_q[sl[D-1]] <= '{crossed: new_ray_i.crossed, prev_cross: new_ray_i.prev_cross,
+      id_q[sl_q[D-1]]   <= new_id_i;
+      uv_q[sl_q[D-1]]   <= '{u: new_ray_i.u0, v: new_ray_i.v0};
+      duv_q[sl_q[D-1]]  <= '{u: new_ray_i.du, v: new_ray_i.dv};
+      inv_q[sl_q[D-1]]  <= '{u: new_ray_i.inv_du, v: new_ray_i.inv_dv};
+      dir_q[sl_q[D-1]]  <= '{sx: new_ray_i.sx, sy: new_ray_i.sy};
+      tmap_q[sl_q[D-1]] <= new_ray_i.t_map;
+      node_q[sl_q[D-1]] <= n_new;
+      t_q[sl_q[D-1]]    <= new_ray_i.t;
+      stat_q[sl_q[D-1]] <= '{crossed: new_ray_i.crossed, prev_cross: new_ray_i.prev_cross,
                            done: new_ray_i.done, hit: new_ray_i.hit,
                            invalid: new_ray_i.invalid, capped: new_ray_i.capped,
                            err: new_ray_i.err, iters: new_ray_i.iters};
     end
     // S17: a descent's node (a ray that goes on: never where a new ray enters).
-    if (down17_q) node_q[sl[D-1]] <= ndn17;
+    if (down17_q) node_q[sl_q[D-1]] <= ndn17;
     // S16: the next state (only a live ray whose lookup answered changes).
-    if (err16 || iter16) stat_q[sl[16]] <= nst16;
-    if (hit16 || down16) t_q[sl[16]] <= t_new_q[sl[16]];
+    if (err16 || iter16) stat_q[sl_q[16]] <= nst16;
+    if (hit16 || down16) t_q[sl_q[16]] <= t_new_q[sl_q[16]];
     if (cross16) begin
-      t_q[sl[16]]    <= xt_q[sl[16]];
-      node_q[sl[16]] <= '{k: x16.k, cx: x16.cx, cy: x16.cy};
+      t_q[sl_q[16]]    <= xt_q[sl_q[16]];
+      node_q[sl_q[16]] <= '{k: x16.k, cx: x16.cx, cy: x16.cy};
     end
     // What this pass computes for its later stages.
     // (only the passes whose height read returned data: the others use none of it)
-    if (ok_q[6]) t_new_q[sl[6]] <= ord_max_first(t6_q.ord, f24_ord(plane)) ? t6_q.t : plane;
-    if (ok_q[7]) act_q[sl[7]]   <= act7;
+    if (ok_q[6]) t_new_q[sl_q[6]] <= ord_max_first(t6_q.ord, f24_ord(plane)) ? t6_q.t : plane;
+    if (ok_q[7]) act_q[sl_q[7]]   <= act7;
     // (only the passes that use them later: hits and descents, crossings)
-    if (in_q[9]) pos_q[sl[9]] <= ts_q[9] ? '{u: post_x, v: post_y} : '{u: posp_x, v: posp_y};
+    if (in_q[9]) pos_q[sl_q[9]] <= ts_q[9] ? '{u: post_x, v: post_y} : '{u: posp_x, v: posp_y};
     if (ok_q[10] && !in_q[10]) begin
-      xt_q[sl[10]] <= ord_max_first(t10_q.ord, ex_q[10].te.ord) ? t10_q.t : ex_q[10].te.t;
+      xt_q[sl_q[10]] <= ord_max_first(t10_q.ord, ex_q[10].te.ord) ? t10_q.t : ex_q[10].te.t;
     end
     if (ok_q[11] && !in_q[11]) begin
-      cross_q[sl[11]] <= cross_up(cfg_i.policy.level_up, cfg_i.n, xpre11_q, prev11_q);
+      cross_q[sl_q[11]] <= cross_up(cfg_i.policy.level_up, cfg_i.n, xpre11_q, prev11_q);
     end
   end
 
