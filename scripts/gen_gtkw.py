@@ -47,8 +47,9 @@ TRAVERSE: list[tuple[str, list[Sig]]] = [
         ("u_unit.su_ray.t", 24, HEX), ("u_unit.su_ray.inv_du", 24, HEX),
         ("u_unit.su_ray.inv_dv", 24, HEX), ("u_unit.su_ray.t_map", 24, HEX),
         ("u_unit.su_ray.invalid", 1, BIN), ("u_unit.su_ray.done", 1, BIN)]),
-    ("loop: v_q[s] stage s holds a ray, which is slot (ph_q - s) mod 18; S0 looks its height up", [
-        ("u_unit.u_loop.v_q", 18, BIN), ("u_unit.u_loop.ph_q", 5, DEC),
+    ("loop: v_q[s] stage s holds a ray, which is slot sl_q[s] = (sl_q[0] - s) mod 18; S0 looks its "
+     "height up", [
+        ("u_unit.u_loop.v_q", 18, BIN), ("u_unit.u_loop.sl_q.sl_q[0]", 5, DEC),
         ("u_unit.u_loop.live0_q", 1, BIN), ("u_unit.u_loop.addr0", 32, HEX)]),
     ("S1 height lookup -> S3 response (LOOKUP_LAT 2; rs_hit 0: goes round again)", [
         ("u_unit.lk_valid_o", 1, BIN), ("u_unit.lk_addr_o", 32, HEX), ("u_unit.lk_wide_o", 1, BIN),

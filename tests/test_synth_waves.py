@@ -276,16 +276,28 @@ def test_gtkw_files_current():
 
 
 def test_gtkw_signals_exist_in_rtl():
-    """Every signal name a save file shows is declared in the RTL (a rename shows up here; the
-    hierarchy itself is checked against real FSTs with gen_gtkw.py --fst)."""
-    src = " ".join(p.read_text() for p in (ROOT / "rtl").rglob("*.sv"))
+    """Every signal name a save file shows is in the RTL, and a signal under an instance in the
+    file of that instance's module (a rename shows up here even when another module happens to
+    use the old name; the hierarchy itself is checked against real FSTs with gen_gtkw.py --fst)."""
+    files = {p.stem: p.read_text() for p in (ROOT / "rtl").rglob("*.sv")}
+    src = " ".join(files.values())
     words = set(re.findall(r"\b\w+\b", src))
+    # instance name -> the words of its modules' files (module_name #(...) u_x ( ...); an
+    # instance name used in several modules gets all of their words)
+    inst: dict[str, set[str]] = {}
+    for m in re.finditer(r"^\s*(\w+)\s*(?:#\s*\((?:[^;]*?)\))?\s*(u_\w+)\s*\(", src, re.M):
+        if m.group(1) in files:
+            inst.setdefault(m.group(2), set()).update(re.findall(r"\b\w+\b", files[m.group(1)]))
     for t in gen_gtkw.TARGETS:
         for _, sigs in gen_gtkw.groups_for(t):
             for path, _, _ in sigs:
+                scope = words
                 for part in path.split(".")[1:]:
                     name = re.sub(r"\[\d+\]$", "", part)
-                    assert name in words, f"{t}: {path}: {name} is not in rtl/"
+                    assert name in scope, f"{t}: {path}: {name} is not in its module's RTL"
+                    # an instance's signals are looked up in its module; below a signal (struct
+                    # members, array elements) anywhere
+                    scope = inst.get(name, words)
 
 
 # ---- scripts/ray_steps.py ------------------------------------------------------------------------
