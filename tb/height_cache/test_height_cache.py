@@ -599,18 +599,27 @@ async def merge_and_mshr_limit(dut):
     h.finish("merge and MSHR limit")
 
 
+#: Batches of 3000 lookups set_pressure_run may use to see its corner case ``least`` times.
+PRESSURE_BATCHES = 4
+
+
 async def set_pressure_run(dut, label: str, event: str, least: int, **harness):
-    """3000 lookups confined to two sets (few_sets), checked clock by clock against the model;
-    ``event`` must have happened at least ``least`` times."""
+    """Batches of 3000 lookups confined to two sets (few_sets), checked clock by clock against the
+    model, until ``event`` has happened at least ``least`` times (at most PRESSURE_BATCHES batches:
+    how often the corner case comes up depends on the seed, so a fixed count is flaky)."""
     rng = random.Random(seed())
     h = Harness(dut, rng, **harness)
-    rays = Rays(rng, 16, 3000, few_sets(rng, h.cfg, h.size))
     await h.reset()
-    await h.run(rays, 200000)
-    await h.drain()
-    h.check_stats()
-    summary(h, rays, label)
-    assert h.cov[event] >= least, h.cov
+    for batch in range(1, PRESSURE_BATCHES + 1):
+        rays = Rays(rng, 16, 3000, few_sets(rng, h.cfg, h.size), now=h.now)
+        await h.run(rays, h.now + 200000)
+        await h.drain()
+        h.check_stats()
+        summary(h, rays, f"{label}, batch {batch}")
+        if h.cov[event] >= least:
+            break
+    assert h.cov[event] >= least, (f"{event} seen {h.cov[event]} times in {batch} batches, "
+                                   f"want {least}", h.cov)
     h.finish(label)
 
 
