@@ -47,14 +47,18 @@ TRAVERSE: list[tuple[str, list[Sig]]] = [
         ("u_unit.su_ray.t", 24, HEX), ("u_unit.su_ray.inv_du", 24, HEX),
         ("u_unit.su_ray.inv_dv", 24, HEX), ("u_unit.su_ray.t_map", 24, HEX),
         ("u_unit.su_ray.invalid", 1, BIN), ("u_unit.su_ray.done", 1, BIN)]),
-    ("loop: v_q[s] stage s holds a ray, which is slot sl_q[s] = (sl_q[0] - s) mod 18; S0 looks its "
-     "height up", [
+    ("loop: v_q[s] stage s holds a ray (its fields in f_q[s]); S0 looks its height up; du, dv "
+     "tables' slot sl_q[s] = (sl_q[0] - s) mod 18", [
         ("u_unit.u_loop.v_q", 18, BIN), ("u_unit.u_loop.sl_q.sl_q[0]", 5, DEC),
         ("u_unit.u_loop.live0_q", 1, BIN), ("u_unit.u_loop.addr0", 32, HEX)]),
-    ("S1 height lookup -> S3 response (LOOKUP_LAT 2; rs_hit 0: goes round again)", [
+    ("S1 height lookup -> S3 response (LOOKUP_LAT 2; rs_hit 0: goes round again); the state of "
+     "the ray in S1", [
         ("u_unit.lk_valid_o", 1, BIN), ("u_unit.lk_addr_o", 32, HEX), ("u_unit.lk_wide_o", 1, BIN),
         ("u_unit.rs_valid_i", 1, BIN), ("u_unit.rs_hit_i", 1, BIN), ("u_unit.rs_err_i", 1, BIN),
-        ("u_unit.rs_data_i", 16, HEX)]),
+        ("u_unit.rs_data_i", 16, HEX),
+        ("u_unit.u_loop.node_q.node_q[1].k", 4, DEC), ("u_unit.u_loop.node_q.node_q[1].cx", 16, DEC),
+        ("u_unit.u_loop.node_q.node_q[1].cy", 16, DEC), ("u_unit.u_loop.t_q.t_q[1]", 24, HEX),
+        ("u_unit.u_loop.stat_q.stat_q[1].iters", 16, DEC)]),
     ("S3-S7: H, plane = 1 - H, crossing times, t_end", [
         ("u_unit.u_loop.h", 24, HEX), ("u_unit.u_loop.plane", 24, HEX),
         ("u_unit.u_loop.tx_raw", 24, HEX), ("u_unit.u_loop.ty_raw", 24, HEX),

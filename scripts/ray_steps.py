@@ -156,26 +156,41 @@ def rtl_lookups(fst: Path, scope: str = "TOP.traverse_system.u_unit.") -> list[d
     return looks
 
 
-def ray_slot(fst: Path, n_iters: int, scope: str = "TOP.traverse_system.u_unit.u_loop.",
-             slots: int = 18) -> int | None:
-    """The loop slot a lone ray occupies in an FST of the harness: the slot whose iteration count
-    (stat_q[j].iters) counts 1 .. n_iters.  None when the FST has no slot table."""
+def ring_states(fst: Path, looks: list[dict[str, Any]],
+                scope: str = "TOP.traverse_system.u_unit.u_loop.") -> list[dict[str, int]] | None:
+    """The ray's state in stage S1's ring registers (node_q[1], t_q[1], stat_q[1].iters) at the
+    clock of each answered lookup (S1 presents the lookup); None when the FST lacks them."""
     import pywellen
 
     w = pywellen.Waveform(str(fst))
     vs = {v.full_name: v for v in w.all_vars()}
-    steps: list[int] = []
-    clk = vs.get(scope + "clk_i")
-    if clk is None:
+    names = {"level": "node_q.[1].k", "cx": "node_q.[1].cx", "cy": "node_q.[1].cy",
+             "t": "t_q.[1]", "iters": "stat_q.[1].iters"}
+    if any(scope + n not in vs for n in names.values()):
         return None
-    w.stream_time_steps(lambda idx, *_: steps.append(idx), [clk])
-    for j in range(slots):
-        v = vs.get(f"{scope}stat_q.[{j}].iters")
-        if v is None:
-            return None
-        seen = {v.signal.value_at(i) for i in range(2, (max(steps) + 1) if steps else 0, 2)}
-        if n_iters > 0 and set(range(1, n_iters + 1)) <= seen:
-            return j
+    out = []
+    for lk in looks:
+        if not (lk.get("hit") or lk.get("err")):
+            continue
+        row = {}
+        for k, n in names.items():
+            v = vs[scope + n].signal.value_at(lk["time"])
+            row[k] = int(v) if isinstance(v, int) else -1
+        out.append(row)
+    return out
+
+
+def compare_states(steps_: list[dict[str, Any]], states: list[dict[str, int]]) -> str | None:
+    """None when S1's ring registers held each model row's level, cell, t and iteration - 1 at
+    the row's lookup, else the first difference."""
+    for s, st in zip(steps_, states):
+        want = {"level": s["level"], "cx": s["cx"], "cy": s["cy"],
+                "t": int(f24.from_float(np.array([s["t"]]))[0]), "iters": s["iteration"] - 1}
+        if st != want:
+            return (f"iteration {s['iteration']}: model " + ", ".join(
+                f"{k} {want[k]:#x}" if k == "t" else f"{k} {want[k]}" for k in want)
+                + "; RTL " + ", ".join(f"{k} {st[k]:#x}" if k == "t" else f"{k} {st[k]}"
+                                       for k in st))
     return None
 
 
@@ -322,13 +337,16 @@ def main(argv: list[str] | None = None) -> int:
                     it += 1
                     ans += f"  = iteration {it}"
                 print(f"{lk['clock']:>6} {lk['time']:>6} {lk['address']:>#10x}  {ans}", file=out)
-            slot = ray_slot(args.waves, len(rec))
-            if slot is not None:
-                print(f"slot: the ray is in loop slot {slot}: u_loop.node_q[{slot}] (k, cx, cy), "
-                      f"t_q[{slot}].t and stat_q[{slot}].iters hold a row's level, cell, t and "
-                      f"iteration - 1 from its lookup until 16 clocks after it, then the next "
-                      f"row's", file=out)
-                result["rtl_slot"] = slot
+            states = ring_states(args.waves, looks)
+            if states is not None:
+                sdiff = compare_states(rec, states)
+                print("state: at each answered lookup (clock c), S1's ring registers u_loop."
+                      "node_q[1] (k, cx, cy), t_q[1] and stat_q[1].iters hold the row's level, "
+                      "cell, t and iteration - 1 (the registers move one stage a clock: stage "
+                      "s at c + s - 1; S16 loads stage 17 with the next row's at c + 15): "
+                      + ("yes" if sdiff is None else f"FIRST DIFFERENCE: {sdiff}"), file=out)
+                result["state_difference"] = sdiff
+                same = same and sdiff is None
             diff = compare_lookups(rec, looks)
             print("lookups: " + ("the RTL reads the model's addresses and codes in order"
                                  if diff is None else f"FIRST DIFFERENCE: {diff}"), file=out)

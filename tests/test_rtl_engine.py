@@ -191,3 +191,34 @@ def test_harness_waves_fst(tmp_path, rng: np.random.Generator) -> None:
     arvalid = names[scope + "m_axi_arvalid"].signal
     assert any(arvalid.value_at(t) == 1 for t in range(0, steps, 2))
     assert any(n.startswith(scope + "u_unit.u_loop.") for n in names)
+
+
+def test_ray_steps_waves_state(tmp_path) -> None:
+    """scripts/ray_steps.py --waves (the README's walk through one ray): the RTL reads the
+    model's addresses and codes in order, and S1's ring registers hold each row's level, cell, t
+    and iteration - 1 at the row's lookup; compare_states names a row that differs."""
+    import subprocess
+    import sys
+
+    sys.path.insert(0, str(rtl_engine.ROOT / "scripts"))
+    import ray_steps
+
+    fst = tmp_path / "ray.fst"
+    p = subprocess.run([sys.executable, str(rtl_engine.ROOT / "scripts" / "ray_steps.py"),
+                        "--scene", "rocks", "--map-size", "64", "--ray", "10.3", "20.7", "3.1",
+                        "-2.2", "--method", "park", "--waves", str(fst)],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert "identical to the model" in p.stdout
+    assert "lookups: the RTL reads the model's addresses and codes in order" in p.stdout
+    assert "t_q[1] and stat_q[1].iters hold the row's level, cell, t and iteration - 1" \
+        in p.stdout and p.stdout.split("state: ")[1].splitlines()[0].endswith(": yes")
+    looks = ray_steps.rtl_lookups(fst)
+    states = ray_steps.ring_states(fst, looks)
+    assert states is not None and [s["iters"] for s in states] == list(range(len(states)))
+    rows = [{"iteration": i + 1, "level": s["level"], "cx": s["cx"], "cy": s["cy"],
+             "t": float(f24.to_float(np.array([s["t"]], dtype=np.uint32))[0])}
+            for i, s in enumerate(states)]
+    assert ray_steps.compare_states(rows, states) is None
+    rows[-1]["cx"] += 1
+    assert f"iteration {len(rows)}" in ray_steps.compare_states(rows, states)

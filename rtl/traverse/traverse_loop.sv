@@ -7,22 +7,25 @@
 // empty takes a new ray from setup (re-circulating rays have priority: new rays only fill
 // bubbles).
 //
-// Slot table: the ring moves only the slots' valid bits.  Everything else a slot holds lives in
-// one entry of a table of D = 18 entries, one per slot: a ray entering the ring is written into
-// its slot's entry, and because every slot advances one stage per clock, the entry of the slot in
-// stage s is (ph - s) mod 18, with ph a phase that steps every clock (each stage counts its own
-// index, sl_q[s]).  So a ray never changes entry while it circulates, and a stage reads only the
-// fields it needs (a register file of 18 entries with several read ports instead of 18 x ~270
-// bits of shift registers).  Per entry:
-//   - the per-ray constants u0, v0, du, dv, 1/du, 1/dv, directions, t_map and the ray id, written
-//     when the ray enters the ring (and only then: one write port, so LUT RAM);
-//   - the traversal state (level, cell, t, flags, iterations), written on entry and by S16;
+// Ring registers: a ray's fields move with it, one register per field and stage (f_q[s] is the
+// field of the ray in stage s; S17 hands on to S0).  A stage reads the fields it needs straight
+// from its own stage's registers, and a stage that changes a field writes the next stage's
+// register (f_q[s + 1] <= new value instead of f_q[s]).  Per ray:
+//   - the per-ray constants u0, v0, directions, t_map and the ray id, loaded when the ray enters
+//     the ring (u0, v0 become the hit's u, v when the ray hits: the result reads them);
+//   - the traversal state (level, cell, t, flags, iterations), loaded on entry and by S16 (the
+//     level and cell also by S17, a descent's node);
 //   - what one pass computes for a stage far later in the same pass (t_new, the action, the
-//     crossing and the hit position): written by the stage that computes it, only for the passes
-//     that read it, and read up to 10 stages later (before the slot comes round).
-// A few activity bits per stage do move with the slots: the slot holds a live ray (S1 - S3), the
-// height read returned data (ok) or an error (S3 - S16), the pass hits or descends (S8 - S11), the
-// pass descends (S8 - S17); and so do the per-pass values that live a few stages only.
+//     crossing and the hit position): registers from the stage after the one that computes it
+//     to the one that reads it only.
+// du, dv, 1/du, 1/dv (96 bits, read in S2 - S4 and S14 only) stay in two tables of D = 18
+// entries in block RAM, one per slot: the entry of the slot in stage s is (ph - s) mod 18, with
+// ph a phase that steps every clock (each stage counts its own index, sl_q[s]).  (The ring was a
+// slot table for every field before: its 18:1 read multiplexers and the write multiplexers of the
+// state cost ~7,000 LUT4s, and the ring's registers cost no more flip-flops than the table's.)
+// Activity bits per stage move with the slots too: the slot holds a ray (v_q), a live ray
+// (S1 - S3), the height read returned data (ok) or an error (S3 - S16), the pass hits or descends
+// (S8 - S11), the pass descends (S8 - S17).
 //
 // Clock enables: a unit advances only while its stages hold a pass that uses its result, and
 // holds its registers otherwise (less switching, and less work for a simulator).  Before the
@@ -32,17 +35,16 @@
 // a descent, the floor of the position at the plane only for a crossing of the selective
 // level-up.  The positions at t_end (and their floor) advance only for the XOR descent.
 //
-// Registered operands: a float unit takes its operands from registers (a unit's result, or a
-// table read made one clock earlier into a register, name ending in the stage that uses it, _q),
-// never through a slot-table read (an 18:1 read multiplexer) or a comparison, min, max, clip,
-// add or shift in the same clock: the units are only just fast enough for 100 MHz from registers.
-// Integer logic that feeds a unit has a stage of its own, and so does every comparison the next
-// stage acts on.  Short-lived per-pass values move with the slot in small pipelines (cheaper than
-// an 18-entry field for a few stages).  For S0 the tail (S17) registers the ray that comes round:
-// the node S16 wrote, the descent's node (corrected in S17 itself), or the new ray from setup.
+// Registered operands: a float unit takes its operands from registers (a unit's result, a ring
+// register, or a copy made one clock earlier, name ending in the stage that uses it, _q), never
+// through a table read or a comparison, min, max, clip, add or shift in the same clock: the
+// units are only just fast enough for 100 MHz from registers.  Integer logic that feeds a unit
+// has a stage of its own, and so does every comparison the next stage acts on.  For S0 the tail
+// (S17) loads the ray that comes round: the node S16 wrote, the descent's node (corrected in S17
+// itself), or the new ray from setup.
 //
 // Stage schedule (a unit "a -> b" takes operands in Sa and delivers in Sb):
-//   S17  (previous pass) node, directions of the ray entering S0   -> n0_q, d0_q
+//   S17  (previous pass) node, directions of the ray entering S0   -> node_q[0], dir_q[0]
 //   S0   height address base + off[k] + (cy * side_k + cx) * bytes  -> lk_* registers (S1)
 //        (traverse_addr); exit boundary integer (cx + (sx > 0)) << k -> S1
 //   S1   lookup presented (lk_valid_o, lk_addr_o, lk_wide_o)
@@ -74,7 +76,7 @@
 //   S13  entry / exit boundaries                                    f24_from_int S13 -> S14
 //        the three cells locate's correction chooses from
 //   S14  boundary - u0                                              f24_add      S14 -> S16
-//   S15  the state's registered reads for S16
+//   S15  the state's copies for S16
 //   S16  (boundary - u0) * (1/du)                                   f24_mul      S16 -> S17
 //        next state (hit / miss / down / cross / lookup miss / cap)
 //   S17  locate's correction (the descent's cell); retire to the result FIFO, or merge with a
@@ -130,11 +132,11 @@ module traverse_loop
 );
 
   localparam int unsigned D  = 18;          // LOOP_DEPTH: stages S0 .. S17
-  localparam int unsigned SW = $clog2(D);   // slot-table index width
+  localparam int unsigned SW = $clog2(D);   // block RAM table index width
 
   typedef logic [SW-1:0] slot_idx_t;
 
-  // ---- slot table fields (see the header); each array has one entry per ring slot ------------
+  // ---- ring fields (see the header) -----------------------------------------------------------
   typedef struct packed {
     f24_t u, v;                    // a value per axis
   } f24_pair_t;
@@ -184,29 +186,31 @@ module traverse_loop
     locate_t          x, y;        // locate's candidates per axis
   } desc_t;
 
-  // Per ray.  duv_q and inv_q are read only into registers, so synthesis can put them in block
-  // RAM (ram_style; a 16x4 LUT RAM costs 6 LUT4s); the other fields are read into logic.  Their
-  // reads are made a stage early into the block RAM's own read register (duv5_q, inv3_q,
-  // inv15_q) and then copied into a fabric register next to the multipliers: the block RAM's
-  // 4.3 ns clock-to-out, routed into a multiplier, was the ring's slowest path (69 MHz).
+  // Per ray, round the whole ring: f_q[s] is the field of the ray in stage s.
   logic [ID_W-1:0]  id_q     [D];
-  f24_pair_t        uv_q     [D];  // u0, v0 (written on entry only)
-  (* ram_style = "block" *) f24_pair_t        duv_q    [D];  // du, dv
-  (* ram_style = "block" *) f24_pair_t        inv_q    [D];  // 1 / du, 1 / dv
+  f24_pair_t        uv_q     [D];  // u0, v0; the hit's u, v once the ray has hit (from S17)
   dirs_t            dir_q    [D];
   f24_t             tmap_q   [D];  // time of leaving the map's extent
   node_t            node_q   [D];  // (S16 a crossing, S17 a descent, S17 a new ray)
   f24_t             t_q      [D];  // time the ray is at (hit time once done with a hit)
   status_t          stat_q   [D];
-  // Per pass: [the stage that writes it, on the passes named] the stages that read it.  "ok": the
-  // height read returned data; "inside": the pass hits or descends.
-  f24_t             t_new_q  [D];  // [S6 ok]              S16: max(t, plane)
-  act_t             act_q    [D];  // [S7 ok]              S15
-  f24_pair_t        pos_q    [D];  // [S9 inside]          S17: position at t_new; a done ray
-                                   // reads no height, so after a hit it keeps the hit's u, v
-                                   // until the ray retires
-  f24_t             xt_q     [D];  // [S10 ok, not inside] S16: the crossing's time max(t, t_exit)
-  cross_node_t      cross_q  [D];  // [S11 ok, not inside] S16: the crossing's new node, up
+  // Per pass: [the stage that computes it, on the passes named] the stage that reads it; the
+  // registers run from the stage after the first to the second.  "ok": the height read returned
+  // data; "inside": the pass hits or descends.
+  f24_t             t_new_q  [16:7];   // [S6 ok]              S16: max(t, plane)
+  act_t             act_q    [15:8];   // [S7 ok]              S15
+  f24_pair_t        pos_q    [16:10];  // [S9 inside]          S16: position at t_new
+  f24_t             xt_q     [16:11];  // [S10 ok, not inside] S16: the crossing's time
+                                       // max(t, t_exit)
+  cross_node_t      cross_q  [16:12];  // [S11 ok, not inside] S16: the crossing's new node, up
+  // Per ray, in block RAM: du, dv and 1/du, 1/dv, one entry per slot (see the header), written
+  // when the ray enters the ring.  They are read only into registers, so synthesis can put them
+  // in block RAM (ram_style; a 16x4 LUT RAM costs 6 LUT4s).  Their reads are made a stage early
+  // into the block RAM's own read register (duv5_q, inv3_q, inv15_q) and then copied into a
+  // fabric register next to the multipliers: the block RAM's 4.3 ns clock-to-out, routed into a
+  // multiplier, was the ring's slowest path (69 MHz).
+  (* ram_style = "block" *) f24_pair_t duv_q [D];  // du, dv
+  (* ram_style = "block" *) f24_pair_t inv_q [D];  // 1 / du, 1 / dv
 
   // ---- ring position, pass activity (see the header) ----------------------------------------
   logic [D-1:0] v_q;               // v_q[s]: the slot in stage s holds a ray
@@ -217,13 +221,14 @@ module traverse_loop
   logic [3:1]   lv_q;              // lv_q[s]: the slot in stage s holds a live ray (not done)
   logic [9:7]   ts_q;              // ts_q[s]: ok, and t_new is t (not the plane)
   logic         xor_desc, sel_up;  // the method uses the XOR descent / the selective level-up
-  slot_idx_t    sl_q [D];          // stage s holds the slot of entry sl_q[s] = (ph - s) mod D,
-                                   // ph = sl_q[0] the phase: one counter per stage
+  slot_idx_t    sl_q [D];          // stage s holds the slot of entry sl_q[s] = (ph - s) mod D
+                                   // of the block RAM tables, ph = sl_q[0] the phase
 
   // Each stage's slot index is a counter of its own rather than ph - s: its table reads then
   // start at a register placed near them, not behind a subtraction and a shared net (the phase's
   // fanout to every stage's subtraction was 70% of the ring's slowest path, 71 MHz).  The
-  // counters are not merged by synthesis: each has its own reset value.
+  // counters are not merged by synthesis: each has its own reset value.  (Only the stages that
+  // read or write the tables use theirs: synthesis removes the others.)
   for (genvar g = 0; g < D; g++) begin : g_sl
     always_ff @(posedge clk_i) begin
       if (!rst_ni) sl_q[g] <= SW'((D - g) % D);
@@ -235,8 +240,6 @@ module traverse_loop
   assign sel_up   = (cfg_i.policy.level_up == UP_SELECTIVE);
 
   // ---- registered reads and short pipelines (see the header) ---------------------------------
-  node_t      n0_q;                // S0: registered by S17 (the merge)
-  dirs_t      d0_q;
   logic       live0_q;             // S0 holds a live ray: it looks its height up
   logic [IDX_W-1:0] kbx1_q, kby1_q;  // S1: exit boundary integers
   f24_pair_t  uv2_q;               // S2
@@ -283,9 +286,9 @@ module traverse_loop
     .level_off_i(cfg_i.level_off),
     .n_i        (cfg_i.n),
     .bits16_i   (cfg_i.bits16),
-    .k_i        (n0_q.k),
-    .cx_i       (n0_q.cx),
-    .cy_i       (n0_q.cy),
+    .k_i        (node_q[0].k),
+    .cx_i       (node_q[0].cx),
+    .cy_i       (node_q[0].cy),
     .addr_o     (addr0),
     .wide_o     (wide0)
   );
@@ -298,8 +301,8 @@ module traverse_loop
     lk_addr_o <= addr0;
     lk_wide_o <= wide0;
     if (live0_q) begin
-      kbx1_q <= IDX_W'((sidx_t'(n0_q.cx) + sidx_t'(d0_q.sx.mv && !d0_q.sx.neg)) <<< n0_q.k);
-      kby1_q <= IDX_W'((sidx_t'(n0_q.cy) + sidx_t'(d0_q.sy.mv && !d0_q.sy.neg)) <<< n0_q.k);
+      kbx1_q <= IDX_W'((sidx_t'(node_q[0].cx) + sidx_t'(dir_q[0].sx.mv && !dir_q[0].sx.neg)) <<< node_q[0].k);
+      kby1_q <= IDX_W'((sidx_t'(node_q[0].cy) + sidx_t'(dir_q[0].sy.mv && !dir_q[0].sy.neg)) <<< node_q[0].k);
     end
   end
 
@@ -439,7 +442,7 @@ module traverse_loop
   cross_node_t x16;
   logic live16, err16, iter16, hit16, miss16, down16, cross16, cap16;
   assign st16    = st16_q;
-  assign x16     = cross_q[sl_q[16]];
+  assign x16     = cross_q[16];
   // A ray finished earlier (waiting for room in the result FIFO) is left untouched, and so is
   // one whose lookup missed in the cache (same state, round again).
   assign live16  = v_q[16] && !st16.done;
@@ -482,10 +485,10 @@ module traverse_loop
   status_t st17;
   /* verilator lint_on UNUSEDSIGNAL */
   logic    retire, bypass, admit;
-  assign st17   = stat_q[sl_q[D-1]];
-  // The result's u, v: the hit position (pos_q, written by the hit's pass) or u0, v0.
+  assign st17   = stat_q[D-1];
+  // The result's u, v: uv_q, u0, v0 or the hit position (S16 wrote it for a hit).
   f24_pair_t res_uv17;
-  assign res_uv17 = st17.hit ? pos_q[sl_q[D-1]] : uv_q[sl_q[D-1]];
+  assign res_uv17 = uv_q[D-1];
   assign retire = v_q[D-1] && done17_q && !res_full_i;
   // A ray that setup already finished (invalid, or never enters the map) goes straight to the
   // result FIFO when the tail does not use it this clock.
@@ -494,8 +497,8 @@ module traverse_loop
 
   assign new_pop_o  = bypass || admit;
   assign res_push_o = retire || bypass;
-  assign res_id_o   = retire ? id_q[sl_q[D-1]] : new_id_i;
-  assign res_o      = retire ? '{t: t_q[sl_q[D-1]], u: res_uv17.u, v: res_uv17.v,
+  assign res_id_o   = retire ? id_q[D-1] : new_id_i;
+  assign res_o      = retire ? '{t: t_q[D-1], u: res_uv17.u, v: res_uv17.v,
                                  hit: st17.hit, invalid: st17.invalid, capped: st17.capped,
                                  err: st17.err, iters: st17.iters}
                              : '{t: new_ray_i.t, u: new_ray_i.u0, v: new_ray_i.v0,
@@ -503,7 +506,7 @@ module traverse_loop
                                  capped: new_ray_i.capped, err: new_ray_i.err,
                                  iters: new_ray_i.iters};
 
-  // ---- ring and slot table -------------------------------------------------------------------
+  // ---- ring ------------------------------------------------------------------------------------
   // S17 -> S0: the ray re-circulates (priority), or a new ray fills the bubble.
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -529,31 +532,29 @@ module traverse_loop
   always_ff @(posedge clk_i) begin
     // S17 -> S0: the ray coming round (S16 wrote a crossing's node), its descent's node, or the
     // new ray
-    n0_q <= admit ? n_new : down17_q ? ndn17 : node_q[sl_q[D-1]];
-    d0_q <= admit ? dirs_t'{sx: new_ray_i.sx, sy: new_ray_i.sy} : dir_q[sl_q[D-1]];
-    if (lv_q[1]) uv2_q  <= uv_q[sl_q[1]];
+    if (lv_q[1]) uv2_q  <= uv_q[1];
     if (lv_q[2]) inv3_q <= inv_q[sl_q[2]];
     if (lv_q[3]) inv4_q <= inv3_q;
     if (ok_q[4]) begin
       duv5_q  <= duv_q[sl_q[4]];
-      d5_q    <= dir_q[sl_q[4]];
-      tmap5_q <= tval(tmap_q[sl_q[4]]);
-      tm1_5_q <= ord_min_first(f24_ord(tmap_q[sl_q[4]]), f24_ord(F24_ONE)) ? tval(tmap_q[sl_q[4]])
+      d5_q    <= dir_q[4];
+      tmap5_q <= tval(tmap_q[4]);
+      tm1_5_q <= ord_min_first(f24_ord(tmap_q[4]), f24_ord(F24_ONE)) ? tval(tmap_q[4])
                                                                         : tval(F24_ONE);
     end
     if (ok_q[5]) begin
       ex_q[6] <= exit_of(tx5, ty5);
       tend6_q <= min3(tx5, ty5, tm1_5_q);
       tmap6_q <= tmap5_q;
-      t6_q    <= tval(t_q[sl_q[5]]);
+      t6_q    <= tval(t_q[5]);
       duv6_q  <= duv5_q;
     end
     if (ok_q[6]) begin
       t_new7_q <= ord_max_first(t6_q.ord, f24_ord(plane)) ? t6_q.ord : f24_ord(plane);
       tmin7_q  <= '{tmin: ord_min_first(ex_q[6].te.ord, tmap6_q.ord) ? ex_q[6].te : tmap6_q,
                     miss_pre: ord_le(tmap6_q.ord, ex_q[6].te.ord)};
-      leaf7_q  <= (node_q[sl_q[6]].k == '0);
-      uv7_q    <= uv_q[sl_q[6]];
+      leaf7_q  <= (node_q[6].k == '0);
+      uv7_q    <= uv_q[6];
     end
     for (int s = 6; s < 10; s++) begin
       if (ok_q[s]) ex_q[s+1] <= ex_q[s];
@@ -562,17 +563,17 @@ module traverse_loop
     if (ok_q[8]) begin
       ut9_q <= in_q[8] && ts_q[8];
       uv9_q <= uv8_q;
-      d9_q  <= dir_q[sl_q[8]];
-      n9_q  <= node_q[sl_q[8]];
+      d9_q  <= dir_q[8];
+      n9_q  <= node_q[8];
     end
     if (ok_q[9]) begin
       d10_q       <= d9_q;
       n10_q       <= n9_q;
       lo10_q      <= '{x: node_lo(n9_q.k, n9_q.cx), y: node_lo(n9_q.k, n9_q.cy)};
       hi10_q      <= '{x: node_hi(n9_q.k, n9_q.cx), y: node_hi(n9_q.k, n9_q.cy)};
-      crossed10_q <= stat_q[sl_q[9]].crossed;
-      prev10_q    <= stat_q[sl_q[9]].prev_cross;
-      t10_q       <= tval(t_q[sl_q[9]]);
+      crossed10_q <= stat_q[9].crossed;
+      prev10_q    <= stat_q[9].prev_cross;
+      t10_q       <= tval(t_q[9]);
     end
     // S10 -> S11: the crossing's first part, the descent's clipped positions
     if (ok_q[10] && !in_q[10]) begin
@@ -611,7 +612,7 @@ module traverse_loop
     end
     // S13 -> S14: locate's three candidates
     if (dn_q[13]) begin
-      uv14_q    <= uv_q[sl_q[13]];
+      uv14_q    <= uv_q[13];
       dsc_q[14] <= '{nk: nk13_q,
         x: '{back: CELL_W'(clip_idx(c13_q.x - dir_val(d13_q.sx), lo13_q.x, hi13_q.x)),
              est:  CELL_W'(c13_q.x),
@@ -626,52 +627,74 @@ module traverse_loop
     if (dn_q[14]) inv15_q <= inv_q[sl_q[14]];
     if (dn_q[15]) inv16_q <= inv15_q;
     if (v_q[15]) begin
-      st16_q  <= stat_q[sl_q[15]];
-      it16_q  <= stat_q[sl_q[15]].iters + ITER_W'(1);
-      act16_q <= act_q[sl_q[15]];
+      st16_q  <= stat_q[15];
+      it16_q  <= stat_q[15].iters + ITER_W'(1);
+      act16_q <= act_q[15];
     end
     // S16 -> S17
-    if (dn_q[16]) t_new17_q <= f24_ord(t_new_q[sl_q[16]]);
+    if (dn_q[16]) t_new17_q <= f24_ord(t_new_q[16]);
     down17_q <= down16 && !cap16;  // (a capped ray is done: its node is never read again)
     done17_q <= (err16 || iter16) ? nst16.done : st16.done;
   end
 
+  // The ring: every field moves on one stage per clock; a stage that changes a field loads the
+  // next stage's register instead.
   always_ff @(posedge clk_i) begin
-    // S17: a new ray enters its slot's entry (that slot is in S0 next clock).
-    if (admit) begin
-      id_q[sl_q[D-1]]   <= new_id_i;
-      uv_q[sl_q[D-1]]   <= '{u: new_ray_i.u0, v: new_ray_i.v0};
-      duv_q[sl_q[D-1]]  <= '{u: new_ray_i.du, v: new_ray_i.dv};
-      inv_q[sl_q[D-1]]  <= '{u: new_ray_i.inv_du, v: new_ray_i.inv_dv};
-      dir_q[sl_q[D-1]]  <= '{sx: new_ray_i.sx, sy: new_ray_i.sy};
-      tmap_q[sl_q[D-1]] <= new_ray_i.t_map;
-      node_q[sl_q[D-1]] <= n_new;
-      t_q[sl_q[D-1]]    <= new_ray_i.t;
-      stat_q[sl_q[D-1]] <= '{crossed: new_ray_i.crossed, prev_cross: new_ray_i.prev_cross,
-                           done: new_ray_i.done, hit: new_ray_i.hit,
-                           invalid: new_ray_i.invalid, capped: new_ray_i.capped,
-                           err: new_ray_i.err, iters: new_ray_i.iters};
+    for (int s = 1; s < D; s++) begin
+      id_q[s]   <= id_q[s-1];
+      uv_q[s]   <= uv_q[s-1];
+      dir_q[s]  <= dir_q[s-1];
+      tmap_q[s] <= tmap_q[s-1];
+      node_q[s] <= node_q[s-1];
+      t_q[s]    <= t_q[s-1];
+      stat_q[s] <= stat_q[s-1];
     end
-    // S17: a descent's node (a ray that goes on: never where a new ray enters).
-    if (down17_q) node_q[sl_q[D-1]] <= ndn17;
-    // S16: the next state (only a live ray whose lookup answered changes).
-    if (err16 || iter16) stat_q[sl_q[16]] <= nst16;
-    if (hit16 || down16) t_q[sl_q[16]] <= t_new_q[sl_q[16]];
+    // S17 -> S0: the ray re-circulates (its descent's node, if it descended), or a new ray fills
+    // the bubble
+    id_q[0]   <= admit ? new_id_i : id_q[D-1];
+    uv_q[0]   <= admit ? '{u: new_ray_i.u0, v: new_ray_i.v0} : uv_q[D-1];
+    dir_q[0]  <= admit ? '{sx: new_ray_i.sx, sy: new_ray_i.sy} : dir_q[D-1];
+    tmap_q[0] <= admit ? new_ray_i.t_map : tmap_q[D-1];
+    node_q[0] <= admit ? n_new : down17_q ? ndn17 : node_q[D-1];
+    t_q[0]    <= admit ? new_ray_i.t : t_q[D-1];
+    stat_q[0] <= admit ? status_t'{crossed: new_ray_i.crossed, prev_cross: new_ray_i.prev_cross,
+                                   done: new_ray_i.done, hit: new_ray_i.hit,
+                                   invalid: new_ray_i.invalid, capped: new_ray_i.capped,
+                                   err: new_ray_i.err, iters: new_ray_i.iters}
+                       : stat_q[D-1];
+    // S16 -> S17: the next state (only a live ray whose lookup answered changes); a hit's u, v
+    // take the place of u0, v0 (no stage reads those again)
+    if (err16 || iter16) stat_q[17] <= nst16;
+    if (hit16 || down16) t_q[17] <= t_new_q[16];
     if (cross16) begin
-      t_q[sl_q[16]]    <= xt_q[sl_q[16]];
-      node_q[sl_q[16]] <= '{k: x16.k, cx: x16.cx, cy: x16.cy};
+      t_q[17]    <= xt_q[16];
+      node_q[17] <= '{k: x16.k, cx: x16.cx, cy: x16.cy};
     end
-    // What this pass computes for its later stages.
-    // (only the passes whose height read returned data: the others use none of it)
-    if (ok_q[6]) t_new_q[sl_q[6]] <= ord_max_first(t6_q.ord, f24_ord(plane)) ? t6_q.t : plane;
-    if (ok_q[7]) act_q[sl_q[7]]   <= act7;
-    // (only the passes that use them later: hits and descents, crossings)
-    if (in_q[9]) pos_q[sl_q[9]] <= ts_q[9] ? '{u: post_x, v: post_y} : '{u: posp_x, v: posp_y};
+    if (hit16) uv_q[17] <= pos_q[16];
+    // What this pass computes for its later stages (only for the passes that read it: the height
+    // read returned data; hits and descents; crossings).
+    for (int s = 8; s < 17; s++) t_new_q[s] <= t_new_q[s-1];
+    for (int s = 9; s < 16; s++) act_q[s] <= act_q[s-1];
+    for (int s = 11; s < 17; s++) pos_q[s] <= pos_q[s-1];
+    for (int s = 12; s < 17; s++) xt_q[s] <= xt_q[s-1];
+    for (int s = 13; s < 17; s++) cross_q[s] <= cross_q[s-1];
+    if (ok_q[6]) t_new_q[7] <= ord_max_first(t6_q.ord, f24_ord(plane)) ? t6_q.t : plane;
+    if (ok_q[7]) act_q[8]   <= act7;
+    if (in_q[9]) pos_q[10] <= ts_q[9] ? '{u: post_x, v: post_y} : '{u: posp_x, v: posp_y};
     if (ok_q[10] && !in_q[10]) begin
-      xt_q[sl_q[10]] <= ord_max_first(t10_q.ord, ex_q[10].te.ord) ? t10_q.t : ex_q[10].te.t;
+      xt_q[11] <= ord_max_first(t10_q.ord, ex_q[10].te.ord) ? t10_q.t : ex_q[10].te.t;
     end
     if (ok_q[11] && !in_q[11]) begin
-      cross_q[sl_q[11]] <= cross_up(cfg_i.policy.level_up, cfg_i.n, xpre11_q, prev11_q);
+      cross_q[12] <= cross_up(cfg_i.policy.level_up, cfg_i.n, xpre11_q, prev11_q);
+    end
+  end
+
+  // The block RAM tables: written when a ray enters the ring, in its slot's entry (that slot is
+  // in S0 next clock).
+  always_ff @(posedge clk_i) begin
+    if (admit) begin
+      duv_q[sl_q[D-1]] <= '{u: new_ray_i.du, v: new_ray_i.dv};
+      inv_q[sl_q[D-1]] <= '{u: new_ray_i.inv_du, v: new_ray_i.inv_dv};
     end
   end
 
