@@ -62,6 +62,12 @@ def gtkw_for(fst: Path) -> Path | None:
     return None
 
 
+def cocotb_tests(tb_dir: Path) -> list[str]:
+    """The @cocotb.test functions of a testbench directory's test files."""
+    pat = re.compile(r"@cocotb\.test\([^)]*\)\s*\n\s*async\s+def\s+(\w+)")
+    return sorted({m for f in tb_dir.glob("test_*.py") for m in pat.findall(f.read_text())})
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = Parser(prog=PROG, description=__doc__.split("\n\n")[0])
     ap.add_argument("test", help="testbench dir, test file or pytest node id")
@@ -71,12 +77,18 @@ def main(argv: list[str] | None = None) -> int:
         return fail("name the test: make waves TEST=<tb directory, test file or pytest node id>, "
                     "e.g. TEST=traverse_system")
     try:
-        node, _ = resolve(args.test)
+        node, tb_dir = resolve(args.test)
     except ValueError as e:
         return fail(str(e))
     env = dict(os.environ, WAVES="1")
     if args.case:
         names = [n.strip() for n in args.case.split(",") if n.strip()]
+        tests = cocotb_tests(tb_dir)
+        # cocotb's filter (below) takes a test whose name ends with a given name
+        none = [n for n in names if not any(t.endswith(n) for t in tests)]
+        if none:
+            return fail(f"--case {', '.join(none)}: no such cocotb test in {node} (tests: "
+                        f"{', '.join(tests)})")
         # the filter cocotb_tools.runner builds for its own `testcase` argument
         env["COCOTB_TEST_FILTER"] = r"\.(" + "|".join(rf".*{re.escape(n)}" for n in names) + ")$"
     start = time.time()

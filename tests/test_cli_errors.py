@@ -197,6 +197,7 @@ TOOL_CASES: dict[str, tuple[str, list[str], dict[str, str]]] = {
     "waves unknown test": ("scripts/waves.py", ["nope_tb"], {}),
     "waves directory with a test part": ("scripts/waves.py", ["tb/traverse_fifo::x"], {}),
     "waves unknown option": ("scripts/waves.py", ["traverse_fifo", "--nope"], {}),
+    "waves case matching no test": ("scripts/waves.py", ["traverse_fifo", "--case", "nosuch"], {}),
     # synth.py
     "synth unknown block": ("scripts/synth.py", ["--blocks", "nope"], {}),
     "synth jobs 0": ("scripts/synth.py", ["--jobs", "0"], {}),
