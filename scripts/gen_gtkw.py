@@ -56,7 +56,8 @@ TRAVERSE: list[tuple[str, list[Sig]]] = [
         ("u_unit.lk_valid_o", 1, BIN), ("u_unit.lk_addr_o", 32, HEX), ("u_unit.lk_wide_o", 1, BIN),
         ("u_unit.rs_valid_i", 1, BIN), ("u_unit.rs_hit_i", 1, BIN), ("u_unit.rs_err_i", 1, BIN),
         ("u_unit.rs_data_i", 16, HEX),
-        ("u_unit.u_loop.node_q.node_q[1].k", 4, DEC), ("u_unit.u_loop.node_q.node_q[1].cx", 16, DEC),
+        ("u_unit.u_loop.node_q.node_q[1].k", 4, DEC),
+        ("u_unit.u_loop.node_q.node_q[1].cx", 16, DEC),
         ("u_unit.u_loop.node_q.node_q[1].cy", 16, DEC), ("u_unit.u_loop.t_q.t_q[1]", 24, HEX),
         ("u_unit.u_loop.stat_q.stat_q[1].iters", 16, DEC)]),
     ("S3-S7: H, plane = 1 - H, crossing times, t_end", [

@@ -187,11 +187,12 @@ def compare_states(steps_: list[dict[str, Any]], states: list[dict[str, int]]) -
         want = {"level": s["level"], "cx": s["cx"], "cy": s["cy"],
                 "t": int(f24.from_float(np.array([s["t"]]))[0]), "iters": s["iteration"] - 1}
         if st != want:
-            return (f"iteration {s['iteration']}: model " + ", ".join(
-                f"{k} {want[k]:#x}" if k == "t" else f"{k} {want[k]}" for k in want)
-                + "; RTL " + ", ".join(f"{k} {st[k]:#x}" if k == "t" else f"{k} {st[k]}"
-                                       for k in st))
+            return f"iteration {s['iteration']}: model {_fmt_state(want)}; RTL {_fmt_state(st)}"
     return None
+
+
+def _fmt_state(st: dict[str, int]) -> str:
+    return ", ".join(f"{k} {v:#x}" if k == "t" else f"{k} {v}" for k, v in st.items())
 
 
 def compare_lookups(steps_: list[dict[str, Any]], looks: list[dict[str, Any]]) -> str | None:

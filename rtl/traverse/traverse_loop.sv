@@ -301,8 +301,10 @@ module traverse_loop
     lk_addr_o <= addr0;
     lk_wide_o <= wide0;
     if (live0_q) begin
-      kbx1_q <= IDX_W'((sidx_t'(node_q[0].cx) + sidx_t'(dir_q[0].sx.mv && !dir_q[0].sx.neg)) <<< node_q[0].k);
-      kby1_q <= IDX_W'((sidx_t'(node_q[0].cy) + sidx_t'(dir_q[0].sy.mv && !dir_q[0].sy.neg)) <<< node_q[0].k);
+      kbx1_q <= IDX_W'((sidx_t'(node_q[0].cx) + sidx_t'(dir_q[0].sx.mv && !dir_q[0].sx.neg))
+                       <<< node_q[0].k);
+      kby1_q <= IDX_W'((sidx_t'(node_q[0].cy) + sidx_t'(dir_q[0].sy.mv && !dir_q[0].sy.neg))
+                       <<< node_q[0].k);
     end
   end
 
@@ -486,9 +488,6 @@ module traverse_loop
   /* verilator lint_on UNUSEDSIGNAL */
   logic    retire, bypass, admit;
   assign st17   = stat_q[D-1];
-  // The result's u, v: uv_q, u0, v0 or the hit position (S16 wrote it for a hit).
-  f24_pair_t res_uv17;
-  assign res_uv17 = uv_q[D-1];
   assign retire = v_q[D-1] && done17_q && !res_full_i;
   // A ray that setup already finished (invalid, or never enters the map) goes straight to the
   // result FIFO when the tail does not use it this clock.
@@ -498,7 +497,8 @@ module traverse_loop
   assign new_pop_o  = bypass || admit;
   assign res_push_o = retire || bypass;
   assign res_id_o   = retire ? id_q[D-1] : new_id_i;
-  assign res_o      = retire ? '{t: t_q[D-1], u: res_uv17.u, v: res_uv17.v,
+  // (a retiring ray's uv_q holds the hit's u, v if it hit, else u0, v0)
+  assign res_o      = retire ? '{t: t_q[D-1], u: uv_q[D-1].u, v: uv_q[D-1].v,
                                  hit: st17.hit, invalid: st17.invalid, capped: st17.capped,
                                  err: st17.err, iters: st17.iters}
                              : '{t: new_ray_i.t, u: new_ray_i.u0, v: new_ray_i.v0,
