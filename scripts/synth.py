@@ -325,7 +325,7 @@ class Flow:
                "--speed", str(a.speed), "--json", rel(js), "--lpf", rel(a.lpf),
                "--lpf-allow-unconstrained", "--timing-allow-fail", "--seed", str(a.seed),
                "--report", rel(rep)]
-        cmd += router_args(a.router, ooc)
+        cmd += router_args(a.router, ooc, not a.no_tmg_ripup)
         if ooc:
             cmd.append("--out-of-context")
         log = self.logs / f"pnr_{b.name}.log"
@@ -563,7 +563,8 @@ def write_md(report: dict, path: Path) -> None:
              ", 7-series counts from `synth_xilinx -family xc7`; "
              f"fmax from nextpnr-ecp5 on {a['device_name']}, speed {a['speed']}, {a['package']}, "
              f"target {a['target_mhz']:.0f} MHz (constraints/{Path(a['lpf']).name}), seed "
-             f"{a['seed']}, {router_text(a.get('router', 'router1'))}. Blocks placed and routed out of "
+             f"{a['seed']}, {router_text(a.get('router', 'router1'), a.get('tmg_ripup', True))}. "
+             "Blocks placed and routed out of "
              f"context (`--out-of-context`: no I/O, "
              f"clock on fabric routing); the top ({TOP}) placed and routed whole.\n")
     L.append("ECP5 LUT = LUT4s as nextpnr counts them (2 per CCU2C carry cell, 6 per 16x4 "
@@ -683,21 +684,25 @@ def read_target(lpf: Path) -> float:
     return float(m.group(1))
 
 
-def router_args(router: str, ooc: bool) -> list[str]:
+def router_args(router: str, ooc: bool, tmg_ripup: bool = True) -> list[str]:
     """nextpnr's router options for a --router setting: auto is router1 for a block out of
     context (the faster result) and router2 for the top (router1 does not finish routing it).
-    router2 always gets timing-driven rip-up: without it router2 left f24_add ~15% slower than
-    router1 (86.9 / 95.9 / 104.1 MHz for router2 / router2 with rip-up / router1, seed 1)."""
+    router2 gets timing-driven rip-up unless tmg_ripup is False (`--no-tmg-ripup`): without it
+    router2 left f24_add ~15% slower than router1 (86.9 / 95.9 / 104.1 MHz for router2 /
+    router2 with rip-up / router1, seed 1), but rip-up can keep a congested design from
+    converging."""
     if router == "auto":
         router = "router1" if ooc else "router2"
-    return ["--router", router] + (["--tmg-ripup"] if router == "router2" else [])
+    return ["--router", router] + (["--tmg-ripup"] if router == "router2" and tmg_ripup
+                                   else [])
 
 
-def router_text(router: str) -> str:
+def router_text(router: str, tmg_ripup: bool = True) -> str:
     """The nextpnr router setting of a report, in words."""
+    r2 = "router2 " + ("with" if tmg_ripup else "without") + " timing-driven rip-up"
     if router == "auto":
-        return "router1 for the blocks, router2 with timing-driven rip-up for the top"
-    return router + (" with timing-driven rip-up" if router == "router2" else "")
+        return f"router1 for the blocks, {r2} for the top"
+    return r2 if router == "router2" else router
 
 
 def main() -> int:
@@ -728,6 +733,9 @@ def main() -> int:
                          "the top (router1 does not finish routing it, see README "
                          "'Synthesis'); recorded in the report")
     ap.add_argument("--jobs", type=int, default=1, help="tool runs in parallel (default 1)")
+    ap.add_argument("--no-tmg-ripup", action="store_true",
+                    help="router2 without nextpnr's timing-driven rip-up (--tmg-ripup), which "
+                         "can keep a congested top from converging; recorded in the report")
     ap.add_argument("--reuse", action="store_true",
                     help="reuse an ECP5 netlist and counts newer than every rtl/ file")
     ap.add_argument("--report-only", action="store_true",
@@ -797,6 +805,7 @@ def main() -> int:
     settings = {"device": args.device, "device_name": DEVICE[args.device], "rtl": rtl_state,
                 "package": args.package, "speed": args.speed, "lpf": rel(args.lpf),
                 "target_mhz": target, "seed": args.seed, "router": args.router,
+                "tmg_ripup": not args.no_tmg_ripup,
                 "yosys": yv, "nextpnr": nv,
                 "ecp5_opts": args.ecp5_opts.strip(), "abc9_delay_ps": args.abc9_delay}
     save_lock = threading.Lock()

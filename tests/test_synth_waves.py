@@ -98,6 +98,11 @@ def test_router_args():
     assert synth.router_args("router1", False) == ["--router", "router1"]
     assert synth.router_args("router2", True) == ["--router", "router2", "--tmg-ripup"]
     assert "router2" in synth.router_text("auto") and "router1" in synth.router_text("auto")
+    # --no-tmg-ripup: router2 alone, router1 unchanged
+    assert synth.router_args("auto", False, False) == ["--router", "router2"]
+    assert synth.router_args("router1", True, False) == ["--router", "router1"]
+    assert "without" in synth.router_text("auto", False)
+    assert synth.router_text("router2", False) == "router2 without timing-driven rip-up"
 
 
 def test_float_units_inventory():
