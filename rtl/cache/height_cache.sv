@@ -410,6 +410,14 @@ module height_cache
   assign m_axi_rready = 1'b1;
 
   // ---------------------------------------------------------------- MSHRs
+  // The lowest free MSHR takes every stage-1 lookup's line address (and clears its beat count
+  // and error bit), whether or not the lookup allocates it: a free MSHR's fields are read by
+  // nothing (the search, the AR port and the fill use busy MSHRs only), so only its state waits
+  // for the tag compare, which behind the tag RAM's clock-to-out no longer drives the enables
+  // of MSHRS x LA_W flip-flops.
+  logic la_we;
+  assign la_we = s1_valid_q && free_any;
+
   logic ar_pop;
   assign ar_pop = m_axi_arvalid && m_axi_arready;
 
@@ -448,11 +456,12 @@ module height_cache
           end
           default: ;
         endcase
-        if (s1_alloc && alloc_idx == MIDX_W'(i)) begin
-          mshr_state_q[i] <= MSHR_WAIT;
+        // (beat and error bits of a free MSHR are read by nothing: cleared with its address)
+        if (la_we && alloc_idx == MIDX_W'(i)) begin
           mshr_beat_q[i]  <= '0;
           mshr_rerr_q[i]  <= 1'b0;
         end
+        if (s1_alloc && alloc_idx == MIDX_W'(i)) mshr_state_q[i] <= MSHR_WAIT;
       end
       fill_q     <= r_acc && r_last_beat && !r_bad;
       fill_idx_q <= r_idx;
@@ -464,7 +473,7 @@ module height_cache
   end
 
   always_ff @(posedge clk_i) begin
-    if (s1_alloc) mshr_la_q[alloc_idx] <= s1_la;
+    if (la_we) mshr_la_q[alloc_idx] <= s1_la;
     if (r_acc) mshr_buf_q[r_idx][mshr_beat_q[r_idx]] <= m_axi_rdata;
   end
 
@@ -483,7 +492,9 @@ module height_cache
       if (ar_pop)   arq_rp_q <= arq_next(arq_rp_q);
       arq_cnt_q <= arq_cnt_q + QCNT_W'(s1_alloc) - QCNT_W'(ar_pop);
     end
-    if (s1_alloc) arq_q[arq_wp_q] <= alloc_idx;
+    // Written whenever an MSHR is free (then the queue, holding busy MSHRs only, has room at
+    // arq_wp_q); only the pointer and the count wait for the allocation itself.
+    if (la_we) arq_q[arq_wp_q] <= alloc_idx;
   end
 
   logic [MIDX_W-1:0] ar_idx;
