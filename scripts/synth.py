@@ -326,6 +326,10 @@ class Flow:
                "--lpf-allow-unconstrained", "--timing-allow-fail", "--seed", str(a.seed),
                "--report", rel(rep)]
         cmd += router_args(a.router, ooc, not a.no_tmg_ripup)
+        hm = heatmap_args(a.heatmap, cmd, ooc, rel(self.out / "heatmap" / "top"))
+        if hm:
+            (self.out / "heatmap").mkdir(exist_ok=True)
+        cmd += hm
         if ooc:
             cmd.append("--out-of-context")
         log = self.logs / f"pnr_{b.name}.log"
@@ -697,6 +701,15 @@ def router_args(router: str, ooc: bool, tmg_ripup: bool = True) -> list[str]:
                                    else [])
 
 
+def heatmap_args(enabled: bool, cmd: list[str], ooc: bool, prefix: str) -> list[str]:
+    """`--heatmap`: nextpnr's router2 congestion CSVs (per tile, per net, per wire type, one set
+    per routing iteration, file names starting with prefix), for the top only and only when
+    cmd routes with router2 (router1 has no such output)."""
+    if not enabled or ooc or "router2" not in cmd:
+        return []
+    return ["--router2-heatmap", prefix]
+
+
 def router_text(router: str, tmg_ripup: bool = True) -> str:
     """The nextpnr router setting of a report, in words."""
     r2 = "router2 " + ("with" if tmg_ripup else "without") + " timing-driven rip-up"
@@ -736,6 +749,10 @@ def main() -> int:
     ap.add_argument("--no-tmg-ripup", action="store_true",
                     help="router2 without nextpnr's timing-driven rip-up (--tmg-ripup), which "
                          "can keep a congested top from converging; recorded in the report")
+    ap.add_argument("--heatmap", action="store_true",
+                    help="router2 writes its congestion per tile, per net and per wire type "
+                         "at every iteration of the top's routing, as CSV files in "
+                         "<out>/heatmap/ (nextpnr --router2-heatmap; see README 'Synthesis')")
     ap.add_argument("--reuse", action="store_true",
                     help="reuse an ECP5 netlist and counts newer than every rtl/ file")
     ap.add_argument("--report-only", action="store_true",

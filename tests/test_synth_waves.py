@@ -105,6 +105,15 @@ def test_router_args():
     assert synth.router_text("router2", False) == "router2 without timing-driven rip-up"
 
 
+def test_heatmap_args():
+    r2 = ["nextpnr", "--router", "router2"]
+    assert synth.heatmap_args(True, r2, False, "out/heatmap/top") == [
+        "--router2-heatmap", "out/heatmap/top"]
+    assert synth.heatmap_args(False, r2, False, "p") == []          # not asked for
+    assert synth.heatmap_args(True, r2, True, "p") == []            # a block out of context
+    assert synth.heatmap_args(True, ["nextpnr", "--router", "router1"], False, "p") == []
+
+
 def test_float_units_inventory():
     mods = {
         "\\dm_pipeline": {"num_cells_by_type": {"$add": 3, "view_calc$dm_pipeline.u_view": 1,
