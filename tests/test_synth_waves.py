@@ -15,6 +15,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "scripts"))
 
+import congestion  # noqa: E402
 import gen_gtkw  # noqa: E402
 import synth  # noqa: E402
 import waves  # noqa: E402
@@ -375,3 +376,37 @@ def test_ray_steps_compare_lookups():
     assert "iteration 2" in ray_steps.compare_lookups(steps_, looks)
     assert "only 1" in ray_steps.compare_lookups(steps_, looks[:2])
     assert "reads on" in ray_steps.compare_lookups(steps_[:1], looks[:2] + [looks[1]])
+
+
+def test_congestion_summary(tmp_path, capsys):
+    # router2's heatmap files of two iterations; the script reads the last by default
+    hd = tmp_path / "heatmap"
+    hd.mkdir()
+    (hd / "top_congestion_by_net_3.csv").write_text("u_pipe.u_a.x,1\n")
+    (hd / "top_congestion_by_net_7.csv").write_text(
+        "u_pipe.u_trav.u_cache.g_way[0].u_lines.mem_q.0.0_DOA0[3],60\n"
+        "u_pipe.u_trav.u_cache.rs_data_q_DI[0],15\n"
+        "u_pipe.u_trav.u_unit.u_loop.n1,20\n"
+        "$PACKER_GND_NET,5\n")
+    grid = [[0] * 8 for _ in range(8)]
+    grid[1][6] = 90   # one hot tile ...
+    grid[5][2] = 10   # ... and a cooler one elsewhere
+    (hd / "top_congestion_by_coordinate_7.csv").write_text(
+        "\n".join(",".join(map(str, r)) + "," for r in grid) + "\n")
+    assert congestion.main([str(hd), "--depth", "3"]) == 0
+    r = json.loads((hd / "congestion_7.json").read_text())
+    assert r["iteration"] == 7 and r["overused_wires_by_net_sum"] == 100
+    shares = {b["block"]: b["share"] for b in r["blocks"]}
+    assert shares == {"u_pipe.u_trav.u_cache": 0.75, "u_pipe.u_trav.u_unit": 0.2,
+                      "(top level) PACKER_GND_NET": 0.05}
+    assert r["hottest_sixteenth_share"] == 0.9
+    assert "75.0%" in capsys.readouterr().out
+    # depth 2 folds the cache and the unit into u_pipe.u_trav; an older iteration on request
+    assert congestion.main([str(hd), "--depth", "2", "--iteration", "3",
+                            "--json", str(tmp_path / "c.json")]) == 0
+    assert json.loads((tmp_path / "c.json").read_text())["blocks"][0]["block"] == "u_pipe.u_a"
+    # errors: one line, exit status 2
+    assert congestion.main([str(tmp_path / "none")]) == 2
+    assert congestion.main([str(tmp_path)]) == 2          # no CSV files there
+    assert congestion.main([str(hd), "--iteration", "5"]) == 2
+    assert "congestion:" in capsys.readouterr().err
