@@ -12,13 +12,17 @@ of the overuse sits in the hottest sixteenth of the chip.  It writes the numbers
 """
 from __future__ import annotations
 
-import argparse
 import csv
 import json
 import re
 import sys
 from collections import Counter
 from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from model.cli import Parser  # noqa: E402
 
 
 def read_by_net(path: Path) -> dict[str, int]:
@@ -75,7 +79,7 @@ def latest_iteration(hdir: Path) -> int | None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="congestion.py", description=__doc__.split("\n\n")[0])
+    ap = Parser(prog="congestion.py", description=__doc__.split("\n\n")[0])
     ap.add_argument("heatmap_dir", type=Path, help="the directory of the CSV files "
                     "(out/synth/heatmap after `scripts/synth.py --heatmap`)")
     ap.add_argument("--iteration", type=int, default=None,
@@ -87,7 +91,7 @@ def main(argv: list[str] | None = None) -> int:
     a = ap.parse_args(argv)
 
     def fail(msg: str) -> int:
-        print(f"congestion: {msg}", file=sys.stderr)
+        print(f"congestion.py: error: {msg}", file=sys.stderr)
         return 2
 
     if not a.heatmap_dir.is_dir():
@@ -100,7 +104,10 @@ def main(argv: list[str] | None = None) -> int:
     nets_f = next(iter(sorted(a.heatmap_dir.glob(f"*congestion_by_net_{it}.csv"))), None)
     if nets_f is None:
         return fail(f"{a.heatmap_dir}: no congestion_by_net file for iteration {it}")
-    nets = read_by_net(nets_f)
+    try:
+        nets = read_by_net(nets_f)
+    except (OSError, UnicodeDecodeError) as e:
+        return fail(f"{nets_f}: {e}")
     total = sum(nets.values())
     blocks = by_block(nets, a.depth)
     result: dict = {"iteration": it, "file": str(nets_f), "overused_wires_by_net_sum": total,
@@ -108,19 +115,26 @@ def main(argv: list[str] | None = None) -> int:
                     "blocks": [{"block": b, "overuse": v,
                                 "share": round(v / total, 4) if total else 0.0}
                                for b, v in blocks.most_common()]}
-    print(f"congestion: iteration {it}: {total} overused wire-net pairs over {len(nets)} nets "
-          f"({nets_f.name})")
-    for b, v in blocks.most_common(a.top):
-        print(f"  {100.0 * v / total if total else 0.0:5.1f}%  {v:7d}  {b}")
+    lines = [f"congestion: iteration {it}: {total} overused wire-net pairs over {len(nets)} "
+             f"nets ({nets_f.name})"]
+    lines += [f"  {100.0 * v / total if total else 0.0:5.1f}%  {v:7d}  {b}"
+              for b, v in blocks.most_common(a.top)]
     coord = next(iter(sorted(a.heatmap_dir.glob(f"*congestion_by_coordinate_{it}.csv"))), None)
     if coord is not None:
-        share, top = hottest_share(read_grid(coord))
+        try:
+            share, top = hottest_share(read_grid(coord))
+        except (OSError, UnicodeDecodeError, ValueError) as e:
+            return fail(f"{coord}: not a router2 coordinate heatmap ({e})")
         result["hottest_sixteenth_share"] = round(share, 4)
-        print(f"congestion: the hottest sixteenth of the chip holds {100.0 * share:.0f}% of the "
-              f"overuse ({top} wires; {coord.name})")
+        lines.append(f"congestion: the hottest sixteenth of the chip holds {100.0 * share:.0f}% "
+                     f"of the overuse ({top} wires; {coord.name})")
     out = a.json or a.heatmap_dir / f"congestion_{it}.json"
-    out.write_text(json.dumps(result, indent=1) + "\n")
-    print(f"congestion: wrote {out}")
+    try:
+        out.write_text(json.dumps(result, indent=1) + "\n")
+    except OSError as e:
+        return fail(f"cannot write {out}: {e}")
+    # nothing is printed before every check has passed: an error is the only line
+    print("\n".join(lines + [f"congestion: wrote {out}"]))
     return 0
 
 

@@ -41,6 +41,11 @@ def files(tmp_path_factory):
     (d / "junkcov").mkdir()
     (d / "junkcov" / "x.dat").write_text("not a coverage file\n")
     (d / "emptydir").mkdir()
+    (d / "heat").mkdir()  # router2 heatmaps: iteration 1 good, iteration 2 a broken grid
+    (d / "heat" / "top_congestion_by_net_1.csv").write_text("u_pipe.u_a.n,3\n")
+    (d / "heat" / "top_congestion_by_coordinate_1.csv").write_text("0,3,\n0,0,\n")
+    (d / "heat" / "top_congestion_by_net_2.csv").write_text("u_pipe.u_a.n,3\n")
+    (d / "heat" / "top_congestion_by_coordinate_2.csv").write_text("0,x,\n")
     return d
 
 
@@ -198,6 +203,17 @@ TOOL_CASES: dict[str, tuple[str, list[str], dict[str, str]]] = {
     "waves directory with a test part": ("scripts/waves.py", ["tb/traverse_fifo::x"], {}),
     "waves unknown option": ("scripts/waves.py", ["traverse_fifo", "--nope"], {}),
     "waves case matching no test": ("scripts/waves.py", ["traverse_fifo", "--case", "nosuch"], {}),
+    # congestion.py
+    "congestion no directory": ("scripts/congestion.py", ["{d}/nope"], {}),
+    "congestion no heatmaps": ("scripts/congestion.py", ["{d}/emptydir"], {}),
+    "congestion depth 0": ("scripts/congestion.py", ["{d}/emptydir", "--depth", "0"], {}),
+    "congestion depth not a number": ("scripts/congestion.py", ["{d}/emptydir", "--depth", "x"],
+                                      {}),
+    "congestion no such iteration": ("scripts/congestion.py", ["{d}/heat", "--iteration", "9"],
+                                     {}),
+    "congestion bad grid": ("scripts/congestion.py", ["{d}/heat", "--iteration", "2"], {}),
+    "congestion json in a file": ("scripts/congestion.py", ["{d}/heat", "--json",
+                                                            "{d}/afile/x.json"], {}),
     # synth.py
     "synth unknown block": ("scripts/synth.py", ["--blocks", "nope"], {}),
     "synth jobs 0": ("scripts/synth.py", ["--jobs", "0"], {}),

@@ -409,4 +409,4 @@ def test_congestion_summary(tmp_path, capsys):
     assert congestion.main([str(tmp_path / "none")]) == 2
     assert congestion.main([str(tmp_path)]) == 2          # no CSV files there
     assert congestion.main([str(hd), "--iteration", "5"]) == 2
-    assert "congestion:" in capsys.readouterr().err
+    assert "congestion.py: error:" in capsys.readouterr().err
