@@ -326,7 +326,7 @@ class Flow:
                "--lpf-allow-unconstrained", "--timing-allow-fail", "--seed", str(a.seed),
                "--report", rel(rep)]
         cmd += router_args(a.router, ooc, not a.no_tmg_ripup)
-        hm = heatmap_args(a.heatmap, cmd, ooc, rel(self.out / "heatmap" / "top"))
+        hm = heatmap_args(a.heatmap, a.router, ooc, rel(self.out / "heatmap" / "top"))
         if hm:
             (self.out / "heatmap").mkdir(exist_ok=True)
         cmd += hm
@@ -688,24 +688,29 @@ def read_target(lpf: Path) -> float:
     return float(m.group(1))
 
 
-def router_args(router: str, ooc: bool, tmg_ripup: bool = True) -> list[str]:
-    """nextpnr's router options for a --router setting: auto is router1 for a block out of
-    context (the faster result) and router2 for the top (router1 does not finish routing it).
-    router2 gets timing-driven rip-up unless tmg_ripup is False (`--no-tmg-ripup`): without it
-    router2 left f24_add ~15% slower than router1 (86.9 / 95.9 / 104.1 MHz for router2 /
-    router2 with rip-up / router1, seed 1), but rip-up can keep a congested design from
-    converging."""
+def resolved_router(router: str, ooc: bool) -> str:
+    """The router a --router setting means for one run: auto is router1 for a block out of
+    context (the faster result) and router2 for the top (router1 did not finish the top at a
+    94%% fill; at 83% it did, in a run by hand: README 'Synthesis')."""
     if router == "auto":
-        router = "router1" if ooc else "router2"
-    return ["--router", router] + (["--tmg-ripup"] if router == "router2" and tmg_ripup
-                                   else [])
+        return "router1" if ooc else "router2"
+    return router
 
 
-def heatmap_args(enabled: bool, cmd: list[str], ooc: bool, prefix: str) -> list[str]:
+def router_args(router: str, ooc: bool, tmg_ripup: bool = True) -> list[str]:
+    """nextpnr's router options for a --router setting (see resolved_router).  router2 gets
+    timing-driven rip-up unless tmg_ripup is False (`--no-tmg-ripup`): without it router2 left
+    f24_add ~15% slower than router1 (86.9 / 95.9 / 104.1 MHz for router2 / router2 with rip-up
+    / router1, seed 1), but rip-up can keep a congested design from converging."""
+    r = resolved_router(router, ooc)
+    return ["--router", r] + (["--tmg-ripup"] if r == "router2" and tmg_ripup else [])
+
+
+def heatmap_args(enabled: bool, router: str, ooc: bool, prefix: str) -> list[str]:
     """`--heatmap`: nextpnr's router2 congestion CSVs (per tile, per net, per wire type, one set
-    per routing iteration, file names starting with prefix), for the top only and only when
-    cmd routes with router2 (router1 has no such output)."""
-    if not enabled or ooc or "router2" not in cmd:
+    per routing iteration, file names starting with prefix), for the top only and only when it
+    routes with router2 (router1 has no such output)."""
+    if not enabled or ooc or resolved_router(router, ooc) != "router2":
         return []
     return ["--router2-heatmap", prefix]
 
@@ -743,7 +748,7 @@ def main() -> int:
     ap.add_argument("--router", default="auto", choices=("auto", "router1", "router2"),
                     help="nextpnr's router; auto (default): router1 for the blocks out of "
                          "context (the faster result), router2 with timing-driven rip-up for "
-                         "the top (router1 does not finish routing it, see README "
+                         "the top (router1 did not finish it at a 94%% fill; see README "
                          "'Synthesis'); recorded in the report")
     ap.add_argument("--jobs", type=int, default=1, help="tool runs in parallel (default 1)")
     ap.add_argument("--no-tmg-ripup", action="store_true",

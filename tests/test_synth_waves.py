@@ -107,12 +107,12 @@ def test_router_args():
 
 
 def test_heatmap_args():
-    r2 = ["nextpnr", "--router", "router2"]
-    assert synth.heatmap_args(True, r2, False, "out/heatmap/top") == [
+    assert synth.heatmap_args(True, "auto", False, "out/heatmap/top") == [
         "--router2-heatmap", "out/heatmap/top"]
-    assert synth.heatmap_args(False, r2, False, "p") == []          # not asked for
-    assert synth.heatmap_args(True, r2, True, "p") == []            # a block out of context
-    assert synth.heatmap_args(True, ["nextpnr", "--router", "router1"], False, "p") == []
+    assert synth.heatmap_args(True, "router2", False, "p") == ["--router2-heatmap", "p"]
+    assert synth.heatmap_args(False, "auto", False, "p") == []       # not asked for
+    assert synth.heatmap_args(True, "router2", True, "p") == []      # a block out of context
+    assert synth.heatmap_args(True, "router1", False, "p") == []     # router1: no heatmaps
 
 
 def test_float_units_inventory():
