@@ -5,8 +5,9 @@ pipeline, statistics) and advances one clock per :meth:`HeightCacheModel.step`, 
 of that clock.  :meth:`outputs` gives the outputs during the clock (before the edge), so a test can
 compare the RTL with it clock by clock.  The behaviour (see the RTL header for the full text):
 
-- lookups answer LOOKUP_LAT = 2 clocks later; hit = tag match in a valid way of the set, unless a
-  line fill wrote that set in the clock the lookup was presented (then: miss, no allocation);
+- lookups answer LOOKUP_LAT = 3 clocks later; hit = tag match in a valid way of the set, unless a
+  line fill wrote that set in the clock the lookup was presented or in the clock after (then:
+  miss, no allocation);
 - reset clears the valid bits by a sweep of SETS clocks after it (one set a clock): a lookup
   presented during the sweep answers a miss and allocates nothing, like one that meets a fill;
 - a miss to a line held by an MSHR merges; else the lowest free MSHR is allocated and its AR queued;
@@ -25,7 +26,7 @@ from __future__ import annotations
 from collections import deque
 from dataclasses import dataclass, field
 
-LOOKUP_LAT = 2
+LOOKUP_LAT = 3
 
 FREE, WAIT, FILL, ERR = 0, 1, 2, 3
 
@@ -138,10 +139,14 @@ class HeightCacheModel:
         self.fill_q = False
         self.fill_idx = 0
         self.sweep = c.sets  # clocks of the valid bits' reset sweep still to run
-        # stage 1: (addr, wide, vbits, conflict, rd, swept) while s1_valid; conflict: a fill wrote
-        # the set in the lookup's clock; swept: the lookup came during the reset sweep
+        # stages 1 and 2: (addr, wide, vbits, conflict, rd, swept) while s1_valid / s2_valid;
+        # conflict: a fill wrote the set in the lookup's clock (stage 1), or in that clock or the
+        # next (stage 2); swept: the lookup came during the reset sweep
         self.s1_valid = False
         self.s1: tuple[int, int, list[bool], bool, list[tuple[int, bytes] | None], bool] | None \
+            = None
+        self.s2_valid = False
+        self.s2: tuple[int, int, list[bool], bool, list[tuple[int, bytes] | None], bool] | None \
             = None
         self.rs = (0, 0, 0, 0)
         self.stats = {"hits": 0, "misses": 0, "bytes": 0, "lines": 0}
@@ -213,14 +218,24 @@ class HeightCacheModel:
                       fill is not None and fill[0] == set0,
                       [self.ram[w][set0] for w in range(c.ways)], swept)
 
-        # ---- stage 1
-        hit = err = alloc = False
-        data = hit_way = s1set = alloc_idx = 0
-        match = [False] * c.mshrs
+        # ---- stage 1: the RAM reads copied; a fill of the set in this clock is a conflict too
+        new_s2 = None
         if self.s1_valid:
-            addr, wide, vbits, fill_conflict, rd, s1_swept = self.s1
-            conflict = fill_conflict or s1_swept
-            la, s1set, tag, off = self._split(addr)
+            assert self.s1 is not None
+            addr1, wide1, vbits1, conflict1, rd1, swept1 = self.s1
+            set1 = self._split(addr1)[1]
+            new_s2 = (addr1, wide1, vbits1, conflict1 or (fill is not None and fill[0] == set1),
+                      rd1, swept1)
+
+        # ---- stage 2
+        hit = err = alloc = False
+        data = hit_way = s2set = alloc_idx = la = 0
+        match = [False] * c.mshrs
+        if self.s2_valid:
+            assert self.s2 is not None
+            addr, wide, vbits, fill_conflict, rd, s2_swept = self.s2
+            conflict = fill_conflict or s2_swept
+            la, s2set, tag, off = self._split(addr)
             way_hit = [bool(vbits[w]) and rd[w] is not None and rd[w][0] == tag
                        for w in range(c.ways)]
             for w in range(c.ways):
@@ -268,7 +283,7 @@ class HeightCacheModel:
             self.valid[fset][fway] = True
             ev["fill"] = True
             # a hit and a fill on the same set in one clock
-            ev["hit_fill_set"] = hit and fset == s1set
+            ev["hit_fill_set"] = hit and fset == s2set
             # a fill on the set the previous clock's fill wrote (the RTL forwards that write)
             ev["fill_fill_set"] = self.last_fill_set == fset
             self.last_fill_set = fset
@@ -294,13 +309,13 @@ class HeightCacheModel:
                     if m.errc == 1:
                         m.state = FREE
                     m.errc -= 1
-                elif self.s1_valid and match[k]:
+                elif self.s2_valid and match[k]:
                     m.errc = c.err_hold
             if alloc and alloc_idx == k:
                 m.state = WAIT
                 m.beat = 0
                 m.rerr = False
-                m.la = self._split(self.s1[0])[0]
+                m.la = la
         self.fill_q = r_acc and r_last and not r_bad
         self.fill_idx = r_idx if r_acc else self.fill_idx
 
@@ -317,14 +332,17 @@ class HeightCacheModel:
             self.stats = {"hits": 0, "misses": 0, "bytes": 0, "lines": 0}
         else:
             self.stats["hits"] += int(hit)
-            self.stats["misses"] += int(self.s1_valid and not hit)
+            self.stats["misses"] += int(self.s2_valid and not hit)
             self.stats["lines"] += int(ar_pop)
             self.stats["bytes"] += c.beat_bytes if r_acc else 0
         ev["beat"] = r_acc
         ev["stale_beat"] = bool(i.rvalid) and not r_acc
 
         # ---- pipeline registers
-        self.rs = (int(self.s1_valid), int(hit), int(err), data if hit else 0)
+        self.rs = (int(self.s2_valid), int(hit), int(err), data if hit else 0)
+        self.s2_valid = self.s1_valid
+        if new_s2 is not None:
+            self.s2 = new_s2
         self.s1_valid = bool(i.lk_valid)
         if new_s1 is not None:
             self.s1 = new_s1

@@ -23,7 +23,7 @@ DIM_W = 16
 ITER_W = 16            # iteration counter and cap
 ADDR_W = 32
 #: Clocks from a lookup request to its response.
-LOOKUP_LAT = 2
+LOOKUP_LAT = 3
 #: Stages of the loop ring (one ray slot each) and of the setup pipeline (traverse_pkg::SETUP_LAT:
 #: the pipelined divider's f24_pkg::F24_DIV_LAT = 8 clocks, then 12 more stages).
 LOOP_DEPTH = 18

@@ -51,7 +51,7 @@ TRAVERSE: list[tuple[str, list[Sig]]] = [
      "tables' slot sl_q[s] = (sl_q[0] - s) mod 18", [
         ("u_unit.u_loop.v_q", 18, BIN), ("u_unit.u_loop.sl_q.sl_q[0]", 5, DEC),
         ("u_unit.u_loop.live0_q", 1, BIN), ("u_unit.u_loop.addr0", 32, HEX)]),
-    ("S1 height lookup -> S3 response (LOOKUP_LAT 2; rs_hit 0: goes round again); the state of "
+    ("S1 height lookup -> S4 response (LOOKUP_LAT 3; rs_hit 0: goes round again); the state of "
      "the ray in S1", [
         ("u_unit.lk_valid_o", 1, BIN), ("u_unit.lk_addr_o", 32, HEX), ("u_unit.lk_wide_o", 1, BIN),
         ("u_unit.rs_valid_i", 1, BIN), ("u_unit.rs_hit_i", 1, BIN), ("u_unit.rs_err_i", 1, BIN),
@@ -84,7 +84,8 @@ TRAVERSE: list[tuple[str, list[Sig]]] = [
         ("res_err_o", 1, BIN)]),
     ("height cache", [
         ("u_cache.lk_valid_i", 1, BIN), ("u_cache.lk_addr_i", 32, HEX),
-        ("u_cache.s1_valid_q", 1, BIN), ("u_cache.s1_hit", 1, BIN), ("u_cache.s1_alloc", 1, BIN),
+        ("u_cache.s1_valid_q", 1, BIN), ("u_cache.s2_valid_q", 1, BIN),
+        ("u_cache.s2_conflict_q", 1, BIN), ("u_cache.s2_hit", 1, BIN), ("u_cache.s2_alloc", 1, BIN),
         ("u_cache.rs_valid_o", 1, BIN), ("u_cache.rs_hit_o", 1, BIN), ("u_cache.rs_err_o", 1, BIN),
         ("u_cache.rs_data_o", 16, HEX), ("u_cache.stat_hits_o", 48, DEC),
         ("u_cache.stat_misses_o", 48, DEC)]),

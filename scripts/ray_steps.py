@@ -33,7 +33,7 @@ PROG = "ray_steps.py"
 #: The harness's byte address of the pyramid (model.rtl_engine.DEFAULT_BASE).
 DEFAULT_BASE = 0x4000_0000
 #: Clocks from a height lookup to its answer (traverse_pkg::LOOKUP_LAT).
-LOOKUP_LAT = 2
+LOOKUP_LAT = 3
 
 
 def hx(x: float) -> str:

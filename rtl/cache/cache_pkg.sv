@@ -5,9 +5,9 @@ package cache_pkg;
   // A package's constants serve every unit; no single unit uses all of them.
   /* verilator lint_off UNUSEDPARAM */
 
-  // Clocks from a lookup (lk_valid_i at clock c) to its answer (rs_valid_o at clock c + 2).
+  // Clocks from a lookup (lk_valid_i at clock c) to its answer (rs_valid_o at clock c + 3).
   // Refer to it as cache_pkg::LOOKUP_LAT (traverse_pkg has its own LOOKUP_LAT of the same value).
-  localparam int unsigned LOOKUP_LAT = 2;
+  localparam int unsigned LOOKUP_LAT = 3;
 
   // AXI4 encodings used by the read master.
   localparam logic [1:0] AXI_BURST_INCR = 2'b01;

@@ -1,14 +1,18 @@
 // height_cache: the traverse unit's exclusive, non-blocking height cache (Park et al. 2013, sec. 4):
 // a miss never stalls; the lookup answers "miss" and the ray retries on its next pass.
 //
-// Lookup port: one lookup per clock, fully pipelined, fixed latency cache_pkg::LOOKUP_LAT = 2: the
-// answer to the lookup presented at clock c (lk_valid_i) is on rs_*_o at clock c + 2.
-//   stage 0 (c):     read the tag RAM and the texel's word of the data RAM of every way at the
-//                    set (synchronous read) and the set's valid bits; note whether a line fill
-//                    writes that set in this clock.
-//   stage 1 (c + 1): compare tags, select the texel, search the MSHRs; allocate an MSHR on a miss;
+// Lookup port: one lookup per clock, fully pipelined, fixed latency cache_pkg::LOOKUP_LAT = 3: the
+// answer to the lookup presented at clock c (lk_valid_i) is on rs_*_o at clock c + 3.
+//   stage 0 (c):     read the tag RAM and the data RAM of every way at the set (synchronous
+//                    read) and the set's valid bits; note whether a line fill writes that set in
+//                    this clock.
+//   stage 1 (c + 1): copy the RAMs' read registers into fabric registers (the texel's 16-bit word
+//                    of each way, its tags and valid bits); note whether a fill writes the set in
+//                    this clock.  (The block RAMs' 4.3 ns clock-to-out was in series with the
+//                    compare: 81 MHz.)
+//   stage 2 (c + 2): compare tags, select the texel, search the MSHRs; allocate an MSHR on a miss;
 //                    register the answer.
-//   c + 2:           rs_valid_o, rs_hit_o, rs_err_o, rs_data_o.
+//   c + 3:           rs_valid_o, rs_hit_o, rs_err_o, rs_data_o.
 // rs_data_o on a hit: lk_wide_i = 0: {8'h00, byte at lk_addr_i}; lk_wide_i = 1: the little-endian
 // 16-bit code at lk_addr_i (lk_addr_i[0] is ignored; the client keeps 16-bit texels aligned).
 // rs_data_o is 0 when rs_hit_o is 0; rs_hit_o and rs_err_o are 0 when rs_valid_o is 0.
@@ -26,7 +30,7 @@
 // last-beat clock, with the pending fill forwarded (see "fill").  The lookup path is plain data
 // flow, nowhere wider than 64 bits: a lookup reads one 16-bit word per way, never a whole line.
 //
-// Misses (stage 1, rs_hit_o = 0):
+// Misses (stage 2, rs_hit_o = 0):
 //   - the line is already held by an MSHR (being read, or errored): merged, no new read;
 //   - otherwise, with a free MSHR (lowest index): the MSHR is allocated and its AR is queued
 //     (a FIFO of MSHRS entries, so it can never overflow; an allocated miss is never dropped);
@@ -35,12 +39,15 @@
 //   arid = {epoch, MSHR index} (see reset).  ARs leave in allocation order.
 // Fill: rready is tied to 1 (each MSHR buffers its own line, so beats of different reads may
 //   interleave in any order the interconnect likes).  The clock after a line's last beat, the line
-//   is written into the cache and its MSHR is freed.  A lookup presented in that same clock to the
-//   same set (whatever its line) answers a miss and allocates nothing: its RAM read overlaps the
-//   write; its retry will see the filled set.  Every other lookup sees the fill consistently.
+//   is written into the cache and its MSHR is freed.  A lookup presented in that same clock or in
+//   the clock before to the same set (whatever its line) answers a miss and allocates nothing:
+//   in the fill's clock its RAM read overlaps the write, in the clock before it read the set
+//   before the fill but reaches the MSHRs (stage 2) after the fill freed its MSHR (it would
+//   allocate the line again); its retry will see the filled set.  Every other lookup sees the
+//   fill consistently.
 // AXI errors (rresp SLVERR / DECERR on any beat): the line is not written into the cache; its
 //   MSHR turns to MSHR_ERR and keeps the line address.  The first lookup to that line that reaches
-//   stage 1 answers rs_err_o = 1 (rs_hit_o = 0), and so does every lookup to that line in the next
+//   stage 2 answers rs_err_o = 1 (rs_hit_o = 0), and so does every lookup to that line in the next
 //   ERR_HOLD clocks (so all the rays that were waiting for the line, retrying once per pass, learn
 //   of the error); then the MSHR is freed and a later lookup to the line reads it again.  The MSHR
 //   waits for its first erroring lookup however long that takes, so an error is never lost.
@@ -77,7 +84,7 @@ module height_cache
   input  logic              lk_valid_i,
   input  logic [ADDR_W-1:0] lk_addr_i,
   input  logic              lk_wide_i,   // 1: 16-bit texel (unorm16, 2-byte aligned), 0: 8-bit
-  output logic              rs_valid_o,  // lk_valid_i delayed by LOOKUP_LAT
+  output logic              rs_valid_o,  // lk_valid_i delayed by LOOKUP_LAT (3)
   output logic              rs_hit_o,
   output logic              rs_err_o,    // the line came back with an AXI error
   output logic [15:0]       rs_data_o,
@@ -182,10 +189,15 @@ module height_cache
 
   // Pipeline.
   logic              s1_valid_q, s1_wide_q, s1_conflict_q;
-  /* verilator lint_off UNUSEDSIGNAL */  // the word within the line was chosen in stage 0
   logic [ADDR_W-1:0] s1_addr_q;
+  logic [WAYS-1:0]   s1_vbits;     // the RAM's read register
+  logic              s2_valid_q, s2_wide_q, s2_conflict_q;
+  /* verilator lint_off UNUSEDSIGNAL */  // the word within the line was chosen in stage 0
+  logic [ADDR_W-1:0] s2_addr_q;
   /* verilator lint_on UNUSEDSIGNAL */
-  logic [WAYS-1:0]   s1_vbits;
+  logic [WAYS-1:0]   s2_vbits_q;
+  logic [TAG_W-1:0]  s2_tag_q  [WAYS];  // stage 1's copies of the RAMs' reads
+  logic [15:0]       s2_word_q [WAYS];
   logic              rs_valid_q, rs_hit_q, rs_err_q;
   logic [15:0]       rs_data_q;
 
@@ -267,46 +279,66 @@ module height_cache
     end
   end
 
-  // ---------------------------------------------------------------- stage 1: compare
-  logic [TAG_W-1:0]  s1_tag;
-  logic [LA_W-1:0]   s1_la;
+  // ---------------------------------------------------------------- stage 1: RAM reads copied
+  // The RAMs' read registers into fabric registers beside the compare; a fill of the set in this
+  // clock makes the lookup a conflict too (see "Fill").
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      s2_valid_q <= 1'b0;
+    end else begin
+      s2_valid_q <= s1_valid_q;
+    end
+    if (s1_valid_q) begin
+      s2_addr_q     <= s1_addr_q;
+      s2_wide_q     <= s1_wide_q;
+      s2_conflict_q <= s1_conflict_q || (fill_q && (fill_set == s1_addr_q[OFF_W +: SET_W]));
+      s2_vbits_q    <= s1_vbits;
+      for (int w = 0; w < WAYS; w++) begin
+        s2_tag_q[w]  <= tag_rd[w];
+        s2_word_q[w] <= word_rd[w];
+      end
+    end
+  end
+
+  // ---------------------------------------------------------------- stage 2: compare
+  logic [TAG_W-1:0]  s2_tag;
+  logic [LA_W-1:0]   s2_la;
   logic [WAYS-1:0]   way_hit;
   logic [15:0]       way_texel [WAYS];  // each way's texel (its word, or its byte of the word)
-  logic              s1_hit, s1_err, s1_alloc, free_any;
-  logic [15:0]       s1_data;
+  logic              s2_hit, s2_err, s2_alloc, free_any;
+  logic [15:0]       s2_data;
   logic [MSHRS-1:0]  mshr_match, mshr_busy, mshr_err;
   logic [MIDX_W-1:0] alloc_idx;
 
-  assign s1_tag = s1_addr_q[ADDR_W-1 -: TAG_W];
-  assign s1_la  = s1_addr_q[ADDR_W-1:OFF_W];
+  assign s2_tag = s2_addr_q[ADDR_W-1 -: TAG_W];
+  assign s2_la  = s2_addr_q[ADDR_W-1:OFF_W];
 
   for (genvar w = 0; w < WAYS; w++) begin : g_hit
-    assign way_hit[w] = s1_vbits[w] && (tag_rd[w] == s1_tag);
+    assign way_hit[w] = s2_vbits_q[w] && (s2_tag_q[w] == s2_tag);
   end
 
   // 16-bit texel: the word; 8-bit texel: its byte of the word.  Each way's texel is picked
   // beside the tag compare, and the hit then selects among them (ORed over the ways that hit, at
   // most one), gated by the answer's own conditions: the compare is the last thing before
-  // rs_data_q (with the texel picked after the way, the tag RAM's 4.3 ns clock-to-out, the
-  // compare, the way select, the byte select and the gate were in series: 81.5 MHz).
+  // rs_data_q.
   for (genvar w = 0; w < WAYS; w++) begin : g_texel
-    assign way_texel[w] = s1_wide_q ? word_rd[w]
-                        : {8'h00, s1_addr_q[0] ? word_rd[w][15:8] : word_rd[w][7:0]};
+    assign way_texel[w] = s2_wide_q ? s2_word_q[w]
+                        : {8'h00, s2_addr_q[0] ? s2_word_q[w][15:8] : s2_word_q[w][7:0]};
   end
 
   always_comb begin
-    s1_data = '0;  // rs_data_o: the texel on a hit, else 0
+    s2_data = '0;  // rs_data_o: the texel on a hit, else 0
     for (int w = 0; w < WAYS; w++) begin
-      s1_data = s1_data
-              | ((s1_valid_q && !s1_conflict_q && way_hit[w]) ? way_texel[w] : 16'h0000);
+      s2_data = s2_data
+              | ((s2_valid_q && !s2_conflict_q && way_hit[w]) ? way_texel[w] : 16'h0000);
     end
   end
 
-  assign s1_hit  = s1_valid_q && !s1_conflict_q && (|way_hit);
+  assign s2_hit  = s2_valid_q && !s2_conflict_q && (|way_hit);
 
   for (genvar i = 0; i < MSHRS; i++) begin : g_search
     assign mshr_busy[i]  = (mshr_state_q[i] != MSHR_FREE);
-    assign mshr_match[i] = mshr_busy[i] && (mshr_la_q[i] == s1_la);
+    assign mshr_match[i] = mshr_busy[i] && (mshr_la_q[i] == s2_la);
     assign mshr_err[i]   = mshr_match[i] && (mshr_state_q[i] == MSHR_ERR);
   end
 
@@ -321,8 +353,8 @@ module height_cache
     end
   end
 
-  assign s1_err   = s1_valid_q && !s1_hit && (|mshr_err);
-  assign s1_alloc = s1_valid_q && !s1_conflict_q && !(|way_hit) && !(|mshr_match) && free_any;
+  assign s2_err   = s2_valid_q && !s2_hit && (|mshr_err);
+  assign s2_alloc = s2_valid_q && !s2_conflict_q && !(|way_hit) && !(|mshr_match) && free_any;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -331,10 +363,10 @@ module height_cache
       rs_err_q   <= 1'b0;
       rs_data_q  <= '0;
     end else begin
-      rs_valid_q <= s1_valid_q;
-      rs_hit_q   <= s1_hit;
-      rs_err_q   <= s1_err;
-      rs_data_q  <= s1_data;
+      rs_valid_q <= s2_valid_q;
+      rs_hit_q   <= s2_hit;
+      rs_err_q   <= s2_err;
+      rs_data_q  <= s2_data;
     end
   end
 
@@ -410,13 +442,12 @@ module height_cache
   assign m_axi_rready = 1'b1;
 
   // ---------------------------------------------------------------- MSHRs
-  // The lowest free MSHR takes every stage-1 lookup's line address (and clears its beat count
+  // The lowest free MSHR takes every stage-2 lookup's line address (and clears its beat count
   // and error bit), whether or not the lookup allocates it: a free MSHR's fields are read by
   // nothing (the search, the AR port and the fill use busy MSHRs only), so only its state waits
-  // for the tag compare, which behind the tag RAM's clock-to-out no longer drives the enables
-  // of MSHRS x LA_W flip-flops.
+  // for the tag compare, which no longer drives the enables of MSHRS x LA_W flip-flops.
   logic la_we;
-  assign la_we = s1_valid_q && free_any;
+  assign la_we = s2_valid_q && free_any;
 
   logic ar_pop;
   assign ar_pop = m_axi_arvalid && m_axi_arready;
@@ -450,7 +481,7 @@ module height_cache
             if (mshr_errc_q[i] != '0) begin
               mshr_errc_q[i] <= mshr_errc_q[i] - ERRC_W'(1);
               if (mshr_errc_q[i] == ERRC_W'(1)) mshr_state_q[i] <= MSHR_FREE;
-            end else if (s1_valid_q && mshr_match[i]) begin
+            end else if (s2_valid_q && mshr_match[i]) begin
               mshr_errc_q[i] <= ERRC_W'(ERR_HOLD);  // the first lookup told of the error
             end
           end
@@ -461,7 +492,7 @@ module height_cache
           mshr_beat_q[i]  <= '0;
           mshr_rerr_q[i]  <= 1'b0;
         end
-        if (s1_alloc && alloc_idx == MIDX_W'(i)) mshr_state_q[i] <= MSHR_WAIT;
+        if (s2_alloc && alloc_idx == MIDX_W'(i)) mshr_state_q[i] <= MSHR_WAIT;
       end
       fill_q     <= r_acc && r_last_beat && !r_bad;
       fill_idx_q <= r_idx;
@@ -473,7 +504,7 @@ module height_cache
   end
 
   always_ff @(posedge clk_i) begin
-    if (la_we) mshr_la_q[alloc_idx] <= s1_la;
+    if (la_we) mshr_la_q[alloc_idx] <= s2_la;
     if (r_acc) mshr_buf_q[r_idx][mshr_beat_q[r_idx]] <= m_axi_rdata;
   end
 
@@ -488,9 +519,9 @@ module height_cache
       arq_rp_q  <= '0;
       arq_cnt_q <= '0;
     end else begin
-      if (s1_alloc) arq_wp_q <= arq_next(arq_wp_q);
+      if (s2_alloc) arq_wp_q <= arq_next(arq_wp_q);
       if (ar_pop)   arq_rp_q <= arq_next(arq_rp_q);
-      arq_cnt_q <= arq_cnt_q + QCNT_W'(s1_alloc) - QCNT_W'(ar_pop);
+      arq_cnt_q <= arq_cnt_q + QCNT_W'(s2_alloc) - QCNT_W'(ar_pop);
     end
     // Written whenever an MSHR is free (then the queue, holding busy MSHRs only, has room at
     // arq_wp_q); only the pointer and the count wait for the allocation itself.
@@ -521,10 +552,10 @@ module height_cache
       st_bytes_q  <= '0;
       st_lines_q  <= '0;
     end else begin
-      // The count + 1 from the register, the event as its enable: the hit (after the tag RAM
-      // read and the compare) does not enter a 48-bit carry chain.
-      if (s1_hit)                st_hits_q   <= st_hits_q + 48'd1;
-      if (s1_valid_q && !s1_hit) st_misses_q <= st_misses_q + 48'd1;
+      // The count + 1 from the register, the event as its enable: the hit (after the
+      // compare) does not enter a 48-bit carry chain.
+      if (s2_hit)                st_hits_q   <= st_hits_q + 48'd1;
+      if (s2_valid_q && !s2_hit) st_misses_q <= st_misses_q + 48'd1;
       if (ar_pop)                st_lines_q  <= st_lines_q + 48'd1;
       if (r_acc)                 st_bytes_q  <= st_bytes_q + 48'(BEAT_BYTES);
     end
@@ -561,10 +592,10 @@ module height_cache
       fill_q |-> (mshr_state_q[fill_idx_q] == MSHR_FILL) && (fill_la_q == mshr_la_q[fill_idx_q]))
     else $error("height_cache: fill without an MSHR in MSHR_FILL, or of another line");
   no_fill_in_sweep: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      sweep_q |-> !fill_q && !s1_alloc)
+      sweep_q |-> !fill_q && !s2_alloc)
     else $error("height_cache: a fill or an allocation during the valid bits' reset sweep");
   hit_not_in_mshr: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      s1_hit |-> !(|mshr_match))
+      s2_hit |-> !(|mshr_match))
     else $error("height_cache: a line both in the cache and in an MSHR");
   // Client contract: 16-bit texels are 2-byte aligned.
   wide_aligned: assert property (@(posedge clk_i) disable iff (!rst_ni)

@@ -1,5 +1,5 @@
 // height_rom: a stand-in for the height cache in tests: a byte memory that answers every lookup
-// exactly LOOKUP_LAT = 2 clocks later, on the traverse unit's lookup interface (slave side).
+// exactly LOOKUP_LAT = 3 clocks later, on the traverse unit's lookup interface (slave side).
 //
 // - The memory image (model.heightmap.Pyramid.memory_image()) is written through a 32-bit port
 //   (word address, little-endian bytes) before use.
@@ -68,14 +68,26 @@ module height_rom #(
   assign w1 = mem_q[a1_q[AW-1:2]];
   assign b0 = w1[8*a1_q[1:0] +: 8];
   assign b1 = w1[8*{a1_q[1], 1'b1} +: 8];
+  logic        v2_q, hit2_q, err2_q;
+  logic [15:0] data2_q;
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) rs_valid_o <= 1'b0;
-    else         rs_valid_o <= v1_q;
+    if (!rst_ni) v2_q <= 1'b0;
+    else         v2_q <= v1_q;
   end
   always_ff @(posedge clk_i) begin
-    rs_err_o  <= err1_q;
-    rs_hit_o  <= hit1_q && !err1_q;
-    rs_data_o <= {wide1_q ? b1 : 8'd0, b0};
+    err2_q  <= err1_q;
+    hit2_q  <= hit1_q && !err1_q;
+    data2_q <= {wide1_q ? b1 : 8'd0, b0};
+  end
+  // Clock 3: the answer (LOOKUP_LAT = 3 registers from the lookup).
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) rs_valid_o <= 1'b0;
+    else         rs_valid_o <= v2_q;
+  end
+  always_ff @(posedge clk_i) begin
+    rs_err_o  <= err2_q;
+    rs_hit_o  <= hit2_q;
+    rs_data_o <= data2_q;
   end
 
 endmodule

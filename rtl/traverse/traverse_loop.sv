@@ -24,12 +24,12 @@
 // slot table for every field before: its 18:1 read multiplexers and the write multiplexers of the
 // state cost ~7,000 LUT4s, and the ring's registers cost no more flip-flops than the table's.)
 // Activity bits per stage move with the slots too: the slot holds a ray (v_q), a live ray
-// (S1 - S3), the height read returned data (ok) or an error (S3 - S16), the pass hits or descends
+// (S1 - S4), the height read returned data (ok) or an error (S4 - S16), the pass hits or descends
 // (S8 - S11), the pass descends (S8 - S17).
 //
 // Clock enables: a unit advances only while its stages hold a pass that uses its result, and
-// holds its registers otherwise (less switching, and less work for a simulator).  Before the
-// height arrives (S0 - S3) that is a live ray; from S3 on a pass whose height read returned data
+// holds its registers otherwise (less switching, and less work for a simulator).  Until the
+// height arrives (S0 - S4) that is a live ray; from S4 on a pass whose height read returned data
 // (ok): the positions at t and at the plane too (whether the pass hits or descends is decided in
 // S7, after they start); the floor of the position at t_new and the child's boundaries only for
 // a descent, the floor of the position at the plane only for a crossing of the selective
@@ -50,12 +50,12 @@
 //   S1   lookup presented (lk_valid_o, lk_addr_o, lk_wide_o)
 //        exit boundaries bx                                         f24_from_int S1 -> S2
 //   S2   bx - u0                                                    f24_add      S2 -> S4
-//   S3   response {valid, hit, err, data} (LOOKUP_LAT = 2 after S1)
-//        H = code / (2^bits - 1) (unorm8 as unorm16 code * 257)     f24_from_unorm S3 -> S4
-//   S4   tx = (bx - u0) * (1/du)                                    f24_mul      S4 -> S5
-//        plane = 1 - H                                              f24_add      S4 -> S6
+//   S4   response {valid, hit, err, data} (LOOKUP_LAT = 3 after S1)
+//        H = code / (2^bits - 1) (unorm8 as unorm16 code * 257)     f24_from_unorm S4 -> S5
+//        tx = (bx - u0) * (1/du)                                    f24_mul      S4 -> S5
 //        min(t_map, 1)
-//   S5   t_exit = min(tx, ty) (inf on an axis that does not move); t_end = min(t_exit,
+//   S5   plane = 1 - H (f24_add(1, -H), H in [0, 1])                f24_one_minus S5 -> S6
+//        t_exit = min(tx, ty) (inf on an axis that does not move); t_end = min(t_exit,
 //        min(t_map, 1)) (= min(min(t_exit, t_map), 1): min is associative, NaN and ties too)
 //   S6   t_new = max(t, plane); min(t_exit, t_map)
 //        du * t, du * plane (the two candidates of du * t_new)      f24_mul      S6 -> S7
@@ -82,8 +82,11 @@
 //   S17  locate's correction (the descent's cell); retire to the result FIFO, or merge with a
 //        new ray, -> S0
 // Positions on an axis that does not move are u0 itself (the model's np.where(s != 0, p, p0)).
-// Float units per axis pair: 6 f24_from_int, 13 f24_add, 12 f24_mul, 4 f24_to_index, 1
-// f24_from_unorm.  Up to three positions per axis are computed in a pass (at t_end for the XOR
+// Float units per axis pair: 6 f24_from_int, 12 f24_add, 12 f24_mul, 4 f24_to_index, 1
+// f24_from_unorm, 1 f24_one_minus.  The plane's 1 - H is f24_one_minus, not an adder: the same
+// word for every H in [0, 1] in one clock instead of two, so the cache's third clock of lookup
+// latency (its block RAMs' read registers copied before the tag compare) costs the ring no
+// stage.  Up to three positions per axis are computed in a pass (at t_end for the XOR
 // descent, at t and at the plane, one of which is the position at t_new for locate and the hit,
 // the other selective's P1); the ring is 18 deep (the paper's is 15) because the descent's locate
 // (position, floor, clip, level, boundaries, two crossing times, correction) follows t_new as a
@@ -214,11 +217,11 @@ module traverse_loop
 
   // ---- ring position, pass activity (see the header) ----------------------------------------
   logic [D-1:0] v_q;               // v_q[s]: the slot in stage s holds a ray
-  logic         ok3, err3;         // the height read of the ray in S3 returned data / an error
-  logic [16:4]  ok_q, err_q;       // ok3, err3 of the ray in stage s (meaningful with v_q[s])
+  logic         ok4, err4;         // the height read of the ray in S4 returned data / an error
+  logic [16:5]  ok_q, err_q;       // ok4, err4 of the ray in stage s (meaningful with v_q[s])
   logic [11:8]  in_q;              // in_q[s]: ok, and the pass hits or descends (inside its node)
   logic [17:8]  dn_q;              // dn_q[s]: ok, and the pass descends
-  logic [3:1]   lv_q;              // lv_q[s]: the slot in stage s holds a live ray (not done)
+  logic [4:1]   lv_q;              // lv_q[s]: the slot in stage s holds a live ray (not done)
   logic [9:7]   ts_q;              // ts_q[s]: ok, and t_new is t (not the plane)
   logic         xor_desc, sel_up;  // the method uses the XOR descent / the selective level-up
   slot_idx_t    sl_q [D];          // stage s holds the slot of entry sl_q[s] = (ph - s) mod D
@@ -315,19 +318,20 @@ module traverse_loop
   f24_add u_dx (.clk_i, .en_i(lv_q[2] || lv_q[3]), .a_i(bx_f), .b_i(f24_neg(uv2_q.u)), .y_o(dx_f));
   f24_add u_dy (.clk_i, .en_i(lv_q[2] || lv_q[3]), .a_i(by_f), .b_i(f24_neg(uv2_q.v)), .y_o(dy_f));
 
-  // ---- S3: the height arrives ------------------------------------------------------------------
+  // ---- S4: the height arrives; tx ---------------------------------------------------------------
   // One 16-bit conversion for both widths: code / 255 = (code * 257) / 65535, the same number, so
-  // the same rounded f24 (a multiplexer in front of the fast unit, not of the plane's adder).
+  // the same rounded f24 (a multiplexer in front of the fast unit, not of the plane's unit).
   f24_t h, tx_raw, ty_raw, plane;
-  assign ok3  = rs_valid_i && rs_hit_i && !rs_err_i;
-  assign err3 = rs_valid_i && rs_err_i;
-  f24_from_unorm #(.W(16)) u_h (.clk_i, .en_i(ok3),
+  assign ok4  = rs_valid_i && rs_hit_i && !rs_err_i;
+  assign err4 = rs_valid_i && rs_err_i;
+  f24_from_unorm #(.W(16)) u_h (.clk_i, .en_i(ok4),
     .k_i(cfg_i.bits16 ? rs_data_i : {rs_data_i[7:0], rs_data_i[7:0]}), .y_o(h));
+  // (tx, ty for every live ray: whether its read returned data is known only in this stage)
+  f24_mul u_tx (.clk_i, .en_i(lv_q[4]), .a_i(dx_f), .b_i(inv4_q.u), .y_o(tx_raw));
+  f24_mul u_ty (.clk_i, .en_i(lv_q[4]), .a_i(dy_f), .b_i(inv4_q.v), .y_o(ty_raw));
 
-  // ---- S4: tx, plane -------------------------------------------------------------------------
-  f24_mul u_tx (.clk_i, .en_i(ok_q[4]), .a_i(dx_f), .b_i(inv4_q.u), .y_o(tx_raw));
-  f24_mul u_ty (.clk_i, .en_i(ok_q[4]), .a_i(dy_f), .b_i(inv4_q.v), .y_o(ty_raw));
-  f24_add u_plane (.clk_i, .en_i(ok_q[4] || ok_q[5]), .a_i(F24_ONE), .b_i(f24_neg(h)), .y_o(plane));
+  // ---- S5: plane = 1 - H (f24_one_minus: f24_add(1, -H) for H in [0, 1], in one clock) --------
+  f24_one_minus u_plane (.clk_i, .en_i(ok_q[5]), .x_i(h), .y_o(plane));
 
   function automatic tval_t tval(input f24_t t);
     return '{t: t, ord: f24_ord(t)};
@@ -519,11 +523,11 @@ module traverse_loop
   end
 
   always_ff @(posedge clk_i) begin
-    ok_q  <= {ok_q[15:4], ok3};
-    err_q <= {err_q[15:4], err3};
+    ok_q  <= {ok_q[15:5], ok4};
+    err_q <= {err_q[15:5], err4};
     in_q  <= {in_q[10:8], ok_q[7] && inside7};
     dn_q  <= {dn_q[16:8], ok_q[7] && act7.down};
-    lv_q  <= {lv_q[2:1], live0_q};
+    lv_q  <= {lv_q[3:1], live0_q};
     ts_q  <= {ts_q[8:7], ord_max_first(t6_q.ord, f24_ord(plane))};
   end
 
@@ -535,7 +539,7 @@ module traverse_loop
     if (lv_q[1]) uv2_q  <= uv_q[1];
     if (lv_q[2]) inv3_q <= inv_q[sl_q[2]];
     if (lv_q[3]) inv4_q <= inv3_q;
-    if (ok_q[4]) begin
+    if (lv_q[4]) begin
       duv5_q  <= duv_q[sl_q[4]];
       d5_q    <= dir_q[4];
       tmap5_q <= tval(tmap_q[4]);
@@ -709,14 +713,18 @@ module traverse_loop
       32'(sl_q[g]) == (32'(sl_q[0]) + D - g) % D);
   end
   // A response only ever answers a request made LOOKUP_LAT clocks earlier.
-  logic lk_d1_q, lk_d2_q;
+  logic [LOOKUP_LAT-1:0] lk_d_q;  // lk_d_q[i]: a request i + 1 clocks ago
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) {lk_d1_q, lk_d2_q} <= '0;
-    else         {lk_d2_q, lk_d1_q} <= {lk_d1_q, lk_valid_o};
+    if (!rst_ni) lk_d_q <= '0;
+    else         lk_d_q <= {lk_d_q[LOOKUP_LAT-2:0], lk_valid_o};
   end
   no_spurious_response: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                         rs_valid_i |-> lk_d2_q)
+                                         rs_valid_i |-> lk_d_q[LOOKUP_LAT-1])
     else $error("traverse_loop: height response without a request");
+  // f24_one_minus takes H in [+0, 1] only (f24_from_unorm gives nothing else).
+  plane_operand_in_range: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      ok_q[5] |-> !h[23] && (h[22:16] < 7'd63 || h == F24_ONE))
+    else $error("traverse_loop: H = %h outside [+0, 1]", h);
   new_ray_only_in_bubble: assert property (@(posedge clk_i) disable iff (!rst_ni)
                                            admit |-> (!v_q[D-1] || retire));
   // A ray that is not done has none of the final flags (S16 relies on it).

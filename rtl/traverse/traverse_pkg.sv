@@ -21,7 +21,7 @@ package traverse_pkg;
   localparam int unsigned ITER_W     = 16;  // iteration counter and cap
   localparam int unsigned ADDR_W     = 32;  // byte address of a height lookup
   localparam int unsigned CODE_W     = 16;  // a height code (unorm8 in the low byte, or unorm16)
-  localparam int unsigned LOOKUP_LAT = 2;   // clocks from lk_valid_o to rs_valid_i
+  localparam int unsigned LOOKUP_LAT = 3;   // clocks from lk_valid_o to rs_valid_i
   // traverse_setup: the reciprocals (f24_div, F24_DIV_LAT clocks), then 12 more stages (its
   // header); busy_o counts the rays in it, 0 .. SETUP_LAT.
   localparam int unsigned SETUP_LAT    = F24_DIV_LAT + 12;  // 20

@@ -1,7 +1,7 @@
 // traverse_system: the traverse unit with its height cache, an AXI4 read master to memory.
 //
 //   ray stream -> traverse_unit -> result stream
-//                     |  lk_* / rs_* (lookup port, fixed latency LOOKUP_LAT = 2)
+//                     |  lk_* / rs_* (lookup port, fixed latency LOOKUP_LAT = 3)
 //                 height_cache -> m_axi_ar* / m_axi_r*  (AXI4 read-only master; no write channels)
 //
 // The pyramid (model.heightmap.Pyramid.memory_image()) lies in memory at cfg_base_i; the unit

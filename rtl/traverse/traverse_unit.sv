@@ -19,7 +19,7 @@
 //
 // Height lookups (master; the height cache is the slave): lk_valid_o, lk_addr_o (byte address =
 // base + level_off[k] + (cy * (N >> k) + cx) * bytes per texel), lk_wide_o (1: 16-bit texel);
-// exactly LOOKUP_LAT = 2 clocks later rs_valid_i, rs_hit_i, rs_err_i, rs_data_i (8-bit codes in
+// exactly LOOKUP_LAT = 3 clocks later rs_valid_i, rs_hit_i, rs_err_i, rs_data_i (8-bit codes in
 // the low byte).  rs_hit_i = 0 (or no response): the ray goes round again unchanged and the pass
 // does not count as an iteration.  rs_err_i = 1: the ray finishes with res_err_o = 1.
 //

@@ -31,7 +31,7 @@ from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 from cocotbext.axi import AxiRamRead, AxiReadBus
 
-from model.height_cache import CacheConfig, HeightCacheModel, Inputs
+from model.height_cache import LOOKUP_LAT, CacheConfig, HeightCacheModel, Inputs
 from tb.common import report, runner
 
 LIVELOCK = 20000  # clocks a single lookup may wait for its hit
@@ -225,7 +225,8 @@ class Harness:
         self.rst_prev = 0
         self.clr_prev = 0
         self.snap: tuple[dict, dict] = ({}, {})
-        self.pipe: deque = deque([None, None])  # lookups presented 2 and 1 clocks ago
+        # lookups presented LOOKUP_LAT .. 1 clocks ago, oldest first
+        self.pipe: deque = deque([None] * LOOKUP_LAT)
         # counts taken at the ports since the last reset / clear
         self.cnt = {"hits": 0, "misses": 0, "lines": 0, "bytes": 0}
         self.checked = 0       # hits compared with the memory

@@ -1,4 +1,4 @@
-// Test harness: traverse_unit with height_rom (fixed latency 2, random misses) on its lookup port.
+// Test harness: traverse_unit with height_rom (fixed latency 3, random misses) on its lookup port.
 module tb_traverse_unit
   import f24_pkg::*;
   import traverse_pkg::*;

@@ -1,6 +1,6 @@
 """traverse_unit against model.traverse.trace(pyr, rays, method, "f24"), bit for bit.
 
-Harness (tb_traverse_unit.sv): the unit with height_rom on its lookup port (fixed latency 2,
+Harness (tb_traverse_unit.sv): the unit with height_rom on its lookup port (fixed latency 3,
 random misses from an LFSR).  For every map (1x1 .. 100x128, unorm8 and unorm16, rough / flat /
 spiky heights) and every method code, random + adversarial rays (tests/test_traverse.py) are
 streamed in with random valid gaps and the results drained with random back-pressure; every ray id
