@@ -6,8 +6,8 @@ of that clock.  :meth:`outputs` gives the outputs during the clock (before the e
 compare the RTL with it clock by clock.  The behaviour (see the RTL header for the full text):
 
 - lookups answer LOOKUP_LAT = 3 clocks later; hit = tag match in a valid way of the set, unless a
-  line fill wrote that set in the clock the lookup was presented or in the clock after (then:
-  miss, no allocation);
+  line fill wrote that set in the clock the lookup was presented, or wrote the lookup's own line
+  in the clock after (then: miss, no allocation);
 - reset clears the valid bits by a sweep of SETS clocks after it (one set a clock): a lookup
   presented during the sweep answers a miss and allocates nothing, like one that meets a fill;
 - a miss to a line held by an MSHR merges; else the lowest free MSHR is allocated and its AR queued;
@@ -140,8 +140,8 @@ class HeightCacheModel:
         self.fill_idx = 0
         self.sweep = c.sets  # clocks of the valid bits' reset sweep still to run
         # stages 1 and 2: (addr, wide, vbits, conflict, rd, swept) while s1_valid / s2_valid;
-        # conflict: a fill wrote the set in the lookup's clock (stage 1), or in that clock or the
-        # next (stage 2); swept: the lookup came during the reset sweep
+        # conflict: a fill wrote the set in the lookup's clock (stage 1), or that or the lookup's
+        # own line in the next clock (stage 2); swept: the lookup came during the reset sweep
         self.s1_valid = False
         self.s1: tuple[int, int, list[bool], bool, list[tuple[int, bytes] | None], bool] | None \
             = None
@@ -218,14 +218,15 @@ class HeightCacheModel:
                       fill is not None and fill[0] == set0,
                       [self.ram[w][set0] for w in range(c.ways)], swept)
 
-        # ---- stage 1: the RAM reads copied; a fill of the set in this clock is a conflict too
+        # ---- stage 1: the RAM reads copied; a fill of the lookup's line in this clock is a
+        # conflict too
         new_s2 = None
         if self.s1_valid:
             assert self.s1 is not None
             addr1, wide1, vbits1, conflict1, rd1, swept1 = self.s1
-            set1 = self._split(addr1)[1]
-            new_s2 = (addr1, wide1, vbits1, conflict1 or (fill is not None and fill[0] == set1),
-                      rd1, swept1)
+            _, set1, tag1, _ = self._split(addr1)
+            same_line = fill is not None and fill[0] == set1 and fill[1] == tag1
+            new_s2 = (addr1, wide1, vbits1, conflict1 or same_line, rd1, swept1)
 
         # ---- stage 2
         hit = err = alloc = False

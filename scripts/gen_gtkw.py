@@ -60,7 +60,7 @@ TRAVERSE: list[tuple[str, list[Sig]]] = [
         ("u_unit.u_loop.node_q.node_q[1].cx", 16, DEC),
         ("u_unit.u_loop.node_q.node_q[1].cy", 16, DEC), ("u_unit.u_loop.t_q.t_q[1]", 24, HEX),
         ("u_unit.u_loop.stat_q.stat_q[1].iters", 16, DEC)]),
-    ("S3-S7: H, plane = 1 - H, crossing times, t_end", [
+    ("S4-S7: H, plane = 1 - H, crossing times, t_end", [
         ("u_unit.u_loop.h", 24, HEX), ("u_unit.u_loop.plane", 24, HEX),
         ("u_unit.u_loop.tx_raw", 24, HEX), ("u_unit.u_loop.ty_raw", 24, HEX),
         ("u_unit.u_loop.tend6_q", 24, HEX),

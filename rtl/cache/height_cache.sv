@@ -7,8 +7,8 @@
 //                    read) and the set's valid bits; note whether a line fill writes that set in
 //                    this clock.
 //   stage 1 (c + 1): copy the RAMs' read registers into fabric registers (the texel's 16-bit word
-//                    of each way, its tags and valid bits); note whether a fill writes the set in
-//                    this clock.  (The block RAMs' 4.3 ns clock-to-out was in series with the
+//                    of each way, its tags and valid bits); note whether a fill writes the
+//                    lookup's line in this clock.  (The block RAMs' 4.3 ns clock-to-out was in series with the
 //                    compare: 81 MHz.)
 //   stage 2 (c + 2): compare tags, select the texel, search the MSHRs; allocate an MSHR on a miss;
 //                    register the answer.
@@ -39,12 +39,14 @@
 //   arid = {epoch, MSHR index} (see reset).  ARs leave in allocation order.
 // Fill: rready is tied to 1 (each MSHR buffers its own line, so beats of different reads may
 //   interleave in any order the interconnect likes).  The clock after a line's last beat, the line
-//   is written into the cache and its MSHR is freed.  A lookup presented in that same clock or in
-//   the clock before to the same set (whatever its line) answers a miss and allocates nothing:
-//   in the fill's clock its RAM read overlaps the write, in the clock before it read the set
-//   before the fill but reaches the MSHRs (stage 2) after the fill freed its MSHR (it would
-//   allocate the line again); its retry will see the filled set.  Every other lookup sees the
-//   fill consistently.
+//   is written into the cache and its MSHR is freed.  A lookup presented in that same clock to the
+//   same set (whatever its line) answers a miss and allocates nothing: its RAM read overlaps the
+//   write.  So does a lookup of the filled line itself presented in the clock before: it read
+//   the set before the fill but reaches the MSHRs (stage 2) after the fill freed its MSHR (it
+//   would read the line again).  Their retries see the filled set.  Every other lookup sees a
+//   consistent set: one presented in the clock before a fill of another line of its set reads
+//   the set as it was (a hit there returns the line's bytes even if the fill replaces it; the
+//   memory behind the cache is read-only).
 // AXI errors (rresp SLVERR / DECERR on any beat): the line is not written into the cache; its
 //   MSHR turns to MSHR_ERR and keeps the line address.  The first lookup to that line that reaches
 //   stage 2 answers rs_err_o = 1 (rs_hit_o = 0), and so does every lookup to that line in the next
@@ -280,8 +282,8 @@ module height_cache
   end
 
   // ---------------------------------------------------------------- stage 1: RAM reads copied
-  // The RAMs' read registers into fabric registers beside the compare; a fill of the set in this
-  // clock makes the lookup a conflict too (see "Fill").
+  // The RAMs' read registers into fabric registers beside the compare; a fill of the lookup's own
+  // line in this clock makes it a conflict too (see "Fill").
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       s2_valid_q <= 1'b0;
@@ -291,7 +293,7 @@ module height_cache
     if (s1_valid_q) begin
       s2_addr_q     <= s1_addr_q;
       s2_wide_q     <= s1_wide_q;
-      s2_conflict_q <= s1_conflict_q || (fill_q && (fill_set == s1_addr_q[OFF_W +: SET_W]));
+      s2_conflict_q <= s1_conflict_q || (fill_q && (fill_la == s1_addr_q[ADDR_W-1:OFF_W]));
       s2_vbits_q    <= s1_vbits;
       for (int w = 0; w < WAYS; w++) begin
         s2_tag_q[w]  <= tag_rd[w];
