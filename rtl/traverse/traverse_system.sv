@@ -98,6 +98,11 @@ module traverse_system
   output logic                              idle_o              // no ray in the unit
 );
 
+  // The unit and the cache agree on the lookup latency (each package has its own constant).
+  if (cache_pkg::LOOKUP_LAT != traverse_pkg::LOOKUP_LAT) begin : g_check_lookup_lat
+    $error("traverse_system: cache_pkg::LOOKUP_LAT != traverse_pkg::LOOKUP_LAT");
+  end
+
   // ---- traverse unit and height cache ---------------------------------------------------------
   logic              lk_valid, lk_wide, rs_valid, rs_hit, rs_err;
   logic [ADDR_W-1:0] lk_addr;
