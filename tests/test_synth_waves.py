@@ -3,6 +3,8 @@ constraints, the FuseSoC core, the waveform helpers (scripts/waves.py, scripts/g
 one-ray step trace (scripts/ray_steps.py).  Quick: no Yosys, nextpnr or Verilator runs."""
 from __future__ import annotations
 
+import argparse
+
 import json
 import re
 import subprocess
@@ -93,24 +95,37 @@ def test_pnr_summary():
 
 
 def test_router_args():
-    # auto: router1 out of context, router2 (timing-driven rip-up) for the top
+    # auto: router1 out of context and for the top; router2 (timing-driven rip-up) on request
     assert synth.router_args("auto", True) == ["--router", "router1"]
-    assert synth.router_args("auto", False) == ["--router", "router2", "--tmg-ripup"]
+    assert synth.router_args("auto", False) == ["--router", "router1"]
     assert synth.router_args("router1", False) == ["--router", "router1"]
     assert synth.router_args("router2", True) == ["--router", "router2", "--tmg-ripup"]
-    assert "router2" in synth.router_text("auto") and "router1" in synth.router_text("auto")
+    assert synth.router_args("router2", False) == ["--router", "router2", "--tmg-ripup"]
+    assert synth.router_text("auto") == "router1"
     # --no-tmg-ripup: router2 alone, router1 unchanged
-    assert synth.router_args("auto", False, False) == ["--router", "router2"]
+    assert synth.router_args("router2", False, False) == ["--router", "router2"]
+    assert synth.router_args("auto", False, False) == ["--router", "router1"]
     assert synth.router_args("router1", True, False) == ["--router", "router1"]
-    assert "without" in synth.router_text("auto", False)
+    assert "with timing" in synth.router_text("router2")
     assert synth.router_text("router2", False) == "router2 without timing-driven rip-up"
 
 
+def test_top_ecp5_opts(tmp_path: Path):
+    # --top-ecp5-opts (default -nowidelut) reaches the top's synth_ecp5 only, after --ecp5-opts
+    args = argparse.Namespace(out=tmp_path, ecp5_opts="-abc2", top_ecp5_opts="-nowidelut",
+                              abc9_delay=0)
+    f = synth.Flow(args, 1)
+    assert f.ecp5_opts(synth.TOP) == " -abc2 -nowidelut"
+    assert f.ecp5_opts("f24_add") == " -abc2" and f.ecp5_key("f24_add") == "-abc2"
+    args.ecp5_opts, args.top_ecp5_opts = "", ""
+    assert f.ecp5_opts(synth.TOP) == "" and f.ecp5_key(synth.TOP) == ""
+
+
 def test_heatmap_args():
-    assert synth.heatmap_args(True, "auto", False, "out/heatmap/top") == [
+    assert synth.heatmap_args(True, "router2", False, "out/heatmap/top") == [
         "--router2-heatmap", "out/heatmap/top"]
-    assert synth.heatmap_args(True, "router2", False, "p") == ["--router2-heatmap", "p"]
-    assert synth.heatmap_args(False, "auto", False, "p") == []       # not asked for
+    assert synth.heatmap_args(True, "auto", False, "p") == []        # auto is router1
+    assert synth.heatmap_args(False, "router2", False, "p") == []    # not asked for
     assert synth.heatmap_args(True, "router2", True, "p") == []      # a block out of context
     assert synth.heatmap_args(True, "router1", False, "p") == []     # router1: no heatmaps
 
@@ -170,6 +185,11 @@ def test_report_markdown(tmp_path):
     synth.write_md(report, tmp_path / "r.md")
     assert ("counts from `synth_ecp5 -nowidelut` with abc9 delay target 6000 ps,"
             in (tmp_path / "r.md").read_text())
+    report["settings"]["ecp5_opts"] = ""              # --top-ecp5-opts: the top's own options
+    report["settings"]["abc9_delay_ps"] = 0
+    report["settings"]["top_ecp5_opts"] = "-nowidelut"
+    synth.write_md(report, tmp_path / "r.md")
+    assert "counts from `synth_ecp5` (the top with -nowidelut)," in (tmp_path / "r.md").read_text()
 
 
 def test_synth_bad_arguments():
@@ -179,6 +199,8 @@ def test_synth_bad_arguments():
     assert p.returncode == 2 and "inside the repository" in p.stdout
     p = run("scripts/synth.py", "--blocks", "f24_add", "--ecp5-opts=-nowidelut; tee x")
     assert p.returncode == 2 and "--ecp5-opts" in p.stdout and len(p.stdout.splitlines()) == 1
+    p = run("scripts/synth.py", "--blocks", "f24_add", "--top-ecp5-opts=-nowidelut; tee x")
+    assert p.returncode == 2 and "--top-ecp5-opts" in p.stdout and len(p.stdout.splitlines()) == 1
     p = run("scripts/synth.py", "--blocks", "f24_add", "--abc9-delay", "-5")
     assert p.returncode == 2 and "--abc9-delay" in p.stdout and len(p.stdout.splitlines()) == 1
 
