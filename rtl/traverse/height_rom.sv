@@ -1,5 +1,6 @@
 // height_rom: a stand-in for the height cache in tests: a byte memory that answers every lookup
-// exactly LOOKUP_LAT = 3 clocks later, on the traverse unit's lookup interface (slave side).
+// exactly traverse_pkg::LOOKUP_LAT (3) clocks later, on the traverse unit's lookup interface
+// (slave side).
 //
 // - The memory image (model.heightmap.Pyramid.memory_image()) is written through a 32-bit port
 //   (word address, little-endian bytes) before use.
@@ -62,32 +63,28 @@ module height_rom #(
     hit1_q  <= lfsr_q >= miss_thresh_i;
   end
 
-  // Clock 2: read (a 16-bit code is aligned, so both bytes are in one word).
+  // Clock 2: read (a 16-bit code is aligned, so both bytes are in one word); clocks 3 ..
+  // LOOKUP_LAT: the answer {valid, err, hit, data} delayed to the traverse unit's latency.
+  localparam int unsigned LAT = traverse_pkg::LOOKUP_LAT;
+  if (LAT < 2) begin : g_check_lat
+    $error("height_rom: needs traverse_pkg::LOOKUP_LAT >= 2 (decode, read)");
+  end
   logic [31:0] w1;
   logic [7:0]  b0, b1;
+  logic [LAT-2:0] v_q;            // v_q[i]: the answer of clock i + 2 is valid
+  logic [17:0]    ans_q [LAT-1];  // {err, hit, data}, clocks 2 .. LAT
   assign w1 = mem_q[a1_q[AW-1:2]];
   assign b0 = w1[8*a1_q[1:0] +: 8];
   assign b1 = w1[8*{a1_q[1], 1'b1} +: 8];
-  logic        v2_q, hit2_q, err2_q;
-  logic [15:0] data2_q;
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) v2_q <= 1'b0;
-    else         v2_q <= v1_q;
+    if (!rst_ni) v_q <= '0;
+    else         v_q <= (LAT-1)'({v_q, v1_q});  // shift in at bit 0
   end
   always_ff @(posedge clk_i) begin
-    err2_q  <= err1_q;
-    hit2_q  <= hit1_q && !err1_q;
-    data2_q <= {wide1_q ? b1 : 8'd0, b0};
+    ans_q[0] <= {err1_q, hit1_q && !err1_q, wide1_q ? b1 : 8'd0, b0};
+    for (int i = 1; i < LAT - 1; i++) ans_q[i] <= ans_q[i-1];
   end
-  // Clock 3: the answer (LOOKUP_LAT = 3 registers from the lookup).
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) rs_valid_o <= 1'b0;
-    else         rs_valid_o <= v2_q;
-  end
-  always_ff @(posedge clk_i) begin
-    rs_err_o  <= err2_q;
-    rs_hit_o  <= hit2_q;
-    rs_data_o <= data2_q;
-  end
+  assign rs_valid_o = v_q[LAT-2];
+  assign {rs_err_o, rs_hit_o, rs_data_o} = ans_q[LAT-2];
 
 endmodule
