@@ -22,8 +22,8 @@ module f24_one_minus
 (
   input  logic clk_i,  // clock
   input  logic en_i,   // clock enable: the output register advances only while en_i is 1
-  input  f24_t x_i,    // in [+0, 1]
-  output f24_t y_o     // 1 - x_i
+  input  f24_t a_i,    // in [+0, 1]
+  output f24_t y_o     // 1 - a_i
 );
 
   // The operation as a function of x, evaluated where the output register is enabled (a simulator
@@ -81,7 +81,7 @@ module f24_one_minus
   f24_t y_q;
 
   always_ff @(posedge clk_i) begin
-    if (en_i) y_q <= one_minus(x_i);
+    if (en_i) y_q <= one_minus(a_i);
   end
 
   assign y_o = y_q;

@@ -331,7 +331,7 @@ module traverse_loop
   f24_mul u_ty (.clk_i, .en_i(lv_q[4]), .a_i(dy_f), .b_i(inv4_q.v), .y_o(ty_raw));
 
   // ---- S5: plane = 1 - H (f24_one_minus: f24_add(1, -H) for H in [0, 1], in one clock) --------
-  f24_one_minus u_plane (.clk_i, .en_i(ok_q[5]), .x_i(h), .y_o(plane));
+  f24_one_minus u_plane (.clk_i, .en_i(ok_q[5]), .a_i(h), .y_o(plane));
 
   function automatic tval_t tval(input f24_t t);
     return '{t: t, ord: f24_ord(t)};

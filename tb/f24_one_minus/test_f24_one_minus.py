@@ -39,7 +39,7 @@ async def one_minus_range(dut):
     whole = runner.long_stimulus()
     x = domain(rng, whole)
     want = f24.add(np.full_like(x, ONE), f24.neg(x))
-    n = await fp_unit.check_pipeline(dut, LATENCY, {"x_i": x}, {"y_o": want}, rng)
+    n = await fp_unit.check_pipeline(dut, LATENCY, {"a_i": x}, {"y_o": want}, rng)
     dut._log.info("VECTORS f24_one_minus: %d (all unorm16 H, %s, random), 0 mismatches", n,
                   "every word of [+0, 1]" if whole else "6 exponents whole")
 
