@@ -44,8 +44,10 @@
 // divisible by 4: pixel p at Sa, Sb, ..., any later pixel at Sa + 4j, Sb + 4j, ..., never in the
 // same clock (asserted: core_aligned, and unit_once per shared unit).  A shared unit's operands
 // are registers, or a select between registers by the phase a mod 4 of its operation in core
-// stage a (the unit's own copy of ph_q, see "phase replicas").  The units with four operations are multipliers (2:1 to 4:1 selects); every adder
-// keeps the 2:1 select (or none) it had with two operations per unit.
+// stage a (the unit's own copy of ph_q, see "phase replicas").  The units with four operations
+// are multipliers (2:1 to 4:1 selects; u_dvnc's are made a clock early into operand registers of
+// its own, leaving a 2:1); every adder keeps the 2:1 select (or none) it had with two operations
+// per unit (u_vvhh's D2 enters through hz2's register, leaving it one).
 // Three-component values run as two lanes: lane 0 carries x in stage s and z in s+1 through the
 // same registers ("stream"), lane 1 carries y in s; the tail runs R, G, B on one lane.
 //
@@ -298,15 +300,15 @@ module shade_unit
   f24_t       dv_q   [1:9];
   f24_t       cola_q [1:29];        // stream C_x, C_z: S1 .. S29
   f24_t       colz_q;               // S1: C_z, waiting a clock
-  f24_t       col1_q [1:30];        // C_y: S1 .. S30
-  f24_t       na_q   [4:19];        // stream n_x, n_z
+  f24_t       col1_q [1:29];        // C_y: S1 .. S29 (S30: u_dvnc's operand register)
+  f24_t       na_q   [4:18];        // stream n_x, n_z (S19: u_dvnc's operand register)
   f24_t       n1_q   [4:19];        // n_y
   f24_t       rv_q;                 // S10: rv
   f24_t       nxy_q;                // S12: nx2 + ny2
   f24_t       nsq2_q [11:12];       // nz2
   f24_t       h1_q   [13:20];       // h_y
   f24_t       ha_q   [13:20];       // stream h_x, h_z
-  f24_t       hsq2_q;               // S15: hz2
+  f24_t       hsq2_q;               // S15: hz2; S4: D2
   f24_t       nnm_q;                // S15: max(nn, EPS)
   f24_t       nnm2_q;               // S16
   f24_t       rq_q;                 // rn (S20), then rh (S21)
@@ -315,6 +317,7 @@ module shade_unit
   f24_t       z_q;                  // nlz (S23), then nhz (S24)
   f24_t       m_q;                  // ndl = max(dot(n, l), 0) (S26), then ndh (S27)
   f24_t       a_q;                  // S30: a
+  f24_t       dvnc_a_q, dvnc_b_q;   // u_dvnc's operands, selected a clock early
   f24_t       ca_q   [31:32];       // stream C_x a, C_z a
   f24_t       ca1_q;                // S32: C_y a
   f24_t       sp_q;                 // S33: sp
@@ -332,7 +335,7 @@ module shade_unit
       cola_q[1] <= cv_q[1] ? colz_q : in_col[0];
       col1_q[1] <= in_col[1];
       for (int s = 2; s <= 29; s++) cola_q[s] <= cola_q[s-1];
-      for (int s = 2; s <= 30; s++) col1_q[s] <= col1_q[s-1];
+      for (int s = 2; s <= 29; s++) col1_q[s] <= col1_q[s-1];
       du_q[1] <= in_du;
       dv_q[1] <= in_dv;
       for (int s = 2; s <= 9; s++) begin
@@ -341,10 +344,8 @@ module shade_unit
       end
       na_q[4] <= na_s34;
       n1_q[4] <= n1uv_s34;
-      for (int s = 5; s <= 19; s++) begin
-        na_q[s] <= na_q[s-1];
-        n1_q[s] <= n1_q[s-1];
-      end
+      for (int s = 5; s <= 18; s++) na_q[s] <= na_q[s-1];
+      for (int s = 5; s <= 19; s++) n1_q[s] <= n1_q[s-1];
       rv_q <= rvnh_s91920;
       nxy_q <= nxyh1_s1112;
       nsq2_q[11] <= nsqa_s910;
@@ -355,7 +356,8 @@ module shade_unit
         h1_q[s] <= h1_q[s-1];
         ha_q[s] <= ha_q[s-1];
       end
-      hsq2_q <= hkd_s1328;
+      // hz2 for hh @15; D2 in the clock before vv @4, so that u_vvhh's b operand has no select
+      hsq2_q <= at(ps_q[PS_VVHH], 3) ? cfg_i.d2 : hkd_s1328;
       nnm_q  <= max_np(nnhxy_s1415, SHADE_EPS);
       nnm2_q <= nnm_q;
       rq_q   <= rvnh_s91920;
@@ -396,12 +398,21 @@ module shade_unit
   assign uh_sel = at(ps_q[PS_UV2HY2], 1) ? du_q[1] : nxyh1_s1112;
   f24_mul u_uv2hy2 (.clk_i, .en_i, .a_i(uh_sel), .b_i(uh_sel), .y_o(uv2hy2_s213));
   // 5: dv^2 @1 / 4: n_x rn @19 / n_z rn @20 / 12: C_y a @30 (stages 1, 3, 0, 2 mod 4)
-  f24_mul u_dvnc (.clk_i, .en_i,
-                  .a_i(at(ps_q[PS_DVNC], 30) ? col1_q[30]
-                     : (at(ps_q[PS_DVNC], 19) || at(ps_q[PS_DVNC], 20)) ? na_q[19] : dv_q[1]),
-                  .b_i(at(ps_q[PS_DVNC], 30) ? a_q : at(ps_q[PS_DVNC], 19) ? rvnh_s91920
-                     : at(ps_q[PS_DVNC], 20) ? rq_q : dv_q[1]),
-                  .y_o(dvnc_s22131));
+  // Its operands are selected a clock early into registers of its own (a 4:1 select in front of
+  // the DSP was the routed top's slowest path, 17.2 ns): C_y (S29 -> S30), n_x, n_z (S18 ->
+  // S19, S20), dv (S0 -> S1), rn (rq_q's input) and a (a_q's input) are picked by the phase of
+  // the clock before, as the S30, S19, S1 registers, rq_q and a_q load them unconditionally, so
+  // the operand is the same word.  Only n_x rn @19 takes rsqrt's output straight (2:1 select).
+  always_ff @(posedge clk_i) begin
+    if (en_i) begin
+      dvnc_a_q <= at(ps_q[PS_DVNC], 29) ? col1_q[29]
+                : (at(ps_q[PS_DVNC], 18) || at(ps_q[PS_DVNC], 19)) ? na_q[18] : in_dv;
+      dvnc_b_q <= at(ps_q[PS_DVNC], 29) ? acc1_s2934
+                : at(ps_q[PS_DVNC], 19) ? rvnh_s91920 : in_dv;
+    end
+  end
+  f24_mul u_dvnc (.clk_i, .en_i, .a_i(dvnc_a_q),
+                  .b_i(at(ps_q[PS_DVNC], 19) ? rvnh_s91920 : dvnc_b_q), .y_o(dvnc_s22131));
 
   // 1: n_x - 1 @1 / n_z - 1 @2; n_y - 1 @1 / 5: du^2 + dv^2 @2
   f24_add u_na   (.clk_i, .en_i, .a_i(m2a_q), .b_i(NEG_ONE), .y_o(na_s34));
@@ -410,7 +421,7 @@ module shade_unit
 
   // 5: vv @4 / 7: hh @15
   f24_add u_vvhh (.clk_i, .en_i, .a_i(at(ps_q[PS_VVHH], 4) ? n1uv_s34 : nnhxy_s1415),
-                  .b_i(at(ps_q[PS_VVHH], 4) ? cfg_i.d2 : hsq2_q), .y_o(vvhh_s617));
+                  .b_i(hsq2_q), .y_o(vvhh_s617));
 
   // 2: n_x^2 @8 / n_z^2 @9; n_y^2 @8 / 6: v_y @9
   f24_mul u_nsqa   (.clk_i, .en_i, .a_i(na_q[8]), .b_i(na_q[8]), .y_o(nsqa_s910));
