@@ -1,7 +1,7 @@
 """Approximate (unsafe) inverse displacement mapping methods: the golden model's baselines.
 
 Every method has the signature ``fn(pyr, rays, **params) -> TraceResult`` and traces the box
-(nearest-texel) height field of ``../shared/CONVENTIONS.md``: texel (i, j) with h = codes[i, j] /
+(nearest-texel) height field of ``docs/conventions.md``: texel (i, j) with h = codes[i, j] /
 maxcode covers u in [j, j+1), v in [i, i+1) and is solid from depth s = 1 - h down to depth 1.
 A ray is position(t) = (u0 + du t, v0 + dv t) at depth t in [0, 1].  The methods are vectorised
 over rays (lock-step loops over a fixed, small number of steps; no per-ray Python loops).

@@ -1,6 +1,6 @@
 """Bit-accurate model of the 24-bit floating-point format and its units.
 
-The format (see ``../shared/FLOAT24.md`` and the README): 1 sign bit, 7 exponent bits with bias 63,
+The format (see ``docs/number-format.md``): 1 sign bit, 7 exponent bits with bias 63,
 16 fraction bits.  Zero exponent is a signed zero (subnormal inputs flush to zero), exponent 127 is
 Inf (fraction 0) or NaN (fraction != 0); every NaN a unit produces is :data:`NAN` (0x7F8000).
 

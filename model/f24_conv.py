@@ -13,7 +13,7 @@ Everything is computed with exact integer arithmetic on ``int64`` arrays (no flo
 float rounding), so the rounding is visibly correct: a value is written as an integer significand
 ``sig`` in [2^16, 2^17) times a power of two plus a remainder, and the remainder decides the
 rounding (above half: up; exactly half: up when ``sig`` is odd).  Rounding follows
-``../shared/FLOAT24.md``: RNE with an unbounded exponent, then overflow to Inf / flush below 2^-62
+``docs/number-format.md``: RNE with an unbounded exponent, then overflow to Inf / flush below 2^-62
 (neither can happen for these conversions' ranges, but the packing handles both).
 """
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Height maps: loading, quantisation, the max-mipmap pyramid and its memory layout.
 
-Conventions (``../shared/CONVENTIONS.md``): ``h[row, col]`` in [0, 1], 1 is the top of the
+Conventions (``docs/conventions.md``): ``h[row, col]`` in [0, 1], 1 is the top of the
 displacement volume.  Texel (i, j) covers u in [j, j+1), v in [i, i+1) and is solid from depth
 1 - h[i, j] down to depth 1.  Heights are stored as unorm8 (default) or unorm16 codes and every
 engine traces the same quantised heights.

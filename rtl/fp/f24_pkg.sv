@@ -1,5 +1,5 @@
 // f24_pkg: the 24-bit float format shared by every unit (1 sign, 7 exponent bias 63, 16 fraction).
-// See README "Number format" and ../shared/FLOAT24.md. Zero exponent reads as a signed zero
+// See docs/number-format.md. Zero exponent reads as a signed zero
 // (flush-to-zero), exponent 127 is Inf (fraction 0) or NaN; every NaN produced is F24_NAN.
 // Also the helpers the units share: operand class, leading-zero count, round-and-pack.
 package f24_pkg;
