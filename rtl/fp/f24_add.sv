@@ -22,7 +22,12 @@
 //                    leading-zero count;
 //   stage 3 "pack":  the rounding carry chain and its range check beside the "exact" side's
 //                    shift, then the last choice between specials, zero, "round" and "exact".
-// LAT = 4: the three stages of LAT = 3, then one plain enabled delay register (f24_delay).
+// LAT = 4: stage 1 of LAT = 3 cut once more, after the swap and before the alignment shift:
+//   stage 1 "swap":  the magnitude compare, the swap, the exponent difference and the sticky bit
+//                    (a trailing-zero count compared with the difference: this stage's longest
+//                    path, and the longest of the unit at LAT = 3 and 4);
+//   stage 2 "shift": the alignment shift;
+//   stages 3 and 4:  "add" and "pack" as at LAT = 3.
 //
 // Why three extra bits are enough: if the exponent difference is 0 or 1 the aligned operand fits
 // the window exactly (no sticky) and any cancellation is exact.  Otherwise the difference keeps at
@@ -39,8 +44,8 @@
 module f24_add
   import f24_pkg::*;
 #(
-  // Latency in enabled clocks, 2 .. 4: 2 = the paper's (two stages); 3 = three stages for a
-  // faster clock; 4 = the three stages and a delay register.  The same result at every LAT.
+  // Latency in enabled clocks, 2 .. 4: 2 = the paper's (two stages); 3 and 4 = three and four
+  // stages for a faster clock.  The same result at every LAT.
   parameter int unsigned LAT = 2
 ) (
   input  logic clk_i,  // clock
@@ -58,6 +63,20 @@ module f24_add
   localparam int unsigned SUM_W = 1 + SIG_W + EXT_W;  // carry + significand + extra = 21
 
   // ---------------------------------------------------------------- swap and align
+  // The operands swapped, before the alignment shift (the register of stage 1 at LAT = 4).
+  typedef struct packed {
+    logic             special;  // NaN or Inf result
+    f24_t             spec_y;
+    logic             zero;     // the sum is exactly zero
+    logic             s;        // result sign (see align_t)
+    logic [6:0]       e;        // biased exponent of the larger operand
+    logic             sub;      // effective subtraction
+    logic [FRAC_W-1:0] xf;      // fraction of the larger operand
+    logic [SIG_W-1:0] sig_z;    // significand of the smaller operand, 0 for a zero operand
+    logic [6:0]       d;        // exponent difference, 0..126
+    logic             sticky;   // a one of the smaller operand is shifted below the window
+  } swap_t;
+
   // The operands swapped and aligned, before the add (the register of stage 1 at LAT >= 3).
   typedef struct packed {
     logic             special;  // NaN or Inf result
@@ -105,17 +124,14 @@ module f24_add
     return n;
   endfunction
 
-  function automatic prep_t add_prep(input f24_t a, input f24_t b);
+  function automatic swap_t add_swap(input f24_t a, input f24_t b);
     f24_t       x, z;                  // x: the operand of larger magnitude, z: the other one
     logic       a_big;
     logic       x_zero, z_zero;        // exponent 0 (x zero implies z zero)
     logic       z_spec;                // exponent 127 (z special implies x special)
     logic       sub;                   // effective subtraction
-    logic [6:0] d_ab, d_ba, d;         // exponent differences; d = ex - ez, 0..126
+    logic [6:0] d_ab, d_ba;            // exponent differences
     logic       st_ab, st_ba;          // the sticky bit for either order
-    logic [SIG_W-1:0] sig_z;           // 0 for a zero operand
-    logic [SUM_W-1:0] z_sh;
-    logic       sticky;                // a one of z is shifted below the window
     a_big  = (a[22:0] >= b[22:0]);
     x      = a_big ? a : b;
     z      = a_big ? b : a;
@@ -123,7 +139,6 @@ module f24_add
     // the shift does not wait for a subtraction after the swap.
     d_ab   = a[22:16] - b[22:16];
     d_ba   = b[22:16] - a[22:16];
-    d      = a_big ? d_ab : d_ba;
     // The sticky bit for b shifted by d_ab and for a shifted by d_ba, picked by a_big like d:
     // significand bit i of z sits at window bit i + 3 - d and falls out when i + 3 < d, so some
     // one falls out when the lowest one (bit tz) does.
@@ -133,11 +148,6 @@ module f24_add
     z_zero = (z[22:16] == 7'd0);
     z_spec = (z[22:16] == EXP_SPEC);
     sub    = x[23] ^ z[23];
-    sig_z  = z_zero ? '0 : {1'b1, z[15:0]};
-    // Window: bit 20 carry, 19..3 the significand, 2..0 guard, round, sticky.  A shift of 20 or
-    // more (d[4:0] >= 20, or d >= 32) empties the window.
-    z_sh   = ({1'b0, sig_z, {EXT_W{1'b0}}} >> d[4:0]) & {SUM_W{d[6:5] == 2'd0}};
-    sticky = a_big ? st_ab : st_ba;
     // |x| >= |z|: a NaN or Inf z makes x one too, and a NaN z makes x a NaN.  So the result is
     // special when x is, NaN for a NaN x or for Inf - Inf, else the Inf x.  The sum is zero for
     // two zeros (x zero implies z zero) or for equal magnitudes subtracted; |x| > |z| >= 0
@@ -150,7 +160,23 @@ module f24_add
              e:       x[22:16],
              sub:     sub,
              xf:      x[15:0],
-             z_al:    z_sh | {{(SUM_W-1){1'b0}}, sticky}};
+             sig_z:   z_zero ? '0 : {1'b1, z[15:0]},
+             d:       a_big ? d_ab : d_ba,
+             sticky:  a_big ? st_ab : st_ba};
+  endfunction
+
+  function automatic prep_t add_shift(input swap_t w);
+    logic [SUM_W-1:0] z_sh;
+    // Window: bit 20 carry, 19..3 the significand, 2..0 guard, round, sticky.  A shift of 20 or
+    // more (d[4:0] >= 20, or d >= 32) empties the window.
+    z_sh = ({1'b0, w.sig_z, {EXT_W{1'b0}}} >> w.d[4:0]) & {SUM_W{w.d[6:5] == 2'd0}};
+    return '{special: w.special, spec_y: w.spec_y, zero: w.zero, s: w.s, e: w.e, sub: w.sub,
+             xf:      w.xf,
+             z_al:    z_sh | {{(SUM_W-1){1'b0}}, w.sticky}};
+  endfunction
+
+  function automatic prep_t add_prep(input f24_t a, input f24_t b);
+    return add_shift(add_swap(a, b));
   endfunction
 
   // ---------------------------------------------------------------- add
@@ -217,9 +243,10 @@ module f24_add
   // ---------------------------------------------------------------- the stages
   // Each stage is a function of its inputs, evaluated where its register is enabled (so a
   // simulator evaluates a stage only in the clocks it advances; the hardware is the same).
+  swap_t  w_q;   // LAT = 4: stage 1
   align_t s1_q;  // LAT = 2: stage 1
-  prep_t  p_q;   // LAT >= 3: stage 1
-  sel_t   t_q;   // LAT >= 3: stage 2
+  prep_t  p_q;   // LAT = 3: stage 1; LAT = 4: stage 2
+  sel_t   t_q;   // LAT = 3: stage 2; LAT = 4: stage 3
   f24_t   y_q;   // the last stage
 
   always_ff @(posedge clk_i) begin
@@ -227,20 +254,19 @@ module f24_add
       if (LAT == 2) begin
         s1_q <= add_sum(add_prep(a_i, b_i));
         y_q  <= add_finish(add_select(s1_q));
-      end else begin
+      end else if (LAT == 3) begin
         p_q  <= add_prep(a_i, b_i);
+        t_q  <= add_select(add_sum(p_q));
+        y_q  <= add_finish(t_q);
+      end else begin
+        w_q  <= add_swap(a_i, b_i);
+        p_q  <= add_shift(w_q);
         t_q  <= add_select(add_sum(p_q));
         y_q  <= add_finish(t_q);
       end
     end
   end
 
-  if (LAT > 3) begin : g_delay
-    f24_delay #(.W(24), .N(LAT - 3)) u_delay (
-      .clk_i, .en_i, .d_i(y_q), .q_o(y_o)
-    );
-  end else begin : g_out
-    assign y_o = y_q;
-  end
+  assign y_o = y_q;
 
 endmodule
