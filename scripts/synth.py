@@ -4,6 +4,9 @@
 each block out of context and of the top (rtl/fpga/dm_pipeline_fpga_top.sv) on an LFE5U-85F,
 speed grade 8, with the clock constraint of constraints/dm_pipeline.lpf.
 
+A block can be synthesised with parameters other than the design's: `--param f24_add:LAT=3`
+(repeatable) runs it with LAT = 3 under the report key f24_add_LAT3, beside f24_add.
+
 Writes out/synth/report.json and out/synth/report.md (and logs/, one per tool run; netlists;
 critical_path.txt).  A failing step is named with its log and ends the run with exit status 1;
 bad arguments: one line, exit status 2.  Every step's wall time is measured and reported.
@@ -88,6 +91,33 @@ BLOCKS = [
     Block(TOP, TOP, pnr=False, what="dm_pipeline + register port (the P&R top)"),
 ]
 BLOCK_NAMES = [b.name for b in BLOCKS]
+
+
+def parse_param(text: str) -> tuple[str, str, int]:
+    """`--param BLOCK:NAME=VALUE` -> (block, parameter, integer value); ValueError if malformed."""
+    m = re.fullmatch(r"\s*(\w+):([A-Za-z_]\w*)=(-?\d+)\s*", text)
+    if not m:
+        raise ValueError(f"--param {text!r}: expected BLOCK:NAME=VALUE, e.g. f24_add:LAT=3")
+    return m.group(1), m.group(2), int(m.group(3))
+
+
+def with_params(b: Block, over: dict[str, int]) -> Block:
+    """Block `b` with the parameter overrides `over` (`--param`): synthesised and reported under
+    its own key, `<block>_<NAME><value>...` (e.g. f24_add_LAT3), beside the block as the design
+    instantiates it."""
+    if not over:
+        return b
+    tag = "_".join(f"{k}{v}" for k, v in sorted(over.items()))
+    params = {**b.params, **over}
+    base = re.sub(r"\s*\(\d+ clocks?\)", "", b.what)  # the design's latency no longer holds
+    what = f"{base}; " + ", ".join(f"{k}={v}" for k, v in sorted(over.items()))
+    return Block(f"{b.name}_{tag}", b.module, params, b.pnr, what)
+
+
+def report_names(blocks: dict) -> list[str]:
+    """The report's block keys in table order: the flow's blocks, then the `--param` variants."""
+    return ([n for n in BLOCK_NAMES if n in blocks]
+            + sorted(n for n in blocks if n not in BLOCK_NAMES))
 
 # The paper's Table 1 (Park et al. 2013): floating-point elements per FPGA chip, by unit.
 PAPER_TABLE1 = {
@@ -586,7 +616,7 @@ def write_md(report: dict, path: Path) -> None:
     L.append("| block | what | ECP5 LUT | FF | DSP | BRAM | fmax MHz (OOC) | 7-series LUT | "
              "LUTRAM | FF | DSP48 | RAMB36 |")
     L.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for name in BLOCK_NAMES:
+    for name in report_names(report["blocks"]):
         b = report["blocks"].get(name)
         if b is None:
             continue
@@ -619,7 +649,7 @@ def write_md(report: dict, path: Path) -> None:
     L.append("## Critical paths\n")
     L.append("| block | fmax MHz | delay ns (logic + routing) | levels | from | to | source lines |")
     L.append("|---|---:|---|---:|---|---|---|")
-    items = [(n, report["pnr"][n]) for n in BLOCK_NAMES if n in report.get("pnr", {})]
+    items = [(n, report["pnr"][n]) for n in report_names(report.get("pnr", {}))]
     if t:
         items.append((TOP, t))
     for n, p in sorted(items, key=lambda kv: kv[1]["fmax_mhz"]):
@@ -736,6 +766,12 @@ def main() -> int:
     ap.add_argument("--out", type=Path, default=ROOT / "out" / "synth")
     ap.add_argument("--blocks", default="", help="comma-separated subset of: "
                     + ", ".join(BLOCK_NAMES))
+    ap.add_argument("--param", action="append", default=[], metavar="BLOCK:NAME=VALUE",
+                    help="synthesise BLOCK with parameter NAME overridden (repeatable; e.g. "
+                         "--param f24_add:LAT=3): reported under its own key, e.g. "
+                         "f24_add_LAT3, beside the block as the design instantiates it (which "
+                         "a run with --blocks f24_add and no --param gives); BLOCK is run even "
+                         "when --blocks does not name it")
     ap.add_argument("--blocks-only", action="store_true",
                     help=f"skip the place and route of the top ({TOP}), the longest step")
     ap.add_argument("--ecp5-opts", default="",
@@ -796,6 +832,19 @@ def main() -> int:
     bad = [n for n in names if n not in BLOCK_NAMES]
     if bad:
         return fail(f"unknown block(s) {', '.join(bad)}; blocks: {', '.join(BLOCK_NAMES)}")
+    overrides: dict[str, dict[str, int]] = {}
+    for text in args.param:
+        try:
+            blk, pname, val = parse_param(text)
+        except ValueError as e:
+            return fail(str(e))
+        if blk not in BLOCK_NAMES or blk == TOP:
+            return fail(f"--param {text!r}: unknown block {blk!r}; blocks: "
+                        f"{', '.join(n for n in BLOCK_NAMES if n != TOP)}")
+        overrides.setdefault(blk, {})[pname] = val
+    if args.param and not args.blocks.strip():
+        names = []  # only the overridden blocks
+    names += [n for n in overrides if n not in names]
     if args.jobs < 1:
         return fail("--jobs must be at least 1")
     for flag, val in (("--ecp5-opts", args.ecp5_opts), ("--top-ecp5-opts", args.top_ecp5_opts)):
@@ -818,7 +867,7 @@ def main() -> int:
     except FileNotFoundError as e:
         return fail(f"{e.args[0]} not found (run `make setup`: it comes from requirements.txt)")
 
-    blocks = [b for b in BLOCKS if b.name in names]
+    blocks = [with_params(b, overrides.get(b.name, {})) for b in BLOCKS if b.name in names]
     top_pnr = TOP in names and not args.blocks_only
     if args.blocks_only:
         blocks = [b for b in blocks if b.name != TOP]

@@ -205,6 +205,38 @@ def test_synth_bad_arguments():
     assert p.returncode == 2 and "--abc9-delay" in p.stdout and len(p.stdout.splitlines()) == 1
 
 
+def test_synth_param_overrides(tmp_path):
+    """--param BLOCK:NAME=VALUE: the block under its own key with the parameter set."""
+    assert synth.parse_param("f24_add:LAT=3") == ("f24_add", "LAT", 3)
+    for bad in ("f24_add:LAT", "f24_add=3", "f24_add:LAT=x", ":LAT=3"):
+        with pytest.raises(ValueError):
+            synth.parse_param(bad)
+    div = next(b for b in synth.BLOCKS if b.name == "f24_div")
+    v = synth.with_params(div, {"LAT": 5})
+    assert (v.name, v.module, v.params) == ("f24_div_LAT5", "f24_div", {"LAT": 5})
+    assert synth.with_params(div, {}) is div
+    flow = synth.Flow.__new__(synth.Flow)  # read_cmd needs only the file list
+    flow.files = ["rtl/fp/f24_div.sv"]
+    assert flow.read_cmd(v).endswith("--top f24_div -G LAT=5")
+    # Both keys in the report's tables, the design's block first.
+    report = {
+        "date": "2026-01-01T00:00:00", "top": synth.TOP,
+        "settings": {"yosys": "Y", "nextpnr": "N", "device_name": "LFE5U-85F", "speed": 8,
+                     "package": "CABGA756", "target_mhz": 100.0,
+                     "lpf": "constraints/dm_pipeline.lpf", "seed": 1},
+        "blocks": {n: {"lut": 1, "ff": 1, "dsp": 0, "bram": 0, "what": n}
+                   for n in ("f24_add_LAT3", "f24_add")},
+        "xilinx": {}, "pnr": {}, "seconds": {},
+    }
+    synth.write_md(report, tmp_path / "r.md")
+    md = (tmp_path / "r.md").read_text()
+    assert md.index("| `f24_add` |") < md.index("| `f24_add_LAT3` |")
+    for args, msg in ((["--param", "f24_add:LAT"], "BLOCK:NAME=VALUE"),
+                      (["--param", "nope:LAT=3"], "unknown block")):
+        p = run("scripts/synth.py", *args)
+        assert p.returncode == 2 and msg in p.stdout and len(p.stdout.splitlines()) == 1
+
+
 def test_blocks_are_rtl_modules():
     from tb.common.runner import rtl_index
     index = rtl_index()

@@ -1,6 +1,7 @@
-// f24_add: y = a + b, correctly rounded (RNE), latency 2 enabled clocks, one operation per clock.
-// Subtract by flipping b's sign outside.
+// f24_add: y = a + b, correctly rounded (RNE), latency LAT enabled clocks, one operation per clock.
+// Subtract by flipping b's sign outside.  The result word is the same at every LAT.
 //
+// LAT = 2 (the default, the paper's):
 // Stage 1: swap so |a| >= |b|, align the smaller significand with a guard, a round and a
 //          sticky bit (every bit shifted further out is ORed into the sticky bit; the sticky bit
 //          comes from a trailing-zero count compared with the shift, not from a shifter), add or
@@ -13,6 +14,20 @@
 //            at most one binade apart gives, and then every bit of the difference fits 17 bits:
 //            leading-zero count and shift, no rounding.
 //          The long shift and the rounding carry chain are never in series.
+// LAT = 3 (for clock speed): the same logic cut at two other places, so that no stage holds
+// both a long shifter and a carry chain that depends on it:
+//   stage 1 "align": swap, exponent difference, alignment shift and sticky bit (no add);
+//   stage 2 "add":   the one carry chain of the add, then the "round" side's three-way select
+//                    (fraction, guard, sticky, exponent, round-up bit) and the "exact" side's
+//                    leading-zero count;
+//   stage 3 "pack":  the rounding carry chain and its range check beside the "exact" side's
+//                    shift, then the last choice between specials, zero, "round" and "exact".
+// LAT = 4: stage 1 of LAT = 3 cut once more, after the swap and before the alignment shift:
+//   stage 1 "swap":  the magnitude compare, the swap, the exponent difference and the sticky bit
+//                    (a trailing-zero count compared with the difference: this stage's longest
+//                    path, and the longest of the unit at LAT = 3 and 4);
+//   stage 2 "shift": the alignment shift;
+//   stages 3 and 4:  "add" and "pack" as at LAT = 3.
 //
 // Why three extra bits are enough: if the exponent difference is 0 or 1 the aligned operand fits
 // the window exactly (no sticky) and any cancellation is exact.  Otherwise the difference keeps at
@@ -28,7 +43,11 @@
 // below the leading one, none lost.
 module f24_add
   import f24_pkg::*;
-(
+#(
+  // Latency in enabled clocks, 2 .. 4: 2 = the paper's (two stages); 3 and 4 = three and four
+  // stages for a faster clock.  The same result at every LAT.
+  parameter int unsigned LAT = 2
+) (
   input  logic clk_i,  // clock
   input  logic en_i,   // clock enable: the pipeline registers advance only while en_i is 1
   input  f24_t a_i,
@@ -36,13 +55,41 @@ module f24_add
   output f24_t y_o
 );
 
+  if (LAT < 2 || LAT > 4) begin : g_check_lat
+    $error("f24_add: LAT must be in 2..4");
+  end
+
   localparam int unsigned EXT_W = 3;                  // guard, round, sticky
   localparam int unsigned SUM_W = 1 + SIG_W + EXT_W;  // carry + significand + extra = 21
 
-  // Each stage is a function of its inputs, evaluated where its register is enabled (so a
-  // simulator evaluates a stage only in the clocks it advances; the hardware is the same).
+  // ---------------------------------------------------------------- swap and align
+  // The operands swapped, before the alignment shift (the register of stage 1 at LAT = 4).
+  typedef struct packed {
+    logic             special;  // NaN or Inf result
+    f24_t             spec_y;
+    logic             zero;     // the sum is exactly zero
+    logic             s;        // result sign (see align_t)
+    logic [6:0]       e;        // biased exponent of the larger operand
+    logic             sub;      // effective subtraction
+    logic [FRAC_W-1:0] xf;      // fraction of the larger operand
+    logic [SIG_W-1:0] sig_z;    // significand of the smaller operand, 0 for a zero operand
+    logic [6:0]       d;        // exponent difference, 0..126
+    logic             sticky;   // a one of the smaller operand is shifted below the window
+  } swap_t;
 
-  // ---------------------------------------------------------------- stage 1: swap, align, add
+  // The operands swapped and aligned, before the add (the register of stage 1 at LAT >= 3).
+  typedef struct packed {
+    logic             special;  // NaN or Inf result
+    f24_t             spec_y;
+    logic             zero;     // the sum is exactly zero
+    logic             s;        // result sign (see align_t)
+    logic [6:0]       e;        // biased exponent of the larger operand
+    logic             sub;      // effective subtraction
+    logic [FRAC_W-1:0] xf;      // fraction of the larger operand
+    logic [SUM_W-1:0] z_al;     // the smaller operand aligned to the window, sticky in bit 0
+  } prep_t;
+
+  // The sum (the register of stage 1 at LAT = 2).
   typedef struct packed {
     logic             special;  // NaN or Inf result
     f24_t             spec_y;
@@ -52,6 +99,20 @@ module f24_add
     logic [6:0]       e;        // biased exponent of the larger operand
     logic [SUM_W-1:0] sum;      // |a + b| in units of 2^(e-63-19), sticky jammed in
   } align_t;
+
+  // Both normalisations up to their last step (the register of stage 2 at LAT >= 3).
+  typedef struct packed {
+    logic             special;  // NaN or Inf result
+    f24_t             spec_y;
+    logic             zero;     // the sum is exactly zero
+    logic             s;        // result sign
+    logic             rnd_side; // the leading one at sum bit 20, 19 or 18: the "round" side
+    logic [23:0]      ef;       // "round" side: {biased exponent before rounding, fraction}
+    logic             up;       // "round" side: round up (RNE)
+    logic [6:0]       e;        // "exact" side: biased exponent of the larger operand
+    logic [15:0]      sx;       // "exact" side: sum[17:2]
+    logic [3:0]       lz;       // "exact" side: leading zeros of sum[17:2]
+  } sel_t;
 
   // Trailing zeros of a significand {1, f}: 0..16.
   function automatic logic [4:0] sig_tz(input logic [FRAC_W-1:0] f);
@@ -63,17 +124,14 @@ module f24_add
     return n;
   endfunction
 
-  function automatic align_t add_align(input f24_t a, input f24_t b);
+  function automatic swap_t add_swap(input f24_t a, input f24_t b);
     f24_t       x, z;                  // x: the operand of larger magnitude, z: the other one
     logic       a_big;
     logic       x_zero, z_zero;        // exponent 0 (x zero implies z zero)
     logic       z_spec;                // exponent 127 (z special implies x special)
     logic       sub;                   // effective subtraction
-    logic [6:0] d_ab, d_ba, d;         // exponent differences; d = ex - ez, 0..126
+    logic [6:0] d_ab, d_ba;            // exponent differences
     logic       st_ab, st_ba;          // the sticky bit for either order
-    logic [SIG_W-1:0] sig_z;           // 0 for a zero operand
-    logic [SUM_W-1:0] x_al, z_sh, z_al;
-    logic       sticky;                // a one of z is shifted below the window
     a_big  = (a[22:0] >= b[22:0]);
     x      = a_big ? a : b;
     z      = a_big ? b : a;
@@ -81,7 +139,6 @@ module f24_add
     // the shift does not wait for a subtraction after the swap.
     d_ab   = a[22:16] - b[22:16];
     d_ba   = b[22:16] - a[22:16];
-    d      = a_big ? d_ab : d_ba;
     // The sticky bit for b shifted by d_ab and for a shifted by d_ba, picked by a_big like d:
     // significand bit i of z sits at window bit i + 3 - d and falls out when i + 3 < d, so some
     // one falls out when the lowest one (bit tz) does.
@@ -91,43 +148,56 @@ module f24_add
     z_zero = (z[22:16] == 7'd0);
     z_spec = (z[22:16] == EXP_SPEC);
     sub    = x[23] ^ z[23];
-    sig_z  = z_zero ? '0 : {1'b1, z[15:0]};
-    // Window: bit 20 carry, 19..3 the significand, 2..0 guard, round, sticky.  A shift of 20 or
-    // more (d[4:0] >= 20, or d >= 32) empties the window.
-    z_sh   = ({1'b0, sig_z, {EXT_W{1'b0}}} >> d[4:0]) & {SUM_W{d[6:5] == 2'd0}};
-    sticky = a_big ? st_ab : st_ba;
-    x_al   = {1'b0, 1'b1, x[15:0], {EXT_W{1'b0}}};  // a zero x means a zero sum, flagged apart
-    z_al   = z_sh | {{(SUM_W-1){1'b0}}, sticky};
     // |x| >= |z|: a NaN or Inf z makes x one too, and a NaN z makes x a NaN.  So the result is
     // special when x is, NaN for a NaN x or for Inf - Inf, else the Inf x.  The sum is zero for
     // two zeros (x zero implies z zero) or for equal magnitudes subtracted; |x| > |z| >= 0
-    // otherwise gives a nonzero sum.
+    // otherwise gives a nonzero sum.  A zero x means a zero sum, flagged apart.
     return '{special: (x[22:16] == EXP_SPEC),
              spec_y:  (x[15:0] != 16'd0 || (z_spec && sub)) ? F24_NAN
                                                              : {x[23], EXP_SPEC, 16'd0},
              zero:    x_zero || (sub && a[22:0] == b[22:0]),
              s:       (x_zero || (sub && a[22:0] == b[22:0])) ? (a[23] & b[23]) : x[23],
              e:       x[22:16],
-             sum:     x_al + (z_al ^ {SUM_W{sub}}) + SUM_W'(sub)};
+             sub:     sub,
+             xf:      x[15:0],
+             sig_z:   z_zero ? '0 : {1'b1, z[15:0]},
+             d:       a_big ? d_ab : d_ba,
+             sticky:  a_big ? st_ab : st_ba};
   endfunction
 
-  // ---------------------------------------------------------------- stage 2: normalise, round
-  function automatic f24_t add_round(input align_t r);
+  function automatic prep_t add_shift(input swap_t w);
+    logic [SUM_W-1:0] z_sh;
+    // Window: bit 20 carry, 19..3 the significand, 2..0 guard, round, sticky.  A shift of 20 or
+    // more (d[4:0] >= 20, or d >= 32) empties the window.
+    z_sh = ({1'b0, w.sig_z, {EXT_W{1'b0}}} >> w.d[4:0]) & {SUM_W{w.d[6:5] == 2'd0}};
+    return '{special: w.special, spec_y: w.spec_y, zero: w.zero, s: w.s, e: w.e, sub: w.sub,
+             xf:      w.xf,
+             z_al:    z_sh | {{(SUM_W-1){1'b0}}, w.sticky}};
+  endfunction
+
+  function automatic prep_t add_prep(input f24_t a, input f24_t b);
+    return add_shift(add_swap(a, b));
+  endfunction
+
+  // ---------------------------------------------------------------- add
+  function automatic align_t add_sum(input prep_t p);
+    logic [SUM_W-1:0] x_al;
+    x_al = {1'b0, 1'b1, p.xf, {EXT_W{1'b0}}};
+    return '{special: p.special, spec_y: p.spec_y, zero: p.zero, s: p.s, e: p.e,
+             sum:     x_al + (p.z_al ^ {SUM_W{p.sub}}) + SUM_W'(p.sub)};
+  endfunction
+
+  // ---------------------------------------------------------------- normalise: select
+  function automatic sel_t add_select(input align_t r);
     // "round" side: leading one at bit 20, 19 or 18, exponent e + 1, e, e - 1.
     logic [FRAC_W-1:0]  frac;    // the fraction below the leading one
-    logic               guard, sticky, up;
+    logic               guard, sticky;
     logic [7:0]         e_r;     // biased exponent before rounding, 0..127
-    logic [23:0]        rnd;     // {exponent, fraction} after rounding; exponent 0..128
-    f24_t               y_rnd;
-    // "exact" side: leading one at bit 17 .. 2, exponent e - 2 - lz.
-    // lz32[4] is 0 and nrm[15] is the leading one here: both unused by design.
+    // "exact" side: leading one at bit 17 .. 2.
+    // lz32[4] is 0 here: unused by design.
     /* verilator lint_off UNUSEDSIGNAL */
     logic [4:0]         lz32;    // leading zeros of {sum[17:2], 16 zeros}: below 16 here
-    logic [15:0]        nrm;     // sum[17:2] << lz: leading one at bit 15
     /* verilator lint_on UNUSEDSIGNAL */
-    logic [3:0]         lz;      // leading zeros of sum[17:2]
-    logic signed [8:0]  e_x;
-    f24_t               y_exact;
     if (r.sum[20]) begin
       frac = r.sum[19:4];  guard = r.sum[3];  sticky = |r.sum[2:0];  e_r = {1'b0, r.e} + 8'd1;
     end else if (r.sum[19]) begin
@@ -135,31 +205,65 @@ module f24_add
     end else begin
       frac = r.sum[17:2];  guard = r.sum[1];  sticky = r.sum[0];     e_r = {1'b0, r.e} - 8'd1;
     end
-    up      = guard & (sticky | frac[0]);
-    rnd     = {e_r, frac} + 24'(up);
-    // A rounded exponent of 0 is below 2^-62 (flush to zero), 127 or more above F24_MAX.
-    y_rnd   = (rnd[23:16] == 8'd0) ? {r.s, 23'd0}
-            : (rnd[23] || rnd[22:16] == EXP_SPEC) ? {r.s, EXP_SPEC, 16'd0}
-            : {r.s, rnd[22:0]};
-    lz32    = f24_clz32({r.sum[17:2], 16'd0});
-    lz      = lz32[3:0];
-    nrm     = r.sum[17:2] << lz;
-    e_x     = $signed({2'b0, r.e}) - 9'sd2 - $signed({5'd0, lz});
-    // Bit 0 of the fraction is below the lowest bit the difference can have.
-    y_exact = (e_x <= 9'sd0) ? {r.s, 23'd0} : {r.s, e_x[6:0], nrm[14:0], 1'b0};
-    return r.special         ? r.spec_y
-         : r.zero            ? {r.s, 23'd0}
-         : (r.sum[20:18] != 3'd0) ? y_rnd
-         :                     y_exact;
+    lz32 = f24_clz32({r.sum[17:2], 16'd0});
+    return '{special:  r.special, spec_y: r.spec_y, zero: r.zero, s: r.s,
+             rnd_side: (r.sum[20:18] != 3'd0),
+             ef:       {e_r, frac},
+             up:       guard & (sticky | frac[0]),
+             e:        r.e,
+             sx:       r.sum[17:2],
+             lz:       lz32[3:0]};
   endfunction
 
-  align_t s1_q;
-  f24_t   y_q;
+  // ---------------------------------------------------------------- normalise: round, pack
+  function automatic f24_t add_finish(input sel_t t);
+    logic [23:0]        rnd;     // {exponent, fraction} after rounding; exponent 0..128
+    f24_t               y_rnd;
+    // nrm[15] is the leading one: unused by design.
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [15:0]        nrm;     // sum[17:2] << lz: leading one at bit 15
+    /* verilator lint_on UNUSEDSIGNAL */
+    logic signed [8:0]  e_x;     // "exact" side's exponent, e - 2 - lz
+    f24_t               y_exact;
+    rnd     = t.ef + 24'(t.up);
+    // A rounded exponent of 0 is below 2^-62 (flush to zero), 127 or more above F24_MAX.
+    y_rnd   = (rnd[23:16] == 8'd0) ? {t.s, 23'd0}
+            : (rnd[23] || rnd[22:16] == EXP_SPEC) ? {t.s, EXP_SPEC, 16'd0}
+            : {t.s, rnd[22:0]};
+    nrm     = t.sx << t.lz;
+    e_x     = $signed({2'b0, t.e}) - 9'sd2 - $signed({5'd0, t.lz});
+    // Bit 0 of the fraction is below the lowest bit the difference can have.
+    y_exact = (e_x <= 9'sd0) ? {t.s, 23'd0} : {t.s, e_x[6:0], nrm[14:0], 1'b0};
+    return t.special  ? t.spec_y
+         : t.zero     ? {t.s, 23'd0}
+         : t.rnd_side ? y_rnd
+         :              y_exact;
+  endfunction
+
+  // ---------------------------------------------------------------- the stages
+  // Each stage is a function of its inputs, evaluated where its register is enabled (so a
+  // simulator evaluates a stage only in the clocks it advances; the hardware is the same).
+  swap_t  w_q;   // LAT = 4: stage 1
+  align_t s1_q;  // LAT = 2: stage 1
+  prep_t  p_q;   // LAT = 3: stage 1; LAT = 4: stage 2
+  sel_t   t_q;   // LAT = 3: stage 2; LAT = 4: stage 3
+  f24_t   y_q;   // the last stage
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
-      s1_q <= add_align(a_i, b_i);
-      y_q  <= add_round(s1_q);
+      if (LAT == 2) begin
+        s1_q <= add_sum(add_prep(a_i, b_i));
+        y_q  <= add_finish(add_select(s1_q));
+      end else if (LAT == 3) begin
+        p_q  <= add_prep(a_i, b_i);
+        t_q  <= add_select(add_sum(p_q));
+        y_q  <= add_finish(t_q);
+      end else begin
+        w_q  <= add_swap(a_i, b_i);
+        p_q  <= add_shift(w_q);
+        t_q  <= add_select(add_sum(p_q));
+        y_q  <= add_finish(t_q);
+      end
     end
   end
 

@@ -1,10 +1,15 @@
 // f24_cmp: compare a with b; exactly one of lt_o, eq_o, gt_o, un_o is 1 (un_o: an operand is NaN).
-// -0 == +0 and subnormal patterns compare as zeros. Latency 1 enabled clock.
+// -0 == +0 and subnormal patterns compare as zeros. Latency LAT enabled clocks (1, the default,
+// or 2); the result is the same at both.  LAT = 2 adds one plain enabled delay register
+// (f24_delay) after the unit's register: its one stage is shorter than the float adder's and
+// multiplier's, so a second register inside it would buy no clock speed.
 module f24_cmp
   import f24_pkg::*;
-(
+#(
+  parameter int unsigned LAT = 1  // latency in enabled clocks, 1 (the default) or 2
+) (
   input  logic clk_i,  // clock
-  input  logic en_i,   // clock enable: the output registers advance only while en_i is 1
+  input  logic en_i,   // clock enable: the registers advance only while en_i is 1
   input  f24_t a_i,
   input  f24_t b_i,
   output logic lt_o,
@@ -16,6 +21,11 @@ module f24_cmp
   logic        a_zero, b_zero, a_nan, b_nan;
   logic [23:0] ka, kb;  // order-preserving keys: magnitude with the sign folded in
   logic [3:0]  res_d, res_q;  // {lt, eq, gt, un}
+  logic [3:0]  res;           // res_q after LAT - 1 delay registers
+
+  if (LAT < 1 || LAT > 2) begin : g_check_lat
+    $error("f24_cmp: LAT must be 1 or 2");
+  end
 
   // Map a pattern to an unsigned key whose order is the numeric order: zeros (either sign) give
   // 2^23, a positive magnitude m gives 2^23 + m, a negative one 2^23 - 1 - m (~m in 23 bits).
@@ -40,7 +50,15 @@ module f24_cmp
     if (en_i) res_q <= res_d;
   end
 
-  assign {lt_o, eq_o, gt_o, un_o} = res_q;
+  if (LAT > 1) begin : g_delay
+    f24_delay #(.W(4), .N(LAT - 1)) u_delay (
+      .clk_i, .en_i, .d_i(res_q), .q_o(res)
+    );
+  end else begin : g_out
+    assign res = res_q;
+  end
+
+  assign {lt_o, eq_o, gt_o, un_o} = res;
 
 `ifndef SYNTHESIS
   // Exactly one relation holds once the register has been loaded (no reset: track the first load).

@@ -1,6 +1,7 @@
 // f24_from_int: signed W-bit integer -> f24.  Exact when |k| has at most 17 significant bits,
-// otherwise rounded to nearest, ties to even; 0 gives +0.  Latency 1 enabled clock, one conversion
-// per clock.  Golden model: model.f24_conv.from_int.
+// otherwise rounded to nearest, ties to even; 0 gives +0.  Latency LAT enabled clocks (1, the
+// default, or 2), one conversion per clock; the result word is the same at both.  Golden model:
+// model.f24_conv.from_int.
 //
 // Structure (one clock; the normalising shift is the long path, so the rounding is kept off it):
 //   - k = 0 and k = -2^(W-1) are decoded from k itself: +0, and the constant -2^(W-1) (exact).
@@ -15,15 +16,20 @@
 //     the exact path's shifter; the round-up bit only chooses.
 //   - No range check: the exponent is 63 + (bit length - 1), at most 63 + 62 for any |k| below
 //     2^63 (plus one when rounding carries), and 2^63 itself is exact, so it stays in [63, 126].
+// LAT = 2 (for clock speed): stage 1 the negation and the two leading-zero counts, stage 2 the
+// shifts, the rounding and the choice of the result: the same operations as LAT = 1's function,
+// split in two functions (written apart because Yosys maps the two functions composed into a
+// different netlist from the single one: LAT = 1 keeps the single function's).
 // Equal to the previous single round-and-pack (f24_pkg::f24_round_pack) for every W; checked by a
 // Yosys SAT miter for W = 2 .. 64 (a selection) and by the cocotb test against the model.
 module f24_from_int
   import f24_pkg::*;
 #(
-  parameter int unsigned W = 20  // integer width in bits, two's complement (2 .. 64)
+  parameter int unsigned W   = 20,  // integer width in bits, two's complement (2 .. 64)
+  parameter int unsigned LAT = 1    // latency in enabled clocks, 1 (the default) or 2
 ) (
   input  logic                clk_i,  // clock
-  input  logic                en_i,   // clock enable: the output register advances only while 1
+  input  logic                en_i,   // clock enable: the registers advance only while en_i is 1
   input  logic signed [W-1:0] k_i,    // integer to convert
   output f24_t                y_o     // k_i as f24
 );
@@ -32,8 +38,11 @@ module f24_from_int
     $error("f24_from_int: W must be in 2..64");
   end
 
-  // The conversion as a function of k, evaluated where the output register is enabled (a
-  // simulator evaluates it only in the clocks the unit advances; the hardware is the same).
+  if (LAT < 1 || LAT > 2) begin : g_check_lat
+    $error("f24_from_int: LAT must be 1 or 2");
+  end
+
+  // LAT = 1: the conversion as one function of k.
   function automatic f24_t from_int(input logic signed [W-1:0] k);
     logic               s;
     logic               kmin;   // k = -2^(W-1): exactly 2^(W-1) in magnitude
@@ -74,10 +83,79 @@ module f24_from_int
          :             {s, er, nx[62:47]};
   endfunction
 
-  f24_t y_q;
+  // Stage 1's result (the register between the stages at LAT = 2).
+  typedef struct packed {
+    logic         zero;   // k = 0
+    logic         kmin;   // k = -2^(W-1): exactly 2^(W-1) in magnitude
+    logic         s;      // sign
+    logic [W-2:0] mag;    // |k| for every other k (W - 1 bits)
+    logic         big;    // |k| >= 2^17
+    logic [4:0]   lzx;    // leading zeros of mag[16:0] (garbage for 0, which is not used)
+    logic [5:0]   lzr;    // leading zeros of mag left-aligned, at most W - 19 (a one forced in)
+  } conv_t;
+
+  // Stage 1: the magnitude and both leading-zero counts.
+  function automatic conv_t from_int_count(input logic signed [W-1:0] k);
+    logic         s;
+    logic [W-2:0] mag;
+    logic [63:0]  ml;     // mag, zero-extended
+    logic [63:0]  u;      // mag left-aligned in 64 bits
+    s   = k[W-1];
+    mag = s ? -k[W-2:0] : k[W-2:0];
+    ml  = 64'(mag);
+    u   = ml << (65 - W);
+    return '{zero: (k == '0),
+             kmin: s && (k[W-2:0] == '0),
+             s:    s,
+             mag:  mag,
+             big:  (ml[63:17] != 47'd0),
+             lzx:  f24_clz32({ml[16:0], 15'd0}),
+             lzr:  f24_clz64(u | (64'd1 << (82 - W)))};
+  endfunction
+
+  // Stage 2: the shifts, the rounding and the result.
+  function automatic f24_t from_int_pack(input conv_t c);
+    logic [63:0]        ml;     // mag, zero-extended
+    // |k| < 2^17: exact.  Normalise the low 17 bits; no rounding.
+    logic [15:0]        nxx;    // mag[16:0] << lzx below its leading one (at bit 16)
+    logic [6:0]         ex;     // its biased exponent, 63 + 16 - lzx
+    // |k| >= 2^17 (W > 18 only): at most W - 19 leading zeros, rounded to nearest even.
+    logic [63:0]        u;      // mag left-aligned in 64 bits
+    logic [62:0]        nx;     // u << lzr below its leading one (at bit 63 when big)
+    logic [6:0]         er;     // biased exponent, 63 + W - 2 - lzr
+    logic               up;     // round up: above halfway, or halfway with an odd significand
+    logic [22:0]        ri;     // {er, fraction} + 1: the rounded-up result (a fraction of all
+                                // ones carries into the exponent: exactly 2.0 renormalised)
+    ml   = 64'(c.mag);
+    nxx  = 16'(ml[16:0] << c.lzx);
+    ex   = 7'd79 - {2'd0, c.lzx};
+    u    = ml << (65 - W);
+    nx   = 63'(u << c.lzr);
+    er   = 7'(63 + W - 2) - {1'b0, c.lzr};
+    up   = nx[46] && (nx[45:0] != 46'd0 || nx[47]);
+    ri   = {er, nx[62:47]} + 23'd1;
+    // 0 gives +0.  The exponent never leaves [1, 126]: |k| <= 2^63, and 2^63 itself is exact.
+    return c.zero  ? '0
+         : c.kmin  ? {1'b1, 7'(63 + W - 1), 16'd0}
+         : !c.big  ? {c.s, ex, nxx}
+         : up      ? {c.s, ri}
+         :           {c.s, er, nx[62:47]};
+  endfunction
+
+  // Each stage is a function of its inputs, evaluated where its register is enabled (a simulator
+  // evaluates it only in the clocks the unit advances; the hardware is the same).
+  conv_t c_q;  // LAT = 2: stage 1
+  f24_t  y_q;  // the last stage
 
   always_ff @(posedge clk_i) begin
-    if (en_i) y_q <= from_int(k_i);
+    if (en_i) begin
+      if (LAT == 1) begin
+        y_q <= from_int(k_i);
+      end else begin
+        c_q <= from_int_count(k_i);
+        y_q <= from_int_pack(c_q);
+      end
+    end
   end
 
   assign y_o = y_q;

@@ -1,11 +1,15 @@
 // f24_to_index: f24 -> signed W-bit texel index, idx = floor(a) saturated to [-2^(W-1), 2^(W-1)-1].
 // sat_o is 1 when the value was clamped or a is NaN (NaN gives idx 0); +-Inf saturate; zeros and
 // subnormal patterns give 0.  Floor rounds toward minus infinity: -0.5 -> -1, -1.0 -> -1.
-// Latency 1 enabled clock, one conversion per clock.  Golden model: model.f24_conv.to_index.
+// Latency LAT enabled clocks (1, the default, or 2), one conversion per clock; the result is the
+// same at both.  LAT = 2 adds one plain enabled delay register (f24_delay) after the unit's
+// registers: its one stage is shorter than the float adder's and multiplier's, so a second
+// register inside it would buy no clock speed.  Golden model: model.f24_conv.to_index.
 module f24_to_index
   import f24_pkg::*;
 #(
-  parameter int unsigned W = 20  // index width in bits, two's complement (2 .. 64)
+  parameter int unsigned W   = 20,  // index width in bits, two's complement (2 .. 64)
+  parameter int unsigned LAT = 1    // latency in enabled clocks, 1 (the default) or 2
 ) (
   input  logic                clk_i,  // clock
   input  logic                en_i,   // clock enable: the output registers advance only while 1
@@ -16,6 +20,10 @@ module f24_to_index
 
   if (W < 2 || W > 64) begin : g_check_w
     $error("f24_to_index: W must be in 2..64");
+  end
+
+  if (LAT < 1 || LAT > 2) begin : g_check_lat
+    $error("f24_to_index: LAT must be 1 or 2");
   end
 
   localparam int unsigned FW = W + 15;  // |a| * 2^16 for |a| < 2^(W-1): 17-bit sig << (W-2)
@@ -54,13 +62,21 @@ module f24_to_index
         : '{idx: $signed(W'((s ? -{1'b0, fix} : {1'b0, fix}) >> 16)), sat: 1'b0};
   endfunction
 
-  index_t q;
+  index_t q, r;  // q: the unit's register; r: the result after LAT - 1 delay registers
 
   always_ff @(posedge clk_i) begin
     if (en_i) q <= to_index(a_i);
   end
 
-  assign idx_o = q.idx;
-  assign sat_o = q.sat;
+  if (LAT > 1) begin : g_delay
+    f24_delay #(.W($bits(index_t)), .N(LAT - 1)) u_delay (
+      .clk_i, .en_i, .d_i(q), .q_o(r)
+    );
+  end else begin : g_out
+    assign r = q;
+  end
+
+  assign idx_o = r.idx;
+  assign sat_o = r.sat;
 
 endmodule

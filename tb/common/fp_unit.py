@@ -9,6 +9,9 @@ from __future__ import annotations
 
 import os
 import random
+import shutil
+import subprocess
+from pathlib import Path
 from typing import Callable, Mapping, Sequence
 
 import cocotb
@@ -38,6 +41,57 @@ def vectors(default: int = VECTORS) -> int:
     if "VECTORS" in os.environ:
         return int(os.environ["VECTORS"])
     return max(default, VECTORS) if runner.long_stimulus() else default
+
+
+#: The environment variable that carries the latency under test (the unit's LAT) into the cocotb
+#: test; :func:`run_lat` sets it.
+LAT_ENV = "FP_LAT"
+
+
+def latency(default: int) -> int:
+    """The latency under test: ``FP_LAT`` (set by :func:`run_lat`), else the unit's default."""
+    return int(os.environ.get(LAT_ENV, default))
+
+
+def run_lat(top: str, test_module: str, test_dir: Path, lat: int, default: int,
+            parameters: Mapping[str, object] | None = None,
+            extra_env: Mapping[str, str] | None = None) -> None:
+    """Build ``top`` at latency ``lat`` and run ``test_module`` with ``FP_LAT`` = ``lat``.
+
+    The default latency is built with no LAT parameter at all (so the run also checks that the
+    unit's default is ``default``); every other one with ``LAT`` = ``lat``.
+    """
+    params = dict(parameters or {})
+    if lat != default:
+        params["LAT"] = lat
+    env = dict(extra_env or {})
+    env[LAT_ENV] = str(lat)
+    runner.run(top, test_module, test_dir, parameters=params, extra_env=env)
+
+
+def elaborate(top: str, parameters: Mapping[str, object]) -> tuple[int, str]:
+    """Verilator --lint-only of ``top`` with ``parameters``: (exit status, output)."""
+    verilator = shutil.which("verilator")
+    if verilator is None:
+        raise RuntimeError("verilator not found on PATH (run through make)")
+    cmd = ([verilator, "--lint-only", "--top-module", top]
+           + [f"-G{k}={v}" for k, v in parameters.items()]
+           + [str(p) for p in runner.sources_for(top)])
+    p = subprocess.run(cmd, capture_output=True, text=True, cwd=runner.ROOT)
+    return p.returncode, p.stdout + p.stderr
+
+
+def check_lats(top: str, lats: Sequence[int], parameters: Mapping[str, object] | None = None
+               ) -> None:
+    """Elaborate ``top`` at every LAT from 0 to max(lats) + 2: each of ``lats`` elaborates clean,
+    each other one stops at the unit's ``$error`` ("<top>: LAT must ...")."""
+    for lat in range(0, max(lats) + 3):
+        rc, out = elaborate(top, {**(parameters or {}), "LAT": lat})
+        rejected = f"{top}: LAT must" in out
+        if lat in lats:
+            assert rc == 0 and not rejected, f"{top} LAT={lat} does not elaborate:\n{out}"
+        else:
+            assert rc != 0 and rejected, f"{top} LAT={lat} is not rejected:\n{out}"
 
 
 async def check_pipeline(dut, latency: int, inputs: Mapping[str, np.ndarray],

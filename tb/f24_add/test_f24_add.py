@@ -1,13 +1,22 @@
-"""f24_add against model.f24.add: random patterns, values near 1.0 and the directed set."""
+"""f24_add against model.f24.add: random patterns, values near 1.0 and the directed set.
+
+Run at every latency the unit accepts (LAT 2, the default, built with no parameter; 3; 4), each
+with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
+hold while en_i = 0 and every result bit.  test_f24_add_lats checks that exactly these LATs
+elaborate.
+"""
 from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 
 from model import f24, f24_vectors as vec
-from tb.common import fp_unit, runner
+from tb.common import fp_unit
 
-LATENCY = 2
+#: The unit's default latency (the paper's) and every LAT it accepts.
+DEFAULT_LAT = 2
+LATS = (2, 3, 4)
 
 
 def binade_edges(rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
@@ -35,9 +44,16 @@ async def add_random_and_directed(dut):
     a, b = np.concatenate([da, ra]), np.concatenate([db, rb])
     with np.errstate(invalid="ignore"):  # Inf - Inf in the float64 model: NaN is the expected result
         y = f24.add(a, b)
-    n = await fp_unit.check_pipeline(dut, LATENCY, {"a_i": a, "b_i": b}, {"y_o": y}, rng)
-    dut._log.info("VECTORS f24_add: %d (%d directed, %d random), 0 mismatches", n, len(da), len(ra))
+    lat = fp_unit.latency(DEFAULT_LAT)
+    n = await fp_unit.check_pipeline(dut, lat, {"a_i": a, "b_i": b}, {"y_o": y}, rng)
+    dut._log.info("VECTORS f24_add LAT=%d: %d (%d directed, %d random), 0 mismatches", lat, n,
+                  len(da), len(ra))
 
 
-def test_f24_add():
-    runner.run("f24_add", "test_f24_add", Path(__file__).parent)
+@pytest.mark.parametrize("lat", LATS)
+def test_f24_add(lat: int):
+    fp_unit.run_lat("f24_add", "test_f24_add", Path(__file__).parent, lat, DEFAULT_LAT)
+
+
+def test_f24_add_lats():
+    fp_unit.check_lats("f24_add", LATS)

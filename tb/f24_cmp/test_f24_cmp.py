@@ -1,13 +1,22 @@
-"""f24_cmp against model.f24.cmp: random patterns, values near 1.0 and the directed set."""
+"""f24_cmp against model.f24.cmp: random patterns, values near 1.0 and the directed set.
+
+Run at every latency the unit accepts (LAT 1, the default, built with no parameter, and 2), each
+with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
+hold while en_i = 0 and every result bit.  test_f24_cmp_lats checks that exactly these LATs
+elaborate.
+"""
 from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 
 from model import f24, f24_vectors as vec
-from tb.common import fp_unit, runner
+from tb.common import fp_unit
 
-LATENCY = 1
+#: The unit's default latency and every LAT it accepts.
+DEFAULT_LAT = 1
+LATS = (1, 2)
 
 
 @cocotb.test()
@@ -22,10 +31,16 @@ async def cmp_random_and_directed(dut):
     lt, eq_, gt, un = f24.cmp(a, b)
     exp = {"lt_o": lt.astype(np.uint32), "eq_o": eq_.astype(np.uint32),
            "gt_o": gt.astype(np.uint32), "un_o": un.astype(np.uint32)}
-    n = await fp_unit.check_pipeline(dut, LATENCY, {"a_i": a, "b_i": b}, exp, rng)
-    dut._log.info("VECTORS f24_cmp: %d (%d directed, %d random), 0 mismatches", n, len(da) + 8192,
-                  len(ra))
+    lat = fp_unit.latency(DEFAULT_LAT)
+    n = await fp_unit.check_pipeline(dut, lat, {"a_i": a, "b_i": b}, exp, rng)
+    dut._log.info("VECTORS f24_cmp LAT=%d: %d (%d directed, %d random), 0 mismatches", lat, n,
+                  len(da) + 8192, len(ra))
 
 
-def test_f24_cmp():
-    runner.run("f24_cmp", "test_f24_cmp", Path(__file__).parent)
+@pytest.mark.parametrize("lat", LATS)
+def test_f24_cmp(lat: int):
+    fp_unit.run_lat("f24_cmp", "test_f24_cmp", Path(__file__).parent, lat, DEFAULT_LAT)
+
+
+def test_f24_cmp_lats():
+    fp_unit.check_lats("f24_cmp", LATS)

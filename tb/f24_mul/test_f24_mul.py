@@ -1,13 +1,22 @@
-"""f24_mul against model.f24.mul: random patterns, values near 1.0 and the directed set."""
+"""f24_mul against model.f24.mul: random patterns, values near 1.0 and the directed set.
+
+Run at every latency the unit accepts (LAT 1, the default, built with no parameter; 2; 3), each
+with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
+hold while en_i = 0 and every result bit.  test_f24_mul_lats checks that exactly these LATs
+elaborate.
+"""
 from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 
 from model import f24, f24_vectors as vec
-from tb.common import fp_unit, runner
+from tb.common import fp_unit
 
-LATENCY = 1
+#: The unit's default latency (the paper's) and every LAT it accepts.
+DEFAULT_LAT = 1
+LATS = (1, 2, 3)
 
 
 @cocotb.test()
@@ -16,9 +25,16 @@ async def mul_random_and_directed(dut):
     da, db = vec.directed_binary("mul", rng)
     ra, rb = vec.random_binary(rng, fp_unit.vectors())
     a, b = np.concatenate([da, ra]), np.concatenate([db, rb])
-    n = await fp_unit.check_pipeline(dut, LATENCY, {"a_i": a, "b_i": b}, {"y_o": f24.mul(a, b)}, rng)
-    dut._log.info("VECTORS f24_mul: %d (%d directed, %d random), 0 mismatches", n, len(da), len(ra))
+    lat = fp_unit.latency(DEFAULT_LAT)
+    n = await fp_unit.check_pipeline(dut, lat, {"a_i": a, "b_i": b}, {"y_o": f24.mul(a, b)}, rng)
+    dut._log.info("VECTORS f24_mul LAT=%d: %d (%d directed, %d random), 0 mismatches", lat, n,
+                  len(da), len(ra))
 
 
-def test_f24_mul():
-    runner.run("f24_mul", "test_f24_mul", Path(__file__).parent)
+@pytest.mark.parametrize("lat", LATS)
+def test_f24_mul(lat: int):
+    fp_unit.run_lat("f24_mul", "test_f24_mul", Path(__file__).parent, lat, DEFAULT_LAT)
+
+
+def test_f24_mul_lats():
+    fp_unit.check_lats("f24_mul", LATS)

@@ -3,16 +3,23 @@ and half-integers around 0, values one ulp either side of integers, the +-2^(W-1
 
 The DUT's width W is read from the width of ``idx_o``; ``idx_o`` is compared as a W-bit two's
 complement pattern (expected idx & (2^W - 1)), ``sat_o`` as 0 / 1.
+Run at every latency the unit accepts (LAT 1, the default, built with no parameter, and 2), each
+with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
+hold while en_i = 0 and every result bit.  test_f24_to_index_lats checks that exactly these LATs
+elaborate.
 """
 from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 
 from model import f24, f24_vectors as vec
-from tb.common import fp_unit, runner
+from tb.common import fp_unit
 
-LATENCY = 1
+#: The unit's default latency and every LAT it accepts.
+DEFAULT_LAT = 1
+LATS = (1, 2)
 
 
 def directed(rng: np.random.Generator, w: int) -> np.ndarray:
@@ -47,14 +54,23 @@ async def to_index_random_and_directed(dut):
     a = np.concatenate([d, r])
     idx, sat = f24.to_index(a, w)
     exp = {"idx_o": idx & ((1 << w) - 1), "sat_o": sat.astype(np.int64)}
-    n = await fp_unit.check_pipeline(dut, LATENCY, {"a_i": a}, exp, rng)
-    dut._log.info("VECTORS f24_to_index W=%d: %d (%d directed, %d random; %d saturated), "
-                  "0 mismatches", w, n, len(d), len(r), int(sat.sum()))
+    lat = fp_unit.latency(DEFAULT_LAT)
+    n = await fp_unit.check_pipeline(dut, lat, {"a_i": a}, exp, rng)
+    dut._log.info("VECTORS f24_to_index W=%d LAT=%d: %d (%d directed, %d random; %d saturated), "
+                  "0 mismatches", w, lat, n, len(d), len(r), int(sat.sum()))
 
 
-def test_f24_to_index():
-    runner.run("f24_to_index", "test_f24_to_index", Path(__file__).parent, parameters={"W": 20})
+@pytest.mark.parametrize("lat", LATS)
+def test_f24_to_index(lat: int):
+    fp_unit.run_lat("f24_to_index", "test_f24_to_index", Path(__file__).parent, lat, DEFAULT_LAT,
+                    parameters={"W": 20})
 
 
-def test_f24_to_index_w8():
-    runner.run("f24_to_index", "test_f24_to_index", Path(__file__).parent, parameters={"W": 8})
+@pytest.mark.parametrize("lat", LATS)
+def test_f24_to_index_w8(lat: int):
+    fp_unit.run_lat("f24_to_index", "test_f24_to_index", Path(__file__).parent, lat, DEFAULT_LAT,
+                    parameters={"W": 8})
+
+
+def test_f24_to_index_lats():
+    fp_unit.check_lats("f24_to_index", LATS)
