@@ -26,7 +26,9 @@ module pipe_valid_tag_assert #(
   input logic [DEPTH:1]   stage_valid_i   // stage_valid_o
 );
 
-  localparam int unsigned SW = $clog2(DEPTH + 1);  // wide enough for 0..DEPTH
+  // Wide enough for 0..DEPTH with a bit to spare, so that the range check of the tracked stage
+  // is not constant (Verilator's CMPCONST) when DEPTH + 1 is a power of two.
+  localparam int unsigned SW = $clog2(DEPTH + 1) + 1;
 
   // ---- items inside: entered - out -----------------------------------------------------------
   logic [SW:0] n_q;
@@ -73,7 +75,7 @@ module pipe_valid_tag_assert #(
       in_flight: assert (n_q == n_valid)
         else $error("pipe_valid_tag: %0d valid bits inside, %0d items entered and not out",
                     n_valid, n_q);
-      trk_stage: assert (!trk_q || (trk_s_q >= SW'(1) && trk_s_q <= SW'(DEPTH)
+      trk_stage: assert (!trk_q || (trk_s_q != '0 && trk_s_q <= SW'(DEPTH)
                                     && stage_valid_i[trk_s_q]
                                     && pipe_valid_tag.tag_q[trk_s_q] == trk_tag_q))
         else $error("pipe_valid_tag: the tracked item is lost");
