@@ -116,3 +116,36 @@ def test_dropped_property_is_refused():
     assert p.returncode == 1, out
     assert "traverse_fifo:prove_d4 (prove) LOST" in out, out
     assert "assert data_order lost by the front end" in out, out
+
+
+def _driver():
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("formal_driver",
+                                                  ROOT / "scripts" / "flow" / "formal.py")
+    mod = importlib.util.module_from_spec(spec)
+    assert spec.loader is not None
+    sys.modules["formal_driver"] = mod   # dataclasses look their module up there
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_sby_parsing_and_bmc_depth_rule(tmp_path):
+    """The driver reads tasks, modes and depths, and refuses a file whose BMC is not deeper than
+    its induction; unlabelled properties are reported."""
+    drv = _driver()
+    sby = tmp_path / "x.sby"
+    text = ("[tasks]\nprove_a a prove\nbmc_a a bmc\ncover_a a cover\n\n[options]\n"
+            "prove: mode prove\nprove: depth 3\nbmc: mode bmc\nbmc: depth {bmc}\n"
+            "cover: mode cover\n\n[files]\nrtl/x.sv\n")
+    sby.write_text(text.format(bmc=12))
+    tasks = drv.parse_sby(sby)
+    assert [(t.name, t.mode, t.depth) for t in tasks] == [
+        ("prove_a", "prove", 3), ("bmc_a", "bmc", 12), ("cover_a", "cover", 20)]
+    assert tasks[0].files == ["rtl/x.sv"]
+    sby.write_text(text.format(bmc=3))
+    with pytest.raises(ValueError, match="deeper"):
+        drv.parse_sby(sby)
+    labels, problems = drv.labelled_properties(
+        "// assert (x);\n  a1: assert (x);\n  c1: cover (y);\n  assert (z);\n", "f.sv")
+    assert labels == {"assert": {"a1"}, "cover": {"c1"}}
+    assert len(problems) == 1 and problems[0].startswith("f.sv:4:")

@@ -3,8 +3,9 @@
 """Formal proofs of the RTL (make formal): every task of every SymbiYosys file under formal/.
 
 Each formal/<name>.sby proves one module or one wiring of modules: `prove` tasks (k-induction),
-`bmc` tasks (bounded model checks deeper than the induction) and `cover` tasks (every cover
-statement reached).  The properties are the ones bound into the RTL (rtl/**/<module>_assert.sv),
+`bmc` tasks (bounded model checks deeper than the induction: a file whose deepest bmc task is
+not deeper than its deepest induction is refused) and `cover` tasks (every cover statement
+reached).  The properties are the ones bound into the RTL (rtl/**/<module>_assert.sv),
 which simulation checks too; docs/formal.md lists them.
 
 The tasks run in parallel (--jobs, default the number of CPUs), each in its own directory
@@ -54,6 +55,7 @@ class Task:
     name: str                # the task, e.g. prove_d4
     mode: str                # prove, bmc or cover
     files: list[str]         # the [files] the task reads (relative to the root)
+    depth: int               # its depth option (induction length for prove; 20 if not given)
 
 
 @dataclass
@@ -77,6 +79,7 @@ def parse_sby(path: Path) -> list[Task]:
     section = ""
     tasks: list[tuple[str, list[str]]] = []
     modes: dict[str, str] = {}
+    depths: dict[str, int] = {}
     files: list[str] = []
     for raw in path.read_text().splitlines():
         line = raw.split("#", 1)[0].strip()
@@ -93,6 +96,9 @@ def parse_sby(path: Path) -> list[Task]:
             m = re.fullmatch(r"(?:(\w+)\s*:\s*)?mode\s+(\w+)", line)
             if m:
                 modes[m.group(1) or ""] = m.group(2)
+            m = re.fullmatch(r"(?:(\w+)\s*:\s*)?depth\s+(\d+)", line)
+            if m:
+                depths[m.group(1) or ""] = int(m.group(2))
         elif section == "files":
             files.append(line.split()[-1])
     out = []
@@ -100,7 +106,14 @@ def parse_sby(path: Path) -> list[Task]:
         mode = next((modes[t] for t in [name, *tags, ""] if t in modes), "")
         if mode not in ("prove", "bmc", "cover"):
             raise ValueError(f"{path.name}: task {name!r} has no mode prove, bmc or cover")
-        out.append(Task(path.stem, name, mode, files))
+        depth = next((depths[t] for t in [name, *tags, ""] if t in depths), 20)  # SBY's default
+        out.append(Task(path.stem, name, mode, files, depth))
+    # Every induction is backed by a bounded check deeper than it.
+    proves = [t.depth for t in out if t.mode == "prove"]
+    bmcs = [t.depth for t in out if t.mode == "bmc"]
+    if proves and (not bmcs or max(bmcs) <= max(proves)):
+        raise ValueError(f"{path.name}: no bmc task deeper than its induction depth "
+                         f"{max(proves)}")
     return out
 
 
