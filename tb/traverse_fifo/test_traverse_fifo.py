@@ -4,7 +4,8 @@ request, miss and out FIFOs, the slot free list) against a deque, clock by clock
 Every clock a random write (only when not full: a write needs full_o = 0 even with a read in
 the same clock) and a random read (only when not empty), with the write and read probabilities drifting in bursts so the FIFO runs
 empty, full and in between.  After every edge rd_data_o (when not empty), full_o, empty_o and
-count_o must equal the model's.  The overflow/underflow SVA are on.
+count_o must equal the model's.  The bound assertions (rtl/traverse/traverse_fifo_assert.sv:
+overflow, underflow, count, data order) are on.
 """
 from __future__ import annotations
 

@@ -1,0 +1,151 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The formal proofs can fail: known bugs put into a scratch copy of the RTL make `make formal`'s
+driver (scripts/flow/formal.py) fail, with the assertion that caught each one named and a
+counterexample trace (VCD) that the waves tooling (pywellen, GTKWave) opens.
+
+The mutations: FIFO full one entry early (traverse_fifo's full_o), the credit check `<=` where
+it is `<` (pipe_credit's room_o: one item more than LIMIT), and a FIFO with its head in a
+register that refills it from the wrong RAM address (traverse_fifo's hd_q: the words come out
+of order, nothing else changes).  A
+fourth case removes one property from what the front end sees and shows the driver refuses the
+run (the guard against properties dropped silently).
+
+The scratch copies live under build/formal_mutants/ (inside the repository: YoWASP's tools see
+the file system through relative paths).
+"""
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SCRATCH = ROOT / "build" / "formal_mutants"
+
+# name: (file, original text, mutated text, task, the assertion expected to fail)
+MUTANTS = {
+    "fifo_full_early": (
+        "rtl/traverse/traverse_fifo.sv",
+        "assign full_o    = (cnt_q == (AW+1)'(DEPTH));",
+        "assign full_o    = (cnt_q == (AW+1)'(DEPTH - 1));",
+        "traverse_fifo:bmc_d4", "count_flags"),
+    "credit_le": (
+        "rtl/pipe/pipe_credit.sv",
+        "assign room_o  = ({1'b0, cnt_q} + {1'b0, held_i}) < (CW + 1)'(LIMIT);",
+        "assign room_o  = ({1'b0, cnt_q} + {1'b0, held_i}) <= (CW + 1)'(LIMIT);",
+        "pipe_credit:bmc_l16", "within_limit"),
+    "fifo_head_wrong_word": (
+        "rtl/traverse/traverse_fifo.sv",
+        "if (hd_load) hd_q <= m_any ? mem_q[rp_q] : wr_data_i;",
+        "if (hd_load) hd_q <= m_any ? mem_q[rp_q + AW'(1)] : wr_data_i;",
+        "traverse_fifo:bmc_d4_reg", "data_order"),
+}
+
+
+def scratch_tree(name: str) -> Path:
+    """A copy of rtl/ and formal/ to mutate."""
+    root = SCRATCH / name
+    shutil.rmtree(root, ignore_errors=True)
+    root.mkdir(parents=True)
+    for d in ("rtl", "formal"):
+        shutil.copytree(ROOT / d, root / d)
+    return root
+
+
+def mutate(root: Path, rel: str, old: str, new: str) -> None:
+    path = root / rel
+    text = path.read_text()
+    assert text.count(old) == 1, f"{rel}: the text to mutate is not there once: {old}"
+    path.write_text(text.replace(old, new))
+
+
+def run_formal(root: Path, task: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, str(ROOT / "scripts" / "flow" / "formal.py"),
+                           "--root", str(root), "--only", task, "--jobs", "1"],
+                          capture_output=True, text=True, cwd=ROOT, timeout=600)
+
+
+@pytest.mark.xdist_group("formal_mutants")
+@pytest.mark.parametrize("name", sorted(MUTANTS))
+def test_mutant_fails_with_trace(name: str):
+    rel, old, new, task, prop = MUTANTS[name]
+    root = scratch_tree(name)
+    mutate(root, rel, old, new)
+    p = run_formal(root, task)
+    out = p.stdout + p.stderr
+    assert p.returncode == 1, out
+    assert out.strip().splitlines()[-1].endswith(" 1 failed"), out
+    assert re.search(rf"{re.escape(task)} \(\w+\) FAIL", out), out
+    assert re.search(rf"failed assertion \S*u_assert\.{prop}\b", out), out
+    traces = [root / m for m in re.findall(r"^  trace: (\S+\.vcd)$", out, re.M)]
+    assert traces, out
+    import pywellen
+    for vcd in traces:
+        assert vcd.is_file(), vcd
+        w = pywellen.Waveform(str(vcd))
+        names = [v.full_name for v in w.all_vars()]
+        assert any(n.endswith("rst_ni") for n in names), names[:20]
+
+
+@pytest.mark.xdist_group("formal_mutants")
+def test_unmutated_copy_passes():
+    """The same tasks on an unchanged copy pass: the failures above are the mutations'."""
+    root = scratch_tree("unmutated")
+    for _, _, _, task, _ in MUTANTS.values():
+        p = run_formal(root, task)
+        assert p.returncode == 0, p.stdout + p.stderr
+        assert p.stdout.strip().splitlines()[-1].endswith(", 0 failed"), p.stdout
+
+
+@pytest.mark.xdist_group("formal_mutants")
+def test_dropped_property_is_refused():
+    """A property the front end never sees (here left out by the preprocessor) fails the run."""
+    root = scratch_tree("dropped")
+    mutate(root, "rtl/traverse/traverse_fifo_assert.sv",
+           "      data_order:   assert",
+           "`ifdef FORMAL_NEVER_DEFINED\n      data_order:   assert")
+    mutate(root, "rtl/traverse/traverse_fifo_assert.sv",
+           "the word due is %0h\", rd_data_i, trk_data_q);",
+           "the word due is %0h\", rd_data_i, trk_data_q);\n`endif")
+    p = run_formal(root, "traverse_fifo:prove_d4")
+    out = p.stdout + p.stderr
+    assert p.returncode == 1, out
+    assert "traverse_fifo:prove_d4 (prove) LOST" in out, out
+    assert "assert data_order lost by the front end" in out, out
+
+
+def _driver():
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("formal_driver",
+                                                  ROOT / "scripts" / "flow" / "formal.py")
+    mod = importlib.util.module_from_spec(spec)
+    assert spec.loader is not None
+    sys.modules["formal_driver"] = mod   # dataclasses look their module up there
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_sby_parsing_and_bmc_depth_rule(tmp_path):
+    """The driver reads tasks, modes and depths, and refuses a file whose BMC is not deeper than
+    its induction; unlabelled properties are reported."""
+    drv = _driver()
+    sby = tmp_path / "x.sby"
+    text = ("[tasks]\nprove_a a prove\nbmc_a a bmc\ncover_a a cover\n\n[options]\n"
+            "prove: mode prove\nprove: depth 3\nbmc: mode bmc\nbmc: depth {bmc}\n"
+            "cover: mode cover\n\n[files]\nrtl/x.sv\n")
+    sby.write_text(text.format(bmc=12))
+    tasks = drv.parse_sby(sby)
+    assert [(t.name, t.mode, t.depth) for t in tasks] == [
+        ("prove_a", "prove", 3), ("bmc_a", "bmc", 12), ("cover_a", "cover", 20)]
+    assert tasks[0].files == ["rtl/x.sv"]
+    sby.write_text(text.format(bmc=3))
+    with pytest.raises(ValueError, match="deeper"):
+        drv.parse_sby(sby)
+    labels, problems = drv.labelled_properties(
+        "// assert (x);\n  a1: assert (x);\n  c1: cover (y);\n  assert (z);\n", "f.sv")
+    assert labels == {"assert": {"a1"}, "cover": {"c1"}}
+    assert len(problems) == 1 and problems[0].startswith("f.sv:4:")
