@@ -207,7 +207,6 @@ module tex_cache
   localparam int unsigned PLRU_W     = WAYS - 1;
   localparam int unsigned TAGB       = LA_W - 1 - SET_W;         // stored tag bits
   localparam int unsigned MIDX_W     = (MSHRS > 1) ? $clog2(MSHRS) : 1;
-  localparam int unsigned EPOCH_W    = ID_W - MIDX_W;
   localparam int unsigned QCNT_W     = $clog2(MSHRS + 1);
   localparam int unsigned RC_W       = $clog2(FIFO_DEPTH + 1);   // a slot is read once per pass
   localparam int unsigned FP_W       = $clog2(FIFO_DEPTH);
@@ -340,8 +339,8 @@ module tex_cache
   //    way's path, so every node of the tree has been written since the reset.
   // (The state bits were flops written by both the commit and the fill, 3 x NSUB x SETS x WAYS
   // of them read through wide multiplexers; in LUT RAM each memory has one writer.)
-  logic              swp_q;        // the live bits are being cleared (after a reset)
-  logic [SET_W-1:0]  swp_set_q;    // the set cleared in this clock
+  logic              swp;          // the live bits are being cleared (after a reset; u_axi)
+  logic [SET_W-1:0]  swp_set;      // the set cleared in this clock
 
   // Entry register (the request being looked up).
   logic                   s0_valid_q;
@@ -403,10 +402,11 @@ module tex_cache
   // MSHR (g_mshr below), so each has one writer: that sub-cache's allocation.  A read takes the
   // word of the MSHR's sub-cache.
   logic [1:0]                   mshr_sub_q  [MSHRS];
-  logic [NSUB-1:0][LA_W-1:0]    mshr_la_ar;   // each sub-cache's line of the MSHR in ap_idx_q
+  logic [NSUB-1:0][LA_W-1:0]    mshr_la_ar;   // each sub-cache's line of the MSHR in ap_idx
   logic [NSUB-1:0][SET_W+WAY_W-1:0] mshr_sw_r;  // ... slot (set, way) of the MSHR of the R beat
   logic [NSUB-1:0][LA_W-1:0]    mshr_la_r;    // ... line of the MSHR of the R beat (simulation)
   logic [MIDX_W-1:0]            ar_idx;       // the MSHR at the AR queue's head
+  logic [MIDX_W-1:0]            ap_idx;       // the MSHR of the next AR (u_axi's register)
 `ifndef SYNTHESIS
   // every MSHR's fields, for the assertions
   logic [LA_W-1:0]              mshr_la_all [NSUB][MSHRS];
@@ -421,17 +421,8 @@ module tex_cache
     end
   end
 `endif
-  logic [BEAT_W-1:0]            mshr_beat_q [MSHRS];
-  logic                         mshr_rerr_q [MSHRS];  // an earlier beat had an error
-
-  // AR queue (MSHR indices in allocation order).
-  logic [MIDX_W-1:0] arq_q [MSHRS];
-  logic [MIDX_W-1:0] arq_wp_q, arq_rp_q;
-  logic [QCNT_W-1:0] arq_cnt_q;
-
-  // Reset epoch (deliberately not reset: it advances at each reset).
-  logic [EPOCH_W-1:0] epoch_q;
-  logic               in_rst_q;
+  // (their beat counts and error bits, the AR queue and the reset epoch: u_axi)
+  logic [QCNT_W-1:0]            arq_cnt;      // reads queued (for the assertions)
 
   logic [47:0] st_req_q, st_qhit_q, st_lk_q, st_miss_q, st_thit_q, st_bytes_q;
 
@@ -863,7 +854,7 @@ module tex_cache
     cm_texel_hits_q <= e_texel_hits;
     cm_qhit_q       <= e_last && !e_missed_q && !(|lk_alloc);
   end
-  assign req_ready_o = rst_ni && !swp_q && (!s0_valid_q || (p_load && sl_last));
+  assign req_ready_o = rst_ni && !swp && (!s0_valid_q || (p_load && sl_last));
 
   logic req_fire;
   assign req_fire = req_valid_i && req_ready_o;
@@ -988,8 +979,7 @@ module tex_cache
   // reads the partial line; a line that fails keeps its partial write, which the error bit makes
   // harmless (the slot is not valid).
   logic [MIDX_W-1:0]  r_idx;
-  logic [EPOCH_W-1:0] r_epoch;
-  logic               r_acc, r_last_beat;
+  logic               r_cur, r_ours, r_acc, r_last_beat;
   logic [LA_W-1:0]   r_la;
   logic [1:0]        fill_sub;
   logic [SET_W-1:0]  fill_set;
@@ -1127,21 +1117,14 @@ module tex_cache
 
   // ---------------------------------------------------------------- R channel, fills
 
-  assign r_idx   = m_axi_rid[MIDX_W-1:0];
-  assign r_epoch = m_axi_rid[ID_W-1:MIDX_W];
+  // (the beat's MSHR r_idx, its index r_beat, r_last_beat and fill_bad: from u_axi)
   always_comb begin
-    r_acc       = rst_ni && m_axi_rvalid && (r_epoch == epoch_q) && (32'(r_idx) < MSHRS)
-                  && mshr_busy_q[r_idx];
-    r_last_beat = (mshr_beat_q[r_idx] == BEAT_W'(BEATS - 1));
+    r_acc       = rst_ni && r_ours && mshr_busy_q[r_idx];
     r_la        = mshr_la_r[mshr_sub_q[r_idx]];
     fill_v      = r_acc && r_last_beat;
-    fill_bad    = m_axi_rresp[1] || mshr_rerr_q[r_idx];  // SLVERR / DECERR now or earlier
     fill_sub    = mshr_sub_q[r_idx];
     {fill_set, fill_way} = mshr_sw_r[mshr_sub_q[r_idx]];
-    r_beat      = mshr_beat_q[r_idx];
   end
-
-  assign m_axi_rready = 1'b1;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -1161,17 +1144,6 @@ module tex_cache
   end
 
   // ---------------------------------------------------------------- directory updates
-  // The sweep that clears the live bits after a reset (one set per clock in every sub-cache).
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      swp_q     <= 1'b1;
-      swp_set_q <= '0;
-    end else if (swp_q) begin
-      swp_set_q <= swp_set_q + SET_W'(1);
-      if (swp_set_q == SET_W'(SETS - 1)) swp_q <= 1'b0;
-    end
-  end
-
   // The LUT RAM part (see "Directory" at the state).  Per sub-cache: the commit touches the
   // looked-up set's pseudo-LRU bits and takes a reference to the hit or victim way (an allocation
   // also writes the tag and the set's ag bits); the head releases the reference of each slot its
@@ -1195,7 +1167,7 @@ module tex_cache
       if (take) plru_mem[cm_pass_q.set[c]] <= cm_plru_q[c];
       if (take && cm_alloc_q[c]) ag_mem[cm_pass_q.set[c]] <= cm_ag_q[c];
       // (no commit while the sweep runs: nothing is accepted until it ends)
-      if (swp_q) live_mem[swp_set_q] <= '0;
+      if (swp) live_mem[swp_set] <= '0;
       else if (take && cm_alloc_q[c]) live_mem[cm_pass_q.set[c]] <= cm_live_q[c];
       if (fill) begin
         fg_mem[w_set_q]  <= with_way(fl_fg, w_way_q, fl_ag[w_way_q]);
@@ -1257,43 +1229,42 @@ module tex_cache
     end
   end
 
-  // ---------------------------------------------------------------- MSHRs and AR queue
-  // The AR channel is a register (ar_*_q), loaded from a register of the next read's MSHR and
-  // sub-cache (ap_*_q), which is loaded from the AR queue's head (ar_pop: the head leaves); each
-  // moves on while the one after it is empty or moves on itself.  So no LUT RAM read or
-  // multiplexer drives the port, and the line's LUT RAM is read at a registered index.
-  logic              ar_pop, ap_go;
-  logic              ap_v_q, ar_v_q;
-  logic [MIDX_W-1:0] ap_idx_q;
+  // ---------------------------------------------------------------- MSHRs and AXI reads
+  // The AR channel (u_axi, AR_REG = 1) is a register loaded from a register of the next read's
+  // MSHR (ap_idx) and sub-cache (ap_sub_q), which is loaded from the AR queue's head as it leaves
+  // (ar_pop); so no LUT RAM read or multiplexer drives the port, and the line's LUT RAM is read
+  // at a registered index.  The misses of one pass join the AR queue in sub-cache order.
+  logic              ar_pop;
   logic [1:0]        ap_sub_q;
-  logic [ID_W-1:0]   ar_id_q;
-  logic [ADDR_W-1:0] ar_addr_q;
-  assign ap_go  = ap_v_q && (!ar_v_q || m_axi_arready);
-  assign ar_pop = (arq_cnt_q != '0) && (!ap_v_q || ap_go);
+  logic [NSUB-1:0]   cm_new;  // the committing pass allocates an MSHR in sub-cache c
+  assign cm_new = cm_valid_q ? cm_alloc_q : '0;
+
+  cache_axi_read #(
+    .ADDR_W(ADDR_W), .DATA_W(DATA_W), .LINE_BYTES(LINE_BYTES), .MSHRS(MSHRS), .ID_W(ID_W),
+    .SETS(SETS), .NPUSH(NSUB), .AR_REG(1'b1)
+  ) u_axi (
+    .clk_i, .rst_ni,
+    .alloc_i(cm_new), .alloc_wr_i(cm_new), .alloc_idx_i(cm_mshr_q),
+    .la_idx_o(ap_idx), .la_i(mshr_la_ar[ap_sub_q]),
+    .arq_pop_o(ar_pop), .arq_head_o(ar_idx), .arq_cnt_o(arq_cnt),
+    .r_idx_o(r_idx), .r_cur_o(r_cur), .r_ours_o(r_ours), .r_acc_i(r_acc), .r_beat_o(r_beat),
+    .r_last_o(r_last_beat), .r_bad_o(fill_bad),
+    .sweep_o(swp), .sweep_set_o(swp_set),
+    .m_axi_arid, .m_axi_araddr, .m_axi_arlen, .m_axi_arsize, .m_axi_arburst, .m_axi_arvalid,
+    .m_axi_arready, .m_axi_rid, .m_axi_rresp, .m_axi_rvalid, .m_axi_rready);
+
+  always_ff @(posedge clk_i) begin
+    if (ar_pop) ap_sub_q <= mshr_sub_q[ar_idx];
+  end
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      for (int m = 0; m < MSHRS; m++) begin
-        mshr_busy_q[m] <= 1'b0;
-        mshr_beat_q[m] <= '0;
-        mshr_rerr_q[m] <= 1'b0;
-      end
+      for (int m = 0; m < MSHRS; m++) mshr_busy_q[m] <= 1'b0;
     end else begin
-      if (r_acc) begin
-        mshr_beat_q[r_idx] <= mshr_beat_q[r_idx] + BEAT_W'(1);
-        mshr_rerr_q[r_idx] <= fill_bad;
-        if (r_last_beat) begin
-          mshr_busy_q[r_idx] <= 1'b0;
-          mshr_beat_q[r_idx] <= '0;
-          mshr_rerr_q[r_idx] <= 1'b0;
-        end
-      end
+      if (r_acc && r_last_beat) mshr_busy_q[r_idx] <= 1'b0;
       for (int c = 0; c < NSUB; c++) begin
-        if (cm_valid_q && cm_alloc_q[c]) begin  // a free MSHR: never the one finishing now
-          mshr_busy_q[cm_mshr_q[c]] <= 1'b1;
-          mshr_beat_q[cm_mshr_q[c]] <= '0;
-          mshr_rerr_q[cm_mshr_q[c]] <= 1'b0;
-        end
+        // (a free MSHR: never the one finishing now)
+        if (cm_new[c]) mshr_busy_q[cm_mshr_q[c]] <= 1'b1;
       end
     end
   end
@@ -1313,7 +1284,7 @@ module tex_cache
         sw_mem[cm_mshr_q[c]] <= {cm_pass_q.set[c], cm_pass_q.way[c]};
       end
     end
-    assign mshr_la_ar[c] = la_mem[ap_idx_q];
+    assign mshr_la_ar[c] = la_mem[ap_idx];
     assign mshr_sw_r[c]  = sw_mem[r_idx];
     assign mshr_la_r[c]  = la_mem[r_idx];  // (read only by the simulation's shadow)
 `ifndef SYNTHESIS
@@ -1361,66 +1332,6 @@ module tex_cache
     end
   end
 
-  // the misses of one pass join the queue in sub-cache order
-  logic [NSUB-1:0][MIDX_W-1:0] arq_pos;
-  logic [2:0]                  arq_n;
-
-  always_comb begin
-    arq_n = '0;
-    for (int c = 0; c < NSUB; c++) begin
-      arq_pos[c] = arq_add(arq_wp_q, 32'(arq_n));
-      if (cm_valid_q && cm_alloc_q[c]) arq_n = arq_n + 3'd1;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      arq_wp_q  <= '0;
-      arq_rp_q  <= '0;
-      arq_cnt_q <= '0;
-    end else begin
-      arq_wp_q <= arq_add(arq_wp_q, 32'(arq_n));
-      if (ar_pop) arq_rp_q <= arq_add(arq_rp_q, 1);
-      arq_cnt_q <= arq_cnt_q + QCNT_W'(arq_n) - QCNT_W'(ar_pop);
-    end
-    for (int c = 0; c < NSUB; c++) begin
-      if (cm_valid_q && cm_alloc_q[c]) arq_q[arq_pos[c]] <= cm_mshr_q[c];
-    end
-  end
-
-  assign ar_idx = arq_q[arq_rp_q];
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      ap_v_q <= 1'b0;
-      ar_v_q <= 1'b0;
-    end else begin
-      if (!ap_v_q || ap_go)            ap_v_q <= arq_cnt_q != '0;
-      if (!ar_v_q || m_axi_arready)    ar_v_q <= ap_v_q;
-    end
-    if (ar_pop) begin
-      ap_idx_q <= ar_idx;
-      ap_sub_q <= mshr_sub_q[ar_idx];
-    end
-    if (ap_go) begin
-      ar_id_q   <= {epoch_q, ap_idx_q};
-      ar_addr_q <= {mshr_la_ar[ap_sub_q], {OFF_W{1'b0}}};
-    end
-  end
-
-  assign m_axi_arvalid = rst_ni && ar_v_q;  // (0 in reset from its first clock)
-  assign m_axi_arid    = ar_id_q;
-  assign m_axi_araddr  = ar_addr_q;
-  assign m_axi_arlen   = 8'(BEATS - 1);
-  assign m_axi_arsize  = 3'($clog2(BEAT_BYTES));
-  assign m_axi_arburst = AXI_BURST_INCR;
-
-  // ---------------------------------------------------------------- reset epoch
-  always_ff @(posedge clk_i) begin
-    in_rst_q <= !rst_ni;
-    if (!rst_ni && !in_rst_q) epoch_q <= epoch_q + EPOCH_W'(1);
-  end
-
   // ---------------------------------------------------------------- statistics
   // texels of this pass whose sub-cache lookup hit
   always_comb begin
@@ -1464,10 +1375,9 @@ module tex_cache
   assign stat_texel_hits_o  = st_thit_q;
   assign stat_bytes_o       = st_bytes_q;
 
-  // rresp[0] only tells EXOKAY from OKAY and DECERR from SLVERR; both errors are treated alike.
   // rlast is implied by the beat count (checked by an assertion); the texel address bits 1:0 are 0.
   logic unused;
-  assign unused = ^{m_axi_rresp[0], m_axi_rlast, r_la, s0_addr_q[0][1:0], s0_addr_q[1][1:0],
+  assign unused = ^{m_axi_rlast, r_la, s0_addr_q[0][1:0], s0_addr_q[1][1:0],
                     s0_addr_q[2][1:0], s0_addr_q[3][1:0]};
 
 `ifndef SYNTHESIS
@@ -1503,7 +1413,7 @@ module tex_cache
       end
     end
   end
-  state_bits: assert property (@(posedge clk_i) disable iff (!rst_ni || swp_q)
+  state_bits: assert property (@(posedge clk_i) disable iff (!rst_ni || swp)
       valid_v == ref_valid_q && pend_v == ref_pend_q && err_v == ref_err_q)
     else $error("tex_cache: directory state bits differ from their reference");
   // The head's slots are live (its pending and error bits are read without the live bit).
@@ -1576,7 +1486,7 @@ module tex_cache
       r_acc |-> (m_axi_rlast == r_last_beat))
     else $error("tex_cache: rlast on a beat other than the last");
   r_beat_expected: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      m_axi_rvalid && (r_epoch == epoch_q) |-> r_acc)
+      r_cur |-> r_acc)
     else $error("tex_cache: R beat for no outstanding read");
 
   // Shadow (simulation only): the line each data slot holds, and the lines each queued pass reads.
@@ -1595,7 +1505,7 @@ module tex_cache
   end
 
   always @(posedge clk_i) begin
-    if (rst_ni && !swp_q) begin  // (the live bits are cleared once the sweep ends)
+    if (rst_ni && !swp) begin  // (the live bits are cleared once the sweep ends)
       // Invariants of every slot: a pending slot is referenced (by its allocator at least);
       // valid tags of a set are unique.
       for (int c = 0; c < NSUB; c++) begin
@@ -1699,7 +1609,7 @@ module tex_cache
   assign sim_mshr_wait   = rst_ni && b_valid_q && mshr_short;
   assign sim_fifo_full   = rst_ni && b_valid_q && fifo_cnt_q == FC_W'(FIFO_DEPTH);
   assign sim_split       = e_fire && !e_last;                        // a request of 2+ passes
-  assign sim_stale_beat  = m_axi_rvalid && r_epoch != epoch_q;       // a read from before a reset
+  assign sim_stale_beat  = m_axi_rvalid && !r_cur;                   // a read from before a reset
   assign sim_err_fill    = fill_v && fill_bad;
   assign sim_err_pass    = h_pop && (|hd_err);
 
@@ -1709,7 +1619,7 @@ module tex_cache
     for (int m = 0; m < MSHRS; m++) busy_cnt = busy_cnt + QCNT_W'(mshr_busy_q[m]);
   end
   arq_within_busy: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      arq_cnt_q <= busy_cnt)
+      arq_cnt <= busy_cnt)
     else $error("tex_cache: AR queue holds more reads than busy MSHRs");
   // The free list holds exactly the MSHRs that are not busy and not taken by the pass in the
   // commit register.
