@@ -83,6 +83,7 @@ module cache_axi_read
   input  logic                         m_axi_arready,
   input  logic [ID_W-1:0]              m_axi_rid,
   input  logic [1:0]                   m_axi_rresp,
+  input  logic                         m_axi_rlast,  // (implied by the beat count; checked)
   input  logic                         m_axi_rvalid,
   output logic                         m_axi_rready
 );
@@ -249,7 +250,8 @@ module cache_axi_read
   assign sweep_set_o = sweep_set_q;
 
   // rresp[0] only tells EXOKAY from OKAY and DECERR from SLVERR; both errors are treated alike.
-  logic unused_rresp0;
-  assign unused_rresp0 = m_axi_rresp[0];
+  // rlast is implied by the beat count (cache_axi_read_assert checks that it agrees).
+  logic unused;
+  assign unused = ^{m_axi_rresp[0], m_axi_rlast};
 
 endmodule

@@ -414,7 +414,7 @@ module height_cache
   // ---------------------------------------------------------------- AXI read (AR queue, R channel)
   // The lowest free MSHR's index is written into the AR queue whenever an MSHR is free (then the
   // queue, holding busy MSHRs only, has room); only its pointer and count wait for the allocation.
-  logic               r_cur, r_ours, r_acc, r_last_beat, r_bad;
+  logic               r_ours, r_acc, r_last_beat, r_bad;
   logic [BEAT_W-1:0]  r_beat;
   logic [MIDX_W-1:0]  ar_idx;
   logic               la_we;  // (MSHRs, below)
@@ -427,11 +427,11 @@ module height_cache
     .alloc_i(s2_alloc), .alloc_wr_i(la_we), .alloc_idx_i(alloc_idx),
     .la_idx_o(ar_idx), .la_i(mshr_la_q[ar_idx]),
     .arq_pop_o(), .arq_head_o(), .arq_cnt_o(arq_cnt),
-    .r_idx_o(r_idx), .r_cur_o(r_cur), .r_ours_o(r_ours), .r_acc_i(r_acc), .r_beat_o(r_beat),
+    .r_idx_o(r_idx), .r_cur_o(), .r_ours_o(r_ours), .r_acc_i(r_acc), .r_beat_o(r_beat),
     .r_last_o(r_last_beat), .r_bad_o(r_bad),
     .sweep_o(sweep), .sweep_set_o(sweep_set),
     .m_axi_arid, .m_axi_araddr, .m_axi_arlen, .m_axi_arsize, .m_axi_arburst, .m_axi_arvalid,
-    .m_axi_arready, .m_axi_rid, .m_axi_rresp, .m_axi_rvalid, .m_axi_rready);
+    .m_axi_arready, .m_axi_rid, .m_axi_rresp, .m_axi_rlast, .m_axi_rvalid, .m_axi_rready);
 
   assign r_acc = r_ours && (mshr_state_q[r_idx] == MSHR_WAIT);
 
@@ -511,50 +511,5 @@ module height_cache
   assign stat_misses_o = st_misses_q;
   assign stat_bytes_o  = st_bytes_q;
   assign stat_lines_o  = st_lines_q;
-
-  // rlast is implied by the beat count (checked by an assertion).
-  logic unused;
-  assign unused = m_axi_rlast;
-
-`ifndef SYNTHESIS
-  // AXI: the AR payload holds and arvalid stays up until the handshake.
-  ar_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      m_axi_arvalid && !m_axi_arready |=> m_axi_arvalid
-        && $stable({m_axi_arid, m_axi_araddr, m_axi_arlen, m_axi_arsize, m_axi_arburst}))
-    else $error("height_cache: AR dropped or changed before arready");
-  // AXI: rlast marks exactly the last beat of each of our bursts.
-  rlast_on_last_beat: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      r_acc |-> (m_axi_rlast == r_last_beat))
-    else $error("height_cache: rlast on a beat other than the last");
-  // A beat carrying the current epoch belongs to an MSHR waiting for its line.
-  r_beat_expected: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      r_cur |-> r_acc)
-    else $error("height_cache: R beat for no outstanding read");
-  // MSHR bookkeeping: the queue holds only busy MSHRs, never more than MSHRS.
-  mshr_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      ($countones(mshr_busy) <= MSHRS) && (32'(arq_cnt) <= $countones(mshr_busy)))
-    else $error("height_cache: MSHR / AR queue count out of range");
-  fill_is_mshr_fill: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      fill_q |-> (mshr_state_q[fill_idx_q] == MSHR_FILL) && (fill_la_q == mshr_la_q[fill_idx_q]))
-    else $error("height_cache: fill without an MSHR in MSHR_FILL, or of another line");
-  no_fill_in_sweep: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      sweep |-> !fill_q && !s2_alloc)
-    else $error("height_cache: a fill or an allocation during the valid bits' reset sweep");
-  hit_not_in_mshr: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      s2_hit |-> !(|mshr_match))
-    else $error("height_cache: a line both in the cache and in an MSHR");
-  // Client contract: 16-bit texels are 2-byte aligned.
-  wide_aligned: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      lk_valid_i && lk_wide_i |-> !lk_addr_i[0])
-    else $error("height_cache: unaligned 16-bit lookup");
-
-  for (genvar i = 0; i < MSHRS; i++) begin : g_mshr_unique
-    for (genvar j = i + 1; j < MSHRS; j++) begin : g_pair
-      mshr_unique: assert property (@(posedge clk_i) disable iff (!rst_ni)
-          !(mshr_busy[i] && mshr_busy[j] && (mshr_la_q[i] == mshr_la_q[j])))
-        else $error("height_cache: two MSHRs hold line %h", mshr_la_q[i]);
-    end
-  end
-`endif
 
 endmodule

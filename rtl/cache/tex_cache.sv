@@ -408,18 +408,18 @@ module tex_cache
   logic [MIDX_W-1:0]            ar_idx;       // the MSHR at the AR queue's head
   logic [MIDX_W-1:0]            ap_idx;       // the MSHR of the next AR (u_axi's register)
 `ifndef SYNTHESIS
-  // every MSHR's fields, for the assertions
-  logic [LA_W-1:0]              mshr_la_all [NSUB][MSHRS];
-  logic [SET_W+WAY_W-1:0]       mshr_sw_all [NSUB][MSHRS];
-  logic [LA_W-1:0]              mshr_la_v   [MSHRS];
-  logic [SET_W-1:0]             mshr_set_v  [MSHRS];
-  logic [WAY_W-1:0]             mshr_way_v  [MSHRS];
-  always_comb begin
-    for (int m = 0; m < MSHRS; m++) begin
-      mshr_la_v[m]                   = mshr_la_all[mshr_sub_q[m]][m];
-      {mshr_set_v[m], mshr_way_v[m]} = mshr_sw_all[mshr_sub_q[m]][m];
-    end
-  end
+  // The memories as the bound checks (tex_cache_assert) see them: the directory's words per
+  // sub-cache and set (g_dir), its tags and reference counts per sub-cache, way and set, the
+  // MSHRs' lines and slots per sub-cache and MSHR (g_mshr).
+  logic [WAYS-1:0]              vw_live [NSUB][SETS];
+  logic [WAYS-1:0]              vw_ag   [NSUB][SETS];
+  logic [WAYS-1:0]              vw_fg   [NSUB][SETS];
+  logic [WAYS-1:0]              vw_bad  [NSUB][SETS];
+  logic [TAGB-1:0]              vw_tag  [NSUB][WAYS][SETS];
+  logic [RC_W-1:0]              vw_inc  [NSUB][WAYS][SETS];
+  logic [RC_W-1:0]              vw_dec  [NSUB][WAYS][SETS];
+  logic [LA_W-1:0]              vw_la   [NSUB][MSHRS];
+  logic [SET_W+WAY_W-1:0]       vw_sw   [NSUB][MSHRS];
 `endif
   // (their beat counts and error bits, the AR queue and the reset epoch: u_axi)
   logic [QCNT_W-1:0]            arq_cnt;      // reads queued (for the assertions)
@@ -1189,15 +1189,10 @@ module tex_cache
     assign hd_bad[c]   = hd_bd[hd_q.way[c]];
 
 `ifndef SYNTHESIS
-    // every slot's state bits for the assertions below
-    for (genvar s = 0; s < SETS; s++) begin : g_state_view
-      for (genvar w = 0; w < WAYS; w++) begin : g_w
-        assign pend_v[c][s][w]  = live_mem[s][w] && ag_mem[s][w] != fg_mem[s][w];
-        assign err_v[c][s][w]   = live_mem[s][w] && ag_mem[s][w] == fg_mem[s][w]
-                                  && bad_mem[s][w];
-        assign valid_v[c][s][w] = live_mem[s][w] && !err_v[c][s][w];
-      end
-    end
+    assign vw_live[c] = live_mem;
+    assign vw_ag[c]   = ag_mem;
+    assign vw_fg[c]   = fg_mem;
+    assign vw_bad[c]  = bad_mem;
 `endif
 
     for (genvar w = 0; w < WAYS; w++) begin : g_way
@@ -1219,12 +1214,9 @@ module tex_cache
       assign hd_dec        = dec_mem[hd_q.set[c]];
 
 `ifndef SYNTHESIS
-      // whole-directory views for the assertions below
-      for (genvar s = 0; s < SETS; s++) begin : g_view
-        assign dir_tag[c][s][w] = tag_mem[s];
-        assign dir_rc[c][s][w]  = inc_mem[s] - dec_mem[s];
-        assign dir_inc[c][s][w] = inc_mem[s];
-      end
+      assign vw_tag[c][w] = tag_mem;
+      assign vw_inc[c][w] = inc_mem;
+      assign vw_dec[c][w] = dec_mem;
 `endif
     end
   end
@@ -1251,7 +1243,7 @@ module tex_cache
     .r_last_o(r_last_beat), .r_bad_o(fill_bad),
     .sweep_o(swp), .sweep_set_o(swp_set),
     .m_axi_arid, .m_axi_araddr, .m_axi_arlen, .m_axi_arsize, .m_axi_arburst, .m_axi_arvalid,
-    .m_axi_arready, .m_axi_rid, .m_axi_rresp, .m_axi_rvalid, .m_axi_rready);
+    .m_axi_arready, .m_axi_rid, .m_axi_rresp, .m_axi_rlast, .m_axi_rvalid, .m_axi_rready);
 
   always_ff @(posedge clk_i) begin
     if (ar_pop) ap_sub_q <= mshr_sub_q[ar_idx];
@@ -1288,10 +1280,8 @@ module tex_cache
     assign mshr_sw_r[c]  = sw_mem[r_idx];
     assign mshr_la_r[c]  = la_mem[r_idx];  // (read only by the simulation's shadow)
 `ifndef SYNTHESIS
-    for (genvar m = 0; m < MSHRS; m++) begin : g_view
-      assign mshr_la_all[c][m] = la_mem[m];
-      assign mshr_sw_all[c][m] = sw_mem[m];
-    end
+    assign vw_la[c] = la_mem;
+    assign vw_sw[c] = sw_mem;
 `endif
   end
 
@@ -1375,272 +1365,9 @@ module tex_cache
   assign stat_texel_hits_o  = st_thit_q;
   assign stat_bytes_o       = st_bytes_q;
 
-  // rlast is implied by the beat count (checked by an assertion); the texel address bits 1:0 are 0.
+  // The texel address bits 1:0 are 0; w_la_q is read by the bound checks only.
   logic unused;
-  assign unused = ^{m_axi_rlast, r_la, s0_addr_q[0][1:0], s0_addr_q[1][1:0],
+  assign unused = ^{w_la_q, s0_addr_q[0][1:0], s0_addr_q[1][1:0],
                     s0_addr_q[2][1:0], s0_addr_q[3][1:0]};
-
-`ifndef SYNTHESIS
-  // ------------------------------------------------------------------ assertions
-  // The directory as the assertions see it (from g_dir): every slot's tag and reference count
-  // (the count is meaningful for a live slot only: valid or with the error bit); the state bits.
-  logic [TAGB-1:0] dir_tag [NSUB][SETS][WAYS];
-  logic [RC_W-1:0] dir_rc  [NSUB][SETS][WAYS];
-  logic [RC_W-1:0] dir_inc [NSUB][SETS][WAYS];
-  logic [NSUB-1:0] lk_live, hd_live;  // the committing pass's / the head's slot is live
-  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] valid_v, pend_v, err_v;  // the state bits (g_dir)
-
-  // Reference: the state bits as flops written directly by the commit and the fill (as they
-  // were before the generation bits); the generation bits must agree with them in every clock.
-  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] ref_valid_q, ref_pend_q, ref_err_q;
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      ref_valid_q <= '0;
-      ref_pend_q  <= '0;
-      ref_err_q   <= '0;
-    end else begin
-      for (int c = 0; c < NSUB; c++) begin
-        if (cm_valid_q && cm_alloc_q[c]) begin
-          ref_valid_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]] <= 1'b1;
-          ref_pend_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]]  <= 1'b1;
-          ref_err_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]]   <= 1'b0;
-        end
-      end
-      if (w_fill_q) begin
-        ref_pend_q[w_sub_q][w_set_q][w_way_q] <= 1'b0;
-        ref_err_q[w_sub_q][w_set_q][w_way_q]  <= w_bad_q;
-        if (w_bad_q) ref_valid_q[w_sub_q][w_set_q][w_way_q] <= 1'b0;
-      end
-    end
-  end
-  state_bits: assert property (@(posedge clk_i) disable iff (!rst_ni || swp)
-      valid_v == ref_valid_q && pend_v == ref_pend_q && err_v == ref_err_q)
-    else $error("tex_cache: directory state bits differ from their reference");
-  // The head's slots are live (its pending and error bits are read without the live bit).
-  head_live: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      fifo_cnt_q != '0 |-> (hd_live | ~hd_q.used) == '1)
-    else $error("tex_cache: the head reads a slot that is not live");
-
-  logic [NSUB-1:0][SET_W-1:0] cm_set;  // the committing pass's slots
-  logic [NSUB-1:0][WAY_W-1:0] cm_way;
-  assign cm_set = cm_pass_q.set;
-  assign cm_way = cm_pass_q.way;
-
-  always_comb begin
-    for (int c = 0; c < NSUB; c++) begin
-      lk_live[c] = valid_v[c][cm_set[c]][cm_way[c]] || err_v[c][cm_set[c]][cm_way[c]];
-      hd_live[c] = valid_v[c][hd_q.set[c]][hd_q.way[c]] || err_v[c][hd_q.set[c]][hd_q.way[c]];
-    end
-  end
-
-  // Streams: payload stable while stalled (the request side is the client's contract).
-  req_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      req_valid_i && !req_ready_o |=> req_valid_i && $stable({req_addr_i, req_tag_i}))
-    else $error("tex_cache: request dropped or changed while stalled");
-  req_aligned: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      req_valid_i |-> (req_addr_i[0][1:0] | req_addr_i[1][1:0] | req_addr_i[2][1:0]
-                       | req_addr_i[3][1:0]) == 2'b00)
-    else $error("tex_cache: texel address not 4-byte aligned");
-  rsp_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      rsp_valid_o && !rsp_ready_i |=> rsp_valid_o
-        && $stable({rsp_texel_o, rsp_err_o, rsp_tag_o}))
-    else $error("tex_cache: response dropped or changed while stalled");
-  // FIFOs.
-  fifo_no_overflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      cm_valid_q |-> (fifo_cnt_q < FC_W'(FIFO_DEPTH)) || h_pop)
-    else $error("tex_cache: request FIFO overflow");
-  fifo_no_underflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      h_pop |-> fifo_cnt_q != '0)
-    else $error("tex_cache: request FIFO underflow");
-  fifo_head: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      fifo_cnt_q != '0 |-> hd_q == fifo_q[fifo_rp_q])
-    else $error("tex_cache: head register differs from the FIFO's head entry");
-  fifo_next: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      fifo_cnt_q >= FC_W'(2) |-> nx_q == fifo_q[FP_W'(fifo_rp_q + FP_W'(1))])
-    else $error("tex_cache: next-head register differs from the FIFO's second entry");
-  fifo_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      32'(fifo_cnt_q) <= FIFO_DEPTH && FP_W'(fifo_wp_q - fifo_rp_q) == FP_W'(fifo_cnt_q))
-    else $error("tex_cache: request FIFO pointers inconsistent");
-  pass_queue_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      3'(pq_wp_q - pq_rp_q) <= 3'(PQ_DEPTH) && 3'(pq_ip_q - pq_rp_q) == 3'(b_valid_q)
-      && 3'(pq_wp_q - pq_ip_q) <= 3'(pq_wp_q - pq_rp_q))
-    else $error("tex_cache: pass queue pointers inconsistent");
-  decide_is_oldest: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      b_valid_q |-> b_pass_q == pq_q[pq_rp_q[1:0]])
-    else $error("tex_cache: the decide stage's pass is not the queue's oldest");
-  read_set: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      a_issue |-> a_set_q == a_pass.set)
-    else $error("tex_cache: the read stage's set register differs from its pass");
-  out_no_overflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      out_push |-> (out_cnt_q < 3'(OUT_DEPTH)) || out_pop)
-    else $error("tex_cache: output buffer overflow");
-  out_no_underflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      out_pop |-> out_cnt_q != '0)
-    else $error("tex_cache: output buffer underflow");
-  // AXI: AR holds until the handshake; rlast on exactly the last beat; beats only for reads.
-  ar_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      m_axi_arvalid && !m_axi_arready |=> m_axi_arvalid
-        && $stable({m_axi_arid, m_axi_araddr, m_axi_arlen, m_axi_arsize, m_axi_arburst}))
-    else $error("tex_cache: AR dropped or changed before arready");
-  rlast_on_last_beat: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      r_acc |-> (m_axi_rlast == r_last_beat))
-    else $error("tex_cache: rlast on a beat other than the last");
-  r_beat_expected: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      r_cur |-> r_acc)
-    else $error("tex_cache: R beat for no outstanding read");
-
-  // Shadow (simulation only): the line each data slot holds, and the lines each queued pass reads.
-  logic [LA_W-1:0] sh_slot_la [NSUB][SETS][WAYS];
-  logic [NSUB-1:0][LA_W-1:0] sh_pass_la [FIFO_DEPTH];
-  logic [NSUB-1:0] sh_slot_ok [SETS][WAYS];  // the slot has been written since reset
-
-  always_ff @(posedge clk_i) begin
-    if (cm_valid_q) sh_pass_la[fifo_wp_q] <= cm_la_q;
-    if (!rst_ni) begin
-      for (int s = 0; s < SETS; s++) for (int w = 0; w < WAYS; w++) sh_slot_ok[s][w] <= '0;
-    end else if (w_fill_q) begin
-      sh_slot_la[w_sub_q][w_set_q][w_way_q] <= w_la_q;
-      sh_slot_ok[w_set_q][w_way_q][w_sub_q] <= 1'b1;
-    end
-  end
-
-  always @(posedge clk_i) begin
-    if (rst_ni && !swp) begin  // (the live bits are cleared once the sweep ends)
-      // Invariants of every slot: a pending slot is referenced (by its allocator at least);
-      // valid tags of a set are unique.
-      for (int c = 0; c < NSUB; c++) begin
-        for (int s = 0; s < SETS; s++) begin
-          for (int w = 0; w < WAYS; w++) begin
-            pending_referenced: assert (!pend_v[c][s][w] || dir_rc[c][s][w] != '0)
-              else $error("tex_cache: sub-cache %0d set %0d way %0d pending but unreferenced",
-                          c, s, w);
-            for (int v = w + 1; v < WAYS; v++) begin
-              tag_unique: assert (!(valid_v[c][s][w] && valid_v[c][s][v]
-                                    && dir_tag[c][s][w] == dir_tag[c][s][v]))
-                else $error("tex_cache: sub-cache %0d set %0d holds a line twice", c, s);
-            end
-          end
-        end
-      end
-      for (int c = 0; c < NSUB; c++) begin
-        // No eviction of a referenced line: a victim is unreferenced (hence not pending), in
-        // the directory as its allocation is written (the commit clock).
-        if (cm_valid_q && cm_alloc_q[c]) begin
-          victim_unreferenced: assert ((!lk_live[c]
-                                        || dir_rc[c][cm_set[c]][cm_way[c]] == '0)
-                                       && !pend_v[c][cm_set[c]][cm_way[c]])
-            else $error("tex_cache: sub-cache %0d evicts a referenced line", c);
-        end
-        // Reference counts never wrap.
-        if (cm_valid_q && cm_pass_q.used[c]) begin
-          rc_no_overflow: assert (cm_alloc_q[c] || dir_rc[c][cm_set[c]][cm_way[c]] != '1)
-            else $error("tex_cache: reference count overflow");
-        end
-        // The forwarded view is what the directory holds once the commit is written.
-        if (cm_valid_q && cm_pass_q.used[c]) begin
-          commit_inc: assert (cm_alloc_q[c]
-                              || cm_inc_q[c] == dir_inc[c][cm_set[c]][cm_way[c]] + RC_W'(1))
-            else $error("tex_cache: sub-cache %0d commits a stale reference count", c);
-        end
-        if (h_pop && hd_q.used[c]) begin
-          rc_no_underflow: assert (hd_live[c]
-                                   && dir_rc[c][hd_q.set[c]][hd_q.way[c]] != '0)
-            else $error("tex_cache: reference count underflow");
-          // The slot read at the head holds the line the pass looked up (unless it errored).
-          head_reads_its_line: assert (err_v[c][hd_q.set[c]][hd_q.way[c]]
-                                       || (sh_slot_ok[hd_q.set[c]][hd_q.way[c]][c]
-                                           && sh_slot_la[c][hd_q.set[c]][hd_q.way[c]]
-                                              == sh_pass_la[fifo_rp_q][c]))
-            else $error("tex_cache: head reads sub-cache %0d slot (%0d, %0d): line %h, not %h",
-                        c, hd_q.set[c], hd_q.way[c],
-                        sh_slot_la[c][hd_q.set[c]][hd_q.way[c]], sh_pass_la[fifo_rp_q][c]);
-        end
-      end
-      // MSHRs: a busy MSHR's slot is valid, pending and tagged with its line; no two busy MSHRs
-      // fill one slot; the AR queue holds at most the busy MSHRs.
-      for (int m = 0; m < MSHRS; m++) begin
-        if (mshr_busy_q[m]) begin
-          mshr_slot_pending: assert (pend_v[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
-              && valid_v[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
-              && dir_tag[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
-                 == mshr_la_v[m][LA_W-1 -: TAGB]
-              && set_of(mshr_la_v[m]) == mshr_set_v[m])
-            else $error("tex_cache: MSHR %0d does not own a pending slot of its line", m);
-          for (int n = m + 1; n < MSHRS; n++) begin
-            mshr_unique: assert (!(mshr_busy_q[n] && mshr_sub_q[n] == mshr_sub_q[m]
-                                   && (mshr_la_v[n] == mshr_la_v[m]
-                                       || (mshr_set_v[n] == mshr_set_v[m]
-                                           && mshr_way_v[n] == mshr_way_v[m]))))
-              else $error("tex_cache: MSHRs %0d and %0d read the same line / slot", m, n);
-          end
-        end
-      end
-    end
-  end
-
-  // Coverage points, read by tb/tex_cache (simulation only; nothing in the design reads them).
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic sim_merge, sim_victim_wait, sim_mshr_wait, sim_fifo_full, sim_split, sim_stale_beat,
-        sim_err_fill, sim_err_pass, sim_victim_redirect, sim_win_split, sim_overlap;
-  /* verilator lint_on UNUSEDSIGNAL */
-  always_comb begin
-    logic [WAY_W-1:0] free_way;
-    sim_merge           = 1'b0;  // a pass enters with a line that is still being read
-    sim_victim_redirect = 1'b0;  // a reference made the victim differ from the plain policy
-    for (int c = 0; c < NSUB; c++) begin
-      if (e_fire && lk_v[c] && !lk_alloc[c] && f_pnd[c][lk_way[c]]) sim_merge = 1'b1;
-      free_way = plru_pick(f_plru[c], '1);
-      for (int w = WAYS - 1; w >= 0; w--) begin
-        if (!f_vld[c][w]) free_way = WAY_W'(w);
-      end
-      if (e_fire && lk_alloc[c] && free_way != lk_way[c]) sim_victim_redirect = 1'b1;
-    end
-    // a texel left for a later pass although its line is the one its sub-cache reads (the
-    // window does not hold its word); a texel read at the window's overlap word
-    sim_win_split = 1'b0;
-    sim_overlap   = 1'b0;
-    for (int t = 0; t < 4; t++) begin
-      if (p_load && s0_todo_q[t] && !sl_sel[t] && sl_v[e_sub[t]] && sl_la[e_sub[t]] == e_la[t])
-        sim_win_split = 1'b1;
-      if (h_pop && hd_q.tsel[t] && 32'(hd_q.toff[t]) == WW) sim_overlap = 1'b1;
-    end
-  end
-  assign sim_victim_wait = rst_ni && b_valid_q && (|lk_blocked);   // every way referenced
-  assign sim_mshr_wait   = rst_ni && b_valid_q && mshr_short;
-  assign sim_fifo_full   = rst_ni && b_valid_q && fifo_cnt_q == FC_W'(FIFO_DEPTH);
-  assign sim_split       = e_fire && !e_last;                        // a request of 2+ passes
-  assign sim_stale_beat  = m_axi_rvalid && !r_cur;                   // a read from before a reset
-  assign sim_err_fill    = fill_v && fill_bad;
-  assign sim_err_pass    = h_pop && (|hd_err);
-
-  logic [QCNT_W-1:0] busy_cnt;
-  always_comb begin
-    busy_cnt = '0;
-    for (int m = 0; m < MSHRS; m++) busy_cnt = busy_cnt + QCNT_W'(mshr_busy_q[m]);
-  end
-  arq_within_busy: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      arq_cnt <= busy_cnt)
-    else $error("tex_cache: AR queue holds more reads than busy MSHRs");
-  // The free list holds exactly the MSHRs that are not busy and not taken by the pass in the
-  // commit register.
-  logic [2:0] cm_n;
-  always_comb begin
-    cm_n = '0;
-    for (int c = 0; c < NSUB; c++) cm_n = cm_n + 3'(cm_valid_q && cm_alloc_q[c]);
-  end
-  free_list_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      32'(busy_cnt) + 32'(fl_cnt_q) + 32'(cm_n) == MSHRS)
-    else $error("tex_cache: free-list count differs from the MSHRs not busy");
-  always @(posedge clk_i) begin
-    if (rst_ni) begin
-      for (int j = 0; j < MSHRS; j++) begin
-        if (j < 32'(fl_cnt_q)) begin
-          free_list_not_busy: assert (!mshr_busy_q[fl_q[arq_add(fl_hd_q, j)]])
-            else $error("tex_cache: busy MSHR %0d on the free list", fl_q[arq_add(fl_hd_q, j)]);
-        end
-      end
-    end
-  end
-`endif
 
 endmodule
