@@ -439,7 +439,14 @@ bind tex_cache tex_cache_assert #(
   .QCNT_W(QCNT_W), .MIDX_W(MIDX_W), .PLRU_W(PLRU_W), .TOFF_W(TOFF_W)
 ) u_assert (
   .*,
-  .a_pass_set(a_pass.set), .b_is_oldest(b_pass_q == pq_q[pq_rp_q[1:0]]),
+  // (the request side and the pass queue: u_front; the decide stage: u_lookup)
+  .p_load(u_front.p_load), .s0_todo_q(u_front.s0_todo_q), .sl_sel(u_front.sl_sel),
+  .sl_v(u_front.sl_v), .sl_la(u_front.sl_la), .e_la(u_front.e_la), .e_sub(u_front.e_sub),
+  .pq_wp_q(u_front.pq_wp_q), .pq_ip_q(u_front.pq_ip_q), .pq_rp_q(u_front.pq_rp_q),
+  .a_set_q(a_set), .a_pass_set(u_front.a_pass.set), .b_valid_q(b_valid),
+  .b_is_oldest(u_front.b_pass_q == u_front.pq_q[u_front.pq_rp_q[1:0]]),
+  .f_vld(u_lookup.f_vld), .f_pnd(u_lookup.f_pnd),
+  .out_push(u_data.out_push), .out_pop(u_data.out_pop), .out_cnt_q(u_data.out_cnt_q),
   .cm_used(cm_pass_q.used), .cm_set(cm_pass_q.set), .cm_way(cm_pass_q.way),
   .hd_used(hd_q.used), .hd_set(hd_q.set), .hd_way(hd_q.way), .hd_tsel(hd_q.tsel),
   .hd_toff(hd_q.toff), .hd_is_head(hd_q == fifo_q[fifo_rp_q]),
