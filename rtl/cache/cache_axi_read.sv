@@ -90,7 +90,6 @@ module cache_axi_read
 
   localparam int unsigned EPOCH_W    = ID_W - MIDX_W;
   localparam int unsigned BEAT_BYTES = DATA_W / 8;
-  localparam int unsigned NCNT_W     = $clog2(NPUSH + 1);
 
   if (OFF_W != $clog2(LINE_BYTES) || LA_W != ADDR_W - OFF_W || BEATS != LINE_BYTES * 8 / DATA_W
       || BEATS < 1 || BEATS > 256 || BEAT_W != ((BEATS > 1) ? $clog2(BEATS) : 1)
@@ -105,14 +104,6 @@ module cache_axi_read
     $error("cache_axi_read: SETS must be a power of two >= 2");
   end
 
-  // p + k modulo MSHRS (k <= MSHRS)
-  function automatic logic [MIDX_W-1:0] arq_add(input logic [MIDX_W-1:0] p, input int unsigned k);
-    int unsigned q;
-    q = 32'(p) + k;
-    if (q >= MSHRS) q = q - MSHRS;
-    return MIDX_W'(q);
-  endfunction
-
   // ---------------------------------------------------------------- reset epoch
   // (deliberately not reset: it advances at each reset)
   logic [EPOCH_W-1:0] epoch_q;
@@ -124,39 +115,15 @@ module cache_axi_read
   end
 
   // ---------------------------------------------------------------- AR queue
-  logic [MIDX_W-1:0]             arq_q [MSHRS];
-  logic [MIDX_W-1:0]             arq_wp_q, arq_rp_q;
-  logic [QCNT_W-1:0]             arq_cnt_q;
-  logic [NPUSH-1:0][MIDX_W-1:0]  arq_pos;  // each lane's entry
-  logic [NCNT_W-1:0]             arq_n;    // lanes joining
-  logic                          ar_pop;   // the head leaves
+  logic [QCNT_W-1:0] arq_cnt;
+  logic              ar_pop;   // the head leaves
 
-  always_comb begin
-    arq_n = '0;
-    for (int k = 0; k < NPUSH; k++) begin
-      arq_pos[k] = arq_add(arq_wp_q, 32'(arq_n));
-      if (alloc_i[k]) arq_n = arq_n + NCNT_W'(1);
-    end
-  end
+  circ_queue #(.WIDTH(MIDX_W), .DEPTH(MSHRS), .NPUSH(NPUSH), .NPOP(1)) u_arq (
+    .clk_i, .rst_ni, .push_i(alloc_i), .wr_i(alloc_wr_i), .wdata_i(alloc_idx_i),
+    .pop_n_i(ar_pop), .rdata_o(arq_head_o), .peek_o(), .count_o(arq_cnt));
 
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      arq_wp_q  <= '0;
-      arq_rp_q  <= '0;
-      arq_cnt_q <= '0;
-    end else begin
-      arq_wp_q <= arq_add(arq_wp_q, 32'(arq_n));
-      if (ar_pop) arq_rp_q <= arq_add(arq_rp_q, 1);
-      arq_cnt_q <= arq_cnt_q + QCNT_W'(arq_n) - QCNT_W'(ar_pop);
-    end
-    for (int k = 0; k < NPUSH; k++) begin
-      if (alloc_wr_i[k]) arq_q[arq_pos[k]] <= alloc_idx_i[k];
-    end
-  end
-
-  assign arq_head_o = arq_q[arq_rp_q];
-  assign arq_pop_o  = ar_pop;
-  assign arq_cnt_o  = arq_cnt_q;
+  assign arq_pop_o = ar_pop;
+  assign arq_cnt_o = arq_cnt;
 
   // ---------------------------------------------------------------- AR channel
   if (AR_REG) begin : g_ar_reg
@@ -166,14 +133,14 @@ module cache_axi_read
     logic [ID_W-1:0]   ar_id_q;
     logic [ADDR_W-1:0] ar_addr_q;
     assign ap_go  = ap_v_q && (!ar_v_q || m_axi_arready);
-    assign ar_pop = (arq_cnt_q != '0) && (!ap_v_q || ap_go);
+    assign ar_pop = (arq_cnt != '0) && (!ap_v_q || ap_go);
 
     always_ff @(posedge clk_i) begin
       if (!rst_ni) begin
         ap_v_q <= 1'b0;
         ar_v_q <= 1'b0;
       end else begin
-        if (!ap_v_q || ap_go)         ap_v_q <= arq_cnt_q != '0;
+        if (!ap_v_q || ap_go)         ap_v_q <= arq_cnt != '0;
         if (!ar_v_q || m_axi_arready) ar_v_q <= ap_v_q;
       end
       if (ar_pop) ap_idx_q <= arq_head_o;
@@ -190,7 +157,7 @@ module cache_axi_read
   end else begin : g_ar_head
     assign ar_pop        = m_axi_arvalid && m_axi_arready;
     assign la_idx_o      = arq_head_o;
-    assign m_axi_arvalid = rst_ni && (arq_cnt_q != '0);
+    assign m_axi_arvalid = rst_ni && (arq_cnt != '0);
     assign m_axi_arid    = {epoch_q, arq_head_o};
     assign m_axi_araddr  = {la_i, {OFF_W{1'b0}}};
   end

@@ -321,10 +321,7 @@ module tex_cache
     logic                        last;  // the request's last pass
   } pass_t;
 
-  // (Block RAM: it is read only into fifo_rd_q, below; as LUT RAM it took 128 16x4 RAMs.)
-  (* ram_style = "block" *) pass_t fifo_q [FIFO_DEPTH];
-  logic [FP_W-1:0]   fifo_wp_q, fifo_rp_q;
-  logic [FC_W-1:0]   fifo_cnt_q;
+  logic [FC_W-1:0]   fifo_cnt;     // passes in the FIFO (u_fifo)
 
   // MSHRs.
   logic                         mshr_busy_q [MSHRS];
@@ -436,8 +433,8 @@ module tex_cache
     .mshr_short_o(mshr_short), .f_plru_o(f_plru), .f_ag_o(f_ag), .f_live_o(f_live),
     .f_inc_o(f_inc), .b_fg_o(b_fg), .b_dec_o(b_dec));
 
-  // The free MSHRs are a queue of indices (fl_q, in the MSHR section below), taken from its
-  // head as a pass enters the FIFO: free_idx[k] = fl_q[fl_hd_q + k], from registers; a line's
+  // The free MSHRs are a queue of indices (u_free, in the MSHR section below), taken from its
+  // head as a pass enters the FIFO: free_idx[k] = entry head + k, from registers; a line's
   // last beat puts its MSHR back at the tail (seen from the next clock).
   logic [2:0] lk_n;  // the pass's misses
 
@@ -446,7 +443,7 @@ module tex_cache
     for (int c = 0; c < NSUB; c++) lk_n = lk_n + 3'(lk_alloc[c]);
   end
 
-  assign e_fire      = rst_ni && b_valid && (32'(fifo_cnt_q) + 32'(cm_valid_q) < FIFO_DEPTH)
+  assign e_fire      = rst_ni && b_valid && (32'(fifo_cnt) + 32'(cm_valid_q) < FIFO_DEPTH)
                        && !(|lk_blocked) && !mshr_short;
 
   // ---------------------------------------------------------------- commit register
@@ -497,52 +494,39 @@ module tex_cache
     e_pass.last = e_last;
   end
 
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      fifo_wp_q  <= '0;
-      fifo_rp_q  <= '0;
-      fifo_cnt_q <= '0;
-    end else begin
-      if (cm_valid_q) fifo_wp_q <= fifo_wp_q + FP_W'(1);
-      if (h_pop)      fifo_rp_q <= fifo_rp_q + FP_W'(1);
-      fifo_cnt_q <= fifo_cnt_q + FC_W'(cm_valid_q) - FC_W'(h_pop);
-    end
-    if (cm_valid_q) fifo_q[fifo_wp_q] <= cm_pass_q;
-  end
+  // The FIFO's storage is block RAM, read only through its registered port (two entries behind
+  // the head after this clock's pop; below); as LUT RAM it took 128 16x4 RAMs.
+  pass_t rd_eff;  // entry head + 2 after the last clock's pop (valid with 3 or more entries)
+
+  circ_queue #(
+    .WIDTH($bits(pass_t)), .DEPTH(FIFO_DEPTH), .NPUSH(1), .NPOP(1), .ASYNC_RD(1'b0), .PEEK(2),
+    .RAM_STYLE("block")
+  ) u_fifo (
+    .clk_i, .rst_ni, .push_i(cm_valid_q), .wr_i(cm_valid_q), .wdata_i(cm_pass_q),
+    .pop_n_i(h_pop), .rdata_o(), .peek_o(rd_eff), .count_o(fifo_cnt));
 
   // ---------------------------------------------------------------- head: wait, pop, read
   logic [NSUB-1:0] hd_err;
   logic [NSUB-1:0] hd_pend, hd_bad;  // the head's slot per sub-cache: pending, bad (g_dir)
 
-
-  // The head entry hd_q (= fifo_q[fifo_rp_q] while the FIFO holds a pass) and the one behind it,
-  // nx_q (= fifo_q[fifo_rp_q + 1] while it holds two), are registers, so the head's readiness
-  // (its lines present) and the pop start from flip-flops, not from the block RAM's output (4.3
-  // ns clock-to-out on the ECP5).  The block RAM is read every clock two entries ahead of the
-  // head after this clock's pop (fifo_rp_q + 2 + h_pop) into fifo_rd_q, which refills nx_q at a
-  // pop; a pass entering as the first or second goes straight to its register, and one written
-  // at the address read in the same clock (the read sees the old word) is taken from a copy of
-  // the commit register (byp_q).  So one pop per clock, from registers.
-  pass_t           hd_q, nx_q, fifo_rd_q, byp_q, rd_eff;
+  // The head entry hd_q (= the FIFO's head while it holds a pass) and the one behind it, nx_q
+  // (= the entry after the head while it holds two), are registers, so the head's readiness (its
+  // lines present) and the pop start from flip-flops, not from the block RAM's output (4.3 ns
+  // clock-to-out on the ECP5).  The block RAM is read every clock two entries behind the head
+  // after this clock's pop (u_fifo's peek port, rd_eff), which refills nx_q at a pop; a pass
+  // entering as the first or second goes straight to its register, and one written at the
+  // address read in the same clock (the read sees the old word) is taken from a copy of the
+  // commit register (in u_fifo).  So one pop per clock, from registers.
+  pass_t           hd_q, nx_q;
   pass_t           hd_pop_d, hd_hold_d, nx_pop_d, nx_hold_d;
-  logic            byp_v_q;  // fifo_rd_q was read as byp_q was written there: take byp_q
-  logic [FP_W-1:0] rd_addr;
-  assign rd_addr = h_pop ? fifo_rp_q + FP_W'(3) : fifo_rp_q + FP_W'(2);
-
-  always_ff @(posedge clk_i) begin
-    fifo_rd_q <= fifo_q[rd_addr];
-    byp_q     <= cm_pass_q;
-    byp_v_q   <= cm_valid_q && fifo_wp_q == rd_addr;
-  end
 
   // the next head and next-behind-head with and without a pop (from registers), then the pop
   // picks
   always_comb begin
-    rd_eff    = byp_v_q ? byp_q : fifo_rd_q;
-    hd_pop_d  = (fifo_cnt_q >= FC_W'(2)) ? nx_q : cm_pass_q;    // entry rp + 1
-    nx_pop_d  = (fifo_cnt_q >= FC_W'(3)) ? rd_eff : cm_pass_q;  // entry rp + 2
-    hd_hold_d = (fifo_cnt_q == '0) ? cm_pass_q : hd_q;          // entry rp
-    nx_hold_d = (fifo_cnt_q == FC_W'(1)) ? cm_pass_q : nx_q;     // entry rp + 1
+    hd_pop_d  = (fifo_cnt >= FC_W'(2)) ? nx_q : cm_pass_q;    // entry rp + 1
+    nx_pop_d  = (fifo_cnt >= FC_W'(3)) ? rd_eff : cm_pass_q;  // entry rp + 2
+    hd_hold_d = (fifo_cnt == '0) ? cm_pass_q : hd_q;          // entry rp
+    nx_hold_d = (fifo_cnt == FC_W'(1)) ? cm_pass_q : nx_q;     // entry rp + 1
   end
 
   always_ff @(posedge clk_i) begin
@@ -551,7 +535,7 @@ module tex_cache
   end
 
   always_comb begin
-    h_ready = (fifo_cnt_q != '0);
+    h_ready = (fifo_cnt != '0);
     for (int c = 0; c < NSUB; c++) begin
       // (the head's slots are live: allocated by this pass or hit as valid by it)
       if (hd_q.used[c] && hd_pend[c]) h_ready = 1'b0;
@@ -765,41 +749,19 @@ module tex_cache
 `endif
   end
 
-  function automatic logic [MIDX_W-1:0] arq_add(input logic [MIDX_W-1:0] p, input int unsigned k);
-    int unsigned q;
-    q = 32'(p) + k;
-    if (q >= MSHRS) q = q - MSHRS;
-    return MIDX_W'(q);
-  endfunction
-
   // Free MSHRs, a queue of indices: all of them after a reset; a pass entering the FIFO takes
   // one per miss from the head (they are busy from its commit clock on), a line's last beat
   // returns its MSHR at the tail (one per clock at most).
-  logic [MIDX_W-1:0] fl_q [MSHRS];
-  logic [MIDX_W-1:0] fl_hd_q, fl_tl_q;
-  logic [QCNT_W-1:0] fl_cnt_q;
+  logic [QCNT_W-1:0] fl_cnt;  // free MSHRs
+
+  circ_queue #(
+    .WIDTH(MIDX_W), .DEPTH(MSHRS), .NPUSH(1), .NPOP(NSUB), .INIT_SEQ(1'b1)
+  ) u_free (
+    .clk_i, .rst_ni, .push_i(fill_v), .wr_i(fill_v), .wdata_i(r_idx),
+    .pop_n_i(e_fire ? lk_n : 3'd0), .rdata_o(free_idx), .peek_o(), .count_o(fl_cnt));
 
   always_comb begin
-    for (int k = 0; k < NSUB; k++) begin
-      free_idx[k] = fl_q[arq_add(fl_hd_q, k)];
-      free_ok[k]  = 32'(fl_cnt_q) > k;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      for (int m = 0; m < MSHRS; m++) fl_q[m] <= MIDX_W'(m);
-      fl_hd_q  <= '0;
-      fl_tl_q  <= '0;
-      fl_cnt_q <= QCNT_W'(MSHRS);
-    end else begin
-      if (e_fire) fl_hd_q <= arq_add(fl_hd_q, 32'(lk_n));
-      if (fill_v) begin
-        fl_q[fl_tl_q] <= r_idx;
-        fl_tl_q       <= arq_add(fl_tl_q, 1);
-      end
-      fl_cnt_q <= fl_cnt_q - (e_fire ? QCNT_W'(lk_n) : '0) + QCNT_W'(fill_v);
-    end
+    for (int k = 0; k < NSUB; k++) free_ok[k] = 32'(fl_cnt) > k;
   end
 
   // ---------------------------------------------------------------- statistics

@@ -446,10 +446,12 @@ bind tex_cache tex_cache_assert #(
   .a_set_q(a_set), .a_pass_set(u_front.a_pass.set), .b_valid_q(b_valid),
   .b_is_oldest(u_front.b_pass_q == u_front.pq_q[u_front.pq_rp_q[1:0]]),
   .f_vld(u_lookup.f_vld), .f_pnd(u_lookup.f_pnd),
-  .out_push(u_data.out_push), .out_pop(u_data.out_pop), .out_cnt_q(u_data.out_cnt_q),
+  .out_push(u_data.out_push), .out_pop(u_data.out_pop), .out_cnt_q(u_data.out_cnt),
+  .fl_q(u_free.mem_q), .fl_hd_q(u_free.rp_q), .fl_cnt_q(u_free.cnt_q),
   .cm_used(cm_pass_q.used), .cm_set(cm_pass_q.set), .cm_way(cm_pass_q.way),
   .hd_used(hd_q.used), .hd_set(hd_q.set), .hd_way(hd_q.way), .hd_tsel(hd_q.tsel),
-  .hd_toff(hd_q.toff), .hd_is_head(hd_q == fifo_q[fifo_rp_q]),
-  .nx_is_next(nx_q == fifo_q[FP_W'(fifo_rp_q + FP_W'(1))])
+  .hd_toff(hd_q.toff), .fifo_wp_q(u_fifo.wp_q), .fifo_rp_q(u_fifo.rp_q), .fifo_cnt_q(fifo_cnt),
+  .hd_is_head(hd_q == u_fifo.mem_q[u_fifo.rp_q]),
+  .nx_is_next(nx_q == u_fifo.mem_q[FP_W'(u_fifo.rp_q + FP_W'(1))])
 );
 `endif

@@ -87,18 +87,17 @@ module tex_cache_data #(
     logic [TAG_W-1:0] tag;
   } rsp_t;
 
-  (* ram_style = "block" *) rsp_t out_q [OUT_DEPTH];  // 185 bits: 6 EBRs instead of 42 LUT RAMs
-  logic [1:0]        out_wp_q, out_rp_q;
-  logic [2:0]        out_cnt_q;
+  rsp_t              out_rd;     // the buffer's head (u_out)
+  logic [2:0]        out_cnt;    // answers buffered
 
   logic out_pop;
   assign out_pop = rsp_valid_o && rsp_ready_i;
 
   // room in the output buffer for the result and those of the passes popped before it
-  // (out_cnt_q - out_pop + h0_valid_q + h1_valid_q + 1 <= OUT_DEPTH, with the registers' sum
+  // (out_cnt - out_pop + h0_valid_q + h1_valid_q + 1 <= OUT_DEPTH, with the registers' sum
   // compared apart from the late out_pop)
   logic [2:0] out_need;
-  assign out_need = out_cnt_q + 3'(h0_valid_q) + 3'(h1_valid_q);
+  assign out_need = out_cnt + 3'(h0_valid_q) + 3'(h1_valid_q);
   assign out_room_o = out_need < 3'(OUT_DEPTH) || (out_need == 3'(OUT_DEPTH) && out_pop);
 
 
@@ -188,9 +187,6 @@ module tex_cache_data #(
       h1_valid_q  <= 1'b0;
       acc_err_q   <= 1'b0;
       acc_texel_q <= '0;
-      out_wp_q    <= '0;
-      out_rp_q    <= '0;
-      out_cnt_q   <= '0;
     end else begin
       h0_valid_q <= h_pop_i;
       h1_valid_q <= h0_valid_q;
@@ -203,9 +199,6 @@ module tex_cache_data #(
           acc_texel_q <= h1_texel;
         end
       end
-      if (out_push) out_wp_q <= out_wp_q + 2'd1;
-      if (out_pop)  out_rp_q <= out_rp_q + 2'd1;
-      out_cnt_q <= out_cnt_q + 3'(out_push) - 3'(out_pop);
     end
     // (loaded every clock, like the data RAMs' read: they matter only where h0_valid_q and
     // h1_valid_q say a popped pass is; so the pop, late in its clock, enables none of them)
@@ -222,12 +215,18 @@ module tex_cache_data #(
     h1_toff_q  <= h0_toff_q;
     h1_tag_q   <= h0_tag_q;
     ram_rd_q   <= ram_rd;
-    if (out_push) out_q[out_wp_q] <= h1_rsp;
   end
 
-  assign rsp_valid_o = (out_cnt_q != '0);
-  assign rsp_texel_o = out_q[out_rp_q].texel;
-  assign rsp_err_o   = out_q[out_rp_q].err;
-  assign rsp_tag_o   = out_q[out_rp_q].tag;
+  // The output buffer: 185 bits an entry, in block RAM (6 EBRs instead of 42 LUT RAMs).
+  circ_queue #(
+    .WIDTH($bits(rsp_t)), .DEPTH(OUT_DEPTH), .NPUSH(1), .NPOP(1), .RAM_STYLE("block")
+  ) u_out (
+    .clk_i, .rst_ni, .push_i(out_push), .wr_i(out_push), .wdata_i(h1_rsp), .pop_n_i(out_pop),
+    .rdata_o(out_rd), .peek_o(), .count_o(out_cnt));
+
+  assign rsp_valid_o = (out_cnt != '0);
+  assign rsp_texel_o = out_rd.texel;
+  assign rsp_err_o   = out_rd.err;
+  assign rsp_tag_o   = out_rd.tag;
 
 endmodule
