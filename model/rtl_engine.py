@@ -14,8 +14,8 @@ The harness is built on demand (``verilator --cc --exe --build -O3``) into
 10% faster), ``checked`` (assertions on; ``checked=True`` or ``RTL_ENGINE_CHECKED=1``, which the
 test suite sets) or ``waves`` (``--trace-fst`` and assertions, used when ``waves=FILE.fst`` is
 given) -- and rebuilt only when a hash of its inputs changes (the RTL
-sources under rtl/fp, rtl/traverse, rtl/cache, the harness sources, the Verilator version and the
-build flags).  A file lock keeps parallel test workers from building the same variant at once.
+sources under rtl/common, rtl/fp, rtl/traverse, rtl/cache, the harness sources, the Verilator
+version and the build flags).  A file lock keeps parallel test workers from building the same variant at once.
 
 :func:`build` serves every Verilator harness of ``tb/harness/``: a :class:`HarnessSpec` names the
 top module, the RTL directories, the harness sources, the parameters and the build directory
@@ -59,7 +59,7 @@ COMMON_SOURCES = (HARNESS_DIR / "harness_common.h", HARNESS_DIR / "axi_mem.h",
 HARNESS_SOURCES = (HARNESS_DIR / "traverse_harness.cpp", HARNESS_DIR / "traverse_harness.h",
                    *COMMON_SOURCES)
 BUILD = ROOT / "build" / "harness"
-RTL_DIRS = ("fp", "traverse", "cache")
+RTL_DIRS = ("common", "fp", "traverse", "cache")
 TOP = "traverse_system"
 CACHE_SV = ROOT / "rtl" / "cache" / "height_cache.sv"
 BINARY = "traverse_harness"

@@ -53,7 +53,7 @@ PARAMS: dict[str, int] = {"PIX_W": 20, "H_ID_W": 4, "T_ID_W": 6, "AXI_DATA_W": 6
 
 #: The harness (tb/harness/pipeline_harness.cpp) for model.rtl_engine.build.
 PIPELINE = HarnessSpec(
-    name="pipeline", top="dm_pipeline", rtl_dirs=("fp", "traverse", "cache", "mip", "pipe"),
+    name="pipeline", top="dm_pipeline", rtl_dirs=("common", "fp", "traverse", "cache", "mip", "pipe"),
     sources=(HARNESS_DIR / "pipeline_harness.cpp", HARNESS_DIR / "pipeline_harness.h",
              *COMMON_SOURCES),
     binary="pipeline_harness", params=PARAMS, build_dir=BUILD / "pipeline",

@@ -123,7 +123,6 @@ module height_cache
   localparam int unsigned WAY_W      = (WAYS > 1) ? $clog2(WAYS) : 1;
   localparam int unsigned WAY_LVLS   = $clog2(WAYS);
   localparam int unsigned MIDX_W     = (MSHRS > 1) ? $clog2(MSHRS) : 1;
-  localparam int unsigned EPOCH_W    = ID_W - MIDX_W;
   localparam int unsigned QCNT_W     = $clog2(MSHRS + 1);
   localparam int unsigned ERRC_W     = $clog2(ERR_HOLD + 1);
   localparam int unsigned LANES      = LINE_BYTES / 2;           // 16-bit words per line
@@ -159,20 +158,12 @@ module height_cache
   // MSHRs.
   mshr_state_e                  mshr_state_q [MSHRS];
   logic [LA_W-1:0]              mshr_la_q    [MSHRS];  // line address
-  logic [BEAT_W-1:0]            mshr_beat_q  [MSHRS];  // beats received
-  logic                         mshr_rerr_q  [MSHRS];  // an earlier beat had an error
   logic [ERRC_W-1:0]            mshr_errc_q  [MSHRS];  // MSHR_ERR: 0 = no lookup erred yet
   (* ram_style = "block" *)  // (a 16x4 LUT RAM costs 6 LUT4s; EBRs are plentiful here)
   logic [BEATS-1:0][DATA_W-1:0] mshr_buf_q   [MSHRS];  // the line being read
 
-  // AR queue: MSHR indices in allocation order.
-  logic [MIDX_W-1:0] arq_q [MSHRS];
-  logic [MIDX_W-1:0] arq_wp_q, arq_rp_q;
-  logic [QCNT_W-1:0] arq_cnt_q;
-
-  // Reset epoch (deliberately not reset: it advances at each reset).
-  logic [EPOCH_W-1:0] epoch_q;
-  logic               in_rst_q;
+  // The AR queue, the reset epoch, the R channel's beat counts (u_axi).
+  logic [QCNT_W-1:0] arq_cnt;     // reads queued (for the assertions)
 
   // Fill (the clock after a line's last good beat).
   logic              fill_q;
@@ -185,9 +176,9 @@ module height_cache
   logic [SET_W-1:0]  pu_fset_q;
   logic [WAY_W-1:0]  pu_fway_q;
 
-  // The valid bits' reset sweep (see "valid bits").
-  logic              sweep_q;          // the sweep is running
-  logic [SET_W-1:0]  sweep_set_q;      // the set it clears in this clock
+  // The valid bits' reset sweep (see "valid bits"; u_axi).
+  logic              sweep;            // the sweep is running
+  logic [SET_W-1:0]  sweep_set;        // the set it clears in this clock
 
   // Pipeline.
   logic              s1_valid_q, s1_wide_q, s1_conflict_q;
@@ -277,7 +268,7 @@ module height_cache
     if (lk_valid_i) begin
       s1_addr_q     <= lk_addr_i;
       s1_wide_q     <= lk_wide_i;
-      s1_conflict_q <= (fill_q && (fill_set == lk_set)) || sweep_q;
+      s1_conflict_q <= (fill_q && (fill_set == lk_set)) || sweep;
     end
   end
 
@@ -396,7 +387,7 @@ module height_cache
   // (pre_vbits), whose word also holds the set's round-robin pointer (pre_ptr).  A fill writes
   // the whole word of its set: fill_vbits (the set's bits as they are before this fill) with the
   // filled way set, and the pointer to the way after the filled one.  Reset starts a sweep: for
-  // the SETS clocks after rst_ni rises, sweep_q is 1 and one set a clock is written to 0 (valid
+  // the SETS clocks after rst_ni rises, sweep is 1 and one set a clock is written to 0 (valid
   // bits and pointer); a lookup presented in
   // those clocks answers a miss and allocates nothing (like a lookup that meets a fill of its
   // set), and with no MSHR allocated no fill can happen.  A read of the word written in the same
@@ -407,21 +398,11 @@ module height_cache
   logic [WAYS-1:0]  vb_wdata;
   logic [WAY_W-1:0] rr_wdata;
 
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      sweep_q     <= 1'b1;
-      sweep_set_q <= '0;
-    end else if (sweep_q) begin
-      sweep_set_q <= sweep_set_q + SET_W'(1);
-      if (sweep_set_q == SET_W'(SETS - 1)) sweep_q <= 1'b0;
-    end
-  end
-
   // (no fill during the sweep: every MSHR is free from the reset on until the sweep ends)
-  assign vb_we    = rst_ni && (sweep_q || fill_q);
-  assign vb_waddr = sweep_q ? sweep_set_q : fill_set;
-  assign vb_wdata = sweep_q ? '0 : (fill_vbits | (WAYS'(1) << fill_way));
-  assign rr_wdata = sweep_q ? '0 : rr_next(fill_way);
+  assign vb_we    = rst_ni && (sweep || fill_q);
+  assign vb_waddr = sweep ? sweep_set : fill_set;
+  assign vb_wdata = sweep ? '0 : (fill_vbits | (WAYS'(1) << fill_way));
+  assign rr_wdata = sweep ? '0 : rr_next(fill_way);
 
   cache_sdp_ram #(.DEPTH(SETS), .WIDTH(WAYS)) u_valid_lk (
     .clk_i, .we_i(vb_we), .waddr_i(vb_waddr), .wdata_i(vb_wdata),
@@ -430,36 +411,45 @@ module height_cache
     .clk_i, .we_i(vb_we), .waddr_i(vb_waddr), .wdata_i({rr_wdata, vb_wdata}),
     .re_i(1'b1), .raddr_i(pre_set), .rlane_i('0), .rdata_o({pre_ptr, pre_vbits}));
 
-  // ---------------------------------------------------------------- R channel
-  logic [EPOCH_W-1:0] r_epoch;
-  logic               r_acc, r_last_beat, r_bad;
+  // ---------------------------------------------------------------- AXI read (AR queue, R channel)
+  // The lowest free MSHR's index is written into the AR queue whenever an MSHR is free (then the
+  // queue, holding busy MSHRs only, has room); only its pointer and count wait for the allocation.
+  logic               r_ours, r_acc, r_last_beat, r_bad;
+  logic [BEAT_W-1:0]  r_beat;
+  logic [MIDX_W-1:0]  ar_idx;
+  logic               la_we;  // (MSHRs, below)
 
-  assign r_idx       = m_axi_rid[MIDX_W-1:0];
-  assign r_epoch     = m_axi_rid[ID_W-1:MIDX_W];
-  assign r_acc       = m_axi_rvalid && (r_epoch == epoch_q) && (32'(r_idx) < MSHRS)
-                       && (mshr_state_q[r_idx] == MSHR_WAIT);
-  assign r_last_beat = (mshr_beat_q[r_idx] == BEAT_W'(BEATS - 1));
-  assign r_bad       = m_axi_rresp[1] || mshr_rerr_q[r_idx];  // SLVERR / DECERR now or earlier
+  cache_axi_read #(
+    .ADDR_W(ADDR_W), .DATA_W(DATA_W), .LINE_BYTES(LINE_BYTES), .MSHRS(MSHRS), .ID_W(ID_W),
+    .SETS(SETS), .NPUSH(1), .AR_REG(1'b0)
+  ) u_axi (
+    .clk_i, .rst_ni,
+    .alloc_i(s2_alloc), .alloc_wr_i(la_we), .alloc_idx_i(alloc_idx),
+    .la_idx_o(ar_idx), .la_i(mshr_la_q[ar_idx]),
+    .arq_pop_o(), .arq_head_o(), .arq_cnt_o(arq_cnt),
+    .r_idx_o(r_idx), .r_cur_o(), .r_ours_o(r_ours), .r_acc_i(r_acc), .r_beat_o(r_beat),
+    .r_last_o(r_last_beat), .r_bad_o(r_bad),
+    .sweep_o(sweep), .sweep_set_o(sweep_set),
+    .m_axi_arid, .m_axi_araddr, .m_axi_arlen, .m_axi_arsize, .m_axi_arburst, .m_axi_arvalid,
+    .m_axi_arready, .m_axi_rid, .m_axi_rresp, .m_axi_rlast, .m_axi_rvalid, .m_axi_rready);
 
-  assign m_axi_rready = 1'b1;
+  assign r_acc = r_ours && (mshr_state_q[r_idx] == MSHR_WAIT);
 
   // ---------------------------------------------------------------- MSHRs
-  // The lowest free MSHR takes every stage-2 lookup's line address (and clears its beat count
-  // and error bit), whether or not the lookup allocates it: a free MSHR's fields are read by
-  // nothing (the search, the AR port and the fill use busy MSHRs only), so only its state waits
-  // for the tag compare, which no longer drives the enables of MSHRS x LA_W flip-flops.
-  logic la_we;
+  // The lowest free MSHR takes every stage-2 lookup's line address (and the AR queue its index),
+  // whether or not the lookup allocates it: a free MSHR's fields are read by nothing (the search,
+  // the AR port and the fill use busy MSHRs only), so only its state waits for the tag compare,
+  // which no longer drives the enables of MSHRS x LA_W flip-flops.  (Its beat count and error
+  // bit, in u_axi, are clear since its last line's last beat.)
   assign la_we = s2_valid_q && free_any;
 
-  logic ar_pop;
+  logic ar_pop;  // an AR handshake
   assign ar_pop = m_axi_arvalid && m_axi_arready;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       for (int i = 0; i < MSHRS; i++) begin
         mshr_state_q[i] <= MSHR_FREE;
-        mshr_beat_q[i]  <= '0;
-        mshr_rerr_q[i]  <= 1'b0;
         mshr_errc_q[i]  <= '0;
       end
       fill_q     <= 1'b0;
@@ -468,14 +458,9 @@ module height_cache
       for (int i = 0; i < MSHRS; i++) begin
         unique case (mshr_state_q[i])
           MSHR_WAIT: begin
-            if (r_acc && r_idx == MIDX_W'(i)) begin
-              mshr_beat_q[i] <= mshr_beat_q[i] + BEAT_W'(1);
-              mshr_rerr_q[i] <= r_bad;
-              if (r_last_beat) begin
-                mshr_beat_q[i]  <= '0;
-                mshr_state_q[i] <= r_bad ? MSHR_ERR : MSHR_FILL;
-                mshr_errc_q[i]  <= '0;
-              end
+            if (r_acc && r_idx == MIDX_W'(i) && r_last_beat) begin
+              mshr_state_q[i] <= r_bad ? MSHR_ERR : MSHR_FILL;
+              mshr_errc_q[i]  <= '0;
             end
           end
           MSHR_FILL: mshr_state_q[i] <= MSHR_FREE;  // written into the cache this clock
@@ -489,11 +474,6 @@ module height_cache
           end
           default: ;
         endcase
-        // (beat and error bits of a free MSHR are read by nothing: cleared with its address)
-        if (la_we && alloc_idx == MIDX_W'(i)) begin
-          mshr_beat_q[i]  <= '0;
-          mshr_rerr_q[i]  <= 1'b0;
-        end
         if (s2_alloc && alloc_idx == MIDX_W'(i)) mshr_state_q[i] <= MSHR_WAIT;
       end
       fill_q     <= r_acc && r_last_beat && !r_bad;
@@ -507,43 +487,7 @@ module height_cache
 
   always_ff @(posedge clk_i) begin
     if (la_we) mshr_la_q[alloc_idx] <= s2_la;
-    if (r_acc) mshr_buf_q[r_idx][mshr_beat_q[r_idx]] <= m_axi_rdata;
-  end
-
-  // ---------------------------------------------------------------- AR queue and channel
-  function automatic logic [MIDX_W-1:0] arq_next(input logic [MIDX_W-1:0] p);
-    return (32'(p) == MSHRS - 1) ? '0 : p + MIDX_W'(1);
-  endfunction
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      arq_wp_q  <= '0;
-      arq_rp_q  <= '0;
-      arq_cnt_q <= '0;
-    end else begin
-      if (s2_alloc) arq_wp_q <= arq_next(arq_wp_q);
-      if (ar_pop)   arq_rp_q <= arq_next(arq_rp_q);
-      arq_cnt_q <= arq_cnt_q + QCNT_W'(s2_alloc) - QCNT_W'(ar_pop);
-    end
-    // Written whenever an MSHR is free (then the queue, holding busy MSHRs only, has room at
-    // arq_wp_q); only the pointer and the count wait for the allocation itself.
-    if (la_we) arq_q[arq_wp_q] <= alloc_idx;
-  end
-
-  logic [MIDX_W-1:0] ar_idx;
-  assign ar_idx = arq_q[arq_rp_q];
-
-  assign m_axi_arvalid = rst_ni && (arq_cnt_q != '0);
-  assign m_axi_arid    = {epoch_q, ar_idx};
-  assign m_axi_araddr  = {mshr_la_q[ar_idx], {OFF_W{1'b0}}};
-  assign m_axi_arlen   = 8'(BEATS - 1);
-  assign m_axi_arsize  = 3'($clog2(BEAT_BYTES));
-  assign m_axi_arburst = AXI_BURST_INCR;
-
-  // ---------------------------------------------------------------- reset epoch
-  always_ff @(posedge clk_i) begin
-    in_rst_q <= !rst_ni;
-    if (!rst_ni && !in_rst_q) epoch_q <= epoch_q + EPOCH_W'(1);
+    if (r_acc) mshr_buf_q[r_idx][r_beat] <= m_axi_rdata;
   end
 
   // ---------------------------------------------------------------- statistics
@@ -567,50 +511,5 @@ module height_cache
   assign stat_misses_o = st_misses_q;
   assign stat_bytes_o  = st_bytes_q;
   assign stat_lines_o  = st_lines_q;
-
-  // rresp[0] only tells EXOKAY from OKAY and DECERR from SLVERR; both errors are treated alike.
-  logic unused_rresp0;
-  assign unused_rresp0 = m_axi_rresp[0];
-
-`ifndef SYNTHESIS
-  // AXI: the AR payload holds and arvalid stays up until the handshake.
-  ar_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      m_axi_arvalid && !m_axi_arready |=> m_axi_arvalid
-        && $stable({m_axi_arid, m_axi_araddr, m_axi_arlen, m_axi_arsize, m_axi_arburst}))
-    else $error("height_cache: AR dropped or changed before arready");
-  // AXI: rlast marks exactly the last beat of each of our bursts.
-  rlast_on_last_beat: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      r_acc |-> (m_axi_rlast == r_last_beat))
-    else $error("height_cache: rlast on a beat other than the last");
-  // A beat carrying the current epoch belongs to an MSHR waiting for its line.
-  r_beat_expected: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      m_axi_rvalid && (r_epoch == epoch_q) |-> r_acc)
-    else $error("height_cache: R beat for no outstanding read");
-  // MSHR bookkeeping: the queue holds only busy MSHRs, never more than MSHRS.
-  mshr_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      ($countones(mshr_busy) <= MSHRS) && (32'(arq_cnt_q) <= $countones(mshr_busy)))
-    else $error("height_cache: MSHR / AR queue count out of range");
-  fill_is_mshr_fill: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      fill_q |-> (mshr_state_q[fill_idx_q] == MSHR_FILL) && (fill_la_q == mshr_la_q[fill_idx_q]))
-    else $error("height_cache: fill without an MSHR in MSHR_FILL, or of another line");
-  no_fill_in_sweep: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      sweep_q |-> !fill_q && !s2_alloc)
-    else $error("height_cache: a fill or an allocation during the valid bits' reset sweep");
-  hit_not_in_mshr: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      s2_hit |-> !(|mshr_match))
-    else $error("height_cache: a line both in the cache and in an MSHR");
-  // Client contract: 16-bit texels are 2-byte aligned.
-  wide_aligned: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      lk_valid_i && lk_wide_i |-> !lk_addr_i[0])
-    else $error("height_cache: unaligned 16-bit lookup");
-
-  for (genvar i = 0; i < MSHRS; i++) begin : g_mshr_unique
-    for (genvar j = i + 1; j < MSHRS; j++) begin : g_pair
-      mshr_unique: assert property (@(posedge clk_i) disable iff (!rst_ni)
-          !(mshr_busy[i] && mshr_busy[j] && (mshr_la_q[i] == mshr_la_q[j])))
-        else $error("height_cache: two MSHRs hold line %h", mshr_la_q[i]);
-    end
-  end
-`endif
 
 endmodule

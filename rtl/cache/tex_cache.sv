@@ -5,6 +5,12 @@
 // request waits in an in-order FIFO, and its texels are read from the data RAMs at the FIFO head
 // once its lines are there.
 //
+// Files: tex_cache_front (entry register, pass selection, pass queue), tex_cache_lookup (the
+// lookup's read and decide stages), tex_cache_data (data RAMs, texel select, output buffer),
+// cache_axi_read (AR queue and channel, reset epoch, R beat counts, reset sweep); here the
+// directory, the commit register, the request FIFO and its head, the MSHRs and the statistics.
+// The simulation checks and coverage points are in tex_cache_assert (bound into tex_cache).
+//
 // ---- Streams -----------------------------------------------------------------------------------
 // Request (valid / ready; req_valid_i must not depend on req_ready_o, and the payload must hold
 // while req_valid_i && !req_ready_o): req_addr_i[t], t = 0 .. 3, the byte addresses of the texels
@@ -22,7 +28,7 @@
 // address of the texel's row's first texel (c00 for the top row, c10 for the bottom one), j chosen
 // from the quad's row pitch R = req_addr_i[2] - req_addr_i[0] (4 W for a level W texels wide; 0
 // when the rows are clamped, then r = 0): the address bit from the data window's size up that
-// adding R flips most reliably (see "row bits" below; for R = 2^k it is bit k).
+// adding R flips most reliably (see "row bits" in tex_cache_front; for R = 2^k it is bit k).
 // The cache cannot know a texel's row parity from its address (that needs the level's width and
 // base), so the row bit is read from the quad itself.  For a power-of-two width the bottom row
 // starts R after the top row, which flips bit j: the top row's texels go to the sub-caches {r, *}
@@ -50,7 +56,7 @@
 // bits that give each slot's valid, pending and error state one memory per sub-cache, each
 // written from one place (see "Directory" at the state); the lines are in block RAM
 // (cache_sdp_ram), per sub-cache one RAM per DATA_W lane of a window and one for the overlap
-// words, SETS * WAYS * NWIN deep (address {set, way, window}; see "Data RAMs").
+// words, SETS * WAYS * NWIN deep (address {set, way, window}; see "data RAMs" in tex_cache_data).
 //
 // Why this organisation: a quad needs up to four line lookups and four data reads every clock.
 // Four single-ported sub-caches do that only if the lines of a quad never share one, which needs
@@ -198,7 +204,6 @@ module tex_cache
   localparam int unsigned OFF_W      = $clog2(LINE_BYTES);
   localparam int unsigned LA_W       = ADDR_W - OFF_W;           // line address width
   localparam int unsigned LINE_W     = LINE_BYTES * 8;
-  localparam int unsigned WSEL_W     = OFF_W - 2;                // texel within a line
   localparam int unsigned BEATS      = LINE_W / DATA_W;          // beats per line read
   localparam int unsigned BEAT_W     = (BEATS > 1) ? $clog2(BEATS) : 1;
   localparam int unsigned BEAT_BYTES = DATA_W / 8;
@@ -207,25 +212,18 @@ module tex_cache
   localparam int unsigned PLRU_W     = WAYS - 1;
   localparam int unsigned TAGB       = LA_W - 1 - SET_W;         // stored tag bits
   localparam int unsigned MIDX_W     = (MSHRS > 1) ? $clog2(MSHRS) : 1;
-  localparam int unsigned EPOCH_W    = ID_W - MIDX_W;
   localparam int unsigned QCNT_W     = $clog2(MSHRS + 1);
   localparam int unsigned RC_W       = $clog2(FIFO_DEPTH + 1);   // a slot is read once per pass
   localparam int unsigned FP_W       = $clog2(FIFO_DEPTH);
   localparam int unsigned FC_W       = $clog2(FIFO_DEPTH + 1);
   localparam int unsigned OUT_DEPTH  = 4;                        // (a power of two)
-  // data RAM windows (see "Data RAMs" below)
+  // data RAM windows (see "data RAMs" in tex_cache_data)
   localparam int unsigned LWORDS     = LINE_BYTES / 4;           // words per line
   localparam int unsigned WW         = (WIN_WORDS < LWORDS) ? WIN_WORDS : LWORDS;
   localparam int unsigned NWIN       = LWORDS / WW;              // windows per line
   localparam int unsigned WB         = $clog2(WW);               // log2 words per window
   localparam int unsigned WIN_W      = (NWIN > 1) ? $clog2(NWIN) : 1;
   localparam int unsigned TOFF_W     = WB + 1;                   // word in a read window, 0 .. WW
-  localparam int unsigned NLANE      = WW * 32 / DATA_W;         // beats per window
-  localparam int unsigned LANE_B     = (NLANE > 1) ? $clog2(NLANE) : 1;
-  localparam int unsigned OVL_W      = (DATA_W < 32) ? DATA_W : 32;  // overlap-word lane width
-  localparam int unsigned NOVL       = 32 / OVL_W;               // beats per overlap word
-  localparam int unsigned RAM_DEPTH  = SETS * WAYS * NWIN;
-  localparam int unsigned RAM_AW     = $clog2(RAM_DEPTH);
 
   if (LINE_BYTES < 8 || LINE_BYTES > 4096 || (1 << OFF_W) != LINE_BYTES) begin : g_check_line
     $error("tex_cache: LINE_BYTES must be a power of two in 8..4096");
@@ -255,41 +253,6 @@ module tex_cache
   end
 
   // ---------------------------------------------------------------- helpers
-  // XOR-folded set index of a line (bit 0, the parity, selects the sub-cache).
-  function automatic logic [SET_W-1:0] set_of(input logic [LA_W-1:0] la);
-    logic [SET_W-1:0] s;
-    s = '0;
-    for (int unsigned i = 0; i < SET_W; i++) begin
-      if (1 + i < LA_W) s[i] = la[1 + i];
-      if (1 + SET_W + i < LA_W) s[i] = s[i] ^ la[1 + SET_W + i];
-    end
-    return s;
-  endfunction
-
-  // Tree pseudo-LRU (node n = 1 .. WAYS-1 is bit n-1, children 2n, 2n+1; 0: the next victim is on
-  // the left).  pick: follow the tree's direction unless that subtree has no candidate (mask m).
-  function automatic logic [WAY_W-1:0] plru_pick(input logic [PLRU_W-1:0] b,
-                                                 input logic [WAYS-1:0] m);
-    int unsigned n, lo, span;
-    logic l_has, r_has, go_r;
-    n    = 1;
-    lo   = 0;
-    span = WAYS;
-    for (int unsigned l = 0; l < WAY_W; l++) begin
-      l_has = 1'b0;
-      r_has = 1'b0;
-      for (int unsigned w = 0; w < WAYS; w++) begin
-        if (w >= lo && w < lo + span / 2 && m[w]) l_has = 1'b1;
-        if (w >= lo + span / 2 && w < lo + span && m[w]) r_has = 1'b1;
-      end
-      go_r = b[n-1] ? r_has : !l_has;
-      n    = 2 * n + (go_r ? 1 : 0);
-      if (go_r) lo = lo + span / 2;
-      span = span / 2;
-    end
-    return WAY_W'(lo);
-  endfunction
-
   // Mark way w most recently used: every node on its path points away from it.
   function automatic logic [PLRU_W-1:0] plru_touch(input logic [PLRU_W-1:0] b,
                                                    input logic [WAY_W-1:0] w);
@@ -340,17 +303,10 @@ module tex_cache
   //    way's path, so every node of the tree has been written since the reset.
   // (The state bits were flops written by both the commit and the fill, 3 x NSUB x SETS x WAYS
   // of them read through wide multiplexers; in LUT RAM each memory has one writer.)
-  logic              swp_q;        // the live bits are being cleared (after a reset)
-  logic [SET_W-1:0]  swp_set_q;    // the set cleared in this clock
+  logic              swp;          // the live bits are being cleared (after a reset; u_axi)
+  logic [SET_W-1:0]  swp_set;      // the set cleared in this clock
 
-  // Entry register (the request being looked up).
-  logic                   s0_valid_q;
-  logic [3:0][ADDR_W-1:0] s0_addr_q;
-  logic [TAG_W-1:0]       s0_tag_q;
-  logic [3:0]             s0_todo_q;   // texels not yet sent in a pass
-  logic [3:0]             s0_row_q;    // row bit per texel
   logic                   e_missed_q;  // an earlier pass of the request in the lookup missed
-  logic [3:0][3:0]        s0_join_q;   // [u][t], u < t: texel t may share texel u's read (below)
 
   // Request FIFO (one entry per pass).
   typedef struct packed {
@@ -365,36 +321,7 @@ module tex_cache
     logic                        last;  // the request's last pass
   } pass_t;
 
-  // (Block RAM: it is read only into fifo_rd_q, below; as LUT RAM it took 128 16x4 RAMs.)
-  (* ram_style = "block" *) pass_t fifo_q [FIFO_DEPTH];
-  logic [FP_W-1:0]   fifo_wp_q, fifo_rp_q;
-  logic [FC_W-1:0]   fifo_cnt_q;
-
-  // Head read stage (the clock after the pop: the RAMs read the lines).
-  logic              h0_valid_q, h0_last_q, h0_err_q;
-  logic [3:0]        h0_tsel_q;
-  logic [3:0][1:0]   h0_tsub_q;
-  logic [3:0][TOFF_W-1:0] h0_toff_q;
-  logic [TAG_W-1:0]  h0_tag_q;
-  // Select stage (the clock after: the RAMs' words in registers, ram_rd_q).
-  logic              h1_valid_q, h1_last_q, h1_err_q;
-  logic [3:0]        h1_tsel_q;
-  logic [3:0][1:0]   h1_tsub_q;
-  logic [3:0][TOFF_W-1:0] h1_toff_q;
-  logic [TAG_W-1:0]  h1_tag_q;
-  logic [3:0][31:0]  acc_texel_q;  // texels of the earlier passes of the request
-  logic              acc_err_q;
-
-  // Output buffer.
-  typedef struct packed {
-    logic [3:0][31:0] texel;
-    logic             err;
-    logic [TAG_W-1:0] tag;
-  } rsp_t;
-
-  (* ram_style = "block" *) rsp_t out_q [OUT_DEPTH];  // 185 bits: 6 EBRs instead of 42 LUT RAMs
-  logic [1:0]        out_wp_q, out_rp_q;
-  logic [2:0]        out_cnt_q;
+  logic [FC_W-1:0]   fifo_cnt;     // passes in the FIFO (u_fifo)
 
   // MSHRs.
   logic                         mshr_busy_q [MSHRS];
@@ -403,189 +330,39 @@ module tex_cache
   // MSHR (g_mshr below), so each has one writer: that sub-cache's allocation.  A read takes the
   // word of the MSHR's sub-cache.
   logic [1:0]                   mshr_sub_q  [MSHRS];
-  logic [NSUB-1:0][LA_W-1:0]    mshr_la_ar;   // each sub-cache's line of the MSHR in ap_idx_q
+  logic [NSUB-1:0][LA_W-1:0]    mshr_la_ar;   // each sub-cache's line of the MSHR in ap_idx
   logic [NSUB-1:0][SET_W+WAY_W-1:0] mshr_sw_r;  // ... slot (set, way) of the MSHR of the R beat
   logic [NSUB-1:0][LA_W-1:0]    mshr_la_r;    // ... line of the MSHR of the R beat (simulation)
   logic [MIDX_W-1:0]            ar_idx;       // the MSHR at the AR queue's head
+  logic [MIDX_W-1:0]            ap_idx;       // the MSHR of the next AR (u_axi's register)
 `ifndef SYNTHESIS
-  // every MSHR's fields, for the assertions
-  logic [LA_W-1:0]              mshr_la_all [NSUB][MSHRS];
-  logic [SET_W+WAY_W-1:0]       mshr_sw_all [NSUB][MSHRS];
-  logic [LA_W-1:0]              mshr_la_v   [MSHRS];
-  logic [SET_W-1:0]             mshr_set_v  [MSHRS];
-  logic [WAY_W-1:0]             mshr_way_v  [MSHRS];
-  always_comb begin
-    for (int m = 0; m < MSHRS; m++) begin
-      mshr_la_v[m]                   = mshr_la_all[mshr_sub_q[m]][m];
-      {mshr_set_v[m], mshr_way_v[m]} = mshr_sw_all[mshr_sub_q[m]][m];
-    end
-  end
+  // The memories as the bound checks (tex_cache_assert) see them: the directory's words per
+  // sub-cache and set (g_dir), its tags and reference counts per sub-cache, way and set, the
+  // MSHRs' lines and slots per sub-cache and MSHR (g_mshr).
+  logic [WAYS-1:0]              vw_live [NSUB][SETS];
+  logic [WAYS-1:0]              vw_ag   [NSUB][SETS];
+  logic [WAYS-1:0]              vw_fg   [NSUB][SETS];
+  logic [WAYS-1:0]              vw_bad  [NSUB][SETS];
+  logic [TAGB-1:0]              vw_tag  [NSUB][WAYS][SETS];
+  logic [RC_W-1:0]              vw_inc  [NSUB][WAYS][SETS];
+  logic [RC_W-1:0]              vw_dec  [NSUB][WAYS][SETS];
+  logic [LA_W-1:0]              vw_la   [NSUB][MSHRS];
+  logic [SET_W+WAY_W-1:0]       vw_sw   [NSUB][MSHRS];
 `endif
-  logic [BEAT_W-1:0]            mshr_beat_q [MSHRS];
-  logic                         mshr_rerr_q [MSHRS];  // an earlier beat had an error
-
-  // AR queue (MSHR indices in allocation order).
-  logic [MIDX_W-1:0] arq_q [MSHRS];
-  logic [MIDX_W-1:0] arq_wp_q, arq_rp_q;
-  logic [QCNT_W-1:0] arq_cnt_q;
-
-  // Reset epoch (deliberately not reset: it advances at each reset).
-  logic [EPOCH_W-1:0] epoch_q;
-  logic               in_rst_q;
+  // (their beat counts and error bits, the AR queue and the reset epoch: u_axi)
+  logic [QCNT_W-1:0]            arq_cnt;      // reads queued (for the assertions)
 
   logic [47:0] st_req_q, st_qhit_q, st_lk_q, st_miss_q, st_thit_q, st_bytes_q;
 
-  // ---------------------------------------------------------------- row bits (at the input)
-  // Row-bit position j: among the address bits j = WB + 2 .. ADDR_W - 1 (from the window's
-  // size up), the one where the pitch R is closest to an odd multiple of 2^j, judged by the
-  // ROW_P bits below bit j: the distance is e = R[j-1 -: ROW_P] when R[j] = 1, else its
-  // complement (2^ROW_P - 1 - that); the smallest e wins, the lowest j on ties.  Adding R then
-  // flips bit j of an address unless a carry (or borrow) from below bit j interferes, which
-  // happens with probability about e / 2^ROW_P: never when R is a power of two (e = 0 at its
-  // only one; for R below a window's bytes, j = WB + 2, which flips exactly when the bottom row
-  // is in the next window).  The row bit of a texel is bit j of its row's first texel (c00 for
-  // c00, c01; c10 for c10, c11), so that j may be the line-parity bit (R = LINE_BYTES).
-  localparam int unsigned ROW_P = 3;
-  localparam int unsigned ROW_NJ = ADDR_W - WB - 2;              // candidate positions
-  localparam int unsigned ROW_NT = 1 << $clog2(ROW_NJ);          // leaves of the choice tree
-  logic [ADDR_W-1:0] in_pitch;
-  logic [3:0]        in_row;
-
-  // The choice as a balanced tree of pairwise minima (a left subtree holds the lower positions
-  // and wins ties), not a chain along the address: log2 of the candidates levels deep.  Each
-  // node carries its best e and that position's row bits of c00 and c10.
-  always_comb begin
-    logic [2*ROW_NT-1:1]             nd_v;
-    logic [2*ROW_NT-1:1][ROW_P-1:0]  nd_e;
-    logic [2*ROW_NT-1:1][1:0]        nd_r;
-    in_pitch = req_addr_i[2] - req_addr_i[0];
-    nd_v = '0;
-    nd_e = '1;
-    nd_r = '0;
-    for (int unsigned i = 0; i < ROW_NJ; i++) begin
-      nd_v[ROW_NT + i] = 1'b1;
-      nd_e[ROW_NT + i] = in_pitch[WB + 2 + i] ? in_pitch[WB + 1 + i -: ROW_P]
-                                              : ~in_pitch[WB + 1 + i -: ROW_P];
-      nd_r[ROW_NT + i] = {req_addr_i[2][WB + 2 + i], req_addr_i[0][WB + 2 + i]};
-    end
-    for (int unsigned n = ROW_NT - 1; n >= 1; n--) begin
-      if (!nd_v[2 * n] || (nd_v[2 * n + 1] && nd_e[2 * n + 1] < nd_e[2 * n])) begin
-        nd_v[n] = nd_v[2 * n + 1];
-        nd_e[n] = nd_e[2 * n + 1];
-        nd_r[n] = nd_r[2 * n + 1];
-      end else begin
-        nd_v[n] = nd_v[2 * n];
-        nd_e[n] = nd_e[2 * n];
-        nd_r[n] = nd_r[2 * n];
-      end
-    end
-    in_row = {nd_r[1][1], nd_r[1][1], nd_r[1][0], nd_r[1][0]};
-    if (in_pitch == '0) in_row = '0;  // rows clamped: one row
-  end
-
-  // window of a word (the window it starts in)
-  function automatic logic [WIN_W-1:0] win_of(input logic [WSEL_W-1:0] w);
-    return WIN_W'(32'(w) >> WB);
-  endfunction
-
-  // Which texels may share a read, compared at the input (registered with the request, so the
-  // pass selection below chains single bits): in_join[u][t] (u < t) when texel t is in texel u's
-  // line and in the window u's word starts (window k holds words k * WW .. k * WW + WW).
-  logic [3:0][3:0] in_join;
-  always_comb begin
-    logic [WSEL_W-1:0] wu, wt;
-    in_join = '0;
-    for (int u = 0; u < 4; u++) begin
-      for (int t = u + 1; t < 4; t++) begin
-        wu = req_addr_i[u][OFF_W-1:2];
-        wt = req_addr_i[t][OFF_W-1:2];
-        in_join[u][t] = req_addr_i[u][ADDR_W-1:OFF_W] == req_addr_i[t][ADDR_W-1:OFF_W]
-                        && (win_of(wt) == win_of(wu)
-                            || 32'(wt) == (32'(win_of(wu)) + 1) * WW);
-      end
-    end
-  end
-
-  // ---------------------------------------------------------------- entry: pass selection
-  // From the entry register: the request's next pass (sl_*), written into the pass queue.
-  logic [3:0][LA_W-1:0]   e_la;
-  logic [3:0][1:0]        e_sub;
-  logic [3:0][WSEL_W-1:0] e_word;   // word in the line
-  logic [3:0]             sl_sel;   // texels of the pass
-  logic [NSUB-1:0]        sl_v;     // sub-caches the pass reads
-  logic [NSUB-1:0][LA_W-1:0]  sl_la;
-  logic [NSUB-1:0][WIN_W-1:0] sl_win;
-  logic                   sl_last;  // the request's last pass
-
-  always_comb begin
-    logic lead;
-    for (int t = 0; t < 4; t++) begin
-      e_la[t]   = s0_addr_q[t][ADDR_W-1:OFF_W];
-      e_sub[t]  = {s0_row_q[t], e_la[t][0]};
-      e_word[t] = s0_addr_q[t][OFF_W-1:2];
-    end
-    // greedy, in texel order: a texel joins unless its sub-cache's first member (the leader,
-    // which chose the line and the window) has another line, or a window the texel's word is
-    // not in (window k holds words k * WW .. k * WW + WW); the first texel to do always joins
-    for (int t = 0; t < 4; t++) begin
-      sl_sel[t] = s0_valid_q && s0_todo_q[t];
-      lead      = 1'b0;
-      for (int u = 0; u < t; u++) begin
-        if (!lead && sl_sel[u] && e_sub[u] == e_sub[t]) begin
-          lead = 1'b1;
-          if (!s0_join_q[u][t]) sl_sel[t] = 1'b0;
-        end
-      end
-    end
-    sl_v   = '0;
-    sl_la  = '0;
-    sl_win = '0;
-    for (int t = 3; t >= 0; t--) begin  // the lowest member of a sub-cache is its leader
-      if (sl_sel[t]) begin
-        sl_v[e_sub[t]]   = 1'b1;
-        sl_la[e_sub[t]]  = e_la[t];
-        sl_win[e_sub[t]] = win_of(e_word[t]);
-      end
-    end
-    sl_last = (s0_todo_q & ~sl_sel) == '0;
-  end
-
-  // ---------------------------------------------------------------- pass queue
-  // The passes selected and not yet in the FIFO: PQ_DEPTH registers used as a queue (pq_q),
-  // written at pq_wp_q.  The lookup takes two clocks, a read stage and a decide stage (below):
-  // pq_ip_q is the next entry the read stage takes, pq_rp_q the oldest entry, the pass in the
-  // decide stage when it holds one (b_valid_q), freed when that pass enters the FIFO (e_fire).
-  // When the decide stage cannot let its pass go (the FIFO is full, an MSHR is missing, every way
-  // of a missed set is referenced), it drops it and the pass behind it in the read stage, and
-  // pq_ip_q goes back to pq_rp_q: the pass is read again from the directory as it then is (a
-  // replay: two clocks per retry, and no outcome of the decision steers more than the pointers
-  // and the stage valid bits).  A pass moves in while the queue has a free entry, judged from the
-  // pointers alone, so neither the selection nor req_ready_o waits on the lookup's outcome in the
-  // same clock.  Three entries keep one pass per clock going (one deciding, one being read, one
-  // being selected); the fourth makes the pointers plain binary counters.
-  localparam int unsigned PQ_DEPTH = 4;
-  typedef struct packed {
-    logic [NSUB-1:0]            v;     // sub-caches the pass reads
-    logic [NSUB-1:0][LA_W-1:0]  la;
-    logic [NSUB-1:0][SET_W-1:0] set;
-    logic [NSUB-1:0][TAGB-1:0]  tag;   // the line address bits above the low set field
-    logic [NSUB-1:0][WIN_W-1:0] win;
-    logic [3:0]                 sel;   // texels of the pass
-    logic [3:0][1:0]            psub;  // their sub-caches
-    logic [3:0][WSEL_W-1:0]     word;  // their words in the line
-    logic [TAG_W-1:0]           rtag;  // the request's tag
-    logic                       last;  // the request's last pass
-  } pq_t;
-
-  pq_t [PQ_DEPTH-1:0]         pq_q;
-  logic [2:0]                 pq_wp_q, pq_ip_q, pq_rp_q;  // (one bit above the index: full / empty)
-  pq_t                        pq_d;      // the selected pass as it is written
-  pq_t                        a_pass;    // the pass the read stage takes (pq_q[pq_ip_q])
-  logic                       a_issue;   // there is one
-  logic                       b_valid_q; // the decide stage holds a pass (pq_q[pq_rp_q])
-  pq_t                        b_pass_q;
-  logic                       replay;    // the decide stage drops its pass to read it again
-  logic [NSUB-1:0]            lk_v;      // the decide stage's pass, as the lookup uses it
+  // ---------------------------------------------------------------- entry, passes, pass queue
+  // (tex_cache_front) The request's passes, as the lookup's read stage (a_*) and decide stage
+  // (b_valid, lk_*, e_*) take them.
+  localparam int unsigned PQ_DEPTH = 4;    // pass queue entries
+  logic                       a_issue;     // the read stage has a pass
+  logic [NSUB-1:0][SET_W-1:0] a_set;       // its sets (registered: the directory's read address)
+  logic [NSUB-1:0][TAGB-1:0]  a_tag;       // its tags
+  logic                       b_valid;     // the decide stage holds a pass
+  logic [NSUB-1:0]            lk_v;        // the decide stage's pass, as the lookup uses it
   logic [NSUB-1:0][LA_W-1:0]  lk_la;
   logic [NSUB-1:0][SET_W-1:0] lk_set;
   logic [NSUB-1:0][TAGB-1:0]  lk_tag;
@@ -595,84 +372,23 @@ module tex_cache
   logic [3:0][TOFF_W-1:0]     e_toff;
   logic [TAG_W-1:0]           e_tag;
   logic                       e_last;
-  logic                       p_load;    // the next pass moves into the queue
-  logic                       e_fire;    // the decide stage's pass enters the FIFO
+  logic                       e_fire;      // the decide stage's pass enters the FIFO
 
-  assign p_load  = rst_ni && s0_valid_q && (pq_wp_q - pq_rp_q) != 3'(PQ_DEPTH);
-  assign a_issue = pq_ip_q != pq_wp_q;
-  assign a_pass  = pq_q[pq_ip_q[1:0]];
-  assign replay  = b_valid_q && !e_fire;
-
-  // The read stage's sets (the directory's read addresses) come from a register of their own,
-  // a_set_q = a_pass.set while a_issue, loaded with the entry the read stage takes next: three
-  // candidates from registers (the oldest entry for a replay, the one after pq_ip_q, or pq_ip_q
-  // again; an entry written in this clock from pq_d), of which the decision picks one.
-  logic [NSUB-1:0][SET_W-1:0] a_set_q, set_rp, set_next, set_hold;
-  always_comb begin
-    logic [2:0] ip1;
-    ip1      = pq_ip_q + 3'd1;
-    set_rp   = pq_q[pq_rp_q[1:0]].set;
-    set_next = (ip1 == pq_wp_q) ? pq_d.set : pq_q[ip1[1:0]].set;
-    set_hold = (pq_ip_q == pq_wp_q) ? pq_d.set : pq_q[pq_ip_q[1:0]].set;
-  end
-  always_ff @(posedge clk_i) begin
-    a_set_q <= replay ? set_rp : (a_issue ? set_next : set_hold);
-  end
-
-  always_comb begin
-    pq_d.v    = sl_v;
-    pq_d.la   = sl_la;
-    for (int c = 0; c < NSUB; c++) begin
-      pq_d.set[c] = set_of(sl_la[c]);
-      pq_d.tag[c] = sl_la[c][LA_W-1 -: TAGB];
-    end
-    pq_d.win  = sl_win;
-    pq_d.sel  = sl_sel;
-    pq_d.psub = e_sub;
-    pq_d.word = e_word;
-    pq_d.rtag = s0_tag_q;
-    pq_d.last = sl_last;
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      pq_wp_q   <= '0;
-      pq_ip_q   <= '0;
-      pq_rp_q   <= '0;
-      b_valid_q <= 1'b0;
-    end else begin
-      if (p_load) pq_wp_q <= pq_wp_q + 3'd1;
-      if (e_fire) pq_rp_q <= pq_rp_q + 3'd1;
-      if (replay)       pq_ip_q <= pq_rp_q;  // (pq_rp_q does not move: no e_fire)
-      else if (a_issue) pq_ip_q <= pq_ip_q + 3'd1;
-      b_valid_q <= a_issue && !replay;
-    end
-    if (p_load) pq_q[pq_wp_q[1:0]] <= pq_d;
-    b_pass_q <= a_pass;
-  end
-
-  always_comb begin
-    lk_v   = b_pass_q.v;
-    lk_la  = b_pass_q.la;
-    lk_set = b_pass_q.set;
-    lk_tag = b_pass_q.tag;
-    lk_win = b_pass_q.win;
-    e_sel  = b_pass_q.sel;
-    e_psub = b_pass_q.psub;
-    // a texel's word in the window its sub-cache reads (computed here, off the selection's path)
-    for (int t = 0; t < 4; t++) begin
-      e_toff[t] = TOFF_W'(32'(b_pass_q.word[t]) - 32'(b_pass_q.win[b_pass_q.psub[t]]) * WW);
-    end
-    e_tag  = b_pass_q.rtag;
-    e_last = b_pass_q.last;
-  end
+  tex_cache_front #(
+    .ADDR_W(ADDR_W), .TAG_W(TAG_W), .OFF_W(OFF_W), .SET_W(SET_W), .WW(WW), .PQ_DEPTH(PQ_DEPTH)
+  ) u_front (
+    .clk_i, .rst_ni, .swp_i(swp),
+    .req_valid_i, .req_ready_o, .req_addr_i, .req_tag_i,
+    .a_issue_o(a_issue), .a_set_o(a_set), .a_tag_o(a_tag),
+    .b_valid_o(b_valid), .lk_v_o(lk_v), .lk_la_o(lk_la), .lk_set_o(lk_set), .lk_tag_o(lk_tag),
+    .lk_win_o(lk_win), .e_sel_o(e_sel), .e_psub_o(e_psub), .e_toff_o(e_toff), .e_tag_o(e_tag),
+    .e_last_o(e_last), .e_fire_i(e_fire));
 
   // ---------------------------------------------------------------- lookup: tags, victims
   logic [NSUB-1:0]            lk_alloc, lk_blocked;
   logic [NSUB-1:0][WAY_W-1:0] lk_way;     // the hit way or the victim
   logic [NSUB-1:0][MIDX_W-1:0] lk_mshr;   // MSHR of a miss
   logic                       mshr_short; // not enough free MSHRs for the pass's misses
-  logic [NSUB-1:0][WAYS-1:0]  way_hit, way_free;
   // the directory's LUT RAM read at the read stage's set (g_dir)
   logic [NSUB-1:0][WAYS-1:0][TAGB-1:0] set_tag;
   logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] set_inc, set_dec;
@@ -696,137 +412,29 @@ module tex_cache
   logic [NSUB-1:0][WAYS-1:0]   cm_ag_q;    // the set's new ag bits (written on an allocation)
   logic [NSUB-1:0][WAYS-1:0]   cm_live_q;  // ... and live bits
 
-  // Read stage.  The directory at the pass's sets as the decide stage must see it: what the
-  // RAMs hold with the commit register's writes (not yet done) forwarded, and what can be
-  // compared already: each way's tag against the pass's (hit), its reference counts (idle: no
-  // reference), and the pass's sets and tags against those of the pass now deciding, which is in
-  // the commit register in the next clock if it enters the FIFO.  The fill's and the head's
-  // writes of this clock are not seen (the decide stage sees them a clock later than a one-clock
-  // lookup would): a slot whose reference is released in this clock looks referenced (never a
-  // victim then), and a line completing in this clock looks pending, so a pass that hits a line
-  // just come back with an error answers rsp_err_o = 1 (its quad has a bad line: a new read of
-  // it would answer the same) rather than reading it again.
-  logic [NSUB-1:0][WAYS-1:0]           a_vld, a_err, a_pnd, a_hit, a_idle;
-  logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] a_inc;
-  logic [NSUB-1:0][PLRU_W-1:0]         a_plru;
-  logic [NSUB-1:0][WAYS-1:0]           a_ag, a_live;
-  logic [NSUB-1:0]                     a_seteq, a_tageq;
+  // Read and decide stages (tex_cache_lookup): hit or miss per sub-cache, the way, the MSHRs.
+  logic [NSUB-1:0][PLRU_W-1:0]         f_plru;  // the directory at the decided sets, forwarded
+  logic [NSUB-1:0][WAYS-1:0]           f_ag, f_live, b_fg;
+  logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] f_inc, b_dec;
 
-  always_comb begin
-    logic                fw, fw_alloc, live, done_bad;
-    logic [TAGB-1:0]     tag;
-    for (int c = 0; c < NSUB; c++) begin
-      fw        = cm_valid_q && cm_pass_q.used[c] && cm_pass_q.set[c] == a_set_q[c];
-      a_plru[c] = fw ? cm_plru_q[c] : set_plru[c];
-      a_ag[c]   = (fw && cm_alloc_q[c]) ? cm_ag_q[c] : set_ag[c];
-      a_live[c] = (fw && cm_alloc_q[c]) ? cm_live_q[c] : set_live[c];
-      for (int w = 0; w < WAYS; w++) begin
-        fw_alloc     = fw && cm_alloc_q[c] && cm_pass_q.way[c] == WAY_W'(w);
-        live         = set_live[c][w];
-        done_bad     = set_ag[c][w] == set_fg[c][w] && set_bad[c][w];  // not pending, bad
-        a_vld[c][w]  = fw_alloc || (live && !done_bad);
-        a_pnd[c][w]  = fw_alloc || (live && set_ag[c][w] != set_fg[c][w]);
-        a_err[c][w]  = !fw_alloc && live && done_bad;
-        tag          = fw_alloc ? cm_tag_q[c] : set_tag[c][w];
-        a_hit[c][w]  = tag == a_pass.tag[c];  // (a hit when valid too: in the decide stage)
-        a_inc[c][w]  = (fw && cm_pass_q.way[c] == WAY_W'(w)) ? cm_inc_q[c] : set_inc[c][w];
-        a_idle[c][w] = a_inc[c][w] == set_dec[c][w];
-      end
-      a_seteq[c] = b_valid_q && lk_v[c] && lk_set[c] == a_set_q[c];
-      a_tageq[c] = lk_tag[c] == a_pass.tag[c];
-    end
-  end
+  tex_cache_lookup #(
+    .WAYS(WAYS), .SET_W(SET_W), .TAGB(TAGB), .RC_W(RC_W), .MIDX_W(MIDX_W)
+  ) u_lookup (
+    .clk_i,
+    .a_set_i(a_set), .a_tag_i(a_tag),
+    .set_tag_i(set_tag), .set_inc_i(set_inc), .set_dec_i(set_dec), .set_plru_i(set_plru),
+    .set_live_i(set_live), .set_ag_i(set_ag), .set_fg_i(set_fg), .set_bad_i(set_bad),
+    .b_valid_i(b_valid), .lk_v_i(lk_v), .lk_set_i(lk_set), .lk_tag_i(lk_tag),
+    .cm_valid_i(cm_valid_q), .cm_used_i(cm_pass_q.used), .cm_set_i(cm_pass_q.set),
+    .cm_way_i(cm_pass_q.way), .cm_alloc_i(cm_alloc_q), .cm_tag_i(cm_tag_q), .cm_inc_i(cm_inc_q),
+    .cm_plru_i(cm_plru_q), .cm_ag_i(cm_ag_q), .cm_live_i(cm_live_q),
+    .free_idx_i(free_idx), .free_ok_i(free_ok),
+    .lk_alloc_o(lk_alloc), .lk_blocked_o(lk_blocked), .lk_way_o(lk_way), .lk_mshr_o(lk_mshr),
+    .mshr_short_o(mshr_short), .f_plru_o(f_plru), .f_ag_o(f_ag), .f_live_o(f_live),
+    .f_inc_o(f_inc), .b_fg_o(b_fg), .b_dec_o(b_dec));
 
-  // Decide stage: the read stage's results, registered every clock (b_valid_q says whether they
-  // belong to a pass), with the commit register's writes forwarded once more.
-  logic [NSUB-1:0][WAYS-1:0]           b_vld_q, b_err_q, b_pnd_q, b_hit_q, b_idle_q, b_fg_q;
-  logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] b_inc_q, b_dec_q;
-  logic [NSUB-1:0][PLRU_W-1:0]         b_plru_q;
-  logic [NSUB-1:0][WAYS-1:0]           b_ag_q, b_live_q;
-  logic [NSUB-1:0]                     b_seteq_q, b_tageq_q;
-
-  always_ff @(posedge clk_i) begin
-    b_vld_q   <= a_vld;
-    b_err_q   <= a_err;
-    b_pnd_q   <= a_pnd;
-    b_hit_q   <= a_hit;
-    b_idle_q  <= a_idle;
-    b_fg_q    <= set_fg;
-    b_inc_q   <= a_inc;
-    b_dec_q   <= set_dec;
-    b_plru_q  <= a_plru;
-    b_ag_q    <= a_ag;
-    b_live_q  <= a_live;
-    b_seteq_q <= a_seteq;
-    b_tageq_q <= a_tageq;
-  end
-
-  // The directory at the looked-up set as the decision must see it (f_*): a pass in the decide
-  // stage was read while the pass now in the commit register was deciding, so that one's writes
-  // are forwarded here (the sets and tags compared in the read stage).
-  logic [NSUB-1:0][WAYS-1:0]           f_vld, f_err, f_pnd, f_hit, f_idle;
-  logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] f_inc;
-  logic [NSUB-1:0][PLRU_W-1:0]         f_plru;
-  logic [NSUB-1:0][WAYS-1:0]           f_ag, f_live;
-
-  always_comb begin
-    logic fw, fw_way, fw_alloc;
-    for (int c = 0; c < NSUB; c++) begin
-      // (no cm_valid_q: b_seteq_q holds only if this stage held a pass in the clock before, and
-      // that pass entered the FIFO, or the replay would have dropped this one)
-      fw        = b_seteq_q[c];
-      f_plru[c] = fw ? cm_plru_q[c] : b_plru_q[c];
-      f_ag[c]   = (fw && cm_alloc_q[c]) ? cm_ag_q[c] : b_ag_q[c];
-      f_live[c] = (fw && cm_alloc_q[c]) ? cm_live_q[c] : b_live_q[c];
-      for (int w = 0; w < WAYS; w++) begin
-        fw_way       = fw && cm_pass_q.way[c] == WAY_W'(w);
-        fw_alloc     = fw_way && cm_alloc_q[c];
-        f_vld[c][w]  = fw_alloc || b_vld_q[c][w];
-        f_pnd[c][w]  = fw_alloc || b_pnd_q[c][w];
-        f_err[c][w]  = !fw_alloc && b_err_q[c][w];
-        f_hit[c][w]  = fw_alloc ? b_tageq_q[c] : b_vld_q[c][w] && b_hit_q[c][w];
-        f_inc[c][w]  = fw_way ? cm_inc_q[c] : b_inc_q[c][w];
-        f_idle[c][w] = fw_way ? cm_inc_q[c] == b_dec_q[c][w] : b_idle_q[c][w];
-      end
-    end
-  end
-
-  always_comb begin
-    logic [2:0] n_before;  // misses of the pass in the sub-caches before
-    for (int c = 0; c < NSUB; c++) begin
-      lk_way[c] = '0;
-      for (int w = 0; w < WAYS; w++) begin
-        way_hit[c][w]  = f_hit[c][w];
-        way_free[c][w] = !(f_vld[c][w] || f_err[c][w]) || f_idle[c][w];
-        if (way_hit[c][w]) lk_way[c] = WAY_W'(w);
-      end
-      lk_alloc[c]   = lk_v[c] && !(|way_hit[c]);
-      lk_blocked[c] = lk_alloc[c] && !(|way_free[c]);
-      if (!(|way_hit[c])) begin
-        // an unreferenced invalid way first (the lowest), else pseudo-LRU among the unreferenced
-        if (|(way_free[c] & ~f_vld[c])) begin
-          for (int w = WAYS - 1; w >= 0; w--) begin
-            if (way_free[c][w] && !f_vld[c][w]) lk_way[c] = WAY_W'(w);
-          end
-        end else begin
-          lk_way[c] = plru_pick(f_plru[c], way_free[c]);
-        end
-      end
-    end
-    // MSHRs for the misses, in sub-cache order: the k-th miss of the pass takes the k-th free
-    // MSHR (free_idx, from registers)
-    mshr_short = 1'b0;
-    lk_mshr    = '0;
-    for (int c = 0; c < NSUB; c++) begin
-      n_before = '0;
-      for (int d = 0; d < c; d++) n_before = n_before + 3'(lk_alloc[d]);
-      lk_mshr[c] = free_idx[n_before[1:0]];
-      if (lk_alloc[c] && !free_ok[n_before[1:0]]) mshr_short = 1'b1;
-    end
-  end
-
-  // The free MSHRs are a queue of indices (fl_q, in the MSHR section below), taken from its
-  // head as a pass enters the FIFO: free_idx[k] = fl_q[fl_hd_q + k], from registers; a line's
+  // The free MSHRs are a queue of indices (u_free, in the MSHR section below), taken from its
+  // head as a pass enters the FIFO: free_idx[k] = entry head + k, from registers; a line's
   // last beat puts its MSHR back at the tail (seen from the next clock).
   logic [2:0] lk_n;  // the pass's misses
 
@@ -835,7 +443,7 @@ module tex_cache
     for (int c = 0; c < NSUB; c++) lk_n = lk_n + 3'(lk_alloc[c]);
   end
 
-  assign e_fire      = rst_ni && b_valid_q && (32'(fifo_cnt_q) + 32'(cm_valid_q) < FIFO_DEPTH)
+  assign e_fire      = rst_ni && b_valid && (32'(fifo_cnt) + 32'(cm_valid_q) < FIFO_DEPTH)
                        && !(|lk_blocked) && !mshr_short;
 
   // ---------------------------------------------------------------- commit register
@@ -855,41 +463,21 @@ module tex_cache
     for (int c = 0; c < NSUB; c++) begin
       cm_plru_q[c] <= plru_touch(f_plru[c], lk_way[c]);
       // (the victim: not pending, no fill due)
-      cm_ag_q[c]   <= with_way(f_ag[c], lk_way[c], !b_fg_q[c][lk_way[c]]);
+      cm_ag_q[c]   <= with_way(f_ag[c], lk_way[c], !b_fg[c][lk_way[c]]);
       cm_live_q[c] <= with_way(f_live[c], lk_way[c], 1'b1);
-      cm_inc_q[c]  <= (lk_alloc[c] ? b_dec_q[c][lk_way[c]] : f_inc[c][lk_way[c]]) + RC_W'(1);
+      cm_inc_q[c]  <= (lk_alloc[c] ? b_dec[c][lk_way[c]] : f_inc[c][lk_way[c]]) + RC_W'(1);
     end
     cm_pass_q       <= e_pass;
     cm_texel_hits_q <= e_texel_hits;
     cm_qhit_q       <= e_last && !e_missed_q && !(|lk_alloc);
   end
-  assign req_ready_o = rst_ni && !swp_q && (!s0_valid_q || (p_load && sl_last));
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni)     e_missed_q <= 1'b0;
+    else if (e_fire) e_missed_q <= !e_last && (e_missed_q || (|lk_alloc));
+  end
 
   logic req_fire;
   assign req_fire = req_valid_i && req_ready_o;
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      s0_valid_q  <= 1'b0;
-      s0_todo_q   <= '0;
-      e_missed_q  <= 1'b0;
-    end else begin
-      if (req_fire) begin
-        s0_valid_q  <= 1'b1;
-        s0_todo_q   <= 4'hf;
-      end else if (p_load) begin  // a pass of a request with more to do
-        s0_todo_q   <= s0_todo_q & ~sl_sel;
-        if (sl_last) s0_valid_q <= 1'b0;
-      end
-      if (e_fire) e_missed_q <= !e_last && (e_missed_q || (|lk_alloc));
-    end
-    if (req_fire) begin
-      s0_addr_q <= req_addr_i;
-      s0_tag_q  <= req_tag_i;
-      s0_row_q  <= in_row;
-      s0_join_q <= in_join;
-    end
-  end
 
   // ---------------------------------------------------------------- request FIFO
   logic  h_pop, h_ready;
@@ -906,54 +494,39 @@ module tex_cache
     e_pass.last = e_last;
   end
 
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      fifo_wp_q  <= '0;
-      fifo_rp_q  <= '0;
-      fifo_cnt_q <= '0;
-    end else begin
-      if (cm_valid_q) fifo_wp_q <= fifo_wp_q + FP_W'(1);
-      if (h_pop)      fifo_rp_q <= fifo_rp_q + FP_W'(1);
-      fifo_cnt_q <= fifo_cnt_q + FC_W'(cm_valid_q) - FC_W'(h_pop);
-    end
-    if (cm_valid_q) fifo_q[fifo_wp_q] <= cm_pass_q;
-  end
+  // The FIFO's storage is block RAM, read only through its registered port (two entries behind
+  // the head after this clock's pop; below); as LUT RAM it took 128 16x4 RAMs.
+  pass_t rd_eff;  // entry head + 2 after the last clock's pop (valid with 3 or more entries)
+
+  circ_queue #(
+    .WIDTH($bits(pass_t)), .DEPTH(FIFO_DEPTH), .NPUSH(1), .NPOP(1), .ASYNC_RD(1'b0), .PEEK(2),
+    .RAM_STYLE("block")
+  ) u_fifo (
+    .clk_i, .rst_ni, .push_i(cm_valid_q), .wr_i(cm_valid_q), .wdata_i(cm_pass_q),
+    .pop_n_i(h_pop), .rdata_o(), .peek_o(rd_eff), .count_o(fifo_cnt));
 
   // ---------------------------------------------------------------- head: wait, pop, read
-  logic       out_pop;
   logic [NSUB-1:0] hd_err;
   logic [NSUB-1:0] hd_pend, hd_bad;  // the head's slot per sub-cache: pending, bad (g_dir)
 
-  assign out_pop = rsp_valid_o && rsp_ready_i;
-
-  // The head entry hd_q (= fifo_q[fifo_rp_q] while the FIFO holds a pass) and the one behind it,
-  // nx_q (= fifo_q[fifo_rp_q + 1] while it holds two), are registers, so the head's readiness
-  // (its lines present) and the pop start from flip-flops, not from the block RAM's output (4.3
-  // ns clock-to-out on the ECP5).  The block RAM is read every clock two entries ahead of the
-  // head after this clock's pop (fifo_rp_q + 2 + h_pop) into fifo_rd_q, which refills nx_q at a
-  // pop; a pass entering as the first or second goes straight to its register, and one written
-  // at the address read in the same clock (the read sees the old word) is taken from a copy of
-  // the commit register (byp_q).  So one pop per clock, from registers.
-  pass_t           hd_q, nx_q, fifo_rd_q, byp_q, rd_eff;
+  // The head entry hd_q (= the FIFO's head while it holds a pass) and the one behind it, nx_q
+  // (= the entry after the head while it holds two), are registers, so the head's readiness (its
+  // lines present) and the pop start from flip-flops, not from the block RAM's output (4.3 ns
+  // clock-to-out on the ECP5).  The block RAM is read every clock two entries behind the head
+  // after this clock's pop (u_fifo's peek port, rd_eff), which refills nx_q at a pop; a pass
+  // entering as the first or second goes straight to its register, and one written at the
+  // address read in the same clock (the read sees the old word) is taken from a copy of the
+  // commit register (in u_fifo).  So one pop per clock, from registers.
+  pass_t           hd_q, nx_q;
   pass_t           hd_pop_d, hd_hold_d, nx_pop_d, nx_hold_d;
-  logic            byp_v_q;  // fifo_rd_q was read as byp_q was written there: take byp_q
-  logic [FP_W-1:0] rd_addr;
-  assign rd_addr = h_pop ? fifo_rp_q + FP_W'(3) : fifo_rp_q + FP_W'(2);
-
-  always_ff @(posedge clk_i) begin
-    fifo_rd_q <= fifo_q[rd_addr];
-    byp_q     <= cm_pass_q;
-    byp_v_q   <= cm_valid_q && fifo_wp_q == rd_addr;
-  end
 
   // the next head and next-behind-head with and without a pop (from registers), then the pop
   // picks
   always_comb begin
-    rd_eff    = byp_v_q ? byp_q : fifo_rd_q;
-    hd_pop_d  = (fifo_cnt_q >= FC_W'(2)) ? nx_q : cm_pass_q;    // entry rp + 1
-    nx_pop_d  = (fifo_cnt_q >= FC_W'(3)) ? rd_eff : cm_pass_q;  // entry rp + 2
-    hd_hold_d = (fifo_cnt_q == '0) ? cm_pass_q : hd_q;          // entry rp
-    nx_hold_d = (fifo_cnt_q == FC_W'(1)) ? cm_pass_q : nx_q;     // entry rp + 1
+    hd_pop_d  = (fifo_cnt >= FC_W'(2)) ? nx_q : cm_pass_q;    // entry rp + 1
+    nx_pop_d  = (fifo_cnt >= FC_W'(3)) ? rd_eff : cm_pass_q;  // entry rp + 2
+    hd_hold_d = (fifo_cnt == '0) ? cm_pass_q : hd_q;          // entry rp
+    nx_hold_d = (fifo_cnt == FC_W'(1)) ? cm_pass_q : nx_q;     // entry rp + 1
   end
 
   always_ff @(posedge clk_i) begin
@@ -962,7 +535,7 @@ module tex_cache
   end
 
   always_comb begin
-    h_ready = (fifo_cnt_q != '0);
+    h_ready = (fifo_cnt != '0);
     for (int c = 0; c < NSUB; c++) begin
       // (the head's slots are live: allocated by this pass or hit as valid by it)
       if (hd_q.used[c] && hd_pend[c]) h_ready = 1'b0;
@@ -970,33 +543,17 @@ module tex_cache
     end
   end
 
-  // room in the output buffer for the result and those of the passes popped before it
-  // (out_cnt_q - out_pop + h0_valid_q + h1_valid_q + 1 <= OUT_DEPTH, with the registers' sum
-  // compared apart from the late out_pop)
-  logic [2:0] out_need;
-  assign out_need = out_cnt_q + 3'(h0_valid_q) + 3'(h1_valid_q);
-  assign h_pop = rst_ni && h_ready
-                 && (out_need < 3'(OUT_DEPTH) || (out_need == 3'(OUT_DEPTH) && out_pop));
+  logic out_room;  // the output buffer has room for the head pass's answer (u_data)
+  assign h_pop = rst_ni && h_ready && out_room;
 
-  // ---------------------------------------------------------------- data RAMs
-  // A sub-cache stores a line as NWIN windows of WW words at RAM address {set, way, window}; a
-  // pass reads one window and the word after it (the overlap word, kept in a second RAM at the
-  // same address: word (k + 1) * WW of the line for window k), so a horizontal pair w, w + 1 is
-  // always in one read.  Each R beat is written where it belongs as it arrives, one RAM per beat
-  // lane (the beat's lane of the window; the overlap RAM takes the first 32 bits of a window
-  // from its beats, for the window before).  The slot is pending until the last beat, so nothing
-  // reads the partial line; a line that fails keeps its partial write, which the error bit makes
-  // harmless (the slot is not valid).
+  // ---------------------------------------------------------------- R channel
   logic [MIDX_W-1:0]  r_idx;
-  logic [EPOCH_W-1:0] r_epoch;
-  logic               r_acc, r_last_beat;
+  logic               r_cur, r_ours, r_acc, r_last_beat;
   logic [LA_W-1:0]   r_la;
   logic [1:0]        fill_sub;
   logic [SET_W-1:0]  fill_set;
   logic [WAY_W-1:0]  fill_way;
   logic [BEAT_W-1:0] r_beat;       // the beat's index in the line
-  logic [WIN_W-1:0]  r_win;        // its window
-  logic [LANE_B-1:0] r_lane;       // its lane in the window
   logic              fill_v, fill_bad;
   // The beat registered (w_*_q): the clock after its arrival it is written into its data RAM
   // and, if it is the line's last, the slot's generation and error bits are written (so no
@@ -1008,140 +565,15 @@ module tex_cache
   logic [BEAT_W-1:0] w_beat_q;
   logic [DATA_W-1:0] w_data_q;
   logic [LA_W-1:0]   w_la_q;
-  logic [WW:0][31:0] ram_rd [NSUB];  // window words 0 .. WW-1, then the overlap word
-  logic [WW:0][31:0] ram_rd_q [NSUB];  // ... registered (the block RAMs' 4.3 ns clock-to-out)
 
-  function automatic logic [RAM_AW-1:0] ram_addr(input logic [SET_W-1:0] s,
-                                                 input logic [WAY_W-1:0] w,
-                                                 input logic [WIN_W-1:0] k);
-    return RAM_AW'((32'(s) * WAYS + 32'(w)) * NWIN + ((NWIN > 1) ? 32'(k) : 0));
-  endfunction
-
+  // (the beat's MSHR r_idx, its index r_beat, r_last_beat and fill_bad: from u_axi)
   always_comb begin
-    r_win  = WIN_W'(32'(w_beat_q) / NLANE);
-    r_lane = LANE_B'(32'(w_beat_q) % NLANE);
-  end
-
-  for (genvar c = 0; c < NSUB; c++) begin : g_sub
-    logic [RAM_AW-1:0] waddr, raddr;
-    logic              wsub, rd;
-    logic [WW*32-1:0]  rd_win;      // the window's words
-    logic [31:0]       rd_ovl;      // the overlap word
-    assign ram_rd[c] = {rd_ovl, rd_win};
-    assign wsub  = w_acc_q && w_sub_q == 2'(c);
-    assign waddr = ram_addr(w_set_q, w_way_q, r_win);
-    assign rd    = 1'b1;  // the head's window, every clock (used the clock after a pop)
-    assign raddr = ram_addr(hd_q.set[c], hd_q.way[c], hd_q.win[c]);
-    for (genvar l = 0; l < NLANE; l++) begin : g_lane
-      cache_sdp_ram #(.DEPTH(RAM_DEPTH), .WIDTH(DATA_W)) u_ram (
-        .clk_i   (clk_i),
-        .we_i    (wsub && 32'(r_lane) == l),
-        .waddr_i (waddr),
-        .wdata_i (w_data_q),
-        .re_i    (rd),
-        .raddr_i (raddr),
-        .rdata_o (rd_win[l * DATA_W +: DATA_W])
-      );
-    end
-    if (NWIN > 1) begin : g_ovl
-      for (genvar o = 0; o < NOVL; o++) begin : g_lane
-        cache_sdp_ram #(.DEPTH(RAM_DEPTH), .WIDTH(OVL_W)) u_ram (
-          .clk_i   (clk_i),
-          .we_i    (wsub && r_win != '0 && 32'(r_lane) == o),
-          .waddr_i (RAM_AW'(waddr - RAM_AW'(1))),  // the window before, same slot
-          .wdata_i (w_data_q[OVL_W-1:0]),
-          .re_i    (rd),
-          .raddr_i (raddr),
-          .rdata_o (rd_ovl[o * OVL_W +: OVL_W])
-        );
-      end
-    end else begin : g_no_ovl
-      assign rd_ovl = '0;  // a window is the whole line: offset WW is never read
-    end
-  end
-
-  // ---------------------------------------------------------------- select, merge, output
-  logic [3:0][31:0] h1_texel;
-  rsp_t             h1_rsp;
-
-  always_comb begin
-    for (int t = 0; t < 4; t++) begin
-      h1_texel[t] = acc_texel_q[t];
-      if (h1_tsel_q[t]) h1_texel[t] = ram_rd_q[h1_tsub_q[t]][h1_toff_q[t]];
-    end
-    h1_rsp.texel = h1_texel;
-    h1_rsp.err   = acc_err_q || h1_err_q;
-    h1_rsp.tag   = h1_tag_q;
-  end
-
-  logic out_push;
-  assign out_push = h1_valid_q && h1_last_q;
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      h0_valid_q  <= 1'b0;
-      h1_valid_q  <= 1'b0;
-      acc_err_q   <= 1'b0;
-      acc_texel_q <= '0;
-      out_wp_q    <= '0;
-      out_rp_q    <= '0;
-      out_cnt_q   <= '0;
-    end else begin
-      h0_valid_q <= h_pop;
-      h1_valid_q <= h0_valid_q;
-      if (h1_valid_q) begin
-        if (h1_last_q) begin
-          acc_err_q   <= 1'b0;
-          acc_texel_q <= '0;
-        end else begin
-          acc_err_q   <= h1_rsp.err;
-          acc_texel_q <= h1_texel;
-        end
-      end
-      if (out_push) out_wp_q <= out_wp_q + 2'd1;
-      if (out_pop)  out_rp_q <= out_rp_q + 2'd1;
-      out_cnt_q <= out_cnt_q + 3'(out_push) - 3'(out_pop);
-    end
-    // (loaded every clock, like the data RAMs' read: they matter only where h0_valid_q and
-    // h1_valid_q say a popped pass is; so the pop, late in its clock, enables none of them)
-    h0_last_q  <= hd_q.last;
-    h0_err_q   <= |hd_err;
-    h0_tsel_q  <= hd_q.tsel;
-    h0_tsub_q  <= hd_q.tsub;
-    h0_toff_q  <= hd_q.toff;
-    h0_tag_q   <= hd_q.tag;
-    h1_last_q  <= h0_last_q;
-    h1_err_q   <= h0_err_q;
-    h1_tsel_q  <= h0_tsel_q;
-    h1_tsub_q  <= h0_tsub_q;
-    h1_toff_q  <= h0_toff_q;
-    h1_tag_q   <= h0_tag_q;
-    ram_rd_q   <= ram_rd;
-    if (out_push) out_q[out_wp_q] <= h1_rsp;
-  end
-
-  assign rsp_valid_o = (out_cnt_q != '0);
-  assign rsp_texel_o = out_q[out_rp_q].texel;
-  assign rsp_err_o   = out_q[out_rp_q].err;
-  assign rsp_tag_o   = out_q[out_rp_q].tag;
-
-  // ---------------------------------------------------------------- R channel, fills
-
-  assign r_idx   = m_axi_rid[MIDX_W-1:0];
-  assign r_epoch = m_axi_rid[ID_W-1:MIDX_W];
-  always_comb begin
-    r_acc       = rst_ni && m_axi_rvalid && (r_epoch == epoch_q) && (32'(r_idx) < MSHRS)
-                  && mshr_busy_q[r_idx];
-    r_last_beat = (mshr_beat_q[r_idx] == BEAT_W'(BEATS - 1));
+    r_acc       = rst_ni && r_ours && mshr_busy_q[r_idx];
     r_la        = mshr_la_r[mshr_sub_q[r_idx]];
     fill_v      = r_acc && r_last_beat;
-    fill_bad    = m_axi_rresp[1] || mshr_rerr_q[r_idx];  // SLVERR / DECERR now or earlier
     fill_sub    = mshr_sub_q[r_idx];
     {fill_set, fill_way} = mshr_sw_r[mshr_sub_q[r_idx]];
-    r_beat      = mshr_beat_q[r_idx];
   end
-
-  assign m_axi_rready = 1'b1;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -1160,18 +592,22 @@ module tex_cache
     w_la_q   <= r_la;
   end
 
-  // ---------------------------------------------------------------- directory updates
-  // The sweep that clears the live bits after a reset (one set per clock in every sub-cache).
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      swp_q     <= 1'b1;
-      swp_set_q <= '0;
-    end else if (swp_q) begin
-      swp_set_q <= swp_set_q + SET_W'(1);
-      if (swp_set_q == SET_W'(SETS - 1)) swp_q <= 1'b0;
-    end
-  end
+  // ---------------------------------------------------------------- data RAMs, answers
+  // (tex_cache_data) The head's windows are read every clock; the answer is selected two clocks
+  // after a pop, merged with the request's earlier passes and buffered for the response stream.
+  tex_cache_data #(
+    .DATA_W(DATA_W), .TAG_W(TAG_W), .SETS(SETS), .WAYS(WAYS), .WW(WW), .NWIN(NWIN),
+    .BEAT_W(BEAT_W), .OUT_DEPTH(OUT_DEPTH)
+  ) u_data (
+    .clk_i, .rst_ni,
+    .w_acc_i(w_acc_q), .w_sub_i(w_sub_q), .w_set_i(w_set_q), .w_way_i(w_way_q),
+    .w_beat_i(w_beat_q), .w_data_i(w_data_q),
+    .hd_set_i(hd_q.set), .hd_way_i(hd_q.way), .hd_win_i(hd_q.win), .hd_tsel_i(hd_q.tsel),
+    .hd_tsub_i(hd_q.tsub), .hd_toff_i(hd_q.toff), .hd_tag_i(hd_q.tag), .hd_last_i(hd_q.last),
+    .hd_err_i(|hd_err), .h_pop_i(h_pop), .out_room_o(out_room),
+    .rsp_valid_o, .rsp_ready_i, .rsp_texel_o, .rsp_err_o, .rsp_tag_o);
 
+  // ---------------------------------------------------------------- directory updates
   // The LUT RAM part (see "Directory" at the state).  Per sub-cache: the commit touches the
   // looked-up set's pseudo-LRU bits and takes a reference to the hit or victim way (an allocation
   // also writes the tag and the set's ag bits); the head releases the reference of each slot its
@@ -1195,18 +631,18 @@ module tex_cache
       if (take) plru_mem[cm_pass_q.set[c]] <= cm_plru_q[c];
       if (take && cm_alloc_q[c]) ag_mem[cm_pass_q.set[c]] <= cm_ag_q[c];
       // (no commit while the sweep runs: nothing is accepted until it ends)
-      if (swp_q) live_mem[swp_set_q] <= '0;
+      if (swp) live_mem[swp_set] <= '0;
       else if (take && cm_alloc_q[c]) live_mem[cm_pass_q.set[c]] <= cm_live_q[c];
       if (fill) begin
         fg_mem[w_set_q]  <= with_way(fl_fg, w_way_q, fl_ag[w_way_q]);
         bad_mem[w_set_q] <= with_way(fl_bad, w_way_q, w_bad_q);
       end
     end
-    assign set_plru[c] = plru_mem[a_set_q[c]];
-    assign set_live[c] = live_mem[a_set_q[c]];
-    assign set_ag[c]   = ag_mem[a_set_q[c]];
-    assign set_fg[c]   = fg_mem[a_set_q[c]];
-    assign set_bad[c]  = bad_mem[a_set_q[c]];
+    assign set_plru[c] = plru_mem[a_set[c]];
+    assign set_live[c] = live_mem[a_set[c]];
+    assign set_ag[c]   = ag_mem[a_set[c]];
+    assign set_fg[c]   = fg_mem[a_set[c]];
+    assign set_bad[c]  = bad_mem[a_set[c]];
     assign fl_ag       = ag_mem[w_set_q];
     assign fl_fg       = fg_mem[w_set_q];
     assign fl_bad      = bad_mem[w_set_q];
@@ -1217,15 +653,10 @@ module tex_cache
     assign hd_bad[c]   = hd_bd[hd_q.way[c]];
 
 `ifndef SYNTHESIS
-    // every slot's state bits for the assertions below
-    for (genvar s = 0; s < SETS; s++) begin : g_state_view
-      for (genvar w = 0; w < WAYS; w++) begin : g_w
-        assign pend_v[c][s][w]  = live_mem[s][w] && ag_mem[s][w] != fg_mem[s][w];
-        assign err_v[c][s][w]   = live_mem[s][w] && ag_mem[s][w] == fg_mem[s][w]
-                                  && bad_mem[s][w];
-        assign valid_v[c][s][w] = live_mem[s][w] && !err_v[c][s][w];
-      end
-    end
+    assign vw_live[c] = live_mem;
+    assign vw_ag[c]   = ag_mem;
+    assign vw_fg[c]   = fg_mem;
+    assign vw_bad[c]  = bad_mem;
 `endif
 
     for (genvar w = 0; w < WAYS; w++) begin : g_way
@@ -1241,59 +672,55 @@ module tex_cache
         end
         if (give && hd_q.way[c] == WAY_W'(w)) dec_mem[hd_q.set[c]] <= hd_dec + RC_W'(1);
       end
-      assign set_tag[c][w] = tag_mem[a_set_q[c]];
-      assign set_inc[c][w] = inc_mem[a_set_q[c]];
-      assign set_dec[c][w] = dec_mem[a_set_q[c]];
+      assign set_tag[c][w] = tag_mem[a_set[c]];
+      assign set_inc[c][w] = inc_mem[a_set[c]];
+      assign set_dec[c][w] = dec_mem[a_set[c]];
       assign hd_dec        = dec_mem[hd_q.set[c]];
 
 `ifndef SYNTHESIS
-      // whole-directory views for the assertions below
-      for (genvar s = 0; s < SETS; s++) begin : g_view
-        assign dir_tag[c][s][w] = tag_mem[s];
-        assign dir_rc[c][s][w]  = inc_mem[s] - dec_mem[s];
-        assign dir_inc[c][s][w] = inc_mem[s];
-      end
+      assign vw_tag[c][w] = tag_mem;
+      assign vw_inc[c][w] = inc_mem;
+      assign vw_dec[c][w] = dec_mem;
 `endif
     end
   end
 
-  // ---------------------------------------------------------------- MSHRs and AR queue
-  // The AR channel is a register (ar_*_q), loaded from a register of the next read's MSHR and
-  // sub-cache (ap_*_q), which is loaded from the AR queue's head (ar_pop: the head leaves); each
-  // moves on while the one after it is empty or moves on itself.  So no LUT RAM read or
-  // multiplexer drives the port, and the line's LUT RAM is read at a registered index.
-  logic              ar_pop, ap_go;
-  logic              ap_v_q, ar_v_q;
-  logic [MIDX_W-1:0] ap_idx_q;
+  // ---------------------------------------------------------------- MSHRs and AXI reads
+  // The AR channel (u_axi, AR_REG = 1) is a register loaded from a register of the next read's
+  // MSHR (ap_idx) and sub-cache (ap_sub_q), which is loaded from the AR queue's head as it leaves
+  // (ar_pop); so no LUT RAM read or multiplexer drives the port, and the line's LUT RAM is read
+  // at a registered index.  The misses of one pass join the AR queue in sub-cache order.
+  logic              ar_pop;
   logic [1:0]        ap_sub_q;
-  logic [ID_W-1:0]   ar_id_q;
-  logic [ADDR_W-1:0] ar_addr_q;
-  assign ap_go  = ap_v_q && (!ar_v_q || m_axi_arready);
-  assign ar_pop = (arq_cnt_q != '0) && (!ap_v_q || ap_go);
+  logic [NSUB-1:0]   cm_new;  // the committing pass allocates an MSHR in sub-cache c
+  assign cm_new = cm_valid_q ? cm_alloc_q : '0;
+
+  cache_axi_read #(
+    .ADDR_W(ADDR_W), .DATA_W(DATA_W), .LINE_BYTES(LINE_BYTES), .MSHRS(MSHRS), .ID_W(ID_W),
+    .SETS(SETS), .NPUSH(NSUB), .AR_REG(1'b1)
+  ) u_axi (
+    .clk_i, .rst_ni,
+    .alloc_i(cm_new), .alloc_wr_i(cm_new), .alloc_idx_i(cm_mshr_q),
+    .la_idx_o(ap_idx), .la_i(mshr_la_ar[ap_sub_q]),
+    .arq_pop_o(ar_pop), .arq_head_o(ar_idx), .arq_cnt_o(arq_cnt),
+    .r_idx_o(r_idx), .r_cur_o(r_cur), .r_ours_o(r_ours), .r_acc_i(r_acc), .r_beat_o(r_beat),
+    .r_last_o(r_last_beat), .r_bad_o(fill_bad),
+    .sweep_o(swp), .sweep_set_o(swp_set),
+    .m_axi_arid, .m_axi_araddr, .m_axi_arlen, .m_axi_arsize, .m_axi_arburst, .m_axi_arvalid,
+    .m_axi_arready, .m_axi_rid, .m_axi_rresp, .m_axi_rlast, .m_axi_rvalid, .m_axi_rready);
+
+  always_ff @(posedge clk_i) begin
+    if (ar_pop) ap_sub_q <= mshr_sub_q[ar_idx];
+  end
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      for (int m = 0; m < MSHRS; m++) begin
-        mshr_busy_q[m] <= 1'b0;
-        mshr_beat_q[m] <= '0;
-        mshr_rerr_q[m] <= 1'b0;
-      end
+      for (int m = 0; m < MSHRS; m++) mshr_busy_q[m] <= 1'b0;
     end else begin
-      if (r_acc) begin
-        mshr_beat_q[r_idx] <= mshr_beat_q[r_idx] + BEAT_W'(1);
-        mshr_rerr_q[r_idx] <= fill_bad;
-        if (r_last_beat) begin
-          mshr_busy_q[r_idx] <= 1'b0;
-          mshr_beat_q[r_idx] <= '0;
-          mshr_rerr_q[r_idx] <= 1'b0;
-        end
-      end
+      if (r_acc && r_last_beat) mshr_busy_q[r_idx] <= 1'b0;
       for (int c = 0; c < NSUB; c++) begin
-        if (cm_valid_q && cm_alloc_q[c]) begin  // a free MSHR: never the one finishing now
-          mshr_busy_q[cm_mshr_q[c]] <= 1'b1;
-          mshr_beat_q[cm_mshr_q[c]] <= '0;
-          mshr_rerr_q[cm_mshr_q[c]] <= 1'b0;
-        end
+        // (a free MSHR: never the one finishing now)
+        if (cm_new[c]) mshr_busy_q[cm_mshr_q[c]] <= 1'b1;
       end
     end
   end
@@ -1313,112 +740,28 @@ module tex_cache
         sw_mem[cm_mshr_q[c]] <= {cm_pass_q.set[c], cm_pass_q.way[c]};
       end
     end
-    assign mshr_la_ar[c] = la_mem[ap_idx_q];
+    assign mshr_la_ar[c] = la_mem[ap_idx];
     assign mshr_sw_r[c]  = sw_mem[r_idx];
     assign mshr_la_r[c]  = la_mem[r_idx];  // (read only by the simulation's shadow)
 `ifndef SYNTHESIS
-    for (genvar m = 0; m < MSHRS; m++) begin : g_view
-      assign mshr_la_all[c][m] = la_mem[m];
-      assign mshr_sw_all[c][m] = sw_mem[m];
-    end
+    assign vw_la[c] = la_mem;
+    assign vw_sw[c] = sw_mem;
 `endif
   end
-
-  function automatic logic [MIDX_W-1:0] arq_add(input logic [MIDX_W-1:0] p, input int unsigned k);
-    int unsigned q;
-    q = 32'(p) + k;
-    if (q >= MSHRS) q = q - MSHRS;
-    return MIDX_W'(q);
-  endfunction
 
   // Free MSHRs, a queue of indices: all of them after a reset; a pass entering the FIFO takes
   // one per miss from the head (they are busy from its commit clock on), a line's last beat
   // returns its MSHR at the tail (one per clock at most).
-  logic [MIDX_W-1:0] fl_q [MSHRS];
-  logic [MIDX_W-1:0] fl_hd_q, fl_tl_q;
-  logic [QCNT_W-1:0] fl_cnt_q;
+  logic [QCNT_W-1:0] fl_cnt;  // free MSHRs
+
+  circ_queue #(
+    .WIDTH(MIDX_W), .DEPTH(MSHRS), .NPUSH(1), .NPOP(NSUB), .INIT_SEQ(1'b1)
+  ) u_free (
+    .clk_i, .rst_ni, .push_i(fill_v), .wr_i(fill_v), .wdata_i(r_idx),
+    .pop_n_i(e_fire ? lk_n : 3'd0), .rdata_o(free_idx), .peek_o(), .count_o(fl_cnt));
 
   always_comb begin
-    for (int k = 0; k < NSUB; k++) begin
-      free_idx[k] = fl_q[arq_add(fl_hd_q, k)];
-      free_ok[k]  = 32'(fl_cnt_q) > k;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      for (int m = 0; m < MSHRS; m++) fl_q[m] <= MIDX_W'(m);
-      fl_hd_q  <= '0;
-      fl_tl_q  <= '0;
-      fl_cnt_q <= QCNT_W'(MSHRS);
-    end else begin
-      if (e_fire) fl_hd_q <= arq_add(fl_hd_q, 32'(lk_n));
-      if (fill_v) begin
-        fl_q[fl_tl_q] <= r_idx;
-        fl_tl_q       <= arq_add(fl_tl_q, 1);
-      end
-      fl_cnt_q <= fl_cnt_q - (e_fire ? QCNT_W'(lk_n) : '0) + QCNT_W'(fill_v);
-    end
-  end
-
-  // the misses of one pass join the queue in sub-cache order
-  logic [NSUB-1:0][MIDX_W-1:0] arq_pos;
-  logic [2:0]                  arq_n;
-
-  always_comb begin
-    arq_n = '0;
-    for (int c = 0; c < NSUB; c++) begin
-      arq_pos[c] = arq_add(arq_wp_q, 32'(arq_n));
-      if (cm_valid_q && cm_alloc_q[c]) arq_n = arq_n + 3'd1;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      arq_wp_q  <= '0;
-      arq_rp_q  <= '0;
-      arq_cnt_q <= '0;
-    end else begin
-      arq_wp_q <= arq_add(arq_wp_q, 32'(arq_n));
-      if (ar_pop) arq_rp_q <= arq_add(arq_rp_q, 1);
-      arq_cnt_q <= arq_cnt_q + QCNT_W'(arq_n) - QCNT_W'(ar_pop);
-    end
-    for (int c = 0; c < NSUB; c++) begin
-      if (cm_valid_q && cm_alloc_q[c]) arq_q[arq_pos[c]] <= cm_mshr_q[c];
-    end
-  end
-
-  assign ar_idx = arq_q[arq_rp_q];
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      ap_v_q <= 1'b0;
-      ar_v_q <= 1'b0;
-    end else begin
-      if (!ap_v_q || ap_go)            ap_v_q <= arq_cnt_q != '0;
-      if (!ar_v_q || m_axi_arready)    ar_v_q <= ap_v_q;
-    end
-    if (ar_pop) begin
-      ap_idx_q <= ar_idx;
-      ap_sub_q <= mshr_sub_q[ar_idx];
-    end
-    if (ap_go) begin
-      ar_id_q   <= {epoch_q, ap_idx_q};
-      ar_addr_q <= {mshr_la_ar[ap_sub_q], {OFF_W{1'b0}}};
-    end
-  end
-
-  assign m_axi_arvalid = rst_ni && ar_v_q;  // (0 in reset from its first clock)
-  assign m_axi_arid    = ar_id_q;
-  assign m_axi_araddr  = ar_addr_q;
-  assign m_axi_arlen   = 8'(BEATS - 1);
-  assign m_axi_arsize  = 3'($clog2(BEAT_BYTES));
-  assign m_axi_arburst = AXI_BURST_INCR;
-
-  // ---------------------------------------------------------------- reset epoch
-  always_ff @(posedge clk_i) begin
-    in_rst_q <= !rst_ni;
-    if (!rst_ni && !in_rst_q) epoch_q <= epoch_q + EPOCH_W'(1);
+    for (int k = 0; k < NSUB; k++) free_ok[k] = 32'(fl_cnt) > k;
   end
 
   // ---------------------------------------------------------------- statistics
@@ -1464,273 +807,8 @@ module tex_cache
   assign stat_texel_hits_o  = st_thit_q;
   assign stat_bytes_o       = st_bytes_q;
 
-  // rresp[0] only tells EXOKAY from OKAY and DECERR from SLVERR; both errors are treated alike.
-  // rlast is implied by the beat count (checked by an assertion); the texel address bits 1:0 are 0.
+  // w_la_q is read by the bound checks only.
   logic unused;
-  assign unused = ^{m_axi_rresp[0], m_axi_rlast, r_la, s0_addr_q[0][1:0], s0_addr_q[1][1:0],
-                    s0_addr_q[2][1:0], s0_addr_q[3][1:0]};
-
-`ifndef SYNTHESIS
-  // ------------------------------------------------------------------ assertions
-  // The directory as the assertions see it (from g_dir): every slot's tag and reference count
-  // (the count is meaningful for a live slot only: valid or with the error bit); the state bits.
-  logic [TAGB-1:0] dir_tag [NSUB][SETS][WAYS];
-  logic [RC_W-1:0] dir_rc  [NSUB][SETS][WAYS];
-  logic [RC_W-1:0] dir_inc [NSUB][SETS][WAYS];
-  logic [NSUB-1:0] lk_live, hd_live;  // the committing pass's / the head's slot is live
-  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] valid_v, pend_v, err_v;  // the state bits (g_dir)
-
-  // Reference: the state bits as flops written directly by the commit and the fill (as they
-  // were before the generation bits); the generation bits must agree with them in every clock.
-  logic [NSUB-1:0][SETS-1:0][WAYS-1:0] ref_valid_q, ref_pend_q, ref_err_q;
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      ref_valid_q <= '0;
-      ref_pend_q  <= '0;
-      ref_err_q   <= '0;
-    end else begin
-      for (int c = 0; c < NSUB; c++) begin
-        if (cm_valid_q && cm_alloc_q[c]) begin
-          ref_valid_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]] <= 1'b1;
-          ref_pend_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]]  <= 1'b1;
-          ref_err_q[c][cm_pass_q.set[c]][cm_pass_q.way[c]]   <= 1'b0;
-        end
-      end
-      if (w_fill_q) begin
-        ref_pend_q[w_sub_q][w_set_q][w_way_q] <= 1'b0;
-        ref_err_q[w_sub_q][w_set_q][w_way_q]  <= w_bad_q;
-        if (w_bad_q) ref_valid_q[w_sub_q][w_set_q][w_way_q] <= 1'b0;
-      end
-    end
-  end
-  state_bits: assert property (@(posedge clk_i) disable iff (!rst_ni || swp_q)
-      valid_v == ref_valid_q && pend_v == ref_pend_q && err_v == ref_err_q)
-    else $error("tex_cache: directory state bits differ from their reference");
-  // The head's slots are live (its pending and error bits are read without the live bit).
-  head_live: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      fifo_cnt_q != '0 |-> (hd_live | ~hd_q.used) == '1)
-    else $error("tex_cache: the head reads a slot that is not live");
-
-  logic [NSUB-1:0][SET_W-1:0] cm_set;  // the committing pass's slots
-  logic [NSUB-1:0][WAY_W-1:0] cm_way;
-  assign cm_set = cm_pass_q.set;
-  assign cm_way = cm_pass_q.way;
-
-  always_comb begin
-    for (int c = 0; c < NSUB; c++) begin
-      lk_live[c] = valid_v[c][cm_set[c]][cm_way[c]] || err_v[c][cm_set[c]][cm_way[c]];
-      hd_live[c] = valid_v[c][hd_q.set[c]][hd_q.way[c]] || err_v[c][hd_q.set[c]][hd_q.way[c]];
-    end
-  end
-
-  // Streams: payload stable while stalled (the request side is the client's contract).
-  req_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      req_valid_i && !req_ready_o |=> req_valid_i && $stable({req_addr_i, req_tag_i}))
-    else $error("tex_cache: request dropped or changed while stalled");
-  req_aligned: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      req_valid_i |-> (req_addr_i[0][1:0] | req_addr_i[1][1:0] | req_addr_i[2][1:0]
-                       | req_addr_i[3][1:0]) == 2'b00)
-    else $error("tex_cache: texel address not 4-byte aligned");
-  rsp_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      rsp_valid_o && !rsp_ready_i |=> rsp_valid_o
-        && $stable({rsp_texel_o, rsp_err_o, rsp_tag_o}))
-    else $error("tex_cache: response dropped or changed while stalled");
-  // FIFOs.
-  fifo_no_overflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      cm_valid_q |-> (fifo_cnt_q < FC_W'(FIFO_DEPTH)) || h_pop)
-    else $error("tex_cache: request FIFO overflow");
-  fifo_no_underflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      h_pop |-> fifo_cnt_q != '0)
-    else $error("tex_cache: request FIFO underflow");
-  fifo_head: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      fifo_cnt_q != '0 |-> hd_q == fifo_q[fifo_rp_q])
-    else $error("tex_cache: head register differs from the FIFO's head entry");
-  fifo_next: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      fifo_cnt_q >= FC_W'(2) |-> nx_q == fifo_q[FP_W'(fifo_rp_q + FP_W'(1))])
-    else $error("tex_cache: next-head register differs from the FIFO's second entry");
-  fifo_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      32'(fifo_cnt_q) <= FIFO_DEPTH && FP_W'(fifo_wp_q - fifo_rp_q) == FP_W'(fifo_cnt_q))
-    else $error("tex_cache: request FIFO pointers inconsistent");
-  pass_queue_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      3'(pq_wp_q - pq_rp_q) <= 3'(PQ_DEPTH) && 3'(pq_ip_q - pq_rp_q) == 3'(b_valid_q)
-      && 3'(pq_wp_q - pq_ip_q) <= 3'(pq_wp_q - pq_rp_q))
-    else $error("tex_cache: pass queue pointers inconsistent");
-  decide_is_oldest: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      b_valid_q |-> b_pass_q == pq_q[pq_rp_q[1:0]])
-    else $error("tex_cache: the decide stage's pass is not the queue's oldest");
-  read_set: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      a_issue |-> a_set_q == a_pass.set)
-    else $error("tex_cache: the read stage's set register differs from its pass");
-  out_no_overflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      out_push |-> (out_cnt_q < 3'(OUT_DEPTH)) || out_pop)
-    else $error("tex_cache: output buffer overflow");
-  out_no_underflow: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      out_pop |-> out_cnt_q != '0)
-    else $error("tex_cache: output buffer underflow");
-  // AXI: AR holds until the handshake; rlast on exactly the last beat; beats only for reads.
-  ar_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      m_axi_arvalid && !m_axi_arready |=> m_axi_arvalid
-        && $stable({m_axi_arid, m_axi_araddr, m_axi_arlen, m_axi_arsize, m_axi_arburst}))
-    else $error("tex_cache: AR dropped or changed before arready");
-  rlast_on_last_beat: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      r_acc |-> (m_axi_rlast == r_last_beat))
-    else $error("tex_cache: rlast on a beat other than the last");
-  r_beat_expected: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      m_axi_rvalid && (r_epoch == epoch_q) |-> r_acc)
-    else $error("tex_cache: R beat for no outstanding read");
-
-  // Shadow (simulation only): the line each data slot holds, and the lines each queued pass reads.
-  logic [LA_W-1:0] sh_slot_la [NSUB][SETS][WAYS];
-  logic [NSUB-1:0][LA_W-1:0] sh_pass_la [FIFO_DEPTH];
-  logic [NSUB-1:0] sh_slot_ok [SETS][WAYS];  // the slot has been written since reset
-
-  always_ff @(posedge clk_i) begin
-    if (cm_valid_q) sh_pass_la[fifo_wp_q] <= cm_la_q;
-    if (!rst_ni) begin
-      for (int s = 0; s < SETS; s++) for (int w = 0; w < WAYS; w++) sh_slot_ok[s][w] <= '0;
-    end else if (w_fill_q) begin
-      sh_slot_la[w_sub_q][w_set_q][w_way_q] <= w_la_q;
-      sh_slot_ok[w_set_q][w_way_q][w_sub_q] <= 1'b1;
-    end
-  end
-
-  always @(posedge clk_i) begin
-    if (rst_ni && !swp_q) begin  // (the live bits are cleared once the sweep ends)
-      // Invariants of every slot: a pending slot is referenced (by its allocator at least);
-      // valid tags of a set are unique.
-      for (int c = 0; c < NSUB; c++) begin
-        for (int s = 0; s < SETS; s++) begin
-          for (int w = 0; w < WAYS; w++) begin
-            pending_referenced: assert (!pend_v[c][s][w] || dir_rc[c][s][w] != '0)
-              else $error("tex_cache: sub-cache %0d set %0d way %0d pending but unreferenced",
-                          c, s, w);
-            for (int v = w + 1; v < WAYS; v++) begin
-              tag_unique: assert (!(valid_v[c][s][w] && valid_v[c][s][v]
-                                    && dir_tag[c][s][w] == dir_tag[c][s][v]))
-                else $error("tex_cache: sub-cache %0d set %0d holds a line twice", c, s);
-            end
-          end
-        end
-      end
-      for (int c = 0; c < NSUB; c++) begin
-        // No eviction of a referenced line: a victim is unreferenced (hence not pending), in
-        // the directory as its allocation is written (the commit clock).
-        if (cm_valid_q && cm_alloc_q[c]) begin
-          victim_unreferenced: assert ((!lk_live[c]
-                                        || dir_rc[c][cm_set[c]][cm_way[c]] == '0)
-                                       && !pend_v[c][cm_set[c]][cm_way[c]])
-            else $error("tex_cache: sub-cache %0d evicts a referenced line", c);
-        end
-        // Reference counts never wrap.
-        if (cm_valid_q && cm_pass_q.used[c]) begin
-          rc_no_overflow: assert (cm_alloc_q[c] || dir_rc[c][cm_set[c]][cm_way[c]] != '1)
-            else $error("tex_cache: reference count overflow");
-        end
-        // The forwarded view is what the directory holds once the commit is written.
-        if (cm_valid_q && cm_pass_q.used[c]) begin
-          commit_inc: assert (cm_alloc_q[c]
-                              || cm_inc_q[c] == dir_inc[c][cm_set[c]][cm_way[c]] + RC_W'(1))
-            else $error("tex_cache: sub-cache %0d commits a stale reference count", c);
-        end
-        if (h_pop && hd_q.used[c]) begin
-          rc_no_underflow: assert (hd_live[c]
-                                   && dir_rc[c][hd_q.set[c]][hd_q.way[c]] != '0)
-            else $error("tex_cache: reference count underflow");
-          // The slot read at the head holds the line the pass looked up (unless it errored).
-          head_reads_its_line: assert (err_v[c][hd_q.set[c]][hd_q.way[c]]
-                                       || (sh_slot_ok[hd_q.set[c]][hd_q.way[c]][c]
-                                           && sh_slot_la[c][hd_q.set[c]][hd_q.way[c]]
-                                              == sh_pass_la[fifo_rp_q][c]))
-            else $error("tex_cache: head reads sub-cache %0d slot (%0d, %0d): line %h, not %h",
-                        c, hd_q.set[c], hd_q.way[c],
-                        sh_slot_la[c][hd_q.set[c]][hd_q.way[c]], sh_pass_la[fifo_rp_q][c]);
-        end
-      end
-      // MSHRs: a busy MSHR's slot is valid, pending and tagged with its line; no two busy MSHRs
-      // fill one slot; the AR queue holds at most the busy MSHRs.
-      for (int m = 0; m < MSHRS; m++) begin
-        if (mshr_busy_q[m]) begin
-          mshr_slot_pending: assert (pend_v[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
-              && valid_v[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
-              && dir_tag[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
-                 == mshr_la_v[m][LA_W-1 -: TAGB]
-              && set_of(mshr_la_v[m]) == mshr_set_v[m])
-            else $error("tex_cache: MSHR %0d does not own a pending slot of its line", m);
-          for (int n = m + 1; n < MSHRS; n++) begin
-            mshr_unique: assert (!(mshr_busy_q[n] && mshr_sub_q[n] == mshr_sub_q[m]
-                                   && (mshr_la_v[n] == mshr_la_v[m]
-                                       || (mshr_set_v[n] == mshr_set_v[m]
-                                           && mshr_way_v[n] == mshr_way_v[m]))))
-              else $error("tex_cache: MSHRs %0d and %0d read the same line / slot", m, n);
-          end
-        end
-      end
-    end
-  end
-
-  // Coverage points, read by tb/tex_cache (simulation only; nothing in the design reads them).
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic sim_merge, sim_victim_wait, sim_mshr_wait, sim_fifo_full, sim_split, sim_stale_beat,
-        sim_err_fill, sim_err_pass, sim_victim_redirect, sim_win_split, sim_overlap;
-  /* verilator lint_on UNUSEDSIGNAL */
-  always_comb begin
-    logic [WAY_W-1:0] free_way;
-    sim_merge           = 1'b0;  // a pass enters with a line that is still being read
-    sim_victim_redirect = 1'b0;  // a reference made the victim differ from the plain policy
-    for (int c = 0; c < NSUB; c++) begin
-      if (e_fire && lk_v[c] && !lk_alloc[c] && f_pnd[c][lk_way[c]]) sim_merge = 1'b1;
-      free_way = plru_pick(f_plru[c], '1);
-      for (int w = WAYS - 1; w >= 0; w--) begin
-        if (!f_vld[c][w]) free_way = WAY_W'(w);
-      end
-      if (e_fire && lk_alloc[c] && free_way != lk_way[c]) sim_victim_redirect = 1'b1;
-    end
-    // a texel left for a later pass although its line is the one its sub-cache reads (the
-    // window does not hold its word); a texel read at the window's overlap word
-    sim_win_split = 1'b0;
-    sim_overlap   = 1'b0;
-    for (int t = 0; t < 4; t++) begin
-      if (p_load && s0_todo_q[t] && !sl_sel[t] && sl_v[e_sub[t]] && sl_la[e_sub[t]] == e_la[t])
-        sim_win_split = 1'b1;
-      if (h_pop && hd_q.tsel[t] && 32'(hd_q.toff[t]) == WW) sim_overlap = 1'b1;
-    end
-  end
-  assign sim_victim_wait = rst_ni && b_valid_q && (|lk_blocked);   // every way referenced
-  assign sim_mshr_wait   = rst_ni && b_valid_q && mshr_short;
-  assign sim_fifo_full   = rst_ni && b_valid_q && fifo_cnt_q == FC_W'(FIFO_DEPTH);
-  assign sim_split       = e_fire && !e_last;                        // a request of 2+ passes
-  assign sim_stale_beat  = m_axi_rvalid && r_epoch != epoch_q;       // a read from before a reset
-  assign sim_err_fill    = fill_v && fill_bad;
-  assign sim_err_pass    = h_pop && (|hd_err);
-
-  logic [QCNT_W-1:0] busy_cnt;
-  always_comb begin
-    busy_cnt = '0;
-    for (int m = 0; m < MSHRS; m++) busy_cnt = busy_cnt + QCNT_W'(mshr_busy_q[m]);
-  end
-  arq_within_busy: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      arq_cnt_q <= busy_cnt)
-    else $error("tex_cache: AR queue holds more reads than busy MSHRs");
-  // The free list holds exactly the MSHRs that are not busy and not taken by the pass in the
-  // commit register.
-  logic [2:0] cm_n;
-  always_comb begin
-    cm_n = '0;
-    for (int c = 0; c < NSUB; c++) cm_n = cm_n + 3'(cm_valid_q && cm_alloc_q[c]);
-  end
-  free_list_count: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      32'(busy_cnt) + 32'(fl_cnt_q) + 32'(cm_n) == MSHRS)
-    else $error("tex_cache: free-list count differs from the MSHRs not busy");
-  always @(posedge clk_i) begin
-    if (rst_ni) begin
-      for (int j = 0; j < MSHRS; j++) begin
-        if (j < 32'(fl_cnt_q)) begin
-          free_list_not_busy: assert (!mshr_busy_q[fl_q[arq_add(fl_hd_q, j)]])
-            else $error("tex_cache: busy MSHR %0d on the free list", fl_q[arq_add(fl_hd_q, j)]);
-        end
-      end
-    end
-  end
-`endif
+  assign unused = ^w_la_q;
 
 endmodule

@@ -62,7 +62,8 @@ CONFIGS = {
     "wide": TexCacheConfig(win_words=8),
 }
 BASES = (0x1000_0000, 0x1040_0000, 0x2000_0000)
-#: The RTL's simulation-only coverage points (sim_<name>), counted per clock.
+#: The RTL's simulation-only coverage points (sim_<name> in the bound tex_cache_assert, u_assert),
+#: counted per clock.
 COVER = ("merge", "victim_wait", "mshr_wait", "fifo_full", "split", "stale_beat", "err_fill",
          "err_pass", "victim_redirect", "win_split", "overlap")
 
@@ -250,7 +251,7 @@ class Harness:
         sig = [getattr(d, n) for n in ("rst_ni", "clr_stats_i", "req_valid_i", "req_ready_o",
                                        "req_addr_i", "m_axi_arvalid", "m_axi_arready",
                                        "m_axi_arid", "m_axi_rvalid", "m_axi_rlast", "m_axi_rid")]
-        cov = {n: getattr(d, f"sim_{n}") for n in COVER}
+        cov = {n: getattr(d.u_assert, f"sim_{n}") for n in COVER}  # (tex_cache_assert)
         c = self.cfg
         prev_rst = 1
         while True:

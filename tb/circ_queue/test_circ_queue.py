@@ -1,0 +1,122 @@
+# SPDX-License-Identifier: Apache-2.0
+"""circ_queue (rtl/common: the caches' AR queue, free list of MSHRs, request FIFO and output
+buffer) against a deque, clock by clock.
+
+Every clock random pushes on the NPUSH lanes (within the room left after this clock's pops),
+early writes on lanes that do not push (only into entries that are free), and a random number
+of pops (at most the count), with the probabilities drifting in bursts so that the queue runs
+empty, full and in between.  Before every edge count_o and rdata_o[k] (k < min(NPOP, count),
+with ASYNC_RD) must equal the model's; after every edge peek_o (with PEEK > 0) must be entry
+PEEK of the queue as it is then, while the queue holds more than PEEK entries.  With INIT_SEQ
+the queue starts full of 0 .. DEPTH - 1.
+"""
+from __future__ import annotations
+
+import os
+from collections import deque
+from pathlib import Path
+
+import cocotb
+import numpy as np
+import pytest
+from cocotb.clock import Clock
+from cocotb.triggers import FallingEdge, RisingEdge, Timer
+
+from tb.common import fp_unit, report, runner
+
+
+def _lanes(sig, n: int, width: int) -> list[int]:
+    v = int(sig.value)
+    return [(v >> (k * width)) & ((1 << width) - 1) for k in range(n)]
+
+
+@cocotb.test()
+async def circ_queue_random(dut):
+    rng = np.random.default_rng(fp_unit.seed())
+    width, depth = int(os.environ["WIDTH"]), int(os.environ["DEPTH"])
+    npush, npop = int(os.environ["NPUSH"]), int(os.environ["NPOP"])
+    init_seq, async_rd, peek = (int(os.environ[k]) for k in ("INIT_SEQ", "ASYNC_RD", "PEEK"))
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    dut.rst_ni.value = 0
+    dut.push_i.value = 0
+    dut.wr_i.value = 0
+    dut.wdata_i.value = 0
+    dut.pop_n_i.value = 0
+    for _ in range(2):
+        await RisingEdge(dut.clk_i)
+    await FallingEdge(dut.clk_i)
+    dut.rst_ni.value = 1
+    q: deque[int] = deque(range(depth) if init_seq else [])
+    n = fp_unit.vectors()
+    p_push = rng.uniform(0.0, 1.0, n // 32 + 1).repeat(32)[:n]
+    p_pop = rng.uniform(0.0, 1.0, n // 32 + 1).repeat(32)[:n]
+    bad = fulls = empties = peeks = 0
+    msgs: list[str] = []
+
+    def check(what: str, got: int, exp: int, k: int) -> None:
+        nonlocal bad
+        if got != exp:
+            bad += 1
+            if len(msgs) < 10:
+                msgs.append(f"clock {k}: {what} {got:#x}, expected {exp:#x}")
+
+    for k in range(n):
+        await Timer(1, unit="ns")
+        check("count_o", int(dut.count_o.value), len(q), k)
+        if async_rd:
+            rd = _lanes(dut.rdata_o, npop, width)
+            for j in range(min(npop, len(q))):
+                check(f"rdata_o[{j}]", rd[j], q[j], k)
+        fulls += len(q) == depth
+        empties += not q
+        pops = int(min(rng.binomial(npop, p_pop[k]), len(q)))
+        room = depth - len(q) + pops
+        push, wr, data = [0] * npush, [0] * npush, [0] * npush
+        m = 0  # pushes on the lanes below
+        pushed: list[int] = []
+        for lane in range(npush):
+            data[lane] = int(rng.integers(0, 1 << width))
+            if m < room and rng.random() < p_push[k]:
+                push[lane] = wr[lane] = 1
+                pushed.append(data[lane])
+                m += 1
+            elif m < depth - len(q) and rng.random() < 0.3:
+                wr[lane] = 1  # an early write into a free entry: must not show in the queue
+        dut.push_i.value = sum(b << j for j, b in enumerate(push))
+        dut.wr_i.value = sum(b << j for j, b in enumerate(wr))
+        dut.wdata_i.value = sum(d << (j * width) for j, d in enumerate(data))
+        dut.pop_n_i.value = pops
+        await RisingEdge(dut.clk_i)
+        for _ in range(pops):
+            q.popleft()
+        q.extend(pushed)
+        await FallingEdge(dut.clk_i)
+        if peek and len(q) > peek:
+            peeks += 1
+            check("peek_o", int(dut.peek_o.value), q[peek], k)
+    report.record(dut._name, f"RTL vs deque (W {width}, DEPTH {depth}, NPUSH {npush}, NPOP {npop}, "
+                             f"INIT_SEQ {init_seq}, ASYNC_RD {async_rd}, PEEK {peek})", n, bad)
+    dut._log.info("VECTORS circ_queue W=%d DEPTH=%d NPUSH=%d NPOP=%d: %d clocks (%d full, "
+                  "%d empty, %d peeks), %d mismatches", width, depth, npush, npop, n, fulls,
+                  empties, peeks, bad)
+    if fulls == 0 or empties == 0 or (peek and peeks == 0):
+        msgs.append(f"the stimulus never reached full ({fulls}), empty ({empties}) or a peek "
+                    f"({peeks})")
+    if msgs:
+        raise AssertionError("\n".join(msgs))
+
+
+# (WIDTH, DEPTH, NPUSH, NPOP, INIT_SEQ, ASYNC_RD, PEEK): the AR queues (tex_cache: 4 lanes,
+# height_cache: 1), the free list of MSHRs, the request FIFO, the output buffer, and odd depths
+CASES = [(4, 16, 4, 1, 0, 1, 0), (2, 4, 1, 1, 0, 1, 0), (4, 16, 1, 4, 1, 1, 0),
+         (37, 8, 1, 1, 0, 0, 2), (13, 4, 1, 1, 0, 1, 0), (5, 5, 3, 2, 0, 1, 0),
+         (3, 1, 1, 1, 0, 1, 0), (6, 7, 1, 3, 1, 1, 1), (9, 3, 1, 1, 0, 1, 2)]
+
+
+@pytest.mark.parametrize("width,depth,npush,npop,init_seq,async_rd,peek", CASES)
+def test_circ_queue(width: int, depth: int, npush: int, npop: int, init_seq: int, async_rd: int,
+                    peek: int):
+    params = {"WIDTH": width, "DEPTH": depth, "NPUSH": npush, "NPOP": npop, "INIT_SEQ": init_seq,
+              "ASYNC_RD": async_rd, "PEEK": peek}
+    runner.run("circ_queue", "test_circ_queue", Path(__file__).parent, parameters=params,
+               extra_env={**{k: str(v) for k, v in params.items()}, "VECTORS": "20000"})
