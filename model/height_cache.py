@@ -26,7 +26,6 @@ from __future__ import annotations
 from collections import deque
 from dataclasses import dataclass, field
 
-LOOKUP_LAT = 3
 
 FREE, WAIT, FILL, ERR = 0, 1, 2, 3
 

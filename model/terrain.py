@@ -51,7 +51,7 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
@@ -65,6 +65,13 @@ F32 = npt.NDArray[np.float32]
 U8 = npt.NDArray[np.uint8]
 B = npt.NDArray[np.bool_]
 I64 = npt.NDArray[np.int64]
+
+
+class RtlTrace(Protocol):
+    """An RTL trace engine for :func:`pyramidal` (``tb.harness.traverse_system.trace_rtl``)."""
+
+    def __call__(self, pyr: heightmap.Pyramid, rays: Rays, method: str, *,
+                 latency: int) -> tuple[TraceResult, dict[str, Any]]: ...
 
 #: The approximate methods of the study, in the paper's order (keys of terrain.json's "mse").
 METHODS: tuple[str, ...] = ("tessellation", "parallax-0.5", "parallax-1", "parallax-iter",
@@ -576,11 +583,15 @@ def run_study(terrain: Terrain, cam: Camera, cells: Sequence[int], *,
 
 # ---- the pyramidal traversal of the DEM (the traversal paper's future work) ---------------------
 
-def pyramidal(terrain: Terrain, cam: Camera, method: str = "park", rtl: bool = False,
-              rtl_latency: int = 20) -> dict[str, Any]:
+def pyramidal(terrain: Terrain, cam: Camera, method: str = "park",
+              rtl: RtlTrace | None = None, rtl_latency: int = 20) -> dict[str, Any]:
     """Ray-cast the DEM with the exact pyramidal traversal on the f64, f24 and (``rtl``) RTL
     engines; iterations per ray, agreement with f64, the f24 image's MSE against the f64
-    reference and, for the RTL, the clock count and whether it equals f24 bit for bit."""
+    reference and, for the RTL, the clock count and whether it equals f24 bit for bit.
+
+    ``rtl``: the RTL trace engine, called as ``rtl(pyr, rays, method, latency=rtl_latency)`` and
+    returning (TraceResult, statistics) -- ``tb.harness.traverse_system.trace_rtl``; the model
+    itself does not drive the RTL."""
     cr = cam.rays()
     rays, row, col = cr.rays, cr.row, cr.col
     mask = np.zeros((cam.image_h, cam.image_w), bool)
@@ -602,11 +613,9 @@ def pyramidal(terrain: Terrain, cam: Camera, method: str = "park", rtl: bool = F
     same = _same_texel(res["f64"], res["f24"])
     out["f24"]["same_hit_texel_as_f64"] = same
     out["f24"]["mse_vs_f64"] = mse(imgs["f24"], imgs["f64"], mask)
-    if rtl:
-        from model import rtl_engine
-
+    if rtl is not None:
         t0 = time.time()
-        r, st = rtl_engine.trace_rtl(terrain.pyr, rays, method, latency=rtl_latency)
+        r, st = rtl(terrain.pyr, rays, method, latency=rtl_latency)
         f24 = res["f24"]
         identical = bool(np.array_equal(r.hit, f24.hit) and np.array_equal(r.invalid, f24.invalid)
                          and np.array_equal(r.iterations, f24.iterations)

@@ -23,17 +23,17 @@ from typing import Any
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from model import f24, heightmap, traverse  # noqa: E402
-from model.arith import ENGINES  # noqa: E402
-from model.cli import Parser, fail  # noqa: E402
-from model.rays import Rays  # noqa: E402
+from model import f24, heightmap, traverse
+from model.arith import ENGINES
+from model.cli import Parser, fail
+from model.rays import Rays
+from tb.harness import traverse_words
 
 PROG = "ray_steps.py"
-#: The harness's byte address of the pyramid (model.rtl_engine.DEFAULT_BASE).
+#: The harness's byte address of the pyramid (tb.harness.traverse_system.DEFAULT_BASE).
 DEFAULT_BASE = 0x4000_0000
 #: Clocks from a height lookup to its answer (traverse_pkg::LOOKUP_LAT).
-LOOKUP_LAT = 3
+LOOKUP_LAT = traverse_words.LOOKUP_LAT
 
 
 def hx(x: float) -> str:
@@ -305,13 +305,13 @@ def main(argv: list[str] | None = None) -> int:
                               "model": summary}
     rc = 0
     if args.rtl:
-        from model import rtl_engine
+        from tb.harness import traverse_system
         print(f"{PROG}: running the ray on the RTL (Verilator harness"
               + (", traced build" if args.waves else "") + "; the first build takes minutes)",
               file=sys.stderr, flush=True)
         try:
-            rr, st = rtl_engine.trace_rtl(pyr, rays, args.method, latency=args.latency,
-                                          waves=args.waves, base=args.base)
+            rr, st = traverse_system.trace_rtl(pyr, rays, args.method, latency=args.latency,
+                                               waves=args.waves, base=args.base)
         except Exception as e:  # RtlEngineError, build failures
             print(f"{PROG}: the RTL run failed: {e}".splitlines()[0], file=sys.stderr)
             return 1

@@ -31,11 +31,10 @@ from typing import Any
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from model import heightmap, scenes, traverse  # noqa: E402
-from model import relief_texture as rtm  # noqa: E402
-from model.camera import Camera  # noqa: E402
-from model.cli import Parser, fail  # noqa: E402
+from model import heightmap, scenes, traverse
+from model import relief_texture as rtm
+from model.camera import Camera
+from model.cli import Parser, fail
 
 PROG = "relief_texture.py"
 DEFAULT_SAMPLES = ("saints", "stones", "four-shapes")

@@ -13,7 +13,7 @@ height map is coloured by a height ramp (``height_ramp``); without --normal-map 
 from the heights (``model.scenes.normal_map``).  Bad input: one line naming the problem, exit 2.
 
 ``--engine rtl`` (what ``make render`` runs): the frame goes through ``rtl/pipe/dm_pipeline.sv``
-in the Verilator harness (``model.rtl_pipeline``; built once into build/harness/pipeline/, about a
+in the Verilator harness (``tb.harness.dm_pipeline``; built once into build/harness/pipeline/, about a
 minute) and through the model's f24 engine, the bit-accurate model of that datapath.  --out gets
 the RTL's image (default out/render.png), --model-out the model's (default out/render_model.png),
 --stats (default out/render_stats.json) the RTL's statistics with ``identical``: every covered
@@ -21,8 +21,12 @@ pixel's colour, hit, invalid flag and iteration count equal between RTL and mode
 ``pixels`` counts the pixels through the pipeline (one fragment per covered pixel; the image's
 size is ``image_pixels``), ``cycles`` the clocks from the first fragment in to the last pixel out
 (one pipeline, AXI read latency --latency on both memory ports), ``mem_bytes`` the bytes read on
-both ports; Mpixels/s are given at the place-and-route fmax of out/synth/report.json when that
-file exists, else at an assumed clock (the paper's 84 MHz, labelled so) or --clock-mhz.
+both ports; Mpixels/s are given at --clock-mhz, by default at the project's routed clock
+(``clock_mhz``, with ``clock_source``): the top's place-and-route fmax of a local
+out/synth/report.json when there is one, else the committed docs/results/synth-ecp5.json (with no
+routed result at all, the paper's 84 MHz, labelled as assumed); ``paper_clock_mhz`` and
+``mpixels_per_second_at_paper_clock`` give the figure at the paper's 84 MHz beside it.  The
+progress line (rewritten in place with ``\r``) is shown only when stderr is a terminal.
 Exit status 1 when the RTL and the model differ (the count and the first pixels are printed).
 Approximate methods have no RTL: --engine rtl with one is a user error (exit 2); render them on
 the model with --engine f64.
@@ -39,9 +43,8 @@ from typing import Any
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from model import camera, heightmap, scenes, shade, texture, traverse  # noqa: E402
-from model.cli import Parser, Progress, fail  # noqa: E402
+from model import camera, heightmap, scenes, shade, texture, traverse
+from model.cli import Parser, Progress, fail
 
 PROG = "render.py"
 MAX_SIZE = 8192
@@ -56,6 +59,12 @@ SHOW_MISMATCHES = 5
 #: Stops of the height ramp of user height maps without a texture: (height, R, G, B).
 RAMP = np.array([(0.00, 0.20, 0.16, 0.12), (0.30, 0.42, 0.36, 0.24), (0.55, 0.46, 0.52, 0.30),
                  (0.80, 0.62, 0.60, 0.56), (1.00, 0.95, 0.95, 0.97)])
+
+
+def progress_wanted(quiet: bool) -> bool:
+    """A progress line only when not --quiet and stderr is a terminal (a ``\r``-rewritten line
+    in a log file or a pipe is noise)."""
+    return not quiet and sys.stderr.isatty()
 
 
 def height_ramp(h: np.ndarray) -> np.ndarray:
@@ -155,7 +164,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--checked", action="store_true", help="--engine rtl: the harness with the "
                     "RTL's assertions on (slower; RTL_ENGINE_CHECKED=1 does the same)")
     ap.add_argument("--clock-mhz", help="--engine rtl: quote Mpixels/s at this clock (default: "
-                    "fmax of out/synth/report.json, else the paper's 84 MHz)")
+                    "the routed fmax of out/synth/report.json, else of "
+                    "docs/results/synth-ecp5.json)")
     ap.add_argument("--quiet", action="store_true", help="no progress or summary output")
     args = ap.parse_args(argv)
 
@@ -263,10 +273,10 @@ def main(argv: list[str] | None = None) -> int:
                         mip=not args.no_mip)
     build_secs = 0.0
     if rtl:
-        from model import rtl_pipeline
+        from tb.harness import dm_pipeline
         try:
-            rtl_pipeline.check_limits(frame)
-        except rtl_pipeline.RtlLimitError as e:
+            dm_pipeline.check_limits(frame)
+        except dm_pipeline.RtlLimitError as e:
             fail(PROG, f"the pipeline RTL cannot render this: {e}")
         built = build_harness(args.checked, args.quiet)
         if built is None:
@@ -276,7 +286,7 @@ def main(argv: list[str] | None = None) -> int:
     # ---- render -------------------------------------------------------------------------------
     model_engine = frame.engine
     prog = Progress(f"render {args.method}/{model_engine} {size}x{size}", 1,
-                    enabled=not args.quiet and size * size >= PROGRESS_MIN_PIXELS)
+                    enabled=progress_wanted(args.quiet) and size * size >= PROGRESS_MIN_PIXELS)
 
     def on_progress(done: int, total: int) -> None:
         prog.total = max(total, 1)
@@ -343,15 +353,15 @@ def checked_variant(checked: bool) -> bool:
 def build_harness(checked: bool, quiet: bool) -> float | None:
     """Build the pipeline harness if it is not current; the seconds it took (None: it failed,
     the reason is printed)."""
-    from model import rtl_pipeline
-    from model.rtl_engine import RtlEngineError
+    from tb.harness import dm_pipeline
+    from tb.harness.build import RtlEngineError
 
-    variant = rtl_pipeline.default_variant(checked_variant(checked))
+    variant = dm_pipeline.default_variant(checked_variant(checked))
     try:
-        if rtl_pipeline.is_built(variant):
+        if dm_pipeline.is_built(variant):
             return 0.0
         t0 = time.time()
-        rtl_pipeline.build(variant, quiet=quiet)
+        dm_pipeline.build(variant, quiet=quiet)
         return time.time() - t0
     except RtlEngineError as e:
         sys.stderr.write(f"{PROG}: error: the RTL harness did not build: "
@@ -364,24 +374,24 @@ def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Ima
                latency: tuple[int, int], rtl_tile: int, seed: int,
                clock: tuple[float, str] | None, build_secs: float, t_start: float) -> int:
     """--engine rtl: the frame through the pipeline RTL, compared with the model's image."""
-    from model import rtl_pipeline
-    from model.rtl_engine import RtlEngineError
+    from tb.harness import dm_pipeline
+    from tb.harness.build import RtlEngineError
 
     checked = checked_variant(args.checked)
     n = len(ref.frags)
     prog = Progress(f"render {frame.method}/rtl {cam.image_w}x{cam.image_h} (pixels)", n,
-                    enabled=not args.quiet)
+                    enabled=progress_wanted(args.quiet))
     try:
-        img, st = rtl_pipeline.render_rtl(frame, cam, frags=ref.frags, tile=rtl_tile,
-                                          blocks=args.rtl_blocks,
-                                          latency=latency, seed=seed, checked=checked,
-                                          progress=lambda d, t: prog.update(d))
+        img, st = dm_pipeline.render_rtl(frame, cam, frags=ref.frags, tile=rtl_tile,
+                                         blocks=args.rtl_blocks,
+                                         latency=latency, seed=seed, checked=checked,
+                                         progress=lambda d, t: prog.update(d))
     except RtlEngineError as e:
         sys.stderr.write(f"{PROG}: error: the RTL run failed: {' | '.join(str(e).splitlines())}\n")
         return 1
     write_png(out_png, img.rgb)
-    bad = rtl_pipeline.compare(img.out, ref.out)
-    mhz, clock_src = clock if clock is not None else rtl_pipeline.pipeline_clock()
+    bad = dm_pipeline.compare(img.out, ref.out)
+    mhz, clock_src = clock if clock is not None else dm_pipeline.pipeline_clock()
     cpp = st["cycles_per_pixel"]
     stats: dict[str, Any] = {
         "pixels": st["pixels"], "cycles": st["cycles"], "iterations": st["iterations"],
@@ -397,6 +407,9 @@ def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Ima
         "bytes_per_pixel": round(st["bytes_per_pixel"], 4),
         "clock_mhz": mhz, "clock_source": clock_src,
         "mpixels_per_second": round(mhz / cpp, 3) if cpp > 0 else None,
+        "paper_clock_mhz": dm_pipeline.PAPER_MHZ,
+        "mpixels_per_second_at_paper_clock": (round(dm_pipeline.PAPER_MHZ / cpp, 3) if cpp > 0
+                                              else None),
         "harness_wall_seconds": st["harness_wall_seconds"],
         "harness_clocks_per_second": st["clocks_per_second"],
         "build_seconds": round(build_secs, 1),
@@ -425,7 +438,9 @@ def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Ima
               f"(heights {st['height_mem_bytes']}, textures {st['texture_mem_bytes']}; AXI "
               f"latency {latency[0] if latency[0] == latency[1] else latency} clocks)")
         print(f"{PROG}: {stats['mpixels_per_second']} Mpixels/s per pipeline at {mhz:g} MHz "
-              f"({clock_src}); harness {st['harness_wall_seconds']:.2f} s wall "
+              f"({clock_src}); {stats['mpixels_per_second_at_paper_clock']} at the paper's "
+              f"{dm_pipeline.PAPER_MHZ:g} MHz (Park et al.'s clock); harness "
+              f"{st['harness_wall_seconds']:.2f} s wall "
               f"({st['clocks_per_second'] / 1e6:.3f} M clocks/s)"
               + (f", built in {build_secs:.0f} s" if build_secs else ""))
     if len(bad):

@@ -30,9 +30,8 @@ from typing import Any
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from model import camera, terrain, texture, traverse  # noqa: E402
-from model.cli import Parser, Progress, fail  # noqa: E402
+from model import camera, terrain, texture, traverse
+from model.cli import Parser, Progress, fail
 
 PROG = "terrain.py"
 MAX_IMAGE = 4096
@@ -225,18 +224,18 @@ def main(argv: list[str] | None = None) -> int:
     rc = 0
     rtl_error = None
     if a.rtl:
-        from model import rtl_engine
+        from tb.harness import traverse_system
 
         try:   # build (or find) the harness first, with its progress messages
-            rtl_engine.build("checked" if os.environ.get("RTL_ENGINE_CHECKED") == "1"
-                             else "fast", quiet=a.quiet)
-            pyr = terrain.pyramidal(ter, cam, a.method, rtl=True)
-        except rtl_engine.RtlEngineError as e:   # reported in the JSON and the exit status
+            traverse_system.build("checked" if os.environ.get("RTL_ENGINE_CHECKED") == "1"
+                                  else "fast", quiet=a.quiet)
+            pyr = terrain.pyramidal(ter, cam, a.method, rtl=traverse_system.trace_rtl)
+        except traverse_system.RtlEngineError as e:   # reported in the JSON and the exit status
             rtl_error = str(e).splitlines()[0]
             print(f"{PROG}: RTL engine failed: {rtl_error}", file=sys.stderr)
             rc = 1
     if not a.rtl or rtl_error is not None:
-        pyr = terrain.pyramidal(ter, cam, a.method, rtl=False)
+        pyr = terrain.pyramidal(ter, cam, a.method)
         if rtl_error is not None:
             pyr["rtl"] = {"error": rtl_error}
     write_png(a.out / "pyramidal_f24.png", pyr.pop("images")["f24"])

@@ -15,10 +15,9 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from model import heightmap, traverse  # noqa: E402
-from model.cli import Parser, Progress, fail  # noqa: E402
-from model.rays import Rays, TraceResult  # noqa: E402
+from model import heightmap, traverse
+from model.cli import Parser, Progress, fail
+from model.rays import Rays, TraceResult
 
 PROG = "trace.py"
 CHUNK = 65536
@@ -50,11 +49,11 @@ def load_rays(path: Path) -> Rays:
 
 def trace_on_rtl(args, pyr, rays: Rays) -> int:
     """The whole batch through the Verilator harness (traverse unit + height cache + AXI memory)."""
-    from model import rtl_engine
+    from tb.harness import traverse_system
 
     if not args.quiet:
         print("trace.py: building / running the Verilator harness ...", file=sys.stderr)
-    res, stats = rtl_engine.trace_rtl(pyr, rays, args.method)
+    res, stats = traverse_system.trace_rtl(pyr, rays, args.method)
     stats = {**stats, "engine": "rtl", "method": args.method}
     np.savez(args.out, **res.as_npz_dict(), stats=json.dumps(stats))
     if not args.quiet:

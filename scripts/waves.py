@@ -25,8 +25,7 @@ TB = ROOT / "tb"
 SIM = ROOT / "build" / "sim"
 GTKW = TB / "waves"
 PROG = "waves.py"
-sys.path.insert(0, str(ROOT))
-from model.cli import Parser  # noqa: E402
+from model.cli import Parser
 
 
 def fail(msg: str) -> int:

@@ -1,17 +1,14 @@
-"""Make the project root importable (model/, tb/) and report random seeds."""
+"""Report random seeds and set the test environment (the project itself imports as an installed
+package: `make setup` runs `pip install -e .`; pytest puts tests/ on the path for the helpers
+here, reference_walk and f24_mpfr)."""
 import os
 import random
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-# The RTL engine's harness with the RTL's SVA assertions compiled in (model/rtl_engine.py), also
+# The Verilator harnesses with the RTL's SVA assertions compiled in (tb/harness/build.py), also
 # for the scripts the tests start as subprocesses.
 os.environ.setdefault("RTL_ENGINE_CHECKED", "1")
 

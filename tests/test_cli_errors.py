@@ -1,8 +1,8 @@
 """Every command-line tool rejects bad files and arguments with one line and exit status 2.
 
 ``TRACE_CASES`` are scripts/trace.py's (the contract's interface); ``TOOL_CASES`` list the cases of
-every other tool: scripts/*.py with a command line, ``python -m model.rtl_engine`` and ``python -m
-model.rtl_pipeline``.  A case passes when the tool exits with status 2, prints no traceback and
+every other tool: scripts/**/*.py with a command line, ``python -m tb.harness.traverse_system`` and ``python -m
+tb.harness.dm_pipeline``.  A case passes when the tool exits with status 2, prints no traceback and
 exactly one non-empty line in all (stdout and stderr together) that names the problem.  Every case
 fails before any long work starts (argument checks, missing or unreadable files).  A case a tool
 does not yet meet is marked ``xfail(strict=True)`` with what it does instead (reported to the
@@ -123,34 +123,34 @@ TOOL_CASES: dict[str, tuple[str, list[str], dict[str, str]]] = {
     "render unknown engine": ("scripts/render.py", ["--engine", "gpu"], {}),
     "render latency 0": ("scripts/render.py", ["--engine", "rtl", "--latency", "0"], {}),
     # study.py
-    "study unknown scene": ("scripts/study.py", ["--quick", "--scenes", "nope", "--out", "{d}/st"],
+    "study unknown scene": ("scripts/bench/study.py", ["--quick", "--scenes", "nope", "--out", "{d}/st"],
                             {}),
-    "study bad angle": ("scripts/study.py", ["--quick", "--angles", "nope", "--out", "{d}/st"], {}),
-    "study out is a file": ("scripts/study.py", ["--quick", "--out", "{d}/afile"], {}),
-    "study size 0": ("scripts/study.py", ["--quick", "--size", "0", "--out", "{d}/st"], {}),
+    "study bad angle": ("scripts/bench/study.py", ["--quick", "--angles", "nope", "--out", "{d}/st"], {}),
+    "study out is a file": ("scripts/bench/study.py", ["--quick", "--out", "{d}/afile"], {}),
+    "study size 0": ("scripts/bench/study.py", ["--quick", "--size", "0", "--out", "{d}/st"], {}),
     # bench_model.py
-    "bench_model unknown scene": ("scripts/bench_model.py", ["--scene", "nope"], {}),
-    "bench_model unknown method": ("scripts/bench_model.py", ["--methods", "nope"], {}),
-    "bench_model bad angle": ("scripts/bench_model.py", ["--angles", "sideways", "--out",
+    "bench_model unknown scene": ("scripts/bench/bench_model.py", ["--scene", "nope"], {}),
+    "bench_model unknown method": ("scripts/bench/bench_model.py", ["--methods", "nope"], {}),
+    "bench_model bad angle": ("scripts/bench/bench_model.py", ["--angles", "sideways", "--out",
                                                          "{d}/bm.json"],
                               {}),
-    "bench_model size 0": ("scripts/bench_model.py", ["--size", "0", "--out", "{d}/bm.json"],
+    "bench_model size 0": ("scripts/bench/bench_model.py", ["--size", "0", "--out", "{d}/bm.json"],
                            {}),
-    "bench_model repeat 0": ("scripts/bench_model.py", ["--repeat", "0", "--out", "{d}/bm.json"],
+    "bench_model repeat 0": ("scripts/bench/bench_model.py", ["--repeat", "0", "--out", "{d}/bm.json"],
                              {}),
     # bench_rtl.py
-    "bench_rtl unknown scene": ("scripts/bench_rtl.py", ["--scenes", "nope"], {}),
-    "bench_rtl approximate method": ("scripts/bench_rtl.py", ["--methods", "relief"], {}),
-    "bench_rtl bad angle": ("scripts/bench_rtl.py", ["--angles", "sideways"], {}),
-    "bench_rtl latency 0": ("scripts/bench_rtl.py", ["--latency", "0"], {}),
+    "bench_rtl unknown scene": ("scripts/bench/bench_rtl.py", ["--scenes", "nope"], {}),
+    "bench_rtl approximate method": ("scripts/bench/bench_rtl.py", ["--methods", "relief"], {}),
+    "bench_rtl bad angle": ("scripts/bench/bench_rtl.py", ["--angles", "sideways"], {}),
+    "bench_rtl latency 0": ("scripts/bench/bench_rtl.py", ["--latency", "0"], {}),
     # bench_pipeline.py
-    "bench_pipeline unknown scene": ("scripts/bench_pipeline.py", ["--scenes", "nope"], {}),
-    "bench_pipeline bad view": ("scripts/bench_pipeline.py", ["--views", "sideways"], {}),
-    "bench_pipeline bad mip": ("scripts/bench_pipeline.py", ["--mip", "maybe"], {}),
-    "bench_pipeline map 0": ("scripts/bench_pipeline.py", ["--map", "0"], {}),
-    "bench_pipeline image not a number": ("scripts/bench_pipeline.py", ["--image", "x"], {}),
-    "bench_pipeline latency 0": ("scripts/bench_pipeline.py", ["--latency", "0"], {}),
-    "bench_pipeline approximate method": ("scripts/bench_pipeline.py", ["--method", "relief"], {}),
+    "bench_pipeline unknown scene": ("scripts/bench/bench_pipeline.py", ["--scenes", "nope"], {}),
+    "bench_pipeline bad view": ("scripts/bench/bench_pipeline.py", ["--views", "sideways"], {}),
+    "bench_pipeline bad mip": ("scripts/bench/bench_pipeline.py", ["--mip", "maybe"], {}),
+    "bench_pipeline map 0": ("scripts/bench/bench_pipeline.py", ["--map", "0"], {}),
+    "bench_pipeline image not a number": ("scripts/bench/bench_pipeline.py", ["--image", "x"], {}),
+    "bench_pipeline latency 0": ("scripts/bench/bench_pipeline.py", ["--latency", "0"], {}),
+    "bench_pipeline approximate method": ("scripts/bench/bench_pipeline.py", ["--method", "relief"], {}),
     # terrain.py
     "terrain no source": ("scripts/terrain.py", [], {}),
     "terrain missing dem": ("scripts/terrain.py", ["--dem", "{d}/nope.tif"], {}),
@@ -204,75 +204,75 @@ TOOL_CASES: dict[str, tuple[str, list[str], dict[str, str]]] = {
     "waves unknown option": ("scripts/waves.py", ["traverse_fifo", "--nope"], {}),
     "waves case matching no test": ("scripts/waves.py", ["traverse_fifo", "--case", "nosuch"], {}),
     # congestion.py
-    "congestion no directory": ("scripts/congestion.py", ["{d}/nope"], {}),
-    "congestion no heatmaps": ("scripts/congestion.py", ["{d}/emptydir"], {}),
-    "congestion depth 0": ("scripts/congestion.py", ["{d}/emptydir", "--depth", "0"], {}),
-    "congestion depth not a number": ("scripts/congestion.py", ["{d}/emptydir", "--depth", "x"],
+    "congestion no directory": ("scripts/flow/congestion.py", ["{d}/nope"], {}),
+    "congestion no heatmaps": ("scripts/flow/congestion.py", ["{d}/emptydir"], {}),
+    "congestion depth 0": ("scripts/flow/congestion.py", ["{d}/emptydir", "--depth", "0"], {}),
+    "congestion depth not a number": ("scripts/flow/congestion.py", ["{d}/emptydir", "--depth", "x"],
                                       {}),
-    "congestion no such iteration": ("scripts/congestion.py", ["{d}/heat", "--iteration", "9"],
+    "congestion no such iteration": ("scripts/flow/congestion.py", ["{d}/heat", "--iteration", "9"],
                                      {}),
-    "congestion bad grid": ("scripts/congestion.py", ["{d}/heat", "--iteration", "2"], {}),
-    "congestion json in a file": ("scripts/congestion.py", ["{d}/heat", "--json",
+    "congestion bad grid": ("scripts/flow/congestion.py", ["{d}/heat", "--iteration", "2"], {}),
+    "congestion json in a file": ("scripts/flow/congestion.py", ["{d}/heat", "--json",
                                                             "{d}/afile/x.json"], {}),
     # synth.py
-    "synth unknown block": ("scripts/synth.py", ["--blocks", "nope"], {}),
-    "synth jobs 0": ("scripts/synth.py", ["--jobs", "0"], {}),
-    "synth missing constraints": ("scripts/synth.py", ["--lpf", "{d}/nope.lpf"], {}),
-    "synth constraints without a clock": ("scripts/synth.py", ["--lpf", "{d}/afile"], {}),
-    "synth missing report": ("scripts/synth.py", ["--report-only", "--out", "{d}/nosyn"], {}),
-    "synth unknown device": ("scripts/synth.py", ["--device", "nope"], {}),
+    "synth unknown block": ("scripts/flow/synth.py", ["--blocks", "nope"], {}),
+    "synth jobs 0": ("scripts/flow/synth.py", ["--jobs", "0"], {}),
+    "synth missing constraints": ("scripts/flow/synth.py", ["--lpf", "{d}/nope.lpf"], {}),
+    "synth constraints without a clock": ("scripts/flow/synth.py", ["--lpf", "{d}/afile"], {}),
+    "synth missing report": ("scripts/flow/synth.py", ["--report-only", "--out", "{d}/nosyn"], {}),
+    "synth unknown device": ("scripts/flow/synth.py", ["--device", "nope"], {}),
     # soak.py
-    "soak rays 0": ("scripts/soak.py", ["--rays", "0"], {}),
-    "soak rays not a number": ("scripts/soak.py", ["--rays", "x"], {}),
-    "soak batch 0": ("scripts/soak.py", ["--batch-rays", "0"], {}),
-    "soak faults share 2": ("scripts/soak.py", ["--faults", "2"], {}),
-    "soak max side 0": ("scripts/soak.py", ["--max-side", "0"], {}),
-    "soak negative seed": ("scripts/soak.py", ["--seed", "-1"], {}),
-    "soak batch out of range": ("scripts/soak.py", ["--rays", "10", "--batch-rays", "5",
+    "soak rays 0": ("scripts/bench/soak.py", ["--rays", "0"], {}),
+    "soak rays not a number": ("scripts/bench/soak.py", ["--rays", "x"], {}),
+    "soak batch 0": ("scripts/bench/soak.py", ["--batch-rays", "0"], {}),
+    "soak faults share 2": ("scripts/bench/soak.py", ["--faults", "2"], {}),
+    "soak max side 0": ("scripts/bench/soak.py", ["--max-side", "0"], {}),
+    "soak negative seed": ("scripts/bench/soak.py", ["--seed", "-1"], {}),
+    "soak batch out of range": ("scripts/bench/soak.py", ["--rays", "10", "--batch-rays", "5",
                                                     "--only-batch", "7"], {}),
-    "soak unknown variant": ("scripts/soak.py", ["--variant", "nope"], {}),
-    "soak out is a file": ("scripts/soak.py", ["--out", "{d}/afile"], {}),
+    "soak unknown variant": ("scripts/bench/soak.py", ["--variant", "nope"], {}),
+    "soak out is a file": ("scripts/bench/soak.py", ["--out", "{d}/afile"], {}),
     # coverage.py
-    "coverage unknown test path": ("scripts/coverage.py", ["--tests", "nope/"], {}),
-    "coverage jobs 0": ("scripts/coverage.py", ["--jobs", "0"], {}),
-    "coverage report without data": ("scripts/coverage.py", ["--report-only", "--dat-dir",
+    "coverage unknown test path": ("scripts/bench/coverage.py", ["--tests", "nope/"], {}),
+    "coverage jobs 0": ("scripts/bench/coverage.py", ["--jobs", "0"], {}),
+    "coverage report without data": ("scripts/bench/coverage.py", ["--report-only", "--dat-dir",
                                                              "{d}/nodir"], {}),
-    "coverage report of an empty directory": ("scripts/coverage.py", ["--report-only",
+    "coverage report of an empty directory": ("scripts/bench/coverage.py", ["--report-only",
                                                                       "--dat-dir", "{d}/emptydir",
                                                                       "--out", "{d}/cov"], {}),
-    "coverage unreadable data": ("scripts/coverage.py", ["--report-only", "--dat-dir",
+    "coverage unreadable data": ("scripts/bench/coverage.py", ["--report-only", "--dat-dir",
                                                          "{d}/junkcov", "--out", "{d}/cov"], {}),
-    "coverage out is a file": ("scripts/coverage.py", ["--report-only", "--out", "{d}/afile"], {}),
+    "coverage out is a file": ("scripts/bench/coverage.py", ["--report-only", "--out", "{d}/afile"], {}),
     # the small maintenance tools
-    "gen_f24_tables unknown option": ("scripts/gen_f24_tables.py", ["--nope"], {}),
-    "gen_gtkw fst without target": ("scripts/gen_gtkw.py", ["--fst", "{d}/junk.fst"], {}),
-    "gen_gtkw missing fst": ("scripts/gen_gtkw.py", ["--fst", "{d}/nope.fst", "--target",
+    "gen_f24_tables unknown option": ("scripts/flow/gen_f24_tables.py", ["--nope"], {}),
+    "gen_gtkw fst without target": ("scripts/flow/gen_gtkw.py", ["--fst", "{d}/junk.fst"], {}),
+    "gen_gtkw missing fst": ("scripts/flow/gen_gtkw.py", ["--fst", "{d}/nope.fst", "--target",
                                                      "traverse_harness"], {}),
-    "gen_gtkw unreadable fst": ("scripts/gen_gtkw.py", ["--fst", "{d}/junk.fst", "--target",
+    "gen_gtkw unreadable fst": ("scripts/flow/gen_gtkw.py", ["--fst", "{d}/junk.fst", "--target",
                                                         "traverse_harness"], {}),
-    "gen_gtkw unknown target": ("scripts/gen_gtkw.py", ["--target", "nope"], {}),
-    "lint unknown module": ("scripts/lint.py", ["nope_module"], {}),
-    "lint unknown option": ("scripts/lint.py", ["--nope"], {}),
-    "synth_check log in a file": ("scripts/synth_check.py", ["--log", "{d}/afile/x.log"],
+    "gen_gtkw unknown target": ("scripts/flow/gen_gtkw.py", ["--target", "nope"], {}),
+    "lint unknown module": ("scripts/flow/lint.py", ["nope_module"], {}),
+    "lint unknown option": ("scripts/flow/lint.py", ["--nope"], {}),
+    "synth_check log in a file": ("scripts/flow/synth_check.py", ["--log", "{d}/afile/x.log"],
                                   {}),
-    "vector_summary unknown option": ("scripts/vector_summary.py", ["--nope"], {}),
-    # python -m model.rtl_engine / model.rtl_pipeline
-    "rtl_engine size not a number": ("-m model.rtl_engine", ["--size", "x"], {}),
-    "rtl_engine unknown method": ("-m model.rtl_engine", ["--method", "nope", "--size", "8",
+    "vector_summary unknown option": ("scripts/bench/vector_summary.py", ["--nope"], {}),
+    # python -m tb.harness.traverse_system / tb.harness.dm_pipeline
+    "traverse_system size not a number": ("-m tb.harness.traverse_system", ["--size", "x"], {}),
+    "traverse_system unknown method": ("-m tb.harness.traverse_system", ["--method", "nope", "--size", "8",
                                                           "--rays", "10"],
                                   {}),
-    "rtl_engine latency 0": ("-m model.rtl_engine", ["--latency", "0", "--size", "8", "--rays",
+    "traverse_system latency 0": ("-m tb.harness.traverse_system", ["--latency", "0", "--size", "8", "--rays",
                                                      "10"],
                              {}),
-    "rtl_engine size 0": ("-m model.rtl_engine", ["--size", "0", "--rays", "10"],
+    "traverse_system size 0": ("-m tb.harness.traverse_system", ["--size", "0", "--rays", "10"],
                           {}),
-    "rtl_pipeline unknown scene": ("-m model.rtl_pipeline", ["--scene", "nope", "--size", "8"],
+    "dm_pipeline unknown scene": ("-m tb.harness.dm_pipeline", ["--scene", "nope", "--size", "8"],
                                    {}),
-    "rtl_pipeline unknown method": ("-m model.rtl_pipeline", ["--method", "nope", "--size", "8"],
+    "dm_pipeline unknown method": ("-m tb.harness.dm_pipeline", ["--method", "nope", "--size", "8"],
                                     {}),
-    "rtl_pipeline size 0": ("-m model.rtl_pipeline", ["--size", "0"],
+    "dm_pipeline size 0": ("-m tb.harness.dm_pipeline", ["--size", "0"],
                             {}),
-    "rtl_pipeline unknown variant": ("-m model.rtl_pipeline", ["--variant", "nope"],
+    "dm_pipeline unknown variant": ("-m tb.harness.dm_pipeline", ["--variant", "nope"],
                                      {}),
 }
 
@@ -287,18 +287,18 @@ def _tool_params() -> list:
 
 #: Cases of the model drivers that reach their harness build before failing: run only when the
 #: harness is already built (a fresh checkout would otherwise build it here, minutes of work).
-_AFTER_BUILD = {"rtl_engine unknown method", "rtl_engine latency 0", "rtl_engine size 0",
-                "rtl_pipeline unknown scene", "rtl_pipeline unknown method", "rtl_pipeline size 0"}
+_AFTER_BUILD = {"traverse_system unknown method", "traverse_system latency 0", "traverse_system size 0",
+                "dm_pipeline unknown scene", "dm_pipeline unknown method", "dm_pipeline size 0"}
 
 
 @pytest.mark.parametrize("case", _tool_params())
 def test_tool_errors(files, case: str) -> None:
     tool, args, _ = TOOL_CASES[case]
     if case in _AFTER_BUILD:
-        from model import rtl_engine, rtl_pipeline
+        from tb.harness import dm_pipeline, traverse_system
 
-        built = (rtl_engine.is_built("fast") if "rtl_engine" in tool
-                 else rtl_pipeline.is_built("fast"))
+        built = (traverse_system.is_built("fast") if "traverse_system" in tool
+                 else dm_pipeline.is_built("fast"))
         if not built:
             pytest.skip("the fast harness is not built (the case would build it first)")
     cmd = tool.split() + [a.format(d=files) for a in args]
@@ -311,16 +311,16 @@ def test_tool_errors(files, case: str) -> None:
 
 
 def test_every_tool_has_cases() -> None:
-    """Each scripts/*.py with a command line (an argument parser) and both model drivers have at
+    """Each scripts/**/*.py with a command line (an argument parser) and both model drivers have at
     least one case above: a new tool must add its own."""
     tools = {t for t, _, _ in TOOL_CASES.values()} | {"scripts/trace.py"}
-    clis = {f"scripts/{p.name}" for p in sorted((ROOT / "scripts").glob("*.py"))
+    clis = {p.relative_to(ROOT).as_posix() for p in sorted((ROOT / "scripts").rglob("*.py"))
             if "ArgumentParser(" in p.read_text() or "Parser(prog" in p.read_text()}
-    clis |= {"-m model.rtl_engine", "-m model.rtl_pipeline"}
+    clis |= {"-m tb.harness.traverse_system", "-m tb.harness.dm_pipeline"}
     assert clis - tools == set(), f"tools without error cases: {sorted(clis - tools)}"
 
 
-_CLIS = sorted(f"scripts/{p.name}" for p in (ROOT / "scripts").glob("*.py")
+_CLIS = sorted(p.relative_to(ROOT).as_posix() for p in (ROOT / "scripts").rglob("*.py")
                if "ArgumentParser(" in p.read_text() or "Parser(prog" in p.read_text())
 
 

@@ -1,4 +1,4 @@
-"""scripts/coverage.py's reading, merging and per-module figures, and the runner's coverage
+"""scripts/bench/coverage.py's reading, merging and per-module figures, and the runner's coverage
 options (the coverage run itself is `make coverage`, not part of make test)."""
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def _load() -> ModuleType:
     spec = importlib.util.spec_from_file_location("coverage_script",
-                                                  ROOT / "scripts" / "coverage.py")
+                                                  ROOT / "scripts" / "bench" / "coverage.py")
     assert spec is not None and spec.loader is not None
     mod = importlib.util.module_from_spec(spec)
     sys.modules["coverage_script"] = mod

@@ -8,18 +8,13 @@
 """
 from __future__ import annotations
 
-import sys
 from fractions import Fraction
-from pathlib import Path
 
 import gmpy2
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
-from model import f24  # noqa: E402
-from model import f24_conv  # noqa: E402
+from model import f24, f24_conv
 
 
 def _mpfr_ctx() -> gmpy2.context:

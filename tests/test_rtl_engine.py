@@ -1,4 +1,4 @@
-"""The RTL engine (model/rtl_engine.py: traverse_system in the Verilator harness) against the golden
+"""The RTL engine (tb/harness/traverse_system.py: traverse_system in the Verilator harness) against the golden
 model, bit for bit: model.traverse.trace(pyr, rays, method, "f24") must give the same t, u, v, hit,
 invalid and iterations, and the unit's statistics must match the model's per-action counts.
 
@@ -15,19 +15,20 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from model import f24, heightmap, rtl_engine, traverse
-from test_traverse import adversarial_rays, height_field
+from model import f24, heightmap, traverse
+from tb.common.traverse_stimulus import adversarial_rays, height_field
+from tb.harness import traverse_system
 
 pytestmark = [
     pytest.mark.xdist_group("rtl_engine"),
-    pytest.mark.skipif(not rtl_engine.cache_available(),
+    pytest.mark.skipif(not traverse_system.cache_available(),
                        reason="rtl/cache/height_cache.sv does not exist yet: traverse_system needs "
                               "the height cache"),
 ]
 
 #: (height, width, unorm bits, height-field kind, methods, latency, back-pressure, base address)
 CASES = [
-    (64, 64, 8, 0, ("oh", "park", "park-xor", "drobot"), (10, 40), 0.0, rtl_engine.DEFAULT_BASE),
+    (64, 64, 8, 0, ("oh", "park", "park-xor", "drobot"), (10, 40), 0.0, traverse_system.DEFAULT_BASE),
     (37, 100, 16, 2, ("tevs", "multi-down", "selective", "park-gpu"), (1, 60), 0.15, 0x1234_5672),
     (64, 64, 8, 1, ("start-level", "coherent"), 20, 0.05, 0),
 ]
@@ -36,7 +37,7 @@ NRAYS = 3000
 
 @pytest.fixture(scope="module")
 def harness() -> None:
-    rtl_engine.build("checked")
+    traverse_system.build("checked")
 
 
 def bits_equal(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -54,9 +55,9 @@ def test_rtl_equals_model(case: int, harness: None, rng: np.random.Generator) ->
     for method in methods:
         st_model: dict[str, int] = {}
         ref = traverse.trace(pyr, rays, method, "f24", stats=st_model)
-        res, st = rtl_engine.trace_rtl(pyr, rays, method, latency=latency,
-                                       seed=int(rng.integers(1 << 31)), backpressure=bp,
-                                       base=base)
+        res, st = traverse_system.trace_rtl(pyr, rays, method, latency=latency,
+                                            seed=int(rng.integers(1 << 31)), backpressure=bp,
+                                            base=base)
         bad = ~(bits_equal(res.t, ref.t) & bits_equal(res.u, ref.u) & bits_equal(res.v, ref.v) &
                 (res.hit == ref.hit) & (res.invalid == ref.invalid) &
                 (res.iterations == ref.iterations))
@@ -90,11 +91,11 @@ def test_axi_errors_finish_rays_with_err(harness: None, rng: np.random.Generator
     pyr = heightmap.build(height_field(rng, 32, 32, 0), 8)
     rays = adversarial_rays(rng, 32, 32, 400)
     ref = traverse.trace(pyr, rays, "park", "f24")
-    base = rtl_engine.DEFAULT_BASE
-    out, st = rtl_engine.run_batch(pyr, rays, "park", latency=(5, 30), seed=3,
-                                   err_ranges=[(base, base + len(pyr.memory_image()))])
-    res = rtl_engine.to_result(out)
-    err = (out["flags"] & rtl_engine.FLAG_ERR) != 0
+    base = traverse_system.DEFAULT_BASE
+    out, st = traverse_system.run_batch(pyr, rays, "park", latency=(5, 30), seed=3,
+                                        err_ranges=[(base, base + len(pyr.memory_image()))])
+    res = traverse_system.to_result(out)
+    err = (out["flags"] & traverse_system.FLAG_ERR) != 0
     reads = ref.iterations > 0
     assert np.array_equal(err, reads), "err flag on exactly the rays that read a height"
     assert not res.hit.any() and not res.iterations.any()
@@ -105,15 +106,15 @@ def test_axi_errors_finish_rays_with_err(harness: None, rng: np.random.Generator
 def test_harness_timeout_fails_loudly(harness: None, rng: np.random.Generator) -> None:
     pyr = heightmap.build(height_field(rng, 16, 16, 0), 8)
     rays = adversarial_rays(rng, 16, 16, 100)
-    with pytest.raises(rtl_engine.RtlEngineError, match="timeout"):
-        rtl_engine.trace_rtl(pyr, rays, "oh", timeout=50)
+    with pytest.raises(traverse_system.RtlEngineError, match="timeout"):
+        traverse_system.trace_rtl(pyr, rays, "oh", timeout=50)
 
 
 def test_input_file_layout(tmp_path) -> None:
     """The input file the harness reads: header fields, image, f24 ray words (traverse_harness.h)."""
     pyr = heightmap.build(np.arange(12).reshape(3, 4) / 11.0, 16)
     rays = adversarial_rays(np.random.default_rng(0), 4, 3, 16)
-    rtl_engine.write_input(tmp_path / "in.bin", pyr, rays, "park-xor", base=0x1000)
+    traverse_system.write_input(tmp_path / "in.bin", pyr, rays, "park-xor", base=0x1000)
     raw = (tmp_path / "in.bin").read_bytes()
     head = np.frombuffer(raw[:128], dtype="<u4")
     img = pyr.memory_image()
@@ -130,14 +131,14 @@ def test_input_file_layout(tmp_path) -> None:
 
 
 def test_bench_rtl_small(harness: None, tmp_path) -> None:
-    """scripts/bench_rtl.py end to end on a small map: JSON and table written, RTL == f24 engine,
+    """scripts/bench/bench_rtl.py end to end on a small map: JSON and table written, RTL == f24 engine,
     cold-run statistics consistent with the definitions in its docstring."""
     import json
     import subprocess
     import sys
 
     out, md = tmp_path / "rtl.json", tmp_path / "rtl.md"
-    p = subprocess.run([sys.executable, str(rtl_engine.ROOT / "scripts" / "bench_rtl.py"),
+    p = subprocess.run([sys.executable, str(traverse_system.ROOT / "scripts" / "bench" / "bench_rtl.py"),
                         "--scenes", "bump", "--angles", "oblique,grazing", "--methods", "park",
                         "--size", "32", "--image", "24", "--tile", "4",
                         "--out", str(out), "--md", str(md)], capture_output=True, text=True)
@@ -162,7 +163,7 @@ def test_bench_rtl_rejects_bad_arguments() -> None:
     for args, msg in ((["--scenes", "nope"], "unknown scene 'nope'"),
                       (["--methods", "relief"], "unknown method 'relief'"),
                       (["--tile", "0"], "--tile must be >= 1")):
-        p = subprocess.run([sys.executable, str(rtl_engine.ROOT / "scripts" / "bench_rtl.py"),
+        p = subprocess.run([sys.executable, str(traverse_system.ROOT / "scripts" / "bench" / "bench_rtl.py"),
                             *args], capture_output=True, text=True)
         assert p.returncode == 2 and msg in p.stderr and len(p.stderr.strip().splitlines()) == 1
 
@@ -176,7 +177,7 @@ def test_harness_waves_fst(tmp_path, rng: np.random.Generator) -> None:
     pyr = heightmap.build(height_field(rng, 16, 16, 0), 8)
     rays = adversarial_rays(rng, 16, 16, 40)
     fst = tmp_path / "w.fst"
-    res, st = rtl_engine.trace_rtl(pyr, rays, "park", latency=5, waves=fst)
+    res, st = traverse_system.trace_rtl(pyr, rays, "park", latency=5, waves=fst)
     ref = traverse.trace(pyr, rays, "park", "f24")
     assert np.array_equal(res.iterations, ref.iterations) and np.array_equal(res.hit, ref.hit)
     w = pywellen.Waveform(str(fst))
@@ -200,11 +201,10 @@ def test_ray_steps_waves_state(tmp_path) -> None:
     import subprocess
     import sys
 
-    sys.path.insert(0, str(rtl_engine.ROOT / "scripts"))
-    import ray_steps
+    from scripts import ray_steps
 
     fst = tmp_path / "ray.fst"
-    p = subprocess.run([sys.executable, str(rtl_engine.ROOT / "scripts" / "ray_steps.py"),
+    p = subprocess.run([sys.executable, str(traverse_system.ROOT / "scripts" / "ray_steps.py"),
                         "--scene", "rocks", "--map-size", "64", "--ray", "10.3", "20.7", "3.1",
                         "-2.2", "--method", "park", "--waves", str(fst)],
                        capture_output=True, text=True)

@@ -1,4 +1,4 @@
-"""The pipeline RTL as a renderer (model/rtl_pipeline.py: dm_pipeline in the Verilator harness
+"""The pipeline RTL as a renderer (tb/harness/dm_pipeline.py: dm_pipeline in the Verilator harness
 tb/harness/pipeline_harness.cpp) and ``scripts/render.py --engine rtl`` (what ``make render`` runs).
 
 Small frames through the harness must equal ``model.shade.render_pixels`` with the f24 engine bit
@@ -22,8 +22,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from model import camera, heightmap, pipeline_rtl, rtl_pipeline, scenes, shade, texture, traverse
-from model.rtl_engine import RtlEngineError
+from model import camera, heightmap, scenes, shade, texture, traverse
+from tb.harness import dm_pipeline, pipeline_words
+from tb.harness.build import RtlEngineError
 from tb.common import report
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -34,7 +35,7 @@ pytestmark = pytest.mark.xdist_group("rtl_pipeline")
 
 @pytest.fixture(scope="module")
 def harness() -> Path:
-    return rtl_pipeline.build(rtl_pipeline.default_variant())
+    return dm_pipeline.build(dm_pipeline.default_variant())
 
 
 def make_frame(name: str, size: int, angle: str, image: int, method: str, mip: bool = True,
@@ -52,7 +53,7 @@ def make_frame(name: str, size: int, angle: str, image: int, method: str, mip: b
 
 
 def mismatches(img: shade.Image, ref: shade.PixelOutputs) -> str:
-    bad = rtl_pipeline.compare(img.out, ref)
+    bad = dm_pipeline.compare(img.out, ref)
     rows = [f"pixel {i}: rtl {img.out.rgb[i]} h{img.out.hit[i]:d} i{img.out.invalid[i]:d} "
             f"it{img.out.iterations[i]}, model {ref.rgb[i]} h{ref.hit[i]:d} i{ref.invalid[i]:d} "
             f"it{ref.iterations[i]}" for i in bad[:5]]
@@ -73,13 +74,13 @@ CASES = [
 def test_frame_equals_model(case: int, harness: Path, rng: np.random.Generator) -> None:
     name, size, angle, image, method, mip, bits, tile, knobs = CASES[case]
     frame, cam = make_frame(name, size, angle, image, method, mip, bits)
-    img, st = rtl_pipeline.render_rtl(frame, cam, tile=tile, seed=int(rng.integers(1 << 31)),
-                                      **knobs)
+    img, st = dm_pipeline.render_rtl(frame, cam, tile=tile, seed=int(rng.integers(1 << 31)),
+                                     **knobs)
     ref = shade.render(frame, cam)
     report.record("rtl_pipeline (harness)", "pixels vs model.shade f24", len(ref.frags),
-                  len(rtl_pipeline.compare(img.out, ref.out)))
+                  len(dm_pipeline.compare(img.out, ref.out)))
     assert np.array_equal(img.rgb, ref.rgb), mismatches(img, ref.out)
-    assert not len(rtl_pipeline.compare(img.out, ref.out)), mismatches(img, ref.out)
+    assert not len(dm_pipeline.compare(img.out, ref.out)), mismatches(img, ref.out)
     n = len(ref.frags)
     assert st["pixels"] == n and st["errors"] == 0
     assert st["iterations"] == int(ref.out.iterations.sum())
@@ -112,9 +113,9 @@ def test_every_method(harness: Path, rng: np.random.Generator) -> None:
         knobs = {"latency": (1, int(rng.integers(2, 80))), "frag_gap": float(rng.uniform(0, 0.5)),
                  "px_stall": float(rng.uniform(0, 0.7)), "rvalid_gap": float(rng.uniform(0, 0.3)),
                  "seed": int(rng.integers(1 << 31))}
-        img, st = rtl_pipeline.render_rtl(frame, cam, tile=int(rng.integers(1, 17)), **knobs)
+        img, st = dm_pipeline.render_rtl(frame, cam, tile=int(rng.integers(1, 17)), **knobs)
         ref = shade.render(frame, cam)
-        bad = len(rtl_pipeline.compare(img.out, ref.out))
+        bad = len(dm_pipeline.compare(img.out, ref.out))
         report.record("rtl_pipeline (harness)", "pixels vs model.shade f24", len(ref.frags), bad)
         if bad or st["pixels"] != len(ref.frags):
             failures.append(f"{name} {angle} {method} {knobs}: {mismatches(img, ref.out)}")
@@ -125,59 +126,59 @@ def test_axi_errors_flag_exactly_the_pixels_that_read(harness: Path) -> None:
     """SLVERR on the whole pyramid: a pixel whose ray reads a height comes back with err, no hit
     and the miss colour; SLVERR on the textures: exactly the hits come back with err."""
     frame, cam = make_frame("bump", 16, "oblique", 16, "park")
-    fi = rtl_pipeline.frame_image(frame)
+    fi = dm_pipeline.frame_image(frame)
     _, inp = shade.pixel_inputs(cam)
-    words = rtl_pipeline.fragment_words(inp)
+    words = dm_pipeline.fragment_words(inp)
     ref = shade.render_pixels(frame, inp)
     h_base, h_img = fi.cfg.height
-    px, st = rtl_pipeline.run_pixels(fi, words, latency=(3, 30),
-                                     h_err=[(h_base, h_base + len(h_img))])
+    px, st = dm_pipeline.run_pixels(fi, words, latency=(3, 30),
+                                    h_err=[(h_base, h_base + len(h_img))])
     reads = ref.iterations > 0
     assert np.array_equal(px.err, reads) and not px.hit.any() and not px.iterations.any()
     assert (px.rgb == shade.MISS_COLOUR).all() and np.array_equal(px.invalid, ref.invalid)
     assert st["errors"] == int(reads.sum()) and st["axi_h_slverr_beats"] > 0
-    px, st = rtl_pipeline.run_pixels(fi, words,
-                                     t_err=[(fi.tex_base, fi.tex_base + len(fi.tex_image))])
+    px, st = dm_pipeline.run_pixels(fi, words,
+                                    t_err=[(fi.tex_base, fi.tex_base + len(fi.tex_image))])
     assert np.array_equal(px.err, ref.hit) and np.array_equal(px.hit, ref.hit)
     assert np.array_equal(px.iterations, ref.iterations) and st["axi_t_slverr_beats"] > 0
 
 
 def test_watchdogs_fail_loudly(harness: Path) -> None:
     frame, cam = make_frame("rocks", 16, "grazing", 16, "oh")
-    fi = rtl_pipeline.frame_image(frame)
+    fi = dm_pipeline.frame_image(frame)
     _, inp = shade.pixel_inputs(cam)
-    words = rtl_pipeline.fragment_words(inp)
+    words = dm_pipeline.fragment_words(inp)
     with pytest.raises(RtlEngineError,
                        match=r"(?s)exit status 2: .*no pixel came out for 20 clocks"):
-        rtl_pipeline.run_pixels(fi, words, stall=20)
+        dm_pipeline.run_pixels(fi, words, stall=20)
     with pytest.raises(RtlEngineError, match=r"(?s)exit status 2: .*timeout 300 clocks"):
-        rtl_pipeline.run_pixels(fi, words, timeout=300)
+        dm_pipeline.run_pixels(fi, words, timeout=300)
 
 
 def test_input_file_checks(harness: Path, tmp_path: Path) -> None:
     """The file layout of pipeline_harness.h, and the harness refusing a damaged file."""
     frame, cam = make_frame("dent", 8, "front", 6, "park")
-    fi = rtl_pipeline.frame_image(frame)
+    fi = dm_pipeline.frame_image(frame)
     _, inp = shade.pixel_inputs(cam)
-    words = rtl_pipeline.fragment_words(inp)
+    words = dm_pipeline.fragment_words(inp)
     path = tmp_path / "in.bin"
-    rtl_pipeline.write_input(path, fi, words)
+    dm_pipeline.write_input(path, fi, words)
     raw = path.read_bytes()
     head = np.frombuffer(raw[:64], dtype="<u4")
-    assert raw[:8] == b"PIPHIN01" and list(head[2:5]) == [1, 64, len(rtl_pipeline.CFG_PORTS)]
-    assert head[7] == len(words) and head[8] == pipeline_rtl.HEIGHT_BASE
+    assert raw[:8] == b"PIPHIN01" and list(head[2:5]) == [1, 64, len(dm_pipeline.CFG_PORTS)]
+    assert head[7] == len(words) and head[8] == pipeline_words.HEIGHT_BASE
     assert head[9] == len(fi.cfg.height[1]) and head[10] == fi.tex_base
     assert head[11] == len(fi.tex_image) and head[12] == 16
     cfg = np.frombuffer(raw[64:64 + 4 * int(head[5])], dtype="<u4")
     assert cfg[0] == 4 and cfg[1] == fi.cfg.ports["cfg_method_i"]   # first port: bits, value
     assert raw.endswith(words.astype("<u4").tobytes())
-    # the fragment words are the cocotb test's (model.pipeline_rtl.fragment_words)
-    ref = pipeline_rtl.fragment_words(inp)
+    # the fragment words are the cocotb test's (tb.harness.pipeline_words.fragment_words)
+    ref = pipeline_words.fragment_words(inp)
     assert np.array_equal(words[:, 0], ref["frag_u0_i"])
     assert np.array_equal(words[:, 3], ref["frag_tri_i"])
     for k in range(len(words)):
-        assert pipeline_rtl.pack(words[k, 4:13], 24) == ref["frag_tbn_i"][k]
-        assert pipeline_rtl.pack(words[k, 13:16], 24) == ref["frag_view_i"][k]
+        assert pipeline_words.pack(words[k, 4:13], 24) == ref["frag_tbn_i"][k]
+        assert pipeline_words.pack(words[k, 13:16], 24) == ref["frag_view_i"][k]
     cases = {"short fragment list": raw[:-4], "trailing bytes": raw + b"\0\0\0\0",
              "bits in the file": raw[:64] + (5).to_bytes(4, "little") + raw[68:],
              "not a pipeline harness input": b"X" + raw[1:]}
@@ -190,12 +191,12 @@ def test_input_file_checks(harness: Path, tmp_path: Path) -> None:
 
 def test_limits_are_one_line_errors() -> None:
     frame, _ = make_frame("bump", 8, "front", 8, "park")
-    big = texture.Texture([np.zeros((1, 1, 4), np.uint8)] * (pipeline_rtl.TEX_LEVELS + 1))
+    big = texture.Texture([np.zeros((1, 1, 4), np.uint8)] * (pipeline_words.TEX_LEVELS + 1))
     for fr, msg in ((shade.Frame(**{**frame.__dict__, "method": "relief", "engine": "f64"}),
                      "has no RTL"),
                     (shade.Frame(**{**frame.__dict__, "colour": big}), "MIP levels")):
-        with pytest.raises(rtl_pipeline.RtlLimitError, match=msg) as e:
-            rtl_pipeline.check_limits(fr)
+        with pytest.raises(dm_pipeline.RtlLimitError, match=msg) as e:
+            dm_pipeline.check_limits(fr)
         assert "\n" not in str(e.value)
 
 
@@ -282,7 +283,7 @@ def test_render_bad_arguments_exit_2_one_line(tmp_path: Path, capsys: pytest.Cap
         (["--heightmap", str(tmp_path / "h.npy"), "--texture", str(tmp_path / "t.png")],
          "the pipeline RTL cannot render this: texture 20 x 20"),
     ]
-    monkeypatch.setattr(rtl_pipeline, "MAX_TEX_SIDE", 16)
+    monkeypatch.setattr(dm_pipeline, "MAX_TEX_SIDE", 16)
     for args, msg in cases:
         argv = ["--engine", "rtl", "--size", "8", "--stats", str(tmp_path / "s.json"), "--quiet"]
         argv = ([a for a in argv if a not in ("--engine", "rtl")] if "--engine" in args else argv)
@@ -300,14 +301,14 @@ def test_render_reports_a_difference(tmp_path: Path, capsys: pytest.CaptureFixtu
     """An RTL configured with another miss colour than the model's: render.py exits 1, names the
     count and the first pixels, and the statistics say identical false."""
     main = _render_main()
-    real = rtl_pipeline.frame_image
+    real = dm_pipeline.frame_image
 
-    def other_miss_colour(frame: shade.Frame) -> rtl_pipeline.FrameImage:
+    def other_miss_colour(frame: shade.Frame) -> dm_pipeline.FrameImage:
         fi = real(frame)
         fi.cfg.ports["cfg_miss_rgb_i"] = 0x030201
         return fi
 
-    monkeypatch.setattr(rtl_pipeline, "frame_image", other_miss_colour)
+    monkeypatch.setattr(dm_pipeline, "frame_image", other_miss_colour)
     st = tmp_path / "s.json"
     rc = main(["--engine", "rtl", "--scene", "rocks", "--map-size", "16", "--angle", "grazing",
                "--size", "16", "--out", str(tmp_path / "r.png"), "--model-out",
@@ -321,12 +322,13 @@ def test_render_reports_a_difference(tmp_path: Path, capsys: pytest.CaptureFixtu
 
 
 def test_clock_from_synthesis_report(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """Mpixels/s are quoted at out/synth/report.json's top fmax when there is one, else at the
-    paper's 84 MHz, labelled as assumed."""
-    from model import rtl_pipeline as mod
+    """Mpixels/s are quoted at out/synth/report.json's top fmax when there is one, else (with no
+    committed routed result) at the paper's 84 MHz, labelled as assumed."""
+    from tb.harness import dm_pipeline as mod
 
     rep = tmp_path / "report.json"
     monkeypatch.setattr(mod, "SYNTH_REPORT", rep)
+    monkeypatch.setattr(mod, "ROUTED_RESULTS", tmp_path / "none.json")
     assert mod.synth_clock() is None
     assert mod.pipeline_clock() == (84.0, mod.pipeline_clock()[1])
     assert "assumed" in mod.pipeline_clock()[1]
@@ -346,15 +348,51 @@ def test_clock_from_synthesis_report(tmp_path: Path, monkeypatch: pytest.MonkeyP
                                           "shade_unit": {"lut": 5}}}))
     mhz, src = mod.synth_clock()
     assert mhz == 17.0 and "view_calc" in src and "out of context" in src
+    assert mod.pipeline_clock() == (mhz, src)     # no committed routed result either
     rep.write_text("[1, 2]")
     assert mod.synth_clock() is None
 
 
+def test_clock_from_committed_routed_result(tmp_path: Path,
+                                            monkeypatch: pytest.MonkeyPatch) -> None:
+    """Without a local routed top, Mpixels/s are quoted at the committed routed fmax of the
+    one-pipeline top (docs/results/synth-ecp5.json), which names its run; a local report with
+    the top routed comes first, a local report's bound from the blocks after it."""
+    from tb.harness import dm_pipeline as mod
+
+    monkeypatch.setattr(mod, "SYNTH_REPORT", tmp_path / "report.json")
+    # the committed file: its fmax, read from the file (not written here)
+    doc = json.loads(mod.ROUTED_RESULTS.read_text())
+    top = next(t for t in doc["tops"] if t["name"] == "dm_pipeline_fpga_top" and t["rings"] == 1)
+    mhz, src = mod.pipeline_clock()
+    assert mhz == top["fmax_mhz"] and "docs/results/synth-ecp5.json" in src
+    assert "routed" in src and f"seed {top['seed']}" in src and top["rtl_commit"] in src
+    # another file: a two-ring entry and a broken one are passed over
+    res = tmp_path / "routed.json"
+    monkeypatch.setattr(mod, "ROUTED_RESULTS", res)
+    res.write_text(json.dumps({"tops": [
+        {"name": "dm_pipeline_fpga_top", "rings": 2, "fmax_mhz": 40.0},
+        {"name": "dm_pipeline_fpga_top", "rings": 1, "fmax_mhz": "x"},
+        {"name": "dm_pipeline_fpga_top", "rings": 1, "fmax_mhz": 57.5, "seed": 3}]}))
+    mhz, src = mod.pipeline_clock()
+    assert mhz == 57.5 and "seed 3" in src
+    (tmp_path / "report.json").write_text(json.dumps({"top": "dm_pipeline_fpga_top",
+                                                      "fmax_mhz": None,
+                                                      "blocks": {"view_calc": {"fmax_mhz": 17.0}}}))
+    assert mod.pipeline_clock()[0] == 57.5      # the routed top beats a bound from the blocks
+    (tmp_path / "report.json").write_text(json.dumps({"top": "dm_pipeline_fpga_top",
+                                                      "fmax_mhz": 61.0, "blocks": {}}))
+    assert mod.pipeline_clock()[0] == 61.0      # a local routed top beats the committed one
+    res.write_text(json.dumps({"tops": []}))
+    (tmp_path / "report.json").unlink()
+    assert "assumed" in mod.pipeline_clock()[1] and mod.pipeline_clock()[0] == mod.PAPER_MHZ
+
+
 def test_bench_pipeline(harness: Path, tmp_path: Path) -> None:
-    """scripts/bench_pipeline.py on two small frames (MIP on and off): both identical to the
+    """scripts/bench/bench_pipeline.py on two small frames (MIP on and off): both identical to the
     model, the figures consistent with their definitions, the targets listed; bad arguments
     exit 2 with one line."""
-    bench = ROOT / "scripts" / "bench_pipeline.py"
+    bench = ROOT / "scripts" / "bench" / "bench_pipeline.py"
     out, md = tmp_path / "b.json", tmp_path / "b.md"
     p = subprocess.run([sys.executable, str(bench), "--scenes", "bump", "--views", "oblique",
                         "--mip", "on,off", "--map", "32", "--image", "40", "--jobs", "1",

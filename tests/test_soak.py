@@ -1,4 +1,4 @@
-"""scripts/soak.py: its pieces (the read recorder, the level-0-last layout, the fault
+"""scripts/bench/soak.py: its pieces (the read recorder, the level-0-last layout, the fault
 expectation, the comparison) and a small end-to-end run on the RTL harness."""
 from __future__ import annotations
 
@@ -12,13 +12,14 @@ from types import ModuleType
 import numpy as np
 import pytest
 
-from model import heightmap, rtl_engine, traverse
+from model import heightmap, traverse
+from tb.harness import traverse_system
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def _load() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("soak", ROOT / "scripts" / "soak.py")
+    spec = importlib.util.spec_from_file_location("soak", ROOT / "scripts" / "bench" / "soak.py")
     assert spec is not None and spec.loader is not None
     mod = importlib.util.module_from_spec(spec)
     sys.modules["soak"] = mod
@@ -94,12 +95,12 @@ def test_compare_finds_every_kind_of_difference() -> None:
     clean = np.nonzero((m.first_bad < 0) & (m.res.iterations > 0))[0][0]
     # (what, field, ray, xor mask or +1 for a count)
     corruptions = [("t word", "t", hit, 1), ("v word", "v", hit, 0x10000),
-                   ("hit flag", "flags", hit, rtl_engine.FLAG_HIT),
+                   ("hit flag", "flags", hit, traverse_system.FLAG_HIT),
                    ("iterations", "iterations", clean, None),
-                   ("missing err", "flags", failing, rtl_engine.FLAG_ERR),
+                   ("missing err", "flags", failing, traverse_system.FLAG_ERR),
                    ("err iterations", "iterations", failing, None),
-                   ("spurious err", "flags", clean, rtl_engine.FLAG_ERR),
-                   ("invalid flag", "flags", clean, rtl_engine.FLAG_INVALID),
+                   ("spurious err", "flags", clean, traverse_system.FLAG_ERR),
+                   ("invalid flag", "flags", clean, traverse_system.FLAG_INVALID),
                    ("id", "id", 0, 1)]
     for name, fld, i, mask in corruptions:
         o = out.copy()
@@ -114,7 +115,7 @@ def test_compare_finds_every_kind_of_difference() -> None:
 def test_small_soak_run(tmp_path: Path) -> None:
     """A few thousand rays and a few hundred fragments with faults in every batch: exit 0, the
     statistics written, the expected err rays flagged, every method's functional counts."""
-    p = subprocess.run([sys.executable, str(ROOT / "scripts" / "soak.py"), "--rays", "3000",
+    p = subprocess.run([sys.executable, str(ROOT / "scripts" / "bench" / "soak.py"), "--rays", "3000",
                         "--batch-rays", "300", "--seed", "5", "--faults", "1", "--max-side", "96",
                         "--fragments", "300", "--out", str(tmp_path), "--quiet"],
                        capture_output=True, text=True, cwd=ROOT, timeout=900)

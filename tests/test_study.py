@@ -1,4 +1,4 @@
-"""scripts/study.py: the quick run writes its three files with plausible numbers; bad arguments
+"""scripts/bench/study.py: the quick run writes its three files with plausible numbers; bad arguments
 end in one line and exit status 2."""
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-STUDY = ROOT / "scripts" / "study.py"
+STUDY = ROOT / "scripts" / "bench" / "study.py"
 EXACT = ("oh", "tevs", "drobot", "start-level", "multi-down", "selective", "coherent", "park",
          "park-gpu", "park-xor")
 

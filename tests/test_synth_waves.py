@@ -1,10 +1,9 @@
-"""The synthesis flow's parsing and reports (scripts/synth.py, without running the tools), the
-constraints, the FuseSoC core, the waveform helpers (scripts/waves.py, scripts/gen_gtkw.py) and the
+"""The synthesis flow's parsing and reports (scripts/flow/synth.py, without running the tools), the
+constraints, the FuseSoC core, the waveform helpers (scripts/waves.py, scripts/flow/gen_gtkw.py) and the
 one-ray step trace (scripts/ray_steps.py).  Quick: no Yosys, nextpnr or Verilator runs."""
 from __future__ import annotations
 
 import argparse
-
 import json
 import re
 import subprocess
@@ -14,16 +13,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from model import heightmap, scenes, traverse
+from model.rays import Rays
+from scripts import waves
+from scripts.flow import congestion, gen_gtkw, synth
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "scripts"))
-
-import congestion  # noqa: E402
-import gen_gtkw  # noqa: E402
-import synth  # noqa: E402
-import waves  # noqa: E402
-
-from model import heightmap, scenes, traverse  # noqa: E402
-from model.rays import Rays  # noqa: E402
 
 
 def run(*args: str, timeout: int = 120) -> subprocess.CompletedProcess:
@@ -31,7 +26,7 @@ def run(*args: str, timeout: int = 120) -> subprocess.CompletedProcess:
                           timeout=timeout)
 
 
-# ---- scripts/synth.py ------------------------------------------------------------------------------
+# ---- scripts/flow/synth.py ------------------------------------------------------------------------------
 def test_ecp5_and_xilinx_counts():
     stat = {"design": {"num_cells_by_type": {
         "LUT4": 100, "CCU2C": 10, "TRELLIS_DPR16X4": 2, "TRELLIS_FF": 50, "MULT18X18D": 3,
@@ -193,15 +188,15 @@ def test_report_markdown(tmp_path):
 
 
 def test_synth_bad_arguments():
-    p = run("scripts/synth.py", "--blocks", "nope")
+    p = run("scripts/flow/synth.py", "--blocks", "nope")
     assert p.returncode == 2 and "unknown block" in p.stdout and len(p.stdout.splitlines()) == 1
-    p = run("scripts/synth.py", "--out", "/tmp/elsewhere")
+    p = run("scripts/flow/synth.py", "--out", "/tmp/elsewhere")
     assert p.returncode == 2 and "inside the repository" in p.stdout
-    p = run("scripts/synth.py", "--blocks", "f24_add", "--ecp5-opts=-nowidelut; tee x")
+    p = run("scripts/flow/synth.py", "--blocks", "f24_add", "--ecp5-opts=-nowidelut; tee x")
     assert p.returncode == 2 and "--ecp5-opts" in p.stdout and len(p.stdout.splitlines()) == 1
-    p = run("scripts/synth.py", "--blocks", "f24_add", "--top-ecp5-opts=-nowidelut; tee x")
+    p = run("scripts/flow/synth.py", "--blocks", "f24_add", "--top-ecp5-opts=-nowidelut; tee x")
     assert p.returncode == 2 and "--top-ecp5-opts" in p.stdout and len(p.stdout.splitlines()) == 1
-    p = run("scripts/synth.py", "--blocks", "f24_add", "--abc9-delay", "-5")
+    p = run("scripts/flow/synth.py", "--blocks", "f24_add", "--abc9-delay", "-5")
     assert p.returncode == 2 and "--abc9-delay" in p.stdout and len(p.stdout.splitlines()) == 1
 
 
@@ -233,7 +228,7 @@ def test_synth_param_overrides(tmp_path):
     assert md.index("| `f24_add` |") < md.index("| `f24_add_LAT3` |")
     for args, msg in ((["--param", "f24_add:LAT"], "BLOCK:NAME=VALUE"),
                       (["--param", "nope:LAT=3"], "unknown block")):
-        p = run("scripts/synth.py", *args)
+        p = run("scripts/flow/synth.py", *args)
         assert p.returncode == 2 and msg in p.stdout and len(p.stdout.splitlines()) == 1
 
 
@@ -419,7 +414,7 @@ def test_ray_steps_errors(args, msg):
 
 
 def test_ray_steps_compare_lookups():
-    import ray_steps
+    from scripts import ray_steps
     steps_ = [{"iteration": 1, "address": 0x100, "code": 5},
               {"iteration": 2, "address": 0x140, "code": 7}]
     looks = [{"clock": 10, "time": 20, "address": 0x100, "hit": False, "err": False, "code": 0},

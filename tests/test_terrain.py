@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 from reference_walk import walk
 
-from model import approx, heightmap, rtl_engine
+from model import approx, heightmap
+from tb.harness import traverse_system
 from model import terrain as T
 from model.camera import Camera
 from model.rays import Rays
@@ -243,11 +244,11 @@ def test_pyramidal_engines(study) -> None:
 def test_pyramidal_rtl_equals_f24() -> None:
     """The DEM's rays on the RTL: bit for bit the f24 engine.  Skipped when the harness is not
     built yet (a build takes minutes; ``make test`` builds it in test_rtl_engine.py first)."""
-    if not (rtl_engine.cache_available() and rtl_engine.is_built("checked")):
+    if not (traverse_system.cache_available() and traverse_system.is_built("checked")):
         pytest.skip("the RTL harness (checked variant) is not built")
     ter = T.make_terrain(T.synthetic_dem(32), 4.0)
     cam = Camera.for_view(30.0, 32, 32, 24, 24, depth_scale=4.0)
-    out = T.pyramidal(ter, cam, "park", rtl=True)
+    out = T.pyramidal(ter, cam, "park", rtl=traverse_system.trace_rtl)
     assert out["rtl"]["identical_to_f24"] is True
     assert out["rtl"]["cycles"] >= out["rtl"]["iterations"] > 0
 

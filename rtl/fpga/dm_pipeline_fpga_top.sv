@@ -1,5 +1,5 @@
 // dm_pipeline_fpga_top: dm_pipeline with a pin count that fits an FPGA package, for place and
-// route (scripts/synth.py, `make synth`).  Not used by the simulations.
+// route (scripts/flow/synth.py, `make synth`).  Not used by the simulations.
 //
 // dm_pipeline has about 4,000 port bits (the configuration alone is ~2,900); an LFE5U-85F has at
 // most 365 user I/Os (CABGA756).  This wrapper keeps both AXI4 read ports as they are (252 pins)

@@ -134,7 +134,7 @@ module traverse_loop
   output logic [4:0]        busy_o       // rays in the ring
 );
 
-  localparam int unsigned D  = 18;          // LOOP_DEPTH: stages S0 .. S17
+  localparam int unsigned D  = LOOP_DEPTH;  // traverse_pkg: stages S0 .. S17
   localparam int unsigned SW = $clog2(D);   // block RAM table index width
 
   typedef logic [SW-1:0] slot_idx_t;

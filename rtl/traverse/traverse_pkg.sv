@@ -26,6 +26,8 @@ package traverse_pkg;
   // header); busy_o counts the rays in it, 0 .. SETUP_LAT.
   localparam int unsigned SETUP_LAT    = F24_DIV_LAT + 12;  // 20
   localparam int unsigned SETUP_BUSY_W = $clog2(SETUP_LAT + 1);
+  // traverse_loop: the stages of the loop ring, S0 .. S17, one ray slot each (its header).
+  localparam int unsigned LOOP_DEPTH   = 18;
 
   localparam f24_t F24_POS_ZERO = 24'h000000;
   localparam f24_t F24_SIGN     = 24'h800000;
@@ -67,7 +69,7 @@ package traverse_pkg;
     logic      clip;         // start at the root's plane 1 - H_root
   } policy_t;
 
-  // model.traverse.METHODS, field by field (model/traverse_rtl.py holds the same table, and the
+  // model.traverse.METHODS, field by field (tb/harness/traverse_words.py holds the same table, and the
   // traverse_unit test checks it against the model).  Codes above 9 decode as oh.
   function automatic policy_t decode_method(input logic [3:0] code);
     policy_t p;

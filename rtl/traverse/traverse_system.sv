@@ -15,7 +15,7 @@
 //
 // Statistics: the unit's counters (since reset, wrapping at UNIT_CNT_W bits) and the cache's
 // (48 bits, cleared by clr_stats_i).  tb/harness/traverse_harness.cpp runs this module on whole
-// ray batches (model/rtl_engine.py).
+// ray batches (tb/harness/traverse_system.py).
 module traverse_system
   import f24_pkg::*;
   import traverse_pkg::*;
@@ -36,7 +36,7 @@ module traverse_system
 ) (
   input  logic                              clk_i,
   input  logic                              rst_ni,
-  // configuration (traverse_unit; model/traverse_rtl.py packs it)
+  // configuration (traverse_unit; tb/harness/traverse_words.py packs it)
   input  logic [3:0]                        cfg_method_i,      // model.traverse.METHOD_CODES
   input  logic [DIM_W-1:0]                  cfg_width_i,
   input  logic [DIM_W-1:0]                  cfg_height_i,

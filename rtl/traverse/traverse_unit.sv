@@ -26,7 +26,7 @@
 // Configuration (cfg_*): static while the unit holds rays (idle_o = 1 to change it) and stable at
 // least 5 clocks before the next ray enters (one register stage, which loads while idle_o = 1,
 // then the clip start time is derived from it in 4 more).
-// model/traverse_rtl.py packs it from a Pyramid and a method name.
+// tb/harness/traverse_words.py packs it from a Pyramid and a method name.
 module traverse_unit
   import f24_pkg::*;
   import traverse_pkg::*;

@@ -39,8 +39,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT))
-from model.cli import Parser, fail  # noqa: E402
+from model.cli import Parser, fail
 
 PROG = "formal.py"
 TIMEOUT_S = 900

@@ -4,7 +4,7 @@ Every testbench build compiles Verilator's runtime (``verilated.cpp``, ``verilat
 ``verilated_threads.cpp``, ...) and cocotb's ``verilator.cpp`` again, although their text is the
 same in every build: about 20 s of the 30 s a small unit's build takes.  Verilator's makefiles put
 ``$(OBJCACHE)`` in front of each compiler call, so :mod:`tb.common.runner` and
-:mod:`model.rtl_engine` set ``OBJCACHE`` to :data:`COMMAND`::
+:mod:`tb.harness.traverse_system` set ``OBJCACHE`` to :data:`COMMAND`::
 
     <python> tb/common/objcache.py
 

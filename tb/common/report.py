@@ -1,7 +1,7 @@
 """Count the vectors each test checked, so `make test` can print how many ran.
 
 Tests call :func:`record`; it appends one JSON line to ``build/vectors/<pid>.jsonl`` (the
-directory can be moved with VECTOR_LOG).  ``scripts/vector_summary.py`` adds them up.
+directory can be moved with VECTOR_LOG).  ``scripts/bench/vector_summary.py`` adds them up.
 """
 from __future__ import annotations
 

@@ -5,7 +5,7 @@ Each ``tb/<unit>/test_<unit>.py`` holds the cocotb coroutines and a pytest funct
 workers never share one.  Set ``WAVES=1`` to write an FST waveform (``build/sim/<name>-waves/dump.fst``,
 a separate build with tracing compiled in).
 
-Coverage (``make coverage``, ``scripts/coverage.py``): with ``COVERAGE=1`` the build adds
+Coverage (``make coverage``, ``scripts/bench/coverage.py``): with ``COVERAGE=1`` the build adds
 Verilator's line and toggle coverage (``--coverage-line --coverage-toggle``) in its own build
 directory (``build/sim/<name>-cov``), and each run writes its counters to
 ``build/coverage/<name>[-<case>]-<h>.dat`` (``<h>``: a short hash of the test module, test case and
@@ -31,7 +31,7 @@ ROOT = Path(__file__).resolve().parents[2]
 RTL = ROOT / "rtl"
 BUILD = ROOT / "build" / "sim"
 COVERAGE_DIR = ROOT / "build" / "coverage"
-#: Verilator options of a coverage build (scripts/coverage.py reads the counters they produce).
+#: Verilator options of a coverage build (scripts/bench/coverage.py reads the counters they produce).
 COVERAGE_ARGS = ("--coverage-line", "--coverage-toggle")
 
 

@@ -20,7 +20,8 @@ from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge
 from cocotbext.axi import AxiRamRead, AxiReadBus
 
-from model import camera, heightmap, pipeline_rtl, scenes, shade, texture
+from model import camera, heightmap, scenes, shade, texture
+from tb.harness import pipeline_words
 from tb.common import report, runner
 
 HERE = Path(__file__).resolve().parent
@@ -110,8 +111,8 @@ async def load_frame(dut, rng: random.Random, hram: LatencyRam, tram: LatencyRam
     name, size, angle, image, method, mip_on, vp, rp, lat = case
     frame, inp = frame_for(name, size, angle, image, method, mip_on)
     off = ci << 24
-    cfg = pipeline_rtl.config(frame, pipeline_rtl.HEIGHT_BASE + off,
-                              pipeline_rtl.COLOUR_BASE + off, pipeline_rtl.NORMAL_BASE + off)
+    cfg = pipeline_words.config(frame, pipeline_words.HEIGHT_BASE + off,
+                                pipeline_words.COLOUR_BASE + off, pipeline_words.NORMAL_BASE + off)
     hram.write(cfg.height[0], cfg.height[1])
     for base, img in cfg.textures:
         tram.write(base, img)
@@ -139,7 +140,7 @@ async def stream(dut, rng: random.Random, name: str, inp: shade.PixelInputs, vp:
     probability rp) until every pixel is back, or for ``stop`` clocks; (pixels by id, clocks,
     fragments sent)."""
     clk = dut.clk_i
-    words = pipeline_rtl.fragment_words(inp)
+    words = pipeline_words.fragment_words(inp)
     n = len(inp.u0)
     got: dict[int, tuple] = {}
     nxt, presenting, cyc = 0, False, 0

@@ -16,14 +16,12 @@ import pytest
 
 from model import f24, f24_vectors as vec
 from tb.common import fp_unit, runner
+from tb.harness import sv_params
 
 
 def design_lat() -> int:
     """f24_pkg::F24_DIV_LAT, the latency the design instantiates."""
-    pkg = runner.RTL / "fp" / "f24_pkg.sv"
-    m = re.search(r"localparam\s+int\s+unsigned\s+F24_DIV_LAT\s*=\s*(\d+)\s*;", pkg.read_text())
-    assert m, f"F24_DIV_LAT not found in {pkg}"
-    return int(m.group(1))
+    return sv_params.value("f24_pkg", "F24_DIV_LAT")
 
 
 @cocotb.test()

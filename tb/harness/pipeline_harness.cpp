@@ -1,5 +1,5 @@
 // pipeline_harness: a Verilator main that runs dm_pipeline (rtl/pipe/dm_pipeline.sv: fragments in,
-// shaded pixels out) on a whole frame, fast.  model/rtl_pipeline.py builds it
+// shaded pixels out) on a whole frame, fast.  tb/harness/dm_pipeline.py builds it
 // (build/harness/pipeline/<variant>/) and drives it.
 //
 //   input file      -> configuration ports, triangle-table writes, the height memory image (AXI
@@ -45,7 +45,7 @@
 #include "verilated_fst_c.h"
 #endif
 
-// Parameters the model was built with (model/rtl_pipeline.py passes them as -G and -D alike).
+// Parameters the model was built with (tb/harness/dm_pipeline.py passes them as -G and -D alike).
 #ifndef HARNESS_AXI_DATA_W
 #define HARNESS_AXI_DATA_W 64
 #endif
@@ -181,7 +181,7 @@ Options parse_args(int argc, char** argv) {
 #ifndef HARNESS_TRACE
   if (!o.waves.empty())
     fail(1, "--waves: this binary is built without tracing; use the 'waves' variant "
-            "(model/rtl_pipeline.py builds it for run_frame(..., waves=FILE))");
+            "(tb/harness/dm_pipeline.py builds it for run_frame(..., waves=FILE))");
 #endif
   return o;
 }

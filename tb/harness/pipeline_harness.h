@@ -1,11 +1,11 @@
 // pipeline_harness.h: the file formats of tb/harness/pipeline_harness.cpp (the Verilator main that
-// runs dm_pipeline, rtl/pipe/dm_pipeline.sv, on a whole frame of fragments).  model/rtl_pipeline.py
+// runs dm_pipeline, rtl/pipe/dm_pipeline.sv, on a whole frame of fragments).  tb/harness/dm_pipeline.py
 // writes the input and reads the output with the same layout; keep the two in step (bump the
 // versions on any change).
 //
 // All numbers are little-endian u32 words.
 //
-// Input file (model/rtl_pipeline.py write_input):
+// Input file (tb/harness/dm_pipeline.py write_input):
 //   header: 16 x u32 (64 bytes)
 //     [0..1]   magic "PIPHIN01" (8 ASCII bytes)
 //     [2]      version = 1
@@ -23,7 +23,7 @@
 //   configuration: for each port of PIPH_CFG_PORTS, in that order: one u32 holding the port's bit
 //     width (checked against the table), then ceil(width / 32) u32 words of its value, least
 //     significant word first (packed arrays as SystemVerilog packs them: element i at i * W);
-//   triangle-table writes: n_tri_writes x 2 u32: tt_waddr_i, tt_wdata_i (pipeline_rtl.config);
+//   triangle-table writes: n_tri_writes x 2 u32: tt_waddr_i, tt_wdata_i (pipeline_words.config);
 //   height image: h_bytes bytes (Pyramid.memory_image()), zero-padded to a multiple of 4;
 //   texture image: t_bytes bytes (colour texture and normal map, each at the base address the
 //     configuration's cfg_tex_base_i gives it, zeros between), zero-padded to a multiple of 4;
@@ -40,7 +40,7 @@
 
 // The configuration ports of dm_pipeline and their widths with the harness's parameters (the
 // package constants of rtl/traverse/traverse_pkg.sv, rtl/pipe/pipe_pkg.sv, rtl/pipe/shade_pkg.sv).
-// model/rtl_pipeline.py CFG_PORTS is the same table.
+// tb/harness/dm_pipeline.py CFG_PORTS is the same table.
 #define PIPH_CFG_PORTS(X)                                                                         \
   X(cfg_method_i, 4)                                                                              \
   X(cfg_width_i, 16)                                                                              \

@@ -1,5 +1,5 @@
 // traverse_harness: a Verilator main that runs traverse_system (rtl/traverse/traverse_system.sv) on
-// a whole ray batch, fast.  model/rtl_engine.py builds it (build/harness/<variant>/) and drives it.
+// a whole ray batch, fast.  tb/harness/traverse_system.py builds it (build/harness/<variant>/) and drives it.
 //
 //   input file  -> configuration, memory image (served over AXI at cfg_base), rays
 //   ray stream  -> traverse_system -> result stream -> output file (in input order) + JSON stats
@@ -49,7 +49,7 @@
 #include "verilated_fst_c.h"
 #endif
 
-// Parameters the model was built with (model/rtl_engine.py passes them as -G and -D alike).
+// Parameters the model was built with (tb/harness/traverse_system.py passes them as -G and -D alike).
 #ifndef HARNESS_AXI_DATA_W
 #define HARNESS_AXI_DATA_W 64
 #endif
@@ -164,7 +164,7 @@ Options parse_args(int argc, char** argv) {
 #ifndef HARNESS_TRACE
   if (!o.waves.empty())
     fail(1, "--waves: this binary is built without tracing; use the 'waves' variant "
-            "(model/rtl_engine.py builds it for trace_rtl(..., waves=FILE))");
+            "(tb/harness/traverse_system.py builds it for trace_rtl(..., waves=FILE))");
 #endif
   return o;
 }

@@ -1,10 +1,10 @@
 // traverse_harness.h: the file formats of tb/harness/traverse_harness.cpp (the Verilator main that
-// runs traverse_system on a whole ray batch).  model/rtl_engine.py writes the input and reads the
+// runs traverse_system on a whole ray batch).  tb/harness/traverse_system.py writes the input and reads the
 // output with the same layout; keep the two in step (bump the versions on any change).
 //
 // All numbers are little-endian.
 //
-// Input file (model/rtl_engine.py write_input):
+// Input file (tb/harness/traverse_system.py write_input):
 //   header: 32 x u32 (128 bytes)
 //     [0..1]   magic "TRVHIN01" (8 ASCII bytes)
 //     [2]      version = 1

@@ -31,8 +31,12 @@ from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 from cocotbext.axi import AxiRamRead, AxiReadBus
 
-from model.height_cache import LOOKUP_LAT, CacheConfig, HeightCacheModel, Inputs
+from model.height_cache import CacheConfig, HeightCacheModel, Inputs
 from tb.common import report, runner
+from tb.harness import sv_params
+
+#: Clocks from a lookup to its answer (rtl/cache/cache_pkg.sv).
+LOOKUP_LAT = sv_params.value("cache_pkg", "LOOKUP_LAT")
 
 LIVELOCK = 20000  # clocks a single lookup may wait for its hit
 CONFIGS = {

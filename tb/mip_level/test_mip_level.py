@@ -29,8 +29,10 @@ from model import f24, f24_vectors as vec, texture
 from model.arith import ENGINES
 from tb.common import fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
+from tb.harness import sv_params
 
-LATENCY = 13  # pipe_pkg::MIP_LAT (f24_log2 at pipe_pkg::F24_LOG2_LAT = 3): the colour level
+#: pipe_pkg::MIP_LAT (f24_log2 at pipe_pkg::F24_LOG2_LAT): the colour level
+LATENCY = sv_params.value("pipe_pkg", "MIP_LAT")
 INS = ["t_i", "seg_i", "pl0_i", "tri_i"]
 OUTS = ["tex_o", "level_o"]  # two results per hit: colour (tex_o 0), then the normal map (1)
 AR = ENGINES["f24"]

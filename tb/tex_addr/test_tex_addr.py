@@ -42,11 +42,11 @@ from model import f24, f24_vectors as vec, texture
 from model.arith import ENGINES
 from tb.common import fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
+from tb.harness import sv_params
 
-LATENCY = 10  # pipe_pkg::TEX_ADDR_LAT (any NTEX)
+LATENCY = sv_params.value("pipe_pkg", "TEX_ADDR_LAT")  # any NTEX
 SPACING = 2  # enabled clocks from one lookup to the next, at least (u, then v on the same units)
-TEX_LEVELS = 16  # pipe_pkg::TEX_LEVELS
-DIM_W = 16  # pipe_pkg::TEX_DIM_W
+TEX_LEVELS, DIM_W = sv_params.values("pipe_pkg", "TEX_LEVELS", "TEX_DIM_W")
 INS = ["u_i", "v_i", "level_i", "tex_i"]
 OUTS = ["addr00_o", "addr01_o", "addr10_o", "addr11_o", "fx_o", "fy_o"]
 AR = ENGINES["f24"]

@@ -1,7 +1,7 @@
 """traverse_addr against the model's memory layout, bit for bit.
 
 The module is combinational (loop stage S0).  Its configuration inputs come from
-``model.traverse_rtl.config`` (what the traverse unit is given), the expected address from
+``tb.harness.traverse_words.config`` (what the traverse unit is given), the expected address from
 ``model.traverse.texel_offset`` over ``Pyramid.level_offsets`` (model/heightmap.py's layout: the
 same function the model's trace reads its heights through), and, for every map small enough, the
 byte(s) at that address of ``Pyramid.memory_image`` must be the texel's code in ``pyr.levels``:
@@ -21,13 +21,14 @@ from pathlib import Path
 import cocotb
 import numpy as np
 
-from model import heightmap, traverse, traverse_rtl
+from model import heightmap, traverse
+from tb.harness import traverse_words
 from model.traverse import EXACT_METHODS
 from tb.common import fp_unit, report, runner
 from tb.common.comb_unit import apply
 
 HERE = Path(__file__).resolve().parent
-ADDR_MASK = (1 << traverse_rtl.ADDR_W) - 1
+ADDR_MASK = (1 << traverse_words.ADDR_W) - 1
 #: (height, width, unorm bits, base): base None = random.
 MAPS = [(1, 1, 8, 0), (1, 1, 16, None), (2, 2, 8, None), (3, 5, 16, None), (7, 5, 8, 0),
         (37, 61, 8, None), (64, 17, 16, None), (100, 128, 8, None), (128, 128, 16, 0xFFFF_FFC0),
@@ -85,7 +86,7 @@ async def addr_random_and_directed(dut):
         pyr = pyramid(rng, h, w, bits)
         if base is None:
             base = int(rng.integers(0, 1 << 32)) & ~63
-        cfg = traverse_rtl.config(pyr, EXACT_METHODS[int(rng.integers(len(EXACT_METHODS)))], base)
+        cfg = traverse_words.config(pyr, EXACT_METHODS[int(rng.integers(len(EXACT_METHODS)))], base)
         k, cx, cy, nd = nodes(rng, pyr, per_map)
         directed += nd
         # the model: level k's byte offset (heightmap layout) + row-major position x texel bytes

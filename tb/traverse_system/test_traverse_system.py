@@ -28,7 +28,6 @@ import json
 import logging
 import os
 import random
-import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -40,16 +39,16 @@ from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge
 from cocotbext.axi import AxiRamRead, AxiReadBus
 
-from model import camera, heightmap, scenes, traverse, traverse_rtl
+from model import camera, heightmap, scenes, traverse
 from model.rays import Rays
 from model.traverse import EXACT_METHODS
 from tb.common import report, runner
+from tb.common.traverse_stimulus import adversarial_rays, height_field
+from tb.harness import traverse_words
 
 HERE = Path(__file__).resolve().parent
 #: Per-batch performance lines (JSON), for reading after a run.
 PERF = runner.BUILD / "traverse_system" / "perf.jsonl"
-sys.path.insert(0, str(runner.ROOT / "tests"))
-from test_traverse import adversarial_rays, height_field  # noqa: E402
 
 BASE0 = 0x1000_0000
 REGION = 0x0040_0000      # address space per map (the 1024 x 1024 unorm8 image is 1.4 MB)
@@ -175,7 +174,7 @@ class Harness:
             "descents", "cache_hits", "cache_misses", "mem_bytes", "mem_lines")}
         return out
 
-    async def configure(self, cfg: traverse_rtl.Config, case: Case):
+    async def configure(self, cfg: traverse_words.Config, case: Case):
         await FallingEdge(self.clk)
         assert int(self.s["idle_o"].value) == 1, "configuration change while rays are in the unit"
         for name, val in cfg.ports().items():
@@ -265,7 +264,7 @@ class Harness:
         raise AssertionError(f"not idle / reads outstanding: {self.stats()}")
 
 
-def compare(name: str, got: dict[int, tuple], exp: traverse_rtl.ExpectedWords, cap: int,
+def compare(name: str, got: dict[int, tuple], exp: traverse_words.ExpectedWords, cap: int,
             log, err_expect: dict[int, int] | None = None) -> int:
     """Mismatches against the model.  ``err_expect``: ray -> iterations before its bad read (the
     rays that must come back with res_err); None: no ray may."""
@@ -371,12 +370,12 @@ async def run_case(h: Harness, case: Case, method: str, log, err_expect=None,
 
     ``preset``: counter values deposited after the configuration (:meth:`Harness.preset`); the
     statistics are then checked as differences modulo the counters' widths."""
-    cfg = traverse_rtl.config(case.pyr, method, base=case.base)
+    cfg = traverse_words.config(case.pyr, method, base=case.base)
     await h.configure(cfg, case)
     if res is None:
         st = {}
         res = traverse.trace(case.pyr, case.rays, method, "f24", stats=st)
-    exp = traverse_rtl.expected_words(res)
+    exp = traverse_words.expected_words(res)
     if preset:
         await FallingEdge(h.clk)
         h.preset(preset)
@@ -386,7 +385,7 @@ async def run_case(h: Harness, case: Case, method: str, log, err_expect=None,
         for k, v in preset.items():
             assert before[k] == v, f"counter {k} reads {before[k]} after a deposit of {v}"
     n = len(case.rays)
-    got, cyc, dups = await h.run(traverse_rtl.ray_words(case.rays), case.valid_p, case.ready_p,
+    got, cyc, dups = await h.run(traverse_words.ray_words(case.rays), case.valid_p, case.ready_p,
                                  max_cycles=400 * n + 60 * int(res.iterations.sum()) + 20000)
     after = await h.settle(base=before)
     d = {k: (after[k] - before[k]) % (1 << CNT_BITS[k]) for k in after}
@@ -431,6 +430,7 @@ async def run_case(h: Harness, case: Case, method: str, log, err_expect=None,
     print(msg)
     report.record("traverse_system", "rays vs model f24" if err_expect is None
                   else "rays vs model f24 with SLVERR lines", n, nbad + bool(sbad))
+    PERF.parent.mkdir(parents=True, exist_ok=True)   # a test run alone (make waves CASE=...)
     with open(PERF, "a") as f:
         f.write(json.dumps({k: out[k] for k in ("name", "rays", "iters", "lookups", "hit_rate",
                                                  "lines", "lines_per_it", "busy", "clocks", "cpi_busy",
@@ -557,9 +557,9 @@ async def traverse_system_reset_mid_batch(dut):
         rays = camera_rays(rng, 64, 64, ("grazing", "oblique")[trial % 2], 20)
         case = Case(f"64x64 stones u8 before reset {trial}", pyr, base, rays, ("park",),
                     lat=(0, 60))
-        await h.configure(traverse_rtl.config(pyr, "park", base=base), case)
+        await h.configure(traverse_words.config(pyr, "park", base=base), case)
         stop = int(rng.integers(30, 300))
-        got, _, _ = await h.run(traverse_rtl.ray_words(rays), 0.9, 0.3, max_cycles=stop + 1,
+        got, _, _ = await h.run(traverse_words.ray_words(rays), 0.9, 0.3, max_cycles=stop + 1,
                                 stop=stop)
         in_flight.append(h.sent - len(got))
         # reset while the batch is in flight

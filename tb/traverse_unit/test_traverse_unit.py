@@ -15,7 +15,6 @@ from __future__ import annotations
 import dataclasses
 import os
 import random
-import sys
 from pathlib import Path
 
 import cocotb
@@ -23,13 +22,13 @@ import numpy as np
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge, RisingEdge
 
-from model import heightmap, traverse, traverse_rtl
+from model import heightmap, traverse
 from model.traverse import EXACT_METHODS
 from tb.common import report, runner
+from tb.common.traverse_stimulus import adversarial_rays, height_field
+from tb.harness import traverse_words
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(runner.ROOT / "tests"))
-from test_traverse import adversarial_rays, height_field  # noqa: E402
 
 ROM_AW = 18
 ROM_BASE = 0x4000_0000
@@ -80,7 +79,7 @@ class Harness:
             await FallingEdge(self.clk)
         d.wr_en_i.value = 0
 
-    async def configure(self, cfg: traverse_rtl.Config):
+    async def configure(self, cfg: traverse_words.Config):
         await FallingEdge(self.clk)
         assert int(self.s["idle_o"].value) == 1, "configuration change while rays are in the unit"
         for name, val in cfg.ports().items():
@@ -147,7 +146,7 @@ class Harness:
         return got, cyc
 
 
-def compare(name: str, got: dict[int, tuple], exp: traverse_rtl.ExpectedWords, cap: int,
+def compare(name: str, got: dict[int, tuple], exp: traverse_words.ExpectedWords, cap: int,
             log) -> int:
     n = len(exp.hit)
     bad = []
@@ -203,9 +202,9 @@ async def traverse_bit_exact(dut):
         pyr = heightmap.build(height_field(rng, hh, ww, kind), bits)
         await h.load(pyr)
         rays = adversarial_rays(rng, ww, hh, nrays)
-        words = traverse_rtl.ray_words(rays)
+        words = traverse_words.ray_words(rays)
         for mi, method in enumerate(EXACT_METHODS):
-            cfg = traverse_rtl.config(pyr, method, base=ROM_BASE)
+            cfg = traverse_words.config(pyr, method, base=ROM_BASE)
             await h.configure(cfg)
             # Alternate the stress: cache misses and result back-pressure on most runs.
             miss = [0, 0x2000, 0x6000][(case + mi) % 3]
@@ -214,7 +213,7 @@ async def traverse_bit_exact(dut):
             valid_p = [1.0, 0.7][mi % 2]
             st: dict[str, int] = {}
             res = traverse.trace(pyr, rays, method, "f24", stats=st)
-            exp = traverse_rtl.expected_words(res)
+            exp = traverse_words.expected_words(res)
             before = h.stats()
             got, cyc = await h.run(words, rng, valid_p, ready_p,
                                    max_cycles=200 * nrays + 20 * int(res.iterations.sum()) + 10000)
@@ -261,12 +260,12 @@ async def traverse_iteration_cap(dut):
             res = traverse.trace(pyr, rays, method, "f24")
         finally:
             traverse.iteration_cap = orig
-        cfg = dataclasses.replace(traverse_rtl.config(pyr, method, base=ROM_BASE), iter_cap=cap)
+        cfg = dataclasses.replace(traverse_words.config(pyr, method, base=ROM_BASE), iter_cap=cap)
         await h.configure(cfg)
         dut.miss_thresh_i.value = 0x3000
-        got, _ = await h.run(traverse_rtl.ray_words(rays), rng, 0.8, 0.5, 200000)
+        got, _ = await h.run(traverse_words.ray_words(rays), rng, 0.8, 0.5, 200000)
         name = f"cap {cap} {method}"
-        bad += compare(name, got, traverse_rtl.expected_words(res), cap, dut._log)
+        bad += compare(name, got, traverse_words.expected_words(res), cap, dut._log)
         capped += sum(r[5] for r in got.values())
         total += len(rays)
     report.record("traverse_unit", "rays vs model f24, small iteration cap", total, bad)
@@ -283,10 +282,10 @@ async def traverse_read_errors(dut):
     pyr = heightmap.build(height_field(rng, 16, 16, 0), 8)
     await h.load(pyr)
     rays = adversarial_rays(rng, 16, 16, 200)
-    cfg = traverse_rtl.config(pyr, "park", base=ROM_BASE + (1 << ROM_AW))  # outside the ROM
+    cfg = traverse_words.config(pyr, "park", base=ROM_BASE + (1 << ROM_AW))  # outside the ROM
     await h.configure(cfg)
     res = traverse.trace(pyr, rays, "park", "f24")
-    got, _ = await h.run(traverse_rtl.ray_words(rays), rng, 1.0, 0.5, 100000)
+    got, _ = await h.run(traverse_words.ray_words(rays), rng, 1.0, 0.5, 100000)
     bad = 0
     for i in range(len(rays)):
         t, u, v, hit, inv, capped, err, iters = got[i]
@@ -313,11 +312,11 @@ async def traverse_throughput(dut):
     from model.rays import Rays
     rays = Rays(u0, v0, ln * np.cos(ang), ln * np.sin(ang))
     for method in ("oh", "park", "park-xor"):
-        await h.configure(traverse_rtl.config(pyr, method, base=ROM_BASE))
+        await h.configure(traverse_words.config(pyr, method, base=ROM_BASE))
         dut.miss_thresh_i.value = 0
         res = traverse.trace(pyr, rays, method, "f24")
         before = h.stats()
-        got, cyc = await h.run(traverse_rtl.ray_words(rays), rng, 1.0, 1.0, 100 * n + 100000)
+        got, cyc = await h.run(traverse_words.ray_words(rays), rng, 1.0, 1.0, 100 * n + 100000)
         after = h.stats()
         iters = after["iters"] - before["iters"]
         busy = after["cycles"] - before["cycles"]
@@ -328,7 +327,7 @@ async def traverse_throughput(dut):
 
 
 def test_traverse_unit():
-    diff = traverse_rtl.method_differences()
+    diff = traverse_words.method_differences()
     assert not diff, "rtl/traverse/traverse_pkg.sv decode_method is out of date: " + "; ".join(diff)
     runner.run("tb_traverse_unit", "test_traverse_unit", HERE, rtl_top="traverse_unit",
                extra_sources=[str(HERE / "tb_traverse_unit.sv")])

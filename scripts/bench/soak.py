@@ -5,7 +5,7 @@
 
 Rays: ``--rays`` random rays in batches through the traverse-unit harness
 (``tb/harness/traverse_harness.cpp``: ``traverse_system`` = traverse unit + height cache + an AXI4
-memory model; :func:`model.rtl_engine.run_batch`), each batch compared with
+memory model; :func:`tb.harness.traverse_system.run_batch`), each batch compared with
 ``model.traverse.trace(pyr, rays, method, "f24")``.  Every batch draws, from ``(seed, batch)``:
 
 - a map: sides from 1 to ``--max-side`` (1024) each, not square, not powers of two, 1x1 and strips
@@ -36,7 +36,7 @@ and, where it hits, the t, u, v words; no err flag.  Batches without faults also
 unit's descent / crossing / level-up counters with the model's.
 
 Fragments (``--fragments``, default 10000; 0 skips): small frames through the whole pipeline
-harness (``dm_pipeline``, :func:`model.rtl_pipeline.run_pixels`) with random AXI latency 1..500
+harness (``dm_pipeline``, :func:`tb.harness.dm_pipeline.run_pixels`) with random AXI latency 1..500
 on each port, back-pressure, bad numbers in some fragments (NaN / Inf / zero view vectors and TBN
 rows, entry points outside the map) and faults: SLVERR on height lines (exactly the pixels whose
 ray reads one come back with err, no hit, the miss colour, the iterations before the read) or on
@@ -67,12 +67,12 @@ from typing import Any, Iterator, Sequence
 import numpy as np
 import numpy.typing as npt
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from model import f24, heightmap, rtl_engine, scenes, traverse, traverse_rtl  # noqa: E402
-from model.cli import Parser, fail  # noqa: E402
-from model.heightmap import Pyramid  # noqa: E402
-from model.rays import Rays, TraceResult  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
+from model import f24, heightmap, scenes, traverse
+from model.cli import Parser, fail
+from model.heightmap import Pyramid
+from model.rays import Rays, TraceResult
+from tb.harness import traverse_system, traverse_words
 
 PROG = "soak.py"
 F64 = npt.NDArray[np.float64]
@@ -329,7 +329,7 @@ def plan_faults(rng: np.random.Generator, pyr: Pyramid, base: int,
     bpt = pyr.bits // 8
     if kind == "decerr" and decerr_possible(pyr):  # DECERR: memory cut inside level 0
         lay = LevelZeroLast(pyr)
-        base = rtl_engine.DEFAULT_BASE  # page aligned
+        base = traverse_system.DEFAULT_BASE  # page aligned
         off0 = lay.level_offsets()[0]
         # cut inside the rows of the map (the padding is never read)
         used = pyr.height * pyr.size * bpt
@@ -562,7 +562,7 @@ def make_batch(seed: int, index: int, n: int, max_side: int, p_fault: float) -> 
     pyr = heightmap.build(hf, bits)
     methods = traverse.EXACT_METHODS
     method = methods[(index + seed) % len(methods)]
-    base = int(rng.choice([rtl_engine.DEFAULT_BASE, 0, 0x1234_0000]))
+    base = int(rng.choice([traverse_system.DEFAULT_BASE, 0, 0x1234_0000]))
     base += int(rng.integers(0, 4096)) // 2 * 2  # any even address (unorm16 texels aligned)
     lay, base, faults = plan_faults(rng, pyr, base, fk)
     rays, kinds = make_rays(rng, w, h, n, kind == "scene" and min(w, h) >= 8)
@@ -595,18 +595,18 @@ def run_rtl(b: Batch, variant_checked: bool) -> tuple[npt.NDArray[Any] | None, d
     """The batch through the harness (in a worker thread); (records, stats, error, seconds)."""
     t0 = time.monotonic()
     try:
-        out, st = rtl_engine.run_batch(b.lay, b.rays, b.method, base=b.base,
-                                       err_ranges=b.faults.ranges, checked=variant_checked,
-                                       **b.knobs)
+        out, st = traverse_system.run_batch(b.lay, b.rays, b.method, base=b.base,
+                                            err_ranges=b.faults.ranges, checked=variant_checked,
+                                            **b.knobs)
         return out, st, None, time.monotonic() - t0
-    except rtl_engine.RtlEngineError as e:
+    except traverse_system.RtlEngineError as e:
         return None, {}, str(e).strip(), time.monotonic() - t0
 
 
 @dataclass
 class ModelResult:
     res: TraceResult
-    words: traverse_rtl.ExpectedWords
+    words: traverse_words.ExpectedWords
     first_bad: I64
     stats: dict[str, int]
     seconds: float
@@ -619,13 +619,13 @@ def run_model(b: Batch, func: Functional) -> ModelResult:
         res = traverse.trace(b.pyr, b.rays, b.method, "f24", stats=st)
     first = first_bad_read(b.lay, b.base, b.faults, reads, res.iterations)
     func.add_paths(b.method, reads, res.iterations)
-    return ModelResult(res, traverse_rtl.expected_words(res), first, st, time.monotonic() - t0)
+    return ModelResult(res, traverse_words.expected_words(res), first, st, time.monotonic() - t0)
 
 
 def ray_text(b: Batch, i: int) -> str:
     r = b.rays
     vals = (r.u0[i], r.v0[i], r.du[i], r.dv[i])
-    words = [int(x[0]) for x in traverse_rtl.ray_words(r.subset([i]))]
+    words = [int(x[0]) for x in traverse_words.ray_words(r.subset([i]))]
     return (f"ray {i} ({RAY_KINDS[b.kinds[i]]}) u0,v0,du,dv = "
             + ", ".join(repr(float(v)) for v in vals)
             + " (f24 " + " ".join(f"{w:06x}" for w in words) + ")")
@@ -640,10 +640,10 @@ def compare(b: Batch, out: npt.NDArray[Any], st: dict[str, Any], m: ModelResult,
         bad.append(f"ray ids: {len(out)} records, ids not exactly 0..{n - 1} once each")
         return bad, {"rays": n}
     flags = out["flags"]
-    hit = (flags & rtl_engine.FLAG_HIT) != 0
-    inv = (flags & rtl_engine.FLAG_INVALID) != 0
-    capped = (flags & rtl_engine.FLAG_CAPPED) != 0
-    err = (flags & rtl_engine.FLAG_ERR) != 0
+    hit = (flags & traverse_system.FLAG_HIT) != 0
+    inv = (flags & traverse_system.FLAG_INVALID) != 0
+    capped = (flags & traverse_system.FLAG_CAPPED) != 0
+    err = (flags & traverse_system.FLAG_ERR) != 0
     it = out["iterations"].astype(np.int64)
     e = m.words
     want_err = m.first_bad >= 0
@@ -693,7 +693,8 @@ def pipeline_soak(seed: int, fragments: int, checked: bool, quiet: bool,
                   log: list[str]) -> dict[str, Any]:
     """Small frames through dm_pipeline with random latency, back-pressure, bad fragment numbers
     and faults, against model.shade.render_pixels (f24)."""
-    from model import camera, rtl_pipeline, shade, texture
+    from model import camera, shade, texture
+    from tb.harness import dm_pipeline
 
     rng = np.random.default_rng([seed, 1 << 20])
     done = frames = bad_total = err_total = 0
@@ -740,8 +741,8 @@ def pipeline_soak(seed: int, fragments: int, checked: bool, quiet: bool,
                     float(rng.choice([np.nan, np.inf, 1e30]))
             else:
                 inp.u0[i] = float(rng.choice([-0.5, size + 0.5, np.nan]))  # outside the map
-        fi = rtl_pipeline.frame_image(frame)
-        words = rtl_pipeline.fragment_words(inp)
+        fi = dm_pipeline.frame_image(frame)
+        words = dm_pipeline.fragment_words(inp)
         h_base, h_img = fi.cfg.height
         fault = str(rng.choice(["none", "height", "texture"], p=[0.5, 0.3, 0.2]))
         h_err: list[tuple[int, int]] = []
@@ -767,9 +768,9 @@ def pipeline_soak(seed: int, fragments: int, checked: bool, quiet: bool,
         desc = (f"frame {k}: {name} {size}x{size} u{bits} {angle} {method} mip {int(mip)}, "
                 f"{n} fragments ({nb} with bad numbers), {fault} faults, {knobs}")
         try:
-            px, st = rtl_pipeline.run_pixels(fi, words, h_err=h_err, t_err=t_err,
-                                             checked=checked, **knobs)
-        except rtl_engine.RtlEngineError as e:
+            px, st = dm_pipeline.run_pixels(fi, words, h_err=h_err, t_err=t_err,
+                                            checked=checked, **knobs)
+        except traverse_system.RtlEngineError as e:
             failures.append(f"{desc}: harness failed: {str(e).strip().splitlines()[0]}")
             bad_total += n
             done += n
@@ -867,18 +868,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     checked = a.variant == "checked"
     repro = (f"--seed {seed} --rays {a.rays} --batch-rays {a.batch_rays} --max-side {a.max_side} "
              f"--faults {a.faults:g}")
-    print(f"{PROG}: seed {seed} (reproduce: scripts/soak.py {repro}); {a.rays} rays in {nb} "
+    print(f"{PROG}: seed {seed} (reproduce: scripts/bench/soak.py {repro}); {a.rays} rays in {nb} "
           f"batches, maps up to "
           f"{a.max_side}x{a.max_side}, AXI latency 1..{MAX_LATENCY}, {a.variant} harness",
           flush=True)
     t_start = time.monotonic()
     t0 = time.monotonic()
     try:
-        rtl_engine.build(a.variant, quiet=a.quiet)
+        traverse_system.build(a.variant, quiet=a.quiet)
         if a.fragments:
-            from model import rtl_pipeline
-            rtl_pipeline.build(a.variant, quiet=a.quiet)
-    except rtl_engine.RtlEngineError as e:
+            from tb.harness import dm_pipeline
+            dm_pipeline.build(a.variant, quiet=a.quiet)
+    except traverse_system.RtlEngineError as e:
         print(f"{PROG}: {str(e).splitlines()[0]}", file=sys.stderr)
         return 1
     build_s = time.monotonic() - t0
@@ -991,7 +992,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         "harness_seconds": round(t_rtl, 1),
         "rays_per_second": round(totals["rays"] / max(rays_wall, 1e-9), 1),
         "first_mismatches": failures[:20],
-        "command": " ".join(["scripts/soak.py", *(argv if argv is not None else sys.argv[1:])]),
+        "command": " ".join(["scripts/bench/soak.py", *(argv if argv is not None else sys.argv[1:])]),
     }
     a.out.mkdir(parents=True, exist_ok=True)
     (a.out / "soak.json").write_text(json.dumps(doc, indent=1) + "\n")

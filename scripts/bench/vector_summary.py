@@ -7,9 +7,8 @@ import sys
 from collections import defaultdict
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from model.cli import Parser  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
+from model.cli import Parser
 
 
 def main() -> int:

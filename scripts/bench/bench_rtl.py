@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """RTL traverse-unit performance (make bench): clocks per iteration, height-cache hit rate and
-memory traffic per scene x view angle, through the Verilator harness (model/rtl_engine.py).
+memory traffic per scene x view angle, through the Verilator harness (tb/harness/traverse_system.py).
 
 For every scene and view: one ray per covered pixel of an --image x --image camera image over a
 --size x --size map, in the order a tiled rasteriser emits fragments (--tile x --tile pixel
@@ -31,10 +31,10 @@ from typing import Any
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from model import camera, heightmap, rtl_engine, scenes, traverse  # noqa: E402
-from model.cli import Parser, fail  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
+from model import camera, heightmap, scenes, traverse
+from model.cli import Parser, fail
+from tb.harness import traverse_system
 
 PROG = "bench_rtl.py"
 #: Park et al. 2013, section 5.5 / Table 6: 4 units at 84 MHz, 7.5 Mpixels/s on Rocks (oblique).
@@ -59,7 +59,7 @@ def run_case(pyr: heightmap.Pyramid, rays: Any, method: str, latency: int) -> di
     ref = traverse.trace(pyr, rays, method, "f24")
     row: dict[str, Any] = {"rays": len(rays), "iterations": int(ref.iterations.sum())}
     for warm in (False, True):
-        res, st = rtl_engine.trace_rtl(pyr, rays, method, latency=latency, warm=warm)
+        res, st = traverse_system.trace_rtl(pyr, rays, method, latency=latency, warm=warm)
         key = "warm" if warm else "cold"
         row[key] = {k: st[k] for k in ("cycles", "iterations", "lookups", "height_cache_hits",
                                        "height_cache_misses", "mem_lines", "mem_bytes",
@@ -104,8 +104,8 @@ def main() -> int:
         if val < lo:
             fail(PROG, f"{what} must be >= {lo}, got {val}")
     try:
-        rtl_engine.build("fast", quiet=False)
-    except rtl_engine.RtlEngineError as e:
+        traverse_system.build("fast", quiet=False)
+    except traverse_system.RtlEngineError as e:
         fail(PROG, str(e).splitlines()[0])
     rows: list[dict[str, Any]] = []
     total = len(names) * len(angles) * len(methods)
@@ -177,7 +177,7 @@ def main() -> int:
     a.md.write_text(md)
     a.out.write_text(json.dumps({
         "settings": {"size": a.size, "image": a.image, "tile": a.tile, "latency": a.latency,
-                     "params": rtl_engine.PARAMS},
+                     "params": traverse_system.PARAMS},
         "rows": rows, "summary": summary, "mismatches": mism, "sim_clocks": sim_clocks,
         "sim_wall_seconds": sim_wall,
         "paper": {"mhz": PAPER_MHZ, "units": PAPER_UNITS, "mpixels_per_s": PAPER_MPIX,

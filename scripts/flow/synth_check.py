@@ -12,10 +12,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from model.cli import Parser, fail  # noqa: E402
-from tb.common.runner import is_bound_checker, rtl_index  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
+from model.cli import Parser, fail
+from tb.common.runner import is_bound_checker, rtl_index
 
 
 def main() -> int:

@@ -13,13 +13,14 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from . import f24, mip, shade, traverse_rtl
-from .arith import ENGINES
+from model import f24, mip, shade
+from model.arith import ENGINES
 
-#: pipe_pkg.sv: levels a texture configuration holds, and the widths of its fields.
-TEX_LEVELS = 16
-TEX_DIM_W = 16
-TEX_ADDR_W = 32
+from . import sv_params, traverse_words
+
+#: rtl/pipe/pipe_pkg.sv: levels a texture configuration holds, and the widths of its fields.
+TEX_LEVELS, TEX_DIM_W, TEX_ADDR_W = sv_params.values("pipe_pkg", "TEX_LEVELS", "TEX_DIM_W",
+                                                     "TEX_ADDR_W")
 #: Default byte addresses of the pyramid and the two textures in the AXI address spaces.
 HEIGHT_BASE = 0x4000_0000
 COLOUR_BASE = 0x1000_0000
@@ -56,7 +57,7 @@ def config(frame: shade.Frame, height_base: int = HEIGHT_BASE, colour_base: int 
         raise ValueError("the RTL pipeline is the f24 engine")
     ar = ENGINES["f24"]
     pyr = frame.pyr
-    ports = dict(traverse_rtl.config(pyr, frame.method, base=height_base).ports())
+    ports = dict(traverse_words.config(pyr, frame.method, base=height_base).ports())
     d = _f24(frame.depth_scale)
     m = frame.material
     lu = m.light_unit()

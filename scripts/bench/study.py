@@ -38,10 +38,9 @@ from typing import Any, Callable
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from model import camera, heightmap, scenes, traverse  # noqa: E402
-from model.cli import Parser, Progress, fail  # noqa: E402
-from model.rays import Rays, TraceResult  # noqa: E402
+from model import camera, heightmap, scenes, traverse
+from model.cli import Parser, Progress, fail
+from model.rays import Rays, TraceResult
 
 PROG = "study.py"
 ANGLES = ("front", "oblique", "grazing")

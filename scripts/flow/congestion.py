@@ -1,14 +1,14 @@
 #!/usr/bin/env python3
 """Which blocks the top's routing congestion belongs to, from router2's heatmaps.
 
-`scripts/synth.py --heatmap` has nextpnr's router2 write, for every routing iteration N,
+`scripts/flow/synth.py --heatmap` has nextpnr's router2 write, for every routing iteration N,
 `<out>/heatmap/top_congestion_by_net_N.csv` (net name, overused wires on it) and
 `top_congestion_by_coordinate_N.csv` (a grid of overused wires per tile).  This script sums the
 per-net file by instance path (`u_pipe.u_trav.u_cache`, ... down to --depth levels, array
 indices folded), prints the shares and, with the coordinate file of the same iteration, how much
 of the overuse sits in the hottest sixteenth of the chip.  It writes the numbers as JSON.
 
-    scripts/congestion.py out/synth/heatmap --iteration 12 --depth 3
+    scripts/flow/congestion.py out/synth/heatmap --iteration 12 --depth 3
 """
 from __future__ import annotations
 
@@ -19,10 +19,9 @@ import sys
 from collections import Counter
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
+ROOT = Path(__file__).resolve().parents[2]
 
-from model.cli import Parser  # noqa: E402
+from model.cli import Parser
 
 
 def read_by_net(path: Path) -> dict[str, int]:
@@ -81,7 +80,7 @@ def latest_iteration(hdir: Path) -> int | None:
 def main(argv: list[str] | None = None) -> int:
     ap = Parser(prog="congestion.py", description=__doc__.split("\n\n")[0])
     ap.add_argument("heatmap_dir", type=Path, help="the directory of the CSV files "
-                    "(out/synth/heatmap after `scripts/synth.py --heatmap`)")
+                    "(out/synth/heatmap after `scripts/flow/synth.py --heatmap`)")
     ap.add_argument("--iteration", type=int, default=None,
                     help="router2 iteration to read (default: the last one written)")
     ap.add_argument("--depth", type=int, default=3, help="instance path levels (default 3)")
@@ -95,7 +94,7 @@ def main(argv: list[str] | None = None) -> int:
         return 2
 
     if not a.heatmap_dir.is_dir():
-        return fail(f"{a.heatmap_dir}: no such directory (run scripts/synth.py --heatmap)")
+        return fail(f"{a.heatmap_dir}: no such directory (run scripts/flow/synth.py --heatmap)")
     if a.depth < 1:
         return fail("--depth must be at least 1")
     it = a.iteration if a.iteration is not None else latest_iteration(a.heatmap_dir)

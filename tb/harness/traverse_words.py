@@ -12,22 +12,24 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from . import f24
-from .heightmap import Pyramid
-from .rays import Rays, TraceResult
-from .traverse import EXACT_METHODS, METHOD_CODES, METHODS, iteration_cap
+from model import f24
+from model.heightmap import Pyramid
+from model.rays import Rays, TraceResult
+from model.traverse import EXACT_METHODS, METHOD_CODES, METHODS, iteration_cap
 
-#: Limits of the configuration ports (rtl/traverse/traverse_pkg.sv).
-MAX_LEVELS = 16        # level offsets held: root level n <= 15, maps up to 32768 x 32768
-DIM_W = 16
-ITER_W = 16            # iteration counter and cap
-ADDR_W = 32
-#: Clocks from a lookup request to its response.
-LOOKUP_LAT = 3
-#: Stages of the loop ring (one ray slot each) and of the setup pipeline (traverse_pkg::SETUP_LAT:
-#: the pipelined divider's f24_pkg::F24_DIV_LAT = 8 clocks, then 12 more stages).
-LOOP_DEPTH = 18
-SETUP_DEPTH = 20
+from . import sv_params
+
+#: Limits of the configuration ports, read from rtl/traverse/traverse_pkg.sv: level offsets held
+#: (root level n <= MAX_LEVELS - 1, maps up to 32768 x 32768), map width / height bits, iteration
+#: counter and cap bits, byte address bits.
+MAX_LEVELS, DIM_W, ITER_W, ADDR_W = sv_params.values("traverse_pkg", "MAX_LEVELS", "DIM_W",
+                                                     "ITER_W", "ADDR_W")
+#: Clocks from a lookup request to its response (traverse_pkg::LOOKUP_LAT).
+LOOKUP_LAT = sv_params.value("traverse_pkg", "LOOKUP_LAT")
+#: Stages of the loop ring (one ray slot each; traverse_pkg::LOOP_DEPTH) and of the setup pipeline
+#: (traverse_pkg::SETUP_LAT: the pipelined divider's f24_pkg::F24_DIV_LAT clocks, then 12 more).
+LOOP_DEPTH = sv_params.value("traverse_pkg", "LOOP_DEPTH")
+SETUP_DEPTH = sv_params.value("traverse_pkg", "SETUP_LAT")
 
 
 #: What ``traverse_pkg::decode_method`` implements for each method code, in the fields of

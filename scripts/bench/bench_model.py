@@ -11,10 +11,9 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from model import camera, heightmap, scenes, traverse  # noqa: E402
-from model.cli import Parser, fail  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
+from model import camera, heightmap, scenes, traverse
+from model.cli import Parser, fail
 
 
 def main() -> int:

@@ -41,9 +41,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterable, Sequence
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from model.cli import Parser, fail  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
+from model.cli import Parser, fail
 
 PROG = "coverage.py"
 RTL = ROOT / "rtl"

@@ -21,7 +21,7 @@ source edalize_yosys_procs.tcl
 read_files
 
 yosys read_slang -D SYNTHESIS {*}$::sv_files --top $top
-# as scripts/synth.py (Flow.prepare): merge the reset loops' write ports and turn the register
+# as scripts/flow/synth.py (Flow.prepare): merge the reset loops' write ports and turn the register
 # arrays into flip-flops before synth_ecp5's memory pass, which otherwise runs for hours
 yosys hierarchy -top $top
 yosys proc

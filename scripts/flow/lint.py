@@ -12,10 +12,9 @@ import sys
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from model.cli import Parser  # noqa: E402
-from tb.common.runner import is_bound_checker, rtl_index  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
+from model.cli import Parser
+from tb.common.runner import is_bound_checker, rtl_index
 
 
 # The one waiver: an output connected as `.port()` is how this RTL says "not needed here" (lowRISC
