@@ -183,9 +183,11 @@ def env_for(copy: Path, seed: int) -> dict[str, str]:
     return env
 
 
-def run_tests(copy: Path, tests: list[str], seed: int, timeout: float) -> tuple[int, str, float]:
+def run_tests(copy: Path, tests: list[str], seed: int, timeout: float,
+              extra: list[str] | None = None) -> tuple[int, str, float]:
     """pytest on ``tests`` in ``copy``, stopping at the first failure; (status, output, s)."""
-    cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", *tests]
+    cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", *(extra or []),
+           *tests]
     t0 = time.monotonic()
     try:
         p = subprocess.run(cmd, cwd=copy, env=env_for(copy, seed), capture_output=True,
@@ -267,7 +269,8 @@ def main(argv: list[str] | None = None) -> int:
     if not a.no_baseline:
         suites = list(dict.fromkeys(t for m in muts for t in m.tests))
         print(f"mutate: baseline: {len(suites)} testbenches on the unmutated copy", flush=True)
-        rc, text, dt = run_tests(copies[0], suites, a.seed, a.timeout * 2)
+        rc, text, dt = run_tests(copies[0], suites, a.seed, a.timeout * 2,
+                                 ["-n", str(a.jobs), "--dist", "loadgroup"] if a.jobs > 1 else [])
         if rc != 0:
             print(f"mutate: the baseline fails ({dt:.0f} s); no mutation result would mean "
                   f"anything:\n{evidence(text) or text[-2000:]}", file=sys.stderr)
