@@ -205,10 +205,13 @@ def evidence(text: str) -> str:
     first = ("Assertion failed", "%Error:", "AssertionError:", "mismatch", "differs",
              "expected", "time limit", "timeout", "Timeout")
     then = ("FAILED", "Error", "error")
-    skip = ("Running command", "Command failed", "Verilog $stop", "runner.py:")
+    skip = ("Running command", "Command failed", "Verilog $stop", "runner.py:", " 0 mismatches")
     lines = [ln.strip() for ln in text.splitlines()
              if ln.strip() and not any(k in ln for k in skip)]
-    best = [ln for ln in lines if any(k in ln for k in first)]
+    # pytest's "E " lines (the exception raised) and the RTL's messages before source excerpts
+    best = [ln for ln in lines if any(k in ln for k in first)
+            and (ln.startswith(("E ", "[", "%Error")) or "AssertionError" in ln)]
+    best += [ln for ln in lines if ln not in best and any(k in ln for k in first)]
     rest = [ln for ln in lines if ln not in best and any(k in ln for k in then)]
     return "\n".join(dict.fromkeys(best[:4] + rest[:2]))[:1500]
 
