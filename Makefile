@@ -7,6 +7,8 @@
 #   make soak     1 M random rays + faults vs f24     make coverage  RTL line/toggle coverage (long)
 #   make test-long  the testbenches with longer stimulus (TB_LONG=1)
 #   make formal   SymbiYosys proofs of the bound assertions (docs/formal.md; part of make test)
+#   make mutate   mutation testing: the suite's kill rate (in make bench)
+#   make perf-expect  rewrite tests/perf_expect.json (make test's performance expectations)
 #
 # Everything runs from .venv, which `make setup` (a prerequisite of every target) creates from the
 # pinned requirements.txt, then installs this project into (`pip install --no-deps -e .`,
@@ -34,12 +36,12 @@ endif
 ENV += export PYTHONDONTWRITEBYTECODE=1;
 
 .PHONY: all setup lint test test-model test-rtl test-long bench render clean distclean help synth waves soak \
-        coverage formal
+        coverage formal perf-expect mutate
 
 all: test
 
 help:
-	@sed -n '2,13p' Makefile
+	@sed -n '2,15p' Makefile
 
 setup: $(STAMP)
 
@@ -74,6 +76,14 @@ test: $(STAMP)
 FORMAL_ARGS ?=
 formal: $(STAMP)
 	@$(ENV) $(PY) scripts/flow/formal.py --jobs $(JOBS) $(FORMAL_ARGS)
+
+# The performance expectations of make test (tests/test_perf_expect.py: clocks, cache hits and bytes
+# of fixed frames and ray batches, held exactly to tests/perf_expect.json) rewritten from what the
+# design gives now; the test prints what moved.  Only for a change meant to move them: commit the
+# file with it.
+perf-expect: $(STAMP)
+	@$(ENV) export PERF_EXPECT_UPDATE=1; $(PY) -m pytest -q -s -p no:cacheprovider \
+	    tests/test_perf_expect.py | grep -a '^PERF .*expectation written'
 
 test-model: $(STAMP)
 	@$(ENV) $(PY) -m pytest -n $(JOBS) -q -p no:cacheprovider tests
@@ -113,6 +123,16 @@ bench: $(STAMP)
 	@$(ENV) F24_MODEL_VECTORS=10000000 VECTOR_LOG=build/bench_vectors $(PY) -m pytest -n $(JOBS) \
 	    -q -p no:cacheprovider tests/test_f24_model.py
 	@$(PY) scripts/bench/vector_summary.py --dir build/bench_vectors
+	@$(MAKE) --no-print-directory mutate
+
+# Mutation testing (scripts/bench/mutate.py, the list in scripts/bench/mutations.toml): each
+# mutation applied to a scratch copy of the repository (build/mutate/), its testbenches run there;
+# prints the kill rate and the survivors, writes out/mutate/mutate.json; exit 1 when a survivor is
+# not explained as equivalent or the kill rate is below 95%.  MUTATE_ARGS passes options
+# (e.g. MUTATE_ARGS="-j 2 --only tc-plru-touch"); part of make bench, not of make test.
+MUTATE_ARGS ?=
+mutate: $(STAMP)
+	@$(ENV) $(PY) scripts/bench/mutate.py $(MUTATE_ARGS)
 
 # The main job: the scene through the pipeline RTL (dm_pipeline in the Verilator harness
 # tb/harness/pipeline_harness.cpp, built once into build/harness/pipeline/, about a minute) and

@@ -1,8 +1,5 @@
 """Behavioural model of the texture / normal-map cache (rtl/cache/tex_cache.sv).
 
-Not clock-accurate: it gives what is a pure function of the request stream in the RTL, and an
-estimate of the rest.
-
 - :func:`passes`: how a request (four texel byte addresses c00, c01, c10, c11) is split into
   passes and which line each sub-cache looks up in each pass, exactly as the RTL does: the row bit
   of a texel is bit j of its row's first address (c00 or c10), j a function of the pitch
@@ -15,13 +12,24 @@ estimate of the rest.
   one line) always fits one window, so real quads never split for it. So the RTL's
   ``stat_lookups_o`` equals the sum of ``len(lines)`` over the passes. ``stat_texel_hits_o``
   counts the texels (four per request) whose pass's lookup in their sub-cache hit.
-- :class:`TexCacheModel`: the directory without timing (XOR-folded sets, tree pseudo-LRU, an
-  invalid way first, a line allocated at lookup).  The RTL also skips ways that queued requests
-  still reference, which depends on timing, so its miss count is close to, not equal to, the
-  model's; the model serves to choose sizes and to estimate hit rates of an access stream.
+- :class:`TexCacheDirectory`: the directory exactly as the RTL decides on it, pass by pass in
+  request order: XOR-folded sets, a hit on a valid tag (a line in flight is valid), else the
+  victim is the lowest unreferenced invalid way (never allocated, or its line came back with an
+  error), else tree pseudo-LRU among the unreferenced ways (:func:`plru_pick`); every lookup, hit
+  or miss, marks its way most recently used; a pass takes a reference to each slot it reads, the
+  pass's read at the head of the request FIFO releases it.  What depends on timing is only when a
+  release (or a line's error) happens; given those events, the hit / miss / victim sequence is a
+  pure function.  :class:`TexCacheTimedModel` feeds it the events of the RTL's clocks with the
+  RTL's visibility: a release or an error fill in clock t is seen by the decisions of clock
+  t + 2 on (the directory is read a clock before the decision, from LUT RAM written at the end
+  of clock t).  tb/tex_cache compares every decision of every stream with it.
+- :class:`TexCacheModel`: the directory without timing (no reference ever held: each pass is
+  released at once), for choosing sizes and estimating the hit rates of an access stream; the
+  RTL's misses differ from it only where a reference made a victim differ.
 """
 from __future__ import annotations
 
+from collections import deque
 from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
@@ -35,6 +43,22 @@ def plru_victim(cfg: CacheConfig, bits: int) -> int:
     for _ in range(clog2(cfg.ways)):
         n = 2 * n + ((bits >> (n - 1)) & 1)
     return n - cfg.ways
+
+
+def plru_pick(cfg: CacheConfig, bits: int, mask: int) -> int:
+    """The RTL's victim among the ways in ``mask`` (bit w = way w may be chosen): follow the
+    tree's direction unless that subtree has no candidate (then the other one)."""
+    n, lo, span = 1, 0, cfg.ways
+    for _ in range(clog2(cfg.ways)):
+        half = span // 2
+        l_has = any((mask >> w) & 1 for w in range(lo, lo + half))
+        r_has = any((mask >> w) & 1 for w in range(lo + half, lo + span))
+        go_r = r_has if (bits >> (n - 1)) & 1 else not l_has
+        n = 2 * n + int(go_r)
+        if go_r:
+            lo += half
+        span = half
+    return lo
 
 
 def plru_touch(cfg: CacheConfig, bits: int, way: int) -> int:
@@ -166,32 +190,179 @@ def set_of(la: int, cfg: TexCacheConfig) -> int:
     return lo ^ hi
 
 
+@dataclass
+class Slot:
+    """One line slot of the directory: its tag (None: not allocated since the reset), whether the
+    line is valid (allocated, in flight or present) or came back with an error, and the
+    references that passes in the request FIFO hold on it."""
+
+    tag: int | None = None
+    valid: bool = False
+    err: bool = False
+    refs: int = 0
+
+
+@dataclass
+class Lookup:
+    """The outcome of one sub-cache's lookup in a pass: hit or miss, the way (the hit way or the
+    victim) and the set."""
+
+    sub: int
+    set: int
+    way: int
+    hit: bool
+    la: int
+
+
+class Blocked(Exception):
+    """Every way of a set a pass missed is referenced: the RTL cannot decide the pass now."""
+
+
+class TexCacheDirectory:
+    """The four sub-caches' directories with reference counts, decided pass by pass (see the
+    module docstring)."""
+
+    def __init__(self, cfg: TexCacheConfig):
+        self.cfg = cfg
+        self.slots = [[[Slot() for _ in range(cfg.ways)] for _ in range(cfg.sets)]
+                      for _ in range(4)]
+        self.plru = [[0] * cfg.sets for _ in range(4)]
+
+    def victim(self, c: int, s: int) -> int:
+        """The way the RTL allocates in set ``s`` of sub-cache ``c`` (raises :class:`Blocked`
+        when every way is referenced)."""
+        ways = self.slots[c][s]
+        free = [not (x.valid or x.err) or x.refs == 0 for x in ways]
+        if not any(free):
+            raise Blocked(f"sub-cache {c} set {s}: every way referenced")
+        for w, x in enumerate(ways):
+            if free[w] and not x.valid:
+                return w
+        return plru_pick(self.cfg, self.plru[c][s], sum(f << w for w, f in enumerate(free)))
+
+    def enter(self, p: Pass) -> list[Lookup]:
+        """Decide pass ``p`` (every sub-cache it reads), take its references; the outcome in
+        sub-cache order (:meth:`release` takes it back).  Raises :class:`Blocked` (with nothing
+        changed) when a missed set has no unreferenced way."""
+        cfg = self.cfg
+        out: list[Lookup] = []
+        for c in sorted(p.lines):
+            la = p.lines[c]
+            s = set_of(la, cfg)
+            tag = la >> (1 + cfg.set_w)
+            ways = self.slots[c][s]
+            hit = [w for w, x in enumerate(ways) if x.valid and x.tag == tag]
+            out.append(Lookup(c, s, hit[0], True, la) if hit
+                       else Lookup(c, s, self.victim(c, s), False, la))
+        for lk in out:
+            x = self.slots[lk.sub][lk.set][lk.way]
+            if not lk.hit:
+                x.tag, x.valid, x.err, x.refs = lk.la >> (1 + cfg.set_w), True, False, 0
+            x.refs += 1
+            self.plru[lk.sub][lk.set] = plru_touch(cfg, self.plru[lk.sub][lk.set], lk.way)
+        return out
+
+    def release(self, lookups: Iterable[Lookup]) -> None:
+        """The pass's read at the head: its references go."""
+        for lk in lookups:
+            x = self.slots[lk.sub][lk.set][lk.way]
+            if x.refs <= 0:
+                raise AssertionError(f"model: reference count underflow at {lk}")
+            x.refs -= 1
+
+    def error(self, c: int, la: int) -> None:
+        """Line ``la`` of sub-cache ``c`` came back with an error: its slot is no longer valid
+        (the passes waiting for it still hold their references)."""
+        cfg = self.cfg
+        s = set_of(la, cfg)
+        tag = la >> (1 + cfg.set_w)
+        for x in self.slots[c][s]:
+            if x.valid and x.tag == tag:
+                x.valid, x.err = False, True
+                return
+        raise AssertionError(f"model: error fill of line {la:#x} in sub-cache {c}, not held")
+
+
+def texel_hits(p: Pass, out: Iterable[Lookup]) -> int:
+    """Texels of pass ``p`` whose sub-cache's lookup hit."""
+    hit = {lk.sub: lk.hit for lk in out}
+    return sum(1 for t in range(4) if (p.mask >> t) & 1 and hit[p.sub[t]])
+
+
+class TexCacheTimedModel:
+    """The directory driven by the RTL's clocks (see the module docstring).  Per clock, in this
+    order: :meth:`step` (once; ``clear``: clr_stats_i in this clock), then what happened in the
+    clock: :meth:`decide` for the pass that enters the FIFO, :meth:`pop` for the head's read,
+    :meth:`error` for a line completed with an error.  :meth:`reset` for a clock in reset.
+    ``stats`` counts like the RTL's counters: a decision in the clock after it (the commit
+    clock), nothing in a clock with clr_stats_i."""
+
+    #: Clocks from a release / error fill to the first decision that sees it.
+    DELAY = 2
+
+    def __init__(self, cfg: TexCacheConfig):
+        self.cfg = cfg
+        self.reset()
+        self.stats = {"quad_hits": 0, "lookups": 0, "line_misses": 0, "texel_hits": 0}
+
+    def reset(self) -> None:
+        """A clock in reset: the directory empties, queued passes are dropped, counts cleared."""
+        self.dir = TexCacheDirectory(self.cfg)
+        self.now = 0
+        self.later: deque[tuple[int, str, object]] = deque()
+        self.fifo: deque[list[Lookup]] = deque()
+        self.missed = False      # an earlier pass of the current request missed
+        self.count: dict[str, int] | None = None  # the last decision's counts, counted next clock
+        self.stats = {"quad_hits": 0, "lookups": 0, "line_misses": 0, "texel_hits": 0}
+
+    def step(self, clear: bool = False) -> None:
+        """Start of a clock: events of clock now - DELAY + 1 and earlier become visible; the
+        previous clock's decision is counted (unless ``clear``: then the counts restart)."""
+        self.now += 1
+        while self.later and self.later[0][0] <= self.now:
+            _, kind, arg = self.later.popleft()
+            if kind == "release":
+                self.dir.release(arg)  # type: ignore[arg-type]
+            else:
+                c, la = arg  # type: ignore[misc]
+                self.dir.error(c, la)
+        if clear:
+            self.stats = {k: 0 for k in self.stats}
+        elif self.count:
+            for k, v in self.count.items():
+                self.stats[k] += v
+        self.count = None
+
+    def decide(self, p: Pass, last: bool) -> list[Lookup]:
+        """Pass ``p`` (``last``: its request's last pass) enters the FIFO in this clock."""
+        out = self.dir.enter(p)
+        self.fifo.append(out)
+        miss = any(not lk.hit for lk in out)
+        self.count = {"lookups": len(out), "line_misses": sum(not lk.hit for lk in out),
+                      "texel_hits": texel_hits(p, out),
+                      "quad_hits": int(last and not miss and not self.missed)}
+        self.missed = not last and (self.missed or miss)
+        return out
+
+    def pop(self) -> None:
+        """The head's pass reads its lines in this clock."""
+        if not self.fifo:
+            raise AssertionError("model: head read with no pass queued")
+        self.later.append((self.now + self.DELAY, "release", self.fifo.popleft()))
+
+    def error(self, c: int, la: int) -> None:
+        """Line ``la`` of sub-cache ``c`` completes with an error in this clock."""
+        self.later.append((self.now + self.DELAY, "error", (c, la)))
+
+
 class TexCacheModel:
     """Directory of the four sub-caches without timing (see the module docstring)."""
 
     def __init__(self, cfg: TexCacheConfig):
         self.cfg = cfg
-        n = cfg.sets
-        self.tags = [[[None] * cfg.ways for _ in range(n)] for _ in range(4)]
-        self.plru = [[0] * n for _ in range(4)]
+        self.dir = TexCacheDirectory(cfg)
         self.stats = {"requests": 0, "quad_hits": 0, "lookups": 0, "line_misses": 0,
                       "texel_hits": 0, "passes": 0}
-
-    def lookup(self, c: int, la: int) -> bool:
-        """One line lookup in sub-cache c; True on a hit (the line is allocated on a miss)."""
-        cfg = self.cfg
-        s = set_of(la, cfg)
-        tag = la >> (1 + cfg.set_w)
-        ways = self.tags[c][s]
-        if tag in ways:
-            w = ways.index(tag)
-            hit = True
-        else:
-            w = ways.index(None) if None in ways else plru_victim(cfg, self.plru[c][s])
-            ways[w] = tag
-            hit = False
-        self.plru[c][s] = plru_touch(cfg, self.plru[c][s], w)
-        return hit
 
     def access(self, addrs: Sequence[int]) -> bool:
         """One request; True when every line lookup hit."""
@@ -200,15 +371,13 @@ class TexCacheModel:
         all_hit = True
         for p in passes(addrs, self.cfg):
             st["passes"] += 1
-            for c, la in p.lines.items():
-                st["lookups"] += 1
-                hit = self.lookup(c, la)
-                # the texels of this pass in sub-cache c share its lookup's outcome
-                st["texel_hits"] += hit * sum((p.mask >> t) & 1 and p.sub[t] == c
-                                              for t in range(4))
-                if not hit:
-                    st["line_misses"] += 1
-                    all_hit = False
+            out = self.dir.enter(p)
+            self.dir.release(out)
+            st["lookups"] += len(out)
+            st["texel_hits"] += texel_hits(p, out)
+            miss = sum(not lk.hit for lk in out)
+            st["line_misses"] += miss
+            all_hit = all_hit and not miss
         st["quad_hits"] += all_hit
         return all_hit
 

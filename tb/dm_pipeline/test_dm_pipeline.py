@@ -75,6 +75,8 @@ CASES = [
     ("bump", 32, "oblique", 20, "park", True, 0.9, 0.8, (0, 20)),
     ("rocks", 32, "grazing", 24, "park-xor", True, 0.6, 0.5, (5, 60)),
     ("four-shapes", 32, "front", 16, "oh", False, 1.0, 1.0, (20, 20)),
+    # pixels taken 1 clock in 10: the out FIFO fills and its credit must hold the hits back
+    ("bump", 32, "front", 16, "park", True, 1.0, 0.1, (0, 20)),
 ]
 
 
@@ -260,4 +262,7 @@ async def pipeline_reset_mid_frame(dut):
 def test_dm_pipeline():
     # -O0: the whole pipeline is one 12 MB model function, which GCC takes about 110 s over at
     # -O1 and 25 s at -O0; these tests run few clocks.
-    runner.run("dm_pipeline", "test_dm_pipeline", HERE, parameters={"SLOTS": 32}, opt="-O0")
+    # OUT_DEPTH below SLOTS: the out FIFO's credit binds under pixel back-pressure (with
+    # OUT_DEPTH >= SLOTS it never could, and admitting hits without it went unnoticed).
+    runner.run("dm_pipeline", "test_dm_pipeline", HERE, parameters={"SLOTS": 32, "OUT_DEPTH": 16},
+               opt="-O0")

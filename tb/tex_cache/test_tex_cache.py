@@ -18,7 +18,11 @@ Checked: every response against the head of the queue of accepted requests (tag 
 number, so nothing is lost, duplicated or reordered), its texels against the memory (unless its
 err flag is expected), rsp_err_o = 1 exactly for the quads with a line that answers SLVERR; no
 response left over; the statistics (requests, line lookups = model.tex_cache.passes, line misses =
-AR handshakes, bytes = misses * LINE_BYTES); the RTL's SVA (Verilator --assert), among them no
+AR handshakes, bytes = misses * LINE_BYTES); the directory, clock by clock on every stream:
+each pass entering the request FIFO must look up the lines model.tex_cache.passes gives and hit,
+miss and choose its way (the hit way or the victim) in every sub-cache exactly as
+model.tex_cache.TexCacheTimedModel does, fed with the clocks of the RTL's head reads (reference
+releases) and error fills; the hit / miss counters equal that model's; the RTL's SVA (Verilator --assert), among them no
 eviction of a referenced line and a simulation-only check that each slot read holds its line.
 
 Measured (``realistic_throughput``): quads per clock and hit rates on the camera stream with a
@@ -45,7 +49,9 @@ from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 from cocotbext.axi import AxiRamRead, AxiReadBus
 
-from model.tex_cache import TexCacheConfig, TexCacheModel, passes, window_fits
+from model.height_cache import clog2
+from model.tex_cache import (Blocked, TexCacheConfig, TexCacheModel, TexCacheTimedModel, passes,
+                             window_fits)
 from tb.common import report, runner
 
 import quads as Q
@@ -66,6 +72,24 @@ BASES = (0x1000_0000, 0x1040_0000, 0x2000_0000)
 #: counted per clock.
 COVER = ("merge", "victim_wait", "mshr_wait", "fifo_full", "split", "stale_beat", "err_fill",
          "err_pass", "victim_redirect", "win_split", "overlap")
+
+
+#: The RTL's internal signals the directory check reads (tex_cache's names; one place to re-point
+#: them should the module be split): the pass entering the FIFO (e_fire) with its sub-caches
+#: (lk_v), lines (lk_la), misses (lk_alloc) and ways (lk_way, the hit way or the victim); the
+#: head's read (h_pop); a line completing (w_fill_q), with an error (w_bad_q), its sub-cache and
+#: line address (w_sub_q, w_la_q).
+PROBES = {"fire": "e_fire", "used": "lk_v", "la": "lk_la", "alloc": "lk_alloc", "way": "lk_way",
+          "pop": "h_pop", "fill": "w_fill_q", "bad": "w_bad_q", "fsub": "w_sub_q",
+          "fla": "w_la_q"}
+
+
+def probe(dut, name: str):
+    """The handle of PROBES[name] (a hierarchical path under the DUT, dots between levels)."""
+    h = dut
+    for part in PROBES[name].split("."):
+        h = getattr(h, part)
+    return h
 
 
 #: The statistics outputs (stat_<name>_o) and the counter register behind each.
@@ -211,7 +235,11 @@ class Harness:
         self.epoch = None        # the RTL's epoch (from arid)
         self.inflight: Counter = Counter()  # line reads issued and not finished, by arid
         self.cov: Counter = Counter()       # clocks with each of the RTL's sim_* coverage points
-        self.exact = 0                      # runs whose hit / miss counts equal the model's
+        # the directory check (model.tex_cache.TexCacheTimedModel), every clock of every stream
+        self.tm = TexCacheTimedModel(self.cfg)
+        self.tm_passes: deque = deque()     # (pass, last) of accepted requests, not yet decided
+        self.decided = 0                    # passes whose hit / miss / way were compared
+        self.tm_bad = 0                     # decisions that differed
         cocotb.start_soon(self.monitor())
 
     # ---------------------------------------------------------------- expectations
@@ -251,12 +279,21 @@ class Harness:
         sig = [getattr(d, n) for n in ("rst_ni", "clr_stats_i", "req_valid_i", "req_ready_o",
                                        "req_addr_i", "m_axi_arvalid", "m_axi_arready",
                                        "m_axi_arid", "m_axi_rvalid", "m_axi_rlast", "m_axi_rid")]
-        cov = {n: getattr(d.u_assert, f"sim_{n}") for n in COVER}  # (tex_cache_assert)
+        cov = {n: getattr(d.u_assert, f"sim_{n}")  # (tex_cache_assert) for n in COVER}
+        pr = [probe(d, n) for n in ("fire", "pop", "fill")]
+        pr_fire = [probe(d, n) for n in ("used", "la", "alloc", "way")]
+        pr_fill = [probe(d, n) for n in ("bad", "fsub", "fla")]
         c = self.cfg
         prev_rst = 1
         while True:
             await RisingEdge(d.clk_i)
             rst, clr, rv, rr, ra, av, ar, aid, v, last, rid = (int(x.value) for x in sig)
+            fire, pop, fill = (int(x.value) for x in pr)
+            if not rst:
+                self.tm.reset()
+                self.tm_passes.clear()
+            else:
+                self.directory(clr, fire, pop, fill, pr_fire, pr_fill)
             for n, x in cov.items():
                 self.cov[n] += int(x.value)
             if av and ar:
@@ -269,15 +306,71 @@ class Harness:
             if not rst and prev_rst and self.epoch is not None:
                 self.epoch = (self.epoch + 1) % (1 << c.epoch_w)
             prev_rst = rst
+            if rst and rv and rr:
+                q = [(ra >> (c.addr_w * t)) & ((1 << c.addr_w) - 1) for t in range(4)]
+                ps = passes(q, c)
+                self.tm_passes.extend((p, k == len(ps) - 1) for k, p in enumerate(ps))
             if not rst or clr:
                 self.cnt = {k: 0 for k in self.cnt}
                 continue
             if rv and rr:
-                q = [(ra >> (c.addr_w * t)) & ((1 << c.addr_w) - 1) for t in range(4)]
                 self.cnt["requests"] += 1
-                self.cnt["lookups"] += sum(len(p.lines) for p in passes(q, c))
+                self.cnt["lookups"] += sum(len(p.lines) for p in ps)
             if av and ar:
                 self.cnt["lines"] += 1
+
+    def directory(self, clr: int, fire: int, pop: int, fill: int, pr_fire, pr_fill) -> None:
+        """One clock of the directory check: the pass entering the FIFO in this clock must look
+        up the lines model.tex_cache.passes gives, in the same sub-caches, and hit, miss and
+        choose its ways exactly as TexCacheTimedModel (reference counts included) says."""
+        try:
+            self._directory(clr, fire, pop, fill, pr_fire, pr_fill)
+        except AssertionError as e:  # the model's own checks (reference underflow, ...)
+            self.tm_bad += 1
+            self.bad.append(f"directory: clock {self.now}: model: {e}")
+
+    def _directory(self, clr: int, fire: int, pop: int, fill: int, pr_fire, pr_fill) -> None:
+        tm = self.tm
+        tm.step(bool(clr))
+        if fire:
+            used, la, alloc, way = (int(x.value) for x in pr_fire)
+            c = self.cfg
+            law = c.addr_w - c.off_w
+            ww = clog2(c.ways) or 1
+            if not self.tm_passes:
+                self.bad.append(f"directory: clock {self.now}: a pass enters with none expected")
+                return
+            p, last = self.tm_passes.popleft()
+            got_la = {k: (la >> (law * k)) & ((1 << law) - 1) for k in range(4) if used >> k & 1}
+            if got_la != p.lines:
+                self.tm_bad += 1
+                self.bad.append(f"directory: clock {self.now}: pass {self.decided} looks up "
+                                f"{ {k: hex(v) for k, v in got_la.items()} }, model "
+                                f"{ {k: hex(v) for k, v in p.lines.items()} }")
+            try:
+                out = tm.decide(p, last)
+            except Blocked as e:
+                self.tm_bad += 1
+                self.bad.append(f"directory: clock {self.now}: pass {self.decided}: model: {e}")
+                return
+            differs = False
+            for lk in out:
+                g_miss = (alloc >> lk.sub) & 1
+                g_way = (way >> (ww * lk.sub)) & ((1 << ww) - 1)
+                if g_miss != (not lk.hit) or g_way != lk.way:
+                    differs = True
+                    if self.tm_bad < 8:
+                        self.bad.append(
+                            f"directory: clock {self.now}: pass {self.decided} sub-cache "
+                            f"{lk.sub} set {lk.set} line {lk.la:#x}: RTL "
+                            f"{'miss' if g_miss else 'hit'} way {g_way}, model "
+                            f"{'hit' if lk.hit else 'miss'} way {lk.way}")
+            self.tm_bad += differs
+            self.decided += 1
+        if pop:
+            tm.pop()
+        if fill and int(pr_fill[0].value):
+            tm.error(int(pr_fill[1].value), int(pr_fill[2].value))
 
     # ---------------------------------------------------------------- clocking
     async def reset(self, clocks=4) -> None:
@@ -436,20 +529,31 @@ class Harness:
         if (not st["quad_hits"] <= st["requests"] or not st["line_misses"] <= st["lookups"]
                 or (exact_lookups and not texels_ok)):
             probs.append(f"counts out of range {st}")
+        probs += self.model_stats(st)
         if self.ram.outside:
             probs.append(f"reads outside the images: {[hex(a) for a in self.ram.outside[:4]]}")
         for p in probs:
             self.bad.append(f"{what}: statistics: {p}")
         return st
 
+    def model_stats(self, st: dict[str, int]) -> list[str]:
+        """The RTL's hit / miss counters against model.tex_cache.TexCacheTimedModel's (the same
+        decisions, counted as the RTL counts them)."""
+        return [f"{k} {st[k]} != model {self.tm.stats[k]}" for k in self.tm.stats
+                if st[k] != self.tm.stats[k]]
+
     def finish(self, what: str, need: tuple[str, ...] = ()) -> None:
         """Record the counts; fail on any mismatch or a coverage point in ``need`` never hit."""
+        if not self.decided:
+            self.bad.append(f"{what}: the directory check saw no pass")
         for k in need:
             if not self.cov[k]:
                 self.bad.append(f"{what}: coverage point sim_{k} never hit")
         report.record("tex_cache", "quads vs memory", self.checked, len(self.bad))
         msg = (f"VECTORS tex_cache {what}: {self.checked} responses checked ({self.flagged} "
-               f"flagged), {len(self.bad)} mismatches; coverage (clocks): "
+               f"flagged), {self.decided} passes' hits, misses and ways compared with "
+               f"model.tex_cache ({self.tm_bad} differ), {len(self.bad)} mismatches; coverage "
+               "(clocks): "
                + ", ".join(f"{k} {self.cov[k]}" for k in COVER))
         self.dut._log.info(msg)
         print(msg)
@@ -517,17 +621,12 @@ async def realistic_throughput(dut):
             await h.drain()
             st = h.check_stats(name)
             summary(h, r, st, f"{name}, latency {lat}", model)
-            # Without a victim changed by a reference, the directory is the model's exactly.
-            if h.cov["victim_redirect"] == redirects:
-                for k in ("quad_hits", "lookups", "line_misses", "texel_hits"):
-                    if st[k] != model[k]:
-                        h.bad.append(f"{name}: {k} {st[k]} != model {model[k]}")
-                h.exact += 1
-                dut._log.info("%s: hits and misses equal model.tex_cache's", name)
-            else:
-                dut._log.info("%s: %d clocks with a victim changed by a reference (hits and misses "
-                              "not compared with the model)", name,
-                              h.cov["victim_redirect"] - redirects)
+            # (every decision was compared with model.tex_cache.TexCacheTimedModel clock by
+            # clock, and the counters in check_stats; the model without references, for scale)
+            dut._log.info("%s: %d clocks with a victim changed by a reference; model without "
+                          "references: %d line misses, RTL %d", name,
+                          h.cov["victim_redirect"] - redirects, model["line_misses"],
+                          st["line_misses"])
     h.finish("realistic throughput")
 
 
@@ -562,6 +661,7 @@ async def stress(h: Harness, rng: random.Random, what: str, errors: bool, events
     await h.drain()
     if r["clears"]:   # a clear between a miss and its AR / beats: the counts do not pair up
         st = h.stats()
+        h.bad += [f"{what}: statistics: {p}" for p in h.model_stats(st)]
     else:
         st = h.check_stats(what, exact_lookups=exact_lookups and not r["resets"])
     summary(h, r, st, what)
