@@ -256,6 +256,12 @@ TOOL_CASES: dict[str, tuple[str, list[str], dict[str, str]]] = {
     "synth_check log in a file": ("scripts/flow/synth_check.py", ["--log", "{d}/afile/x.log"],
                                   {}),
     "vector_summary unknown option": ("scripts/bench/vector_summary.py", ["--nope"], {}),
+    "formal no formal dir": ("scripts/flow/formal.py", ["--root", "{d}/emptydir"], {}),
+    "formal jobs 0": ("scripts/flow/formal.py", ["--jobs", "0"], {}),
+    "formal unknown task": ("scripts/flow/formal.py", ["--only", "nope_task", "--list"], {}),
+    "mutate jobs 0": ("scripts/bench/mutate.py", ["--jobs", "0"], {}),
+    "mutate target above 1": ("scripts/bench/mutate.py", ["--target", "2"], {}),
+    "mutate missing list": ("scripts/bench/mutate.py", ["--list", "{d}/nope.toml", "--check"], {}),
     # python -m tb.harness.traverse_system / tb.harness.dm_pipeline
     "traverse_system size not a number": ("-m tb.harness.traverse_system", ["--size", "x"], {}),
     "traverse_system unknown method": ("-m tb.harness.traverse_system", ["--method", "nope", "--size", "8",
