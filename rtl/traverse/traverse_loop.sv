@@ -83,10 +83,12 @@
 //        new ray, -> S0
 // Positions on an axis that does not move are u0 itself (the model's np.where(s != 0, p, p0)).
 // Float units per axis pair: 6 f24_from_int, 12 f24_add, 12 f24_mul, 4 f24_to_index, 1
-// f24_from_unorm, 1 f24_one_minus.  The plane's 1 - H is f24_one_minus, not an adder: the same
-// word for every H in [0, 1] in one clock instead of two, so the cache's third clock of lookup
-// latency (its block RAMs' read registers copied before the tag compare) costs the ring no
-// stage.  Up to three positions per axis are computed in a pass (at t_end for the XOR
+// f24_from_unorm, 1 f24_one_minus; without XOR_PATH 10 f24_add, 10 f24_mul, 2 f24_to_index (the
+// position at t_end and its floor serve the XOR descent only: XOR_PATH = 0 leaves them out and
+// runs the XOR descent, park-xor's, as the multi-level descent).  The plane's 1 - H is
+// f24_one_minus, not an adder: the same word for every H in [0, 1] in one clock instead of two,
+// so the cache's third clock of lookup latency (its block RAMs' read registers copied before
+// the tag compare) costs the ring no stage.  Up to three positions per axis are computed in a pass (at t_end for the XOR
 // descent, at t and at the plane, one of which is the position at t_new for locate and the hit,
 // the other selective's P1); the ring is 18 deep (the paper's is 15) because the descent's locate
 // (position, floor, clip, level, boundaries, two crossing times, correction) follows t_new as a
@@ -101,7 +103,13 @@ module traverse_loop
   import f24_pkg::*;
   import traverse_pkg::*;
 #(
-  parameter int unsigned ID_W = 8
+  parameter int unsigned ID_W     = 8,
+  // 1: every method.  0: no XOR descent: the positions at t_end and their floors (2 f24_mul,
+  // 2 f24_add, 2 f24_to_index) are left out, and a configuration with the XOR descent (park-xor)
+  // descends as the multi-level descent instead (DESC_XOR runs as DESC_MULTI with the same
+  // `levels`: park-xor becomes start level, multi-level descent of 3 levels, selective level-up,
+  // clip; bit-exact with the model's method of those fields, not with park-xor).
+  parameter bit          XOR_PATH = 1'b1
 ) (
   input  logic              clk_i,
   input  logic              rst_ni,
@@ -224,6 +232,8 @@ module traverse_loop
   logic [4:1]   lv_q;              // lv_q[s]: the slot in stage s holds a live ray (not done)
   logic [9:7]   ts_q;              // ts_q[s]: ok, and t_new is t (not the plane)
   logic         xor_desc, sel_up;  // the method uses the XOR descent / the selective level-up
+  descent_e     desc;              // the descent policy run (DESC_XOR as DESC_MULTI without
+                                   // XOR_PATH)
   slot_idx_t    sl_q [D];          // stage s holds the slot of entry sl_q[s] = (ph - s) mod D
                                    // of the block RAM tables, ph = sl_q[0] the phase
 
@@ -239,7 +249,9 @@ module traverse_loop
     end
   end
 
-  assign xor_desc = (cfg_i.policy.descent == DESC_XOR);
+  assign xor_desc = XOR_PATH && (cfg_i.policy.descent == DESC_XOR);
+  assign desc     = xor_desc ? DESC_XOR
+                  : (cfg_i.policy.descent == DESC_XOR) ? DESC_MULTI : cfg_i.policy.descent;
   assign sel_up   = (cfg_i.policy.level_up == UP_SELECTIVE);
 
   // ---- registered reads and short pipelines (see the header) ---------------------------------
@@ -248,9 +260,8 @@ module traverse_loop
   f24_pair_t  uv2_q;               // S2
   f24_pair_t  inv3_q, inv4_q;      // S3 (block RAM read register), S4
   dirs_t      d5_q;                // S5
-  tval_t      tmap5_q, tm1_5_q;    // S5: t_map, min(t_map, 1)
+  tval_t      tmap5_q;             // S5: t_map
   exit_t      ex_q [10:6];         // S6 - S10: t_exit (computed in S5)
-  f24_t       tend6_q;             // S6: t_end (computed in S5)
   tval_t      tmap6_q;             // S6: t_map
   tval_t      t6_q;                // S6
   f24_pair_t  duv5_q, duv6_q;      // S5 (block RAM read register), S6
@@ -367,15 +378,11 @@ module traverse_loop
   assign ty5 = d5_q.sy.mv ? ty_raw : F24_POS_INF;
 
   // ---- S6: t_new, min(t_exit, t_map); du * t, du * plane, du * t_end ----------------------------
-  f24_t dut_x, dut_y, dup_x, dup_y, due_x, due_y;
+  f24_t dut_x, dut_y, dup_x, dup_y;
   f24_mul u_dut_x (.clk_i, .en_i(ok_q[6]), .a_i(duv6_q.u), .b_i(t6_q.t), .y_o(dut_x));
   f24_mul u_dut_y (.clk_i, .en_i(ok_q[6]), .a_i(duv6_q.v), .b_i(t6_q.t), .y_o(dut_y));
   f24_mul u_dup_x (.clk_i, .en_i(ok_q[6]), .a_i(duv6_q.u), .b_i(plane), .y_o(dup_x));
   f24_mul u_dup_y (.clk_i, .en_i(ok_q[6]), .a_i(duv6_q.v), .b_i(plane), .y_o(dup_y));
-  f24_mul u_due_x (.clk_i, .en_i(xor_desc && ok_q[6]), .a_i(duv6_q.u), .b_i(tend6_q),
-                   .y_o(due_x));
-  f24_mul u_due_y (.clk_i, .en_i(xor_desc && ok_q[6]), .a_i(duv6_q.v), .b_i(tend6_q),
-                   .y_o(due_y));
 
   // ---- S7: decisions; u0 + du t, u0 + du plane, u0 + du t_end -----------------------------------
   logic inside7;
@@ -383,32 +390,56 @@ module traverse_loop
   assign inside7 = ord_lt(t_new7_q, tmin7_q.tmin.ord);
   assign act7    = '{is_hit: inside7 && leaf7_q, down: inside7 && !leaf7_q,
                      miss: !inside7 && tmin7_q.miss_pre};
-  f24_t post_x, post_y, posp_x, posp_y, pose_x, pose_y;
-  logic pos_en, pose_en;  // S7 - S8 hold a pass whose height read returned data (of XOR)
+  f24_t post_x, post_y, posp_x, posp_y;
+  logic pos_en;  // S7 - S8 hold a pass whose height read returned data
   assign pos_en  = ok_q[7] || ok_q[8];
-  assign pose_en = xor_desc && pos_en;
   f24_add u_post_x (.clk_i, .en_i(pos_en), .a_i(uv7_q.u), .b_i(dut_x), .y_o(post_x));
   f24_add u_post_y (.clk_i, .en_i(pos_en), .a_i(uv7_q.v), .b_i(dut_y), .y_o(post_y));
   f24_add u_posp_x (.clk_i, .en_i(pos_en), .a_i(uv7_q.u), .b_i(dup_x), .y_o(posp_x));
   f24_add u_posp_y (.clk_i, .en_i(pos_en), .a_i(uv7_q.v), .b_i(dup_y), .y_o(posp_y));
-  f24_add u_pose_x (.clk_i, .en_i(pose_en), .a_i(uv7_q.u), .b_i(due_x), .y_o(pose_x));
-  f24_add u_pose_y (.clk_i, .en_i(pose_en), .a_i(uv7_q.v), .b_i(due_y), .y_o(pose_y));
 
   // ---- S9: floors of the positions at t_new (or the plane), at t_end ----------------------------
   // A descent floors the position at t_new, a crossing of the selective level-up the one at the
   // plane (P1): never both in one pass, so they share a unit.
   logic signed [IDX_W-1:0] ia_x, ia_y, ie_x, ie_y;
-  logic unused_sat_ax, unused_sat_ay, unused_sat_ex, unused_sat_ey;
+  logic unused_sat_ax, unused_sat_ay;
   logic ia_en;
   assign ia_en = dn_q[9] || (sel_up && ok_q[9] && !in_q[9]);
   f24_to_index #(.W(IDX_W)) u_ia_x (.clk_i, .en_i(ia_en),
     .a_i(d9_q.sx.mv ? (ut9_q ? post_x : posp_x) : uv9_q.u), .idx_o(ia_x), .sat_o(unused_sat_ax));
   f24_to_index #(.W(IDX_W)) u_ia_y (.clk_i, .en_i(ia_en),
     .a_i(d9_q.sy.mv ? (ut9_q ? post_y : posp_y) : uv9_q.v), .idx_o(ia_y), .sat_o(unused_sat_ay));
-  f24_to_index #(.W(IDX_W)) u_ie_x (.clk_i, .en_i(xor_desc && dn_q[9]),
-    .a_i(d9_q.sx.mv ? pose_x : uv9_q.u), .idx_o(ie_x), .sat_o(unused_sat_ex));
-  f24_to_index #(.W(IDX_W)) u_ie_y (.clk_i, .en_i(xor_desc && dn_q[9]),
-    .a_i(d9_q.sy.mv ? pose_y : uv9_q.v), .idx_o(ie_y), .sat_o(unused_sat_ey));
+
+  // ---- S6 - S10: the XOR descent's position at t_end and its floor (XOR_PATH only) -----------
+  if (XOR_PATH) begin : g_xor
+    f24_t due_x, due_y, pose_x, pose_y;
+    logic pose_en;  // S7 - S8 hold a pass of the XOR descent whose height read returned data
+    logic unused_sat_ex, unused_sat_ey;
+    tval_t tm1_5_q;  // S5: min(t_map, 1)
+    f24_t  tend6_q;  // S6: t_end (computed in S5)
+    always_ff @(posedge clk_i) begin
+      if (lv_q[4]) begin
+        tm1_5_q <= ord_min_first(f24_ord(tmap_q[4]), f24_ord(F24_ONE)) ? tval(tmap_q[4])
+                                                                          : tval(F24_ONE);
+      end
+      if (ok_q[5]) tend6_q <= min3(tx5, ty5, tm1_5_q);
+    end
+    assign pose_en = xor_desc && pos_en;
+    f24_mul u_due_x (.clk_i, .en_i(xor_desc && ok_q[6]), .a_i(duv6_q.u), .b_i(tend6_q),
+                     .y_o(due_x));
+    f24_mul u_due_y (.clk_i, .en_i(xor_desc && ok_q[6]), .a_i(duv6_q.v), .b_i(tend6_q),
+                     .y_o(due_y));
+    f24_add u_pose_x (.clk_i, .en_i(pose_en), .a_i(uv7_q.u), .b_i(due_x), .y_o(pose_x));
+    f24_add u_pose_y (.clk_i, .en_i(pose_en), .a_i(uv7_q.v), .b_i(due_y), .y_o(pose_y));
+    f24_to_index #(.W(IDX_W)) u_ie_x (.clk_i, .en_i(xor_desc && dn_q[9]),
+      .a_i(d9_q.sx.mv ? pose_x : uv9_q.u), .idx_o(ie_x), .sat_o(unused_sat_ex));
+    f24_to_index #(.W(IDX_W)) u_ie_y (.clk_i, .en_i(xor_desc && dn_q[9]),
+      .a_i(d9_q.sy.mv ? pose_y : uv9_q.v), .idx_o(ie_y), .sat_o(unused_sat_ey));
+  end else begin : g_no_xor
+    // (descend_pick reads the ends' floors for DESC_XOR only, which is never run here)
+    assign ie_x = ia_x;
+    assign ie_y = ia_y;
+  end
 
   // ---- S12: child estimate, its entry / exit boundaries, the child's range --------------------
   // c = clip(floor(p) >> k', child range) = clip(floor(p), node) >> k' (the node's range is
@@ -417,6 +448,10 @@ module traverse_loop
                                                    input logic inc);
     return IDX_W'((a & ~low_mask(nk)) + (sidx_t'(inc) <<< nk));  // ((a >> nk) + inc) << nk
   endfunction
+
+  // The XOR descent's second end (without XOR_PATH the first: descend_pick does not read it)
+  sidx_pair_t b11;
+  assign b11 = XOR_PATH ? b11_q : a11_q;
 
   logic [LVL_W-1:0] dd12;  // levels descended
   assign dd12 = n12_q.k - nk12_q;
@@ -543,12 +578,9 @@ module traverse_loop
       duv5_q  <= duv_q[sl_q[4]];
       d5_q    <= dir_q[4];
       tmap5_q <= tval(tmap_q[4]);
-      tm1_5_q <= ord_min_first(f24_ord(tmap_q[4]), f24_ord(F24_ONE)) ? tval(tmap_q[4])
-                                                                        : tval(F24_ONE);
     end
     if (ok_q[5]) begin
       ex_q[6] <= exit_of(tx5, ty5);
-      tend6_q <= min3(tx5, ty5, tm1_5_q);
       tmap6_q <= tmap5_q;
       t6_q    <= tval(t_q[5]);
       duv6_q  <= duv5_q;
@@ -596,8 +628,7 @@ module traverse_loop
     end
     // S11 -> S12: the new level
     if (dn_q[11]) begin
-      nk12_q <= descend_pick(cfg_i.policy.descent, n11_q.k, nkm11_q, a11_q.x, b11_q.x, a11_q.y,
-                             b11_q.y);
+      nk12_q <= descend_pick(desc, n11_q.k, nkm11_q, a11_q.x, b11.x, a11_q.y, b11.y);
       a12_q  <= a11_q;
       n12_q  <= n11_q;
       d12_q  <= d11_q;
