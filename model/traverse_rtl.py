@@ -26,7 +26,7 @@ ADDR_W = 32
 LOOKUP_LAT = 3
 #: Stages of the loop ring (one ray slot each) and of the setup pipeline (traverse_pkg::SETUP_LAT:
 #: the pipelined divider's f24_pkg::F24_DIV_LAT = 8 clocks, then 12 more stages).
-LOOP_DEPTH = 18
+LOOP_DEPTH = 19
 SETUP_DEPTH = 20
 
 

@@ -2,7 +2,7 @@
 // model.traverse.trace(pyr, rays, method, "f24") (hit, t, u, v, invalid, iterations).
 //
 //   ray stream -> traverse_setup (first mode, SETUP_LAT = 20 stages) -> setup FIFO
-//              -> traverse_loop (second mode, 18-slot ring, one height lookup per pass)
+//              -> traverse_loop (second mode, 19-slot ring, one height lookup per pass)
 //              -> result FIFO -> result stream (rays leave in completion order, not input order)
 //
 // Flow control (valid never depends on ready):
@@ -10,7 +10,7 @@
 //     the setup pipeline never stalls and its FIFO never overflows.  It is also 0 in the clock
 //     after a ray is taken: traverse_setup computes a ray's u and v axes on one set of float
 //     units in consecutive clocks, so it takes a ray every other clock at most (far above what
-//     the loop finishes: a ray takes several passes of the 18-slot ring).
+//     the loop finishes: a ray takes several passes of the 19-slot ring).
 //   - The loop takes a new ray only into an empty slot at its entry (re-circulating rays first).
 //   - Result back-pressure never loses a ray: a finished ray leaves the ring only when the result
 //     FIFO has room, otherwise it keeps circulating (no lookups) and tries again a pass later; an
