@@ -96,12 +96,12 @@ test-long: $(STAMP)
 	@$(ENV) export TB_LONG=1; $(PY) -m pytest -n $(JOBS) -q -p no:cacheprovider tb
 
 # Long measurements: model speed, the paper's study (out/study/), terrain and relief textures
-# (out/terrain, out/relief_texture), the RTL traverse unit per scene and view
-# (scripts/bench/bench_rtl.py: clocks/iteration, height-cache hit rate, bytes/ray, harness
-# clocks/s; out/bench/rtl.md), the whole pipeline per scene, view and MIP on/off
-# (scripts/bench/bench_pipeline.py: clocks/pixel vs iterations, cache hit rates, bytes/pixel;
-# out/bench/pipeline*.md), the harness on random rays, and the 10 M-vector soak of model/f24.py
-# against MPFR.
+# (out/terrain, out/relief_texture), the RTL traverse unit per scene and view (scripts/bench/bench_rtl.py:
+# clocks/iteration, height-cache hit rate, bytes/ray, harness clocks/s; out/bench/rtl.md) and on
+# incoherent rays (random positions and directions on 512x512 maps; out/bench/rtl_incoherent.md),
+# the whole pipeline per scene, view and MIP on/off (scripts/bench/bench_pipeline.py: clocks/pixel vs
+# iterations, cache hit rates, bytes/pixel; out/bench/pipeline*.md), the harness on random rays,
+# and the 10 M-vector soak of model/f24.py against MPFR.
 bench: $(STAMP)
 	@$(ENV) $(PY) scripts/bench/bench_model.py
 	@$(ENV) $(PY) scripts/render.py --scene rocks --angle oblique --method park --size 512 \
@@ -114,6 +114,8 @@ bench: $(STAMP)
 	@$(ENV) $(PY) scripts/bench/bench_rtl.py
 	@$(ENV) $(PY) scripts/bench/bench_rtl.py --scenes rocks --methods park --image 512 \
 	    --out out/bench/rtl_image512.json --md out/bench/rtl_image512.md
+	@$(ENV) $(PY) scripts/bench/bench_rtl.py --incoherent 20000 --size 512 \
+	    --out out/bench/rtl_incoherent.json --md out/bench/rtl_incoherent.md
 	@$(ENV) $(PY) scripts/bench/bench_pipeline.py
 	@$(ENV) $(PY) scripts/bench/bench_pipeline.py --views oblique --mip on,off --map 512 --image 256 \
 	    --out out/bench/pipeline_mip.json --md out/bench/pipeline_mip.md

@@ -1,50 +1,49 @@
 // traverse_loop: the second mode of the traverse unit, the iterative search of model/traverse.py
 // (the body of _trace's `while act.size` loop, for one ray per pass).
 //
-// A ring of LOOP_DEPTH = 18 stages; every stage holds one ray slot and every slot advances one
-// stage per clock (the loop never stalls).  One pass round the ring = one iteration = one height
-// lookup.  At the ring's tail (S17) a finished ray leaves for the result FIFO; a slot that is then
-// empty takes a new ray from setup (re-circulating rays have priority: new rays only fill
-// bubbles).
+// A ring of LOOP_DEPTH = 19 stages (traverse_pkg); every stage holds one ray slot and every slot
+// advances one stage per clock (the loop never stalls).  One pass round the ring = one iteration
+// = one height lookup.  At the ring's tail (S18) a finished ray leaves for the result FIFO; a slot
+// that is then empty takes a new ray from setup (re-circulating rays have priority: new rays only
+// fill bubbles).
 //
 // Ring registers: a ray's fields move with it, one register per field and stage (f_q[s] is the
-// field of the ray in stage s; S17 hands on to S0).  A stage reads the fields it needs straight
+// field of the ray in stage s; S18 hands on to S0).  A stage reads the fields it needs straight
 // from its own stage's registers, and a stage that changes a field writes the next stage's
 // register (f_q[s + 1] <= new value instead of f_q[s]).  Per ray:
 //   - the per-ray constants u0, v0, directions, t_map and the ray id, loaded when the ray enters
 //     the ring (u0, v0 become the hit's u, v when the ray hits: the result reads them);
-//   - the traversal state (level, cell, t, flags, iterations), loaded on entry and by S16 (the
-//     level and cell also by S17, a descent's node);
+//   - the traversal state (level, cell, t, flags, iterations), loaded on entry and by S17 (the
+//     level and cell also by S18, a descent's node);
 //   - what one pass computes for a stage far later in the same pass (t_new, the action, the
 //     crossing and the hit position): registers from the stage after the one that computes it
 //     to the one that reads it only.
-// du, dv, 1/du, 1/dv (96 bits, read in S2 - S4 and S14 only) stay in two tables of D = 18
-// entries in block RAM, one per slot: the entry of the slot in stage s is (ph - s) mod 18, with
-// ph a phase that steps every clock (each stage counts its own index, sl_q[s]).  (The ring was a
-// slot table for every field before: its 18:1 read multiplexers and the write multiplexers of the
-// state cost ~7,000 LUT4s, and the ring's registers cost no more flip-flops than the table's.)
-// Activity bits per stage move with the slots too: the slot holds a ray (v_q), a live ray
-// (S1 - S4), the height read returned data (ok) or an error (S4 - S16), the pass hits or descends
-// (S8 - S11), the pass descends (S8 - S17).
+// du, dv, 1/du, 1/dv (96 bits, read in S2 - S4 and S15 only) stay in two tables of D =
+// LOOP_DEPTH entries in block RAM, one per slot: the entry of the slot in stage s is (ph - s)
+// mod D, with ph a phase that steps every clock (each stage counts its own index, sl_q[s]).  (The
+// ring was a slot table for every field before: its D:1 read multiplexers and the write
+// multiplexers of the state cost ~7,000 LUT4s, and the ring's registers cost no more flip-flops
+// than the table's.)  Activity bits per stage move with the slots too: the slot holds a ray
+// (v_q), a live ray (S1 - S4), the height read returned data (ok) or an error (S4 - S17), the pass
+// hits or descends (S8 - S12), the pass descends (S8 - S18).
 //
 // Clock enables: a unit advances only while its stages hold a pass that uses its result, and
 // holds its registers otherwise (less switching, and less work for a simulator).  Until the
 // height arrives (S0 - S4) that is a live ray; from S4 on a pass whose height read returned data
-// (ok): the positions at t and at the plane too (whether the pass hits or descends is decided in
-// S7, after they start); the floor of the position at t_new and the child's boundaries only for
-// a descent, the floor of the position at the plane only for a crossing of the selective
-// level-up.  The positions at t_end (and their floor) advance only for the XOR descent.
+// (ok): the position (at t_new or at the plane) too; its floor and the child's boundaries only
+// for a descent, or for a crossing of the selective level-up (the floor at the plane, P1).  The
+// position at t_end (and its floor) advance only for the XOR descent.
 //
 // Registered operands: a float unit takes its operands from registers (a unit's result, a ring
 // register, or a copy made one clock earlier, name ending in the stage that uses it, _q), never
 // through a table read or a comparison, min, max, clip, add or shift in the same clock: the
 // units are only just fast enough for 100 MHz from registers.  Integer logic that feeds a unit
 // has a stage of its own, and so does every comparison the next stage acts on.  For S0 the tail
-// (S17) loads the ray that comes round: the node S16 wrote, the descent's node (corrected in S17
+// (S18) loads the ray that comes round: the node S17 wrote, the descent's node (corrected in S18
 // itself), or the new ray from setup.
 //
 // Stage schedule (a unit "a -> b" takes operands in Sa and delivers in Sb):
-//   S17  (previous pass) node, directions of the ray entering S0   -> node_q[0], dir_q[0]
+//   S18  (previous pass) node, directions of the ray entering S0   -> node_q[0], dir_q[0]
 //   S0   height address base + off[k] + (cy * side_k + cx) * bytes  -> lk_* registers (S1)
 //        (traverse_addr); exit boundary integer (cx + (sx > 0)) << k -> S1
 //   S1   lookup presented (lk_valid_o, lk_addr_o, lk_wide_o)
@@ -57,41 +56,46 @@
 //   S5   plane = 1 - H (f24_add(1, -H), H in [0, 1])                f24_one_minus S5 -> S6
 //        t_exit = min(tx, ty) (inf on an axis that does not move); t_end = min(t_exit,
 //        min(t_map, 1)) (= min(min(t_exit, t_map), 1): min is associative, NaN and ties too)
-//   S6   t_new = max(t, plane); min(t_exit, t_map)
-//        du * t, du * plane (the two candidates of du * t_new)      f24_mul      S6 -> S7
-//        du * t_end                                                 f24_mul      S6 -> S7
+//   S6   t_new = max(t, plane); min(t_exit, t_map); whether t_new < min(t_exit, t_map) (the
+//        pass hits or descends, S7's comparison on the same words): the time whose position
+//        the pass uses, t_new for a hit or a descent, else the plane (selective's P1)
 //   S7   inside / miss / hit / down / cross
-//        u0 + du t, u0 + du plane                                   f24_add      S7 -> S9
-//        u0 + du t_end                                              f24_add      S7 -> S9
-//   S9   position at t_new (u0 + du t or u0 + du plane: the one t_new is; the hit's u)
-//        floor(position at t_new) (a descent) or floor(position at
-//        plane) (selective's P1 for a crossing)                     f24_to_index S9 -> S10
-//        floor(position at t_end)                                   f24_to_index S9 -> S10
-//   S10  crossing's time; crossing, part 1: neighbour cell, parent, selective's stay
+//        du * (that time)                                           f24_mul      S7 -> S8
+//        du * t_end                                                 f24_mul      S7 -> S8
+//   S8   u0 + du * (that time)                                      f24_add      S8 -> S10
+//        u0 + du t_end                                              f24_add      S8 -> S10
+//   S10  position at t_new (a hit's u) or at the plane (a crossing)
+//        floor(position) (a descent, or selective's P1 for a crossing) f24_to_index S10 -> S11
+//        floor(position at t_end)                                   f24_to_index S10 -> S11
+//   S11  crossing's time; crossing, part 1: neighbour cell, parent, selective's stay
 //        (traverse_pkg::cross_pre); descent: the two positions clipped to the node
-//   S11  crossing, part 2: level-up policy (cross_up); descent: new level (one; multi: `levels`
+//   S12  crossing, part 2: level-up policy (cross_up); descent: new level (one; multi: `levels`
 //        until the first crossing; XOR of the ends) (descend_pick)
-//   S12  child estimate c = floor(p) >> k' (p clipped to the node); its entry / exit
+//   S13  child estimate c = floor(p) >> k' (p clipped to the node); its entry / exit
 //        boundary integers (c + (s < 0 / s > 0)) << k'; the child's range at level k'
-//   S13  entry / exit boundaries                                    f24_from_int S13 -> S14
+//   S14  entry / exit boundaries                                    f24_from_int S14 -> S15
 //        the three cells locate's correction chooses from
-//   S14  boundary - u0                                              f24_add      S14 -> S16
-//   S15  the state's copies for S16
-//   S16  (boundary - u0) * (1/du)                                   f24_mul      S16 -> S17
+//   S15  boundary - u0                                              f24_add      S15 -> S17
+//   S16  the state's copies for S17
+//   S17  (boundary - u0) * (1/du)                                   f24_mul      S17 -> S18
 //        next state (hit / miss / down / cross / lookup miss / cap)
-//   S17  locate's correction (the descent's cell); retire to the result FIFO, or merge with a
+//   S18  locate's correction (the descent's cell); retire to the result FIFO, or merge with a
 //        new ray, -> S0
 // Positions on an axis that does not move are u0 itself (the model's np.where(s != 0, p, p0)).
-// Float units per axis pair: 6 f24_from_int, 12 f24_add, 12 f24_mul, 4 f24_to_index, 1
-// f24_from_unorm, 1 f24_one_minus.  The plane's 1 - H is f24_one_minus, not an adder: the same
-// word for every H in [0, 1] in one clock instead of two, so the cache's third clock of lookup
-// latency (its block RAMs' read registers copied before the tag compare) costs the ring no
-// stage.  Up to three positions per axis are computed in a pass (at t_end for the XOR
-// descent, at t and at the plane, one of which is the position at t_new for locate and the hit,
-// the other selective's P1); the ring is 18 deep (the paper's is 15) because the descent's locate
-// (position, floor, clip, level, boundaries, two crossing times, correction) follows t_new as a
-// dependent chain of 11 clocks (S6 - S17), computing the position at t_new from both candidates
-// of t_new in parallel with the comparison that picks one.
+// Float units per axis pair: 6 f24_from_int, 10 f24_add, 10 f24_mul, 4 f24_to_index, 1
+// f24_from_unorm, 1 f24_one_minus; without XOR_PATH 8 f24_add, 8 f24_mul, 2 f24_to_index (the
+// position at t_end and its floor serve the XOR descent only: XOR_PATH = 0 leaves them out and
+// runs the XOR descent, park-xor's, as the multi-level descent).  The plane's 1 - H is
+// f24_one_minus, not an adder: the same word for every H in [0, 1] in one clock instead of two,
+// so the cache's third clock of lookup latency (its block RAMs' read registers copied before
+// the tag compare) costs the ring no stage.  Up to two positions per axis are computed in a pass:
+// at t_end for the XOR descent, and one at the time the pass uses, t_new (locate, the hit) or
+// the plane (selective's P1 for a crossing; a pass needs never both).  Picking that time first
+// (S6) costs the ring a stage: 19 deep (the paper's is 15), because the descent's locate (time,
+// position, floor, clip, level, boundaries, two crossing times, correction) follows the plane's
+// arrival as a dependent chain of 12 clocks (S6 - S18).  (Computing the positions at t and at
+// the plane both, and picking one in parallel, took a ring of 18 and two f24_mul, two f24_add
+// more per axis pair.)
 //
 // Lookup misses: the ray keeps its state and goes round again; the iteration is not counted
 // (iterations = height reads that returned data).  A read error finishes the ray with err = 1.
@@ -101,7 +105,13 @@ module traverse_loop
   import f24_pkg::*;
   import traverse_pkg::*;
 #(
-  parameter int unsigned ID_W = 8
+  parameter int unsigned ID_W     = 8,
+  // 1: every method.  0: no XOR descent: the positions at t_end and their floors (2 f24_mul,
+  // 2 f24_add, 2 f24_to_index) are left out, and a configuration with the XOR descent (park-xor)
+  // descends as the multi-level descent instead (DESC_XOR runs as DESC_MULTI with the same
+  // `levels`: park-xor becomes start level, multi-level descent of 3 levels, selective level-up,
+  // clip; bit-exact with the model's method of those fields, not with park-xor).
+  parameter bit          XOR_PATH = 1'b1
 ) (
   input  logic              clk_i,
   input  logic              rst_ni,
@@ -134,7 +144,7 @@ module traverse_loop
   output logic [4:0]        busy_o       // rays in the ring
 );
 
-  localparam int unsigned D  = LOOP_DEPTH;  // traverse_pkg: stages S0 .. S17
+  localparam int unsigned D  = LOOP_DEPTH;  // traverse_pkg: stages S0 .. S18
   localparam int unsigned SW = $clog2(D);   // block RAM table index width
 
   typedef logic [SW-1:0] slot_idx_t;
@@ -191,21 +201,21 @@ module traverse_loop
 
   // Per ray, round the whole ring: f_q[s] is the field of the ray in stage s.
   logic [ID_W-1:0]  id_q     [D];
-  f24_pair_t        uv_q     [D];  // u0, v0; the hit's u, v once the ray has hit (from S17)
+  f24_pair_t        uv_q     [D];  // u0, v0; the hit's u, v once the ray has hit (from S18)
   dirs_t            dir_q    [D];
   f24_t             tmap_q   [D];  // time of leaving the map's extent
-  node_t            node_q   [D];  // (S16 a crossing, S17 a descent, S17 a new ray)
+  node_t            node_q   [D];  // (S17 a crossing, S18 a descent, S18 a new ray)
   f24_t             t_q      [D];  // time the ray is at (hit time once done with a hit)
   status_t          stat_q   [D];
   // Per pass: [the stage that computes it, on the passes named] the stage that reads it; the
   // registers run from the stage after the first to the second.  "ok": the height read returned
   // data; "inside": the pass hits or descends.
-  f24_t             t_new_q  [16:7];   // [S6 ok]              S16: max(t, plane)
-  act_t             act_q    [15:8];   // [S7 ok]              S15
-  f24_pair_t        pos_q    [16:10];  // [S9 inside]          S16: position at t_new
-  f24_t             xt_q     [16:11];  // [S10 ok, not inside] S16: the crossing's time
+  f24_t             t_new_q  [17:7];   // [S6 ok]              S17: max(t, plane)
+  act_t             act_q    [16:8];   // [S7 ok]              S16
+  f24_pair_t        pos_q    [17:11];  // [S10 inside]          S17: position at t_new
+  f24_t             xt_q     [17:12];  // [S11 ok, not inside] S17: the crossing's time
                                        // max(t, t_exit)
-  cross_node_t      cross_q  [16:12];  // [S11 ok, not inside] S16: the crossing's new node, up
+  cross_node_t      cross_q  [17:13];  // [S12 ok, not inside] S17: the crossing's new node, up
   // Per ray, in block RAM: du, dv and 1/du, 1/dv, one entry per slot (see the header), written
   // when the ray enters the ring.  They are read only into registers, so synthesis can put them
   // in block RAM (ram_style; a 16x4 LUT RAM costs 6 LUT4s).  Their reads are made a stage early
@@ -218,12 +228,13 @@ module traverse_loop
   // ---- ring position, pass activity (see the header) ----------------------------------------
   logic [D-1:0] v_q;               // v_q[s]: the slot in stage s holds a ray
   logic         ok4, err4;         // the height read of the ray in S4 returned data / an error
-  logic [16:5]  ok_q, err_q;       // ok4, err4 of the ray in stage s (meaningful with v_q[s])
-  logic [11:8]  in_q;              // in_q[s]: ok, and the pass hits or descends (inside its node)
-  logic [17:8]  dn_q;              // dn_q[s]: ok, and the pass descends
+  logic [17:5]  ok_q, err_q;       // ok4, err4 of the ray in stage s (meaningful with v_q[s])
+  logic [12:8]  in_q;              // in_q[s]: ok, and the pass hits or descends (inside its node)
+  logic [18:8]  dn_q;              // dn_q[s]: ok, and the pass descends
   logic [4:1]   lv_q;              // lv_q[s]: the slot in stage s holds a live ray (not done)
-  logic [9:7]   ts_q;              // ts_q[s]: ok, and t_new is t (not the plane)
   logic         xor_desc, sel_up;  // the method uses the XOR descent / the selective level-up
+  descent_e     desc;              // the descent policy run (DESC_XOR as DESC_MULTI without
+                                   // XOR_PATH)
   slot_idx_t    sl_q [D];          // stage s holds the slot of entry sl_q[s] = (ph - s) mod D
                                    // of the block RAM tables, ph = sl_q[0] the phase
 
@@ -239,7 +250,9 @@ module traverse_loop
     end
   end
 
-  assign xor_desc = (cfg_i.policy.descent == DESC_XOR);
+  assign xor_desc = XOR_PATH && (cfg_i.policy.descent == DESC_XOR);
+  assign desc     = xor_desc ? DESC_XOR
+                  : (cfg_i.policy.descent == DESC_XOR) ? DESC_MULTI : cfg_i.policy.descent;
   assign sel_up   = (cfg_i.policy.level_up == UP_SELECTIVE);
 
   // ---- registered reads and short pipelines (see the header) ---------------------------------
@@ -248,38 +261,37 @@ module traverse_loop
   f24_pair_t  uv2_q;               // S2
   f24_pair_t  inv3_q, inv4_q;      // S3 (block RAM read register), S4
   dirs_t      d5_q;                // S5
-  tval_t      tmap5_q, tm1_5_q;    // S5: t_map, min(t_map, 1)
-  exit_t      ex_q [10:6];         // S6 - S10: t_exit (computed in S5)
-  f24_t       tend6_q;             // S6: t_end (computed in S5)
+  tval_t      tmap5_q;             // S5: t_map
+  exit_t      ex_q [11:6];         // S6 - S11: t_exit (computed in S5)
   tval_t      tmap6_q;             // S6: t_map
   tval_t      t6_q;                // S6
-  f24_pair_t  duv5_q, duv6_q;      // S5 (block RAM read register), S6
+  f24_pair_t  duv5_q, duv6_q, duv7_q;  // S5 (block RAM read register), S6, S7
+  f24_t       tp7_q;               // S7: t_new for a hit or descent, else the plane (from S6)
   f24_ord_t   t_new7_q;            // S7: max(t, plane) (computed in S6), comparable
   tmin_t      tmin7_q;             // S7 (computed in S6)
   logic       leaf7_q;             // S7: the node is at level 0
-  f24_pair_t  uv7_q, uv8_q;        // S7, S8
-  logic       ut9_q;               // S9: the position at t_new is u0 + du t, floor it (a descent)
-  f24_pair_t  uv9_q;               // S9
-  dirs_t      d9_q, d10_q, d11_q, d12_q, d13_q;  // S9 - S13
-  node_t      n9_q, n10_q, n11_q, n12_q;         // S9 - S12
-  sidx_pair_t lo10_q, hi10_q;      // S10: the node's level-0 cells (computed in S9)
-  logic       crossed10_q, prev10_q, prev11_q;   // S10, S11: status bits
-  tval_t      t10_q;               // S10
-  cross_pre_t xpre11_q;            // S11: crossing, part 1 (computed in S10)
-  sidx_pair_t a11_q, b11_q;        // S11: positions at t_new, t_end clipped to the node
-  logic [4:0] nkm11_q;             // S11: multi's new level
-  sidx_pair_t a12_q;               // S12
-  logic [LVL_W-1:0] nk12_q, nk13_q;  // S12, S13: the descent's new level (computed in S11)
-  logic [IDX_W-1:0] kben_x13_q, kbex_x13_q, kben_y13_q, kbex_y13_q;  // S13 (computed in S12)
-  sidx_pair_t c13_q, lo13_q, hi13_q;  // S13: child estimate, the child's range at level k'
-  f24_pair_t  uv14_q;              // S14
-  desc_t      dsc_q [17:14];       // S14 - S17: new level, locate's candidates (from S13)
-  f24_pair_t  inv15_q, inv16_q;    // S15 (block RAM read register), S16
-  status_t    st16_q;              // S16
-  logic [ITER_W-1:0] it16_q;       // S16: iterations + 1
-  act_t       act16_q;             // S16
-  f24_ord_t   t_new17_q;           // S17: t_new, comparable
-  logic       down17_q, done17_q;  // S17: the pass descended (not capped); the ray is done
+  f24_pair_t  uv8_q;               // S8
+  f24_pair_t  uv10_q;              // S10
+  dirs_t      d10_q, d11_q, d12_q, d13_q, d14_q;  // S10 - S14
+  node_t      n10_q, n11_q, n12_q, n13_q;         // S10 - S13
+  sidx_pair_t lo11_q, hi11_q;      // S11: the node's level-0 cells (computed in S10)
+  logic       crossed11_q, prev11_q, prev12_q;   // S11, S12: status bits
+  tval_t      t11_q;               // S11
+  cross_pre_t xpre12_q;            // S12: crossing, part 1 (computed in S11)
+  sidx_pair_t a12_q, b12_q;        // S12: positions at t_new, t_end clipped to the node
+  logic [4:0] nkm12_q;             // S12: multi's new level
+  sidx_pair_t a13_q;               // S13
+  logic [LVL_W-1:0] nk13_q, nk14_q;  // S13, S14: the descent's new level (computed in S12)
+  logic [IDX_W-1:0] kben_x14_q, kbex_x14_q, kben_y14_q, kbex_y14_q;  // S14 (computed in S13)
+  sidx_pair_t c14_q, lo14_q, hi14_q;  // S14: child estimate, the child's range at level k'
+  f24_pair_t  uv15_q;              // S15
+  desc_t      dsc_q [18:15];       // S15 - S18: new level, locate's candidates (from S14)
+  f24_pair_t  inv16_q, inv17_q;    // S16 (block RAM read register), S17
+  status_t    st17_q;              // S17
+  logic [ITER_W-1:0] it17_q;       // S17: iterations + 1
+  act_t       act17_q;             // S17
+  f24_ord_t   t_new18_q;           // S18: t_new, comparable
+  logic       down18_q, done18_q;  // S18: the pass descended (not capped); the ray is done
 
   // ---- S0: height address, exit boundary integers ----------------------------------------------
   logic [ADDR_W-1:0] addr0;
@@ -366,51 +378,82 @@ module traverse_loop
   assign tx5 = d5_q.sx.mv ? tx_raw : F24_POS_INF;
   assign ty5 = d5_q.sy.mv ? ty_raw : F24_POS_INF;
 
-  // ---- S6: t_new, min(t_exit, t_map); du * t, du * plane, du * t_end ----------------------------
-  f24_t dut_x, dut_y, dup_x, dup_y, due_x, due_y;
-  f24_mul u_dut_x (.clk_i, .en_i(ok_q[6]), .a_i(duv6_q.u), .b_i(t6_q.t), .y_o(dut_x));
-  f24_mul u_dut_y (.clk_i, .en_i(ok_q[6]), .a_i(duv6_q.v), .b_i(t6_q.t), .y_o(dut_y));
-  f24_mul u_dup_x (.clk_i, .en_i(ok_q[6]), .a_i(duv6_q.u), .b_i(plane), .y_o(dup_x));
-  f24_mul u_dup_y (.clk_i, .en_i(ok_q[6]), .a_i(duv6_q.v), .b_i(plane), .y_o(dup_y));
-  f24_mul u_due_x (.clk_i, .en_i(xor_desc && ok_q[6]), .a_i(duv6_q.u), .b_i(tend6_q),
-                   .y_o(due_x));
-  f24_mul u_due_y (.clk_i, .en_i(xor_desc && ok_q[6]), .a_i(duv6_q.v), .b_i(tend6_q),
-                   .y_o(due_y));
+  // ---- S6: t_new, min(t_exit, t_map), whether the pass will be inside: the time to position ---
+  // t_new7 and tmin7 are what S7 compares; S6 makes the same comparison on the same words to pick
+  // the one time whose position the pass uses: t_new for a hit or a descent (its locate, the
+  // hit's u, v), the plane for a crossing (selective's P1).  (t_new is t or the plane: when it is
+  // the plane both are one word.)
+  f24_ord_t t_new6;
+  tmin_t    tmin6;
+  logic     t_first6, inside6;
+  assign t_first6 = ord_max_first(t6_q.ord, f24_ord(plane));
+  assign t_new6   = t_first6 ? t6_q.ord : f24_ord(plane);
+  assign tmin6    = '{tmin: ord_min_first(ex_q[6].te.ord, tmap6_q.ord) ? ex_q[6].te : tmap6_q,
+                      miss_pre: ord_le(tmap6_q.ord, ex_q[6].te.ord)};
+  assign inside6  = ord_lt(t_new6, tmin6.tmin.ord);
 
-  // ---- S7: decisions; u0 + du t, u0 + du plane, u0 + du t_end -----------------------------------
+  // ---- S7: decisions; du * that time ------------------------------------------------------------
   logic inside7;
   act_t act7;
   assign inside7 = ord_lt(t_new7_q, tmin7_q.tmin.ord);
   assign act7    = '{is_hit: inside7 && leaf7_q, down: inside7 && !leaf7_q,
                      miss: !inside7 && tmin7_q.miss_pre};
-  f24_t post_x, post_y, posp_x, posp_y, pose_x, pose_y;
-  logic pos_en, pose_en;  // S7 - S8 hold a pass whose height read returned data (of XOR)
-  assign pos_en  = ok_q[7] || ok_q[8];
-  assign pose_en = xor_desc && pos_en;
-  f24_add u_post_x (.clk_i, .en_i(pos_en), .a_i(uv7_q.u), .b_i(dut_x), .y_o(post_x));
-  f24_add u_post_y (.clk_i, .en_i(pos_en), .a_i(uv7_q.v), .b_i(dut_y), .y_o(post_y));
-  f24_add u_posp_x (.clk_i, .en_i(pos_en), .a_i(uv7_q.u), .b_i(dup_x), .y_o(posp_x));
-  f24_add u_posp_y (.clk_i, .en_i(pos_en), .a_i(uv7_q.v), .b_i(dup_y), .y_o(posp_y));
-  f24_add u_pose_x (.clk_i, .en_i(pose_en), .a_i(uv7_q.u), .b_i(due_x), .y_o(pose_x));
-  f24_add u_pose_y (.clk_i, .en_i(pose_en), .a_i(uv7_q.v), .b_i(due_y), .y_o(pose_y));
+  f24_t dtp_x, dtp_y;
+  f24_mul u_dtp_x (.clk_i, .en_i(ok_q[7]), .a_i(duv7_q.u), .b_i(tp7_q), .y_o(dtp_x));
+  f24_mul u_dtp_y (.clk_i, .en_i(ok_q[7]), .a_i(duv7_q.v), .b_i(tp7_q), .y_o(dtp_y));
 
-  // ---- S9: floors of the positions at t_new (or the plane), at t_end ----------------------------
+  // ---- S8: u0 + du * that time, u0 + du t_end ---------------------------------------------------
+  f24_t pos_x, pos_y;
+  logic pos_en;  // S8 - S9 hold a pass whose height read returned data
+  assign pos_en  = ok_q[8] || ok_q[9];
+  f24_add u_pos_x (.clk_i, .en_i(pos_en), .a_i(uv8_q.u), .b_i(dtp_x), .y_o(pos_x));
+  f24_add u_pos_y (.clk_i, .en_i(pos_en), .a_i(uv8_q.v), .b_i(dtp_y), .y_o(pos_y));
+
+  // ---- S10: floors of the position (at t_new or the plane), at t_end --------------------------
   // A descent floors the position at t_new, a crossing of the selective level-up the one at the
   // plane (P1): never both in one pass, so they share a unit.
   logic signed [IDX_W-1:0] ia_x, ia_y, ie_x, ie_y;
-  logic unused_sat_ax, unused_sat_ay, unused_sat_ex, unused_sat_ey;
+  logic unused_sat_ax, unused_sat_ay;
   logic ia_en;
-  assign ia_en = dn_q[9] || (sel_up && ok_q[9] && !in_q[9]);
+  assign ia_en = dn_q[10] || (sel_up && ok_q[10] && !in_q[10]);
   f24_to_index #(.W(IDX_W)) u_ia_x (.clk_i, .en_i(ia_en),
-    .a_i(d9_q.sx.mv ? (ut9_q ? post_x : posp_x) : uv9_q.u), .idx_o(ia_x), .sat_o(unused_sat_ax));
+    .a_i(d10_q.sx.mv ? pos_x : uv10_q.u), .idx_o(ia_x), .sat_o(unused_sat_ax));
   f24_to_index #(.W(IDX_W)) u_ia_y (.clk_i, .en_i(ia_en),
-    .a_i(d9_q.sy.mv ? (ut9_q ? post_y : posp_y) : uv9_q.v), .idx_o(ia_y), .sat_o(unused_sat_ay));
-  f24_to_index #(.W(IDX_W)) u_ie_x (.clk_i, .en_i(xor_desc && dn_q[9]),
-    .a_i(d9_q.sx.mv ? pose_x : uv9_q.u), .idx_o(ie_x), .sat_o(unused_sat_ex));
-  f24_to_index #(.W(IDX_W)) u_ie_y (.clk_i, .en_i(xor_desc && dn_q[9]),
-    .a_i(d9_q.sy.mv ? pose_y : uv9_q.v), .idx_o(ie_y), .sat_o(unused_sat_ey));
+    .a_i(d10_q.sy.mv ? pos_y : uv10_q.v), .idx_o(ia_y), .sat_o(unused_sat_ay));
 
-  // ---- S12: child estimate, its entry / exit boundaries, the child's range --------------------
+  // ---- S6 - S11: the XOR descent's position at t_end and its floor (XOR_PATH only) -----------
+  if (XOR_PATH) begin : g_xor
+    f24_t due_x, due_y, pose_x, pose_y;
+    logic pose_en;  // S8 - S9 hold a pass of the XOR descent whose height read returned data
+    logic unused_sat_ex, unused_sat_ey;
+    tval_t tm1_5_q;  // S5: min(t_map, 1)
+    f24_t  tend6_q, tend7_q;  // S6, S7: t_end (computed in S5)
+    always_ff @(posedge clk_i) begin
+      if (lv_q[4]) begin
+        tm1_5_q <= ord_min_first(f24_ord(tmap_q[4]), f24_ord(F24_ONE)) ? tval(tmap_q[4])
+                                                                          : tval(F24_ONE);
+      end
+      if (ok_q[5]) tend6_q <= min3(tx5, ty5, tm1_5_q);
+      if (ok_q[6]) tend7_q <= tend6_q;
+    end
+    assign pose_en = xor_desc && pos_en;
+    f24_mul u_due_x (.clk_i, .en_i(xor_desc && ok_q[7]), .a_i(duv7_q.u), .b_i(tend7_q),
+                     .y_o(due_x));
+    f24_mul u_due_y (.clk_i, .en_i(xor_desc && ok_q[7]), .a_i(duv7_q.v), .b_i(tend7_q),
+                     .y_o(due_y));
+    f24_add u_pose_x (.clk_i, .en_i(pose_en), .a_i(uv8_q.u), .b_i(due_x), .y_o(pose_x));
+    f24_add u_pose_y (.clk_i, .en_i(pose_en), .a_i(uv8_q.v), .b_i(due_y), .y_o(pose_y));
+    f24_to_index #(.W(IDX_W)) u_ie_x (.clk_i, .en_i(xor_desc && dn_q[10]),
+      .a_i(d10_q.sx.mv ? pose_x : uv10_q.u), .idx_o(ie_x), .sat_o(unused_sat_ex));
+    f24_to_index #(.W(IDX_W)) u_ie_y (.clk_i, .en_i(xor_desc && dn_q[10]),
+      .a_i(d10_q.sy.mv ? pose_y : uv10_q.v), .idx_o(ie_y), .sat_o(unused_sat_ey));
+  end else begin : g_no_xor
+    // (descend_pick reads the ends' floors for DESC_XOR only, which is never run here)
+    assign ie_x = ia_x;
+    assign ie_y = ia_y;
+  end
+
+  // ---- S13: child estimate, its entry / exit boundaries, the child's range --------------------
   // c = clip(floor(p) >> k', child range) = clip(floor(p), node) >> k' (the node's range is
   // whole cells of level k'), so c << k' is the clipped p with its low k' bits cleared.
   function automatic logic [IDX_W-1:0] child_bound(input sidx_t a, input logic [LVL_W-1:0] nk,
@@ -418,81 +461,85 @@ module traverse_loop
     return IDX_W'((a & ~low_mask(nk)) + (sidx_t'(inc) <<< nk));  // ((a >> nk) + inc) << nk
   endfunction
 
-  logic [LVL_W-1:0] dd12;  // levels descended
-  assign dd12 = n12_q.k - nk12_q;
+  // The XOR descent's second end (without XOR_PATH the first: descend_pick does not read it)
+  sidx_pair_t b12;
+  assign b12 = XOR_PATH ? b12_q : a12_q;
 
-  // ---- S13, S14, S16: crossing times of the child's boundaries -------------------------------
+  logic [LVL_W-1:0] dd13;  // levels descended
+  assign dd13 = n13_q.k - nk13_q;
+
+  // ---- S14, S15, S17: crossing times of the child's boundaries -------------------------------
   f24_t ben_x, bex_x, ben_y, bex_y;
-  f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(dn_q[13]), .k_i(kben_x13_q), .y_o(ben_x));
-  f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(dn_q[13]), .k_i(kbex_x13_q), .y_o(bex_x));
-  f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(dn_q[13]), .k_i(kben_y13_q), .y_o(ben_y));
-  f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(dn_q[13]), .k_i(kbex_y13_q), .y_o(bex_y));
+  f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(dn_q[14]), .k_i(kben_x14_q), .y_o(ben_x));
+  f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(dn_q[14]), .k_i(kbex_x14_q), .y_o(bex_x));
+  f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(dn_q[14]), .k_i(kben_y14_q), .y_o(ben_y));
+  f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(dn_q[14]), .k_i(kbex_y14_q), .y_o(bex_y));
 
   f24_t den_x, dex_x, den_y, dex_y, ten_x, tex_x, ten_y, tex_y;
-  logic bd_en;  // S14 - S15 hold a descent
-  assign bd_en = dn_q[14] || dn_q[15];
-  f24_add u_den_x (.clk_i, .en_i(bd_en), .a_i(ben_x), .b_i(f24_neg(uv14_q.u)), .y_o(den_x));
-  f24_add u_dex_x (.clk_i, .en_i(bd_en), .a_i(bex_x), .b_i(f24_neg(uv14_q.u)), .y_o(dex_x));
-  f24_add u_den_y (.clk_i, .en_i(bd_en), .a_i(ben_y), .b_i(f24_neg(uv14_q.v)), .y_o(den_y));
-  f24_add u_dex_y (.clk_i, .en_i(bd_en), .a_i(bex_y), .b_i(f24_neg(uv14_q.v)), .y_o(dex_y));
-  f24_mul u_ten_x (.clk_i, .en_i(dn_q[16]), .a_i(den_x), .b_i(inv16_q.u), .y_o(ten_x));
-  f24_mul u_tex_x (.clk_i, .en_i(dn_q[16]), .a_i(dex_x), .b_i(inv16_q.u), .y_o(tex_x));
-  f24_mul u_ten_y (.clk_i, .en_i(dn_q[16]), .a_i(den_y), .b_i(inv16_q.v), .y_o(ten_y));
-  f24_mul u_tex_y (.clk_i, .en_i(dn_q[16]), .a_i(dex_y), .b_i(inv16_q.v), .y_o(tex_y));
+  logic bd_en;  // S15 - S16 hold a descent
+  assign bd_en = dn_q[15] || dn_q[16];
+  f24_add u_den_x (.clk_i, .en_i(bd_en), .a_i(ben_x), .b_i(f24_neg(uv15_q.u)), .y_o(den_x));
+  f24_add u_dex_x (.clk_i, .en_i(bd_en), .a_i(bex_x), .b_i(f24_neg(uv15_q.u)), .y_o(dex_x));
+  f24_add u_den_y (.clk_i, .en_i(bd_en), .a_i(ben_y), .b_i(f24_neg(uv15_q.v)), .y_o(den_y));
+  f24_add u_dex_y (.clk_i, .en_i(bd_en), .a_i(bex_y), .b_i(f24_neg(uv15_q.v)), .y_o(dex_y));
+  f24_mul u_ten_x (.clk_i, .en_i(dn_q[17]), .a_i(den_x), .b_i(inv17_q.u), .y_o(ten_x));
+  f24_mul u_tex_x (.clk_i, .en_i(dn_q[17]), .a_i(dex_x), .b_i(inv17_q.u), .y_o(tex_x));
+  f24_mul u_ten_y (.clk_i, .en_i(dn_q[17]), .a_i(den_y), .b_i(inv17_q.v), .y_o(ten_y));
+  f24_mul u_tex_y (.clk_i, .en_i(dn_q[17]), .a_i(dex_y), .b_i(inv17_q.v), .y_o(tex_y));
 
-  // ---- S16: next state -----------------------------------------------------------------------
+  // ---- S17: next state -----------------------------------------------------------------------
   /* verilator lint_off UNUSEDSIGNAL */  // a live ray has no final flag (hit, ...) set: not read
-  status_t st16;
+  status_t st17;
   /* verilator lint_on UNUSEDSIGNAL */
-  status_t nst16;
-  cross_node_t x16;
-  logic live16, err16, iter16, hit16, miss16, down16, cross16, cap16;
-  assign st16    = st16_q;
-  assign x16     = cross_q[16];
+  status_t nst17;
+  cross_node_t x17;
+  logic live17, err17, iter17, hit17, miss17, down17, cross17, cap17;
+  assign st17    = st17_q;
+  assign x17     = cross_q[17];
   // A ray finished earlier (waiting for room in the result FIFO) is left untouched, and so is
   // one whose lookup missed in the cache (same state, round again).
-  assign live16  = v_q[16] && !st16.done;
-  assign err16   = live16 && err_q[16];
-  assign iter16  = live16 && !err_q[16] && ok_q[16];
-  assign hit16   = iter16 && act16_q.is_hit;
-  assign miss16  = iter16 && !act16_q.is_hit && act16_q.miss;
-  assign down16  = iter16 && !act16_q.is_hit && !act16_q.miss && act16_q.down;
-  assign cross16 = iter16 && !act16_q.is_hit && !act16_q.miss && !act16_q.down;
-  assign cap16   = iter16 && !act16_q.is_hit && !act16_q.miss && (it16_q >= cfg_i.iter_cap);
+  assign live17  = v_q[17] && !st17.done;
+  assign err17   = live17 && err_q[17];
+  assign iter17  = live17 && !err_q[17] && ok_q[17];
+  assign hit17   = iter17 && act17_q.is_hit;
+  assign miss17  = iter17 && !act17_q.is_hit && act17_q.miss;
+  assign down17  = iter17 && !act17_q.is_hit && !act17_q.miss && act17_q.down;
+  assign cross17 = iter17 && !act17_q.is_hit && !act17_q.miss && !act17_q.down;
+  assign cap17   = iter17 && !act17_q.is_hit && !act17_q.miss && (it17_q >= cfg_i.iter_cap);
   // (written for a live ray only, which has none of the final flags set yet)
-  assign nst16   = '{crossed:    st16.crossed || cross16,
-                     prev_cross: cross16 ? !x16.up : (st16.prev_cross && !down16),
-                     done:       err16 || hit16 || miss16 || cap16,
-                     hit:        hit16,
+  assign nst17   = '{crossed:    st17.crossed || cross17,
+                     prev_cross: cross17 ? !x17.up : (st17.prev_cross && !down17),
+                     done:       err17 || hit17 || miss17 || cap17,
+                     hit:        hit17,
                      invalid:    1'b0,
-                     capped:     cap16,
-                     err:        err16,
-                     iters:      iter16 ? it16_q : st16.iters};
+                     capped:     cap17,
+                     err:        err17,
+                     iters:      iter17 ? it17_q : st17.iters};
 
-  assign st_iter_o  = iter16;
-  assign st_down_o  = down16;
-  assign st_cross_o = cross16;
-  assign st_up_o    = cross16 && x16.up;
+  assign st_iter_o  = iter17;
+  assign st_down_o  = down17;
+  assign st_cross_o = cross17;
+  assign st_up_o    = cross17 && x17.up;
 
-  // ---- S17: the descent's cell, retire, merge ------------------------------------------------
+  // ---- S18: the descent's cell, retire, merge ------------------------------------------------
   // locate's correction: the cell whose crossing times bracket t (cells are half-open in t).
   function automatic logic [CELL_W-1:0] correct(input locate_t c, input f24_ord_t t_entry,
                                                 input f24_ord_t t_exit, input f24_ord_t t);
     return ord_lt(t, t_entry) ? c.back : ord_le(t_exit, t) ? c.fwd : c.est;
   endfunction
 
-  node_t ndn17, n_new;
-  assign ndn17 = '{k:  dsc_q[17].nk,
-                   cx: correct(dsc_q[17].x, f24_ord(ten_x), f24_ord(tex_x), t_new17_q),
-                   cy: correct(dsc_q[17].y, f24_ord(ten_y), f24_ord(tex_y), t_new17_q)};
+  node_t ndn18, n_new;
+  assign ndn18 = '{k:  dsc_q[18].nk,
+                   cx: correct(dsc_q[18].x, f24_ord(ten_x), f24_ord(tex_x), t_new18_q),
+                   cy: correct(dsc_q[18].y, f24_ord(ten_y), f24_ord(tex_y), t_new18_q)};
   assign n_new = '{k: new_ray_i.k, cx: new_ray_i.cx, cy: new_ray_i.cy};
 
   /* verilator lint_off UNUSEDSIGNAL */  // the tail reads the result flags only
-  status_t st17;
+  status_t st18;
   /* verilator lint_on UNUSEDSIGNAL */
   logic    retire, bypass, admit;
-  assign st17   = stat_q[D-1];
-  assign retire = v_q[D-1] && done17_q && !res_full_i;
+  assign st18   = stat_q[D-1];
+  assign retire = v_q[D-1] && done18_q && !res_full_i;
   // A ray that setup already finished (invalid, or never enters the map) goes straight to the
   // result FIFO when the tail does not use it this clock.
   assign bypass = !retire && new_valid_i && new_ray_i.done && !res_full_i;
@@ -503,38 +550,37 @@ module traverse_loop
   assign res_id_o   = retire ? id_q[D-1] : new_id_i;
   // (a retiring ray's uv_q holds the hit's u, v if it hit, else u0, v0)
   assign res_o      = retire ? '{t: t_q[D-1], u: uv_q[D-1].u, v: uv_q[D-1].v,
-                                 hit: st17.hit, invalid: st17.invalid, capped: st17.capped,
-                                 err: st17.err, iters: st17.iters}
+                                 hit: st18.hit, invalid: st18.invalid, capped: st18.capped,
+                                 err: st18.err, iters: st18.iters}
                              : '{t: new_ray_i.t, u: new_ray_i.u0, v: new_ray_i.v0,
                                  hit: new_ray_i.hit, invalid: new_ray_i.invalid,
                                  capped: new_ray_i.capped, err: new_ray_i.err,
                                  iters: new_ray_i.iters};
 
   // ---- ring ------------------------------------------------------------------------------------
-  // S17 -> S0: the ray re-circulates (priority), or a new ray fills the bubble.
+  // S18 -> S0: the ray re-circulates (priority), or a new ray fills the bubble.
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       v_q     <= '0;
       live0_q <= 1'b0;
     end else begin
       v_q     <= {v_q[D-2:0], (v_q[D-1] && !retire) || admit};
-      live0_q <= admit || (v_q[D-1] && !done17_q);
+      live0_q <= admit || (v_q[D-1] && !done18_q);
     end
   end
 
   always_ff @(posedge clk_i) begin
-    ok_q  <= {ok_q[15:5], ok4};
-    err_q <= {err_q[15:5], err4};
-    in_q  <= {in_q[10:8], ok_q[7] && inside7};
-    dn_q  <= {dn_q[16:8], ok_q[7] && act7.down};
+    ok_q  <= {ok_q[16:5], ok4};
+    err_q <= {err_q[16:5], err4};
+    in_q  <= {in_q[11:8], ok_q[7] && inside7};
+    dn_q  <= {dn_q[17:8], ok_q[7] && act7.down};
     lv_q  <= {lv_q[3:1], live0_q};
-    ts_q  <= {ts_q[8:7], ord_max_first(t6_q.ord, f24_ord(plane))};
   end
 
   // The registered reads and the pipelines; each loads while the stage before its reader holds a
   // pass that uses it.
   always_ff @(posedge clk_i) begin
-    // S17 -> S0: the ray coming round (S16 wrote a crossing's node), its descent's node, or the
+    // S18 -> S0: the ray coming round (S17 wrote a crossing's node), its descent's node, or the
     // new ray
     if (lv_q[1]) uv2_q  <= uv_q[1];
     if (lv_q[2]) inv3_q <= inv_q[sl_q[2]];
@@ -543,102 +589,97 @@ module traverse_loop
       duv5_q  <= duv_q[sl_q[4]];
       d5_q    <= dir_q[4];
       tmap5_q <= tval(tmap_q[4]);
-      tm1_5_q <= ord_min_first(f24_ord(tmap_q[4]), f24_ord(F24_ONE)) ? tval(tmap_q[4])
-                                                                        : tval(F24_ONE);
     end
     if (ok_q[5]) begin
       ex_q[6] <= exit_of(tx5, ty5);
-      tend6_q <= min3(tx5, ty5, tm1_5_q);
       tmap6_q <= tmap5_q;
       t6_q    <= tval(t_q[5]);
       duv6_q  <= duv5_q;
     end
     if (ok_q[6]) begin
-      t_new7_q <= ord_max_first(t6_q.ord, f24_ord(plane)) ? t6_q.ord : f24_ord(plane);
-      tmin7_q  <= '{tmin: ord_min_first(ex_q[6].te.ord, tmap6_q.ord) ? ex_q[6].te : tmap6_q,
-                    miss_pre: ord_le(tmap6_q.ord, ex_q[6].te.ord)};
+      t_new7_q <= t_new6;
+      tmin7_q  <= tmin6;
       leaf7_q  <= (node_q[6].k == '0);
-      uv7_q    <= uv_q[6];
+      tp7_q    <= (inside6 && t_first6) ? t6_q.t : plane;
+      duv7_q   <= duv6_q;
     end
-    for (int s = 6; s < 10; s++) begin
+    for (int s = 6; s < 11; s++) begin
       if (ok_q[s]) ex_q[s+1] <= ex_q[s];
     end
-    if (ok_q[7]) uv8_q <= uv7_q;
-    if (ok_q[8]) begin
-      ut9_q <= in_q[8] && ts_q[8];
-      uv9_q <= uv8_q;
-      d9_q  <= dir_q[8];
-      n9_q  <= node_q[8];
-    end
+    if (ok_q[7]) uv8_q <= uv_q[7];
     if (ok_q[9]) begin
-      d10_q       <= d9_q;
-      n10_q       <= n9_q;
-      lo10_q      <= '{x: node_lo(n9_q.k, n9_q.cx), y: node_lo(n9_q.k, n9_q.cy)};
-      hi10_q      <= '{x: node_hi(n9_q.k, n9_q.cx), y: node_hi(n9_q.k, n9_q.cy)};
-      crossed10_q <= stat_q[9].crossed;
-      prev10_q    <= stat_q[9].prev_cross;
-      t10_q       <= tval(t_q[9]);
+      uv10_q <= uv_q[9];
+      d10_q  <= dir_q[9];
+      n10_q  <= node_q[9];
     end
-    // S10 -> S11: the crossing's first part, the descent's clipped positions
-    if (ok_q[10] && !in_q[10]) begin
-      xpre11_q <= cross_pre(n10_q.k, n10_q.cx, n10_q.cy, ex_q[10].eqx, ex_q[10].eqy, d10_q.sx,
-                            d10_q.sy, ia_x, ia_y);
-      prev11_q <= prev10_q;
+    if (ok_q[10]) begin
+      d11_q       <= d10_q;
+      n11_q       <= n10_q;
+      lo11_q      <= '{x: node_lo(n10_q.k, n10_q.cx), y: node_lo(n10_q.k, n10_q.cy)};
+      hi11_q      <= '{x: node_hi(n10_q.k, n10_q.cx), y: node_hi(n10_q.k, n10_q.cy)};
+      crossed11_q <= stat_q[10].crossed;
+      prev11_q    <= stat_q[10].prev_cross;
+      t11_q       <= tval(t_q[10]);
     end
-    if (dn_q[10]) begin
-      a11_q   <= '{x: clip_idx(sidx_t'(ia_x), lo10_q.x, hi10_q.x),
-                   y: clip_idx(sidx_t'(ia_y), lo10_q.y, hi10_q.y)};
-      b11_q   <= '{x: clip_idx(sidx_t'(ie_x), lo10_q.x, hi10_q.x),
-                   y: clip_idx(sidx_t'(ie_y), lo10_q.y, hi10_q.y)};
-      nkm11_q <= multi_level(cfg_i.policy.levels, n10_q.k, crossed10_q);
-      n11_q   <= n10_q;
-      d11_q   <= d10_q;
+    // S11 -> S12: the crossing's first part, the descent's clipped positions
+    if (ok_q[11] && !in_q[11]) begin
+      xpre12_q <= cross_pre(n11_q.k, n11_q.cx, n11_q.cy, ex_q[11].eqx, ex_q[11].eqy, d11_q.sx,
+                            d11_q.sy, ia_x, ia_y);
+      prev12_q <= prev11_q;
     end
-    // S11 -> S12: the new level
     if (dn_q[11]) begin
-      nk12_q <= descend_pick(cfg_i.policy.descent, n11_q.k, nkm11_q, a11_q.x, b11_q.x, a11_q.y,
-                             b11_q.y);
-      a12_q  <= a11_q;
-      n12_q  <= n11_q;
-      d12_q  <= d11_q;
+      a12_q   <= '{x: clip_idx(sidx_t'(ia_x), lo11_q.x, hi11_q.x),
+                   y: clip_idx(sidx_t'(ia_y), lo11_q.y, hi11_q.y)};
+      b12_q   <= '{x: clip_idx(sidx_t'(ie_x), lo11_q.x, hi11_q.x),
+                   y: clip_idx(sidx_t'(ie_y), lo11_q.y, hi11_q.y)};
+      nkm12_q <= multi_level(cfg_i.policy.levels, n11_q.k, crossed11_q);
+      n12_q   <= n11_q;
+      d12_q   <= d11_q;
     end
-    // S12 -> S13: the child's boundary integers, estimate and range
+    // S12 -> S13: the new level
     if (dn_q[12]) begin
-      kben_x13_q <= child_bound(a12_q.x, nk12_q, d12_q.sx.mv && d12_q.sx.neg);
-      kbex_x13_q <= child_bound(a12_q.x, nk12_q, d12_q.sx.mv && !d12_q.sx.neg);
-      kben_y13_q <= child_bound(a12_q.y, nk12_q, d12_q.sy.mv && d12_q.sy.neg);
-      kbex_y13_q <= child_bound(a12_q.y, nk12_q, d12_q.sy.mv && !d12_q.sy.neg);
-      c13_q      <= '{x: a12_q.x >>> nk12_q, y: a12_q.y >>> nk12_q};
-      lo13_q     <= '{x: node_lo(dd12, n12_q.cx), y: node_lo(dd12, n12_q.cy)};
-      hi13_q     <= '{x: node_hi(dd12, n12_q.cx), y: node_hi(dd12, n12_q.cy)};
-      nk13_q     <= nk12_q;
-      d13_q      <= d12_q;
+      nk13_q <= descend_pick(desc, n12_q.k, nkm12_q, a12_q.x, b12.x, a12_q.y, b12.y);
+      a13_q  <= a12_q;
+      n13_q  <= n12_q;
+      d13_q  <= d12_q;
     end
-    // S13 -> S14: locate's three candidates
+    // S13 -> S14: the child's boundary integers, estimate and range
     if (dn_q[13]) begin
-      uv14_q    <= uv_q[13];
-      dsc_q[14] <= '{nk: nk13_q,
-        x: '{back: CELL_W'(clip_idx(c13_q.x - dir_val(d13_q.sx), lo13_q.x, hi13_q.x)),
-             est:  CELL_W'(c13_q.x),
-             fwd:  CELL_W'(clip_idx(c13_q.x + dir_val(d13_q.sx), lo13_q.x, hi13_q.x))},
-        y: '{back: CELL_W'(clip_idx(c13_q.y - dir_val(d13_q.sy), lo13_q.y, hi13_q.y)),
-             est:  CELL_W'(c13_q.y),
-             fwd:  CELL_W'(clip_idx(c13_q.y + dir_val(d13_q.sy), lo13_q.y, hi13_q.y))}};
+      kben_x14_q <= child_bound(a13_q.x, nk13_q, d13_q.sx.mv && d13_q.sx.neg);
+      kbex_x14_q <= child_bound(a13_q.x, nk13_q, d13_q.sx.mv && !d13_q.sx.neg);
+      kben_y14_q <= child_bound(a13_q.y, nk13_q, d13_q.sy.mv && d13_q.sy.neg);
+      kbex_y14_q <= child_bound(a13_q.y, nk13_q, d13_q.sy.mv && !d13_q.sy.neg);
+      c14_q      <= '{x: a13_q.x >>> nk13_q, y: a13_q.y >>> nk13_q};
+      lo14_q     <= '{x: node_lo(dd13, n13_q.cx), y: node_lo(dd13, n13_q.cy)};
+      hi14_q     <= '{x: node_hi(dd13, n13_q.cx), y: node_hi(dd13, n13_q.cy)};
+      nk14_q     <= nk13_q;
+      d14_q      <= d13_q;
     end
-    for (int s = 14; s < 17; s++) begin
+    // S14 -> S15: locate's three candidates
+    if (dn_q[14]) begin
+      uv15_q    <= uv_q[14];
+      dsc_q[15] <= '{nk: nk14_q,
+        x: '{back: CELL_W'(clip_idx(c14_q.x - dir_val(d14_q.sx), lo14_q.x, hi14_q.x)),
+             est:  CELL_W'(c14_q.x),
+             fwd:  CELL_W'(clip_idx(c14_q.x + dir_val(d14_q.sx), lo14_q.x, hi14_q.x))},
+        y: '{back: CELL_W'(clip_idx(c14_q.y - dir_val(d14_q.sy), lo14_q.y, hi14_q.y)),
+             est:  CELL_W'(c14_q.y),
+             fwd:  CELL_W'(clip_idx(c14_q.y + dir_val(d14_q.sy), lo14_q.y, hi14_q.y))}};
+    end
+    for (int s = 15; s < 18; s++) begin
       if (dn_q[s]) dsc_q[s+1] <= dsc_q[s];
     end
-    if (dn_q[14]) inv15_q <= inv_q[sl_q[14]];
-    if (dn_q[15]) inv16_q <= inv15_q;
-    if (v_q[15]) begin
-      st16_q  <= stat_q[15];
-      it16_q  <= stat_q[15].iters + ITER_W'(1);
-      act16_q <= act_q[15];
+    if (dn_q[15]) inv16_q <= inv_q[sl_q[15]];
+    if (dn_q[16]) inv17_q <= inv16_q;
+    if (v_q[16]) begin
+      st17_q  <= stat_q[16];
+      it17_q  <= stat_q[16].iters + ITER_W'(1);
+      act17_q <= act_q[16];
     end
-    // S16 -> S17
-    if (dn_q[16]) t_new17_q <= f24_ord(t_new_q[16]);
-    down17_q <= down16 && !cap16;  // (a capped ray is done: its node is never read again)
-    done17_q <= (err16 || iter16) ? nst16.done : st16.done;
+    // S17 -> S18
+    if (dn_q[17]) t_new18_q <= f24_ord(t_new_q[17]);
+    down18_q <= down17 && !cap17;  // (a capped ray is done: its node is never read again)
+    done18_q <= (err17 || iter17) ? nst17.done : st17.done;
   end
 
   // The ring: every field moves on one stage per clock; a stage that changes a field loads the
@@ -653,43 +694,43 @@ module traverse_loop
       t_q[s]    <= t_q[s-1];
       stat_q[s] <= stat_q[s-1];
     end
-    // S17 -> S0: the ray re-circulates (its descent's node, if it descended), or a new ray fills
+    // S18 -> S0: the ray re-circulates (its descent's node, if it descended), or a new ray fills
     // the bubble
     id_q[0]   <= admit ? new_id_i : id_q[D-1];
     uv_q[0]   <= admit ? '{u: new_ray_i.u0, v: new_ray_i.v0} : uv_q[D-1];
     dir_q[0]  <= admit ? '{sx: new_ray_i.sx, sy: new_ray_i.sy} : dir_q[D-1];
     tmap_q[0] <= admit ? new_ray_i.t_map : tmap_q[D-1];
-    node_q[0] <= admit ? n_new : down17_q ? ndn17 : node_q[D-1];
+    node_q[0] <= admit ? n_new : down18_q ? ndn18 : node_q[D-1];
     t_q[0]    <= admit ? new_ray_i.t : t_q[D-1];
     stat_q[0] <= admit ? status_t'{crossed: new_ray_i.crossed, prev_cross: new_ray_i.prev_cross,
                                    done: new_ray_i.done, hit: new_ray_i.hit,
                                    invalid: new_ray_i.invalid, capped: new_ray_i.capped,
                                    err: new_ray_i.err, iters: new_ray_i.iters}
                        : stat_q[D-1];
-    // S16 -> S17: the next state (only a live ray whose lookup answered changes); a hit's u, v
+    // S17 -> S18: the next state (only a live ray whose lookup answered changes); a hit's u, v
     // take the place of u0, v0 (no stage reads those again)
-    if (err16 || iter16) stat_q[17] <= nst16;
-    if (hit16 || down16) t_q[17] <= t_new_q[16];
-    if (cross16) begin
-      t_q[17]    <= xt_q[16];
-      node_q[17] <= '{k: x16.k, cx: x16.cx, cy: x16.cy};
+    if (err17 || iter17) stat_q[18] <= nst17;
+    if (hit17 || down17) t_q[18] <= t_new_q[17];
+    if (cross17) begin
+      t_q[18]    <= xt_q[17];
+      node_q[18] <= '{k: x17.k, cx: x17.cx, cy: x17.cy};
     end
-    if (hit16) uv_q[17] <= pos_q[16];
+    if (hit17) uv_q[18] <= pos_q[17];
     // What this pass computes for its later stages (only for the passes that read it: the height
     // read returned data; hits and descents; crossings).
-    for (int s = 8; s < 17; s++) t_new_q[s] <= t_new_q[s-1];
-    for (int s = 9; s < 16; s++) act_q[s] <= act_q[s-1];
-    for (int s = 11; s < 17; s++) pos_q[s] <= pos_q[s-1];
-    for (int s = 12; s < 17; s++) xt_q[s] <= xt_q[s-1];
-    for (int s = 13; s < 17; s++) cross_q[s] <= cross_q[s-1];
-    if (ok_q[6]) t_new_q[7] <= ord_max_first(t6_q.ord, f24_ord(plane)) ? t6_q.t : plane;
+    for (int s = 8; s < 18; s++) t_new_q[s] <= t_new_q[s-1];
+    for (int s = 9; s < 17; s++) act_q[s] <= act_q[s-1];
+    for (int s = 12; s < 18; s++) pos_q[s] <= pos_q[s-1];
+    for (int s = 13; s < 18; s++) xt_q[s] <= xt_q[s-1];
+    for (int s = 14; s < 18; s++) cross_q[s] <= cross_q[s-1];
+    if (ok_q[6]) t_new_q[7] <= t_first6 ? t6_q.t : plane;
     if (ok_q[7]) act_q[8]   <= act7;
-    if (in_q[9]) pos_q[10] <= ts_q[9] ? '{u: post_x, v: post_y} : '{u: posp_x, v: posp_y};
-    if (ok_q[10] && !in_q[10]) begin
-      xt_q[11] <= ord_max_first(t10_q.ord, ex_q[10].te.ord) ? t10_q.t : ex_q[10].te.t;
-    end
+    if (in_q[10]) pos_q[11] <= '{u: pos_x, v: pos_y};
     if (ok_q[11] && !in_q[11]) begin
-      cross_q[12] <= cross_up(cfg_i.policy.level_up, cfg_i.n, xpre11_q, prev11_q);
+      xt_q[12] <= ord_max_first(t11_q.ord, ex_q[11].te.ord) ? t11_q.t : ex_q[11].te.t;
+    end
+    if (ok_q[12] && !in_q[12]) begin
+      cross_q[13] <= cross_up(cfg_i.policy.level_up, cfg_i.n, xpre12_q, prev12_q);
     end
   end
 
@@ -727,12 +768,12 @@ module traverse_loop
     else $error("traverse_loop: H = %h outside [+0, 1]", h);
   new_ray_only_in_bubble: assert property (@(posedge clk_i) disable iff (!rst_ni)
                                            admit |-> (!v_q[D-1] || retire));
-  // A ray that is not done has none of the final flags (S16 relies on it).
+  // A ray that is not done has none of the final flags (S17 relies on it).
   live_ray_has_no_result: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      live16 |-> !(st16.hit || st16.invalid || st16.capped || st16.err));
+      live17 |-> !(st17.hit || st17.invalid || st17.capped || st17.err));
   // The descent's node and a new ray never take one entry in one clock.
   descent_not_admitted: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                         down17_q |-> !admit);
+                                         down18_q |-> !admit);
 `endif
 
 endmodule

@@ -22,6 +22,9 @@ package traverse_pkg;
   localparam int unsigned ADDR_W     = 32;  // byte address of a height lookup
   localparam int unsigned CODE_W     = 16;  // a height code (unorm8 in the low byte, or unorm16)
   localparam int unsigned LOOKUP_LAT = 3;   // clocks from lk_valid_o to rs_valid_i
+  // Stages of traverse_loop's ring (one ray slot each): one pass = one iteration = LOOP_DEPTH
+  // clocks.
+  localparam int unsigned LOOP_DEPTH = 19;
   // traverse_setup: the reciprocals (f24_div, F24_DIV_LAT clocks), then 12 more stages (its
   // header); busy_o counts the rays in it, 0 .. SETUP_LAT.
   localparam int unsigned SETUP_LAT    = F24_DIV_LAT + 12;  // 20

@@ -2,7 +2,7 @@
 // model.traverse.trace(pyr, rays, method, "f24") (hit, t, u, v, invalid, iterations).
 //
 //   ray stream -> traverse_setup (first mode, SETUP_LAT = 20 stages) -> setup FIFO
-//              -> traverse_loop (second mode, 18-slot ring, one height lookup per pass)
+//              -> traverse_loop (second mode, 19-slot ring, one height lookup per pass)
 //              -> result FIFO -> result stream (rays leave in completion order, not input order)
 //
 // Flow control (valid never depends on ready):
@@ -10,7 +10,7 @@
 //     the setup pipeline never stalls and its FIFO never overflows.  It is also 0 in the clock
 //     after a ray is taken: traverse_setup computes a ray's u and v axes on one set of float
 //     units in consecutive clocks, so it takes a ray every other clock at most (far above what
-//     the loop finishes: a ray takes several passes of the 18-slot ring).
+//     the loop finishes: a ray takes several passes of the 19-slot ring).
 //   - The loop takes a new ray only into an empty slot at its entry (re-circulating rays first).
 //   - Result back-pressure never loses a ray: a finished ray leaves the ring only when the result
 //     FIFO has room, otherwise it keeps circulating (no lookups) and tries again a pass later; an
@@ -34,7 +34,8 @@ module traverse_unit
   parameter int unsigned ID_W             = 16,
   parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > SETUP_LAT (20)
   parameter int unsigned RES_FIFO_DEPTH   = 16,  // power of two
-  parameter int unsigned CNT_W            = 32   // statistics counters
+  parameter int unsigned CNT_W            = 32,  // statistics counters
+  parameter bit          XOR_PATH         = 1'b1 // 0: no XOR descent path (traverse_loop)
 ) (
   input  logic                              clk_i,
   input  logic                              rst_ni,
@@ -151,7 +152,7 @@ module traverse_unit
   logic [RF_AW:0]  rf_count;
   logic            st_iter, st_down, st_cross, st_up;
   logic [4:0]      lp_busy;
-  traverse_loop #(.ID_W(ID_W)) u_loop (
+  traverse_loop #(.ID_W(ID_W), .XOR_PATH(XOR_PATH)) u_loop (
     .clk_i, .rst_ni, .cfg_i(cfg),
     .new_valid_i(!sf_empty), .new_id_i(sf_head[SF_W-1 -: ID_W]),
     .new_ray_i(ray_t'(sf_head[$bits(ray_t)-1:0])), .new_pop_o(sf_pop),

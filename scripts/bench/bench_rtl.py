@@ -11,6 +11,12 @@ memory with --latency clocks of read latency).  Two runs per case:
   warm  the same frame again with the cache as the first run left it (an animation's steady
         state; the harness checks that both runs return the same results).
 
+--incoherent N replaces the camera images by N incoherent rays per scene (the view column reads
+"incoherent"): start positions uniform over the map, azimuths uniform in [0, 2 pi), horizontal run
+over the ray's whole depth (|du, dv|) uniform in [0, --size / 2] texels, in random order, like the
+secondary rays of a ray tracer (no two neighbours in the stream share a tile or a direction);
+--seed picks them.
+
 Every RTL result is compared with the f24 engine (t, u, v, hit, invalid, iterations): a
 difference fails the run (exit status 1).  Writes JSON (--out) and a markdown table (--md) and
 prints the table; the README's performance table comes from it.
@@ -35,6 +41,7 @@ ROOT = Path(__file__).resolve().parents[2]
 from model import camera, heightmap, scenes, traverse
 from model.cli import Parser, fail
 from tb.harness import traverse_system
+from model.rays import Rays
 
 PROG = "bench_rtl.py"
 #: Park et al. 2013, section 5.5 / Table 6: 4 units at 84 MHz, 7.5 Mpixels/s on Rocks (oblique).
@@ -69,6 +76,14 @@ def run_case(pyr: heightmap.Pyramid, rays: Any, method: str, latency: int) -> di
     return row
 
 
+def incoherent_rays(rng: np.random.Generator, size: int, n: int) -> Any:
+    """``n`` rays from uniform positions on a ``size`` x ``size`` map in uniform directions."""
+    ang = rng.uniform(0.0, 2.0 * np.pi, n)
+    run = rng.uniform(0.0, size / 2, n)
+    return Rays(rng.uniform(0.0, size, n), rng.uniform(0.0, size, n),
+                run * np.cos(ang), run * np.sin(ang))
+
+
 def derived(row: dict[str, Any], key: str) -> dict[str, float]:
     r = row[key]
     it = max(r["iterations"], 1)
@@ -88,19 +103,23 @@ def main() -> int:
     ap.add_argument("--image", type=int, default=256, help="camera image side (default 256)")
     ap.add_argument("--tile", type=int, default=8, help="fragment tile side (1: raster order)")
     ap.add_argument("--latency", type=int, default=20, help="AXI read latency in clocks")
+    ap.add_argument("--incoherent", type=int, default=0, metavar="N",
+                    help="N incoherent rays per scene instead of the camera views (see above)")
+    ap.add_argument("--seed", type=int, default=1, help="random seed of --incoherent's rays")
     ap.add_argument("--out", type=Path, default=ROOT / "out" / "bench" / "rtl.json")
     ap.add_argument("--md", type=Path, default=ROOT / "out" / "bench" / "rtl.md")
     a = ap.parse_args()
     names = a.scenes.split(",")
-    angles = a.angles.split(",")
+    angles = ["incoherent"] if a.incoherent else a.angles.split(",")
     methods = a.methods.split(",")
-    for what, got, valid in (("scene", names, scenes.SCENES), ("angle", angles, camera.VIEWS),
+    for what, got, valid in (("scene", names, scenes.SCENES),
+                             ("angle", [] if a.incoherent else angles, camera.VIEWS),
                              ("method", methods, traverse.EXACT_METHODS)):
         bad = [x for x in got if x not in valid]
         if bad:
             fail(PROG, f"unknown {what} {bad[0]!r}; valid: {', '.join(valid)}")
     for what, val, lo in (("--size", a.size, 1), ("--image", a.image, 1), ("--tile", a.tile, 1),
-                          ("--latency", a.latency, 1)):
+                          ("--latency", a.latency, 1), ("--incoherent", a.incoherent, 0)):
         if val < lo:
             fail(PROG, f"{what} must be >= {lo}, got {val}")
     try:
@@ -110,12 +129,16 @@ def main() -> int:
     rows: list[dict[str, Any]] = []
     total = len(names) * len(angles) * len(methods)
     t0 = time.monotonic()
+    rng = np.random.default_rng(a.seed)
     for name in names:
         sc = scenes.load_scene(name, a.size)
         pyr = heightmap.build(sc.heights)
         for angle in angles:
-            cam = camera.Camera.for_view(angle, a.size, a.size, a.image, a.image)
-            rays = cam.tiled_rays(a.tile).rays
+            if a.incoherent:
+                rays = incoherent_rays(rng, a.size, a.incoherent)
+            else:
+                cam = camera.Camera.for_view(angle, a.size, a.size, a.image, a.image)
+                rays = cam.tiled_rays(a.tile).rays
             for method in methods:
                 row = {"scene": name, "angle": angle, "method": method,
                        **run_case(pyr, rays, method, a.latency)}
@@ -166,7 +189,9 @@ def main() -> int:
                      f"| {s['clk_per_iter_cold']:.3f} | {s['clk_per_iter_warm']:.3f} "
                      f"| {s['clk_per_ray_warm']:.2f} | {100 * s['served_cold']:.2f}% "
                      f"| {s['mrays_per_s_at_84mhz']:.2f} |")
-    lines += ["", f"Map {a.size}x{a.size}, image {a.image}x{a.image}, {a.tile}x{a.tile} tiles, "
+    rays_what = (f"{a.incoherent} incoherent rays per scene (seed {a.seed})" if a.incoherent
+                 else f"image {a.image}x{a.image}, {a.tile}x{a.tile} tiles")
+    lines += ["", f"Map {a.size}x{a.size}, {rays_what}, "
               f"AXI latency {a.latency} clocks; RTL vs f24 engine: {mism} mismatching rays; "
               f"harness {sim_clocks:,} clocks in {sim_wall:.1f} s = "
               f"{sim_clocks / max(sim_wall, 1e-9) / 1e6:.2f} M clocks/s."]
@@ -177,6 +202,7 @@ def main() -> int:
     a.md.write_text(md)
     a.out.write_text(json.dumps({
         "settings": {"size": a.size, "image": a.image, "tile": a.tile, "latency": a.latency,
+                     "incoherent": a.incoherent, "seed": a.seed,
                      "params": traverse_system.PARAMS},
         "rows": rows, "summary": summary, "mismatches": mism, "sim_clocks": sim_clocks,
         "sim_wall_seconds": sim_wall,

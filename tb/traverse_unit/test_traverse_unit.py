@@ -8,7 +8,13 @@ must come back exactly once with the model's hit, invalid, iterations and (for h
 The statistics counters are checked against the model's per-action counts.  A last run measures
 clocks per iteration with an always-hit memory and no back-pressure.
 
-Environment: SEED, TRAVERSE_RAYS (rays per map and method, default 200), WAVES=1.
+The unit is built twice: with traverse_loop's XOR descent path (XOR_PATH=1, every method as the
+model) and without it (XOR_PATH=0), where the ring runs the XOR descent as the multi-level descent:
+park-xor's code is then checked against the model's method with park-xor's fields and
+descent="multi" (same `descent_levels`), and every other method as before.
+
+Environment: SEED, TRAVERSE_RAYS (rays per map and method, default 200), WAVES=1; XOR_PATH is set
+by the pytest function for the build it runs.
 """
 from __future__ import annotations
 
@@ -19,6 +25,7 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge, RisingEdge
 
@@ -35,6 +42,22 @@ ROM_BASE = 0x4000_0000
 #: (height, width, unorm bits, height-field kind)
 MAPS = [(1, 1, 8, 0), (2, 2, 8, 0), (7, 5, 16, 0), (16, 16, 8, 2), (37, 61, 8, 0),
         (17, 64, 16, 0), (64, 64, 16, 1), (64, 64, 8, 2), (100, 128, 16, 2)]
+
+
+#: traverse_loop's XOR_PATH of the build under test (set by test_traverse_unit).
+XOR_PATH = int(os.environ.get("XOR_PATH", "1"))
+
+
+def model_method(method: str) -> traverse.Method:
+    """The model's method that the unit runs for ``method``'s code in this build.
+
+    Without the XOR descent path (XOR_PATH=0) the ring descends as the multi-level descent where a
+    method asks for the XOR descent (traverse_loop's header); everything else is unchanged.
+    """
+    m = traverse.METHODS[method]
+    if not XOR_PATH and m.descent == "xor":
+        return dataclasses.replace(m, descent="multi")
+    return m
 
 
 def seed() -> int:
@@ -197,6 +220,7 @@ async def traverse_bit_exact(dut):
     h = Harness(dut)
     await h.reset()
     total = mism = 0
+    xor_differs = 0  # XOR_PATH=0: rays whose park-xor result the multi-level descent changes
     failures = []
     for case, (hh, ww, bits, kind) in enumerate(MAPS):
         pyr = heightmap.build(height_field(rng, hh, ww, kind), bits)
@@ -212,14 +236,20 @@ async def traverse_bit_exact(dut):
             ready_p = [1.0, 0.5, 0.15][(case + 2 * mi) % 3]
             valid_p = [1.0, 0.7][mi % 2]
             st: dict[str, int] = {}
-            res = traverse.trace(pyr, rays, method, "f24", stats=st)
+            res = traverse.trace(pyr, rays, model_method(method), "f24", stats=st)
             exp = traverse_words.expected_words(res)
+            if model_method(method) != traverse.METHODS[method]:
+                full = traverse.trace(pyr, rays, method, "f24")
+                xor_differs += int(np.count_nonzero((full.iterations != res.iterations)
+                                                    | (full.hit != res.hit)))
             before = h.stats()
             got, cyc = await h.run(words, rng, valid_p, ready_p,
                                    max_cycles=200 * nrays + 20 * int(res.iterations.sum()) + 10000)
             after = h.stats()
             d = {k: after[k] - before[k] for k in after}
-            name = f"{hh}x{ww} u{bits} kind{kind} {method} miss={miss / 65536:.2f} ready={ready_p}"
+            name = (f"{hh}x{ww} u{bits} kind{kind} {method}"
+                    f"{' (as multi)' if model_method(method) != traverse.METHODS[method] else ''}"
+                    f" miss={miss / 65536:.2f} ready={ready_p}")
             nbad = compare(name, got, exp, cfg.iter_cap, dut._log)
             if nbad:
                 dump(name, pyr, rays, method, got)
@@ -238,9 +268,15 @@ async def traverse_bit_exact(dut):
             mism += nbad
             if nbad or sbad:
                 failures.append(name)
-    report.record("traverse_unit", "rays vs model f24", total, mism)
+    report.record("traverse_unit", "rays vs model f24" + ("" if XOR_PATH else " (XOR_PATH=0)"),
+                  total, mism)
     dut._log.info("VECTORS traverse_unit: %d rays, %d mismatches", total, mism)
     assert not failures, f"mismatches in: {failures}"
+    if not XOR_PATH:
+        # The build without the XOR path must be told apart from one with it by these rays.
+        dut._log.info("XOR_PATH=0: park-xor ran as multi; %d rays differ from park-xor's result",
+                      xor_differs)
+        assert xor_differs > 0, "no ray tells park-xor from its multi-level descent"
 
 
 @cocotb.test()
@@ -257,7 +293,7 @@ async def traverse_iteration_cap(dut):
     for cap, method in ((3, "oh"), (5, "park"), (8, "drobot"), (4, "park-xor")):
         traverse.iteration_cap = lambda _pyr, c=cap: c
         try:
-            res = traverse.trace(pyr, rays, method, "f24")
+            res = traverse.trace(pyr, rays, model_method(method), "f24")
         finally:
             traverse.iteration_cap = orig
         cfg = dataclasses.replace(traverse_words.config(pyr, method, base=ROM_BASE), iter_cap=cap)
@@ -314,7 +350,7 @@ async def traverse_throughput(dut):
     for method in ("oh", "park", "park-xor"):
         await h.configure(traverse_words.config(pyr, method, base=ROM_BASE))
         dut.miss_thresh_i.value = 0
-        res = traverse.trace(pyr, rays, method, "f24")
+        res = traverse.trace(pyr, rays, model_method(method), "f24")
         before = h.stats()
         got, cyc = await h.run(traverse_words.ray_words(rays), rng, 1.0, 1.0, 100 * n + 100000)
         after = h.stats()
@@ -326,8 +362,12 @@ async def traverse_throughput(dut):
         assert busy / iters <= 1.15, "loop under-used"
 
 
-def test_traverse_unit():
+@pytest.mark.parametrize("xor_path", [1, 0])
+def test_traverse_unit(xor_path: int):
     diff = traverse_words.method_differences()
     assert not diff, "rtl/traverse/traverse_pkg.sv decode_method is out of date: " + "; ".join(diff)
+    # (the default build keeps its name: no parameter given for XOR_PATH=1)
     runner.run("tb_traverse_unit", "test_traverse_unit", HERE, rtl_top="traverse_unit",
+               parameters={} if xor_path else {"XOR_PATH": 0},
+               extra_env={"XOR_PATH": str(xor_path)},
                extra_sources=[str(HERE / "tb_traverse_unit.sv")])
