@@ -29,8 +29,6 @@ package traverse_pkg;
   // header); busy_o counts the rays in it, 0 .. SETUP_LAT.
   localparam int unsigned SETUP_LAT    = F24_DIV_LAT + 12;  // 20
   localparam int unsigned SETUP_BUSY_W = $clog2(SETUP_LAT + 1);
-  // traverse_loop: the stages of the loop ring, S0 .. S17, one ray slot each (its header).
-  localparam int unsigned LOOP_DEPTH   = 18;
 
   localparam f24_t F24_POS_ZERO = 24'h000000;
   localparam f24_t F24_SIGN     = 24'h800000;
