@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Pyramidal inverse displacement mapping: RTL, golden model and tests.
 #
 #   make render   the main job (see README)          make test    lint + model tests + cocotb tests

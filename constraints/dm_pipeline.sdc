@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # SDC timing constraint (Synopsys Design Constraints: Quartus, Lattice Radiant, OpenROAD/OpenSTA,
 # Design Compiler) for dm_pipeline_fpga_top or dm_pipeline, 100 MHz on clk_i.
 # NOT run by this repository; `make synth` uses the open ECP5 flow (constraints/dm_pipeline.lpf).

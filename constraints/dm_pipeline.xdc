@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Vivado (Xilinx 7-series / UltraScale) timing constraint for dm_pipeline_fpga_top or dm_pipeline.
 # NOT run by this repository (no vendor tools here); `make synth` uses the open flow
 # (constraints/dm_pipeline.lpf).  Kept with the same 100 MHz target for a vendor flow.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Approximate (unsafe) inverse displacement mapping methods: the golden model's baselines.
 
 Every method has the signature ``fn(pyr, rays, **params) -> TraceResult`` and traces the box

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The arithmetic injected into the traversal: ``f64`` (reference) and ``f24`` (the hardware's).
 
 Both engines hold numbers as float64 arrays.  The f24 engine rounds the result of every operation

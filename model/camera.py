@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """A pinhole camera over the displacement-mapped quad: fragments, rays and MIP pre-processing.
 
 World and tangent space.  The surface is one flat square-texel quad covering the whole height

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Shared pieces of the command-line tools: one-line errors with exit status 2, progress."""
 from __future__ import annotations
 

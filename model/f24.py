@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Bit-accurate model of the 24-bit floating-point format and its units.
 
 The format (see ``docs/number-format.md``): 1 sign bit, 7 exponent bits with bias 63,

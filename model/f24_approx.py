@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Approximate units: reciprocal square root and log2 (bit-exact models of f24_rsqrt, f24_log2).
 
 Both units are piecewise-linear interpolation over a table indexed by the top bits of the 16-bit

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Conversions between integers and the 24-bit float format (bit-accurate, vectorised).
 
 Three conversions, each mirrored by one RTL unit in ``rtl/fp``:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Test vectors for the 24-bit float units: random patterns and the directed edge-case set.
 
 Shared by the model's tests (against MPFR through gmpy2) and the RTL tests (against the model), so

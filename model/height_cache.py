@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Clock-accurate model of the height cache (rtl/cache/height_cache.sv).
 
 The model holds the same state as the RTL (directory, pseudo-LRU bits, MSHRs, AR queue, lookup

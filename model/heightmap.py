@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Height maps: loading, quantisation, the max-mipmap pyramid and its memory layout.
 
 Conventions (``docs/conventions.md``): ``h[row, col]`` in [0, 1], 1 is the top of the

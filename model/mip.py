@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """MIP-level selection after Park et al., IEICE Electronics Express 2011: the model's one place for it.
 
 The algorithm is written once, where the rest of the model already uses it; this module gathers

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Rays and trace results shared by every method and engine.
 
 A ray enters the displacement volume at depth t = 0 at (u0, v0) (level-0 texel units) and moves

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Relief texture mapping by pre-warping (Oliveira, Bishop, McAllister 2000) and its serial,
 pipelined-parallel and split-image multi-worker variants (Fonseca, Feijo, Dreux, Clua 2006).
 

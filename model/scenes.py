@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Procedural benchmark scenes: height fields, colour textures and normal maps.
 
 Seven scenes in the spirit of the paper's benchmark set (Park et al. 2013, Section 5, Fig. 8),

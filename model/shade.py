@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Normal-mapped Blinn-Phong shading and the model of the whole render pipeline, per pixel.
 
 Everything per pixel is written with the injected arithmetic (:mod:`model.arith`), so the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Terrain from a digital elevation model: tessellation + parallax mapping (Gonzalez, Perez,
 Orduna 2016) against the exact render, and the pyramidal traversal of the same DEM.
 

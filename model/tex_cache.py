@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Behavioural model of the texture / normal-map cache (rtl/cache/tex_cache.sv).
 
 - :func:`passes`: how a request (four texel byte addresses c00, c01, c10, c11) is split into

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Colour textures and normal maps: unorm8 RGBA MIP chains, their memory layout, the bilinear lookup.
 
 Storage.  A texture is stored as unorm8 RGBA texels (code k means k / 255).  RGB images get

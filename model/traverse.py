@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The pyramidal traversals (Park et al. 2013, sections 2-4), written once for every engine.
 
 One vectorised loop (all rays in lock-step, finished rays dropped each pass) runs every exact

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The view-calculation unit (Park et al. 2013, Fig. 6, the stage before FIFO #0): a fragment's
 world view vector into tangent space, scaled to the contract ray.
 

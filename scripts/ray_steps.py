@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """One ray, step by step: the golden model's traversal of a single ray (level, cell, the height read
 and its byte address, t, plane, t_exit, t_new, action per iteration), to line up with the RTL's
 waveform; optionally the same ray through the RTL (Verilator harness), with its FST.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Relief texture mapping by pre-warping (Oliveira 2000): frames per second of the serial, the
 pipelined-parallel and the split-image multi-worker variants, like Fonseca et al. 2006 Table 2.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Render a displacement-mapped quad through the golden model (trace, MIP-mapped texture, shading)
 or through the pipeline RTL (Verilator) and the model, pixel for pixel compared.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Terrain from a DEM: tessellation + parallax mapping against the exact render (Gonzalez, Perez,
 Orduna 2016, Fig. 11), and the same DEM ray-cast by the pyramidal traversal (f64, f24, RTL).
 

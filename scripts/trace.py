@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Batch ray tracing through a height map (the interface of docs/conventions.md).
 
   trace.py --heightmap FILE --rays RAYS.npy --method NAME --engine f64|f24|rtl --out OUT.npz

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Run one cocotb test with waveforms (`make waves TEST=...`) and say where the FST is.
 
   waves.py TEST [--case NAME]

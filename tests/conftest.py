@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Report random seeds and set the test environment (the project itself imports as an installed
 package: `make setup` runs `pip install -e .`; pytest puts tests/ on the path for the helpers
 here, reference_walk and f24_mpfr)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """An independent, correctly rounded reference for the 24-bit float format, on MPFR (gmpy2).
 
 It shares no code with ``model/f24.py``: patterns are decoded and encoded here from the field

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The texel-by-texel reference walk that proves the pyramidal traversals exact.
 
 It visits every level-0 texel the ray passes, in order, and stops at the first one whose solid

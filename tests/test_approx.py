@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """model/approx.py: the approximate methods against their documented formulas and an exact
 reference.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Every command-line tool rejects bad files and arguments with one line and exit status 2.
 
 ``TRACE_CASES`` are scripts/trace.py's (the contract's interface); ``TOOL_CASES`` list the cases of
@@ -256,6 +257,7 @@ TOOL_CASES: dict[str, tuple[str, list[str], dict[str, str]]] = {
     "synth_check log in a file": ("scripts/flow/synth_check.py", ["--log", "{d}/afile/x.log"],
                                   {}),
     "vector_summary unknown option": ("scripts/bench/vector_summary.py", ["--nope"], {}),
+    "spdx unknown option": ("scripts/flow/spdx.py", ["--nope"], {}),
     "formal no formal dir": ("scripts/flow/formal.py", ["--root", "{d}/emptydir"], {}),
     "formal jobs 0": ("scripts/flow/formal.py", ["--jobs", "0"], {}),
     "formal unknown task": ("scripts/flow/formal.py", ["--only", "nope_task", "--list"], {}),

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """scripts/bench/coverage.py's reading, merging and per-module figures, and the runner's coverage
 options (the coverage run itself is `make coverage`, not part of make test)."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """model.f24_conv against independent references.
 
 * from_unorm: every code for 8 and 16 bits against MPFR (gmpy2, 17-bit precision, round to nearest

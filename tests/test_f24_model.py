@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """model/f24.py against the independent MPFR reference (tests/f24_mpfr.py).
 
 Per operation: F24_MODEL_VECTORS random vectors (default 100,000: half random bit patterns, half

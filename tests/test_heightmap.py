@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Height-map loading (OpenImageIO and .npy), quantisation, the pyramid and its memory layout."""
 from __future__ import annotations
 

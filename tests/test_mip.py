@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """model/mip.py: the MIP-level logic gathered in one place (re-exports, the per-hit level, the
 triangle-table words) agrees with the functions it wraps and with the renderer's use of them."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """tb/common/objcache.py: a compile is reused only for the same compiler, arguments and
 preprocessed text; anything else runs the real compiler."""
 from __future__ import annotations

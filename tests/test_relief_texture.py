@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """model/relief_texture.py: Oliveira's pre-warp (against a literal per-texel loop, the 3-D
 geometry and the exact ray caster), zero depth = plain texture mapping, and the serial /
 pipelined / split-image variants giving identical frames; scripts/relief_texture.py's errors.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The texture / colour path (model.texture, model.shade) and the render tool (scripts/render.py)."""
 from __future__ import annotations
 

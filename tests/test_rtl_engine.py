@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The RTL engine (tb/harness/traverse_system.py: traverse_system in the Verilator harness) against the golden
 model, bit for bit: model.traverse.trace(pyr, rays, method, "f24") must give the same t, u, v, hit,
 invalid and iterations, and the unit's statistics must match the model's per-action counts.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The pipeline RTL as a renderer (tb/harness/dm_pipeline.py: dm_pipeline in the Verilator harness
 tb/harness/pipeline_harness.cpp) and ``scripts/render.py --engine rtl`` (what ``make render`` runs).
 

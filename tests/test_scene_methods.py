@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Every method on every scene at every view angle (camera rays, small sizes)."""
 from __future__ import annotations
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """model/scenes.py and model/camera.py: scenes, the pinhole camera, rays and MIP set-up."""
 from __future__ import annotations
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """scripts/bench/soak.py: its pieces (the read recorder, the level-0-last layout, the fault
 expectation, the comparison) and a small end-to-end run on the RTL harness."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """scripts/bench/study.py: the quick run writes its three files with plausible numbers; bad arguments
 end in one line and exit status 2."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The synthesis flow's parsing and reports (scripts/flow/synth.py, without running the tools), the
 constraints, the FuseSoC core, the waveform helpers (scripts/waves.py, scripts/flow/gen_gtkw.py) and the
 one-ray step trace (scripts/ray_steps.py).  Quick: no Yosys, nextpnr or Verilator runs."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """model/terrain.py and scripts/terrain.py: the coarse mesh's ray cast, the base-surface
 generalisation of model/approx.py, the Gonzalez et al. 2016 study's properties on a synthetic
 DEM, the pyramidal traversal of the DEM, and the tool's outputs and errors.

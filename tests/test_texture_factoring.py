@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """model.texture.sample factored into lookup_addresses (tex_addr) and filter_texels (tex_filter).
 
 The factoring must not change the lookup: ``sample`` is checked against a verbatim copy of the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The exact pyramidal traversals against the texel-by-texel reference walk.
 
 Every exact method, in both engines, on random and adversarial rays (axis-parallel, vertical,

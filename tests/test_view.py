@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """model/view.py: the view-calculation unit's op sequence."""
 from __future__ import annotations
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // cache_pkg: constants shared by the height cache and its clients (the traverse unit's lookup
 // port).  See height_cache.sv for the behaviour.
 package cache_pkg;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // cache_sdp_ram: simple dual-port RAM (one write port, one read port, one clock), synchronous
 // read.  A word is LANES lanes of WIDTH / LANES bits: the write port writes whole words, the read
 // port reads one lane, so rdata_o shows lane rlane_i of mem[raddr_i] from the clock after re_i

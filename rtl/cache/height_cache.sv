@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // height_cache: the traverse unit's exclusive, non-blocking height cache (Park et al. 2013, sec. 4):
 // a miss never stalls; the lookup answers "miss" and the ray retries on its next pass.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // tex_cache: the unified texture / normal-map cache of Park et al. 2013, Fig. 6.  It serves the
 // bilinear filter one 2x2 texel quad per clock, in request order, and hides the memory latency by
 // prefetching in the style of Igehy, Eldridge and Proudfoot ("Prefetching in a texture cache

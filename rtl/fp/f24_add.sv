@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // f24_add: y = a + b, correctly rounded (RNE), latency LAT enabled clocks, one operation per clock.
 // Subtract by flipping b's sign outside.  The result word is the same at every LAT.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // f24_cmp: compare a with b; exactly one of lt_o, eq_o, gt_o, un_o is 1 (un_o: an operand is NaN).
 // -0 == +0 and subnormal patterns compare as zeros. Latency LAT enabled clocks (1, the default,
 // or 2); the result is the same at both.  LAT = 2 adds one plain enabled delay register

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // f24_div: y = a / b, correctly rounded (RNE), latency LAT enabled clocks, one operation per clock.
 // LAT = 2 (the default, the paper's):
 //   Stage 1: operand classes and the special result, sign, exponent and the 19-bit significand

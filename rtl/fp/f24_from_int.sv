@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // f24_from_int: signed W-bit integer -> f24.  Exact when |k| has at most 17 significant bits,
 // otherwise rounded to nearest, ties to even; 0 gives +0.  Latency LAT enabled clocks (1, the
 // default, or 2), one conversion per clock; the result word is the same at both.  Golden model:

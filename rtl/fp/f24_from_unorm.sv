@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // f24_from_unorm: W-bit unorm code k -> the f24 of k / (2^W - 1), correctly rounded (RNE).
 // The binary expansion of k / (2^W - 1) is 0.kkkk... (k's W bits repeated forever), so the
 // conversion is a leading-zero count, a shift of the repeated pattern, a guard bit and

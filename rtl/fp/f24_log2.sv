@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // f24_log2: y = log2(a), piecewise-linear approximation, latency LAT enabled clocks, one operation
 // per clock.  |y - log2 a| <= 0.75 * 2^-16 + ulp(y)/2; log2(1) = +0 and log2(2^k) = k exactly.  The
 // design, bound and table layout are documented in model/f24_approx.py (bit-exact model: log2).

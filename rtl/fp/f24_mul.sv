@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // f24_mul: y = a * b, correctly rounded (RNE), latency LAT enabled clocks, one operation per clock.
 // The result word is the same at every LAT.  Written as straight data flow (each signal assigned once, choices by ?:), which simulates
 // cheaper than if/else chains.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // f24_one_minus: y = 1 - x for x in [+0, 1], correctly rounded (RNE): the same word as
 // f24_add(1, -x) for every such x (tested on every f24 value in the range), in one clock instead
 // of the adder's two.  The traverse ring's plane, 1 - H, with H = f24_from_unorm(code) in [0, 1].

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // f24_pkg: the 24-bit float format shared by every unit (1 sign, 7 exponent bias 63, 16 fraction).
 // See docs/number-format.md. Zero exponent reads as a signed zero
 // (flush-to-zero), exponent 127 is Inf (fraction 0) or NaN; every NaN produced is F24_NAN.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // f24_rsqrt: y = 1/sqrt(a), piecewise-linear approximation, latency LAT enabled clocks, one
 // operation per clock.  Within one f24 step of the correctly rounded result, |error| < 1 ulp
 // (faithful); the design, bound and table layout are documented in model/f24_approx.py (bit-exact

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // f24_sqrt: y = sqrt(a), correctly rounded (RNE), latency 2 enabled clocks, one operation per clock.
 // sqrt(+-0) = +-0, sqrt(+Inf) = +Inf, sqrt of a negative nonzero number or of a NaN is F24_NAN.
 // Stage 1: operand class, halved exponent and the 18-bit root (17 bits + guard) of the

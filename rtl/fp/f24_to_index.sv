@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // f24_to_index: f24 -> signed W-bit texel index, idx = floor(a) saturated to [-2^(W-1), 2^(W-1)-1].
 // sat_o is 1 when the value was clamped or a is NaN (NaN gives idx 0); +-Inf saturate; zeros and
 // subnormal patterns give 0.  Floor rounds toward minus infinity: -0.5 -> -1, -1.0 -> -1.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // dm_pipeline_fpga_top: dm_pipeline with a pin count that fits an FPGA package, for place and
 // route (scripts/flow/synth.py, `make synth`).  Not used by the simulations.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // mip_level: the MIP-level unit after Park et al., IEICE Electronics Express 2011, eq. (2), for
 // the colour texture and the normal map of a hit (a hit every other clock at most, the two
 // levels in consecutive clocks).  Specification: model/mip.py

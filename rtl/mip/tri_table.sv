@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // tri_table: the per-triangle constants of the MIP-level unit, log2(Pb) of each triangle for the
 // two textures (colour, normal map), as f24 words (model/mip.py: table_words; the driver writes
 // the f24 rounding of model.camera.log2_pb for each texture's resolution).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // dm_pipeline: the displacement-mapping unit of Park et al. 2013, Fig. 6, from fragments to colours.
 //
 //   fragments -> [slot + context] -> view_calc -> FIFO #0 -> traverse_system (traverse unit,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // pipe_credit: the admission controller in front of a stage that cannot stall.
 //
 // The fixed-latency units of dm_pipeline (view_calc, mip_level, tex_addr, tex_filter,

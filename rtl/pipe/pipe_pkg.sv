@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // pipe_pkg: latencies and widths of the displacement-mapping pipeline's fixed-latency units
 // (view_calc, mip_level), so that the pipeline top can size its buffers and delay lines.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // pipe_valid_tag: the valid bit and side-band tag of a fixed-latency pipeline unit, delayed by
 // DEPTH enabled clocks beside its datapath (every pipe unit of rtl/pipe and rtl/mip uses one).
 // Valid clears on rst_ni low (synchronous, whatever en_i is); the tag needs no reset.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shade_pkg: the colour-calculation unit's latency, configuration record and fixed constants
 // (rtl/pipe/shade_unit.sv; specification model/shade.py shade(), the f24 engine).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shade_unit: the colour-calculation unit (Park et al. 2013, Fig. 6, after the bilinear filter):
 // normal-mapped Blinn-Phong shading of one hit pixel.  Specification: model/shade.py shade() in
 // the f24 engine, bit for bit, with its 14-step op sequence (same ops, same order, same

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // tex_addr: the texture address calculation of the texture path (Park et al. 2013, Fig. 6, after
 // the MIP-level unit): one bilinear lookup every other clock at most, the four texel byte
 // addresses and the two weights.  Specification: model/texture.py lookup_addresses (steps 1-5

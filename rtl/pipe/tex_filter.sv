@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // tex_filter: the bilinear filter of the texture path (Park et al. 2013, Fig. 6, after the
 // texture cache): four RGBA unorm8 texels and the two weights of tex_addr in, the filtered
 // channels out, one lookup every other clock at most.  Specification: model/texture.py

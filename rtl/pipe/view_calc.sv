@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // view_calc: the view-calculation unit (Park et al. 2013, Fig. 6, before FIFO #0): a fragment's
 // unit world view vector V into tangent space through the triangle's TBN, scaled to the contract
 // ray.  Specification: model/view.py (view_calc) in the f24 engine, bit for bit:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // height_rom: a stand-in for the height cache in tests: a byte memory that answers every lookup
 // exactly traverse_pkg::LOOKUP_LAT (3) clocks later, on the traverse unit's lookup interface
 // (slave side).

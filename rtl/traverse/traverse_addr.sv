@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // traverse_addr: the byte address of a height lookup (traverse_loop stage S0), purely
 // combinational.
 //

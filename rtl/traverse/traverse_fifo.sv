@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // traverse_fifo: synchronous FIFO of W-bit words, DEPTH entries (a power of two), first-word
 // fall-through (the head is visible on rd_data_o while empty_o is 0).  Write and read may happen
 // in the same clock (a write needs full_o = 0 even then).  Writing while full and reading while

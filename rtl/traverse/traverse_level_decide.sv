@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // traverse_level_decide: the level decisions of the second mode, purely combinational: the
 // functions traverse_pkg::level_cross and level_descend as a module (their unit test's form;
 // traverse_loop calls the functions' parts where it registers their results, so that a simulator

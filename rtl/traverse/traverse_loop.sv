@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // traverse_loop: the second mode of the traverse unit, the iterative search of model/traverse.py
 // (the body of _trace's `while act.size` loop, for one ray per pass).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // traverse_pkg: types, method decoding and float comparisons of the traverse unit.
 //
 // The traverse unit computes exactly model/traverse.py::_trace with the f24 engine (hit, t, u, v,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // traverse_setup: the first mode of the traverse unit (model/traverse.py: setup() and the "first
 // mode" block of _trace), a fixed-depth pipeline taking one ray every other clock at most, never
 // stalling.  in_valid_i must not be 1 on two consecutive clocks (asserted below; traverse_unit

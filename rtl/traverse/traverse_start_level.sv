@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // traverse_start_level: the start decision of the first mode (traverse_setup's last stages),
 // latency 2 enabled clocks, one decision per clock; registers advance only while en_i is 1.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // traverse_system: the traverse unit with its height cache, an AXI4 read master to memory.
 //
 //   ray stream -> traverse_unit -> result stream

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Model speed (make bench): traversal rays/s per engine, method and angle on a 256x256 scene.
 
 Prints a table and writes JSON (default out/bench/model.json).  Each figure is the best of

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Whole-pipeline performance (make bench): dm_pipeline per scene x view x MIP on/off through the
 Verilator harness (tb/harness/dm_pipeline.py), every frame compared with the model's f24 render.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """RTL traverse-unit performance (make bench): clocks per iteration, height-cache hit rate and
 memory traffic per scene x view angle, through the Verilator harness (tb/harness/traverse_system.py).
 

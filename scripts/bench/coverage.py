@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Verilator line and toggle coverage of the RTL from the cocotb test suite (``make coverage``).
 
   coverage.py [--tests tb] [--jobs 2] [--out out/coverage] [--report-only]

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Long random soak of the RTL against the f24 engine, with memory faults and back-pressure.
 
   soak.py [--rays 1000000] [--seed S] [--batch-rays 4000] [--fragments 10000] [--out out/soak]

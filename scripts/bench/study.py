@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """The iteration study of Park et al. 2013, section 5, on the project's scenes and camera.
 
   study.py [--quick] [--out DIR] [--size N] [--image-size N] [--scenes a,b,..] [--angles a,b,..]

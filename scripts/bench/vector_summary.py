@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Print the vectors checked per unit in the last `make test` (from build/vectors/*.jsonl)."""
 from __future__ import annotations
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Which blocks the top's routing congestion belongs to, from router2's heatmaps.
 
 `scripts/flow/synth.py --heatmap` has nextpnr's router2 write, for every routing iteration N,

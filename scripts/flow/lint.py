@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Lint every RTL module with Verilator (--lint-only -Wall), each as its own top, in parallel.
 
 Prints one line per module with a problem and a summary; exit status 1 on any warning or error.

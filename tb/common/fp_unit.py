@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Drive a fixed-latency float unit with random clock-enable gaps and check it bit for bit.
 
 The unit has ``clk_i``, ``en_i`` and some inputs; registers advance only on enabled clocks.  Every

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """A small compiler cache for Verilator builds (what ``ccache`` does, for a machine without it).
 
 Every testbench build compiles Verilator's runtime (``verilated.cpp``, ``verilated_vpi.cpp``,

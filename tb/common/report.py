@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Count the vectors each test checked, so `make test` can print how many ran.
 
 Tests call :func:`record`; it appends one JSON line to ``build/vectors/<pid>.jsonl`` (the

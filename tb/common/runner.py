@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Build and run one cocotb test module on Verilator through cocotb's Python runner.
 
 Each ``tb/<unit>/test_<unit>.py`` holds the cocotb coroutines and a pytest function that calls

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Drive a fixed-latency pipeline unit with valid / tag side band, clock-enable gaps and bubbles.
 
 The units of ``rtl/pipe`` and ``rtl/mip`` (view_calc, mip_level) have ``clk_i``, ``rst_ni``,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """dm_pipeline (fragments -> colours: view unit, traversal + height cache, MIP levels, texture
 addresses, texture cache, filter, shading) against model.shade.render_pixels with the f24 engine.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """f24_add against model.f24.add: random patterns, values near 1.0 and the directed set.
 
 Run at every latency the unit accepts (LAT 2, the default, built with no parameter; 3; 4), each

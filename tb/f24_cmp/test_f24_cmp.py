@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """f24_cmp against model.f24.cmp: random patterns, values near 1.0 and the directed set.
 
 Run at every latency the unit accepts (LAT 1, the default, built with no parameter, and 2), each

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """f24_div against model.f24.div: random patterns, values near 1.0 and the directed set.
 
 Run once per latency parameter: LAT = 2 (the default, the paper's: the whole division loop in

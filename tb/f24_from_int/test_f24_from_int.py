@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """f24_from_int against model.f24.from_int: boundary values plus random integers, or the whole
 signed range.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """f24_from_unorm against model.f24.from_unorm: every code, several times, in shuffled orders.
 
 The DUT's width W (8 or 16) is read from the width of ``k_i``; the pytest functions build W = 8 and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """f24_one_minus against model.f24.add(1, neg(x)): the traverse ring's plane, 1 - H.
 
 Stimulus: the f24 of every unorm16 code (f24_from_unorm's outputs, the ring's only inputs), every

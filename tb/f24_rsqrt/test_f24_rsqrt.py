@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """f24_rsqrt against model.f24.rsqrt: all fractions at several exponents, specials, random.
 
 Run once per latency: LAT = 2 (the default, no parameter given) and LAT = 3 (the deeper pipeline).

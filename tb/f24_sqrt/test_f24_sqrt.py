@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """f24_sqrt against model.f24.sqrt: random patterns, values near 1.0 and the directed set."""
 from pathlib import Path
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """f24_to_index against model.f24.to_index: random patterns plus a directed set (specials, integers
 and half-integers around 0, values one ulp either side of integers, the +-2^(W-1) boundaries).
 

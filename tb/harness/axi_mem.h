@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // axi_mem.h: the AXI4 read-slave memory model of the Verilator harnesses (traverse_harness.cpp,
 // pipeline_harness.cpp), with a protocol check of the read master's address channel.
 //

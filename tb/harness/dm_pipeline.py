@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The whole pipeline RTL as a renderer: frames through ``rtl/pipe/dm_pipeline.sv`` (fragments ->
 view unit -> traverse unit + height cache -> MIP level -> texture cache -> filter -> shading ->
 pixels) in a Verilator C++ harness (``tb/harness/pipeline_harness.cpp``) with two AXI4 memory

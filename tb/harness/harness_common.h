@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // harness_common.h: what the Verilator harnesses of tb/harness/ share besides the AXI memory
 // (axi_mem.h): loud failure with an exit status, the random generator and biased coins of the
 // stimulus, command-line number parsing, and setting Verilator ports of any width.

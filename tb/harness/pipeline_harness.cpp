@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // pipeline_harness: a Verilator main that runs dm_pipeline (rtl/pipe/dm_pipeline.sv: fragments in,
 // shaded pixels out) on a whole frame, fast.  tb/harness/dm_pipeline.py builds it
 // (build/harness/pipeline/<variant>/) and drives it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // pipeline_harness.h: the file formats of tb/harness/pipeline_harness.cpp (the Verilator main that
 // runs dm_pipeline, rtl/pipe/dm_pipeline.sv, on a whole frame of fragments).  tb/harness/dm_pipeline.py
 // writes the input and reads the output with the same layout; keep the two in step (bump the

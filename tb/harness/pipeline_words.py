@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Driving ``rtl/pipe/dm_pipeline.sv`` (the whole displacement-mapping pipeline) from the model:
 the configuration port values, the triangle-table writes, the memory images and the per-pixel
 fragment words of a frame (:class:`model.shade.Frame`, :class:`model.camera.Camera`).

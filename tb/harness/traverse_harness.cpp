@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // traverse_harness: a Verilator main that runs traverse_system (rtl/traverse/traverse_system.sv) on
 // a whole ray batch, fast.  tb/harness/traverse_system.py builds it (build/harness/<variant>/) and drives it.
 //

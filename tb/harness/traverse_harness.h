@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // traverse_harness.h: the file formats of tb/harness/traverse_harness.cpp (the Verilator main that
 // runs traverse_system on a whole ray batch).  tb/harness/traverse_system.py writes the input and reads the
 // output with the same layout; keep the two in step (bump the versions on any change).

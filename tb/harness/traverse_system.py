@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The RTL as a trace engine: ray batches through ``rtl/traverse/traverse_system.sv`` (traverse unit +
 height cache + an AXI4 memory model) in a Verilator C++ harness (``tb/harness/traverse_harness.cpp``).
 

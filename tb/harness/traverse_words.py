@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Glue between the golden model and the traverse unit (``rtl/traverse/traverse_unit.sv``).
 
 The unit computes exactly :func:`model.traverse.trace` with the ``f24`` engine.  This module turns a

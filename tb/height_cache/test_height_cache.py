@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """height_cache: every clock against model.height_cache, every hit against the memory's bytes.
 
 The lookup side behaves like the traverse unit: a pool of rays, each looking up one texel at a

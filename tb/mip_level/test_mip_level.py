@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """mip_level (with its tri_table) against model.texture.ray_length / mip_level in the f24 engine.
 
 Each phase writes the triangle table through the write port (log2 Pb words for both textures,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // pipe_credit_tb: the credit controller in the place dm_pipeline uses it: an admission port in
 // front of a LAT-clock unit that cannot stall (pipe_valid_tag), and a DEPTH-entry FIFO behind it
 // whose fill counts against the same limit (the view_calc -> FIFO #0 arrangement).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """pipe_credit (the controller that keeps FIFO #0 from overflowing) against a clock-accurate model.
 
 The wrapper ``pipe_credit_tb`` puts the credit counter where dm_pipeline does: in front of a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """shade_unit against model.shade.shade(ENGINES["f24"], ...), all three unorm8 codes bit for bit.
 
 Stimulus, per configuration (the default Material at D = 20.48, then random materials, light

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """tex_addr against model.texture.lookup_addresses in the f24 engine, bit for bit.
 
 Each phase sets one texture configuration (scales su, sv = Texture.scale_for's f24 words; per

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Quad request streams for the texture cache test: the byte addresses of bilinear 2x2 footprints
 (c00, c01, c10, c11) as the texture address unit computes them (model.texture.sample), in the
 orders a renderer produces them.

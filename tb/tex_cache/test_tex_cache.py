@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """tex_cache: every response against the memory's bytes, in request order.
 
 Memory: cocotbext-axi's AxiRamRead (sparse) holding random RGBA textures with their MIP chains

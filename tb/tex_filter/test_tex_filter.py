@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """tex_filter against model.texture.filter_texels in the f24 engine, bit for bit.
 
 Texels are driven as the little-endian 32-bit words of their memory bytes (R in bits 7:0, G 15:8,

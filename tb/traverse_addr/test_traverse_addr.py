@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """traverse_addr against the model's memory layout, bit for bit.
 
 The module is combinational (loop stage S0).  Its configuration inputs come from

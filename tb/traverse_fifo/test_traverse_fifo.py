@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """traverse_fifo (every FIFO of the traverse unit and the pipeline: FIFO #0, FIFO #1, the
 request, miss and out FIFOs, the slot free list) against a deque, clock by clock.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """traverse_level_decide against model.traverse.crossing_step and descent_level, bit for bit.
 
 The module is combinational with two independent parts (loop stages S10 and S11); each cocotb test

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """traverse_start_level against model.traverse.start_node, bit for bit.
 
 The module is a two-clock pipeline (setup stages T16 - T18): the vectors stream through it one per

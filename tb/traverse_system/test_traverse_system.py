@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """traverse_system (traverse_unit + height_cache + AXI4 read master) against model.traverse f24.
 
 The pyramid's memory image (model.heightmap.Pyramid.memory_image()) lies in cocotbext-axi's

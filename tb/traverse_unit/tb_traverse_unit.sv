@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Test harness: traverse_unit with height_rom (fixed latency 3, random misses) on its lookup port.
 module tb_traverse_unit
   import f24_pkg::*;

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """traverse_unit against model.traverse.trace(pyr, rays, method, "f24"), bit for bit.
 
 Harness (tb_traverse_unit.sv): the unit with height_rom on its lookup port (fixed latency 3,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """tri_table against a clock-accurate Python model of its two memories.
 
 Every word is written first; then every clock a random write (any address, also triangle ids

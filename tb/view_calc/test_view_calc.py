@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """view_calc against model.view.view_calc in the f24 engine, bit for bit.
 
 Stimulus (every word an f24 pattern; the model gets the patterns' values):

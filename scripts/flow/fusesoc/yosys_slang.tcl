@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Yosys Tcl script for FuseSoC / Edalize (pyramidal_idm.core, target synth: tool yosys,
 # yosys_template).  Edalize's generated edalize_yosys_procs.tcl reads the files with
 # `read_verilog -sv`; this RTL needs the yosys-slang front end, so the file list is collected from

