@@ -35,6 +35,8 @@ PROG = "ray_steps.py"
 DEFAULT_BASE = 0x4000_0000
 #: Clocks from a height lookup to its answer (traverse_pkg::LOOKUP_LAT).
 LOOKUP_LAT = traverse_words.LOOKUP_LAT
+#: The ring's stage that writes the next state (one before the tail, traverse_pkg::LOOP_DEPTH).
+NEXT_STAGE = traverse_words.LOOP_DEPTH - 2
 
 
 def hx(x: float) -> str:
@@ -329,7 +331,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"rtl lookups in the waves ({len(looks)}; clock n is at time 2n; iteration i = "
                   f"the i-th answered lookup; for a lookup at clock c: the ray's state in group "
                   f"S0 at c - 1, lk_* at c, the answer at c + {LOOKUP_LAT}, the action and next "
-                  f"state in S16 at c + 15):", file=out)
+                  f"state in S{NEXT_STAGE} at c + {NEXT_STAGE - 1}):", file=out)
             print(f"{'clock':>6} {'time':>6} {'address':>10}  answer", file=out)
             it = 0
             for lk in looks:
@@ -345,7 +347,8 @@ def main(argv: list[str] | None = None) -> int:
                 print("state: at each answered lookup (clock c), S1's ring registers u_loop."
                       "node_q[1] (k, cx, cy), t_q[1] and stat_q[1].iters hold the row's level, "
                       "cell, t and iteration - 1 (the registers move one stage a clock: stage "
-                      "s at c + s - 1; S16 loads stage 17 with the next row's at c + 15): "
+                      f"s at c + s - 1; S{NEXT_STAGE} loads stage {NEXT_STAGE + 1} with the next row's at "
+                      f"c + {NEXT_STAGE - 1}): "
                       + ("yes" if sdiff is None else f"FIRST DIFFERENCE: {sdiff}"), file=out)
                 result["state_difference"] = sdiff
                 same = same and sdiff is None
