@@ -162,8 +162,11 @@ render: $(STAMP)
 # FPGA synthesis (scripts/flow/synth.py; README "Synthesis"): Yosys synth_ecp5 and synth_xilinx
 # resource counts of every block, nextpnr-ecp5 place and route on an LFE5U-85F speed 8 of each block out of
 # context and of the top (rtl/fpga/dm_pipeline_fpga_top.sv: the longest step); writes
-# out/synth/report.json and report.md.  Not part of `make test`.  BLOCKS_ONLY=1 skips the top's
-# synthesis and place and route; SYNTH_ARGS passes further options (scripts/flow/synth.py --help).
+# out/synth/report.json and report.md, with the float units per block beside the paper's Table 1
+# (counted first by every run; SYNTH_ARGS=--float-units: only that, seconds).  Not part of
+# `make test`.  BLOCKS_ONLY=1 skips the top's synthesis and place and route; SYNTH_ARGS=--record
+# copies the routed top into docs/results/synth-ecp5.json; SYNTH_ARGS passes further options
+# (scripts/flow/synth.py --help).
 BLOCKS_ONLY ?=
 SYNTH_ARGS  ?=
 synth: $(STAMP)

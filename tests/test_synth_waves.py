@@ -126,22 +126,130 @@ def test_heatmap_args():
     assert synth.heatmap_args(True, "router1", False, "p") == []     # router1: no heatmaps
 
 
-def test_float_units_inventory():
+def test_float_units_inventory(tmp_path):
+    """float_units counts the units below every instance of each block from Yosys's statistics
+    of the kept hierarchy: sub-blocks included, multiplicities multiplied, units inside units
+    counted; the paper's rows and report.md's tables follow."""
     mods = {
-        "\\dm_pipeline": {"num_cells_by_type": {"$add": 3, "view_calc$dm_pipeline.u_view": 1,
-                                                 "traverse_system$dm_pipeline.u_trav": 1}},
-        "\\view_calc$dm_pipeline.u_view": {"num_cells_by_type": {
-            "f24_mul$dm_pipeline.u_view.u_du": 1, "f24_div$dm_pipeline.u_view.u_k": 1}},
-        "\\f24_mul$dm_pipeline.u_view.u_du": {"num_cells_by_type": {"$mul": 1}},
-        "\\f24_div$dm_pipeline.u_view.u_k": {"num_cells_by_type": {}},
-        "\\traverse_system$dm_pipeline.u_trav": {"num_cells_by_type": {
-            "f24_add$dm_pipeline.u_trav.u_unit.u_loop.u_dx": 2}},
-        "\\f24_add$dm_pipeline.u_trav.u_unit.u_loop.u_dx": {"num_cells_by_type": {}},
+        "\\top": {"num_cells_by_type": {"$dff": 4, "dm_pipeline$top.u_pipe": 1}},
+        "\\dm_pipeline$top.u_pipe": {"num_cells_by_type": {
+            "$add": 3, "view_calc$top.u_pipe.u_view": 1, "traverse_unit$top.u_pipe.u_trav": 1,
+            "f24_to_index$top.u_pipe.u_glue": 1}},
+        "\\view_calc$top.u_pipe.u_view": {"num_cells_by_type": {
+            "f24_mul$top.u_pipe.u_view.u_du": 3, "f24_div$top.u_pipe.u_view.u_k": 1}},
+        "\\f24_mul$top.u_pipe.u_view.u_du": {"num_cells_by_type": {"$mul": 1}},
+        "\\f24_div$top.u_pipe.u_view.u_k": {"num_cells_by_type": {
+            "f24_mul$top.u_pipe.u_view.u_k.u_m": 1}},          # a unit inside a unit
+        "\\f24_mul$top.u_pipe.u_view.u_k.u_m": {"num_cells_by_type": {}},
+        "\\traverse_unit$top.u_pipe.u_trav": {"num_cells_by_type": {
+            "traverse_loop$top.u_pipe.u_trav.u_loop": 2,
+            "traverse_setup$top.u_pipe.u_trav.u_setup": 1}},
+        "\\traverse_loop$top.u_pipe.u_trav.u_loop": {"num_cells_by_type": {
+            "f24_add$top.u_pipe.u_trav.u_loop.u_dx": 2,
+            "f24_one_minus$top.u_pipe.u_trav.u_loop.u_p": 1}},
+        "\\f24_add$top.u_pipe.u_trav.u_loop.u_dx": {"num_cells_by_type": {}},
+        "\\f24_one_minus$top.u_pipe.u_trav.u_loop.u_p": {"num_cells_by_type": {}},
+        "\\traverse_setup$top.u_pipe.u_trav.u_setup": {"num_cells_by_type": {
+            "f24_cmp$top.u_pipe.u_trav.u_setup.u_c": 1}},
+        "\\f24_cmp$top.u_pipe.u_trav.u_setup.u_c": {"num_cells_by_type": {}},
+        "\\f24_to_index$top.u_pipe.u_glue": {"num_cells_by_type": {}},
     }
-    fu = synth.float_units({"modules": mods}, "dm_pipeline")
-    assert fu["total"] == {"f24_mul": 1, "f24_div": 1, "f24_add": 2}
-    assert fu["paper_rows"]["View calc."] == {"f24_mul": 1, "f24_div": 1}
-    assert fu["paper_rows"]["Traverse"] == {"f24_add": 2}
+    fu = synth.float_units({"modules": mods}, "top")
+    assert fu["units"] == synth.FLOAT_UNITS and set(fu["blocks"]) == {
+        "dm_pipeline", "view_calc", "traverse_unit", "traverse_loop", "traverse_setup"}
+    nz = lambda row: {k: v for k, v in row.items() if v}  # noqa: E731
+    assert nz(fu["blocks"]["view_calc"]) == {"instances": 1, "f24_mul": 4, "f24_div": 1}
+    assert nz(fu["blocks"]["traverse_loop"]) == {"instances": 2, "f24_add": 4,
+                                                 "f24_one_minus": 2}
+    assert nz(fu["blocks"]["traverse_setup"]) == {"instances": 1, "f24_cmp": 1}
+    assert nz(fu["blocks"]["traverse_unit"]) == {"instances": 1, "f24_add": 4,
+                                                 "f24_one_minus": 2, "f24_cmp": 1}
+    assert nz(fu["blocks"]["dm_pipeline"]) == {"instances": 1, "f24_add": 4, "f24_one_minus": 2,
+                                               "f24_cmp": 1, "f24_mul": 4, "f24_div": 1,
+                                               "f24_to_index": 1}
+    assert nz(fu["paper_rows"]["View calc."]) == {"f24_mul": 4, "f24_div": 1}
+    assert nz(fu["paper_rows"]["Traverse"]) == {"f24_add": 4, "f24_one_minus": 2, "f24_cmp": 1}
+    assert not any(fu["paper_rows"]["Addr. calc."].values())       # no mip_level / tex_addr
+    assert synth.ours_vs_paper(fu["blocks"]["dm_pipeline"]) == {
+        "add": 6, "mul": 4, "div": 1, "cmp": 1, "sqrt": 0, "rsqrt": 0, "log2": 0, "conv": 1}
+    # the same as the top of the counting: the block is its own instance
+    assert synth.float_units({"modules": mods}, "dm_pipeline$top.u_pipe")["blocks"][
+        "dm_pipeline"] == fu["blocks"]["dm_pipeline"]
+    with pytest.raises(synth.StepError):
+        synth.float_units({"modules": mods}, "nope")
+    # report.md: our blocks' table, then the paper's Table 1 beside ours (its total summed)
+    md = "\n".join(synth.float_units_md(fu))
+    assert "| `traverse_loop` | 2 | 4 | 2 | 0 | 0 | 0 | 0 | 0 | 0 | 0 | 0 | 0 |" in md
+    assert "| Traverse | 6 / 0 / 7 / 5 / 2 / 0 | 6 / 0 / 0 / 1 / 0 / 0 / 0 / 0 |" in md
+    assert "| Total | 8 / 2 / 7 / 12 / 4 / 1 | 6 / 4 / 1 / 1 / 0 / 0 / 0 / 1 |" in md
+    report = {"date": "2026-01-01T00:00:00", "top": synth.TOP,
+              "settings": {"yosys": "Y", "nextpnr": "N", "device_name": "LFE5U-85F", "speed": 8,
+                           "package": "CABGA756", "target_mhz": 100.0,
+                           "lpf": "constraints/dm_pipeline.lpf", "seed": 1,
+                           "rtl": {"commit": "abc1234-dirty"}},
+              "blocks": {}, "xilinx": {}, "pnr": {}, "seconds": {}, "float_units": fu}
+    synth.write_md(report, tmp_path / "r.md")
+    text = (tmp_path / "r.md").read_text()
+    assert md in text and "RTL of abc1234-dirty" in text
+
+
+def test_top_record_and_merge():
+    """A routed top's entry of report.json's `tops`, and the merge that keeps one per name."""
+    settings = {"seed": 3, "router": "auto", "device_name": "LFE5U-85F",
+                "rtl": {"commit": synth.rtl_commit("abc1234", [" M rtl/pipe/x.sv"])}}
+    counts = {"lut": 10, "ff": 20, "dsp": 3, "bram": 4, "cells": {}}
+    t = synth.top_record(synth.TOP, counts, 57.25, settings, 1)
+    assert t == {"name": synth.TOP, "rings": 1, "lut": 10, "ff": 20, "dsp": 3, "bram": 4,
+                 "fmax_mhz": 57.25, "seed": 3, "router": "router1", "device": "LFE5U-85F",
+                 "rtl_commit": "abc1234-dirty"}
+    assert tuple(t) == synth.TOP_FIELDS
+    assert synth.rtl_commit("abc1234", []) == "abc1234"
+    old = [{"name": "a", "fmax_mhz": 1.0}, {"name": synth.TOP, "fmax_mhz": 2.0}, "junk"]
+    assert synth.merge_tops(old, [t]) == [{"name": "a", "fmax_mhz": 1.0}, t]
+    assert synth.merge_tops([], [t]) == [t]
+    assert synth.merge_tops([{"name": "a"}], [t]) == [{"name": "a"}, t]
+
+
+def test_synth_record(tmp_path):
+    """--record copies report.json's routed tops into the committed results, replacing the entry
+    of the same name and keeping the others; make render's clock then reads the new entry."""
+    from tb.harness import dm_pipeline as dm
+
+    out, results = tmp_path / "out", tmp_path / "results" / "synth-ecp5.json"
+    out.mkdir()
+    settings = {"seed": 2, "router": "auto", "device_name": "LFE5U-85F",
+                "rtl": {"commit": "1234abc"}}
+    entry = synth.top_record(synth.TOP, {"lut": 1, "ff": 2, "dsp": 3, "bram": 4}, 61.5,
+                             settings, 1)
+    (out / "report.json").write_text(json.dumps({"top": synth.TOP, "tops": [entry]}))
+    results.parent.mkdir()
+    other = {"name": "other_top", "rings": 2, "fmax_mhz": 40.0}
+    results.write_text(json.dumps({"tops": [
+        {"name": synth.TOP, "rings": 1, "fmax_mhz": 58.2, "seed": 1}, other]}))
+    p = run("scripts/flow/synth.py", "--record", "--out", str(out), "--results", str(results))
+    assert p.returncode == 0 and synth.TOP in p.stdout, p.stdout + p.stderr
+    assert json.loads(results.read_text()) == {"tops": [entry, other]}
+    mhz, src = dm.routed_clock(results)
+    assert mhz == 61.5 and "seed 2" in src and "RTL of 1234abc" in src
+    # nothing to record, a broken entry, no report: one line, exit 2, the results untouched
+    before = results.read_text()
+    for rep in ({"top": synth.TOP}, {"tops": [{"name": synth.TOP}]}, None):
+        if rep is None:
+            (out / "report.json").unlink()
+        else:
+            (out / "report.json").write_text(json.dumps(rep))
+        p = run("scripts/flow/synth.py", "--record", "--out", str(out), "--results", str(results))
+        assert p.returncode == 2 and len(p.stdout.splitlines()) == 1, p.stdout
+        assert results.read_text() == before
+
+
+def test_committed_results_have_top_fields():
+    """docs/results/synth-ecp5.json holds one entry per routed top in the shape --record writes."""
+    doc = json.loads(synth.RESULTS.read_text())
+    names = [t["name"] for t in doc["tops"]]
+    assert len(names) == len(set(names)) and synth.TOP in names
+    for t in doc["tops"]:
+        assert set(synth.TOP_FIELDS) <= set(t) and t["fmax_mhz"] > 0
 
 
 def test_ooc_wrapper_text():

@@ -9,7 +9,10 @@ A block can be synthesised with parameters other than the design's: `--param f24
 (repeatable) runs it with LAT = 3 under the report key f24_add_LAT3, beside f24_add.
 
 Writes out/synth/report.json and out/synth/report.md (and logs/, one per tool run; netlists;
-critical_path.txt).  A failing step is named with its log and ends the run with exit status 1;
+critical_path.txt): with the float units of every block counted from Yosys's hierarchy of the
+elaborated top, beside the paper's Table 1 (`float_units`; `--float-units` does only that, in
+seconds), and one entry per routed top (`tops`: name, rings, lut, ff, dsp, bram, fmax_mhz,
+seed, router, device, rtl_commit), which `--record` copies into docs/results/synth-ecp5.json.  A failing step is named with its log and ends the run with exit status 1;
 bad arguments: one line, exit status 2.  Every step's wall time is measured and reported.
 """
 from __future__ import annotations
@@ -119,25 +122,35 @@ def report_names(blocks: dict) -> list[str]:
     return ([n for n in BLOCK_NAMES if n in blocks]
             + sorted(n for n in blocks if n not in BLOCK_NAMES))
 
-# The paper's Table 1 (Park et al. 2013): floating-point elements per FPGA chip, by unit.
+# The paper's Table 1 (Park et al. 2013, "Hardware complexity: the number of floating-point
+# arithmetic elements per FPGA chip"), as the paper states it: 2-input adders, 3-input adders,
+# comparators, multipliers, dividers, square roots per unit.
 PAPER_TABLE1 = {
     "View calc.":  {"add2": 0, "add3": 1, "cmp": 0, "mul": 3, "div": 1, "sqrt": 0},
     "Traverse":    {"add2": 6, "add3": 0, "cmp": 7, "mul": 5, "div": 2, "sqrt": 0},
     "Addr. calc.": {"add2": 1, "add3": 0, "cmp": 0, "mul": 1, "div": 0, "sqrt": 0},
     "Color calc.": {"add2": 1, "add3": 1, "cmp": 0, "mul": 3, "div": 1, "sqrt": 1},
 }
-# Which dm_pipeline instances make each of the paper's rows (instance path prefixes).
+PAPER_KINDS = ["add2", "add3", "cmp", "mul", "div", "sqrt"]
+#: The float units (rtl/fp) counted per block, in the report's column order.
+FLOAT_UNITS = ["f24_add", "f24_one_minus", "f24_mul", "f24_div", "f24_cmp", "f24_sqrt",
+               "f24_rsqrt", "f24_log2", "f24_from_unorm", "f24_from_int", "f24_to_index"]
+#: The blocks whose float units are counted (every instance of the module below the top).
+FLOAT_BLOCKS = ["view_calc", "traverse_setup", "traverse_loop", "traverse_unit", "mip_level",
+                "tex_addr", "tex_filter", "shade_unit", "dm_pipeline"]
+#: Our blocks that do the work of each of the paper's rows.
 PAPER_ROWS = {
-    "View calc.": ("u_view",),
-    "Traverse": ("u_trav",),
-    "Addr. calc.": ("u_mip", "u_addr"),
-    "Color calc.": ("u_filter", "u_shade"),
+    "View calc.": ("view_calc",),
+    "Traverse": ("traverse_unit",),
+    "Addr. calc.": ("mip_level", "tex_addr"),
+    "Color calc.": ("tex_filter", "shade_unit"),
 }
-UNIT_KINDS = ["f24_add", "f24_mul", "f24_div", "f24_cmp", "f24_sqrt", "f24_rsqrt", "f24_log2",
-              "f24_from_unorm", "f24_from_int", "f24_to_index"]
-# Units counted as another kind: f24_one_minus is the traverse ring's 1 - H, a subtraction (an
-# adder in the paper's table) done by a unit that only takes x in [0, 1].
-UNIT_ALIASES = {"f24_one_minus": "f24_add"}
+#: The paper's columns as our units: a subtraction 1 - x (f24_one_minus) is an adder; the
+#: conversions (conv) and the approximate units have no column in the paper's table.
+OURS_VS_PAPER = {"add": ("f24_add", "f24_one_minus"), "mul": ("f24_mul",), "div": ("f24_div",),
+                 "cmp": ("f24_cmp",), "sqrt": ("f24_sqrt",), "rsqrt": ("f24_rsqrt",),
+                 "log2": ("f24_log2",),
+                 "conv": ("f24_from_unorm", "f24_from_int", "f24_to_index")}
 
 
 class StepError(Exception):
@@ -345,13 +358,18 @@ class Flow:
         self.yosys(f"synth_ecp5 {top}", script, self.logs / f"ecp5_{top}.log")
 
     def inventory(self) -> dict:
-        """The f24 units of dm_pipeline, by instance path (Yosys with the hierarchy kept)."""
+        """The float units of every block below the top (float_units), from Yosys's `hierarchy`
+        of the elaborated top with its hierarchy kept (a few seconds: no synthesis)."""
         stat = self.logs / "inventory.stat.json"
-        b = Block("dm_pipeline", "dm_pipeline")
-        script = (f"{self.read_cmd(b, keep_hierarchy=True)}; hierarchy -top dm_pipeline; "
+        b = Block(TOP, TOP)
+        script = (f"{self.read_cmd(b, keep_hierarchy=True)}; hierarchy -top {TOP}; "
                   f"tee -q -o {rel(stat)} stat -json")
-        self.yosys("inventory dm_pipeline", script, self.logs / "inventory.log")
-        return float_units(json.loads(stat.read_text()), "dm_pipeline")
+        self.yosys("float units", script, self.logs / "inventory.log")
+        fu = float_units(json.loads(stat.read_text()), TOP)
+        d = fu["blocks"].get("dm_pipeline", {})
+        self.say("    float units of dm_pipeline: " + ", ".join(
+            f"{d[u]} {u}" for u in FLOAT_UNITS if d.get(u)))
+        return fu
 
     def pnr(self, b: Block, ooc: bool) -> dict:
         a = self.args
@@ -486,42 +504,102 @@ def xilinx_counts(stat: dict) -> dict:
 
 
 def float_units(stat: dict, top: str) -> dict:
-    """Count f24 unit instances under `top`; Yosys names each kept module `<type>$<path>`."""
+    """Count the float units (FLOAT_UNITS) of every block (FLOAT_BLOCKS) below `top` in Yosys's
+    `stat -json` of the elaborated design with its hierarchy kept.  yosys-slang names each
+    instance's module `<module>$<instance path>`; a parent lists its submodules among its cells
+    by that name.  Returns {"blocks": {block: {"instances": n, unit: count, ...}}, "paper_rows":
+    {paper row: {unit: count}}, "units": FLOAT_UNITS}: a block's counts are over all its
+    instances, units inside units included; a block that is not below `top` is left out."""
     mods = stat.get("modules", {})
-    found: list[tuple[str, str]] = []   # (kind, instance path below top)
+    below: dict[str, dict[str, int]] = {}   # module -> float units in its subtree
+
+    def children(m: str) -> list[tuple[str, int]]:
+        cells = mods.get(m, {}).get("num_cells_by_type", {})
+        return [("\\" + t, int(n)) for t, n in cells.items()
+                if not t.startswith("$") and "\\" + t in mods]
+
+    def kind(m: str) -> str:
+        return m.lstrip("\\").partition("$")[0]
+
+    def units_below(m: str, seen: tuple[str, ...] = ()) -> dict[str, int]:
+        if m not in below:
+            if m in seen:
+                raise StepError(f"float units: {m} instantiates itself")
+            tot: dict[str, int] = {}
+            for c, n in children(m):
+                sub = dict(units_below(c, seen + (m,)))
+                if kind(c) in FLOAT_UNITS:
+                    sub[kind(c)] = sub.get(kind(c), 0) + 1
+                for k, v in sub.items():
+                    tot[k] = tot.get(k, 0) + n * v
+            below[m] = tot
+        return below[m]
+
+    insts: dict[str, list[tuple[str, int]]] = {}   # block -> (module, multiplicity)
 
     def walk(m: str, mult: int) -> None:
-        for t, n in mods.get(m, {}).get("num_cells_by_type", {}).items():
-            if t.startswith("$") or "\\" + t not in mods:
-                continue
-            kind, _, path = t.partition("$")
-            kind = UNIT_ALIASES.get(kind, kind)
-            path = path.split(".", 1)[1] if "." in path else path
-            if kind in UNIT_KINDS:
-                found.extend([(kind, path)] * (mult * int(n)))
-            walk("\\" + t, mult * int(n))
+        if kind(m) in FLOAT_BLOCKS:
+            insts.setdefault(kind(m), []).append((m, mult))
+        for c, n in children(m):
+            walk(c, mult * n)
 
-    walk("\\" + top, 1)
+    root = "\\" + top
+    if root not in mods:
+        raise StepError(f"float units: no module {top} in Yosys's statistics")
+    walk(root, 1)
     blocks: dict[str, dict[str, int]] = {}
-    for kind, path in found:
-        head = path.split(".")[0]
-        head = re.sub(r"\[\d+\]$", "", head)
-        sub = path.split(".")[1] if head == "u_trav" and "." in path else ""
-        key = head + (f".{sub}" if sub else "")
-        blocks.setdefault(key, {}).setdefault(kind, 0)
-        blocks[key][kind] += 1
-    rows = {}
-    for row, prefixes in PAPER_ROWS.items():
-        tot: dict[str, int] = {}
-        for key, units in blocks.items():
-            if key.split(".")[0] in prefixes:
-                for k, v in units.items():
-                    tot[k] = tot.get(k, 0) + v
-        rows[row] = tot
-    total: dict[str, int] = {}
-    for kind, _ in found:
-        total[kind] = total.get(kind, 0) + 1
-    return {"by_instance": blocks, "paper_rows": rows, "total": total}
+    for b in FLOAT_BLOCKS:
+        if b not in insts:
+            continue
+        row = {"instances": sum(n for _, n in insts[b])}
+        row.update({u: 0 for u in FLOAT_UNITS})
+        for m, n in insts[b]:
+            for k, v in units_below(m).items():
+                row[k] += n * v
+        blocks[b] = row
+    rows = {r: {u: sum(blocks.get(b, {}).get(u, 0) for b in bs) for u in FLOAT_UNITS}
+            for r, bs in PAPER_ROWS.items()}
+    return {"units": FLOAT_UNITS, "blocks": blocks, "paper_rows": rows}
+
+
+def ours_vs_paper(counts: dict[str, int]) -> dict[str, int]:
+    """Unit counts grouped as the paper's columns (OURS_VS_PAPER)."""
+    return {k: sum(counts.get(u, 0) for u in us) for k, us in OURS_VS_PAPER.items()}
+
+
+def float_units_md(fu: dict) -> list[str]:
+    """report.md's float-unit section: our blocks' counts, then the paper's Table 1 beside ours."""
+    units = fu.get("units", FLOAT_UNITS)
+    L = ["## Float units per block beside the paper's Table 1\n",
+         "Float unit instances (rtl/fp) below each block of the elaborated design "
+         f"(Yosys `hierarchy` of {TOP}, hierarchy kept; `scripts/flow/synth.py --float-units`); a "
+         "block's figures cover all its instances and the units inside its sub-blocks "
+         "(traverse_unit = traverse_setup + traverse_loop; dm_pipeline = the whole unit).\n",
+         "| block | instances | " + " | ".join(u.removeprefix("f24_") for u in units) + " |",
+         "|---|---:|" + "---:|" * len(units)]
+    for b, row in fu.get("blocks", {}).items():
+        L.append(f"| `{b}` | {row.get('instances', 1)} | "
+                 + " | ".join(str(row.get(u, 0)) for u in units) + " |")
+    L.append("")
+    L.append("The paper's figures (Park et al. 2013, Table 1: floating-point elements per "
+             "Virtex-6 FPGA chip, by unit) beside ours grouped the same way: add = f24_add + "
+             "f24_one_minus (1 - x); rsqrt, log2 and conv (f24_from_unorm + f24_from_int + "
+             "f24_to_index) have no column in the paper's table. Our blocks per row: "
+             + "; ".join(f"{r} = {' + '.join(bs)}" for r, bs in PAPER_ROWS.items())
+             + "; total = dm_pipeline.\n")
+    pk = PAPER_KINDS
+    ok = list(OURS_VS_PAPER)
+    L.append("| unit | paper " + " / ".join(pk) + " | ours " + " / ".join(ok) + " |")
+    L.append("|---|---|---|")
+    rows = [(r, PAPER_TABLE1[r], fu.get("paper_rows", {}).get(r, {})) for r in PAPER_TABLE1]
+    total = {k: sum(p[k] for p in PAPER_TABLE1.values()) for k in pk}
+    rows.append(("Total", total, fu.get("blocks", {}).get("dm_pipeline", {})))
+    for r, p, o in rows:
+        ov = ours_vs_paper(o)
+        L.append(f"| {r} | " + " / ".join(str(p[k]) for k in pk) + " | "
+                 + " / ".join(str(ov[k]) for k in ok) + " |")
+    L.append("")
+    return L
 
 
 def _inst(cell: str) -> str:
@@ -598,7 +676,9 @@ def write_md(report: dict, path: Path) -> None:
     L = []
     a = report["settings"]
     L.append("# FPGA synthesis report (`make synth`)\n")
-    L.append(f"Generated {report['date']} by scripts/flow/synth.py: {a['yosys']}, {a['nextpnr']}. "
+    rtl = a.get("rtl", {}).get("commit") if isinstance(a.get("rtl"), dict) else None
+    L.append(f"Generated {report['date']} by scripts/flow/synth.py: {a['yosys']}, {a['nextpnr']}"
+             f"{'; RTL of ' + rtl if rtl else ''}. "
              f"ECP5 counts from `synth_ecp5{' ' + a['ecp5_opts'] if a.get('ecp5_opts') else ''}`"
              f"{' (the top with ' + a['top_ecp5_opts'] + ')' if a.get('top_ecp5_opts') else ''}"
              f"{' with abc9 delay target ' + str(a['abc9_delay_ps']) + ' ps' if a.get('abc9_delay_ps') else ''}"
@@ -659,27 +739,8 @@ def write_md(report: dict, path: Path) -> None:
                  f"`{c['to_inst']}` | {', '.join(c['sources'][:6])} |")
     L.append("")
     fu = report.get("float_units")
-    if fu:
-        L.append("## Float units per block beside the paper's Table 1\n")
-        L.append("Paper (Park et al. 2013, Table 1, per Virtex-6 LX550 chip at 84 MHz): 2-input "
-                 "adder / 3-input adder / comparator / multiplier / divider / square root. Ours: "
-                 "f24 unit instances in dm_pipeline (the traverse unit's comparisons, min and max "
-                 "are inline logic from traverse_pkg, not f24_cmp instances; add = f24_add + "
-                 "f24_one_minus; conv = f24_from_unorm + f24_from_int + f24_to_index).\n")
-        L.append("| unit | paper add2 / add3 / cmp / mul / div / sqrt | ours add / mul / div / "
-                 "cmp / sqrt / rsqrt / log2 / conv |")
-        L.append("|---|---|---|")
-        for row, p in PAPER_TABLE1.items():
-            o = fu["paper_rows"].get(row, {})
-            conv = sum(o.get(k, 0) for k in ("f24_from_unorm", "f24_from_int", "f24_to_index"))
-            ours = " / ".join(str(o.get(k, 0)) for k in UNIT_KINDS[:7]) + f" / {conv}"
-            L.append(f"| {row} | {p['add2']} / {p['add3']} / {p['cmp']} / {p['mul']} / "
-                     f"{p['div']} / {p['sqrt']} | {ours} |")
-        o = fu["total"]
-        conv = sum(o.get(k, 0) for k in ("f24_from_unorm", "f24_from_int", "f24_to_index"))
-        L.append(f"| total | 8 / 2 / 7 / 12 / 4 / 1 | "
-                 + " / ".join(str(o.get(k, 0)) for k in UNIT_KINDS[:7]) + f" / {conv} |")
-        L.append("")
+    if fu and "blocks" in fu:
+        L += float_units_md(fu)
     L.append("## Run times (wall, this machine)\n")
     L.append("| step | s |")
     L.append("|---|---:|")
@@ -761,6 +822,72 @@ def router_text(router: str, tmg_ripup: bool = True) -> str:
     return r2 if router == "router2" else router
 
 
+#: The committed routed result of each top (`--record` copies report.json's `tops` into it).
+RESULTS = ROOT / "docs" / "results" / "synth-ecp5.json"
+#: The fields of a routed top's entry in report.json's `tops` and in RESULTS.
+TOP_FIELDS = ("name", "rings", "lut", "ff", "dsp", "bram", "fmax_mhz", "seed", "router", "device",
+              "rtl_commit")
+
+
+def rtl_commit(commit: str, changes: list[str]) -> str:
+    """The commit of the RTL a run synthesised, `-dirty` appended when rtl/ had uncommitted
+    changes (`git status --porcelain -- rtl` lines in `changes`)."""
+    return commit + ("-dirty" if changes else "")
+
+
+def top_record(name: str, counts: dict, fmax_mhz: float, settings: dict,
+               rings: int | None) -> dict:
+    """A routed top's entry of report.json's `tops` (TOP_FIELDS): its ECP5 counts, the routed
+    fmax, the run's seed, router and device, the RTL's commit, and how many traverse rings
+    (traverse_loop instances) it has."""
+    return {"name": name, "rings": rings, "lut": counts["lut"], "ff": counts["ff"],
+            "dsp": counts["dsp"], "bram": counts["bram"], "fmax_mhz": fmax_mhz,
+            "seed": settings["seed"], "router": resolved_router(settings["router"], False),
+            "device": settings["device_name"], "rtl_commit": settings["rtl"]["commit"]}
+
+
+def merge_tops(old: list, new: list) -> list:
+    """`old` with each entry of `new` in place of the entry of the same name (appended when there
+    is none); the other entries kept, in their order."""
+    out = [t for t in old if isinstance(t, dict)]
+    for t in new:
+        i = next((j for j, o in enumerate(out) if o.get("name") == t["name"]), None)
+        if i is None:
+            out.append(t)
+        else:
+            out[i] = t
+    return out
+
+
+def record(report_path: Path, results: Path) -> list[str]:
+    """`--record`: copy the routed tops of `report_path` (report.json's `tops`) into `results`
+    (docs/results/synth-ecp5.json), replacing the entries of the same name and keeping the
+    others; the names recorded.  ValueError (one line) when there is nothing to record."""
+    try:
+        report = json.loads(report_path.read_text())
+    except (OSError, ValueError) as e:
+        raise ValueError(f"cannot read {report_path}: {e}") from None
+    tops = report.get("tops") if isinstance(report, dict) else None
+    if not isinstance(tops, list) or not tops:
+        raise ValueError(f"{report_path} has no routed top (`tops`): nothing to record")
+    for t in tops:
+        missing = [k for k in TOP_FIELDS if not isinstance(t, dict) or k not in t]
+        if missing:
+            raise ValueError(f"{report_path}: a `tops` entry lacks {', '.join(missing)}")
+    old: list = []
+    if results.is_file():
+        try:
+            doc = json.loads(results.read_text())
+        except ValueError as e:
+            raise ValueError(f"cannot read {results}: {e}") from None
+        old = doc.get("tops", []) if isinstance(doc, dict) else []
+    merged = merge_tops(old if isinstance(old, list) else [],
+                        [{k: t[k] for k in TOP_FIELDS} for t in tops])
+    results.parent.mkdir(parents=True, exist_ok=True)
+    results.write_text(json.dumps({"tops": merged}, indent=2) + "\n")
+    return [t["name"] for t in tops]
+
+
 def main() -> int:
     ap = Parser(prog="synth.py", description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", type=Path, default=ROOT / "out" / "synth")
@@ -810,6 +937,16 @@ def main() -> int:
                          "'Synthesis')")
     ap.add_argument("--reuse", action="store_true",
                     help="reuse an ECP5 netlist and counts newer than every rtl/ file")
+    ap.add_argument("--float-units", action="store_true",
+                    help="only count the float units of every block (Yosys hierarchy of the "
+                         "top, a few seconds; every run does it too) into report.json's "
+                         "float_units and report.md's table beside the paper's Table 1")
+    ap.add_argument("--record", action="store_true",
+                    help="only copy report.json's routed tops (`tops`) into --results, "
+                         "replacing the entries of the same name and keeping the others")
+    ap.add_argument("--results", type=Path, default=RESULTS,
+                    help="the committed routed results --record writes (default "
+                         "docs/results/synth-ecp5.json)")
     ap.add_argument("--report-only", action="store_true",
                     help="only rewrite report.md and the critical-path files from report.json")
     args = ap.parse_args()
@@ -818,6 +955,13 @@ def main() -> int:
         print(f"synth: {msg}")
         return 2
 
+    if args.record:
+        try:
+            names = record(args.out / "report.json", args.results)
+        except ValueError as e:
+            return fail(str(e))
+        print(f"synth: recorded {', '.join(names)} in {args.results}")
+        return 0
     if args.report_only:
         path = args.out / "report.json"
         try:
@@ -868,7 +1012,9 @@ def main() -> int:
         return fail(f"{e.args[0]} not found (run `make setup`: it comes from requirements.txt)")
 
     blocks = [with_params(b, overrides.get(b.name, {})) for b in BLOCKS if b.name in names]
-    top_pnr = TOP in names and not args.blocks_only
+    top_pnr = TOP in names and not args.blocks_only and not args.float_units
+    if args.float_units:
+        blocks = []
     if args.blocks_only:
         blocks = [b for b in blocks if b.name != TOP]
     n_steps = (len(blocks) * (1 if args.no_xilinx else 2) + 1
@@ -885,8 +1031,10 @@ def main() -> int:
                                   timeout=30).stdout.strip()
         except (OSError, subprocess.SubprocessError):
             return "?"
-    rtl_state = {"commit": git("rev-parse", "--short", "HEAD"),
-                 "rtl_changes": git("status", "--porcelain", "--", "rtl").splitlines()}
+    # The RTL's commit: the last one that changed rtl/, "-dirty" with uncommitted changes there.
+    rtl_changes = git("status", "--porcelain", "--", "rtl").splitlines()
+    rtl_state = {"commit": rtl_commit(git("log", "-1", "--format=%h", "--", "rtl"), rtl_changes),
+                 "head": git("rev-parse", "--short", "HEAD"), "rtl_changes": rtl_changes}
     settings = {"device": args.device, "device_name": DEVICE[args.device], "rtl": rtl_state,
                 "package": args.package, "speed": args.speed, "lpf": rel(args.lpf),
                 "target_mhz": target, "seed": args.seed, "router": args.router,
@@ -911,12 +1059,17 @@ def main() -> int:
             for k, v in new.items():
                 if k in ("blocks", "xilinx", "pnr", "seconds"):
                     report[k].update(v)
+                elif k == "tops":   # one entry per routed top: this run's replaces its name's
+                    old_tops = report.get("tops")
+                    report[k] = merge_tops(old_tops if isinstance(old_tops, list) else [], v)
                 else:
                     report[k] = v
             report["seconds"].update(flow.times)
             report["date"] = _dt.datetime.now().isoformat(timespec="seconds")
             report["top"] = TOP
-            report["settings"] = settings
+            # --float-units alone leaves the settings of the run that made the other figures.
+            if not (args.float_units and isinstance(report.get("settings"), dict)):
+                report["settings"] = settings
             path.write_text(json.dumps(report, indent=1) + "\n")
             write_md(report, args.out / "report.md")
             write_paths(report, args.out)
@@ -966,6 +1119,9 @@ def main() -> int:
                     new["top_pnr"] = p
                     e["fmax_mhz"] = p["fmax_mhz"]
                     new["fmax_mhz"] = p["fmax_mhz"]
+                    rings = new.get("float_units", {}).get("blocks", {}).get(
+                        "traverse_loop", {}).get("instances")
+                    new["tops"] = [top_record(TOP, e, p["fmax_mhz"], settings, rings)]
         save()
         if not args.no_xilinx:
             new["xilinx"][b.name] = flow.synth_xilinx(b)
@@ -990,7 +1146,8 @@ def main() -> int:
         print(f"synth: {e}")
         return 1
     finally:
-        new["seconds_total_last_run"] = round(time.monotonic() - t_start, 1)
+        if not args.float_units:
+            new["seconds_total_last_run"] = round(time.monotonic() - t_start, 1)
         report = save()
     flow.say(f"done in {time.monotonic() - t_start:.0f} s: {rel(path)}, "
              f"{rel(args.out / 'report.md')}"
