@@ -280,7 +280,7 @@ class Harness:
         sig = [getattr(d, n) for n in ("rst_ni", "clr_stats_i", "req_valid_i", "req_ready_o",
                                        "req_addr_i", "m_axi_arvalid", "m_axi_arready",
                                        "m_axi_arid", "m_axi_rvalid", "m_axi_rlast", "m_axi_rid")]
-        cov = {n: getattr(d.u_assert, f"sim_{n}")  # (tex_cache_assert) for n in COVER}
+        cov = {n: getattr(d.u_assert, f"sim_{n}") for n in COVER}  # (tex_cache_assert)
         pr = [probe(d, n) for n in ("fire", "pop", "fill")]
         pr_fire = [probe(d, n) for n in ("used", "la", "alloc", "way")]
         pr_fill = [probe(d, n) for n in ("bad", "fsub", "fla")]
