@@ -169,7 +169,7 @@ module circ_queue_assert #(
     if (rst_ni) begin
       no_overflow:  assert (left + int'(n_push) <= int'(DEPTH))
         else $error("circ_queue: %0d pushes with %0d entries left", n_push, left);
-      no_underflow: assert (pop_n_i <= POP_W'(NPOP) && CNT_W'(pop_n_i) <= count_i)
+      no_underflow: assert (int'(pop_n_i) <= int'(NPOP) && int'(pop_n_i) <= int'(count_i))
         else $error("circ_queue: %0d pops with %0d entries", pop_n_i, count_i);
       wr_room:      assert (wr_ok)
         else $error("circ_queue: an early write into an entry in use");
