@@ -6,8 +6,10 @@ counterexample trace (VCD) that the waves tooling (pywellen, GTKWave) opens.
 The mutations: FIFO full one entry early (traverse_fifo's full_o), the credit check `<=` where
 it is `<` (pipe_credit's room_o: one item more than LIMIT), and a FIFO with its head in a
 register that refills it from the wrong RAM address (traverse_fifo's hd_q: the words come out
-of order, nothing else changes).  A
-fourth case removes one property from what the front end sees and shows the driver refuses the
+of order, nothing else changes); in circ_queue the pointers wrap one entry late (at DEPTH + 1:
+ptr_model), and push lane k writes at tail + k whether the lanes below it push or not (the
+entries land out of place: data_order or trk_in_mem, whichever the counterexample shows).  A
+further case removes one property from what the front end sees and shows the driver refuses the
 run (the guard against properties dropped silently).
 
 The scratch copies live under build/formal_mutants/ (inside the repository: YoWASP's tools see
@@ -26,7 +28,8 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 SCRATCH = ROOT / "build" / "formal_mutants"
 
-# name: (file, original text, mutated text, task, the assertion expected to fail)
+# name: (file, original text, mutated text, task, the assertion expected to fail: a regular
+# expression)
 MUTANTS = {
     "fifo_full_early": (
         "rtl/traverse/traverse_fifo.sv",
@@ -43,6 +46,16 @@ MUTANTS = {
         "if (hd_load) hd_q <= m_any ? mem_q[rp_q] : wr_data_i;",
         "if (hd_load) hd_q <= m_any ? mem_q[rp_q + AW'(1)] : wr_data_i;",
         "traverse_fifo:bmc_d4_reg", "data_order"),
+    "queue_wrap_late": (
+        "rtl/common/circ_queue.sv",
+        "if (q >= DEPTH) q = q - DEPTH;",
+        "if (q > DEPTH) q = q - DEPTH;",
+        "circ_queue:bmc_peek", "ptr_model"),
+    "queue_lane_place": (
+        "rtl/common/circ_queue.sv",
+        "pos[k] = ptr_add(wp_q, 32'(n_push));",
+        "pos[k] = ptr_add(wp_q, k);",
+        "circ_queue:bmc_multi", "(?:data_order|trk_in_mem)"),
 }
 
 
