@@ -339,7 +339,10 @@ module tex_cache
 `ifndef SYNTHESIS
   // The memories as the bound checks (tex_cache_assert) see them: the directory's words per
   // sub-cache and set (g_dir), its tags and reference counts per sub-cache, way and set, the
-  // MSHRs' lines and slots per sub-cache and MSHR (g_mshr).
+  // MSHRs' lines and slots per sub-cache and MSHR (g_mshr).  These copies stay here, not in
+  // tex_cache_assert.sv: the memories are declared per sub-cache and way inside generate blocks,
+  // and the bind (one port connection per signal) can only name a signal of tex_cache's own scope;
+  // the assigns into them (in g_dir and g_mshr below) are the other three blocks that remain.
   logic [WAYS-1:0]              vw_live [NSUB][SETS];
   logic [WAYS-1:0]              vw_ag   [NSUB][SETS];
   logic [WAYS-1:0]              vw_fg   [NSUB][SETS];
@@ -653,7 +656,7 @@ module tex_cache
     assign hd_pend[c]  = hd_ag[hd_q.way[c]] != hd_fg[hd_q.way[c]];
     assign hd_bad[c]   = hd_bd[hd_q.way[c]];
 
-`ifndef SYNTHESIS
+`ifndef SYNTHESIS  // the memories' copies for tex_cache_assert (see vw_live)
     assign vw_live[c] = live_mem;
     assign vw_ag[c]   = ag_mem;
     assign vw_fg[c]   = fg_mem;
@@ -678,7 +681,7 @@ module tex_cache
       assign set_dec[c][w] = dec_mem[a_set[c]];
       assign hd_dec        = dec_mem[hd_q.set[c]];
 
-`ifndef SYNTHESIS
+`ifndef SYNTHESIS  // the memories' copies for tex_cache_assert (see vw_live)
       assign vw_tag[c][w] = tag_mem;
       assign vw_inc[c][w] = inc_mem;
       assign vw_dec[c][w] = dec_mem;
@@ -744,7 +747,7 @@ module tex_cache
     assign mshr_la_ar[c] = la_mem[ap_idx];
     assign mshr_sw_r[c]  = sw_mem[r_idx];
     assign mshr_la_r[c]  = la_mem[r_idx];  // (read only by the simulation's shadow)
-`ifndef SYNTHESIS
+`ifndef SYNTHESIS  // the memories' copies for tex_cache_assert (see vw_live)
     assign vw_la[c] = la_mem;
     assign vw_sw[c] = sw_mem;
 `endif

@@ -61,14 +61,6 @@ module f24_cmp
 
   assign {lt_o, eq_o, gt_o, un_o} = res;
 
-`ifndef SYNTHESIS
-  // Exactly one relation holds once the register has been loaded (no reset: track the first load).
-  // Simulation-only tracker: the unit has no reset (FLOAT24.md ports), so it starts from 0 here.
-  /* verilator lint_off PROCASSINIT */
-  logic loaded_q = 1'b0;
-  /* verilator lint_on PROCASSINIT */
-  always_ff @(posedge clk_i) if (en_i) loaded_q <= 1'b1;
-  one_relation: assert property (@(posedge clk_i) loaded_q |-> $onehot(res_q));
-`endif
+  // The simulation checks are in f24_cmp_assert.sv (bound into every instance).
 
 endmodule

@@ -615,54 +615,6 @@ module dm_pipeline
                     f0_full, h_lines, miss_count, vc_cnt, req_cnt, hit_cnt,
                     rq_c_count, rq_n_count, tf_a, out_count};
 
-`ifndef SYNTHESIS
-  // Slot conservation: free + live = SLOTS once the free list is filled.
-  slots_conserved: assert property (@(posedge clk_i) disable iff (!rst_ni || init_q)
-    free_count + live_q == (SLOT_W+1)'(SLOTS));
-  // The credits hold: the FIFOs behind fixed-latency units never see a write while full.
-  fifo0_credit: assert property (@(posedge clk_i) disable iff (!rst_ni) f0_wr |-> !f0_full);
-  req_credit:   assert property (@(posedge clk_i) disable iff (!rst_ni)
-    ta_valid |-> (ta_tex ? !rq_n_full : !rq_c_full));
-  // One address unit serves both textures: a hit every 4th clock at most (counted here apart
-  // from hit_adm_q), its two lookups 2 clocks apart, colour first.
-  logic [1:0] hit_age_q;  // clocks since the last hit admitted, saturating at 3
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni)      hit_age_q <= 2'd3;
-    else if (hit_adm) hit_age_q <= 2'd0;
-    else if (hit_age_q != 2'd3) hit_age_q <= hit_age_q + 2'd1;
-  end
-  hit_spacing:  assert property (@(posedge clk_i) disable iff (!rst_ni)
-    hit_adm |-> hit_age_q == 2'd3);
-  // The held normal-map lookup reads mip_level's tag a clock after its result: still the hit's.
-  nl_tag_held:  assert property (@(posedge clk_i) disable iff (!rst_ni)
-    nl_valid_q |-> $stable(mip_tag));
-  logic [1:0]        ta_col_q;  // [k]: a colour lookup came out of tex_addr k + 1 clocks ago
-  logic [SLOT_W-1:0] ta_col_slot_q [2];
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) ta_col_q <= '0;
-    else         ta_col_q <= {ta_col_q[0], ta_valid && !ta_tex};
-    ta_col_slot_q[0] <= ta_slot;
-    ta_col_slot_q[1] <= ta_col_slot_q[0];
-  end
-  addr_pairs:   assert property (@(posedge clk_i) disable iff (!rst_ni)
-    (ta_valid && ta_tex) == ta_col_q[1] && (ta_col_q[1] -> ta_slot == ta_col_slot_q[1]));
-  out_credit:   assert property (@(posedge clk_i) disable iff (!rst_ni) sh_valid |-> !out_full);
-  // The pixel stream's payload holds while stalled; the texture request too.
-  px_stable:    assert property (@(posedge clk_i) disable iff (!rst_ni)
-    px_valid_o && !px_ready_i |=> px_valid_o && $stable(px_id_o) && $stable(px_rgb_o));
-  tc_req_held: assert property (@(posedge clk_i) disable iff (!rst_ni)
-    tc_req_valid && !tc_req_ready |=> tc_req_valid);
-  // The filter's results alternate colour, normal map, and a normal-map result belongs to the
-  // pixel of the colour result before it (what the pairing into shade_unit relies on).
-  logic              tf_col_pend_q;   // a colour result waits for its normal-map result
-  logic [SLOT_W-1:0] tf_col_slot_q;
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) tf_col_pend_q <= 1'b0;
-    else if (tf_valid) tf_col_pend_q <= !tf_tag[1];
-    if (tf_valid && !tf_tag[1]) tf_col_slot_q <= sh_in_slot;
-  end
-  tf_pairs: assert property (@(posedge clk_i) disable iff (!rst_ni)
-    tf_valid |-> (tf_tag[1] ? tf_col_pend_q && tf_col_slot_q == sh_in_slot : !tf_col_pend_q));
-`endif
+  // The simulation checks are in dm_pipeline_assert.sv (bound into every instance).
 
 endmodule

@@ -500,51 +500,6 @@ module shade_unit
   // a pixel that waited 3 clocks is at the output in core S41, the others in S42 .. S44
   assign rgb_o = cv_q[41] ? {idx[7:0], g_q, r_q[41]} : res_q;
 
-`ifndef SYNTHESIS
-  // The core stages k with k mod 4 = r.
-  function automatic logic [CS:1] stage_phase(input logic [1:0] r);
-    logic [CS:1] m;
-    for (int k = 1; k <= CS; k++) m[k] = (k % 4) == int'(r);
-    return m;
-  endfunction
-
-  // A shared unit's operation stages (0: none), as a mask of core stages.
-  function automatic logic [CS:1] ops(input int a, input int b, input int c, input int d);
-    logic [CS:1] m;
-    m = '0;
-    for (int k = 1; k <= CS; k++) m[k] = (k == a) || (k == b) || (k == c) || (k == d);
-    return m;
-  endfunction
-
-  // Every float unit with more than one operation: the stages it takes its operands in.
-  localparam int NSH = 26;
-  logic [CS:1] shared [NSH];
-  assign shared = '{
-    ops(1, 12, 0, 0),   ops(1, 19, 20, 30),  ops(8, 9, 0, 0),     ops(8, 9, 0, 0),    // mul
-    ops(9, 10, 0, 0),   ops(12, 13, 26, 27), ops(19, 20, 21, 22), ops(20, 21, 0, 0),
-    ops(20, 21, 0, 0),  ops(20, 21, 0, 0),   ops(28, 29, 30, 31), ops(29, 30, 0, 0),
-    ops(35, 36, 37, 0),
-    ops(1, 2, 0, 0),    ops(1, 2, 0, 0),     ops(4, 15, 0, 0),    ops(9, 10, 0, 0),   // add
-    ops(10, 11, 0, 0),  ops(12, 13, 0, 0),   ops(21, 22, 0, 0),   ops(23, 24, 0, 0),
-    ops(27, 32, 0, 0),  ops(32, 33, 0, 0),   ops(36, 37, 38, 0),
-    ops(6, 16, 17, 0),  ops(38, 39, 40, 0)};                                          // rsqrt, idx
-
-  // At least 4 enabled clocks between two pixels, so the hold registers are free when one comes.
-  pixel_spacing: assert property (@(posedge clk_i) disable iff (!rst_ni)
-    en_i && valid_i |-> !(|stage_v[3:1]) && !hv_q);
-  // The core's pixels are all in stages k with k mod 4 = ph_q, so a unit whose operations are in
-  // stages that differ pairwise by amounts not divisible by 4 never gets two in one clock.
-  core_aligned: assert property (@(posedge clk_i) disable iff (!rst_ni)
-    (cv_q & ~stage_phase(ph_q)) == '0);
-  // Every phase replica is ph_q, one-hot.
-  for (genvar u = 0; u < NPS; u++) begin : g_ps_check
-    phase_replica: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      ps_q[u] == (4'b0001 << ph_q));
-  end
-  for (genvar u = 0; u < NSH; u++) begin : g_shared
-    unit_once: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      $onehot0(cv_q & shared[u]));
-  end
-`endif
+  // The simulation checks are in shade_unit_assert.sv (bound into every instance).
 
 endmodule

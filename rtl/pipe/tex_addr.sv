@@ -279,10 +279,6 @@ module tex_addr
   pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(TEX_ADDR_LAT)) u_valid_tag (
     .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o, .stage_valid_o(stage_v));
 
-`ifndef SYNTHESIS
-  // The axes share the float units: no lookup on the enabled clock after another (its v item's).
-  lookup_spacing: assert property (@(posedge clk_i) disable iff (!rst_ni)
-    en_i && valid_i |-> !stage_v[1]);
-`endif
+  // The simulation checks are in tex_addr_assert.sv (bound into every instance).
 
 endmodule

@@ -207,23 +207,6 @@ module tex_filter
   assign b_o = out[2];
   assign a_o = out[3];
 
-`ifndef SYNTHESIS
-  // The stages of one parity: bit k set for odd k (odd = 1) or even k (odd = 0).
-  function automatic logic [S_OUT:1] stage_parity(input logic odd);
-    logic [S_OUT:1] p;
-    for (int k = 1; k <= S_OUT; k++) p[k] = ((k % 2) == 1) == odd;
-    return p;
-  endfunction
-
-  // The unit's lookups are all in odd or all in even stages (ph_q = 1: odd), so a unit that takes
-  // its two operations in stages of different parity is never asked for two in one clock.
-  core_aligned: assert property (@(posedge clk_i) disable iff (!rst_ni)
-    (sv & ~stage_parity(ph_q)) == '0);
-  // Each shared unit gets one operation per clock at most: its two stages never hold lookups at
-  // once (the input conversions: no lookup is taken while one is in S1).
-  shared_free: assert property (@(posedge clk_i) disable iff (!rst_ni)
-    !(take && sv[1]) && !(sv[S_D0] && sv[S_D0+1]) && !(sv[S_M0] && sv[S_M0+1])
-    && !(sv[S_A0] && sv[S_A0+1]) && !(sv[S_D1-1] && sv[S_A1-1]) && !(sv[S_D1] && sv[S_A1]));
-`endif
+  // The simulation checks are in tex_filter_assert.sv (bound into every instance).
 
 endmodule

@@ -748,33 +748,6 @@ module traverse_loop
     busy_o = 5'($countones(v_q));
   end
 
-`ifndef SYNTHESIS
-  // Every stage's slot counter is (ph - s) mod D.
-  for (genvar g = 0; g < D; g++) begin : g_sl_check
-    slot_counter: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      32'(sl_q[g]) == (32'(sl_q[0]) + D - g) % D);
-  end
-  // A response only ever answers a request made LOOKUP_LAT clocks earlier.
-  logic [LOOKUP_LAT-1:0] lk_d_q;  // lk_d_q[i]: a request i + 1 clocks ago
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) lk_d_q <= '0;
-    else         lk_d_q <= {lk_d_q[LOOKUP_LAT-2:0], lk_valid_o};
-  end
-  no_spurious_response: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                         rs_valid_i |-> lk_d_q[LOOKUP_LAT-1])
-    else $error("traverse_loop: height response without a request");
-  // f24_one_minus takes H in [+0, 1] only (f24_from_unorm gives nothing else).
-  plane_operand_in_range: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      ok_q[5] |-> !h[23] && (h[22:16] < 7'd63 || h == F24_ONE))
-    else $error("traverse_loop: H = %h outside [+0, 1]", h);
-  new_ray_only_in_bubble: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                           admit |-> (!v_q[D-1] || retire));
-  // A ray that is not done has none of the final flags (S17 relies on it).
-  live_ray_has_no_result: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      live17 |-> !(st17.hit || st17.invalid || st17.capped || st17.err));
-  // The descent's node and a new ray never take one entry in one clock.
-  descent_not_admitted: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                         down18_q |-> !admit);
-`endif
+  // The simulation checks are in traverse_loop_assert.sv (bound into every instance).
 
 endmodule

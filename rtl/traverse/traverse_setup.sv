@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // traverse_setup: the first mode of the traverse unit (model/traverse.py: setup() and the "first
 // mode" block of _trace), a fixed-depth pipeline taking one ray every other clock at most, never
-// stalling.  in_valid_i must not be 1 on two consecutive clocks (asserted below; traverse_unit
-// drops ray_ready_o in the clock after it accepts a ray): the u (x) and v (y) axes share one
-// float unit per operation, u in one clock and v in the next (as view_calc computes x and y).
+// stalling.  in_valid_i must not be 1 on two consecutive clocks (asserted: ray_spacing, bound
+// from traverse_setup_assert.sv; traverse_unit drops ray_ready_o in the clock after it accepts a
+// ray): the u (x) and v (y) axes share one float unit per operation, u in one clock and v in the
+// next (as view_calc computes x and y).
 //
 // In: the ray's four numbers as f24 words (the model's ar.r() of the float64 ray).  Out, SETUP_LAT
 // clocks later (traverse_pkg: F24_DIV_LAT + 12 = 20): the ray record (traverse_pkg::ray_t) with
@@ -451,10 +452,6 @@ module traverse_setup
   assign out_id_o    = out_q[3].id;
   assign busy_o      = SETUP_BUSY_W'($countones(v_q));
 
-`ifndef SYNTHESIS
-  // u and v share the float units a clock apart: no ray in the clock after one.
-  ray_spacing: assert property (@(posedge clk_i) disable iff (!rst_ni) in_valid_i |-> !v_q[0])
-    else $error("traverse_setup: rays on two consecutive clocks");
-`endif
+  // The simulation checks are in traverse_setup_assert.sv (bound into every instance).
 
 endmodule

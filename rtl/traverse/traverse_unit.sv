@@ -213,28 +213,6 @@ module traverse_unit
     end
   end
 
-`ifndef SYNTHESIS
-  // Slot conservation: every ray that came in is in exactly one place until it goes out.
-  // (Counted one bit wider than inflight_q, so an occupancy beyond MAX_INFLIGHT cannot alias.)
-  logic [IF_W:0] occupancy;
-  assign occupancy = (IF_W+1)'(su_busy) + (IF_W+1)'(sf_count) + (IF_W+1)'(lp_busy)
-                   + (IF_W+1)'(rf_count);
-  slot_conservation: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                      (IF_W+1)'(inflight_q) == occupancy)
-    else $error("traverse_unit: rays in (%0d) != rays out + in flight (%0d)", inflight_q,
-                occupancy);
-  setup_credits: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                  sf_used_q == (SF_AW+1)'(su_busy) + sf_count);
-  setup_fifo_never_overflows: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                               su_valid |-> !sf_full);
-  // Stream protocol: once valid, payload stable and valid held until the transfer.
-  ray_in_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      (ray_valid_i && !ray_ready_o) |=> (ray_valid_i && $stable({ray_id_i, ray_u0_i, ray_v0_i,
-                                                                   ray_du_i, ray_dv_i})))
-    else $error("traverse_unit: ray stream changed while waiting for ray_ready_o");
-  res_out_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
-      (res_valid_o && !res_ready_i) |=> (res_valid_o && $stable(rf_head)))
-    else $error("traverse_unit: result stream changed while waiting for res_ready_i");
-`endif
+  // The simulation checks are in traverse_unit_assert.sv (bound into every instance).
 
 endmodule

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: Apache-2.0
+// traverse_loop_assert: the simulation checks of traverse_loop, bound into every instance (the
+// `bind` at the end of this file; not in synthesis).  Immediate assertions in a clocked block, in
+// the form the formal flow's front end (Yosys read_slang) accepts ("disable iff (!rst_ni)" is a
+// guard on rst_ni).
+//
+//   slot_counter            every stage's slot counter is (ph - s) mod D (ph = sl_q[0]);
+//   no_spurious_response    a response only ever answers a request made LOOKUP_LAT clocks
+//                           earlier;
+//   plane_operand_in_range  f24_one_minus takes H in [+0, 1] only (f24_from_unorm gives nothing
+//                           else);
+//   new_ray_only_in_bubble  a new ray enters only where the last stage holds no ray or one that
+//                           retires;
+//   live_ray_has_no_result  a ray that is not done has none of the final flags (S17 relies on
+//                           it);
+//   descent_not_admitted    the descent's node and a new ray never take one entry in one clock.
+`ifndef SYNTHESIS
+module traverse_loop_assert
+  import f24_pkg::*;
+  import traverse_pkg::*;
+(
+  input logic                          clk_i,
+  input logic                          rst_ni,
+  input logic [$clog2(LOOP_DEPTH)-1:0] sl_i [LOOP_DEPTH],  // sl_q: the stages' slot counters
+  input logic                          lk_valid_i,         // lk_valid_o
+  input logic                          rs_valid_i,
+  input logic                          ok5_i,              // ok_q[5]: H enters f24_one_minus
+  input f24_t                          h_i,                // h
+  input logic                          admit_i,            // admit: a new ray enters
+  input logic                          v_last_i,           // v_q[D-1]
+  input logic                          retire_i,
+  input logic                          live17_i,
+  input logic                          st17_final_i,       // st17: hit, invalid, capped or err
+  input logic                          down18_i            // down18_q
+);
+
+  localparam int unsigned D = LOOP_DEPTH;
+
+  // lk_d_q[i]: a request i + 1 clocks ago.
+  logic [LOOKUP_LAT-1:0] lk_d_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) lk_d_q <= '0;
+    else         lk_d_q <= {lk_d_q[LOOKUP_LAT-2:0], lk_valid_i};
+  end
+
+  for (genvar g = 0; g < D; g++) begin : g_sl_check
+    always_ff @(posedge clk_i) begin
+      if (rst_ni) begin
+        slot_counter: assert (32'(sl_i[g]) == (32'(sl_i[0]) + D - g) % D)
+          else $error("traverse_loop: stage %0d's slot %0d, phase %0d", g, sl_i[g], sl_i[0]);
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (rst_ni) begin
+      no_spurious_response: assert (!rs_valid_i || lk_d_q[LOOKUP_LAT-1])
+        else $error("traverse_loop: height response without a request");
+      plane_operand_in_range: assert (!ok5_i || (!h_i[23] && (h_i[22:16] < 7'd63 || h_i == F24_ONE)))
+        else $error("traverse_loop: H = %h outside [+0, 1]", h_i);
+      new_ray_only_in_bubble: assert (!admit_i || !v_last_i || retire_i)
+        else $error("traverse_loop: a new ray admitted over a ray that stays");
+      live_ray_has_no_result: assert (!live17_i || !st17_final_i)
+        else $error("traverse_loop: a live ray in S17 has a final flag");
+      descent_not_admitted: assert (!down18_i || !admit_i)
+        else $error("traverse_loop: a descent and a new ray in one clock");
+    end
+  end
+
+endmodule
+
+bind traverse_loop traverse_loop_assert u_assert (
+  .clk_i, .rst_ni, .sl_i(sl_q), .lk_valid_i(lk_valid_o), .rs_valid_i, .ok5_i(ok_q[5]), .h_i(h),
+  .admit_i(admit), .v_last_i(v_q[LOOP_DEPTH-1]), .retire_i(retire), .live17_i(live17),
+  .st17_final_i(st17.hit || st17.invalid || st17.capped || st17.err), .down18_i(down18_q));
+`endif
