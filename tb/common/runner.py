@@ -52,6 +52,14 @@ def rtl_index() -> dict[str, Path]:
     return index
 
 
+def rtl_files() -> list[Path]:
+    """Every SystemVerilog file under rtl/, packages first (a bound checker's file may hold only
+    its ``bind``, so files are listed, not modules)."""
+    files = sorted(RTL.rglob("*.sv"))
+    return [p for p in files if p.name.endswith("_pkg.sv")] + \
+        [p for p in files if not p.name.endswith("_pkg.sv")]
+
+
 def is_bound_checker(path: Path) -> bool:
     """True for a file of bound assertions (``rtl/**/<module>_assert.sv``: a checker module and
     the ``bind`` that puts it into every instance of <module>).  It is compiled with the RTL (the
@@ -61,13 +69,12 @@ def is_bound_checker(path: Path) -> bool:
 
 
 def sources_for(top: str, extra: Sequence[str] = ()) -> list[Path]:
-    """The packages first, then the top and every module under rtl/ (Verilator picks what it needs)."""
+    """The packages first, then every other file under rtl/ (Verilator picks the modules it needs;
+    the bound checkers' binds apply wherever their modules are used)."""
     index = rtl_index()
     if top not in index:
         raise KeyError(f"no module {top!r} under {RTL}")
-    pkgs = [p for p in dict.fromkeys(index.values()) if p.name.endswith("_pkg.sv")]
-    mods = [p for p in dict.fromkeys(index.values()) if p not in pkgs]
-    return pkgs + mods + [Path(e) for e in extra]
+    return rtl_files() + [Path(e) for e in extra]
 
 
 def coverage_enabled() -> bool:

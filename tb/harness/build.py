@@ -29,6 +29,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Mapping, Sequence
 
+import numpy as np
+
 ROOT = Path(__file__).resolve().parents[2]
 HARNESS_DIR = ROOT / "tb" / "harness"
 #: Sources shared by every harness (hashed into each build).
@@ -42,6 +44,23 @@ _RECIPE = 1
 
 class RtlEngineError(RuntimeError):
     """A harness could not be built, or a run failed (timeout, a lost ray, an AXI violation)."""
+
+
+def read_records(path: Path, magic: bytes, record: np.dtype, n: int, what: str) -> np.ndarray:
+    """A harness output file: ``magic`` (8 bytes), the record count and size (two little-endian
+    uint32), then ``n`` records of ``record`` whose ``id`` field counts 0 .. n-1 (the harness
+    writes them in input order).  Any other shape is an :class:`RtlEngineError`."""
+    raw = Path(path).read_bytes()
+    if len(raw) < 16 or raw[:8] != magic:
+        raise RtlEngineError(f"{path}: not a {what} output file")
+    cnt, rec = np.frombuffer(raw[8:16], dtype="<u4")
+    if rec != record.itemsize or cnt != n or len(raw) != 16 + n * record.itemsize:
+        raise RtlEngineError(f"{path}: {cnt} records of {rec} bytes, expected {n} of "
+                             f"{record.itemsize}")
+    out = np.frombuffer(raw[16:], dtype=record)
+    if not np.array_equal(out["id"], np.arange(n, dtype=np.uint32)):
+        raise RtlEngineError(f"{path}: records out of order")
+    return out
 
 
 # ---- build ---------------------------------------------------------------------------------------

@@ -49,7 +49,8 @@ from model.camera import Camera, Fragments, tile_order
 
 from . import build as _build
 from . import pipeline_words, traverse_words
-from .build import BUILD, COMMON_SOURCES, HARNESS_DIR, ROOT, VARIANTS, HarnessSpec, RtlEngineError
+from .build import (BUILD, COMMON_SOURCES, HARNESS_DIR, ROOT, VARIANTS, HarnessSpec,
+                    RtlEngineError, read_records)
 
 #: dm_pipeline parameters the harness is built with (passed as -G and as -DHARNESS_*).
 PARAMS: dict[str, int] = {"PIX_W": 20, "H_ID_W": 4, "T_ID_W": 6, "AXI_DATA_W": 64}
@@ -227,17 +228,7 @@ def write_input(path: Path, fi: FrameImage, frags: npt.NDArray[np.uint32]) -> No
 
 def read_output(path: Path, n: int) -> npt.NDArray[Any]:
     """The harness output: one OUT_RECORD per fragment, in stream order."""
-    raw = Path(path).read_bytes()
-    if len(raw) < 16 or raw[:8] != OUT_MAGIC:
-        raise RtlEngineError(f"{path}: not a pipeline harness output file")
-    cnt, rec = np.frombuffer(raw[8:16], dtype="<u4")
-    if rec != OUT_RECORD.itemsize or cnt != n or len(raw) != 16 + n * OUT_RECORD.itemsize:
-        raise RtlEngineError(f"{path}: {cnt} records of {rec} bytes, expected {n} of "
-                             f"{OUT_RECORD.itemsize}")
-    out = np.frombuffer(raw[16:], dtype=OUT_RECORD)
-    if not np.array_equal(out["id"], np.arange(n, dtype=np.uint32)):
-        raise RtlEngineError(f"{path}: records out of order")
-    return out
+    return read_records(path, OUT_MAGIC, OUT_RECORD, n, "pipeline harness")
 
 
 def to_pixels(out: npt.NDArray[Any]) -> RtlPixels:

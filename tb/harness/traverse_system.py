@@ -37,7 +37,8 @@ from model.rays import Rays, TraceResult
 from model.traverse import METHOD_CODES
 
 from . import build as _build
-from .build import BUILD, COMMON_SOURCES, HARNESS_DIR, ROOT, HarnessSpec, RtlEngineError
+from .build import (BUILD, COMMON_SOURCES, HARNESS_DIR, ROOT, HarnessSpec, RtlEngineError,
+                    read_records)
 from .traverse_words import MAX_LEVELS, config, ray_words
 
 HARNESS_SOURCES = (HARNESS_DIR / "traverse_harness.cpp", HARNESS_DIR / "traverse_harness.h",
@@ -105,17 +106,7 @@ def write_input(path: Path, pyr: Pyramid, rays: Rays, method: str, base: int = D
 
 def read_output(path: Path, n: int) -> npt.NDArray[Any]:
     """The harness output: one OUT_RECORD per ray, in input order."""
-    raw = Path(path).read_bytes()
-    if len(raw) < 16 or raw[:8] != OUT_MAGIC:
-        raise RtlEngineError(f"{path}: not a harness output file")
-    cnt, rec = np.frombuffer(raw[8:16], dtype="<u4")
-    if rec != OUT_RECORD.itemsize or cnt != n or len(raw) != 16 + n * OUT_RECORD.itemsize:
-        raise RtlEngineError(f"{path}: {cnt} records of {rec} bytes, expected {n} of "
-                             f"{OUT_RECORD.itemsize}")
-    out = np.frombuffer(raw[16:], dtype=OUT_RECORD)
-    if not np.array_equal(out["id"], np.arange(n, dtype=np.uint32)):
-        raise RtlEngineError(f"{path}: records out of order")
-    return out
+    return read_records(path, OUT_MAGIC, OUT_RECORD, n, "harness")
 
 
 def to_result(out: npt.NDArray[Any]) -> TraceResult:
