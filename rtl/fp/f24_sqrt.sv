@@ -7,12 +7,18 @@
 // Stage 2: round and pack (f24_round_pack).  The root of a normal number is always in range.
 module f24_sqrt
   import f24_pkg::*;
-(
+#(
+  parameter int unsigned LAT = 2   // latency in enabled clocks, 2 (the default) or 3
+) (
   input  logic clk_i,  // clock
   input  logic en_i,   // clock enable: the pipeline registers advance only while en_i is 1
   input  f24_t a_i,
   output f24_t y_o     // sqrt(a)
 );
+
+  if (LAT < 2 || LAT > 3) begin : g_check_lat
+    $error("f24_sqrt: LAT must be 2 or 3");
+  end
 
   localparam int unsigned R_W = SIG_W + 1;  // root bits: 17 + guard
   localparam int unsigned X_W = 2 * R_W;    // radicand bits
@@ -87,6 +93,13 @@ module f24_sqrt
     if (en_i) y_q <= y_d;
   end
 
-  assign y_o = y_q;
+  // LAT = 3: one plain enabled delay register after the unit's two stages (the same word).
+  if (LAT > 2) begin : g_delay
+    f24_delay #(.W(24), .N(LAT - 2)) u_delay (
+      .clk_i, .en_i, .d_i(y_q), .q_o(y_o)
+    );
+  end else begin : g_out
+    assign y_o = y_q;
+  end
 
 endmodule

@@ -1,14 +1,21 @@
 # SPDX-License-Identifier: Apache-2.0
-"""f24_sqrt against model.f24.sqrt: random patterns, values near 1.0 and the directed set."""
+"""f24_sqrt against model.f24.sqrt: random patterns, values near 1.0 and the directed set.
+
+Run at every latency the unit accepts (LAT 2, the default, built with no parameter, and 3), each
+with the same stimulus; test_f24_sqrt_lats checks that exactly these LATs elaborate.
+"""
 from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 
 from model import f24, f24_vectors as vec
-from tb.common import fp_unit, runner
+from tb.common import fp_unit
 
-LATENCY = 2
+#: The unit's default latency and every LAT it accepts.
+DEFAULT_LAT = 2
+LATS = (2, 3)
 
 
 @cocotb.test()
@@ -17,9 +24,16 @@ async def sqrt_random_and_directed(dut):
     da = vec.directed_unary_sqrt(rng)
     ra = vec.random_unary(rng, fp_unit.vectors())
     a = np.concatenate([da, ra])
-    n = await fp_unit.check_pipeline(dut, LATENCY, {"a_i": a}, {"y_o": f24.sqrt(a)}, rng)
-    dut._log.info("VECTORS f24_sqrt: %d (%d directed, %d random), 0 mismatches", n, len(da), len(ra))
+    lat = fp_unit.latency(DEFAULT_LAT)
+    n = await fp_unit.check_pipeline(dut, lat, {"a_i": a}, {"y_o": f24.sqrt(a)}, rng)
+    dut._log.info("VECTORS f24_sqrt LAT=%d: %d (%d directed, %d random), 0 mismatches", lat, n,
+                  len(da), len(ra))
 
 
-def test_f24_sqrt():
-    runner.run("f24_sqrt", "test_f24_sqrt", Path(__file__).parent)
+@pytest.mark.parametrize("lat", LATS)
+def test_f24_sqrt(lat: int):
+    fp_unit.run_lat("f24_sqrt", "test_f24_sqrt", Path(__file__).parent, lat, DEFAULT_LAT)
+
+
+def test_f24_sqrt_lats():
+    fp_unit.check_lats("f24_sqrt", LATS)
