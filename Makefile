@@ -118,6 +118,8 @@ bench: $(STAMP)
 	@$(ENV) $(PY) scripts/bench/bench_rtl.py --incoherent 20000 --size 512 \
 	    --out out/bench/rtl_incoherent.json --md out/bench/rtl_incoherent.md
 	@$(ENV) $(PY) scripts/bench/bench_pipeline.py
+	@$(ENV) $(PY) scripts/bench/bench_pipeline.py --rings 2 --out out/bench/pipeline_r2.json \
+	    --md out/bench/pipeline_r2.md
 	@$(ENV) $(PY) scripts/bench/bench_pipeline.py --views oblique --mip on,off --map 512 --image 256 \
 	    --out out/bench/pipeline_mip.json --md out/bench/pipeline_mip.md
 	@$(ENV) $(PY) -m tb.harness.traverse_system --size 64 --rays 20000

@@ -908,7 +908,11 @@ def main() -> int:
                          "a run with --blocks f24_add and no --param gives); BLOCK is run even "
                          "when --blocks does not name it")
     ap.add_argument("--blocks-only", action="store_true",
-                    help=f"skip the place and route of the top ({TOP}), the longest step")
+                    help=f"leave out the tops ({TOP}, {TOP2}): their place and route is the "
+                         f"longest step")
+    ap.add_argument("--no-top-pnr", action="store_true",
+                    help="synthesise the tops named by --blocks (resource counts) without "
+                         "placing and routing them")
     ap.add_argument("--ecp5-opts", default="",
                     help="extra synth_ecp5 options, e.g. --ecp5-opts=-nowidelut (LUT4s only: "
                          "fewer LUTs, see README 'Synthesis'); recorded in the report")
@@ -1020,7 +1024,8 @@ def main() -> int:
         return fail(f"{e.args[0]} not found (run `make setup`: it comes from requirements.txt)")
 
     blocks = [with_params(b, overrides.get(b.name, {})) for b in BLOCKS if b.name in names]
-    top_pnr = any(t in names for t in TOP_RINGS) and not args.blocks_only and not args.float_units
+    top_pnr = (any(t in names for t in TOP_RINGS) and not args.blocks_only
+               and not args.float_units and not args.no_top_pnr)
     if args.float_units:
         blocks = []
     if args.blocks_only:
