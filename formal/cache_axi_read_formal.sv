@@ -15,7 +15,12 @@
 // The AXI slave: arready free; after an AR it returns exactly BEATS beats with the arid it got
 // (any interleaving with other reads, any rresp), rlast on the last of them and on no other, no
 // beat for an MSHR without a read out; rready is 1, so a beat is never held.  Reset comes in
-// the first clock only (beats of reads from before a reset, another epoch, are not modelled).
+// the first clock, and with RESETS at any time after that as long as cache_axi_read's
+// requirement holds (a read returns before 2^EPOCH_W - 1 further resets; one epoch bit here: no
+// read from before the last reset is still out when the next one starts): the reads out at a
+// reset go on returning their beats with their old arid (stale reads), while the cache, reset,
+// allocates the MSHRs again.  The wrapper's stale_ignored: a stale read's beat is never taken
+// for the current epoch's (r_cur_o low), so it touches nothing.
 //
 // Induction invariants (the shadow in u_dut.u_assert against the cache and the slave):
 //   inv_busy    busy = pend | out, never both;
@@ -23,12 +28,14 @@
 //               registers (AR_REG), no other index is there;
 //   inv_slave   the slave's reads out are the shadow's, with the beats it sent = the beats the
 //               shadow and cache_axi_read counted, its errors = theirs, its arid's epoch the
-//               current one; an MSHR without a read out has a clear count and error bit.
+//               current one; an MSHR without a read out has a clear count and error bit;
+//   inv_stale   a stale read's epoch is not the current one (in reset too).
 module cache_axi_read_formal #(
   parameter int unsigned MSHRS    = 3,     // line reads in flight
   parameter int unsigned NPUSH    = 1,     // allocations per clock
   parameter bit          AR_REG   = 1'b0,  // cache_axi_read's AR_REG
   parameter bit          EARLY_WR = 1'b1,  // see above (NPUSH = 1 only)
+  parameter bit          RESETS   = 1'b0,  // resets after the first clock too (see above)
   parameter int unsigned DATA_W   = 16,    // with LINE_BYTES: BEATS = 2
   parameter int unsigned LINE_BYTES = 4,
   parameter int unsigned ADDR_W   = 5,     // line address: 3 bits
@@ -117,23 +124,64 @@ module cache_axi_read_formal #(
   end
 
   // ---- the slave ---------------------------------------------------------------------------
-  logic [MSHRS-1:0]              sl_out_q, sl_err_q;
-  logic [MSHRS-1:0][BEAT_W-1:0]  sl_n_q;     // beats sent
-  logic [MSHRS-1:0][EPOCH_W-1:0] sl_ep_q;    // the epoch of the arid
+  // sl_*: the reads of the current epoch; st_*: with RESETS, the reads that were out at the
+  // last reset, whose beats still come (with the arid's old epoch).
+  logic [MSHRS-1:0]              sl_out_q, sl_err_q, st_out_q;
+  logic [MSHRS-1:0][BEAT_W-1:0]  sl_n_q, st_n_q;    // beats sent
+  logic [MSHRS-1:0][EPOCH_W-1:0] sl_ep_q, st_ep_q;  // the epoch of the arid
+  logic [MSHRS-1:0]              n_out, n_err, n_st_out;
+  logic [MSHRS-1:0][BEAT_W-1:0]  n_n, n_st_n;
   logic [MIDX_W-1:0]             rid_idx;
-  assign rid_idx = m_axi_rid[MIDX_W-1:0];
+  logic [EPOCH_W-1:0]            rid_ep;
+  logic                          rb_cur, rb_stale;  // the beat is of a current / a stale read
+  logic                          p_rst_q;           // rst_ni in the clock before
+  assign rid_idx  = m_axi_rid[MIDX_W-1:0];
+  assign rid_ep   = m_axi_rid[ID_W-1:MIDX_W];
+  assign rb_cur   = 32'(rid_idx) < MSHRS && sl_out_q[rid_idx] && rid_ep == sl_ep_q[rid_idx];
+  assign rb_stale = 32'(rid_idx) < MSHRS && st_out_q[rid_idx] && rid_ep == st_ep_q[rid_idx];
+
+  always_comb begin
+    n_out    = sl_out_q;
+    n_err    = sl_err_q;
+    n_n      = sl_n_q;
+    n_st_out = st_out_q;
+    n_st_n   = st_n_q;
+    if (m_axi_rvalid && rready) begin
+      if (rb_cur) begin
+        n_n[rid_idx]   = m_axi_rlast ? '0 : sl_n_q[rid_idx] + BEAT_W'(1);
+        n_err[rid_idx] = !m_axi_rlast && (sl_err_q[rid_idx] || m_axi_rresp[1]);
+        if (m_axi_rlast) n_out[rid_idx] = 1'b0;
+      end else if (rb_stale) begin
+        n_st_n[rid_idx] = m_axi_rlast ? '0 : st_n_q[rid_idx] + BEAT_W'(1);
+        if (m_axi_rlast) n_st_out[rid_idx] = 1'b0;
+      end
+    end
+  end
 
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
+    p_rst_q <= rst_ni;
+    if (!started_q) begin
+      sl_out_q <= '0;
+      sl_err_q <= '0;
+      sl_n_q   <= '0;
+      st_out_q <= '0;
+      st_n_q   <= '0;
+    end else if (!rst_ni) begin
+      // a reset: the reads out become stale (each index had none stale: see the assumptions)
+      for (int m = 0; m < MSHRS; m++) begin
+        st_out_q[m] <= n_out[m] || n_st_out[m];
+        st_n_q[m]   <= n_out[m] ? n_n[m] : n_st_n[m];
+        if (n_out[m]) st_ep_q[m] <= sl_ep_q[m];
+      end
       sl_out_q <= '0;
       sl_err_q <= '0;
       sl_n_q   <= '0;
     end else begin
-      if (m_axi_rvalid && rready) begin
-        sl_n_q[rid_idx]   <= m_axi_rlast ? '0 : sl_n_q[rid_idx] + BEAT_W'(1);
-        sl_err_q[rid_idx] <= !m_axi_rlast && (sl_err_q[rid_idx] || m_axi_rresp[1]);
-        if (m_axi_rlast) sl_out_q[rid_idx] <= 1'b0;
-      end
+      sl_out_q <= n_out;
+      sl_err_q <= n_err;
+      sl_n_q   <= n_n;
+      st_out_q <= n_st_out;
+      st_n_q   <= n_st_n;
       if (arvalid && m_axi_arready) begin
         sl_out_q[arid[MIDX_W-1:0]] <= 1'b1;
         sl_ep_q[arid[MIDX_W-1:0]]  <= arid[ID_W-1:MIDX_W];
@@ -143,16 +191,19 @@ module cache_axi_read_formal #(
 
   always_comb begin
     if (!started_q) assume (!rst_ni);
-    else            assume (rst_ni);
+    // RESETS: a reset may start when no read of the epoch before is out (a read returns before
+    // 2^EPOCH_W - 1 = 1 further reset: cache_axi_read's requirement)
+    else if (!RESETS) assume (rst_ni);
+    else if (p_rst_q && st_out_q != '0) assume (rst_ni);
     assume (alloc_ok);
     if (EARLY_WR && NPUSH == 1) begin
       assume (!alloc_i[0] || alloc_wr[0]);
       assume (!alloc_wr[0] || busy_q != {MSHRS{1'b1}});
     end
     if (m_axi_rvalid) begin
-      assume (32'(rid_idx) < MSHRS && sl_out_q[rid_idx]);
-      assume (m_axi_rid[ID_W-1:MIDX_W] == sl_ep_q[rid_idx]);
-      assume (m_axi_rlast == (sl_n_q[rid_idx] == BEAT_W'(BEATS - 1)));
+      assume (rb_cur || rb_stale);
+      assume (m_axi_rlast == (rb_cur ? sl_n_q[rid_idx] == BEAT_W'(BEATS - 1)
+                                     : st_n_q[rid_idx] == BEAT_W'(BEATS - 1)));
     end
   end
 
@@ -213,6 +264,17 @@ module cache_axi_read_formal #(
     end
   end
 
+  // the stale reads' epoch is not the current one (checked in reset too: it is what a reset
+  // leaves behind)
+  logic st_exact;
+  always_comb begin
+    st_exact = 1'b1;
+    for (int m = 0; m < MSHRS; m++) begin
+      if (st_out_q[m] && st_ep_q[m] == u_dut.epoch_q) st_exact = 1'b0;
+      if (!st_out_q[m] && st_n_q[m] != '0) st_exact = 1'b0;
+    end
+  end
+
   // the AR registers carry the epoch and their MSHR's line (AR_REG)
   logic ar_reg_ok;
   if (AR_REG) begin : g_reg_ok
@@ -225,6 +287,9 @@ module cache_axi_read_formal #(
   end
 
   always_ff @(posedge clk_i) begin
+    if (started_q) begin
+      inv_stale: assert (st_exact && u_dut.in_rst_q == !p_rst_q);
+    end
     if (rst_ni) begin
       inv_busy:  assert (busy_q == (u_dut.u_assert.pend_q | u_dut.u_assert.out_q)
                          && (u_dut.u_assert.pend_q & u_dut.u_assert.out_q) == '0);
@@ -232,6 +297,7 @@ module cache_axi_read_formal #(
       inv_slave: assert (s_exact);
       ar_line:   assert (!arvalid || araddr == {la_q[arid[MIDX_W-1:0]], {OFF_W{1'b0}}});
       rready_one: assert (rready);
+      stale_ignored: assert (!(m_axi_rvalid && rb_stale) || !r_cur);
     end
   end
 
@@ -255,6 +321,7 @@ module cache_axi_read_formal #(
       c_err_line:   cover (r_acc && r_last && r_bad);
       c_after_err:  cover (reuse_q && busy_q == {MSHRS{1'b1}});
       c_all_lanes:  cover (alloc_i == {NPUSH{1'b1}});
+      c_stale_beat: cover (m_axi_rvalid && rb_stale && sl_out_q[rid_idx]);
     end
   end
 
