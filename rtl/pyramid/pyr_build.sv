@@ -243,6 +243,9 @@ module pyr_build #(
 
   // ---- control ----
   logic rd_idle, rd_err, wr_idle, wr_err;
+  /* verilator lint_off UNUSEDSIGNAL */  // read by the bound checker (pyr_build_assert)
+  logic wr_empty;
+  /* verilator lint_on UNUSEDSIGNAL */
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -429,6 +432,7 @@ module pyr_build #(
     .data_i        (st_out_data),
     .full_o        (wr_full),
     .idle_o        (wr_idle),
+    .empty_o       (wr_empty),
     .err_o         (wr_err),
     .m_axi_awid, .m_axi_awaddr, .m_axi_awlen, .m_axi_awsize, .m_axi_awburst, .m_axi_awcache,
     .m_axi_awprot, .m_axi_awvalid, .m_axi_awready, .m_axi_wdata, .m_axi_wstrb, .m_axi_wlast,

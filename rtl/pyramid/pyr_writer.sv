@@ -14,7 +14,7 @@
 // never waits for data; zero bursts need none.  Slots with a burst ready are served round robin.
 // One burst at a time: pick (1 clock), address (1 clock), then AW and the W beats together.
 // B: bready = 1; a bresp other than OKAY sets err_o (held until clr_i).  idle_o: no slot has a
-// row left, no burst is under way and every B has come back.
+// row left, no burst is under way and every B has come back; empty_o: every queue is empty.
 // clr_i (one clock, between rectangles) empties every slot's rectangle; the queues keep their
 // words (they are empty then when the words matched the rectangles).
 module pyr_writer #(
@@ -48,6 +48,7 @@ module pyr_writer #(
   input  logic [NS-1:0][DATA_W-1:0]  data_i,
   output logic [NS-1:0]              full_o,
   output logic                       idle_o,
+  output logic                       empty_o,   // every queue is empty
   output logic                       err_o,
   // AXI4 write master
   output logic [ID_W-1:0]            m_axi_awid,
@@ -109,6 +110,7 @@ module pyr_writer #(
   logic [NS-1:0][DATA_W-1:0] q_head;
   logic [NS-1:0]             q_pop;
   logic [NS-1:0]             ready;     // slot j has a burst it can start now
+  logic [NS-1:0]             q_empty;
 
   for (genvar j = 0; j < NS; j++) begin : g_q
     localparam int unsigned QD = qdepth(j);
@@ -126,6 +128,7 @@ module pyr_writer #(
       .count_o(cnt)
     );
     assign full_o[j] = cnt == CW'(QD);
+    assign q_empty[j] = cnt == '0;
     assign need      = (wleft_q[j] < (WW+1)'(BURST)) ? wleft_q[j] : (WW+1)'(BURST);
     assign ready[j]  = (rows_left_q[j] != '0) && (zseg_q[j] || ((WW+1)'(cnt) >= need));
   end
@@ -289,6 +292,8 @@ module pyr_writer #(
   assign m_axi_wstrb   = strb_q;
   assign m_axi_wlast   = beats_q == BLW'(1);
   assign m_axi_bready  = 1'b1;
+
+  assign empty_o = &q_empty;
 
   always_comb begin
     idle_o = (state_q == S_PICK) && (outst_q == '0);
