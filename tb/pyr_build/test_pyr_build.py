@@ -37,6 +37,9 @@ from model import heightmap, pyramid_bus
 from tb.common import report, runner
 
 PYR_BASE = 0x4000_0000
+#: The pyramid's base is PYR_BASE plus one of these per build (64-byte aligned: rows and bursts
+#: then meet 4 KiB boundaries at other places).
+PYR_SHIFTS = (0, 0x40, 0xFC0)
 SRC_BASE = 0x2000_0040      # a separate level 0 (64-byte aligned, not 4 KiB aligned)
 GUARD = 256                 # bytes checked untouched before and after the image
 
@@ -112,6 +115,7 @@ class Harness:
         self.mem = self.wr
         self.checked = 0
         self.bad = 0
+        self.pyr_base = PYR_BASE
 
     def set_pauses(self, p: float) -> None:
         for ch in (self.rd.ar_channel, self.rd.r_channel, self.wr.aw_channel, self.wr.w_channel,
@@ -131,29 +135,38 @@ class Harness:
         await RisingEdge(self.dut.clk_i)
 
     # ---- memory ----
-    def place(self, pyr: heightmap.Pyramid, src_base: int, old: heightmap.Pyramid | None) -> None:
-        """Level 0 of ``pyr`` at src_base (padding random); the image's levels 1..n random, or
-        those of ``old`` (a dirty rebuild); guard bands random."""
+    def place(self, pyr: heightmap.Pyramid, sep: bool, old: heightmap.Pyramid | None) -> int:
+        """Choose the pyramid's base (self.pyr_base); level 0 of ``pyr`` at SRC_BASE (``sep``) or
+        at the pyramid's base (as in Pyramid.memory_image), its padding random; the image's levels
+        1..n random, or those of ``old`` (a dirty rebuild); guard bands random.  Returns level 0's
+        address."""
         rng = self.rng
+        self.pyr_base = PYR_BASE + rng.choice(PYR_SHIFTS)
+        src_base = SRC_BASE if sep else self.pyr_base
         img = pyr.memory_image()
         bpt = pyr.bits // 8
         n_side = pyr.size
         lv0 = np.frombuffer(rng.randbytes(n_side * n_side * bpt), dtype="<u1" if bpt == 1 else "<u2")
         lv0 = lv0.reshape(n_side, n_side).copy()
         lv0[:pyr.height, :pyr.width] = pyr.codes
-        self.mem.write(PYR_BASE - GUARD, rng.randbytes(len(img) + 2 * GUARD))
+        self.mem.write(self.pyr_base - GUARD, rng.randbytes(len(img) + 2 * GUARD))
         if old is not None:
             oimg = old.memory_image()
             off1 = old.level_offsets()[1] if old.n else len(oimg)
-            self.mem.write(PYR_BASE + off1, oimg[off1:])
+            self.mem.write(self.pyr_base + off1, oimg[off1:])
         self.mem.write(src_base, lv0.astype(lv0.dtype.newbyteorder("<")).tobytes())
+        return src_base
+
+    def snapshot(self, pyr: heightmap.Pyramid) -> bytes:
+        """The image's bytes with the guard bands, as they are now."""
+        return self.mem.read(self.pyr_base - GUARD, len(pyr.memory_image()) + 2 * GUARD)
 
     def check(self, pyr: heightmap.Pyramid, before: bytes, what: str) -> int:
         """Levels 1..n against the model's image, everything else unchanged; returns mismatches."""
         img = pyr.memory_image()
         offs = pyr.level_offsets()
         bpt = pyr.bits // 8
-        got = self.mem.read(PYR_BASE - GUARD, len(img) + 2 * GUARD)
+        got = self.mem.read(self.pyr_base - GUARD, len(img) + 2 * GUARD)
         want = bytearray(before)
         for k in range(1, pyr.n + 1):
             lo, hi = offs[k], offs[k] + (pyr.size >> k) ** 2 * bpt
@@ -169,14 +182,15 @@ class Harness:
         return bad
 
     # ---- one build ----
-    def drive(self, pyr: heightmap.Pyramid, src_base: int, rect=None, pyr_base=PYR_BASE) -> None:
+    def drive(self, pyr: heightmap.Pyramid, src_base: int, rect=None,
+              pyr_base: int | None = None) -> None:
         d = self.dut
         offs = pyr.level_offsets()
         packed = 0
         for k, o in enumerate(offs[:self.max_lg + 1]):
             packed |= o << (32 * k)
         d.cfg_src_base_i.value = src_base
-        d.cfg_pyr_base_i.value = pyr_base
+        d.cfg_pyr_base_i.value = self.pyr_base if pyr_base is None else pyr_base
         d.cfg_level_off_i.value = packed
         d.cfg_width_i.value = pyr.width
         d.cfg_height_i.value = pyr.height
@@ -214,9 +228,8 @@ class Harness:
                    ) -> int:
         """A full rebuild from a random start; checks it; returns the clocks."""
         sep = self.rng.random() < 0.5 if separate_src is None else separate_src
-        src = SRC_BASE if sep else PYR_BASE
-        self.place(pyr, src, None)
-        before = self.mem.read(PYR_BASE - GUARD, len(pyr.memory_image()) + 2 * GUARD)
+        src = self.place(pyr, sep, None)
+        before = self.snapshot(pyr)
         clocks, err = await self.build(pyr, src)
         assert err == 0, f"{what}: err_code {err}"
         assert self.check(pyr, before, what) == 0, what
@@ -291,9 +304,8 @@ async def dirty_one(h: Harness, w: int, hh: int, bits: int, rect, what: str) -> 
         patch = patch // max(1, (1 << bits) - 1)  # lowering heights: maxima must fall too
     new_codes[y0:y1 + 1, x0:x1 + 1] = patch
     new = heightmap.build(new_codes, bits)
-    src = SRC_BASE if rng.random() < 0.5 else PYR_BASE
-    h.place(new, src, old)
-    before = h.mem.read(PYR_BASE - GUARD, len(new.memory_image()) + 2 * GUARD)
+    src = h.place(new, rng.random() < 0.5, old)
+    before = h.snapshot(new)
     clocks, err = await h.build(new, src, rect)
     assert err == 0, f"{what}: err_code {err}"
     bad = h.check(new, before, what)
@@ -380,19 +392,20 @@ async def axi_errors(dut):
         bits = rng.choice([8, 16])
         h.set_pauses(rng.choice([0.0, 0.3]))
         pyr = random_map(rng, w, hh, bits)
-        h.place(pyr, PYR_BASE, None)
+        src = h.place(pyr, False, None)
         offs = pyr.level_offsets()
         kind = trial % 3   # 0 read, 1 write, 2 both
         if kind in (0, 2):
-            lo = PYR_BASE + rng.randrange(max(1, (hh - 1) * pyr.size * (bits // 8)))
+            # a byte of the map itself (the padding is not read)
+            lo = src + (rng.randrange(hh) * pyr.size + rng.randrange(w)) * (bits // 8)
             h.rd.err_ranges = [(lo, lo + 1)]
         if kind in (1, 2):
             k = rng.randint(1, pyr.n)
-            h.wr.err_ranges = [(PYR_BASE + offs[k], PYR_BASE + offs[k] + 1)]
+            h.wr.err_ranges = [(src + offs[k], src + offs[k] + 1)]
         rect = None if rng.random() < 0.7 else random_rect(rng, w, hh)
         if rect is not None:
             rect = (rect[0], min(rect[1], rect[3]), rect[2], max(rect[1], rect[3]))
-        _, err = await h.build(pyr, PYR_BASE, rect)
+        _, err = await h.build(pyr, src, rect)
         rd_hit = h.rd.err_ranges != []
         wr_hit = h.wr.err_ranges != []
         dut._log.info("errors %s: %dx%d err_code %d", ("read", "write", "both")[kind], w, hh, err)
@@ -420,9 +433,9 @@ async def reset_mid_build(dut):
         bits = rng.choice([8, 16])
         h.set_pauses(rng.choice([0.0, 0.3]))
         pyr = random_map(rng, w, hh, bits)
-        h.place(pyr, PYR_BASE, None)
+        src = h.place(pyr, trial % 3 == 0, None)
         rect = None if trial % 2 == 0 else (1, 1, w - 2, hh - 2)
-        h.drive(pyr, PYR_BASE, rect)
+        h.drive(pyr, src, rect)
         dut.start_i.value = 1
         await RisingEdge(dut.clk_i)
         dut.start_i.value = 0
@@ -446,20 +459,20 @@ async def config_errors(dut):
     h = Harness(dut, rng)
     await h.reset()
     pyr = random_map(rng, 40, 30, 8)
-    h.place(pyr, PYR_BASE, None)
-    before = h.mem.read(PYR_BASE - GUARD, len(pyr.memory_image()) + 2 * GUARD)
+    src = h.place(pyr, False, None)
+    before = h.snapshot(pyr)
     rd0, wr0 = h.rd.beats, h.wr.beats
     bb = h.bus_bytes
     cases = {
         "x1 >= W": dict(rect=(0, 0, 40, 29)),
         "y1 >= H": dict(rect=(0, 0, 39, 30)),
         "x0 > x1": dict(rect=(5, 0, 4, 29)),
-        "unaligned src": dict(src=PYR_BASE + bb // 2),
-        "unaligned pyramid": dict(pyr_base=PYR_BASE + 4),
+        "unaligned src": dict(src=src + bb // 2),
+        "unaligned pyramid": dict(pyr_base=src + bb // 2),
     }
     for what, c in cases.items():
-        clocks, err = await h.build(pyr, c.get("src", PYR_BASE), c.get("rect"),
-                                    pyr_base=c.get("pyr_base", PYR_BASE))
+        clocks, err = await h.build(pyr, c.get("src", src), c.get("rect"),
+                                    pyr_base=c.get("pyr_base"))
         assert err == 4 and clocks < 10, f"{what}: err_code {err} after {clocks} clocks"
     for wd, ht in ((0, 5), (5, 0), ((1 << h.max_lg) + 1, 3)):
         dut.cfg_width_i.value, dut.cfg_height_i.value = wd, ht
@@ -472,7 +485,7 @@ async def config_errors(dut):
                 break
         assert int(dut.done_o.value) and int(dut.err_code_o.value) == 4, (wd, ht)
     assert (h.rd.beats, h.wr.beats) == (rd0, wr0), "memory accessed on a configuration error"
-    got = h.mem.read(PYR_BASE - GUARD, len(before))
+    got = h.snapshot(pyr)
     assert got == before, "memory changed on a configuration error"
     await h.full(pyr, "after configuration errors")
     finish(h, "configuration errors")
