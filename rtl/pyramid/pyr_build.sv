@@ -135,7 +135,7 @@ module pyr_build #(
   logic                        b16_q;
   logic [XY_W-1:0]             x0_q, y0_q, x1_q, y1_q;
 
-  typedef enum logic [2:0] {C_IDLE, C_CHECK, C_SETUP, C_RUN, C_DONE} cstate_e;
+  typedef enum logic [2:0] {C_IDLE, C_CHECK, C_CHECK2, C_CHECK3, C_SETUP, C_RUN, C_DONE} cstate_e;
   cstate_e        state_q;
   logic [4:0]     n_q;           // root level
   logic           full_q;        // full rebuild
@@ -145,13 +145,11 @@ module pyr_build #(
   logic [2:0]     err_q;
   logic           rd_start;
 
-  logic [XY_W-1:0] wm1, hm1;     // W - 1, H - 1
+  logic [XY_W-1:0] wm1, hm1;     // W - 1, H - 1 (registered in C_CHECK)
   logic [4:0]      n_c;
   logic            cfg_bad, full_c;
   logic [LGB-1:0]  align_or;
 
-  assign wm1 = XY_W'(w_q - SZ_W'(1));
-  assign hm1 = XY_W'(h_q - SZ_W'(1));
 
   always_comb begin
     n_c = '0;
@@ -160,7 +158,7 @@ module pyr_build #(
     end
     align_or = src_base_q[LGB-1:0] | pyr_base_q[LGB-1:0];
     for (int k = 1; k <= MAX_LG; k++) begin
-      if (k <= 32'(n_c)) align_or = align_or | off_q[k][LGB-1:0];
+      if (k <= 32'(n_q)) align_or = align_or | off_q[k][LGB-1:0];
     end
     cfg_bad = (w_q == '0) || (h_q == '0) || (w_q > SZ_W'(1 << MAX_LG)) || (h_q > SZ_W'(1 << MAX_LG))
               || (x0_q > x1_q) || (y0_q > y1_q) || (SZ_W'(x1_q) >= w_q) || (SZ_W'(y1_q) >= h_q)
@@ -168,75 +166,109 @@ module pyr_build #(
     full_c  = (x0_q == '0) && (y0_q == '0) && (x1_q == wm1) && (y1_q == hm1);
   end
 
-  // ---- the reader's rectangle of pass s ----
+  // ---- pass set-up, pipelined (registers only between the steps) ----
+  // C_SETUP prepares the slots 0 .. m - 1 of the pass one after the other, four clocks each
+  // (ph_q 0..3): ph 0 the level k = s + j + 1, ph 1 its side and shifts, ph 2 the shifted sizes,
+  // ph 3 the slot's rectangle into the writer.  The reader's rectangle is ready after ph 2 of
+  // slot 0 and is started with the last slot's ph 3.
   logic [LGB-1:0]    lgt;       // log2 of texels per word
+  assign lgt = LGB'(LGB) - LGB'(b16_q);
+
+  // the reader (level s)
+  logic [4:0]        rs_c, rs1_c;                 // s + lgt, s + 1 + lgt
+  logic [RW-1:0]     ra_hl, ra_y0, ra_y1;         // (H-1) >> s, y0 >> (s+1), y1 >> (s+1)
+  logic [WW-1:0]     ra_wl, ra_x0, ra_x1;         // (W-1) >> (s+lgt), x0, x1 >> (s+1+lgt)
+  logic [LBW-1:0]    ra_live;                     // (W-1) >> s
   logic [ADDR_W-1:0] r_base;
   logic [4:0]        r_pitch_lg;
   logic [RW-1:0]     r_row0, r_row1;
   logic [WW-1:0]     r_w0, r_w1;
   logic [LBW-1:0]    r_live;
 
-  assign lgt = LGB'(LGB) - LGB'(b16_q);
+  // the slot (level k)
+  logic [4:0]        k_q, side_lg_q, lw_sh_q;
+  logic [ADDR_W-1:0] l_base, l_off, r_off;
+  logic [RW:0]       la_hk, la_y0, la_y1;        // (H-1) >> k, y0 >> k, y1 >> k
+  logic [WW:0]       la_wl, la_x0, la_x1, la_rw; // (W-1), x0, x1 >> (k+lgt); row words
+  logic [4:0]        l_pitch_lg;
+  logic [RW-1:0]     l_row0, l_side_mask;
+  logic [RW:0]       l_nrows, l_live_lim, l_side;
+  logic [WW-1:0]     l_w0;
+  logic [WW:0]       l_lw, l_zw;
+  logic [1:0]        ph_q;
 
-  always_comb begin
-    logic [RW-1:0] hl;
-    logic [WW-1:0] wl, wb;
-    r_base     = (s_q == '0) ? src_base_q : pyr_base_q + off_q[s_q];
-    r_pitch_lg = n_q - s_q + 5'(b16_q);
-    r_live     = LBW'((LBW'(wm1 >> s_q) + LBW'(1)) << b16_q);
-    hl         = RW'(hm1 >> s_q);
-    wl         = WW'(wm1 >> (s_q + 5'(lgt)));
-    wb         = '0;
-    if (full_q) begin
-      r_row0 = '0;
-      r_row1 = hm1;
-      r_w0   = '0;
-      r_w1   = wl;
-    end else begin
-      r_row0 = RW'(y0_q >> (s_q + 5'd1)) << 1;
-      r_row1 = (RW'(y1_q >> (s_q + 5'd1)) << 1) | RW'(1);
-      if (r_row1 > hl) r_row1 = hl;
-      r_w0   = WW'(x0_q >> (s_q + 5'd1 + 5'(lgt))) << 1;
-      wb     = (WW'(x1_q >> (s_q + 5'd1 + 5'(lgt))) << 1) | WW'(1);
-      r_w1   = (wb > wl) ? wl : wb;
+  always_ff @(posedge clk_i) begin
+    if (state_q == C_SETUP) begin
+      case (ph_q)
+        2'd0: begin
+          k_q   <= s_q + 5'(j_q) + 5'd1;
+          rs_c  <= s_q + 5'(lgt);
+          rs1_c <= s_q + 5'd1 + 5'(lgt);
+        end
+        2'd1: begin
+          side_lg_q <= n_q - k_q;
+          lw_sh_q   <= k_q + 5'(lgt);
+          l_off     <= off_q[k_q];
+          if (j_q == '0) begin
+            r_off      <= off_q[s_q];
+            r_pitch_lg <= n_q - s_q + 5'(b16_q);
+            ra_hl      <= RW'(hm1 >> s_q);
+            ra_y0      <= RW'(y0_q >> (s_q + 5'd1));
+            ra_y1      <= RW'(y1_q >> (s_q + 5'd1));
+            ra_wl      <= WW'(wm1 >> rs_c);
+            ra_x0      <= WW'(x0_q >> rs1_c);
+            ra_x1      <= WW'(x1_q >> rs1_c);
+            ra_live    <= LBW'(wm1 >> s_q);
+          end
+        end
+        2'd2: begin
+          la_hk       <= (RW+1)'(hm1 >> k_q);
+          la_y0       <= (RW+1)'(y0_q >> k_q);
+          la_y1       <= (RW+1)'(y1_q >> k_q);
+          la_wl       <= (WW+1)'(wm1 >> lw_sh_q);
+          la_x0       <= (WW+1)'(x0_q >> lw_sh_q);
+          la_x1       <= (WW+1)'(x1_q >> lw_sh_q);
+          la_rw       <= (side_lg_q >= 5'(lgt)) ? (WW+1)'(1) << (side_lg_q - 5'(lgt)) : (WW+1)'(1);
+          l_side      <= (RW+1)'(1) << side_lg_q;
+          l_side_mask <= RW'(((RW+1)'(1) << side_lg_q) - (RW+1)'(1));
+          l_pitch_lg  <= side_lg_q + 5'(b16_q);
+          l_base      <= pyr_base_q + l_off;
+          if (j_q == '0) begin
+            r_base <= (s_q == '0) ? src_base_q : pyr_base_q + r_off;
+            r_live <= LBW'((ra_live + LBW'(1)) << b16_q);
+            if (full_q) begin
+              r_row0 <= '0;
+              r_row1 <= hm1;
+              r_w0   <= '0;
+              r_w1   <= ra_wl;
+            end else begin
+              r_row0 <= ra_y0 << 1;
+              r_row1 <= (((ra_y1 << 1) | RW'(1)) > ra_hl) ? ra_hl : ((ra_y1 << 1) | RW'(1));
+              r_w0   <= ra_x0 << 1;
+              r_w1   <= (((ra_x1 << 1) | WW'(1)) > ra_wl) ? ra_wl : ((ra_x1 << 1) | WW'(1));
+            end
+          end
+        end
+        default: ;
+      endcase
     end
   end
 
-  // ---- slot j_q's rectangle: level k = s + j + 1 ----
-  logic [4:0]        k_c, side_lg, lw_sh;
-  logic [ADDR_W-1:0] l_base;
-  logic [4:0]        l_pitch_lg;
-  logic [RW-1:0]     l_row0, l_side_mask;
-  logic [RW:0]       l_nrows, l_live_lim;
-  logic [WW-1:0]     l_w0;
-  logic [WW:0]       l_lw, l_zw;
-
+  // ph 3: the slot's rectangle (from registers)
   always_comb begin
-    logic [RW:0] hk, side;
-    logic [WW:0] lwf, rwd;
-    k_c         = s_q + 5'(j_q) + 5'd1;
-    side_lg     = n_q - k_c;
-    lw_sh       = k_c + 5'(lgt);
-    l_base      = pyr_base_q + off_q[k_c];
-    l_pitch_lg  = side_lg + 5'(b16_q);
-    side        = (RW+1)'(1) << side_lg;
-    l_side_mask = RW'(side - (RW+1)'(1));
-    hk          = (RW+1)'(hm1 >> k_c) + (RW+1)'(1);
-    lwf         = (WW+1)'(wm1 >> lw_sh) + (WW+1)'(1);
-    rwd         = (side_lg >= 5'(lgt)) ? (WW+1)'(1) << (side_lg - 5'(lgt)) : (WW+1)'(1);
     if (full_q) begin
-      l_row0     = RW'(hk) & l_side_mask;
-      l_nrows    = side;
-      l_live_lim = hk;
+      l_row0     = RW'(la_hk + (RW+1)'(1)) & l_side_mask;
+      l_nrows    = l_side;
+      l_live_lim = la_hk + (RW+1)'(1);
       l_w0       = '0;
-      l_lw       = lwf;
-      l_zw       = rwd - lwf;
+      l_lw       = la_wl + (WW+1)'(1);
+      l_zw       = la_rw - la_wl - (WW+1)'(1);
     end else begin
-      l_row0     = RW'(y0_q >> k_c);
-      l_nrows    = (RW+1)'(y1_q >> k_c) - (RW+1)'(y0_q >> k_c) + (RW+1)'(1);
-      l_live_lim = side;
-      l_w0       = WW'(x0_q >> lw_sh);
-      l_lw       = (WW+1)'(x1_q >> lw_sh) - (WW+1)'(l_w0) + (WW+1)'(1);
+      l_row0     = RW'(la_y0);
+      l_nrows    = la_y1 - la_y0 + (RW+1)'(1);
+      l_live_lim = l_side;
+      l_w0       = WW'(la_x0);
+      l_lw       = la_x1 - la_x0 + (WW+1)'(1);
       l_zw       = '0;
     end
   end
@@ -246,6 +278,10 @@ module pyr_build #(
   /* verilator lint_off UNUSEDSIGNAL */  // read by the bound checker (pyr_build_assert)
   logic wr_empty;
   /* verilator lint_on UNUSEDSIGNAL */
+  logic slot_ld, slot_last;
+
+  assign slot_ld   = (state_q == C_SETUP) && (ph_q == 2'd3);
+  assign slot_last = j_q + SW'(1) == m_q;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -260,23 +296,35 @@ module pyr_build #(
           err_q   <= '0;
         end
         C_CHECK: begin
-          n_q    <= n_c;
-          full_q <= full_c;
-          s_q    <= '0;
-          j_q    <= '0;
-          m_q    <= full_c ? SW'(n_c) : SW'(1);
+          wm1     <= XY_W'(w_q - SZ_W'(1));
+          hm1     <= XY_W'(h_q - SZ_W'(1));
+          state_q <= C_CHECK2;
+        end
+        C_CHECK2: begin
+          n_q     <= n_c;
+          full_q  <= full_c;
+          state_q <= C_CHECK3;
+        end
+        C_CHECK3: begin
+          s_q  <= '0;
+          j_q  <= '0;
+          ph_q <= '0;
+          m_q  <= full_q ? SW'(n_q) : SW'(1);
           if (cfg_bad) begin
             err_q[2] <= 1'b1;
             state_q  <= C_DONE;
-          end else if (n_c == '0) begin
+          end else if (n_q == '0) begin
             state_q  <= C_DONE;
           end else begin
             state_q  <= C_SETUP;
           end
         end
         C_SETUP: begin
-          j_q <= j_q + SW'(1);
-          if (j_q + SW'(1) == m_q) state_q <= C_RUN;
+          ph_q <= ph_q + 2'd1;
+          if (ph_q == 2'd3) begin
+            j_q <= j_q + SW'(1);
+            if (slot_last) state_q <= C_RUN;
+          end
         end
         C_RUN: begin
           err_q[0] <= err_q[0] | rd_err;
@@ -287,6 +335,7 @@ module pyr_build #(
             end else begin
               s_q     <= s_q + 5'd1;
               j_q     <= '0;
+              ph_q    <= '0;
               state_q <= C_SETUP;
             end
           end
@@ -315,7 +364,7 @@ module pyr_build #(
     end
   end
 
-  assign rd_start   = (state_q == C_SETUP) && (j_q + SW'(1) == m_q);
+  assign rd_start   = slot_ld && slot_last;
   assign busy_o     = state_q != C_IDLE;
   assign err_o      = err_q != '0;
   assign err_code_o = {1'b0, err_q};
@@ -416,8 +465,8 @@ module pyr_build #(
     .RW(RW), .WW(WW), .SW(SW), .CACHE(AXI_CACHE), .PROT(AXI_PROT)
   ) u_writer (
     .clk_i, .rst_ni,
-    .clr_i         ((state_q == C_SETUP) && (j_q == '0)),
-    .ld_i          (state_q == C_SETUP),
+    .clr_i         ((state_q == C_SETUP) && (j_q == '0) && (ph_q == 2'd0)),
+    .ld_i          (slot_ld),
     .ld_slot_i     (j_q),
     .ld_base_i     (l_base),
     .ld_pitch_lg_i (l_pitch_lg),

@@ -84,11 +84,15 @@ module pyr_reader #(
   logic [LBW-1:0]    live_q;
 
   // ---- AR: the bursts ----
-  typedef enum logic [1:0] {A_IDLE, A_CALC, A_SEND} ar_state_e;
+  // A_INIT, A_INIT2: the first row's offset, then its address; A_ADDR: the burst's address (the row's address plus the
+  // word's offset); A_LEN: its length (row end, BURST, 4 KiB boundary); A_SEND: AR.  A row's
+  // address is the previous one's plus the pitch, so no clock has more than one adder in series.
+  typedef enum logic [2:0] {A_IDLE, A_INIT, A_INIT2, A_ADDR, A_LEN, A_SEND} ar_state_e;
   ar_state_e         a_state_q;
   logic [RW-1:0]     a_row_q;
   logic [WW-1:0]     a_w_q;
-  logic [ADDR_W-1:0] a_addr;
+  logic [ADDR_W-1:0] a_row_addr_q;  // address of the row's first word
+  logic [ADDR_W-1:0] a_addr_q;      // address of the burst's first word
   logic [12:0]       a_to4k;        // beats to the next 4 KiB boundary
   logic [WW:0]       a_left;        // words left in the row
   logic [BLW-1:0]    a_len, a_len_q;
@@ -96,8 +100,7 @@ module pyr_reader #(
   logic [OW-1:0]     outst_q;       // bursts issued, last beat not yet received
   logic              ar_hs, r_hs, r_last_beat;
 
-  assign a_addr = base_q + (ADDR_W'(a_row_q) << pitch_lg_q) + (ADDR_W'(a_w_q) << LGB);
-  assign a_to4k = 13'((13'h1000 - {1'b0, a_addr[11:0]}) >> LGB);
+  assign a_to4k = 13'((13'h1000 - {1'b0, a_addr_q[11:0]}) >> LGB);
   assign a_left = {1'b0, w1_q} - {1'b0, a_w_q} + (WW+1)'(1);
   always_comb begin
     a_len = BLW'(BURST);
@@ -112,17 +115,21 @@ module pyr_reader #(
       a_state_q <= A_IDLE;
     end else begin
       case (a_state_q)
-        A_IDLE: if (start_i) a_state_q <= A_CALC;
-        A_CALC: a_state_q <= A_SEND;
+        A_IDLE: if (start_i) a_state_q <= A_INIT;
+        A_INIT: a_state_q <= A_INIT2;
+        A_INIT2: a_state_q <= A_ADDR;
+        A_ADDR: a_state_q <= A_LEN;
+        A_LEN:  a_state_q <= A_SEND;
         A_SEND: begin
           if (ar_hs) begin
             if (a_w_q + WW'(a_len_q) <= w1_q) begin
-              a_w_q <= a_w_q + WW'(a_len_q);
-              a_state_q <= A_CALC;
+              a_w_q     <= a_w_q + WW'(a_len_q);
+              a_state_q <= A_ADDR;
             end else if (a_row_q != row1_q) begin
-              a_w_q     <= w0_q;
-              a_row_q   <= a_row_q + RW'(1);
-              a_state_q <= A_CALC;
+              a_w_q        <= w0_q;
+              a_row_q      <= a_row_q + RW'(1);
+              a_row_addr_q <= a_row_addr_q + (ADDR_W'(1) << pitch_lg_q);
+              a_state_q    <= A_ADDR;
             end else begin
               a_state_q <= A_IDLE;
             end
@@ -135,8 +142,11 @@ module pyr_reader #(
       a_row_q <= row0_i;
       a_w_q   <= w0_i;
     end
-    if (a_state_q == A_CALC) begin
-      araddr_q <= {a_addr[ADDR_W-1:LGB], {LGB{1'b0}}};
+    if (a_state_q == A_INIT) a_row_addr_q <= ADDR_W'(a_row_q) << pitch_lg_q;
+    if (a_state_q == A_INIT2) a_row_addr_q <= base_q + a_row_addr_q;
+    if (a_state_q == A_ADDR) a_addr_q <= a_row_addr_q + (ADDR_W'(a_w_q) << LGB);
+    if (a_state_q == A_LEN) begin
+      araddr_q <= {a_addr_q[ADDR_W-1:LGB], {LGB{1'b0}}};
       a_len_q  <= a_len;
     end
   end

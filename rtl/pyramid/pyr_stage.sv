@@ -17,9 +17,11 @@
 //   and leave.  An even row that is the rectangle's last (an odd number of rows) leaves directly
 //   (its missing partner is the zero padding).
 // Output flags: out_eol_o on an output row's last word, out_lrow_o on every word of the last
-// output row.  Two register stages (p1: the combined word, its line-buffer read issued; out: the
-// vertical maximum), both held by out_ready_i = 0 (in_ready_o = !out_valid_o || out_ready_i:
-// combinational only through out_ready_i).  At most one output word per two input words.
+// output row.  Three register stages (p1: the combined word, its line-buffer read issued; p2: the
+// line buffer's word copied beside it, so the block RAM's clock-to-out is not in series with the
+// compare; out: the vertical maximum), all held by out_ready_i = 0 (in_ready_o = !out_valid_o ||
+// out_ready_i: combinational only through out_ready_i).  At most one output word per two input
+// words.
 // Reset (rst_ni low, synchronous) empties the stage; the row and word parity also return to even
 // after the last word of a rectangle, so consecutive rectangles need no clear.
 module pyr_stage #(
@@ -91,6 +93,8 @@ module pyr_stage #(
   logic [LB_AW-1:0]  oidx_q;           // output word within the row
   logic              p1_v_q, p1_lb_q, p1_eol_q, p1_lrow_q;
   logic [DATA_W-1:0] p1_word_q;
+  logic              p2_v_q, p2_lb_q, p2_eol_q, p2_lrow_q;
+  logic [DATA_W-1:0] p2_word_q, p2_buf_q;
   logic              out_v_q, out_eol_q, out_lrow_q;
   logic [DATA_W-1:0] out_word_q;
   logic [DATA_W-1:0] lb_rdata;
@@ -119,6 +123,7 @@ module pyr_stage #(
       rpar_q  <= 1'b0;
       oidx_q  <= '0;
       p1_v_q  <= 1'b0;
+      p2_v_q  <= 1'b0;
       out_v_q <= 1'b0;
     end else begin
       if (acc) begin
@@ -128,7 +133,8 @@ module pyr_stage #(
       end
       if (adv) begin
         p1_v_q  <= acc && completes && (rpar_q || in_lrow_i);
-        out_v_q <= p1_v_q;
+        p2_v_q  <= p1_v_q;
+        out_v_q <= p2_v_q;
       end
     end
   end
@@ -140,9 +146,14 @@ module pyr_stage #(
       p1_lb_q    <= rpar_q;
       p1_eol_q   <= in_eol_i;
       p1_lrow_q  <= in_lrow_i;
-      out_word_q <= p1_lb_q ? lane_max(p1_word_q, lb_rdata, b16_i) : p1_word_q;
-      out_eol_q  <= p1_eol_q;
-      out_lrow_q <= p1_lrow_q;
+      p2_word_q  <= p1_word_q;
+      p2_buf_q   <= lb_rdata;
+      p2_lb_q    <= p1_lb_q;
+      p2_eol_q   <= p1_eol_q;
+      p2_lrow_q  <= p1_lrow_q;
+      out_word_q <= p2_lb_q ? lane_max(p2_word_q, p2_buf_q, b16_i) : p2_word_q;
+      out_eol_q  <= p2_eol_q;
+      out_lrow_q <= p2_lrow_q;
     end
   end
 

@@ -12,7 +12,9 @@
 // Bursts: INCR, at most BURST beats, never across a 4 KiB boundary nor across a row, awid 0.  A
 // burst of queued words is started only when the queue holds all of its words, so the W channel
 // never waits for data; zero bursts need none.  Slots with a burst ready are served round robin.
-// One burst at a time: pick (1 clock), address (1 clock), then AW and the W beats together.
+// One burst at a time: pick, then four clocks to its address and length (the slot's fields, the
+// row's offset, the sum, the length), then AW and the W beats together.  At most
+// 2^10 - 1 bursts wait for their B response.
 // B: bready = 1; a bresp other than OKAY sets err_o (held until clr_i).  idle_o: no slot has a
 // row left, no burst is under way and every B has come back; empty_o: every queue is empty.
 // clr_i (one clock, between rectangles) empties every slot's rectangle; the queues keep their
@@ -134,12 +136,17 @@ module pyr_writer #(
   end
 
   // ---- the burst engine ----
-  typedef enum logic [1:0] {S_PICK, S_CALC, S_DATA} state_e;
+  typedef enum logic [2:0] {S_PICK, S_SEL, S_SHIFT, S_ADD, S_LEN, S_DATA} state_e;
   state_e            state_q;
   logic [SW-1:0]     sel_q, last_q;
   logic [SW-1:0]     pick;
   logic              any_ready;
-  logic [ADDR_W-1:0] b_addr;
+  logic [ADDR_W-1:0] m_base_q, m_rowoff_q, m_woff_q, b_addr_q;
+  logic [RW-1:0]     m_row_q;
+  logic [4:0]        m_pitch_lg_q;
+  logic [WW:0]       m_wleft_q;
+  logic              m_partial_q;
+  logic [BB-1:0]     m_mask_q;       // a sub-word row's bytes, from lane 0
   logic [12:0]       b_to4k;
   logic [BLW-1:0]    b_len;
   logic [ADDR_W-1:0] awaddr_q;
@@ -170,12 +177,10 @@ module pyr_writer #(
     end
   end
 
-  assign b_addr = base_q[sel_q] + (ADDR_W'(row_q[sel_q]) << pitch_lg_q[sel_q])
-                  + (ADDR_W'(WW'(w0_q[sel_q]) + WW'(wpos_q[sel_q])) << LGB);
-  assign b_to4k = 13'((13'h1000 - {1'b0, b_addr[11:0]}) >> LGB);
+  assign b_to4k = 13'((13'h1000 - {1'b0, b_addr_q[11:0]}) >> LGB);
   always_comb begin
     b_len = BLW'(BURST);
-    if (wleft_q[sel_q] < (WW+1)'(b_len)) b_len = BLW'(wleft_q[sel_q]);
+    if (m_wleft_q < (WW+1)'(b_len)) b_len = BLW'(m_wleft_q);
     if (b_to4k < 13'(b_len)) b_len = BLW'(b_to4k);
   end
 
@@ -197,21 +202,37 @@ module pyr_writer #(
       if (aw_hs) awv_q <= 1'b0;
       case (state_q)
         S_PICK: begin
-          if (any_ready && !clr_i && !ld_i) begin
+          if (any_ready && !clr_i && !ld_i && (outst_q != '1)) begin
             sel_q   <= pick;
-            state_q <= S_CALC;
+            state_q <= S_SEL;
           end
         end
-        S_CALC: begin
-          awaddr_q <= {b_addr[ADDR_W-1:LGB], {LGB{1'b0}}};
+        S_SEL: begin
+          m_base_q    <= base_q[sel_q];
+          m_row_q     <= row_q[sel_q];
+          m_pitch_lg_q <= pitch_lg_q[sel_q];
+          m_woff_q    <= ADDR_W'(WW'(w0_q[sel_q]) + WW'(wpos_q[sel_q])) << LGB;
+          m_wleft_q   <= wleft_q[sel_q];
+          m_partial_q <= pitch_lg_q[sel_q] < 5'(LGB);
+          m_mask_q    <= BB'((BB'(1) << (BB'(1) << pitch_lg_q[sel_q])) - BB'(1));
+          zero_q      <= zseg_q[sel_q];
+          state_q     <= S_SHIFT;
+        end
+        S_SHIFT: begin
+          m_rowoff_q <= ADDR_W'(m_row_q) << m_pitch_lg_q;
+          state_q    <= S_ADD;
+        end
+        S_ADD: begin
+          b_addr_q <= m_base_q + m_rowoff_q + m_woff_q;
+          state_q  <= S_LEN;
+        end
+        S_LEN: begin
+          awaddr_q <= {b_addr_q[ADDR_W-1:LGB], {LGB{1'b0}}};
           len_q    <= b_len;
           beats_q  <= b_len;
           awv_q    <= 1'b1;
-          zero_q   <= zseg_q[sel_q];
-          shift_q  <= b_addr[LGB-1:0];
-          strb_q   <= (pitch_lg_q[sel_q] < 5'(LGB))
-                      ? BB'((BB'(1) << (BB'(1) << pitch_lg_q[sel_q])) - BB'(1)) << b_addr[LGB-1:0]
-                      : {BB{1'b1}};
+          shift_q  <= b_addr_q[LGB-1:0];
+          strb_q   <= m_partial_q ? m_mask_q << b_addr_q[LGB-1:0] : {BB{1'b1}};
           state_q  <= S_DATA;
         end
         S_DATA: begin
