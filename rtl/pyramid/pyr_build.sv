@@ -167,10 +167,10 @@ module pyr_build #(
   end
 
   // ---- pass set-up, pipelined (registers only between the steps) ----
-  // C_SETUP prepares the slots 0 .. m - 1 of the pass one after the other, four clocks each
-  // (ph_q 0..3): ph 0 the level k = s + j + 1, ph 1 its side and shifts, ph 2 the shifted sizes,
-  // ph 3 the slot's rectangle into the writer.  The reader's rectangle is ready after ph 2 of
-  // slot 0 and is started with the last slot's ph 3.
+  // C_SETUP prepares the slots 0 .. m - 1 of the pass one after the other, five clocks each
+  // (ph_q 0..4): ph 0 the level k = s + j + 1, ph 1 its side and shifts, ph 2 the shifted sizes,
+  // ph 3 the slot's rectangle, ph 4 the rectangle into the writer.  The reader's rectangle is
+  // ready after ph 2 of slot 0 and is started with the last slot's ph 4.
   logic [LGB-1:0]    lgt;       // log2 of texels per word
   assign lgt = LGB'(LGB) - LGB'(b16_q);
 
@@ -194,18 +194,18 @@ module pyr_build #(
   logic [RW-1:0]     l_row0, l_side_mask;
   logic [RW:0]       l_nrows, l_live_lim, l_side;
   logic [WW-1:0]     l_w0;
-  logic [WW:0]       l_lw, l_zw;
-  logic [1:0]        ph_q;
+  logic [WW:0]       l_lw, l_zw, l_rw;
+  logic [2:0]        ph_q;
 
   always_ff @(posedge clk_i) begin
     if (state_q == C_SETUP) begin
       case (ph_q)
-        2'd0: begin
+        3'd0: begin
           k_q   <= s_q + 5'(j_q) + 5'd1;
           rs_c  <= s_q + 5'(lgt);
           rs1_c <= s_q + 5'd1 + 5'(lgt);
         end
-        2'd1: begin
+        3'd1: begin
           side_lg_q <= n_q - k_q;
           lw_sh_q   <= k_q + 5'(lgt);
           l_off     <= off_q[k_q];
@@ -221,7 +221,7 @@ module pyr_build #(
             ra_live    <= LBW'(wm1 >> s_q);
           end
         end
-        2'd2: begin
+        3'd2: begin
           la_hk       <= (RW+1)'(hm1 >> k_q);
           la_y0       <= (RW+1)'(y0_q >> k_q);
           la_y1       <= (RW+1)'(y1_q >> k_q);
@@ -249,27 +249,28 @@ module pyr_build #(
             end
           end
         end
+        3'd3: begin
+          // the slot's rectangle
+          if (full_q) begin
+            l_row0     <= RW'(la_hk + (RW+1)'(1)) & l_side_mask;
+            l_nrows    <= l_side;
+            l_live_lim <= la_hk + (RW+1)'(1);
+            l_w0       <= '0;
+            l_lw       <= la_wl + (WW+1)'(1);
+            l_zw       <= la_rw - la_wl - (WW+1)'(1);
+            l_rw       <= la_rw;
+          end else begin
+            l_row0     <= RW'(la_y0);
+            l_nrows    <= la_y1 - la_y0 + (RW+1)'(1);
+            l_live_lim <= l_side;
+            l_w0       <= WW'(la_x0);
+            l_lw       <= la_x1 - la_x0 + (WW+1)'(1);
+            l_zw       <= '0;
+            l_rw       <= la_x1 - la_x0 + (WW+1)'(1);
+          end
+        end
         default: ;
       endcase
-    end
-  end
-
-  // ph 3: the slot's rectangle (from registers)
-  always_comb begin
-    if (full_q) begin
-      l_row0     = RW'(la_hk + (RW+1)'(1)) & l_side_mask;
-      l_nrows    = l_side;
-      l_live_lim = la_hk + (RW+1)'(1);
-      l_w0       = '0;
-      l_lw       = la_wl + (WW+1)'(1);
-      l_zw       = la_rw - la_wl - (WW+1)'(1);
-    end else begin
-      l_row0     = RW'(la_y0);
-      l_nrows    = la_y1 - la_y0 + (RW+1)'(1);
-      l_live_lim = l_side;
-      l_w0       = WW'(la_x0);
-      l_lw       = la_x1 - la_x0 + (WW+1)'(1);
-      l_zw       = '0;
     end
   end
 
@@ -280,7 +281,7 @@ module pyr_build #(
   /* verilator lint_on UNUSEDSIGNAL */
   logic slot_ld, slot_last;
 
-  assign slot_ld   = (state_q == C_SETUP) && (ph_q == 2'd3);
+  assign slot_ld   = (state_q == C_SETUP) && (ph_q == 3'd4);
   assign slot_last = j_q + SW'(1) == m_q;
 
   always_ff @(posedge clk_i) begin
@@ -320,9 +321,10 @@ module pyr_build #(
           end
         end
         C_SETUP: begin
-          ph_q <= ph_q + 2'd1;
-          if (ph_q == 2'd3) begin
-            j_q <= j_q + SW'(1);
+          ph_q <= ph_q + 3'd1;
+          if (ph_q == 3'd4) begin
+            ph_q <= '0;
+            j_q  <= j_q + SW'(1);
             if (slot_last) state_q <= C_RUN;
           end
         end
@@ -465,7 +467,7 @@ module pyr_build #(
     .RW(RW), .WW(WW), .SW(SW), .CACHE(AXI_CACHE), .PROT(AXI_PROT)
   ) u_writer (
     .clk_i, .rst_ni,
-    .clr_i         ((state_q == C_SETUP) && (j_q == '0) && (ph_q == 2'd0)),
+    .clr_i         ((state_q == C_SETUP) && (j_q == '0) && (ph_q == 3'd0)),
     .ld_i          (slot_ld),
     .ld_slot_i     (j_q),
     .ld_base_i     (l_base),
@@ -477,6 +479,7 @@ module pyr_build #(
     .ld_w0_i       (l_w0),
     .ld_lw_i       (l_lw),
     .ld_zw_i       (l_zw),
+    .ld_rw_i       (l_rw),
     .push_i        (wr_push),
     .data_i        (st_out_data),
     .full_o        (wr_full),

@@ -94,17 +94,18 @@ module pyr_reader #(
   logic [ADDR_W-1:0] a_row_addr_q;  // address of the row's first word
   logic [ADDR_W-1:0] a_addr_q;      // address of the burst's first word
   logic [12:0]       a_to4k;        // beats to the next 4 KiB boundary
-  logic [WW:0]       a_left;        // words left in the row
+  logic [WW:0]       a_left_q;      // words left in the row
+  logic              a_lastrow_q;   // the rectangle's last row
+  logic              a_rowend_q;    // the burst ends the row
   logic [BLW-1:0]    a_len, a_len_q;
   logic [ADDR_W-1:0] araddr_q;
   logic [OW-1:0]     outst_q;       // bursts issued, last beat not yet received
   logic              ar_hs, r_hs, r_last_beat;
 
   assign a_to4k = 13'((13'h1000 - {1'b0, a_addr_q[11:0]}) >> LGB);
-  assign a_left = {1'b0, w1_q} - {1'b0, a_w_q} + (WW+1)'(1);
   always_comb begin
     a_len = BLW'(BURST);
-    if (a_left < (WW+1)'(a_len)) a_len = BLW'(a_left);
+    if (a_left_q < (WW+1)'(a_len)) a_len = BLW'(a_left_q);
     if (a_to4k < 13'(a_len)) a_len = BLW'(a_to4k);
   end
 
@@ -122,10 +123,10 @@ module pyr_reader #(
         A_LEN:  a_state_q <= A_SEND;
         A_SEND: begin
           if (ar_hs) begin
-            if (a_w_q + WW'(a_len_q) <= w1_q) begin
+            if (!a_rowend_q) begin
               a_w_q     <= a_w_q + WW'(a_len_q);
               a_state_q <= A_ADDR;
-            end else if (a_row_q != row1_q) begin
+            end else if (!a_lastrow_q) begin
               a_w_q        <= w0_q;
               a_row_q      <= a_row_q + RW'(1);
               a_row_addr_q <= a_row_addr_q + (ADDR_W'(1) << pitch_lg_q);
@@ -144,10 +145,15 @@ module pyr_reader #(
     end
     if (a_state_q == A_INIT) a_row_addr_q <= ADDR_W'(a_row_q) << pitch_lg_q;
     if (a_state_q == A_INIT2) a_row_addr_q <= base_q + a_row_addr_q;
-    if (a_state_q == A_ADDR) a_addr_q <= a_row_addr_q + (ADDR_W'(a_w_q) << LGB);
+    if (a_state_q == A_ADDR) begin
+      a_addr_q    <= a_row_addr_q + (ADDR_W'(a_w_q) << LGB);
+      a_left_q    <= {1'b0, w1_q} - {1'b0, a_w_q} + (WW+1)'(1);
+      a_lastrow_q <= a_row_q == row1_q;
+    end
     if (a_state_q == A_LEN) begin
-      araddr_q <= {a_addr_q[ADDR_W-1:LGB], {LGB{1'b0}}};
-      a_len_q  <= a_len;
+      araddr_q   <= {a_addr_q[ADDR_W-1:LGB], {LGB{1'b0}}};
+      a_len_q    <= a_len;
+      a_rowend_q <= (a_left_q <= (WW+1)'(BURST)) && (32'(a_left_q) <= 32'(a_to4k));
     end
   end
 

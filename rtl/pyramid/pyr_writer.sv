@@ -46,6 +46,7 @@ module pyr_writer #(
   input  logic [WW-1:0]              ld_w0_i,
   input  logic [WW:0]                ld_lw_i,
   input  logic [WW:0]                ld_zw_i,
+  input  logic [WW:0]                ld_rw_i,   // lw + zw
   input  logic [NS-1:0]              push_i,
   input  logic [NS-1:0][DATA_W-1:0]  data_i,
   output logic [NS-1:0]              full_o,
@@ -103,6 +104,7 @@ module pyr_writer #(
   logic [WW-1:0]     w0_q        [NS];
   logic [WW:0]       lw_q        [NS];
   logic [WW:0]       zw_q        [NS];
+  logic [WW:0]       rw_q        [NS];  // lw + zw
   logic [RW-1:0]     row_q       [NS];  // current row
   logic [RW:0]       rows_left_q [NS];  // rows left, the current one included
   logic              zseg_q      [NS];  // in the zero words of the row
@@ -142,8 +144,14 @@ module pyr_writer #(
   logic [SW-1:0]     pick;
   logic              any_ready;
   logic [ADDR_W-1:0] m_base_q, m_rowoff_q, m_woff_q, b_addr_q;
-  logic [RW-1:0]     m_row_q;
+  logic [RW-1:0]     m_row_q, m_next_row_q;  // the slot's row, the next one
   logic [4:0]        m_pitch_lg_q;
+  logic              m_next_live_q;          // the next row is below live_lim
+  logic              m_seg_end_q;            // the burst ends the segment
+  logic              m_zseg_q;
+  logic [WW:0]       m_lw_q, m_zw_q, m_rw_q, m_wpos_q;
+  logic [RW:0]       m_live_lim_q;
+  logic [RW-1:0]     m_side_mask_q;
   logic [WW:0]       m_wleft_q;
   logic              m_partial_q;
   logic [BB-1:0]     m_mask_q;       // a sub-word row's bytes, from lane 0
@@ -211,6 +219,13 @@ module pyr_writer #(
           m_base_q    <= base_q[sel_q];
           m_row_q     <= row_q[sel_q];
           m_pitch_lg_q <= pitch_lg_q[sel_q];
+          m_zseg_q    <= zseg_q[sel_q];
+          m_lw_q      <= lw_q[sel_q];
+          m_zw_q      <= zw_q[sel_q];
+          m_rw_q      <= rw_q[sel_q];
+          m_wpos_q    <= wpos_q[sel_q];
+          m_live_lim_q <= live_lim_q[sel_q];
+          m_side_mask_q <= side_mask_q[sel_q];
           m_woff_q    <= ADDR_W'(WW'(w0_q[sel_q]) + WW'(wpos_q[sel_q])) << LGB;
           m_wleft_q   <= wleft_q[sel_q];
           m_partial_q <= pitch_lg_q[sel_q] < 5'(LGB);
@@ -219,12 +234,14 @@ module pyr_writer #(
           state_q     <= S_SHIFT;
         end
         S_SHIFT: begin
-          m_rowoff_q <= ADDR_W'(m_row_q) << m_pitch_lg_q;
-          state_q    <= S_ADD;
+          m_rowoff_q   <= ADDR_W'(m_row_q) << m_pitch_lg_q;
+          m_next_row_q <= (m_row_q + RW'(1)) & m_side_mask_q;
+          state_q      <= S_ADD;
         end
         S_ADD: begin
-          b_addr_q <= m_base_q + m_rowoff_q + m_woff_q;
-          state_q  <= S_LEN;
+          b_addr_q      <= m_base_q + m_rowoff_q + m_woff_q;
+          m_next_live_q <= (RW+1)'(m_next_row_q) < m_live_lim_q;
+          state_q       <= S_LEN;
         end
         S_LEN: begin
           awaddr_q <= {b_addr_q[ADDR_W-1:LGB], {LGB{1'b0}}};
@@ -233,6 +250,7 @@ module pyr_writer #(
           awv_q    <= 1'b1;
           shift_q  <= b_addr_q[LGB-1:0];
           strb_q   <= m_partial_q ? m_mask_q << b_addr_q[LGB-1:0] : {BB{1'b1}};
+          m_seg_end_q <= (m_wleft_q <= (WW+1)'(BURST)) && (32'(m_wleft_q) <= 32'(b_to4k));
           state_q  <= S_DATA;
         end
         S_DATA: begin
@@ -241,23 +259,23 @@ module pyr_writer #(
             // the burst is done: advance the slot
             last_q  <= sel_q;
             state_q <= S_PICK;
-            if (wleft_q[sel_q] != (WW+1)'(len_q)) begin
-              wleft_q[sel_q] <= wleft_q[sel_q] - (WW+1)'(len_q);
-              wpos_q[sel_q]  <= wpos_q[sel_q] + (WW+1)'(len_q);
-            end else if (!zseg_q[sel_q] && zw_q[sel_q] != '0) begin
+            if (!m_seg_end_q) begin
+              wleft_q[sel_q] <= m_wleft_q - (WW+1)'(len_q);
+              wpos_q[sel_q]  <= m_wpos_q + (WW+1)'(len_q);
+            end else if (!m_zseg_q && m_zw_q != '0) begin
               zseg_q[sel_q]  <= 1'b1;
-              wleft_q[sel_q] <= zw_q[sel_q];
-              wpos_q[sel_q]  <= wpos_q[sel_q] + (WW+1)'(len_q);
+              wleft_q[sel_q] <= m_zw_q;
+              wpos_q[sel_q]  <= m_wpos_q + (WW+1)'(len_q);
             end else begin
-              row_q[sel_q]       <= (row_q[sel_q] + RW'(1)) & side_mask_q[sel_q];
+              row_q[sel_q]       <= m_next_row_q;
               rows_left_q[sel_q] <= rows_left_q[sel_q] - (RW+1)'(1);
               wpos_q[sel_q]      <= '0;
-              if ((RW+1)'((row_q[sel_q] + RW'(1)) & side_mask_q[sel_q]) < live_lim_q[sel_q]) begin
+              if (m_next_live_q) begin
                 zseg_q[sel_q]  <= 1'b0;
-                wleft_q[sel_q] <= lw_q[sel_q];
+                wleft_q[sel_q] <= m_lw_q;
               end else begin
                 zseg_q[sel_q]  <= 1'b1;
-                wleft_q[sel_q] <= lw_q[sel_q] + zw_q[sel_q];
+                wleft_q[sel_q] <= m_rw_q;
               end
             end
           end
@@ -277,7 +295,7 @@ module pyr_writer #(
           wleft_q[ld_slot_i] <= ld_lw_i;
         end else begin
           zseg_q[ld_slot_i]  <= 1'b1;
-          wleft_q[ld_slot_i] <= ld_lw_i + ld_zw_i;
+          wleft_q[ld_slot_i] <= ld_rw_i;
         end
       end
     end
@@ -292,6 +310,7 @@ module pyr_writer #(
       w0_q[ld_slot_i]        <= ld_w0_i;
       lw_q[ld_slot_i]        <= ld_lw_i;
       zw_q[ld_slot_i]        <= ld_zw_i;
+      rw_q[ld_slot_i]        <= ld_rw_i;
     end
   end
 
