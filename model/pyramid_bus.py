@@ -10,9 +10,10 @@ writes 21,845 and is bound by 8,192 clocks.
 """
 from __future__ import annotations
 
-import argparse
 import sys
 from dataclasses import dataclass
+
+from model.cli import Parser
 
 
 @dataclass(frozen=True)
@@ -50,7 +51,7 @@ def full_rebuild(width: int, height: int, bits: int = 8, bus_bits: int = 64) -> 
 
 def main(argv: list[str] | None = None) -> int:
     """Print the bound of one map size."""
-    ap = argparse.ArgumentParser(description="bus bound of a full pyramid rebuild")
+    ap = Parser(prog="pyramid_bus", description="bus bound of a full pyramid rebuild")
     ap.add_argument("width", type=int)
     ap.add_argument("height", type=int)
     ap.add_argument("--bits", type=int, default=8, choices=(8, 16))
