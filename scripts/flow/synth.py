@@ -95,6 +95,8 @@ BLOCKS = [
           what="traverse unit + height cache + AXI"),
     Block("tex_cache", "tex_cache", {"LINE_BYTES": 128, "SETS": 32, "WAYS": 4, "TAG_W": 56,
                                      "ID_W": 6}, what="texture cache, 64 KiB"),
+    Block("pyr_build", "pyr_build", {"AXI_DATA_W": 64, "MAX_LG": 10, "BURST": 16},
+          what="max-mipmap pyramid builder, maps up to 1024x1024"),
     Block("dm_pipeline", "dm_pipeline", pnr=False, what="the whole unit (ports: ~4,000 bits)"),
     Block(TOP, TOP, pnr=False, what="dm_pipeline + register port (the P&R top)"),
     Block(TOP2, TOP, {"N_RINGS": 2}, pnr=False,
