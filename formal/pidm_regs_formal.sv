@@ -3,7 +3,9 @@
 // rtl/top/pidm_regs.rdl) and pidm_cfg behind it, under SymbiYosys (formal/pidm_regs.sby).
 //
 // The AXI4-Lite master is free within the protocol (assumed): reset in the first clock, no VALID
-// during reset, every VALID held with its payload stable until READY.  The hardware inputs
+// during reset, every VALID held with its payload stable until READY; its addresses (any low two
+// bits) come from a set (in_set): the tracked registers, the checked read-only ones, three
+// untracked RW registers and 15 unmapped words between and around the register groups.  The hardware inputs
 // (hwif_in: HWCFG, STATUS, PROGRESS, STATS, the ERROR hardware sets, the interrupt events) are
 // free; INTR_STATE's inputs are wired as the system top wires them: event | INTR_TEST pulse.
 //
@@ -28,10 +30,10 @@
 //             dropped: PeakRDL's default precedence = sw, see docs/formal.md); singlepulse holds a
 //             written bit one clock, then 0.  Every clock each tracked register's field values
 //             (hwif_out, or the block's storage where the field has no hardware output) equal
-//             their shadow (field_match), writes to every other address leave them alone.
+//             their shadow (field_match): writes to the other addresses leave them alone.
 //   reads     a read of a tracked register returns its shadow (reserved bits 0), of ID / VERSION
-//             / HWCFG / STATUS / PROGRESS / a STATS word its value, of ANY unmapped address 0
-//             (rdata_match; the address is the master's, free over the whole 4 KiB).
+//             / HWCFG / STATUS / PROGRESS / a STATS word its value, of an unmapped word 0
+//             (rd_value when the block reads, rdata_match when R carries it).
 //   others    TT_WRITE's swmod strobe exactly in the clock of a write with a data strobe
 //             (tt_swmod); the interrupt line is OR(INTR_STATE & INTR_ENABLE) (intr_line); an
 //             INTR_TEST pulse sets INTR_STATE unless software writes INTR_STATE in that clock
