@@ -479,6 +479,8 @@ module pidm_regs_formal (
       resp_shown:    assert ((bvalid || rvalid) == (rq_cnt != 2'd0));
       b_for_write:   assert (!bvalid || (rq_cnt != 2'd0 && rq_head_wr));
       r_for_read:    assert (!rvalid || (rq_cnt != 2'd0 && !rq_head_wr));
+      b_stable:      assert (!b_wait_q || (bvalid && bresp == bresp_q));
+      r_stable:      assert (!r_wait_q || (rvalid && rdata == rdata_q && rresp == rresp_q));
       bresp_okay:    assert (!bvalid || bresp == 2'b00);
       rresp_okay:    assert (!rvalid || rresp == 2'b00);
       rd_value:      assert (!rd_commit || !rq_push_chk || u_dut.cpuif_rd_data == rq_push_exp);
