@@ -1,0 +1,535 @@
+// SPDX-License-Identifier: Apache-2.0
+// pidm_regs_formal: the generated register block pidm_regs (rtl/top/pidm_regs.sv, from
+// rtl/top/pidm_regs.rdl) and pidm_cfg behind it, under SymbiYosys (formal/pidm_regs.sby).
+//
+// The AXI4-Lite master is free within the protocol (assumed): reset in the first clock, no VALID
+// during reset, every VALID held with its payload stable until READY; its addresses are free in
+// the prove task, from a set (in_set) in the bmc and cover tasks.  The hardware inputs
+// (hwif_in: HWCFG, STATUS, PROGRESS, STATS, the ERROR hardware sets, the interrupt events) are
+// free; INTR_STATE's inputs are wired as the system top wires them: event | INTR_TEST pulse.
+//
+// A request takes effect when the generated block's AXI front end hands it to the register core
+// (its cpuif request, `commit` below); the wrapper keeps its own copy of every accepted AW, W and
+// AR (the block holds at most one of each) and of the responses owed (at most two: the block's
+// response buffer), and proves:
+//   protocol  every AW+W pair and every AR is committed once, with its address, data and
+//             strobes (wr_commit_*, rd_commit_*), within a clock of being ready unless two
+//             responses are owed (commit_when_room, wr_no_starve, rd_no_starve); a response is
+//             shown exactly when one is owed, B only for a write, R only for a read (resp_shown,
+//             b_for_write, r_for_read); B / R held with stable payload until READY (b_stable,
+//             r_stable); every response OKAY (bresp_okay, rresp_okay: the block has no error
+//             response; writes to read-only or unmapped addresses are ignored, answered OKAY).
+//   writes    a reference copy ("shadow") of a representative set of registers (tracked below:
+//             full-width and multi-field RW registers with reserved bits, f24 words, array
+//             elements of each array, TT_WRITE, INTR_ENABLE, the W1C registers ERROR and
+//             INTR_STATE, the singlepulse registers CTRL and INTR_TEST) updated from the committed
+//             AXI writes by the RDL rules: RW takes (old & ~strobes) | (data & strobes) on the
+//             defined bits; W1C clears the written 1s, else sets the hardware-set bits
+//             (software wins: a hardware set in the clock of a write to the same register is
+//             dropped: PeakRDL's default precedence = sw, see docs/formal.md); singlepulse holds a
+//             written bit one clock, then 0.  Every clock each tracked register's field values
+//             (hwif_out, or the block's storage where the field has no hardware output) equal
+//             their shadow (field_match): writes to the other addresses leave them alone.
+//   reads     a read of a tracked register returns its shadow (reserved bits 0), of ID / VERSION
+//             / HWCFG / STATUS / PROGRESS / a STATS word its value, of an unmapped word 0
+//             (rd_value when the block reads, rdata_match when R carries it).
+//   others    TT_WRITE's swmod strobe exactly in the clock of a write with a data strobe
+//             (tt_swmod); the interrupt line is OR(INTR_STATE & INTR_ENABLE) (intr_line); an
+//             INTR_TEST pulse sets INTR_STATE unless software writes INTR_STATE in that clock
+//             (test_sets_state).  Lemmas for the induction tie the wrapper's copies to the
+//             block's AXI front end (front_*).
+// pidm_cfg's own properties (rtl/top/pidm_cfg_assert.sv, bound) are proven with the block
+// driving it.
+module pidm_regs_formal (
+  input  logic              clk_i,
+  input  logic              rst_ni,
+  // AXI4-Lite master (free, constrained by the assumptions below)
+  input  logic              awvalid_i,
+  input  logic [11:0]       awaddr_i,
+  input  logic [2:0]        awprot_i,
+  input  logic              wvalid_i,
+  input  logic [31:0]       wdata_i,
+  input  logic [3:0]        wstrb_i,
+  input  logic              bready_i,
+  input  logic              arvalid_i,
+  input  logic [11:0]       araddr_i,
+  input  logic [2:0]        arprot_i,
+  input  logic              rready_i,
+  // hardware inputs of the block (free)
+  input  logic [31:0]       hwcfg_i,
+  input  logic              busy_i,
+  input  logic              idle_i,
+  input  logic [4:0]        error_set_i,
+  input  logic [31:0]       progress_i,
+  input  logic [1:0]        intr_event_i,
+  input  logic [10:0][47:0] stats_i
+);
+
+  // ---------------------------------------------------------------------------------------
+  // The block and pidm_cfg
+  // ---------------------------------------------------------------------------------------
+  logic        awready, wready, arready, bvalid, rvalid;
+  logic [1:0]  bresp, rresp;
+  logic [31:0] rdata;
+  pidm_regs_pkg::pidm_regs__in_t  hwif_in;
+  pidm_regs_pkg::pidm_regs__out_t hwif_out;
+
+  pidm_regs u_dut (
+    .clk(clk_i), .rst_n(rst_ni),
+    .s_axil_awready(awready), .s_axil_awvalid(awvalid_i), .s_axil_awaddr(awaddr_i),
+    .s_axil_awprot(awprot_i), .s_axil_wready(wready), .s_axil_wvalid(wvalid_i),
+    .s_axil_wdata(wdata_i), .s_axil_wstrb(wstrb_i), .s_axil_bready(bready_i),
+    .s_axil_bvalid(bvalid), .s_axil_bresp(bresp), .s_axil_arready(arready),
+    .s_axil_arvalid(arvalid_i), .s_axil_araddr(araddr_i), .s_axil_arprot(arprot_i),
+    .s_axil_rready(rready_i), .s_axil_rvalid(rvalid), .s_axil_rdata(rdata),
+    .s_axil_rresp(rresp), .hwif_in, .hwif_out);
+
+  always_comb begin
+    hwif_in.HWCFG.pix_w.next      = hwcfg_i[7:0];
+    hwif_in.HWCFG.tris.next       = hwcfg_i[15:8];
+    hwif_in.HWCFG.addr_w.next     = hwcfg_i[23:16];
+    hwif_in.HWCFG.data_bytes.next = hwcfg_i[31:24];
+    hwif_in.STATUS.busy.next      = busy_i;
+    hwif_in.STATUS.idle.next      = idle_i;
+    hwif_in.ERROR.h_axi.hwset      = error_set_i[0];
+    hwif_in.ERROR.t_axi.hwset      = error_set_i[1];
+    hwif_in.ERROR.frag_dma.hwset   = error_set_i[2];
+    hwif_in.ERROR.fb_write.hwset   = error_set_i[3];
+    hwif_in.ERROR.bad_config.hwset = error_set_i[4];
+    hwif_in.PROGRESS.pixels.next   = progress_i;
+    hwif_in.INTR_STATE.frame_done.next = intr_event_i[0] | hwif_out.INTR_TEST.frame_done.value;
+    hwif_in.INTR_STATE.axi_error.next  = intr_event_i[1] | hwif_out.INTR_TEST.axi_error.value;
+    hwif_in.STATS.cycles.LO.val.next        = stats_i[0][31:0];
+    hwif_in.STATS.cycles.HI.val.next        = stats_i[0][47:32];
+    hwif_in.STATS.pixels.LO.val.next        = stats_i[1][31:0];
+    hwif_in.STATS.pixels.HI.val.next        = stats_i[1][47:32];
+    hwif_in.STATS.iters.LO.val.next         = stats_i[2][31:0];
+    hwif_in.STATS.iters.HI.val.next         = stats_i[2][47:32];
+    hwif_in.STATS.h_hits.LO.val.next        = stats_i[3][31:0];
+    hwif_in.STATS.h_hits.HI.val.next        = stats_i[3][47:32];
+    hwif_in.STATS.h_misses.LO.val.next      = stats_i[4][31:0];
+    hwif_in.STATS.h_misses.HI.val.next      = stats_i[4][47:32];
+    hwif_in.STATS.h_bytes.LO.val.next       = stats_i[5][31:0];
+    hwif_in.STATS.h_bytes.HI.val.next       = stats_i[5][47:32];
+    hwif_in.STATS.t_requests.LO.val.next    = stats_i[6][31:0];
+    hwif_in.STATS.t_requests.HI.val.next    = stats_i[6][47:32];
+    hwif_in.STATS.t_quad_hits.LO.val.next   = stats_i[7][31:0];
+    hwif_in.STATS.t_quad_hits.HI.val.next   = stats_i[7][47:32];
+    hwif_in.STATS.t_line_misses.LO.val.next = stats_i[8][31:0];
+    hwif_in.STATS.t_line_misses.HI.val.next = stats_i[8][47:32];
+    hwif_in.STATS.t_texel_hits.LO.val.next  = stats_i[9][31:0];
+    hwif_in.STATS.t_texel_hits.HI.val.next  = stats_i[9][47:32];
+    hwif_in.STATS.t_bytes.LO.val.next       = stats_i[10][31:0];
+    hwif_in.STATS.t_bytes.HI.val.next       = stats_i[10][47:32];
+  end
+
+  // pidm_cfg as the system top wires it (its outputs are checked by its bound properties)
+  /* verilator lint_off PINCONNECTEMPTY */
+  pidm_cfg #(.TRIS(16)) u_cfg (
+    .clk_i, .rst_ni, .hwif_i(hwif_out), .cfg_method_o(), .cfg_width_o(), .cfg_height_o(),
+    .cfg_root_level_o(), .cfg_bits16_o(), .cfg_base_o(), .cfg_level_off_o(), .cfg_root_code_o(),
+    .cfg_iter_cap_o(), .cfg_depth_o(), .cfg_mip_en_o(), .cfg_levels_colour_o(),
+    .cfg_levels_normal_o(), .cfg_shade_o(), .cfg_miss_rgb_o(), .cfg_tex_su_o(), .cfg_tex_sv_o(),
+    .cfg_tex_width_o(), .cfg_tex_height_o(), .cfg_tex_base_o(), .cfg_tex_level_off_o(),
+    .tt_we_o(), .tt_waddr_o(), .tt_wdata_o());
+  /* verilator lint_on PINCONNECTEMPTY */
+
+  // ---------------------------------------------------------------------------------------
+  // The master: AXI4-Lite rules (assumed)
+  // ---------------------------------------------------------------------------------------
+  logic started_q = 1'b0;   // 0 in the first clock only
+  always_ff @(posedge clk_i) started_q <= 1'b1;
+
+  logic        rst_q;        // rst_ni one clock earlier
+  logic        aw_wait_q, w_wait_q, ar_wait_q;
+  logic [11:0] awaddr_q, araddr_q;
+  logic [31:0] wdata_q;
+  logic [3:0]  wstrb_q;
+  always_ff @(posedge clk_i) begin
+    rst_q     <= rst_ni;
+    aw_wait_q <= rst_ni && awvalid_i && !awready;
+    w_wait_q  <= rst_ni && wvalid_i && !wready;
+    ar_wait_q <= rst_ni && arvalid_i && !arready;
+    awaddr_q  <= awaddr_i;
+    wdata_q   <= wdata_i;
+    wstrb_q   <= wstrb_i;
+    araddr_q  <= araddr_i;
+  end
+
+  // In the bmc and cover tasks (PIDM_REGS_ADDR_SET) the master's addresses (any low two bits)
+  // come from a set: the tracked registers, the read-only registers whose values are checked,
+  // an untracked RW register and a sample of unmapped words around and between the register
+  // groups.  (With all 4 KiB free the solver takes minutes per BMC step beyond the third: the
+  // block's read multiplexer over every register.)  The prove task (k-induction) has every
+  // address free.
+  function automatic logic in_set(logic [11:0] a);
+    case ({a[11:2], 2'b00})
+      12'h040, 12'h060, 12'h200, 12'h204, 12'h240, 12'h27C, 12'h300, 12'h304, 12'h33C, 12'h400,
+      12'h508, 12'h5BC, 12'h100, 12'h024, 12'h018, 12'h020, 12'h010, 12'h028,     // tracked
+      12'h000, 12'h004, 12'h008, 12'h014, 12'h01C, 12'h080, 12'h0D4,              // read-only
+      12'h208,                                                                    // untracked
+      12'h00C, 12'h02C, 12'h064, 12'h0D8, 12'h104, 12'h214, 12'h308, 12'h340,
+      12'h4C0, 12'h600, 12'hFFC:                                                  // unmapped
+        return 1'b1;
+      default: return 1'b0;
+    endcase
+  endfunction
+
+  always_comb begin
+    if (!started_q) assume (!rst_ni);
+`ifdef PIDM_REGS_ADDR_SET
+    assume (in_set(awaddr_i) && in_set(araddr_i));
+`endif
+    if (!rst_ni) assume (!awvalid_i && !wvalid_i && !arvalid_i);
+    if (rst_ni && aw_wait_q) assume (awvalid_i && awaddr_i == awaddr_q);
+    if (rst_ni && w_wait_q)  assume (wvalid_i && wdata_i == wdata_q && wstrb_i == wstrb_q);
+    if (rst_ni && ar_wait_q) assume (arvalid_i && araddr_i == araddr_q);
+  end
+
+  // ---------------------------------------------------------------------------------------
+  // The wrapper's copies: accepted requests not yet committed, responses owed
+  // ---------------------------------------------------------------------------------------
+  logic aw_hs, w_hs, ar_hs, b_hs, r_hs;
+  assign aw_hs = rst_ni && awvalid_i && awready;
+  assign w_hs  = rst_ni && wvalid_i && wready;
+  assign ar_hs = rst_ni && arvalid_i && arready;
+  assign b_hs  = rst_ni && bvalid && bready_i;
+  assign r_hs  = rst_ni && rvalid && rready_i;
+
+  // The commit: the block's AXI front end hands a request to its register core.
+  logic wr_commit, rd_commit;
+  assign wr_commit = rst_ni && u_dut.cpuif_req_masked && u_dut.cpuif_req_is_wr;
+  assign rd_commit = rst_ni && u_dut.cpuif_req_masked && !u_dut.cpuif_req_is_wr;
+
+  logic        aw_p, w_p, ar_p;           // an accepted AW / W / AR not yet committed
+  logic [11:0] aw_addr, ar_addr;
+  logic [31:0] w_data;
+  logic [3:0]  w_strb;
+  logic [31:0] w_biten;                   // the strobes as a bit mask
+  always_comb for (int b = 0; b < 4; b++) w_biten[8*b +: 8] = {8{w_strb[b]}};
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      aw_p <= 1'b0;
+      w_p  <= 1'b0;
+      ar_p <= 1'b0;
+    end else begin
+      if (wr_commit) begin
+        aw_p <= 1'b0;
+        w_p  <= 1'b0;
+      end
+      if (rd_commit) ar_p <= 1'b0;
+      if (aw_hs) begin
+        aw_p    <= 1'b1;
+        aw_addr <= awaddr_i;
+      end
+      if (w_hs) begin
+        w_p    <= 1'b1;
+        w_data <= wdata_i;
+        w_strb <= wstrb_i;
+      end
+      if (ar_hs) begin
+        ar_p    <= 1'b1;
+        ar_addr <= araddr_i;
+      end
+    end
+  end
+
+  // Responses owed, oldest first: a write's B or a read's R with the data it must carry.
+  logic [1:0]  rq_cnt;
+  logic        rq_rp;                     // the oldest entry
+  logic        rq_wr  [2];
+  logic        rq_chk [2];                // a read whose data is known (exp)
+  logic [31:0] rq_exp [2];
+  logic        rq_push, rq_pop;
+  logic        rq_push_chk;
+  logic [31:0] rq_push_exp;
+  logic        rq_head_wr;
+  assign rq_push    = wr_commit || rd_commit;
+  assign rq_pop     = b_hs || r_hs;
+  assign rq_head_wr = rq_wr[rq_rp];
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      rq_cnt <= '0;
+      rq_rp  <= 1'b0;
+    end else begin
+      if (rq_push) begin
+        rq_wr[rq_rp ^ rq_cnt[0]]  <= wr_commit;
+        rq_chk[rq_rp ^ rq_cnt[0]] <= rd_commit && rq_push_chk;
+        rq_exp[rq_rp ^ rq_cnt[0]] <= rq_push_exp;
+      end
+      rq_cnt <= rq_cnt + 2'(rq_push) - 2'(rq_pop);
+      if (rq_pop) rq_rp <= !rq_rp;
+    end
+  end
+
+  // ---------------------------------------------------------------------------------------
+  // The tracked registers: address, defined bits, reset value, kind; their field values
+  // ---------------------------------------------------------------------------------------
+  localparam int unsigned NT = 18;
+  localparam int unsigned K_RW = 0, K_W1C = 1, K_PULSE = 2;
+
+  // T_* index constants used below
+  localparam int unsigned T_TT = 12, T_ENABLE = 13, T_ERROR = 14, T_STATE = 15, T_CTRL = 16,
+                          T_TEST = 17;
+
+  function automatic logic [11:0] t_addr(int unsigned i);
+    case (i)
+      0:  return 12'h040;   // FRAME.FRAG_BASE.LO    RW 32 bits
+      1:  return 12'h060;   // FRAME.FB_LAYOUT       RW xbits[4:0], status_en[8]
+      2:  return 12'h200;   // HEIGHT.MODE           RW method[3:0] (reset 7), root_level, bits16
+      3:  return 12'h204;   // HEIGHT.SIZE           RW width[15:0], height[31:16]
+      4:  return 12'h240;   // HEIGHT.LEVEL_OFF[0]   RW 32 bits
+      5:  return 12'h27C;   // HEIGHT.LEVEL_OFF[15]
+      6:  return 12'h300;   // SHADE.MIP             RW mip_en[0], levels_colour[13:8], levels_normal[21:16]
+      7:  return 12'h304;   // SHADE.MISS_RGB        RW red, green, blue [23:0]
+      8:  return 12'h33C;   // SHADE.D2              RW f24 [23:0]
+      9:  return 12'h400;   // TEX[0].SU             RW f24
+      10: return 12'h508;   // TEX[1].BASE           RW 32 bits
+      11: return 12'h5BC;   // TEX[1].LEVEL_SIZE[15] RW width, height
+      12: return 12'h100;   // TT_WRITE              RW data[23:0], addr[31:24] (swmod)
+      13: return 12'h024;   // INTR_ENABLE           RW [1:0] (no hardware output)
+      14: return 12'h018;   // ERROR                 W1C [4:0], hardware set
+      15: return 12'h020;   // INTR_STATE            W1C [1:0], hardware set (event | INTR_TEST)
+      16: return 12'h010;   // CTRL                  singlepulse [2:0]
+      default: return 12'h028;  // INTR_TEST         singlepulse [1:0]
+    endcase
+  endfunction
+
+  function automatic logic [31:0] t_mask(int unsigned i);
+    case (i)
+      1:  return 32'h0000_011F;
+      2:  return 32'h0000_01FF;
+      6:  return 32'h003F_3F01;
+      7, 8, 9: return 32'h00FF_FFFF;
+      13: return 32'h0000_0003;
+      14: return 32'h0000_001F;
+      15: return 32'h0000_0003;
+      16: return 32'h0000_0007;
+      17: return 32'h0000_0003;
+      default: return 32'hFFFF_FFFF;
+    endcase
+  endfunction
+
+  function automatic logic [31:0] t_reset(int unsigned i);
+    return (i == 2) ? 32'h0000_0007 : 32'h0;
+  endfunction
+
+  function automatic int unsigned t_kind(int unsigned i);
+    case (i)
+      14, 15:  return K_W1C;
+      16, 17:  return K_PULSE;
+      default: return K_RW;
+    endcase
+  endfunction
+
+  // Each tracked register's fields at their RDL bit positions (0 elsewhere).
+  logic [31:0] view  [NT];
+  logic [31:0] hwset [NT];   // bits the hardware sets (W1C registers)
+  always_comb begin
+    view[0]  = hwif_out.FRAME.FRAG_BASE.LO.val.value;
+    view[1]  = {23'b0, hwif_out.FRAME.FB_LAYOUT.status_en.value, 3'b0,
+                hwif_out.FRAME.FB_LAYOUT.xbits.value};
+    view[2]  = {23'b0, hwif_out.HEIGHT.MODE.bits16.value, hwif_out.HEIGHT.MODE.root_level.value,
+                hwif_out.HEIGHT.MODE.method.value};
+    view[3]  = {hwif_out.HEIGHT.SIZE.height.value, hwif_out.HEIGHT.SIZE.width.value};
+    view[4]  = hwif_out.HEIGHT.LEVEL_OFF[0].val.value;
+    view[5]  = hwif_out.HEIGHT.LEVEL_OFF[15].val.value;
+    view[6]  = {10'b0, hwif_out.SHADE.MIP.levels_normal.value, 2'b0,
+                hwif_out.SHADE.MIP.levels_colour.value, 7'b0, hwif_out.SHADE.MIP.mip_en.value};
+    view[7]  = {8'b0, hwif_out.SHADE.MISS_RGB.blue.value, hwif_out.SHADE.MISS_RGB.green.value,
+                hwif_out.SHADE.MISS_RGB.red.value};
+    view[8]  = {8'b0, hwif_out.SHADE.D2.val.value};
+    view[9]  = {8'b0, hwif_out.TEX[0].SU.val.value};
+    view[10] = hwif_out.TEX[1].BASE.val.value;
+    view[11] = {hwif_out.TEX[1].LEVEL_SIZE[15].height.value,
+                hwif_out.TEX[1].LEVEL_SIZE[15].width.value};
+    view[12] = {hwif_out.TT_WRITE.addr.value, hwif_out.TT_WRITE.data.value};
+    // INTR_ENABLE and INTR_STATE have no hardware outputs but the interrupt line: their storage
+    view[13] = {30'b0, u_dut.field_storage.INTR_ENABLE.axi_error.value,
+                u_dut.field_storage.INTR_ENABLE.frame_done.value};
+    view[14] = {27'b0, hwif_out.ERROR.bad_config.value, hwif_out.ERROR.fb_write.value,
+                hwif_out.ERROR.frag_dma.value, hwif_out.ERROR.t_axi.value,
+                hwif_out.ERROR.h_axi.value};
+    view[15] = {30'b0, u_dut.field_storage.INTR_STATE.axi_error.value,
+                u_dut.field_storage.INTR_STATE.frame_done.value};
+    view[16] = {29'b0, hwif_out.CTRL.clear_stats.value, hwif_out.CTRL.soft_reset.value,
+                hwif_out.CTRL.start.value};
+    view[17] = {30'b0, hwif_out.INTR_TEST.axi_error.value, hwif_out.INTR_TEST.frame_done.value};
+    for (int unsigned i = 0; i < NT; i++) hwset[i] = '0;
+    hwset[T_ERROR] = {27'b0, error_set_i};
+    hwset[T_STATE] = {30'b0, intr_event_i | view[T_TEST][1:0]};
+  end
+
+  // The shadows: the register values the RDL prescribes for the committed writes.
+  logic [31:0] shadow [NT];
+  logic [NT-1:0] wr_sel;     // this clock commits a write to tracked register i
+  always_comb
+    for (int unsigned i = 0; i < NT; i++) wr_sel[i] = wr_commit && aw_addr[11:2] == t_addr(i)[11:2];
+
+  always_ff @(posedge clk_i) begin
+    for (int unsigned i = 0; i < NT; i++) begin
+      if (!rst_ni) shadow[i] <= t_reset(i);
+      else case (t_kind(i))
+        K_RW:    if (wr_sel[i]) shadow[i] <= ((shadow[i] & ~w_biten) | (w_data & w_biten)) & t_mask(i);
+        K_W1C:   shadow[i] <= wr_sel[i] ? shadow[i] & ~(w_data & w_biten)
+                                        : (shadow[i] | hwset[i]) & t_mask(i);
+        default: shadow[i] <= wr_sel[i] ? ((shadow[i] & ~w_biten) | (w_data & w_biten)) & t_mask(i)
+                                        : '0;
+      endcase
+    end
+  end
+
+  // What a read of the committed address returns (rq_push_chk: known for this address).
+  function automatic logic mapped(logic [11:0] a);
+    logic [11:0] t;
+    t = {a[11:2], 2'b00};
+    if (t <= 12'h008 || (t >= 12'h010 && t <= 12'h028)) return 1'b1;
+    if (t >= 12'h040 && t <= 12'h060) return 1'b1;
+    if (t >= 12'h080 && t <= 12'h0D4) return 1'b1;
+    if (t == 12'h100) return 1'b1;
+    if ((t >= 12'h200 && t <= 12'h210) || (t >= 12'h240 && t <= 12'h27C)) return 1'b1;
+    if (t == 12'h300 || t == 12'h304 || (t >= 12'h320 && t <= 12'h33C)) return 1'b1;
+    if (t >= 12'h400 && t < 12'h600 && (t[7:0] <= 8'h08 || (t[7:0] >= 8'h40 && t[7:0] <= 8'hBC)))
+      return 1'b1;
+    return 1'b0;
+  endfunction
+
+  always_comb begin
+    rq_push_chk = 1'b1;
+    rq_push_exp = '0;                                        // unmapped: 0
+    case ({ar_addr[11:2], 2'b00})
+      12'h000: rq_push_exp = 32'h5049_444D;                  // ID
+      12'h004: rq_push_exp = 32'h0001_0000;                  // VERSION 1.0
+      12'h008: rq_push_exp = hwcfg_i;                        // HWCFG
+      12'h014: rq_push_exp = {30'b0, idle_i, busy_i};        // STATUS
+      12'h01C: rq_push_exp = progress_i;                     // PROGRESS
+      12'h080: rq_push_exp = stats_i[0][31:0];               // STATS.cycles.LO
+      12'h0D4: rq_push_exp = {16'b0, stats_i[10][47:32]};    // STATS.t_bytes.HI
+      default: begin
+        rq_push_chk = !mapped(ar_addr);
+        for (int unsigned i = 0; i < NT; i++)
+          if (ar_addr[11:2] == t_addr(i)[11:2]) begin
+            rq_push_chk = 1'b1;
+            rq_push_exp = shadow[i];
+          end
+      end
+    endcase
+  end
+
+  // INTR_TEST pulses that must show in INTR_STATE the clock after (no INTR_STATE write then).
+  logic [1:0] test_q;
+  always_ff @(posedge clk_i)
+    test_q <= (rst_ni && !wr_sel[T_STATE]) ? view[T_TEST][1:0] : 2'b00;
+
+  // Waiting requests (for the no-starvation properties).
+  logic [1:0] wr_wait_q, rd_wait_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      wr_wait_q <= '0;
+      rd_wait_q <= '0;
+    end else begin
+      wr_wait_q <= (aw_p && w_p && rq_cnt < 2'd2 && !wr_commit) ? wr_wait_q + 2'(wr_wait_q != 2'd3) : '0;
+      rd_wait_q <= (ar_p && rq_cnt < 2'd2 && !rd_commit) ? rd_wait_q + 2'(rd_wait_q != 2'd3) : '0;
+    end
+  end
+
+  // ---------------------------------------------------------------------------------------
+  // Properties
+  // ---------------------------------------------------------------------------------------
+  logic        b_wait_q, r_wait_q;
+  logic [1:0]  bresp_q, rresp_q;
+  logic [31:0] rdata_q;
+  always_ff @(posedge clk_i) begin
+    b_wait_q <= rst_ni && bvalid && !bready_i;
+    r_wait_q <= rst_ni && rvalid && !rready_i;
+    bresp_q  <= bresp;
+    rresp_q  <= rresp;
+    rdata_q  <= rdata;
+  end
+
+  logic [1:0] dut_pending;   // responses in the block's buffer
+  assign dut_pending = u_dut.axil_resp_wptr - u_dut.axil_resp_rptr;
+
+  logic wr_commit_q, intr_q;   // for the covers
+  always_ff @(posedge clk_i) begin
+    wr_commit_q <= wr_commit;
+    intr_q      <= rst_ni && hwif_out.INTR_STATE.intr;
+  end
+
+  // Immediate checks of this clock's values (combinational: a clocked check would report one
+  // step later and need a deeper BMC).
+  always_comb begin
+    if (rst_ni && started_q) begin
+      // --- protocol ---
+      aw_one:        assert (!(aw_hs && aw_p && !wr_commit));
+      w_one:         assert (!(w_hs && w_p && !wr_commit));
+      ar_one:        assert (!(ar_hs && ar_p && !rd_commit));
+      wr_commit_req: assert (!wr_commit || (aw_p && w_p && rq_cnt < 2'd2));
+      wr_commit_fields: assert (!wr_commit || (u_dut.cpuif_addr == {aw_addr[11:2], 2'b00}
+                                && u_dut.cpuif_wr_data == w_data && u_dut.cpuif_wr_biten == w_biten));
+      rd_commit_req: assert (!rd_commit || (ar_p && rq_cnt < 2'd2));
+      rd_commit_addr: assert (!rd_commit || u_dut.cpuif_addr == {ar_addr[11:2], 2'b00});
+      commit_when_room: assert (!(((aw_p && w_p) || ar_p) && rq_cnt < 2'd2)
+                                || wr_commit || rd_commit);
+      wr_no_starve:  assert (wr_wait_q == 2'd0 || (wr_wait_q == 2'd1 && u_dut.axil_prev_was_rd));
+      rd_no_starve:  assert (rd_wait_q == 2'd0 || (rd_wait_q == 2'd1 && !u_dut.axil_prev_was_rd));
+      resp_bound:    assert (rq_cnt <= 2'd2);
+      resp_shown:    assert ((bvalid || rvalid) == (rq_cnt != 2'd0));
+      b_for_write:   assert (!bvalid || (rq_cnt != 2'd0 && rq_head_wr));
+      r_for_read:    assert (!rvalid || (rq_cnt != 2'd0 && !rq_head_wr));
+      b_stable:      assert (!b_wait_q || (bvalid && bresp == bresp_q));
+      r_stable:      assert (!r_wait_q || (rvalid && rdata == rdata_q && rresp == rresp_q));
+      bresp_okay:    assert (!bvalid || bresp == 2'b00);
+      rresp_okay:    assert (!rvalid || rresp == 2'b00);
+      rd_value:      assert (!rd_commit || !rq_push_chk || u_dut.cpuif_rd_data == rq_push_exp);
+      rdata_match:   assert (!rvalid || !rq_chk[rq_rp] || rdata == rq_exp[rq_rp]);
+      // --- the front end's state is the wrapper's copy (induction lemmas) ---
+      front_aw:      assert (u_dut.axil_awvalid == aw_p && (!aw_p || u_dut.axil_awaddr == aw_addr));
+      front_w:       assert (u_dut.axil_wvalid == w_p
+                             && (!w_p || (u_dut.axil_wdata == w_data && u_dut.axil_wstrb == w_strb)));
+      front_ar:      assert (u_dut.axil_arvalid == ar_p && (!ar_p || u_dut.axil_araddr == ar_addr));
+      front_count:   assert (u_dut.axil_n_in_flight == rq_cnt && dut_pending == rq_cnt
+                             && u_dut.axil_resp_rptr[0] == rq_rp);
+      front_entries: assert ((rq_cnt == 2'd0 || (u_dut.axil_resp_buffer_is_wr[rq_rp] == rq_wr[rq_rp]
+                                                 && !u_dut.axil_resp_buffer_err[rq_rp]
+                                                 && (!rq_chk[rq_rp] || rq_wr[rq_rp] == 1'b0)
+                                                 && (!rq_chk[rq_rp]
+                                                     || u_dut.axil_resp_buffer_rdata[rq_rp] == rq_exp[rq_rp])))
+                             && (rq_cnt != 2'd2 || (u_dut.axil_resp_buffer_is_wr[!rq_rp] == rq_wr[!rq_rp]
+                                                 && !u_dut.axil_resp_buffer_err[!rq_rp]
+                                                 && (!rq_chk[!rq_rp] || rq_wr[!rq_rp] == 1'b0)
+                                                 && (!rq_chk[!rq_rp]
+                                                     || u_dut.axil_resp_buffer_rdata[!rq_rp] == rq_exp[!rq_rp]))));
+      // --- registers ---
+      tt_swmod:      assert (hwif_out.TT_WRITE.data.swmod == (wr_sel[T_TT] && |w_strb[2:0]));
+      intr_line:     assert (hwif_out.INTR_STATE.intr
+                             == |(shadow[T_STATE][1:0] & shadow[T_ENABLE][1:0]));
+      test_sets_state: assert ((view[T_STATE][1:0] & test_q) == test_q);
+      // --- reachability ---
+      c_write:         cover (b_hs);
+      c_read:          cover (r_hs && rq_chk[rq_rp] && rdata != '0);
+      c_unmapped_read: cover (rd_commit && !mapped(ar_addr));
+      c_back_to_back:  cover (wr_commit && wr_commit_q);
+      c_partial_write: cover (wr_sel[3] && w_strb == 4'b0100);
+      c_w1c_clear:     cover (wr_sel[T_ERROR] && |(shadow[T_ERROR] & w_data & w_biten)
+                              && |(shadow[T_ERROR] & ~(w_data & w_biten)));
+      c_pulse:         cover (hwif_out.CTRL.start.value);
+      c_intr_test:     cover (|test_q);
+      c_interrupt:     cover (hwif_out.INTR_STATE.intr && !intr_q);
+      c_sw_wins:       cover (wr_sel[T_ERROR] && error_set_i[0] && !shadow[T_ERROR][0]
+                              && !(w_strb[0] && w_data[0]));
+    end
+  end
+
+  // Every tracked register's fields equal its shadow.
+  for (genvar i = 0; i < NT; i++) begin : g_t
+    always_comb begin
+      if (rst_ni && started_q) begin
+        field_match: assert (view[i] == shadow[i]);
+      end
+    end
+  end
+
+endmodule
