@@ -61,8 +61,8 @@ def heights(base: npt.NDArray[np.float64], motion: str, k: int, frames: int
         h = base + np.where(r <= front, wave, 0.0)
     else:
         cx, cy = (0.15 + 0.7 * t) * ww, (0.25 + 0.5 * t) * hh
-        d2 = ((x - cx) ** 2 + (y - cy) ** 2) / max(side / 8.0, 1.0) ** 2
-        h = base * (1.0 - 0.8 * np.exp(-d2))
+        d2 = ((x - cx) ** 2 + (y - cy) ** 2) / max(side / 16.0, 1.0) ** 2
+        h = base * (1.0 - np.where(d2 < 4.0, 0.8 * np.exp(-d2), 0.0))   # cut off at 2 sigma
     return np.clip(h, 0.0, 1.0)
 
 
