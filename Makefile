@@ -12,6 +12,7 @@
 #   make perf-expect  rewrite tests/perf_expect.json (make test's performance expectations)
 #   make regs     regenerate the register block, C header and docs from rtl/top/pidm_regs.rdl
 #   make regs-check  fail when a committed generated file is stale      make sw  the C driver test
+#   make animate  a moving height field through the pyramid builder and pipeline RTL vs the model
 #
 # Everything runs from .venv, which `make setup` (a prerequisite of every target) creates from the
 # pinned requirements.txt, then installs this project into (`pip install --no-deps -e .`,
