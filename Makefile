@@ -12,6 +12,7 @@
 #   make perf-expect  rewrite tests/perf_expect.json (make test's performance expectations)
 #   make regs     regenerate the register block, C header and docs from rtl/top/pidm_regs.rdl
 #   make regs-check  fail when a committed generated file is stale      make sw  the C driver test
+#   make animate  a moving height field through the pyramid builder and pipeline RTL vs the model
 #
 # Everything runs from .venv, which `make setup` (a prerequisite of every target) creates from the
 # pinned requirements.txt, then installs this project into (`pip install --no-deps -e .`,
@@ -38,7 +39,7 @@ ENV = export PATH="$(dir $(abspath $(VERILATOR))):$(CURDIR)/$(VENV)/bin:$$PATH";
 endif
 ENV += export PYTHONDONTWRITEBYTECODE=1;
 
-.PHONY: all setup lint test test-model test-rtl test-long bench render clean distclean help synth waves soak \
+.PHONY: all setup lint test test-model test-rtl test-long bench render animate clean distclean help synth waves soak \
         coverage formal perf-expect mutate regs regs-check sw
 
 all: test
@@ -180,6 +181,16 @@ render: $(STAMP)
 	@$(ENV) $(PY) scripts/render.py $(RENDER_SRC) --angle $(ANGLE) --method $(METHOD) \
 	    --size $(SIZE) --engine rtl --rings $(RINGS) --out out/render.png \
 	    --model-out out/render_model.png --stats out/render_stats.json
+
+# A moving height field through the RTL (scripts/animate.py; docs/pyramid.md "make animate"): per
+# frame the hardware pyramid builder (full build, then dirty-rectangle rebuilds) and the pipeline,
+# the built pyramid and every pixel compared with the model; writes out/animate/frame_NNN.png,
+# animation.gif and stats.json; exits 1 if a frame differs.  ANIMATE_ARGS passes options
+# (--motion dent, --frames, --map-size, --image; scripts/animate.py --help).
+ANIMATE_ARGS ?=
+animate: $(STAMP)
+	@mkdir -p out
+	@$(ENV) $(PY) scripts/animate.py --scene $(SCENE) --out out/animate $(ANIMATE_ARGS)
 
 # FPGA synthesis (scripts/flow/synth.py; README "Synthesis"): Yosys synth_ecp5 and synth_xilinx
 # resource counts of every block, nextpnr-ecp5 place and route on an LFE5U-85F speed 8 of each block out of
