@@ -24,9 +24,9 @@
 //             elements of each array, TT_WRITE, INTR_ENABLE, the W1C registers ERROR and
 //             INTR_STATE, the singlepulse registers CTRL and INTR_TEST) updated from the committed
 //             AXI writes by the RDL rules: RW takes (old & ~strobes) | (data & strobes) on the
-//             defined bits; W1C clears the written 1s, else sets the hardware-set bits
-//             (software wins: a hardware set in the clock of a write to the same register is
-//             dropped: PeakRDL's default precedence = sw, see docs/formal.md); singlepulse holds a
+//             defined bits; W1C clears the written 1s and sets the hardware-set bits, a set
+//             winning over a clear in the same clock (the RDL's precedence = hw: no event is
+//             lost); singlepulse holds a
 //             written bit one clock, then 0.  Every clock each tracked register's field values
 //             (hwif_out, or the block's storage where the field has no hardware output) equal
 //             their shadow (field_match): writes to the other addresses leave them alone.
@@ -373,7 +373,7 @@ module pidm_regs_formal (
       if (!rst_ni) shadow[i] <= t_reset(i);
       else case (t_kind(i))
         K_RW:    if (wr_sel[i]) shadow[i] <= ((shadow[i] & ~w_biten) | (w_data & w_biten)) & t_mask(i);
-        K_W1C:   shadow[i] <= wr_sel[i] ? shadow[i] & ~(w_data & w_biten)
+        K_W1C:   shadow[i] <= wr_sel[i] ? ((shadow[i] & ~(w_data & w_biten)) | hwset[i]) & t_mask(i)
                                         : (shadow[i] | hwset[i]) & t_mask(i);
         default: shadow[i] <= wr_sel[i] ? ((shadow[i] & ~w_biten) | (w_data & w_biten)) & t_mask(i)
                                         : '0;
@@ -518,8 +518,8 @@ module pidm_regs_formal (
       c_pulse:         cover (hwif_out.CTRL.start.value);
       c_intr_test:     cover (|test_q);
       c_interrupt:     cover (hwif_out.INTR_STATE.intr && !intr_q);
-      c_sw_wins:       cover (wr_sel[T_ERROR] && error_set_i[0] && !shadow[T_ERROR][0]
-                              && !(w_strb[0] && w_data[0]));
+      c_hw_wins:       cover (wr_sel[T_ERROR] && error_set_i[0] && shadow[T_ERROR][0]
+                              && w_strb[0] && w_data[0]);
     end
   end
 

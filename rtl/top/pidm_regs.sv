@@ -1082,11 +1082,11 @@ module pidm_regs (
         automatic logic load_next_c;
         next_c = field_storage.ERROR.h_axi.value;
         load_next_c = '0;
-        if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
-            next_c = field_storage.ERROR.h_axi.value & ~(decoded_wr_data[0:0] & decoded_wr_biten[0:0]);
-            load_next_c = '1;
-        end else if(hwif_in.ERROR.h_axi.hwset) begin // HW Set
+        if(hwif_in.ERROR.h_axi.hwset) begin // HW Set
             next_c = '1;
+            load_next_c = '1;
+        end else if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.ERROR.h_axi.value & ~(decoded_wr_data[0:0] & decoded_wr_biten[0:0]);
             load_next_c = '1;
         end
         field_combo.ERROR.h_axi.next = next_c;
@@ -1108,11 +1108,11 @@ module pidm_regs (
         automatic logic load_next_c;
         next_c = field_storage.ERROR.t_axi.value;
         load_next_c = '0;
-        if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
-            next_c = field_storage.ERROR.t_axi.value & ~(decoded_wr_data[1:1] & decoded_wr_biten[1:1]);
-            load_next_c = '1;
-        end else if(hwif_in.ERROR.t_axi.hwset) begin // HW Set
+        if(hwif_in.ERROR.t_axi.hwset) begin // HW Set
             next_c = '1;
+            load_next_c = '1;
+        end else if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.ERROR.t_axi.value & ~(decoded_wr_data[1:1] & decoded_wr_biten[1:1]);
             load_next_c = '1;
         end
         field_combo.ERROR.t_axi.next = next_c;
@@ -1134,11 +1134,11 @@ module pidm_regs (
         automatic logic load_next_c;
         next_c = field_storage.ERROR.frag_dma.value;
         load_next_c = '0;
-        if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
-            next_c = field_storage.ERROR.frag_dma.value & ~(decoded_wr_data[2:2] & decoded_wr_biten[2:2]);
-            load_next_c = '1;
-        end else if(hwif_in.ERROR.frag_dma.hwset) begin // HW Set
+        if(hwif_in.ERROR.frag_dma.hwset) begin // HW Set
             next_c = '1;
+            load_next_c = '1;
+        end else if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.ERROR.frag_dma.value & ~(decoded_wr_data[2:2] & decoded_wr_biten[2:2]);
             load_next_c = '1;
         end
         field_combo.ERROR.frag_dma.next = next_c;
@@ -1160,11 +1160,11 @@ module pidm_regs (
         automatic logic load_next_c;
         next_c = field_storage.ERROR.fb_write.value;
         load_next_c = '0;
-        if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
-            next_c = field_storage.ERROR.fb_write.value & ~(decoded_wr_data[3:3] & decoded_wr_biten[3:3]);
-            load_next_c = '1;
-        end else if(hwif_in.ERROR.fb_write.hwset) begin // HW Set
+        if(hwif_in.ERROR.fb_write.hwset) begin // HW Set
             next_c = '1;
+            load_next_c = '1;
+        end else if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.ERROR.fb_write.value & ~(decoded_wr_data[3:3] & decoded_wr_biten[3:3]);
             load_next_c = '1;
         end
         field_combo.ERROR.fb_write.next = next_c;
@@ -1186,11 +1186,11 @@ module pidm_regs (
         automatic logic load_next_c;
         next_c = field_storage.ERROR.bad_config.value;
         load_next_c = '0;
-        if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
-            next_c = field_storage.ERROR.bad_config.value & ~(decoded_wr_data[4:4] & decoded_wr_biten[4:4]);
-            load_next_c = '1;
-        end else if(hwif_in.ERROR.bad_config.hwset) begin // HW Set
+        if(hwif_in.ERROR.bad_config.hwset) begin // HW Set
             next_c = '1;
+            load_next_c = '1;
+        end else if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.ERROR.bad_config.value & ~(decoded_wr_data[4:4] & decoded_wr_biten[4:4]);
             load_next_c = '1;
         end
         field_combo.ERROR.bad_config.next = next_c;
@@ -1212,11 +1212,11 @@ module pidm_regs (
         automatic logic load_next_c;
         next_c = field_storage.INTR_STATE.frame_done.value;
         load_next_c = '0;
-        if(decoded_reg_strb.INTR_STATE && decoded_req_is_wr) begin // SW write 1 clear
-            next_c = field_storage.INTR_STATE.frame_done.value & ~(decoded_wr_data[0:0] & decoded_wr_biten[0:0]);
-            load_next_c = '1;
-        end else if(hwif_in.INTR_STATE.frame_done.next) begin // stickybit
+        if(hwif_in.INTR_STATE.frame_done.next) begin // stickybit
             next_c = '1;
+            load_next_c = '1;
+        end else if(decoded_reg_strb.INTR_STATE && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.INTR_STATE.frame_done.value & ~(decoded_wr_data[0:0] & decoded_wr_biten[0:0]);
             load_next_c = '1;
         end
         field_combo.INTR_STATE.frame_done.next = next_c;
@@ -1237,11 +1237,11 @@ module pidm_regs (
         automatic logic load_next_c;
         next_c = field_storage.INTR_STATE.axi_error.value;
         load_next_c = '0;
-        if(decoded_reg_strb.INTR_STATE && decoded_req_is_wr) begin // SW write 1 clear
-            next_c = field_storage.INTR_STATE.axi_error.value & ~(decoded_wr_data[1:1] & decoded_wr_biten[1:1]);
-            load_next_c = '1;
-        end else if(hwif_in.INTR_STATE.axi_error.next) begin // stickybit
+        if(hwif_in.INTR_STATE.axi_error.next) begin // stickybit
             next_c = '1;
+            load_next_c = '1;
+        end else if(decoded_reg_strb.INTR_STATE && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.INTR_STATE.axi_error.value & ~(decoded_wr_data[1:1] & decoded_wr_biten[1:1]);
             load_next_c = '1;
         end
         field_combo.INTR_STATE.axi_error.next = next_c;
