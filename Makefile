@@ -10,6 +10,8 @@
 #   make formal   SymbiYosys proofs of the bound assertions (docs/formal.md; part of make test)
 #   make mutate   mutation testing: the suite's kill rate (in make bench)
 #   make perf-expect  rewrite tests/perf_expect.json (make test's performance expectations)
+#   make regs     regenerate the register block, C header and docs from rtl/top/pidm_regs.rdl
+#   make regs-check  fail when a committed generated file is stale      make sw  the C driver test
 #
 # Everything runs from .venv, which `make setup` (a prerequisite of every target) creates from the
 # pinned requirements.txt, then installs this project into (`pip install --no-deps -e .`,
@@ -37,7 +39,7 @@ endif
 ENV += export PYTHONDONTWRITEBYTECODE=1;
 
 .PHONY: all setup lint test test-model test-rtl test-long bench render clean distclean help synth waves soak \
-        coverage formal perf-expect mutate
+        coverage formal perf-expect mutate regs regs-check sw
 
 all: test
 
@@ -85,6 +87,22 @@ formal: $(STAMP)
 perf-expect: $(STAMP)
 	@$(ENV) export PERF_EXPECT_UPDATE=1; $(PY) -m pytest -q -s -p no:cacheprovider \
 	    tests/test_perf_expect.py | grep -a '^PERF .*expectation written'
+
+# The register map (rtl/top/pidm_regs.rdl, docs/registers.md): scripts/flow/regs.py runs PeakRDL
+# and writes the committed outputs rtl/top/pidm_regs.sv, rtl/top/pidm_regs_pkg.sv (the AXI4-Lite
+# register block), sw/pidm_regs.h and docs/registers.md; regs-check regenerates them into a temp
+# dir and exits 1 naming the first stale file (tests/test_regs_current.py runs it in make test).
+regs: $(STAMP)
+	@$(ENV) $(PY) scripts/flow/regs.py
+
+regs-check: $(STAMP)
+	@$(ENV) $(PY) scripts/flow/regs.py --check
+
+# The host-side C driver (sw/pidm.c) built with the machine's cc (-Wall -Wextra -Werror -std=c11)
+# and its unit test (sw/test_pidm.c: the driver against a register file in memory) run
+# (tests/test_sw_driver.py, part of make test).
+sw: $(STAMP)
+	@$(ENV) $(PY) -m pytest -q -p no:cacheprovider tests/test_sw_driver.py
 
 test-model: $(STAMP)
 	@$(ENV) $(PY) -m pytest -n $(JOBS) -q -p no:cacheprovider tests

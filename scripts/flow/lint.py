@@ -23,10 +23,13 @@ from tb.common.runner import is_bound_checker, rtl_files, rtl_index
 # the intent.  Leaving a port out entirely still warns (PINMISSING).
 WAIVERS = ["-Wno-PINCONNECTEMPTY"]
 
+#: Per-file waivers for generated code (rtl/top/pidm_regs*.sv from PeakRDL), each with its reason.
+WAIVER_FILE = ROOT / "scripts" / "flow" / "lint_waivers.vlt"
+
 
 def lint_one(verilator: str, top: str, files: list[Path]) -> tuple[str, int, str]:
-    cmd = ([verilator, "--lint-only", "-Wall", *WAIVERS, "--quiet", "--top-module", top]
-           + [str(f) for f in files])
+    cmd = ([verilator, "--lint-only", "-Wall", *WAIVERS, "--quiet", "--top-module", top,
+            str(WAIVER_FILE)] + [str(f) for f in files])
     p = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
     return top, p.returncode, (p.stdout + p.stderr).strip()
 
