@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// frag_dma: reads a frame's fragment records (frag_pkg: 64 bytes each) from memory over an AXI4
+// frag_dma: reads a frame's fragment records (pidm_pkg: FRAG_BYTES = 64 bytes each) from memory over an AXI4
 // read master and hands them to dm_pipeline's fragment port (valid / ready).
 //
 //   start_i: base_i (record aligned), count_i records -> AR bursts (INCR, full data width,
@@ -22,7 +22,7 @@
 // whose beats all came back OKAY; sent_o counts them.  count_i = 0 ends at once (done_o).
 module frag_dma
   import f24_pkg::*;
-  import frag_pkg::*;
+  import pidm_pkg::*;
 #(
   parameter int unsigned ADDR_W    = 32,      // AXI address width (>= 13)
   parameter int unsigned DATA_W    = 64,      // AXI data width: 32 .. 256, a power of two
@@ -33,8 +33,8 @@ module frag_dma
   parameter int unsigned MAX_BURST = 4,       // records per burst (power of two; <= 256 beats)
   parameter int unsigned FIFO_RECS = 8,       // beat FIFO, records (power of two, >= MAX_BURST)
   parameter int unsigned CNT_W     = 24,      // record count width
-  parameter int unsigned PIX_W     = PIXID_W, // pixel id bits passed on (<= PIXID_W)
-  parameter int unsigned TRI_W     = 4        // triangle id bits passed on (<= TRI_BITS)
+  parameter int unsigned PIX_W     = FRAG_ID_BITS, // pixel id bits passed on (<= FRAG_ID_BITS)
+  parameter int unsigned TRI_W     = 4        // triangle id bits passed on (<= FRAG_TRI_BITS)
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -77,6 +77,9 @@ module frag_dma
   output logic                 m_axi_rready
 );
 
+  localparam int unsigned REC_W      = 8 * FRAG_BYTES;
+  localparam int unsigned REC_SHIFT  = $clog2(FRAG_BYTES);
+  localparam int unsigned PAGE_SHIFT = 12;                     // AXI: no burst across 4 KiB
   localparam int unsigned BEATS     = REC_W / DATA_W;         // beats per record
   localparam int unsigned BEAT_W    = $clog2(BEATS) + 1;
   localparam int unsigned FIFO_BEATS = FIFO_RECS * BEATS;
@@ -94,7 +97,7 @@ module frag_dma
   if (FIFO_RECS < MAX_BURST || (1 << $clog2(FIFO_RECS)) != FIFO_RECS) begin : g_check_fifo
     $error("frag_dma: FIFO_RECS must be a power of two >= MAX_BURST");
   end
-  if (PIX_W > PIXID_W || TRI_W > TRI_BITS || ADDR_W < PAGE_SHIFT + 1) begin : g_check_fields
+  if (PIX_W > FRAG_ID_BITS || TRI_W > FRAG_TRI_BITS || ADDR_W < PAGE_SHIFT + 1) begin : g_check_fields
     $error("frag_dma: PIX_W, TRI_W or ADDR_W out of range");
   end
 
@@ -219,20 +222,20 @@ module frag_dma
     if (move) out_q <= asm_q;
   end
 
-  logic [REC_BYTES/4-1:0][31:0] rec_w;     // the record's words
+  logic [FRAG_WORDS-1:0][31:0] rec_w;     // the record's words
   assign rec_w = out_q;
 
   assign frag_valid_o = out_valid_q;
-  assign frag_u0_o    = rec_w[W_U0][F24_W-1:0];
-  assign frag_v0_o    = rec_w[W_V0][F24_W-1:0];
-  assign frag_pl0_o   = rec_w[W_PL0][F24_W-1:0];
-  assign frag_tri_o   = rec_w[W_ID][TRI_W-1:0];
-  assign frag_id_o    = rec_w[W_ID][TRI_BITS +: PIX_W];
+  assign frag_u0_o    = rec_w[FRAG_U0_WORD][F24_W-1:0];
+  assign frag_v0_o    = rec_w[FRAG_V0_WORD][F24_W-1:0];
+  assign frag_pl0_o   = rec_w[FRAG_PL0_WORD][F24_W-1:0];
+  assign frag_tri_o   = rec_w[FRAG_TRI_WORD][FRAG_TRI_LSB +: TRI_W];
+  assign frag_id_o    = rec_w[FRAG_ID_WORD][FRAG_ID_LSB +: PIX_W];
   for (genvar i = 0; i < 9; i++) begin : g_tbn
-    assign frag_tbn_o[i] = rec_w[W_TBN + i][F24_W-1:0];
+    assign frag_tbn_o[i] = rec_w[FRAG_TBN_WORD + i][F24_W-1:0];
   end
   for (genvar i = 0; i < 3; i++) begin : g_view
-    assign frag_view_o[i] = rec_w[W_VIEW + i][F24_W-1:0];
+    assign frag_view_o[i] = rec_w[FRAG_VIEW_WORD + i][F24_W-1:0];
   end
 
   // ---- end of the frame --------------------------------------------------------------------

@@ -85,7 +85,7 @@ endmodule
 
 bind frag_dma frag_dma_assert #(
   .ADDR_W(ADDR_W), .DATA_W(DATA_W), .CNT_W(CNT_W), .FB_W(FB_W), .FIFO_BEATS(FIFO_BEATS),
-  .BEATS(BEATS), .REC_W(frag_pkg::REC_W)
+  .BEATS(BEATS), .REC_W(REC_W)
 ) u_assert (
   .clk_i, .rst_ni, .busy_i(busy_q), .start_i, .count_i, .sent_i(sent_q), .f_wr_i(f_wr),
   .f_full_i(f_full), .f_count_i(f_count), .inflight_i(inflight_q), .r_take_i(r_take),

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // pix_dma: writes dm_pipeline's finished pixels into the framebuffer (RGBA8) and, when enabled,
-// their status words into a status buffer, over an AXI4 write master (frag_pkg: layouts).
+// their status words into a status buffer, over an AXI4 write master (pidm_pkg: the layouts).
 //
 //   px_* -> pixel FIFO (IN_DEPTH) -> job register (pixel (x, y) from the id: offset
 //   y * pitch + x * 4) -> colour write at fb_base + offset, then (st_en) status write at
@@ -12,14 +12,14 @@
 // response.  AW and W of a write are offered in the same clock and each held until its ready;
 // BREADY is always 1.  px_ready_o is the pixel FIFO's room (a register).
 //
-// A frame: start_i takes the bases, the pitch and st_en_i and clears the counters and err_o.
+// A frame: start_i takes the bases, the pitch, xbits_i and st_en_i and clears the counters and err_o.
 // err_o: a B response other than OKAY in this frame (the writes go on).  While abort_i is high,
 // pixels are taken and dropped (no new write; a write already offered completes).  idle_o: no
 // pixel held, no write offered or outstanding (with the pipeline idle, the frame's writes are
 // all done).  pixels_o counts the pixels taken this frame, written_o those whose writes all had
 // their B response.
 module pix_dma
-  import frag_pkg::*;
+  import pidm_pkg::*;
 #(
   parameter int unsigned ADDR_W    = 32,    // AXI address width
   parameter int unsigned DATA_W    = 64,    // AXI data width: 32 .. 1024, a power of two
@@ -29,8 +29,7 @@ module pix_dma
   parameter int unsigned AWPROT    = 0,     // AWPROT 3'b000: unprivileged, secure, data
   parameter int unsigned MAX_OUTST = 8,     // writes awaiting B (>= 2)
   parameter int unsigned IN_DEPTH  = 4,     // pixel FIFO (power of two)
-  parameter int unsigned PIX_W     = PIXID_W, // pixel id width: {y, x}, x in the low X_W bits
-  parameter int unsigned X_W       = PIX_X_W,
+  parameter int unsigned PIX_W     = FRAG_ID_BITS, // pixel id width: {y, x}, x in the low xbits_i
   parameter int unsigned PITCH_W   = 16,    // framebuffer pitch width, bytes
   parameter int unsigned ITER_W    = 16,    // iteration count width (<= 16)
   parameter int unsigned CNT_W     = 24     // pixel counters
@@ -44,6 +43,7 @@ module pix_dma
   input  logic [ADDR_W-1:0]    st_base_i,   // status buffer base (4-byte aligned)
   input  logic [PITCH_W-1:0]   pitch_i,     // bytes per row of both buffers (a multiple of 4)
   input  logic                 st_en_i,     // write status words
+  input  logic [4:0]           xbits_i,     // x = id[xbits_i-1:0], y = id >> xbits_i (< PIX_W)
   output logic                 idle_o,
   output logic                 err_o,
   output logic [CNT_W-1:0]     pixels_o,
@@ -83,21 +83,21 @@ module pix_dma
   localparam int unsigned LANES  = DATA_W / 32;           // 32-bit words per beat
   localparam int unsigned LANE_W = (LANES > 1) ? $clog2(LANES) : 1;
   localparam int unsigned OUT_W  = $clog2(MAX_OUTST + 1);
-  localparam int unsigned Y_W    = PIX_W - X_W;
   localparam int unsigned PX_W   = PIX_W + 24 + 3 + ITER_W; // a pixel in the FIFO
 
   if (DATA_W < 32 || (1 << $clog2(DATA_W)) != DATA_W) begin : g_check_data
     $error("pix_dma: DATA_W must be a power of two >= 32");
   end
-  if (MAX_OUTST < 2 || X_W >= PIX_W || ITER_W > 16 || Y_W + PITCH_W > ADDR_W)
+  if (MAX_OUTST < 2 || ITER_W > STW_ITERS_BITS || PIX_W > 31)
   begin : g_check_params
-    $error("pix_dma: MAX_OUTST, X_W, ITER_W or PITCH_W out of range");
+    $error("pix_dma: MAX_OUTST, ITER_W or PIX_W out of range");
   end
 
   // ---- frame registers ---------------------------------------------------------------------
   logic [ADDR_W-1:0]  fb_base_q, st_base_q;
   logic [PITCH_W-1:0] pitch_q;
   logic               st_en_q, err_q;
+  logic [4:0]         xbits_q;
   logic [CNT_W-1:0]   pixels_q, written_q;
 
   // ---- pixel FIFO --------------------------------------------------------------------------
@@ -124,11 +124,12 @@ module pix_dma
   logic [31:0]       rgba_q, stw_q;
   logic              issue, job_last, job_free;
 
-  logic [Y_W-1:0]    h_y;
-  logic [X_W-1:0]    h_x;
+  logic [PIX_W-1:0]  h_y, h_x;
   logic [ADDR_W-1:0] h_off;
-  assign {h_y, h_x} = h_id;
-  assign h_off = ADDR_W'((Y_W + PITCH_W)'(h_y) * (Y_W + PITCH_W)'(pitch_q)) + (ADDR_W'(h_x) << 2);
+  assign h_y   = h_id >> xbits_q;
+  assign h_x   = h_id & ~({PIX_W{1'b1}} << xbits_q);
+  assign h_off = ADDR_W'((PIX_W + PITCH_W)'(h_y) * (PIX_W + PITCH_W)'(pitch_q))
+               + (ADDR_W'(h_x) << 2);
 
   assign job_last = !st_en_q || phase_q;
   assign job_free = !job_q || (issue && job_last);
@@ -156,8 +157,12 @@ module pix_dma
   always_ff @(posedge clk_i) begin
     if (in_rd && !abort_i) begin
       off_q  <= h_off;
-      rgba_q <= {8'hFF, h_rgb};
-      stw_q  <= {1'b1, 12'd0, h_err, h_inv, h_hit, 16'(h_iters)};
+      rgba_q <= {8'(PIX_ALPHA), h_rgb};
+      stw_q  <= '0;
+      stw_q[STW_ITERS_LSB +: STW_ITERS_BITS] <= STW_ITERS_BITS'(h_iters);
+      stw_q[STW_HIT_BIT]     <= h_hit;
+      stw_q[STW_INVALID_BIT] <= h_inv;
+      stw_q[STW_ERR_BIT]     <= h_err;
     end
   end
 
@@ -248,6 +253,7 @@ module pix_dma
       st_base_q <= '0;
       pitch_q   <= '0;
       st_en_q   <= 1'b0;
+      xbits_q   <= '0;
       err_q     <= 1'b0;
       pixels_q  <= '0;
       written_q <= '0;
@@ -256,6 +262,7 @@ module pix_dma
       st_base_q <= st_base_i;
       pitch_q   <= pitch_i;
       st_en_q   <= st_en_i;
+      xbits_q   <= xbits_i;
       err_q     <= 1'b0;
       pixels_q  <= '0;
       written_q <= '0;

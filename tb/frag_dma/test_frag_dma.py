@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """frag_dma (fragment records over an AXI4 read master -> dm_pipeline's fragment stream).
 
-The records (rtl/top/frag_pkg.sv: 64 bytes, 16 little-endian words) are random 32-bit words in
+The records (rtl/top/pidm_pkg.sv: 64 bytes, 16 little-endian words) are random 32-bit words in
 a cocotbext-axi memory (tb/common/axi_ram.FaultRead) with random latency and random pauses on
 AR and R; the fragment stream has random ready back-pressure.  Checked per frame: the records
 come out in memory order, each field equal to its bits of the record (f24 words [23:0], the

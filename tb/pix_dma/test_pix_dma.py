@@ -6,7 +6,7 @@ finishes them), colours, flags and iteration counts enter with random valid gaps
 cocotbext-axi memory (tb/common/axi_ram.FaultWrite) has random latency and random pauses on AW,
 W and B.  The buffers are filled with a pattern first.  Checked per frame: after idle_o, every
 pixel's RGBA word at fb_base + y * pitch + x * 4 (alpha 0xFF) and, with st_en, its status word
-(frag_pkg: iterations, hit, invalid, error, bit 31) at st_base + ...; every other byte of both
+(rtl/top/pidm_pkg.sv: iterations, hit, invalid, error) at st_base + ...; every other byte of both
 buffers (and of the row padding) still the pattern; written_o = pixels_o = the pixel count;
 err_o = 0; AWCACHE / AWPROT / AWSIZE / AWLEN as parameterised; no write outside the buffers.
 
@@ -32,7 +32,6 @@ from tb.common import report, runner
 from tb.common.axi_ram import FaultWrite, set_pauses
 
 HERE = Path(__file__).resolve().parent
-X_W = 12
 FILL = 0xA5
 
 
@@ -63,8 +62,9 @@ class Tb:
         d.rst_ni.value = 1
         await FallingEdge(d.clk_i)
 
-    async def start(self, fb: int, st: int, pitch: int, st_en: int) -> None:
+    async def start(self, fb: int, st: int, pitch: int, st_en: int, xbits: int) -> None:
         d = self.dut
+        d.xbits_i.value = xbits
         d.fb_base_i.value = fb
         d.st_base_i.value = st
         d.pitch_i.value = pitch
@@ -115,12 +115,13 @@ class Tb:
         return cyc
 
 
-def make_pixels(rng: random.Random, w: int, h: int, n: int) -> list[tuple[int, ...]]:
+def make_pixels(rng: random.Random, w: int, h: int, n: int, xbits: int
+                ) -> list[tuple[int, ...]]:
     cells = rng.sample(range(w * h), n)
     out = []
     for c in cells:
         y, x = divmod(c, w)
-        out.append(((y << X_W) | x, rng.getrandbits(24), rng.getrandbits(1),
+        out.append(((y << xbits) | x, rng.getrandbits(24), rng.getrandbits(1),
                     rng.getrandbits(1), rng.getrandbits(1), rng.getrandbits(16)))
     return out
 
@@ -128,10 +129,10 @@ def make_pixels(rng: random.Random, w: int, h: int, n: int) -> list[tuple[int, .
 def expect_words(px: tuple[int, ...]) -> tuple[int, int]:
     _, rgb, hit, inv, err, iters = px
     return ((0xFF << 24) | rgb,
-            (1 << 31) | (err << 18) | (inv << 17) | (hit << 16) | iters)
+            (err << 18) | (inv << 17) | (hit << 16) | iters)
 
 
-def check(tb: Tb, fb: int, st: int, pitch: int, h: int, st_en: int,
+def check(tb: Tb, fb: int, st: int, pitch: int, h: int, st_en: int, xbits: int,
           pixels: list[tuple[int, ...]], skip: set[int] = frozenset()) -> int:
     """Mismatching 32-bit words in both buffers (pixels whose address is in ``skip``, a set of
     framebuffer word addresses answered SLVERR, may hold anything)."""
@@ -139,7 +140,7 @@ def check(tb: Tb, fb: int, st: int, pitch: int, h: int, st_en: int,
     want_fb = bytearray([FILL]) * size
     want_st = bytearray([FILL]) * size
     for px in pixels:
-        y, x = px[0] >> X_W, px[0] & ((1 << X_W) - 1)
+        y, x = px[0] >> xbits, px[0] & ((1 << xbits) - 1)
         off = y * pitch + 4 * x
         c, s = expect_words(px)
         want_fb[off:off + 4] = c.to_bytes(4, "little")
@@ -171,25 +172,27 @@ async def one_frame(tb: Tb, k: int, w: int, h: int, n: int, st_en: int, log,
     tb.ram.regions = [(fb, fb + size), (st, st + size)]
     set_pauses(tb.ram, rng, rng.choice((0.0, 0.2, 0.5)))
     tb.ram.lat, tb.ram.lat_p = (1, rng.choice((3, 20))), rng.choice((0.0, 0.1, 0.4))
-    pixels = make_pixels(rng, w, h, n)
+    xbits = rng.randrange(max(w - 1, 1).bit_length(), 13)
+    pixels = make_pixels(rng, w, h, n, xbits)
     skip: set[int] = set()
     if err_lo is not None:
         lo = fb + (err_lo % size) // 4 * 4
         tb.ram.err_ranges = [(lo, lo + 4 * rng.randrange(1, 40))]
         skip = {a for a in range(lo, tb.ram.err_ranges[0][1], 4)}
-    await tb.start(fb, st, pitch, st_en)
+    await tb.start(fb, st, pitch, st_en, xbits)
     cyc = await tb.stream(pixels, rng.choice((1.0, 0.6, 0.2)), abort_at)
     tb.ram.err_ranges = []
     assert not tb.ram.outside, f"writes outside the buffers: {tb.ram.outside[:4]}"
     err = int(d.err_o.value)
     npx, nwr = int(d.pixels_o.value), int(d.written_o.value)
-    what = f"frame {k}: {w}x{h} {n} px st_en {st_en}"
+    what = f"frame {k}: {w}x{h} {n} px st_en {st_en} xbits {xbits}"
     if abort_at is not None:
         log.info("%s: abort at %d: %d taken, %d written, %d clocks", what, abort_at, npx, nwr, cyc)
         assert err == 0 and npx == n and nwr <= n
         return 0, 0, cyc
-    hit_err = any(fb + (px[0] >> X_W) * pitch + 4 * (px[0] & 4095) in skip for px in pixels)
-    bad = check(tb, fb, st, pitch, h, st_en, pixels, skip)
+    hit_err = any(fb + (px[0] >> xbits) * pitch + 4 * (px[0] & ((1 << xbits) - 1)) in skip
+                  for px in pixels)
+    bad = check(tb, fb, st, pitch, h, st_en, xbits, pixels, skip)
     log.info("%s: %d clocks, %d bad words, err %d, written %d", what, cyc, bad, err, nwr)
     assert err == int(hit_err), f"{what}: err_o {err}, a pixel in the SLVERR range: {hit_err}"
     assert npx == n and nwr == n, f"{what}: pixels {npx}, written {nwr} of {n}"
