@@ -22,11 +22,14 @@
 //     on any of the four masters) sets its ERROR flag and INTR_STATE.axi_error at once and
 //     ends the frame early: frag_dma stops reading fragments (it drains its reads), the
 //     fragments already in the pipeline finish and are written, then IDLE with frame_done.
-//   CTRL.soft_reset (in RUN) -> STOP: frag_dma stops and drains, pix_dma drops the pixels that
+//   CTRL.soft_reset in RUN -> STOP: frag_dma stops and drains, pix_dma drops the pixels that
 //     still come (a write already offered completes), dm_pipeline finishes the fragments inside
-//     (every AXI read it issued is answered: no port is left mid-transaction); then IDLE,
-//     without frame_done.  Soft reset also clears the statistics.  Configuration registers
-//     and ERROR keep their values.
+//     (every AXI read it issued is answered: no port is left mid-transaction); then FLUSH.
+//     CTRL.soft_reset in IDLE -> FLUSH.  FLUSH: dm_pipeline is reset for one clock (its caches
+//     forget every line, its statistics return to 0, its slot free list refills, during which
+//     it takes no fragment), then IDLE; no frame_done.  Configuration registers and ERROR keep
+//     their values.  The caches are not otherwise invalidated: after changing the pyramid or
+//     the textures in memory, software writes CTRL.soft_reset before the next frame.
 // Every wait above is bounded (the masters' outstanding transactions, the pipeline's slots), so
 // none can hang while the AXI slaves answer.
 //
@@ -219,7 +222,7 @@ module pidm_top
                 || hw.HEIGHT.SIZE.width.value == '0 || hw.HEIGHT.SIZE.height.value == '0;
 
   // ---- frame state -------------------------------------------------------------------------
-  typedef enum logic [1:0] {S_IDLE, S_RUN, S_STOP} state_e;
+  typedef enum logic [1:0] {S_IDLE, S_RUN, S_STOP, S_FLUSH} state_e;
   state_e state_q;
 
   logic start_cmd, soft_rst, go, bad_start, frame_end, stop_end;
@@ -237,6 +240,13 @@ module pidm_top
   assign frame_end = state_q == S_RUN && !soft_rst && drained;
   assign stop_end  = state_q == S_STOP && drained;
 
+  // dm_pipeline's reset: the system reset, or FLUSH (a register: no reset from logic paths)
+  logic pipe_rst_nq;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) pipe_rst_nq <= 1'b1;
+    else         pipe_rst_nq <= !(state_q == S_IDLE && !go && soft_rst) && !stop_end;
+  end
+
   assign h_err_beat   = m_axi_h_rvalid && m_axi_h_rready && m_axi_h_rresp != 2'b00;
   assign t_err_beat   = m_axi_t_rvalid && m_axi_t_rready && m_axi_t_rresp != 2'b00;
   assign frag_err_new = frag_err && !frag_err_q;
@@ -253,10 +263,12 @@ module pidm_top
       frag_err_q <= frag_err;
       pix_err_q  <= pix_err;
       unique case (state_q)
-        S_IDLE: if (go) state_q <= S_RUN;
-        S_RUN:  if (soft_rst) state_q <= S_STOP;
-                else if (drained) state_q <= S_IDLE;
-        S_STOP: if (drained) state_q <= S_IDLE;
+        S_IDLE:  if (go) state_q <= S_RUN;
+                 else if (soft_rst) state_q <= S_FLUSH;
+        S_RUN:   if (soft_rst) state_q <= S_STOP;
+                 else if (drained) state_q <= S_IDLE;
+        S_STOP:  if (drained) state_q <= S_FLUSH;
+        S_FLUSH: state_q <= S_IDLE;
         default: state_q <= S_IDLE;
       endcase
       if (go)           err_seen_q <= 1'b0;
@@ -335,7 +347,7 @@ module pidm_top
   dm_pipeline #(
     .PIX_W(PIX_W), .TRIS(TRIS), .H_ID_W(H_ID_W), .T_ID_W(T_ID_W), .AXI_DATA_W(DATA_W)
   ) u_pipe (
-    .clk_i, .rst_ni,
+    .clk_i, .rst_ni(rst_ni && pipe_rst_nq),
     .cfg_method_i(hw.HEIGHT.MODE.method.value),
     .cfg_width_i(hw.HEIGHT.SIZE.width.value), .cfg_height_i(hw.HEIGHT.SIZE.height.value),
     .cfg_root_level_i(hw.HEIGHT.MODE.root_level.value),
@@ -362,7 +374,7 @@ module pidm_top
     .m_axi_t_arid, .m_axi_t_araddr(t_araddr), .m_axi_t_arlen, .m_axi_t_arsize,
     .m_axi_t_arburst, .m_axi_t_arvalid, .m_axi_t_arready, .m_axi_t_rid, .m_axi_t_rdata,
     .m_axi_t_rresp, .m_axi_t_rlast, .m_axi_t_rvalid, .m_axi_t_rready,
-    .clr_stats_i(hw.CTRL.clear_stats.value || soft_rst),
+    .clr_stats_i(hw.CTRL.clear_stats.value),
     .stat_cycles_o(st_cycles), .stat_pixels_o(st_pixels), .stat_iters_o(st_iters),
     .stat_h_hits_o(st_h_hits), .stat_h_misses_o(st_h_misses), .stat_h_bytes_o(st_h_bytes),
     .stat_t_requests_o(st_t_requests), .stat_t_quad_hits_o(st_t_quad_hits),
@@ -451,6 +463,6 @@ module pidm_top
   logic unused;
   assign unused = ^{hw.ERROR.h_axi.value, hw.ERROR.t_axi.value, hw.ERROR.frag_dma.value,
                     hw.ERROR.fb_write.value, hw.ERROR.bad_config.value,
-                    hw.TT_WRITE.addr.value[7:TRI_W+1], frag_sent, pix_taken, stop_end};
+                    hw.TT_WRITE.addr.value[7:TRI_W+1], frag_sent, pix_taken};
 
 endmodule
