@@ -161,12 +161,15 @@ mutate: $(STAMP)
 # out/render_model.png (model) and out/render_stats.json (identical, pixels, cycles, iterations,
 # cache hit rates, memory bytes, per-pixel figures, Mpixels/s).  SCENE, ANGLE, METHOD, SIZE select
 # the work; HEIGHTMAP (and TEXTURE) render a user's height map instead of a procedural scene.
+# TOP=system renders through the system top rtl/top/pidm_top.sv (registers written as a CPU would,
+# fragments and pixels through its AXI DMA engines) instead of the pipeline top.
 # render.py exits 1 if the RTL and the model differ, 2 on a user error (one line); approximate
 # methods (parallax, relief, ...) have no RTL: render them with scripts/render.py --engine f64.
 SCENE  ?= rocks
 ANGLE  ?= oblique
 METHOD ?= park
 SIZE   ?= 256
+TOP    ?= pipeline
 HEIGHTMAP ?=
 TEXTURE   ?=
 RENDER_SRC = $(if $(HEIGHTMAP),--heightmap "$(HEIGHTMAP)" $(if $(TEXTURE),--texture "$(TEXTURE)"),--scene $(SCENE))
@@ -174,7 +177,7 @@ RENDER_SRC = $(if $(HEIGHTMAP),--heightmap "$(HEIGHTMAP)" $(if $(TEXTURE),--text
 render: $(STAMP)
 	@mkdir -p out
 	@$(ENV) $(PY) scripts/render.py $(RENDER_SRC) --angle $(ANGLE) --method $(METHOD) \
-	    --size $(SIZE) --engine rtl --out out/render.png --model-out out/render_model.png \
+	    --size $(SIZE) --top $(TOP) --engine rtl --out out/render.png --model-out out/render_model.png \
 	    --stats out/render_stats.json
 
 # FPGA synthesis (scripts/flow/synth.py; README "Synthesis"): Yosys synth_ecp5 and synth_xilinx

@@ -34,10 +34,11 @@
 // none can hang while the AXI slaves answer.
 //
 // Bad configuration (checked at CTRL.start; ERROR.bad_config): FRAG_COUNT 0 or wider than
-// CNT_W; FRAG_BASE not 64-byte aligned; FB_BASE, STATUS_BASE or FB_PITCH not 4-byte aligned; a
-// buffer base above the ADDR_W address space; FB_PITCH of 2^PITCH_W bytes or more;
+// CNT_W; FRAG_BASE not 64-byte aligned; FB_BASE, STATUS_BASE or FB_PITCH not 4-byte aligned;
+// FB_PITCH of 2^PITCH_W bytes or more;
 // FB_LAYOUT.xbits > PIX_W; HEIGHT.MODE.method not a method code (0 .. 9); a texture's MIP level
-// count 0 or above TEX_LEVELS; a height map of width or height 0.
+// count 0 or above TEX_LEVELS; a height map of width or height 0.  The buffer bases' bits above
+// ADDR_W are ignored (the register map's 64-bit addresses serve every ADDR_W).
 //
 // Configuration registers feed dm_pipeline's cfg_* inputs directly: they must not change while
 // STATUS.busy is 1 (the driver's obligation, as for dm_pipeline).  The pipeline's height and
@@ -194,16 +195,16 @@ module pidm_top
   assign fb_base64   = {hw.FRAME.FB_BASE.HI.val.value, hw.FRAME.FB_BASE.LO.val.value};
   assign st_base64   = {hw.FRAME.STATUS_BASE.HI.val.value, hw.FRAME.STATUS_BASE.LO.val.value};
 
+  if (ADDR_W < 64) begin : g_addr_hi   // address bits above ADDR_W: ignored
+    logic unused_hi;
+    assign unused_hi = ^{frag_base64[63:ADDR_W], fb_base64[63:ADDR_W], st_base64[63:ADDR_W]};
+  end
+
   logic [31:0] frag_count, fb_pitch;
   logic [4:0]  xbits;
   assign frag_count = hw.FRAME.FRAG_COUNT.val.value;
   assign fb_pitch   = hw.FRAME.FB_PITCH.val.value;
   assign xbits      = hw.FRAME.FB_LAYOUT.xbits.value;
-
-  // a 64-bit address beyond the ADDR_W space
-  function automatic logic above(input logic [63:0] a);
-    return (ADDR_W < 64) ? ((a >> ADDR_W) != 64'd0) : 1'b0;
-  endfunction
 
   function automatic logic levels_bad(input logic [5:0] n);
     return n == 6'd0 || 32'(n) > TEX_LEVELS;
@@ -213,7 +214,6 @@ module pidm_top
   assign bad_cfg = frag_count == '0 || ((64'(frag_count) >> CNT_W) != 64'd0)
                 || frag_base64[$clog2(FRAG_BYTES)-1:0] != '0
                 || fb_base64[1:0] != 2'b00 || st_base64[1:0] != 2'b00 || fb_pitch[1:0] != 2'b00
-                || above(frag_base64) || above(fb_base64) || above(st_base64)
                 || ((64'(fb_pitch) >> PITCH_W) != 64'd0)
                 || 32'(xbits) > PIX_W
                 || hw.HEIGHT.MODE.method.value > 4'(traverse_pkg::M_PARK_XOR)
