@@ -110,10 +110,15 @@ static int frame_result(struct pidm_dev *dev) {
     return pidm_error_flags(dev) ? PIDM_ERR_HW : PIDM_OK;
 }
 
+// The frame has ended when it raised frame_done or axi_error (pidm_start cleared both; a bad
+// configuration raises axi_error without starting) and STATUS.busy is 0: busy alone could be read
+// before the start pulse has set it.
 int pidm_poll_done(struct pidm_dev *dev, uint32_t max_polls) {
     if (!dev) return PIDM_ERR_ARG;
-    for (uint32_t i = 0; i < max_polls; i++)
-        if (!busy(dev)) return frame_result(dev);
+    for (uint32_t i = 0; i < max_polls; i++) {
+        uint32_t st = (pidm_rd(dev, PIDM_OFF(INTR_STATE)) | dev->irq_seen) & PIDM_IRQ_ALL;
+        if (st && !busy(dev)) return frame_result(dev);
+    }
     return PIDM_ERR_TIMEOUT;
 }
 

@@ -107,8 +107,9 @@ int pidm_load_config(struct pidm_dev *dev, const struct pidm_reg_write *list, si
 int pidm_load_triangles(struct pidm_dev *dev, const uint32_t *words, size_t n);
 // Write the frame descriptor, clear INTR_STATE, start the frame.
 int pidm_start(struct pidm_dev *dev, const struct pidm_frame *frame);
-// Poll STATUS.busy until the frame ends (at most max_polls reads): PIDM_OK, PIDM_ERR_HW (ERROR
-// flags set; pidm_error_flags tells which) or PIDM_ERR_TIMEOUT.
+// Poll until the frame ends (INTR_STATE frame_done or axi_error set and STATUS.busy 0; at most
+// max_polls rounds): PIDM_OK, PIDM_ERR_HW (ERROR flags set; pidm_error_flags tells which) or
+// PIDM_ERR_TIMEOUT.
 int pidm_poll_done(struct pidm_dev *dev, uint32_t max_polls);
 
 // Interrupts: enable the causes in mask (PIDM_IRQ_*).

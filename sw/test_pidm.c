@@ -25,20 +25,20 @@ struct sim {
     unsigned starts, soft_resets, clears;
 };
 
+// Time passes with every read: a running frame ends after busy_reads reads (of any register).
 static uint32_t sim_rd(struct pidm_dev *dev, uint32_t off) {
     struct sim *s = dev->ctx;
     s->nreads++;
-    if (off == 0x014) {  // STATUS
-        if (s->busy_reads > 0 && --s->busy_reads == 0) {
-            s->busy_reads = -1;
-            s->reg[0x020 / 4] |= 1u;                        // INTR_STATE.frame_done
-            if (s->end_errors) {
-                s->reg[0x018 / 4] |= s->end_errors;         // ERROR (hwset)
-                s->reg[0x020 / 4] |= 2u;                    // INTR_STATE.axi_error
-            }
+    if (s->busy_reads > 0 && --s->busy_reads == 0) {
+        s->busy_reads = -1;
+        s->reg[0x020 / 4] |= 1u;                        // INTR_STATE.frame_done
+        if (s->end_errors) {
+            s->reg[0x018 / 4] |= s->end_errors;         // ERROR (hwset)
+            s->reg[0x020 / 4] |= 2u;                    // INTR_STATE.axi_error
         }
-        return (s->busy_reads > 0 ? 1u : 0u) | (s->busy_reads > 0 ? 0u : 2u);  // busy, idle
     }
+    if (off == 0x014)  // STATUS: busy, idle
+        return (s->busy_reads > 0 ? 1u : 0u) | (s->busy_reads > 0 ? 0u : 2u);
     return s->reg[off / 4];
 }
 
@@ -100,8 +100,7 @@ static unsigned waits;
 static void wait_hook(void *ctx) {  // the interrupt arrives while the CPU waits
     (void)ctx;
     waits++;
-    (void)pidm_rd(wait_dev, 0x014);  // time passes: the simulated frame advances
-    pidm_irq_handler(wait_dev);
+    pidm_irq_handler(wait_dev);  // its read of INTR_STATE lets the simulated frame advance
 }
 
 static void test_offsets(void) {
@@ -222,6 +221,15 @@ static void test_start_poll(struct sim *s, struct pidm_dev *dev) {
     CHECK_LOG(s, {0x018, 0xA});
     CHECK(pidm_error_flags(dev) == 0);
     s->end_errors = 0;
+    // A start the hardware refuses (bad configuration): no busy, ERROR.bad_config and
+    // INTR_STATE.axi_error at once; the poll ends with the error.
+    s->reg[0x018 / 4] = 0x10u;
+    s->reg[0x020 / 4] = 0x2u;
+    CHECK(pidm_poll_done(dev, 1) == PIDM_ERR_HW);
+    pidm_clear_errors(dev, 0x10u);
+    // Busy not yet visible after the start: without frame_done / axi_error the poll waits.
+    s->reg[0x020 / 4] = 0;
+    CHECK(pidm_poll_done(dev, 50) == PIDM_ERR_TIMEOUT);
     // Bad descriptor.
     struct pidm_frame f = FRAME;
     f.xbits = 32;

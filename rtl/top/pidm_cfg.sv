@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: Apache-2.0
+// pidm_cfg: the configuration registers of the register block pidm_regs (rtl/top/pidm_regs.rdl,
+// generated rtl/top/pidm_regs.sv) as dm_pipeline's cfg_* ports and triangle-table write port.
+// Wiring only, plus one register stage for the table write: TT_WRITE's swmod strobe comes in the
+// clock of the bus write, its stored value the clock after, so tt_we_o is the strobe delayed one
+// clock and tt_waddr_o / tt_wdata_o are the stored fields (scripts/pack_frame.py writes one
+// TT_WRITE per table word; tb/harness/pidm_frame.py ports_from_writes is the same map in Python).
+//
+// Field -> port (registers of docs/registers.md):
+//   HEIGHT.MODE method / root_level / bits16   cfg_method_o / cfg_root_level_o / cfg_bits16_o
+//   HEIGHT.SIZE width / height                  cfg_width_o / cfg_height_o
+//   HEIGHT.BASE, HEIGHT.LEVEL_OFF[k]            cfg_base_o, cfg_level_off_o[k]
+//   HEIGHT.ROOT root_code / iter_cap            cfg_root_code_o / cfg_iter_cap_o
+//   HEIGHT.DEPTH                                cfg_depth_o
+//   SHADE.MIP mip_en / levels_colour / levels_normal   cfg_mip_en_o / cfg_levels_*_o
+//   SHADE.MISS_RGB red / green / blue           cfg_miss_rgb_o[0] / [1] / [2]
+//   SHADE.LIGHT_X .. D2                         cfg_shade_o (shade_cfg_t fields light_x .. d2)
+//   TEX[x].SU / SV / BASE                       cfg_tex_su_o[x] / cfg_tex_sv_o[x] / cfg_tex_base_o[x]
+//   TEX[x].LEVEL_OFF[k], LEVEL_SIZE[k]          cfg_tex_level_off_o[x][k], cfg_tex_width_o /
+//                                               cfg_tex_height_o [x][k]
+//   TT_WRITE data / addr (swmod)                tt_wdata_o / tt_waddr_o (tt_we_o)
+module pidm_cfg
+  import f24_pkg::*;
+  import traverse_pkg::*;
+  import pipe_pkg::*;
+  import shade_pkg::*;
+#(
+  parameter int unsigned TRIS  = 16,                            // dm_pipeline's TRIS
+  parameter int unsigned TRI_W = (TRIS > 1) ? $clog2(TRIS) : 1  // triangle id width
+) (
+  input  logic                                 clk_i,
+  input  logic                                 rst_ni,
+  // the register block's outputs (only the configuration registers are read here)
+  /* verilator lint_off UNUSEDSIGNAL */  // control, frame, error and interrupt fields: pidm_top's
+  input  pidm_regs_pkg::pidm_regs__out_t       hwif_i,
+  /* verilator lint_on UNUSEDSIGNAL */
+  // dm_pipeline configuration
+  output logic [3:0]                           cfg_method_o,
+  output logic [DIM_W-1:0]                     cfg_width_o,
+  output logic [DIM_W-1:0]                     cfg_height_o,
+  output logic [LVL_W-1:0]                     cfg_root_level_o,
+  output logic                                 cfg_bits16_o,
+  output logic [ADDR_W-1:0]                    cfg_base_o,
+  output logic [MAX_LEVELS-1:0][ADDR_W-1:0]    cfg_level_off_o,
+  output logic [CODE_W-1:0]                    cfg_root_code_o,
+  output logic [ITER_W-1:0]                    cfg_iter_cap_o,
+  output f24_t                                 cfg_depth_o,
+  output logic                                 cfg_mip_en_o,
+  output logic [MIP_LEVEL_W:0]                 cfg_levels_colour_o,
+  output logic [MIP_LEVEL_W:0]                 cfg_levels_normal_o,
+  output shade_cfg_t                           cfg_shade_o,
+  output logic [2:0][7:0]                      cfg_miss_rgb_o,
+  output f24_t [1:0]                           cfg_tex_su_o,
+  output f24_t [1:0]                           cfg_tex_sv_o,
+  output logic [1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0]  cfg_tex_width_o,
+  output logic [1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0]  cfg_tex_height_o,
+  output logic [1:0][TEX_ADDR_W-1:0]           cfg_tex_base_o,
+  output logic [1:0][TEX_LEVELS-1:0][TEX_ADDR_W-1:0] cfg_tex_level_off_o,
+  // triangle-table write port
+  output logic                                 tt_we_o,
+  output logic [TRI_W:0]                       tt_waddr_o,
+  output f24_t                                 tt_wdata_o
+);
+
+  if (TRI_W + 1 > 8) begin : g_check
+    $error("pidm_cfg: TT_WRITE.addr holds 8 address bits (TRIS <= 128)");
+  end
+
+  // ---- height pyramid and traversal --------------------------------------------------------------
+  assign cfg_method_o     = hwif_i.HEIGHT.MODE.method.value;
+  assign cfg_root_level_o = hwif_i.HEIGHT.MODE.root_level.value;
+  assign cfg_bits16_o     = hwif_i.HEIGHT.MODE.bits16.value;
+  assign cfg_width_o      = hwif_i.HEIGHT.SIZE.width.value;
+  assign cfg_height_o     = hwif_i.HEIGHT.SIZE.height.value;
+  assign cfg_base_o       = hwif_i.HEIGHT.BASE.val.value;
+  assign cfg_root_code_o  = hwif_i.HEIGHT.ROOT.root_code.value;
+  assign cfg_iter_cap_o   = hwif_i.HEIGHT.ROOT.iter_cap.value;
+  assign cfg_depth_o      = hwif_i.HEIGHT.DEPTH.val.value;
+  for (genvar k = 0; k < MAX_LEVELS; k++) begin : g_level
+    assign cfg_level_off_o[k] = hwif_i.HEIGHT.LEVEL_OFF[k].val.value;
+  end
+
+  // ---- MIP, miss colour, shading -------------------------------------------------------------------
+  assign cfg_mip_en_o        = hwif_i.SHADE.MIP.mip_en.value;
+  assign cfg_levels_colour_o = hwif_i.SHADE.MIP.levels_colour.value;
+  assign cfg_levels_normal_o = hwif_i.SHADE.MIP.levels_normal.value;
+  assign cfg_miss_rgb_o[0]   = hwif_i.SHADE.MISS_RGB.red.value;
+  assign cfg_miss_rgb_o[1]   = hwif_i.SHADE.MISS_RGB.green.value;
+  assign cfg_miss_rgb_o[2]   = hwif_i.SHADE.MISS_RGB.blue.value;
+  assign cfg_shade_o.light_x = hwif_i.SHADE.LIGHT_X.val.value;
+  assign cfg_shade_o.light_y = hwif_i.SHADE.LIGHT_Y.val.value;
+  assign cfg_shade_o.light_z = hwif_i.SHADE.LIGHT_Z.val.value;
+  assign cfg_shade_o.ambient = hwif_i.SHADE.AMBIENT.val.value;
+  assign cfg_shade_o.kd      = hwif_i.SHADE.KD.val.value;
+  assign cfg_shade_o.ks      = hwif_i.SHADE.KS.val.value;
+  assign cfg_shade_o.d       = hwif_i.SHADE.D.val.value;
+  assign cfg_shade_o.d2      = hwif_i.SHADE.D2.val.value;
+
+  // ---- textures -------------------------------------------------------------------------------------
+  for (genvar x = 0; x < 2; x++) begin : g_tex
+    assign cfg_tex_su_o[x]   = hwif_i.TEX[x].SU.val.value;
+    assign cfg_tex_sv_o[x]   = hwif_i.TEX[x].SV.val.value;
+    assign cfg_tex_base_o[x] = hwif_i.TEX[x].BASE.val.value;
+    for (genvar k = 0; k < TEX_LEVELS; k++) begin : g_level
+      assign cfg_tex_level_off_o[x][k] = hwif_i.TEX[x].LEVEL_OFF[k].val.value;
+      assign cfg_tex_width_o[x][k]     = hwif_i.TEX[x].LEVEL_SIZE[k].width.value;
+      assign cfg_tex_height_o[x][k]    = hwif_i.TEX[x].LEVEL_SIZE[k].height.value;
+    end
+  end
+
+  // ---- triangle table: the write strobe one clock late, with the stored fields ------------------------
+  logic tt_we_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) tt_we_q <= 1'b0;
+    else         tt_we_q <= hwif_i.TT_WRITE.data.swmod;
+  end
+  assign tt_we_o    = tt_we_q;
+  assign tt_waddr_o = hwif_i.TT_WRITE.addr.value[TRI_W:0];
+  assign tt_wdata_o = hwif_i.TT_WRITE.data.value;
+
+endmodule

@@ -1,0 +1,239 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The generated register block (rtl/top/pidm_regs.sv from rtl/top/pidm_regs.rdl) with pidm_cfg
+behind it, driven over AXI4-Lite by cocotbext-axi's master as the driver (sw/pidm.c) drives it.
+
+- frame_config: a frame packed by tb/harness/pidm_frame.py (the rocks scene) written register by
+  register, in random order, with random gaps: every cfg_* port of pidm_cfg equals the port value
+  the pipeline harness would drive (tb/harness/pipeline_words.config), the table writes come out
+  on tt_we_o / tt_waddr_o / tt_wdata_o one per TT_WRITE write in order, and every register reads
+  back what was written; the frame descriptor reaches its ports;
+- control_status_interrupts: CTRL bits are one-clock pulses and read 0; ERROR flags are set by
+  the hardware, kept, and cleared by writing 1 (only the bits written); INTR_STATE is set by the
+  hardware events and by INTR_TEST, the interrupt line follows INTR_STATE & INTR_ENABLE, writing 1
+  clears; ID, VERSION, HWCFG, STATUS, PROGRESS and the 48-bit statistics read what the hardware
+  gives (random values, seed printed); an unmapped address reads 0 with OKAY.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import cocotb
+import numpy as np
+import pytest
+from cocotb.clock import Clock
+from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, RisingEdge
+from cocotbext.axi import AxiLiteBus, AxiLiteMaster
+
+from tb.common import fp_unit, report, runner
+from tb.harness import dm_pipeline, pidm_frame, pidm_regmap
+
+R = pidm_regmap.reg
+
+
+async def setup(dut) -> AxiLiteMaster:
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    dut.busy_i.value = 0
+    dut.idle_i.value = 1
+    dut.error_set_i.value = 0
+    dut.intr_event_i.value = 0
+    dut.progress_i.value = 0
+    dut.stats_i.value = 0
+    dut.hwcfg_i.value = 0
+    axil = AxiLiteMaster(AxiLiteBus.from_prefix(dut, "s_axil"), dut.clk_i, dut.rst_ni,
+                         reset_active_level=False)
+    dut.rst_ni.value = 0
+    await ClockCycles(dut.clk_i, 4)
+    dut.rst_ni.value = 1
+    await ClockCycles(dut.clk_i, 2)
+    return axil
+
+
+async def write(axil: AxiLiteMaster, addr: int, value: int) -> None:
+    resp = await axil.write(addr, int(value).to_bytes(4, "little"))
+    assert int(resp.resp) == 0, f"write {addr:#x}: response {resp.resp}"
+
+
+async def read(axil: AxiLiteMaster, addr: int) -> int:
+    resp = await axil.read(addr, 4)
+    assert int(resp.resp) == 0, f"read {addr:#x}: response {resp.resp}"
+    return int.from_bytes(resp.data, "little")
+
+
+@cocotb.test()
+async def frame_config(dut):
+    rng = np.random.default_rng(fp_unit.seed())
+    axil = await setup(dut)
+    frame, cam = dm_pipeline.scene_frame("rocks", 32, "oblique", 16, "park")
+    packed = pidm_frame.pack(frame, cam, frag_base=0x1_2345_6740, fb_base=0x2_0000_0100,
+                             status_base=0x3_0000_0000)
+    cfg = dm_pipeline.frame_image(frame).cfg
+    tt = R("TT_WRITE").addr
+    regs = [(a, v) for a, v in packed.config if a != tt]
+    tri = [(a, v) for a, v in packed.config if a == tt]
+    # the table writes are watched on tt_we_o
+    seen: list[tuple[int, int]] = []
+
+    async def watch() -> None:
+        while True:
+            await RisingEdge(dut.clk_i)
+            await ReadOnly()
+            if int(dut.tt_we_o.value):
+                seen.append((int(dut.tt_waddr_o.value), int(dut.tt_wdata_o.value)))
+
+    cocotb.start_soon(watch())
+    order = rng.permutation(len(regs))
+    for i in order:
+        a, v = regs[int(i)]
+        await write(axil, a, v)
+        if rng.random() < 0.2:
+            await ClockCycles(dut.clk_i, int(rng.integers(1, 4)))
+    for a, v in tri:
+        await write(axil, a, v)
+    for a, v in packed.frame_writes:
+        await write(axil, a, v)
+    await ClockCycles(dut.clk_i, 3)
+    await FallingEdge(dut.clk_i)
+    bad = []
+    for name, _bits in dm_pipeline.CFG_PORTS:
+        got = int(getattr(dut, name[:-2] + "_o").value)
+        if got != cfg.ports[name]:
+            bad.append(f"{name}: {got:#x} != {cfg.ports[name]:#x}")
+    if seen != cfg.tri_writes:
+        bad.append(f"table writes {seen[:4]}... ({len(seen)}) != {cfg.tri_writes[:4]}... "
+                   f"({len(cfg.tri_writes)})")
+    d = packed.descriptor
+    for port, want in (("frag_base_o", d["frag_base"]), ("frag_count_o", d["frag_count"]),
+                       ("fb_base_o", d["fb_base"]), ("fb_pitch_o", d["fb_pitch"]),
+                       ("status_base_o", d["status_base"]), ("xbits_o", d["xbits"]),
+                       ("status_en_o", d["status_en"])):
+        if int(getattr(dut, port).value) != want:
+            bad.append(f"{port}: {int(getattr(dut, port).value):#x} != {want:#x}")
+    # read back every register written (the last value of TT_WRITE)
+    last = dict(regs + tri[-1:] + packed.frame_writes)
+    for a, v in last.items():
+        got = await read(axil, a)
+        if got != v:
+            bad.append(f"read {pidm_regmap.by_address()[a].path} ({a:#x}): {got:#x} != {v:#x}")
+    n = len(dm_pipeline.CFG_PORTS) + len(cfg.tri_writes) + len(last)
+    report.record(dut._name, "configuration ports, table writes, read-back", n, len(bad))
+    dut._log.info("VECTORS pidm_regs frame_config: %d register writes, %d table writes, %d "
+                  "checks, %d mismatches", len(regs), len(tri), n, len(bad))
+    assert not bad, "\n".join(bad[:20])
+
+
+async def pulse_seen(dut, port: str, action) -> list[int]:
+    """Run ``action`` and record ``port`` every clock until 6 clocks after it."""
+    values: list[int] = []
+    done = False
+
+    async def mon() -> None:
+        while not done:
+            await RisingEdge(dut.clk_i)
+            await ReadOnly()
+            values.append(int(getattr(dut, port).value))
+
+    task = cocotb.start_soon(mon())
+    await action()
+    await ClockCycles(dut.clk_i, 6)
+    done = True
+    await task
+    await FallingEdge(dut.clk_i)
+    return values
+
+
+@cocotb.test()
+async def control_status_interrupts(dut):
+    rng = np.random.default_rng(fp_unit.seed())
+    axil = await setup(dut)
+    checks = 0
+
+    def check(cond: bool, msg: str) -> None:
+        nonlocal checks
+        checks += 1
+        assert cond, msg
+
+    check(await read(axil, R("ID").addr) == 0x5049444D, "ID")
+    check(await read(axil, R("VERSION").addr) == 0x00010000, "VERSION")
+    hw = int(rng.integers(0, 1 << 32))
+    dut.hwcfg_i.value = hw
+    check(await read(axil, R("HWCFG").addr) == hw, "HWCFG")
+    # CTRL: each bit one clock high, reads 0
+    ctrl = R("CTRL")
+    for field, port in (("start", "start_o"), ("soft_reset", "soft_reset_o"),
+                        ("clear_stats", "clear_stats_o")):
+        v = await pulse_seen(dut, port, lambda f=field: write(axil, ctrl.addr, ctrl.value(**{f: 1})))
+        check(sum(v) == 1, f"CTRL.{field}: high {sum(v)} clocks")
+        for other in ("start_o", "soft_reset_o", "clear_stats_o"):
+            if other != port:
+                check(int(getattr(dut, other).value) == 0, f"CTRL.{field} pulsed {other}")
+        check(await read(axil, ctrl.addr) == 0, f"CTRL reads 0 after {field}")
+    v = await pulse_seen(dut, "start_o", lambda: write(axil, ctrl.addr, 0))
+    check(sum(v) == 0, "CTRL write of 0 pulses nothing")
+    # STATUS, PROGRESS, statistics: what the hardware gives
+    for busy, idle in ((1, 0), (0, 1), (1, 1)):
+        dut.busy_i.value, dut.idle_i.value = busy, idle
+        check(await read(axil, R("STATUS").addr) == busy | idle << 1, "STATUS")
+    prog = int(rng.integers(0, 1 << 32))
+    dut.progress_i.value = prog
+    check(await read(axil, R("PROGRESS").addr) == prog, "PROGRESS")
+    stats = [int(rng.integers(0, 1 << 48)) for _ in range(11)]
+    stats[3] = (1 << 48) - 1
+    dut.stats_i.value = sum(s << (48 * i) for i, s in enumerate(stats))
+    names = ("cycles", "pixels", "iters", "h_hits", "h_misses", "h_bytes", "t_requests",
+             "t_quad_hits", "t_line_misses", "t_texel_hits", "t_bytes")
+    for i, name in enumerate(names):
+        lo = await read(axil, R(f"STATS.{name}.LO").addr)
+        hi = await read(axil, R(f"STATS.{name}.HI").addr)
+        check(lo | hi << 32 == stats[i], f"STATS.{name}: {lo | hi << 32:#x} != {stats[i]:#x}")
+    # ERROR: set by hardware (one clock), sticky, write 1 to clear only those bits
+    err = R("ERROR")
+    dut.error_set_i.value = 0b10110
+    await RisingEdge(dut.clk_i)
+    dut.error_set_i.value = 0
+    await ClockCycles(dut.clk_i, 3)
+    check(await read(axil, err.addr) == 0b10110, "ERROR after hwset")
+    check(int(dut.error_o.value) == 0b10110, "ERROR to hardware")
+    await write(axil, err.addr, 0)
+    check(await read(axil, err.addr) == 0b10110, "ERROR write 0 keeps")
+    await write(axil, err.addr, 0b00110)
+    check(await read(axil, err.addr) == 0b10000, "ERROR W1C")
+    await write(axil, err.addr, 0b11111)
+    check(await read(axil, err.addr) == 0, "ERROR cleared")
+    # Interrupts
+    st, en, ts = R("INTR_STATE").addr, R("INTR_ENABLE").addr, R("INTR_TEST").addr
+    check(await read(axil, st) == 0 and int(dut.intr_o.value) == 0, "INTR idle")
+    dut.intr_event_i.value = 0b01
+    await RisingEdge(dut.clk_i)
+    dut.intr_event_i.value = 0
+    await ClockCycles(dut.clk_i, 2)
+    check(await read(axil, st) == 0b01, "INTR_STATE frame_done set by the event")
+    check(int(dut.intr_o.value) == 0, "no interrupt while disabled")
+    await write(axil, en, 0b10)
+    await ClockCycles(dut.clk_i, 2)
+    check(int(dut.intr_o.value) == 0, "frame_done not enabled")
+    await write(axil, en, 0b11)
+    await ClockCycles(dut.clk_i, 2)
+    check(int(dut.intr_o.value) == 1, "interrupt when enabled")
+    check(await read(axil, en) == 0b11, "INTR_ENABLE reads back")
+    await write(axil, st, 0b01)
+    await ClockCycles(dut.clk_i, 2)
+    check(int(dut.intr_o.value) == 0 and await read(axil, st) == 0, "W1C drops the line")
+    await write(axil, ts, 0b10)
+    await ClockCycles(dut.clk_i, 2)
+    check(await read(axil, st) == 0b10 and int(dut.intr_o.value) == 1, "INTR_TEST sets axi_error")
+    check(await read(axil, ts) == 0, "INTR_TEST reads 0")
+    await write(axil, st, 0b11)
+    await write(axil, en, 0)
+    # An unmapped address reads 0 with OKAY, a write there changes nothing
+    for a in (0x00C, 0x02C, 0x0F0, 0x104, 0x280, 0x3FC, 0x4C0, 0x5C0, 0xFFC):
+        await write(axil, a, 0xFFFFFFFF)
+        check(await read(axil, a) == 0, f"unmapped {a:#x} reads 0")
+    check(await read(axil, R("ID").addr) == 0x5049444D, "ID after unmapped writes")
+    report.record(dut._name, "control, status, errors, interrupts", checks, 0)
+    dut._log.info("VECTORS pidm_regs control_status_interrupts: %d checks, 0 mismatches", checks)
+
+
+def test_pidm_regs():
+    here = Path(__file__).parent
+    runner.run("pidm_regs_tb", "test_pidm_regs", here, rtl_top="pidm_regs",
+               extra_sources=[str(here / "pidm_regs_tb.sv")])
