@@ -136,6 +136,8 @@ bench: $(STAMP)
 	@$(ENV) $(PY) scripts/bench/bench_rtl.py --incoherent 20000 --size 512 \
 	    --out out/bench/rtl_incoherent.json --md out/bench/rtl_incoherent.md
 	@$(ENV) $(PY) scripts/bench/bench_pipeline.py
+	@$(ENV) $(PY) scripts/bench/bench_pipeline.py --rings 2 --out out/bench/pipeline_r2.json \
+	    --md out/bench/pipeline_r2.md
 	@$(ENV) $(PY) scripts/bench/bench_pipeline.py --views oblique --mip on,off --map 512 --image 256 \
 	    --out out/bench/pipeline_mip.json --md out/bench/pipeline_mip.md
 	@$(ENV) $(PY) -m tb.harness.traverse_system --size 64 --rays 20000
@@ -160,7 +162,8 @@ mutate: $(STAMP)
 # through the golden model's f24 engine, compared pixel for pixel.  Writes out/render.png (RTL),
 # out/render_model.png (model) and out/render_stats.json (identical, pixels, cycles, iterations,
 # cache hit rates, memory bytes, per-pixel figures, Mpixels/s).  SCENE, ANGLE, METHOD, SIZE select
-# the work; HEIGHTMAP (and TEXTURE) render a user's height map instead of a procedural scene.
+# the work; HEIGHTMAP (and TEXTURE) render a user's height map instead of a procedural scene;
+# RINGS=2 renders through the pipeline with two traverse rings (dm_pipeline N_RINGS).
 # TOP=system renders through the system top rtl/top/pidm_top.sv (registers written as a CPU would,
 # fragments and pixels through its AXI DMA engines) instead of the pipeline top.
 # render.py exits 1 if the RTL and the model differ, 2 on a user error (one line); approximate
@@ -172,13 +175,14 @@ SIZE   ?= 256
 TOP    ?= pipeline
 HEIGHTMAP ?=
 TEXTURE   ?=
+RINGS     ?= 1
 RENDER_SRC = $(if $(HEIGHTMAP),--heightmap "$(HEIGHTMAP)" $(if $(TEXTURE),--texture "$(TEXTURE)"),--scene $(SCENE))
 
 render: $(STAMP)
 	@mkdir -p out
 	@$(ENV) $(PY) scripts/render.py $(RENDER_SRC) --angle $(ANGLE) --method $(METHOD) \
-	    --size $(SIZE) --top $(TOP) --engine rtl --out out/render.png --model-out out/render_model.png \
-	    --stats out/render_stats.json
+	    --size $(SIZE) --engine rtl --top $(TOP) --rings $(RINGS) --out out/render.png \
+	    --model-out out/render_model.png --stats out/render_stats.json
 
 # FPGA synthesis (scripts/flow/synth.py; README "Synthesis"): Yosys synth_ecp5 and synth_xilinx
 # resource counts of every block, nextpnr-ecp5 place and route on an LFE5U-85F speed 8 of each block out of

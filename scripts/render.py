@@ -168,6 +168,8 @@ def main(argv: list[str] | None = None) -> int:
                     help="--engine rtl: order of the blocks: row by row (default) or along a "
                     "Z-order curve")
     ap.add_argument("--seed", default="0", help="--engine rtl: seed of random latencies")
+    ap.add_argument("--rings", default="1", help="--engine rtl: traverse rings of the pipeline "
+                    "(dm_pipeline N_RINGS: 1 or 2; default 1)")
     ap.add_argument("--checked", action="store_true", help="--engine rtl: the harness with the "
                     "RTL's assertions on (slower; RTL_ENGINE_CHECKED=1 does the same)")
     ap.add_argument("--clock-mhz", help="--engine rtl: quote Mpixels/s at this clock (default: "
@@ -201,6 +203,14 @@ def main(argv: list[str] | None = None) -> int:
             raise ValueError
     except ValueError:
         fail(PROG, f"--seed must be a non-negative integer, got {args.seed!r}")
+    try:
+        rings = int(args.rings, 10)
+    except ValueError:
+        rings = 0
+    if rings not in (1, 2):
+        fail(PROG, f"--rings must be 1 or 2, got {args.rings!r}")
+    if args.top == "system" and rings != 1:
+        fail(PROG, "--rings goes with --top pipeline (the system harness has one ring)")
     clock: tuple[float, str] | None = None
     if args.clock_mhz is not None:
         try:
@@ -213,7 +223,7 @@ def main(argv: list[str] | None = None) -> int:
     if not rtl:
         for opt, given in (("--model-out", args.model_out is not None),
                            ("--checked", args.checked), ("--clock-mhz", args.clock_mhz),
-                           ("--top", args.top != "pipeline")):
+                           ("--top", args.top != "pipeline"), ("--rings", rings != 1)):
             if given:
                 fail(PROG, f"{opt} goes with --engine rtl")
     angle = parse_angle(args.angle)
@@ -286,7 +296,7 @@ def main(argv: list[str] | None = None) -> int:
             dm_pipeline.check_limits(frame)
         except dm_pipeline.RtlLimitError as e:
             fail(PROG, f"the pipeline RTL cannot render this: {e}")
-        built = build_harness(args.checked, args.quiet, args.top)
+        built = build_harness(args.checked, args.quiet, rings, args.top)
         if built is None:
             return 1
         build_secs = built
@@ -350,7 +360,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{PROG}: model (f24): {model_png}: {covered} covered pixels, {hits} hits, "
               f"{stats['iterations_per_pixel']} iterations/pixel, {secs:.2f} s", flush=True)
     return render_rtl(args, frame, cam, img, stats, out_png, stats_path, latency=latency,
-                      rtl_tile=rtl_tile, seed=seed, clock=clock,
+                      rtl_tile=rtl_tile, seed=seed, clock=clock, rings=rings,
                       build_secs=build_secs, t_start=t_start)
 
 
@@ -358,19 +368,25 @@ def checked_variant(checked: bool) -> bool:
     return checked or os.environ.get("RTL_ENGINE_CHECKED", "") == "1"
 
 
-def build_harness(checked: bool, quiet: bool, top: str = "pipeline") -> float | None:
-    """Build the pipeline (or system) harness if it is not current; the seconds it took (None:
-    it failed, the reason is printed)."""
+def build_harness(checked: bool, quiet: bool, rings: int = 1, top: str = "pipeline"
+                  ) -> float | None:
+    """Build the pipeline harness (``rings`` traverse rings), or the system harness, if it is
+    not current; the seconds it took (None: it failed, the reason is printed)."""
     from tb.harness import dm_pipeline, pidm_system
     from tb.harness.build import RtlEngineError
 
     variant = dm_pipeline.default_variant(checked_variant(checked))
-    mod: Any = pidm_system if top == "system" else dm_pipeline
     try:
-        if mod.is_built(variant):
+        if top == "system":
+            if pidm_system.is_built(variant):
+                return 0.0
+            t0 = time.time()
+            pidm_system.build(variant, quiet=quiet)
+            return time.time() - t0
+        if dm_pipeline.is_built(variant, rings):
             return 0.0
         t0 = time.time()
-        mod.build(variant, quiet=quiet)
+        dm_pipeline.build(variant, quiet=quiet, rings=rings)
         return time.time() - t0
     except RtlEngineError as e:
         sys.stderr.write(f"{PROG}: error: the RTL harness did not build: "
@@ -381,7 +397,8 @@ def build_harness(checked: bool, quiet: bool, top: str = "pipeline") -> float | 
 def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Image,
                model_stats: dict[str, Any], out_png: Path, stats_path: Path, *,
                latency: tuple[int, int], rtl_tile: int, seed: int,
-               clock: tuple[float, str] | None, build_secs: float, t_start: float) -> int:
+               clock: tuple[float, str] | None, build_secs: float, t_start: float,
+               rings: int = 1) -> int:
     """--engine rtl: the frame through the pipeline RTL, compared with the model's image."""
     from tb.harness import dm_pipeline, pidm_system
     from tb.harness.build import RtlEngineError
@@ -395,13 +412,13 @@ def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Ima
         img, st = rtl_mod.render_rtl(frame, cam, frags=ref.frags, tile=rtl_tile,
                                          blocks=args.rtl_blocks,
                                          latency=latency, seed=seed, checked=checked,
-                                         progress=lambda d, t: prog.update(d))
+                                         rings=rings, progress=lambda d, t: prog.update(d))
     except RtlEngineError as e:
         sys.stderr.write(f"{PROG}: error: the RTL run failed: {' | '.join(str(e).splitlines())}\n")
         return 1
     write_png(out_png, img.rgb)
     bad = dm_pipeline.compare(img.out, ref.out)
-    mhz, clock_src = clock if clock is not None else dm_pipeline.pipeline_clock()
+    mhz, clock_src = clock if clock is not None else dm_pipeline.pipeline_clock(rings)
     cpp = st["cycles_per_pixel"]
     stats: dict[str, Any] = {
         "pixels": st["pixels"], "cycles": st["cycles"], "iterations": st["iterations"],
@@ -427,7 +444,7 @@ def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Ima
         "covered_pixels": len(ref.frags), "hits": st["hits"], "invalid": st["invalid"],
         "errors": st["errors"], "axi_latency": list(latency), "fragment_tile": rtl_tile,
         "fragment_blocks": args.rtl_blocks, "top": args.top,
-        "harness_variant": st["harness_variant"],
+        "harness_variant": st["harness_variant"], "rings": rings,
         "method": frame.method, "engine": "rtl", "scene": model_stats["scene"],
         "angle": model_stats["angle"], "elevation_deg": model_stats["elevation_deg"],
         "map": model_stats["map"], "height_bits": model_stats["height_bits"],

@@ -45,6 +45,7 @@ module dm_pipeline_fpga_top
 #(
   parameter int unsigned PIX_W      = 20,   // at most 28 (read word 0x01)
   parameter int unsigned SLOTS      = 128,
+  parameter int unsigned N_RINGS    = 1,    // traverse rings (dm_pipeline N_RINGS)
   parameter int unsigned TRIS       = 16,
   parameter int unsigned H_ID_W     = 4,
   parameter int unsigned T_ID_W     = 6,
@@ -232,8 +233,8 @@ module dm_pipeline_fpga_top
   logic [ITER_W-1:0] px_iters;
   logic [10:0][47:0] stat;
 
-  dm_pipeline #(.PIX_W(PIX_W), .SLOTS(SLOTS), .TRIS(TRIS), .H_ID_W(H_ID_W), .T_ID_W(T_ID_W),
-                .AXI_DATA_W(AXI_DATA_W)) u_pipe (
+  dm_pipeline #(.PIX_W(PIX_W), .SLOTS(SLOTS), .N_RINGS(N_RINGS), .TRIS(TRIS), .H_ID_W(H_ID_W),
+                .T_ID_W(T_ID_W), .AXI_DATA_W(AXI_DATA_W)) u_pipe (
     .clk_i, .rst_ni(rst_nq),
     .cfg_method_i(cfg_method_q), .cfg_width_i(cfg_width_q), .cfg_height_i(cfg_height_q),
     .cfg_root_level_i(cfg_root_level_q), .cfg_bits16_i(cfg_bits16_q), .cfg_base_i(cfg_base_q),

@@ -55,6 +55,7 @@ module dm_pipeline
 #(
   parameter int unsigned PIX_W      = 20,   // pixel id width (px_id_o = frag_id_i)
   parameter int unsigned SLOTS      = 128,  // fragments in flight (power of two)
+  parameter int unsigned N_RINGS    = 1,    // traverse rings, each with its own height cache
   parameter int unsigned TRIS       = 16,   // triangle table entries
   parameter int unsigned F0_DEPTH   = 16,   // FIFO #0 (power of two)
   parameter int unsigned REQ_DEPTH  = 16,   // texture-request FIFOs, pixels (power of two)
@@ -68,7 +69,7 @@ module dm_pipeline
   parameter int unsigned T_WAYS     = 4,    // tex_cache ways: 4 x 32 x 4 x 128 B = 64 KiB
   parameter int unsigned T_WIN_WORDS = 2,   // tex_cache data-RAM window, words (+1 overlap word)
   parameter int unsigned H_LINE_BYTES = 32, // height_cache line (one AXI burst per fill)
-  parameter int unsigned H_SETS     = 512,  // height_cache sets (power of two)
+  parameter int unsigned H_SETS     = 512,  // height_cache sets per ring (power of two)
   parameter int unsigned H_WAYS     = 4,    // height_cache ways: 512 x 4 x 32 B = 64 KiB
   parameter int unsigned AXI_DATA_W = 64,   // AXI data width (both ports; <= 256: tex_cache window)
   parameter int unsigned TRI_W      = (TRIS > 1) ? $clog2(TRIS) : 1  // triangle id width
@@ -282,8 +283,9 @@ module dm_pipeline
 
   assign f0_rd = !f0_empty && ray_ready;
 
-  traverse_system #(.RAY_ID_W(SLOT_W), .AXI_ID_W(H_ID_W), .AXI_DATA_W(AXI_DATA_W),
-                    .LINE_BYTES(H_LINE_BYTES), .SETS(H_SETS), .WAYS(H_WAYS)) u_trav (
+  traverse_rings #(.N_RINGS(N_RINGS), .RAY_ID_W(SLOT_W), .AXI_ID_W(H_ID_W),
+                   .AXI_DATA_W(AXI_DATA_W), .LINE_BYTES(H_LINE_BYTES), .SETS(H_SETS),
+                   .WAYS(H_WAYS)) u_trav (
     .clk_i, .rst_ni,
     .cfg_method_i, .cfg_width_i, .cfg_height_i, .cfg_root_level_i, .cfg_bits16_i, .cfg_base_i,
     .cfg_level_off_i, .cfg_root_code_i, .cfg_iter_cap_i,

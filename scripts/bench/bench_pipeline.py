@@ -89,7 +89,7 @@ def run_case(scene: str, view: str, mip: bool, a: Any) -> dict[str, Any]:
     dm_pipeline.check_limits(frame)
     ref = shade.render(frame, cam, jobs=a.jobs)
     img, st = dm_pipeline.render_rtl(frame, cam, frags=ref.frags, tile=a.tile,
-                                     latency=a.latency)
+                                     latency=a.latency, rings=a.rings)
     bad = dm_pipeline.compare(img.out, ref.out)
     n = max(st["pixels"], 1)
     bursts = max(int(st["axi_h_bursts"]), 1)
@@ -205,6 +205,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--jobs", default="2", help="processes for the model render (default 2)")
     ap.add_argument("--out", type=Path, default=ROOT / "out" / "bench" / "pipeline.json")
     ap.add_argument("--md", type=Path, default=ROOT / "out" / "bench" / "pipeline.md")
+    ap.add_argument("--rings", default="1", help="traverse rings (dm_pipeline N_RINGS: 1 or 2; "
+                    "default 1)")
     a = ap.parse_args(argv)
     a.scene_list = csv_list("--scenes", a.scenes, tuple(scenes.SCENES))
     a.view_list = csv_list("--views", a.views, tuple(camera.VIEWS))
@@ -216,10 +218,13 @@ def main(argv: list[str] | None = None) -> int:
     a.tile = positive("--tile", a.tile, 4096)
     a.latency = positive("--latency", a.latency, 10_000)
     a.jobs = positive("--jobs", a.jobs, 64)
-    mhz, clock_src = dm_pipeline.pipeline_clock()
+    a.rings = positive("--rings", a.rings, max(dm_pipeline.RINGS))
+    if a.rings not in dm_pipeline.RINGS:
+        fail(PROG, f"--rings must be one of {', '.join(map(str, dm_pipeline.RINGS))}")
+    mhz, clock_src = dm_pipeline.pipeline_clock(a.rings)
 
     t0 = time.time()
-    dm_pipeline.build(dm_pipeline.default_variant(), quiet=False)
+    dm_pipeline.build(dm_pipeline.default_variant(), quiet=False, rings=a.rings)
     cases = [(s, v, m) for s in a.scene_list for v in a.view_list for m in mips]
     prog = Progress(f"{PROG}: {len(cases)} frames", len(cases))
     rows = []
@@ -228,12 +233,14 @@ def main(argv: list[str] | None = None) -> int:
         prog.update(k + 1)
     s = summary(rows)
     res = {"settings": {"method": a.method, "map": a.map, "image": a.image, "tile": a.tile,
-                        "latency": a.latency, "clock_mhz": mhz, "clock_source": clock_src},
+                        "latency": a.latency, "rings": a.rings, "clock_mhz": mhz,
+                        "clock_source": clock_src},
            "cases": rows, "summary": s, "targets": verdicts(s),
            "seconds": round(time.time() - t0, 1)}
     a.out.parent.mkdir(parents=True, exist_ok=True)
     a.out.write_text(json.dumps(res, indent=1) + "\n")
-    md = (f"Pipeline (dm_pipeline), method {a.method}, {a.map}x{a.map} maps, {a.image}x{a.image} "
+    md = (f"Pipeline (dm_pipeline, {a.rings} traverse ring{'s' if a.rings > 1 else ''}), method "
+          f"{a.method}, {a.map}x{a.map} maps, {a.image}x{a.image} "
           f"image, {a.tile}x{a.tile} fragment blocks, AXI latency {a.latency}, cold caches; "
           f"Mpixels/s per pipeline at {mhz:g} MHz ({clock_src}).\n\n" + table(rows, mhz) + "\n\n"
           + "\n".join(f"- {x}" for x in res["targets"]) + "\n")

@@ -13,7 +13,7 @@ Targets (the scope prefix is where each simulator puts the unit):
                          --waves): TOP.traverse_system...
   traverse_system.gtkw   the cocotb test (make waves TEST=traverse_system): traverse_system...
   dm_pipeline.gtkw       the cocotb test of the whole pipeline (make waves TEST=dm_pipeline, SLOTS=32):
-                         dm_pipeline..., the traverse groups under dm_pipeline.u_trav
+                         dm_pipeline..., the traverse groups under dm_pipeline.u_trav.g_ring[0].u_sys (ring 0)
 
 Signal names follow GTKWave's facility names for Verilator's FST: a vector is `name[msb:0]`, an
 unpacked array element `arr.arr[i]`, a packed struct member `s.member` (--trace-structs).  The
@@ -145,7 +145,7 @@ TARGETS = {
                          "scripts/ray_steps.py --waves)"),
     "traverse_system": ("traverse_system", None, {"ID": 16, "AXI_ID": 4},
                         "traverse_system in its cocotb test (make waves TEST=traverse_system)"),
-    "dm_pipeline": ("dm_pipeline", "u_trav", {"ID": 5, "AXI_ID": 4, "SLOT": 5, "SLOT1": 6},
+    "dm_pipeline": ("dm_pipeline", "u_trav.g_ring[0].u_sys", {"ID": 5, "AXI_ID": 4, "SLOT": 5, "SLOT1": 6},
                     "dm_pipeline in its cocotb test, SLOTS=32 (make waves TEST=dm_pipeline)"),
 }
 

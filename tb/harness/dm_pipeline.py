@@ -32,6 +32,7 @@ or ``waves`` (FST tracing and assertions).  File formats: ``tb/harness/pipeline_
 """
 from __future__ import annotations
 
+import functools
 import json
 import os
 import subprocess
@@ -54,14 +55,30 @@ from .build import (BUILD, COMMON_SOURCES, HARNESS_DIR, ROOT, VARIANTS, HarnessS
 
 #: dm_pipeline parameters the harness is built with (passed as -G and as -DHARNESS_*).
 PARAMS: dict[str, int] = {"PIX_W": 20, "H_ID_W": 4, "T_ID_W": 6, "AXI_DATA_W": 64}
+#: Traverse rings (dm_pipeline's N_RINGS) the harness can be built with.
+RINGS = (1, 2)
 
-#: The harness (tb/harness/pipeline_harness.cpp) for tb.harness.build.build.
-PIPELINE = HarnessSpec(
-    name="pipeline", top="dm_pipeline", rtl_dirs=("common", "fp", "traverse", "cache", "mip", "pipe"),
-    sources=(HARNESS_DIR / "pipeline_harness.cpp", HARNESS_DIR / "pipeline_harness.h",
-             *COMMON_SOURCES),
-    binary="pipeline_harness", params=PARAMS, build_dir=BUILD / "pipeline",
-    required=(ROOT / "rtl" / "pipe" / "dm_pipeline.sv",))
+
+@functools.cache
+def pipeline_spec(rings: int = 1) -> HarnessSpec:
+    """The harness (tb/harness/pipeline_harness.cpp) for :func:`tb.harness.build.build`, with
+    ``rings`` traverse rings (N_RINGS; 1 builds into build/harness/pipeline, n into
+    build/harness/pipeline-r<n>)."""
+    if rings not in RINGS:
+        raise ValueError(f"rings must be one of {', '.join(map(str, RINGS))}, got {rings}")
+    params = PARAMS if rings == 1 else {**PARAMS, "N_RINGS": rings}
+    return HarnessSpec(
+        name="pipeline" if rings == 1 else f"pipeline-r{rings}", top="dm_pipeline",
+        rtl_dirs=("common", "fp", "traverse", "cache", "mip", "pipe"),
+        sources=(HARNESS_DIR / "pipeline_harness.cpp", HARNESS_DIR / "pipeline_harness.h",
+                 *COMMON_SOURCES),
+        binary="pipeline_harness", params=params,
+        build_dir=BUILD / ("pipeline" if rings == 1 else f"pipeline-r{rings}"),
+        required=(ROOT / "rtl" / "pipe" / "dm_pipeline.sv",))
+
+
+#: The one-ring harness.
+PIPELINE = pipeline_spec(1)
 
 #: The configuration ports in the input file's order with their widths (pipeline_harness.h
 #: PIPH_CFG_PORTS; the harness checks every width).
@@ -241,15 +258,17 @@ def to_pixels(out: npt.NDArray[Any]) -> RtlPixels:
 
 # ---- build and run -------------------------------------------------------------------------------
 
-def build(variant: str = "fast", *, force: bool = False, quiet: bool = True) -> Path:
-    """Build the pipeline harness variant (``fast``, ``checked`` or ``waves``) when its inputs
-    changed (:func:`tb.harness.build.build`); returns the binary."""
-    return _build.build(PIPELINE, variant, force=force, quiet=quiet)
+def build(variant: str = "fast", *, force: bool = False, quiet: bool = True,
+          rings: int = 1) -> Path:
+    """Build the pipeline harness variant (``fast``, ``checked`` or ``waves``) with ``rings``
+    traverse rings when its inputs changed (:func:`tb.harness.build.build`); returns the
+    binary."""
+    return _build.build(pipeline_spec(rings), variant, force=force, quiet=quiet)
 
 
-def is_built(variant: str = "fast") -> bool:
+def is_built(variant: str = "fast", rings: int = 1) -> bool:
     """True when the variant's binary is current."""
-    return _build.is_built(PIPELINE, variant)
+    return _build.is_built(pipeline_spec(rings), variant)
 
 
 def default_variant(checked: bool | None = None, waves: bool = False) -> str:
@@ -278,17 +297,18 @@ def run_pixels(fi: FrameImage, frags: npt.NDArray[np.uint32], *,
                t_err: Sequence[tuple[int, int]] = (), timeout: int | None = None,
                stall: int | None = None, checked: bool | None = None,
                waves: str | Path | None = None, progress: ProgressFn | None = None,
-               binary: Path | None = None) -> tuple[RtlPixels, dict[str, Any]]:
+               binary: Path | None = None, rings: int = 1) -> tuple[RtlPixels, dict[str, Any]]:
     """Run one frame's fragments ((N, 16) words, :func:`fragment_words`) through the harness.
 
     Every knob is a harness option (``pipeline_harness --help``): AXI latency of both ports (or
     per port), random gaps and stalls, SLVERR ranges, the clock watchdogs ``timeout`` (whole
     frame) and ``stall`` (between two pixels).  ``progress(done, total)`` is called about twice a
-    second.  Raises :class:`tb.harness.build.RtlEngineError` with the harness's message when the
-    run fails (a watchdog, a pixel lost or returned twice, an AXI protocol violation).
+    second.  ``rings``: the harness with that many traverse rings (:data:`RINGS`).  Raises
+    :class:`tb.harness.build.RtlEngineError` with the harness's message when the run fails (a
+    watchdog, a pixel lost or returned twice, an AXI protocol violation).
     """
     variant = default_variant(checked, waves is not None)
-    exe = binary if binary is not None else build(variant)
+    exe = binary if binary is not None else build(variant, rings=rings)
     n = len(frags)
     with tempfile.TemporaryDirectory(prefix="dm_pipeline_") as tmp:
         tdir = Path(tmp)
@@ -335,6 +355,7 @@ def run_pixels(fi: FrameImage, frags: npt.NDArray[np.uint32], *,
     if progress is not None:
         progress(n, n)
     stats["harness_variant"] = variant
+    stats["rings"] = rings
     stats["harness_wall_seconds"] = round(wall, 3)
     return to_pixels(out), stats
 
@@ -458,9 +479,9 @@ def _shown(path: Path) -> str:
         return str(path)
 
 
-def routed_clock(results: Path | None = None) -> tuple[float, str] | None:
-    """The routed fmax of :data:`FPGA_TOP` with one pipeline (``rings`` 1) in the committed
-    results (default :data:`ROUTED_RESULTS`), in MHz, and where it comes from; None without one."""
+def routed_clock(results: Path | None = None, rings: int = 1) -> tuple[float, str] | None:
+    """The routed fmax of :data:`FPGA_TOP` with ``rings`` traverse rings in the committed results
+    (default :data:`ROUTED_RESULTS`), in MHz, and where it comes from; None without one."""
     path = results or ROUTED_RESULTS
     try:
         doc = json.loads(path.read_text())
@@ -469,7 +490,7 @@ def routed_clock(results: Path | None = None) -> tuple[float, str] | None:
     tops = doc.get("tops") if isinstance(doc, dict) else None
     for top in tops if isinstance(tops, list) else []:
         if not (isinstance(top, dict) and top.get("name") == FPGA_TOP
-                and top.get("rings", 1) == 1):
+                and top.get("rings", 1) == rings):
             continue
         f = _positive(top.get("fmax_mhz"))
         if f is None:
@@ -479,15 +500,22 @@ def routed_clock(results: Path | None = None) -> tuple[float, str] | None:
                                          else None, top.get("router"),
                                          f"RTL of {top['rtl_commit']}" if "rtl_commit" in top
                                          else None) if x)
-        return f, f"routed fmax of {FPGA_TOP} ({where}{': ' + run if run else ''})"
+        return f, (f"routed fmax of {FPGA_TOP}{f' ({rings} rings)' if rings > 1 else ''} "
+                   f"({where}{': ' + run if run else ''})")
     return None
 
 
-def pipeline_clock() -> tuple[float, str]:
-    """The clock to quote Mpixels/s at, and where it comes from: the top's place-and-route fmax
-    of a local ``make synth`` (:func:`synth_clock`), else the project's committed routed result
-    (:func:`routed_clock`), else a local report's bound from the blocks, else the paper's 84 MHz,
-    labelled as assumed."""
+def pipeline_clock(rings: int = 1) -> tuple[float, str]:
+    """The clock to quote Mpixels/s at, and where it comes from.  One ring: the top's
+    place-and-route fmax of a local ``make synth`` (:func:`synth_clock`), else the project's
+    committed routed result (:func:`routed_clock`), else a local report's bound from the blocks,
+    else the paper's 84 MHz, labelled as assumed.  More rings: the committed routed result of
+    that top, else the paper's 84 MHz, labelled as assumed (a local report and the blocks'
+    bounds describe the one-ring top)."""
+    if rings != 1:
+        return routed_clock(rings=rings) or (
+            PAPER_MHZ, f"assumed: the paper's {PAPER_MHZ:g} MHz (no routed result of the "
+            f"{rings}-ring top in {_shown(ROUTED_RESULTS)})")
     return synth_clock(blocks=False) or routed_clock() or synth_clock() or (
         PAPER_MHZ, f"assumed: the paper's {PAPER_MHZ:g} MHz (no routed result: neither "
         f"{_shown(ROUTED_RESULTS)} nor out/synth/report.json)")
