@@ -2,7 +2,8 @@
 // pidm_top: the displacement-mapping core as a system IP: registers on AXI4-Lite, fragments in
 // and pixels out over AXI4, the two memory read masters of the pipeline, an interrupt line.
 //
-//   s_axil (CPU) -> pidm_regs (generated from rtl/top/pidm_regs.rdl) -> cfg_* / frame / control
+//   s_axil (CPU) -> pidm_regs (generated from rtl/top/pidm_regs.rdl) -> pidm_cfg -> cfg_*;
+//                   frame descriptor, control, status, interrupts, statistics
 //   m_axi_f (AR/R)  -> frag_dma -> dm_pipeline -> pix_dma -> m_axi_w (AW/W/B)
 //                                  |  m_axi_h (AR/R): height pyramid
 //                                  |  m_axi_t (AR/R): colour and normal textures
@@ -48,7 +49,13 @@ module pidm_top
   import f24_pkg::*;
   import traverse_pkg::MAX_LEVELS;
   import traverse_pkg::ITER_W;
+  import traverse_pkg::DIM_W;
+  import traverse_pkg::LVL_W;
+  import traverse_pkg::CODE_W;
   import pipe_pkg::TEX_LEVELS;
+  import pipe_pkg::TEX_DIM_W;
+  import pipe_pkg::TEX_ADDR_W;
+  import pipe_pkg::MIP_LEVEL_W;
   import shade_pkg::shade_cfg_t;
   import pidm_pkg::*;
 #(
@@ -309,60 +316,52 @@ module pidm_top
   logic [PIX_W-1:0]    px_id;
   logic [2:0][7:0]     px_rgb;
   logic [ITER_W-1:0]   px_iters;
-  logic [MAX_LEVELS-1:0][31:0] level_off;
-  logic [1:0][TEX_LEVELS-1:0][15:0] tex_w, tex_h;
-  logic [1:0][TEX_LEVELS-1:0][31:0] tex_off;
-  logic [1:0][31:0]    tex_base;
-  f24_t [1:0]          tex_su, tex_sv;
-  shade_cfg_t          shade;
-  logic                tt_we_q;
   logic [47:0] st_cycles, st_pixels, st_iters, st_h_hits, st_h_misses, st_h_bytes,
                st_t_requests, st_t_quad_hits, st_t_line_misses, st_t_texel_hits, st_t_bytes;
   logic [31:0] h_araddr, t_araddr;
 
-  for (genvar k = 0; k < MAX_LEVELS; k++) begin : g_hlev
-    assign level_off[k] = hw.HEIGHT.LEVEL_OFF[k].val.value;
-  end
-  for (genvar x = 0; x < 2; x++) begin : g_tex
-    assign tex_su[x]   = hw.TEX[x].SU.val.value;
-    assign tex_sv[x]   = hw.TEX[x].SV.val.value;
-    assign tex_base[x] = hw.TEX[x].BASE.val.value;
-    for (genvar k = 0; k < TEX_LEVELS; k++) begin : g_lev
-      assign tex_off[x][k] = hw.TEX[x].LEVEL_OFF[k].val.value;
-      assign tex_w[x][k]   = hw.TEX[x].LEVEL_SIZE[k].width.value;
-      assign tex_h[x][k]   = hw.TEX[x].LEVEL_SIZE[k].height.value;
-    end
-  end
-  assign shade = '{light_x: hw.SHADE.LIGHT_X.val.value, light_y: hw.SHADE.LIGHT_Y.val.value,
-                   light_z: hw.SHADE.LIGHT_Z.val.value, ambient: hw.SHADE.AMBIENT.val.value,
-                   kd: hw.SHADE.KD.val.value, ks: hw.SHADE.KS.val.value,
-                   d: hw.SHADE.D.val.value, d2: hw.SHADE.D2.val.value};
+  // the configuration registers as dm_pipeline's cfg_* ports and triangle-table write port
+  logic [3:0]                        c_method;
+  logic [DIM_W-1:0]                  c_width, c_height;
+  logic [LVL_W-1:0]                  c_root_level;
+  logic                              c_bits16, c_mip_en, tt_we;
+  logic [31:0]                       c_base;
+  logic [MAX_LEVELS-1:0][31:0]       c_level_off;
+  logic [CODE_W-1:0]                 c_root_code;
+  logic [ITER_W-1:0]                 c_iter_cap;
+  f24_t                              c_depth, tt_wdata;
+  logic [MIP_LEVEL_W:0]              c_levels_colour, c_levels_normal;
+  shade_cfg_t                        c_shade;
+  logic [2:0][7:0]                   c_miss_rgb;
+  f24_t [1:0]                        c_tex_su, c_tex_sv;
+  logic [1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0]  c_tex_w, c_tex_h;
+  logic [1:0][TEX_ADDR_W-1:0]        c_tex_base;
+  logic [1:0][TEX_LEVELS-1:0][TEX_ADDR_W-1:0] c_tex_off;
+  logic [TRI_W:0]                    tt_waddr;
 
-  // TT_WRITE: the new value is in the register the clock after the write (swmod)
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) tt_we_q <= 1'b0;
-    else         tt_we_q <= hw.TT_WRITE.data.swmod;
-  end
+  pidm_cfg #(.TRIS(TRIS), .TRI_W(TRI_W)) u_cfg (
+    .clk_i, .rst_ni, .hwif_i(hw),
+    .cfg_method_o(c_method), .cfg_width_o(c_width), .cfg_height_o(c_height),
+    .cfg_root_level_o(c_root_level), .cfg_bits16_o(c_bits16), .cfg_base_o(c_base),
+    .cfg_level_off_o(c_level_off), .cfg_root_code_o(c_root_code), .cfg_iter_cap_o(c_iter_cap),
+    .cfg_depth_o(c_depth), .cfg_mip_en_o(c_mip_en), .cfg_levels_colour_o(c_levels_colour),
+    .cfg_levels_normal_o(c_levels_normal), .cfg_shade_o(c_shade), .cfg_miss_rgb_o(c_miss_rgb),
+    .cfg_tex_su_o(c_tex_su), .cfg_tex_sv_o(c_tex_sv), .cfg_tex_width_o(c_tex_w),
+    .cfg_tex_height_o(c_tex_h), .cfg_tex_base_o(c_tex_base), .cfg_tex_level_off_o(c_tex_off),
+    .tt_we_o(tt_we), .tt_waddr_o(tt_waddr), .tt_wdata_o(tt_wdata));
 
   dm_pipeline #(
     .PIX_W(PIX_W), .TRIS(TRIS), .H_ID_W(H_ID_W), .T_ID_W(T_ID_W), .AXI_DATA_W(DATA_W)
   ) u_pipe (
     .clk_i, .rst_ni(rst_ni && pipe_rst_nq),
-    .cfg_method_i(hw.HEIGHT.MODE.method.value),
-    .cfg_width_i(hw.HEIGHT.SIZE.width.value), .cfg_height_i(hw.HEIGHT.SIZE.height.value),
-    .cfg_root_level_i(hw.HEIGHT.MODE.root_level.value),
-    .cfg_bits16_i(hw.HEIGHT.MODE.bits16.value), .cfg_base_i(hw.HEIGHT.BASE.val.value),
-    .cfg_level_off_i(level_off), .cfg_root_code_i(hw.HEIGHT.ROOT.root_code.value),
-    .cfg_iter_cap_i(hw.HEIGHT.ROOT.iter_cap.value), .cfg_depth_i(hw.HEIGHT.DEPTH.val.value),
-    .cfg_mip_en_i(hw.SHADE.MIP.mip_en.value),
-    .cfg_levels_colour_i(hw.SHADE.MIP.levels_colour.value),
-    .cfg_levels_normal_i(hw.SHADE.MIP.levels_normal.value), .cfg_shade_i(shade),
-    .cfg_miss_rgb_i({hw.SHADE.MISS_RGB.blue.value, hw.SHADE.MISS_RGB.green.value,
-                     hw.SHADE.MISS_RGB.red.value}),
-    .cfg_tex_su_i(tex_su), .cfg_tex_sv_i(tex_sv), .cfg_tex_width_i(tex_w),
-    .cfg_tex_height_i(tex_h), .cfg_tex_base_i(tex_base), .cfg_tex_level_off_i(tex_off),
-    .tt_we_i(tt_we_q), .tt_waddr_i(hw.TT_WRITE.addr.value[TRI_W:0]),
-    .tt_wdata_i(hw.TT_WRITE.data.value),
+    .cfg_method_i(c_method), .cfg_width_i(c_width), .cfg_height_i(c_height),
+    .cfg_root_level_i(c_root_level), .cfg_bits16_i(c_bits16), .cfg_base_i(c_base),
+    .cfg_level_off_i(c_level_off), .cfg_root_code_i(c_root_code), .cfg_iter_cap_i(c_iter_cap),
+    .cfg_depth_i(c_depth), .cfg_mip_en_i(c_mip_en), .cfg_levels_colour_i(c_levels_colour),
+    .cfg_levels_normal_i(c_levels_normal), .cfg_shade_i(c_shade), .cfg_miss_rgb_i(c_miss_rgb),
+    .cfg_tex_su_i(c_tex_su), .cfg_tex_sv_i(c_tex_sv), .cfg_tex_width_i(c_tex_w),
+    .cfg_tex_height_i(c_tex_h), .cfg_tex_base_i(c_tex_base), .cfg_tex_level_off_i(c_tex_off),
+    .tt_we_i(tt_we), .tt_waddr_i(tt_waddr), .tt_wdata_i(tt_wdata),
     .frag_valid_i(fr_valid), .frag_ready_o(fr_ready), .frag_id_i(fr_id), .frag_u0_i(fr_u0),
     .frag_v0_i(fr_v0), .frag_pl0_i(fr_pl0), .frag_tri_i(fr_tri), .frag_tbn_i(fr_tbn),
     .frag_view_i(fr_view),
@@ -458,11 +457,11 @@ module pidm_top
 
   assign irq_o = hw.INTR_STATE.intr;
 
-  // unused: the ERROR flags' values (software reads them), the upper TT_WRITE address bits,
-  // frag_dma's delivered count and pix_dma's taken count (the bound checker reads them)
+  // unused: the ERROR flags' values (software reads them), frag_dma's delivered count and
+  // pix_dma's taken count (the bound checker reads them)
   logic unused;
   assign unused = ^{hw.ERROR.h_axi.value, hw.ERROR.t_axi.value, hw.ERROR.frag_dma.value,
                     hw.ERROR.fb_write.value, hw.ERROR.bad_config.value,
-                    hw.TT_WRITE.addr.value[7:TRI_W+1], frag_sent, pix_taken};
+                    frag_sent, pix_taken};
 
 endmodule
