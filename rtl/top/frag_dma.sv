@@ -1,20 +1,20 @@
 // SPDX-License-Identifier: Apache-2.0
-// frag_dma: reads a frame's fragment records (pidm_pkg: FRAG_BYTES = 64 bytes each) from memory over an AXI4
-// read master and hands them to dm_pipeline's fragment port (valid / ready).
+// frag_dma: reads a frame's fragment records (pidm_pkg: FRAG_BYTES = 64 bytes each) from memory
+// over an AXI4 read master and hands them to dm_pipeline's fragment port (valid / ready).
 //
 //   start_i: base_i (record aligned), count_i records -> AR bursts (INCR, full data width,
 //   at most MAX_BURST records, never across a 4 KiB boundary) -> R beats -> beat FIFO
 //   (FIFO_RECS records) -> assembly register (BEATS beats) -> output register -> frag_*_o
 //
 // A burst is requested only when the beat FIFO has room for every beat requested and not yet
-// taken out (inflight_q counts beats from the request until they leave the FIFO's write side,
-// so R is always taken: rready is 1 whenever a burst is outstanding).  Records leave in
+// taken (inflight_q counts beats from the request until their R handshake, when they enter
+// the FIFO), so R is always taken: rready is 1.  Records leave in
 // memory order; the output register holds its payload while frag_valid_o && !frag_ready_i.
 //
 // Ending.  The frame ends (done_o high for its last clock, then busy_o falls) when
 //   - every record was delivered (sent_o = count_i), or
 //   - a read beat came back with RRESP != OKAY (err_o, held until the next start_i), or
-//   - abort_i was raised (held until busy_o falls);
+//   - abort_i was raised during the frame (one clock suffices: it is remembered);
 // in the last two cases no further burst is requested, the beats of the bursts already
 // requested are taken and dropped (the AXI port is idle when busy_o falls), the records in
 // the FIFO and the partly assembled one are dropped, and only a record already in the output
