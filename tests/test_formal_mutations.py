@@ -8,7 +8,16 @@ it is `<` (pipe_credit's room_o: one item more than LIMIT), and a FIFO with its 
 register that refills it from the wrong RAM address (traverse_fifo's hd_q: the words come out
 of order, nothing else changes); in circ_queue the pointers wrap one entry late (at DEPTH + 1:
 ptr_model), and push lane k writes at tail + k whether the lanes below it push or not (the
-entries land out of place: data_order or trk_in_mem, whichever the counterexample shows).  A
+entries land out of place: data_order or trk_in_mem, whichever the counterexample shows).  The
+FIFO as the pipeline's free list of slot ids writes a word that goes straight into its head
+register into the RAM too (the id is there twice: fl_exact, or the RAM count checks first).
+In the caches: height_cache keeps an MSHR in MSHR_FILL after its fill instead of freeing it (a
+dropped MSHR free: fill_state_once) and allocates an MSHR for a miss to a line an MSHR already
+holds (the merge rule dropped: merge_no_alloc or mshr_unique); cache_axi_read keeps a line's
+error bit after its last beat (the MSHR's next line is marked bad: r_err_marks, or the
+wrapper's inv_slave a clock earlier), with AR_REG drops the AR register's valid before arready
+(ar_stable), and does not advance the epoch at a reset (a beat of a read from before the reset
+is taken for the current epoch's: stale_ignored, or the wrapper's inv_stale first).  A
 further case removes one property from what the front end sees and shows the driver refuses the
 run (the guard against properties dropped silently).
 
@@ -56,6 +65,36 @@ MUTANTS = {
         "pos[k] = ptr_add(wp_q, 32'(n_push));",
         "pos[k] = ptr_add(wp_q, k);",
         "circ_queue:bmc_multi", "(?:data_order|trk_in_mem)"),
+    "mshr_free_dropped": (
+        "rtl/cache/height_cache.sv",
+        "MSHR_FILL: mshr_state_q[i] <= MSHR_FREE;",
+        "MSHR_FILL: ;",
+        "height_cache:bmc_small", "fill_state_once"),
+    "mshr_merge_dropped": (
+        "rtl/cache/height_cache.sv",
+        "&& !(|way_hit) && !(|mshr_match) && free_any;",
+        "&& !(|way_hit) && free_any;",
+        "height_cache:bmc_small", "(?:merge_no_alloc|mshr_unique)"),
+    "axi_error_sticky": (
+        "rtl/cache/cache_axi_read.sv",
+        "        rerr_q[r_idx_o] <= 1'b0;\n",
+        "",
+        "cache_axi_read:bmc_head", "(?:r_err_marks|inv_slave)"),
+    "free_list_dup": (
+        "rtl/traverse/traverse_fifo.sv",
+        "assign m_wr    = wr_i && !(hd_load && !m_any);",
+        "assign m_wr    = wr_i;",
+        "traverse_fifo:bmc_free", "(?:fl_exact|fl_total|ram_count|ram_room)"),
+    "axi_epoch_frozen": (
+        "rtl/cache/cache_axi_read.sv",
+        "if (!rst_ni && !in_rst_q) epoch_q <= epoch_q + EPOCH_W'(1);",
+        "if (!rst_ni && !in_rst_q) epoch_q <= epoch_q;",
+        "cache_axi_read:bmc_rst", "(?:stale_ignored|inv_stale|r_beat_expected|r_outstanding)"),
+    "axi_ar_dropped": (
+        "rtl/cache/cache_axi_read.sv",
+        "if (!ar_v_q || m_axi_arready) ar_v_q <= ap_v_q;",
+        "ar_v_q <= ap_v_q;",
+        "cache_axi_read:bmc_reg", "ar_stable"),
 }
 
 
@@ -93,7 +132,8 @@ def test_mutant_fails_with_trace(name: str):
     assert p.returncode == 1, out
     assert out.strip().splitlines()[-1].endswith(" 1 failed"), out
     assert re.search(rf"{re.escape(task)} \(\w+\) FAIL", out), out
-    assert re.search(rf"failed assertion \S*u_assert\.{prop}\b", out), out
+    # a property of a bound checker (u_assert) or of the formal wrapper (the top)
+    assert re.search(rf"failed assertion (?:\S*u_assert\.|\w+_formal\.){prop}\b", out), out
     traces = [root / m for m in re.findall(r"^  trace: (\S+\.vcd)$", out, re.M)]
     assert traces, out
     import pywellen

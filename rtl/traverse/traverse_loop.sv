@@ -48,8 +48,7 @@
 //   S0   height address base + off[k] + (cy * side_k + cx) * bytes  -> lk_* registers (S1)
 //        (traverse_addr); exit boundary integer (cx + (sx > 0)) << k -> S1
 //   S1   lookup presented (lk_valid_o, lk_addr_o, lk_wide_o)
-//        exit boundaries bx                                         f24_from_int S1 -> S2
-//   S2   bx - u0                                                    f24_add      S2 -> S4
+//        bx - u0 (fixed point, see below)                           traverse_bdiff S1 -> S4
 //   S4   response {valid, hit, err, data} (LOOKUP_LAT = 3 after S1)
 //        H = code / (2^bits - 1) (unorm8 as unorm16 code * 257)     f24_from_unorm S4 -> S5
 //        tx = (bx - u0) * (1/du)                                    f24_mul      S4 -> S5
@@ -74,29 +73,32 @@
 //        until the first crossing; XOR of the ends) (descend_pick)
 //   S13  child estimate c = floor(p) >> k' (p clipped to the node); its entry / exit
 //        boundary integers (c + (s < 0 / s > 0)) << k'; the child's range at level k'
-//   S14  entry / exit boundaries                                    f24_from_int S14 -> S15
+//   S14  entry / exit boundary - u0 (fixed point, see below)        traverse_bdiff S14 -> S17
 //        the three cells locate's correction chooses from
-//   S15  boundary - u0                                              f24_add      S15 -> S17
 //   S16  the state's copies for S17
 //   S17  (boundary - u0) * (1/du)                                   f24_mul      S17 -> S18
 //        next state (hit / miss / down / cross / lookup miss / cap)
 //   S18  locate's correction (the descent's cell); retire to the result FIFO, or merge with a
 //        new ray, -> S0
 // Positions on an axis that does not move are u0 itself (the model's np.where(s != 0, p, p0)).
-// Float units per axis pair: 6 f24_from_int, 10 f24_add, 10 f24_mul, 4 f24_to_index, 1
-// f24_from_unorm, 1 f24_one_minus; without XOR_PATH 8 f24_add, 8 f24_mul, 2 f24_to_index (the
-// position at t_end and its floor serve the XOR descent only: XOR_PATH = 0 leaves them out and
-// runs the XOR descent, park-xor's, as the multi-level descent).  The plane's 1 - H is
-// f24_one_minus, not an adder: the same word for every H in [0, 1] in one clock instead of two,
-// so the cache's third clock of lookup latency (its block RAMs' read registers copied before
-// the tag compare) costs the ring no stage.  Up to two positions per axis are computed in a pass:
-// at t_end for the XOR descent, and one at the time the pass uses, t_new (locate, the hit) or
-// the plane (selective's P1 for a crossing; a pass needs never both).  Picking that time first
-// (S6) costs the ring a stage: 19 deep (the paper's is 15), because the descent's locate (time,
-// position, floor, clip, level, boundaries, two crossing times, correction) follows the plane's
-// arrival as a dependent chain of 12 clocks (S6 - S18).  (Computing the positions at t and at
-// the plane both, and picking one in parallel, took a ring of 18 and two f24_mul, two f24_add
-// more per axis pair.)
+// Boundary - u0 (the model's ar.sub(ar.from_int(b), p0) of a crossing time) is traverse_bdiff:
+// u0 taken to 19 fraction bits (the last one sticky), subtracted from the integer boundary and
+// rounded once, the same f24 word as f24_from_int and f24_add for every boundary in [0, 2^15]
+// and u0 in [0, 2^15) (the ring's only operands: the checker flags others), in the same 3 clocks;
+// the entry and exit boundaries of a descent share one unit's shift of u0.
+// Float units per axis pair: 6 boundary differences (4 traverse_bdiff), 4 f24_add, 10 f24_mul, 4
+// f24_to_index, 1 f24_from_unorm, 1 f24_one_minus; without XOR_PATH 2 f24_add, 8 f24_mul, 2
+// f24_to_index (the position at t_end and its floor serve the XOR descent only: XOR_PATH = 0 leaves
+// them out and runs the XOR descent, park-xor's, as the multi-level descent).  The plane's 1 - H is
+// f24_one_minus, not an adder: the same word for every H in [0, 1] in one clock instead of two, so
+// the cache's third clock of lookup latency (its block RAMs' read registers copied before the tag
+// compare) costs the ring no stage.  Up to two positions per axis are computed in a pass: at t_end
+// for the XOR descent, and one at the time the pass uses, t_new (locate, the hit) or the plane
+// (selective's P1 for a crossing; a pass needs never both).  Picking that time first (S6) costs the
+// ring a stage: 19 deep (the paper's is 15), because the descent's locate (time, position, floor,
+// clip, level, boundaries, two crossing times, correction) follows the plane's arrival as a
+// dependent chain of 12 clocks (S6 - S18).  (Computing the positions at t and at the plane both,
+// and picking one in parallel, took a ring of 18 and two f24_mul, two f24_add more per axis pair.)
 //
 // Lookup misses: the ray keeps its state and goes round again; the iteration is not counted
 // (iterations = height reads that returned data).  A read error finishes the ray with err = 1.
@@ -259,7 +261,6 @@ module traverse_loop
   // ---- registered reads and short pipelines (see the header) ---------------------------------
   logic       live0_q;             // S0 holds a live ray: it looks its height up
   logic [IDX_W-1:0] kbx1_q, kby1_q;  // S1: exit boundary integers
-  f24_pair_t  uv2_q;               // S2
   f24_pair_t  inv3_q, inv4_q;      // S3 (block RAM read register), S4
   dirs_t      d5_q;                // S5
   tval_t      tmap5_q;             // S5: t_map
@@ -285,7 +286,6 @@ module traverse_loop
   logic [LVL_W-1:0] nk13_q, nk14_q;  // S13, S14: the descent's new level (computed in S12)
   logic [IDX_W-1:0] kben_x14_q, kbex_x14_q, kben_y14_q, kbex_y14_q;  // S14 (computed in S13)
   sidx_pair_t c14_q, lo14_q, hi14_q;  // S14: child estimate, the child's range at level k'
-  f24_pair_t  uv15_q;              // S15
   desc_t      dsc_q [18:15];       // S15 - S18: new level, locate's candidates (from S14)
   f24_pair_t  inv16_q, inv17_q;    // S16 (block RAM read register), S17
   status_t    st17_q;              // S17
@@ -324,12 +324,14 @@ module traverse_loop
     end
   end
 
-  // ---- S1, S2: bx - u0 -------------------------------------------------------------------------
-  f24_t bx_f, by_f, dx_f, dy_f;
-  f24_from_int #(.W(IDX_W)) u_bx (.clk_i, .en_i(lv_q[1]), .k_i(kbx1_q), .y_o(bx_f));
-  f24_from_int #(.W(IDX_W)) u_by (.clk_i, .en_i(lv_q[1]), .k_i(kby1_q), .y_o(by_f));
-  f24_add u_dx (.clk_i, .en_i(lv_q[2] || lv_q[3]), .a_i(bx_f), .b_i(f24_neg(uv2_q.u)), .y_o(dx_f));
-  f24_add u_dy (.clk_i, .en_i(lv_q[2] || lv_q[3]), .a_i(by_f), .b_i(f24_neg(uv2_q.v)), .y_o(dy_f));
+  // ---- S1 - S3: bx - u0 (traverse_bdiff: fixed point, the word of f24_from_int, f24_add) -------
+  f24_t dx_f [1], dy_f [1];
+  logic bx_en;  // S1 - S3 hold a live ray
+  assign bx_en = lv_q[1] || lv_q[2] || lv_q[3];
+  traverse_bdiff #(.W(IDX_W), .NB(1)) u_dx (.clk_i, .en_i(bx_en), .b_i('{kbx1_q}),
+                                            .u_i(uv_q[1].u), .y_o(dx_f));
+  traverse_bdiff #(.W(IDX_W), .NB(1)) u_dy (.clk_i, .en_i(bx_en), .b_i('{kby1_q}),
+                                            .u_i(uv_q[1].v), .y_o(dy_f));
 
   // ---- S4: the height arrives; tx ---------------------------------------------------------------
   // One 16-bit conversion for both widths: code / 255 = (code * 257) / 65535, the same number, so
@@ -340,8 +342,8 @@ module traverse_loop
   f24_from_unorm #(.W(16)) u_h (.clk_i, .en_i(ok4),
     .k_i(cfg_i.bits16 ? rs_data_i : {rs_data_i[7:0], rs_data_i[7:0]}), .y_o(h));
   // (tx, ty for every live ray: whether its read returned data is known only in this stage)
-  f24_mul u_tx (.clk_i, .en_i(lv_q[4]), .a_i(dx_f), .b_i(inv4_q.u), .y_o(tx_raw));
-  f24_mul u_ty (.clk_i, .en_i(lv_q[4]), .a_i(dy_f), .b_i(inv4_q.v), .y_o(ty_raw));
+  f24_mul u_tx (.clk_i, .en_i(lv_q[4]), .a_i(dx_f[0]), .b_i(inv4_q.u), .y_o(tx_raw));
+  f24_mul u_ty (.clk_i, .en_i(lv_q[4]), .a_i(dy_f[0]), .b_i(inv4_q.v), .y_o(ty_raw));
 
   // ---- S5: plane = 1 - H (f24_one_minus: f24_add(1, -H) for H in [0, 1], in one clock) --------
   f24_one_minus u_plane (.clk_i, .en_i(ok_q[5]), .a_i(h), .y_o(plane));
@@ -469,20 +471,20 @@ module traverse_loop
   logic [LVL_W-1:0] dd13;  // levels descended
   assign dd13 = n13_q.k - nk13_q;
 
-  // ---- S14, S15, S17: crossing times of the child's boundaries -------------------------------
-  f24_t ben_x, bex_x, ben_y, bex_y;
-  f24_from_int #(.W(IDX_W)) u_ben_x (.clk_i, .en_i(dn_q[14]), .k_i(kben_x14_q), .y_o(ben_x));
-  f24_from_int #(.W(IDX_W)) u_bex_x (.clk_i, .en_i(dn_q[14]), .k_i(kbex_x14_q), .y_o(bex_x));
-  f24_from_int #(.W(IDX_W)) u_ben_y (.clk_i, .en_i(dn_q[14]), .k_i(kben_y14_q), .y_o(ben_y));
-  f24_from_int #(.W(IDX_W)) u_bex_y (.clk_i, .en_i(dn_q[14]), .k_i(kbex_y14_q), .y_o(bex_y));
-
+  // ---- S14 - S17: crossing times of the child's boundaries -----------------------------------
+  // entry and exit boundary - u0 per axis, one traverse_bdiff (its shift of u0 shared)
+  f24_t dbx [2], dby [2];  // {entry, exit} - u0
   f24_t den_x, dex_x, den_y, dex_y, ten_x, tex_x, ten_y, tex_y;
-  logic bd_en;  // S15 - S16 hold a descent
-  assign bd_en = dn_q[15] || dn_q[16];
-  f24_add u_den_x (.clk_i, .en_i(bd_en), .a_i(ben_x), .b_i(f24_neg(uv15_q.u)), .y_o(den_x));
-  f24_add u_dex_x (.clk_i, .en_i(bd_en), .a_i(bex_x), .b_i(f24_neg(uv15_q.u)), .y_o(dex_x));
-  f24_add u_den_y (.clk_i, .en_i(bd_en), .a_i(ben_y), .b_i(f24_neg(uv15_q.v)), .y_o(den_y));
-  f24_add u_dex_y (.clk_i, .en_i(bd_en), .a_i(bex_y), .b_i(f24_neg(uv15_q.v)), .y_o(dex_y));
+  logic bd_en;  // S14 - S16 hold a descent
+  assign bd_en = dn_q[14] || dn_q[15] || dn_q[16];
+  traverse_bdiff #(.W(IDX_W), .NB(2)) u_dbx (.clk_i, .en_i(bd_en), .b_i('{kben_x14_q, kbex_x14_q}),
+                                             .u_i(uv_q[14].u), .y_o(dbx));
+  traverse_bdiff #(.W(IDX_W), .NB(2)) u_dby (.clk_i, .en_i(bd_en), .b_i('{kben_y14_q, kbex_y14_q}),
+                                             .u_i(uv_q[14].v), .y_o(dby));
+  assign den_x = dbx[0];
+  assign dex_x = dbx[1];
+  assign den_y = dby[0];
+  assign dex_y = dby[1];
   f24_mul u_ten_x (.clk_i, .en_i(dn_q[17]), .a_i(den_x), .b_i(inv17_q.u), .y_o(ten_x));
   f24_mul u_tex_x (.clk_i, .en_i(dn_q[17]), .a_i(dex_x), .b_i(inv17_q.u), .y_o(tex_x));
   f24_mul u_ten_y (.clk_i, .en_i(dn_q[17]), .a_i(den_y), .b_i(inv17_q.v), .y_o(ten_y));
@@ -583,7 +585,6 @@ module traverse_loop
   always_ff @(posedge clk_i) begin
     // S18 -> S0: the ray coming round (S17 wrote a crossing's node), its descent's node, or the
     // new ray
-    if (lv_q[1]) uv2_q  <= uv_q[1];
     if (lv_q[2]) inv3_q <= inv_q[sl_q[2]];
     if (lv_q[3]) inv4_q <= inv3_q;
     if (lv_q[4]) begin
@@ -658,7 +659,6 @@ module traverse_loop
     end
     // S14 -> S15: locate's three candidates
     if (dn_q[14]) begin
-      uv15_q    <= uv_q[14];
       dsc_q[15] <= '{nk: nk14_q,
         x: '{back: CELL_W'(clip_idx(c14_q.x - dir_val(d14_q.sx), lo14_q.x, hi14_q.x)),
              est:  CELL_W'(c14_q.x),

@@ -13,7 +13,11 @@
 //                           retires;
 //   live_ray_has_no_result  a ray that is not done has none of the final flags (S17 relies on
 //                           it);
-//   descent_not_admitted    the descent's node and a new ray never take one entry in one clock.
+//   descent_not_admitted    the descent's node and a new ray never take one entry in one clock;
+//   bdiff_operand_in_range  traverse_bdiff (boundary - u0) takes boundaries in [0, 2^15] and
+//                           positions u0 in [+-0, 2^15) only, where it gives f24_add's word: the
+//                           exit boundaries of a live ray in S1, the child's boundaries of a
+//                           descent in S14.
 `ifndef SYNTHESIS
 module traverse_loop_assert
   import f24_pkg::*;
@@ -31,10 +35,24 @@ module traverse_loop_assert
   input logic                          retire_i,
   input logic                          live17_i,
   input logic                          st17_final_i,       // st17: hit, invalid, capped or err
-  input logic                          down18_i            // down18_q
+  input logic                          down18_i,           // down18_q
+  input logic                          lv1_i,              // lv_q[1]: a live ray in S1
+  input logic [IDX_W-1:0]              kb1_i [2],          // kbx1_q, kby1_q
+  input f24_t                          uv1_i [2],          // uv_q[1]
+  input logic                          dn14_i,             // dn_q[14]: a descent in S14
+  input logic [IDX_W-1:0]              kb14_i [4],         // kben_x14_q, kbex_x14_q, kben_y, kbex_y
+  input f24_t                          uv14_i [2]          // uv_q[14]
 );
 
   localparam int unsigned D = LOOP_DEPTH;
+
+  // A boundary in [0, 2^15], a position u0 in [+-0, 2^15) (cells and u0 inside the pyramid).
+  function automatic logic bound_ok(input logic [IDX_W-1:0] b);
+    return b <= IDX_W'(1 << 15);
+  endfunction
+  function automatic logic pos_ok(input logic [7:0] se);  // a position's sign and exponent
+    return (se[6:0] < 7'(63 + 15)) && (!se[7] || se[6:0] == 7'd0);
+  endfunction
 
   // lk_d_q[i]: a request i + 1 clocks ago.
   logic [LOOKUP_LAT-1:0] lk_d_q;
@@ -64,6 +82,16 @@ module traverse_loop_assert
         else $error("traverse_loop: a live ray in S17 has a final flag");
       descent_not_admitted: assert (!down18_i || !admit_i)
         else $error("traverse_loop: a descent and a new ray in one clock");
+      bdiff_operand_in_range: assert (
+          (!lv1_i || (bound_ok(kb1_i[0]) && bound_ok(kb1_i[1])
+                      && pos_ok(uv1_i[0][23:16]) && pos_ok(uv1_i[1][23:16])))
+          && (!dn14_i || (bound_ok(kb14_i[0]) && bound_ok(kb14_i[1]) && bound_ok(kb14_i[2])
+                          && bound_ok(kb14_i[3]) && pos_ok(uv14_i[0][23:16])
+                          && pos_ok(uv14_i[1][23:16]))))
+        else $error("traverse_loop: boundary - u0 operands out of range (S1 %0d %0d %h %h, %s",
+                    kb1_i[0], kb1_i[1], uv1_i[0], uv1_i[1],
+                    $sformatf("S14 %0d %0d %0d %0d %h %h)", kb14_i[0], kb14_i[1], kb14_i[2],
+                              kb14_i[3], uv14_i[0], uv14_i[1]));
     end
   end
 
@@ -72,5 +100,8 @@ endmodule
 bind traverse_loop traverse_loop_assert u_assert (
   .clk_i, .rst_ni, .sl_i(sl_q), .lk_valid_i(lk_valid_o), .rs_valid_i, .ok5_i(ok_q[5]), .h_i(h),
   .admit_i(admit), .v_last_i(v_q[LOOP_DEPTH-1]), .retire_i(retire), .live17_i(live17),
-  .st17_final_i(st17.hit || st17.invalid || st17.capped || st17.err), .down18_i(down18_q));
+  .st17_final_i(st17.hit || st17.invalid || st17.capped || st17.err), .down18_i(down18_q),
+  .lv1_i(lv_q[1]), .kb1_i('{kbx1_q, kby1_q}), .uv1_i('{uv_q[1].u, uv_q[1].v}), .dn14_i(dn_q[14]),
+  .kb14_i('{kben_x14_q, kbex_x14_q, kben_y14_q, kbex_y14_q}),
+  .uv14_i('{uv_q[14].u, uv_q[14].v}));
 `endif
