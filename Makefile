@@ -165,12 +165,15 @@ mutate: $(STAMP)
 # cache hit rates, memory bytes, per-pixel figures, Mpixels/s).  SCENE, ANGLE, METHOD, SIZE select
 # the work; HEIGHTMAP (and TEXTURE) render a user's height map instead of a procedural scene;
 # RINGS=2 renders through the pipeline with two traverse rings (dm_pipeline N_RINGS).
+# TOP=system renders through the system top rtl/top/pidm_top.sv (registers written as a CPU would,
+# fragments and pixels through its AXI DMA engines) instead of the pipeline top.
 # render.py exits 1 if the RTL and the model differ, 2 on a user error (one line); approximate
 # methods (parallax, relief, ...) have no RTL: render them with scripts/render.py --engine f64.
 SCENE  ?= rocks
 ANGLE  ?= oblique
 METHOD ?= park
 SIZE   ?= 256
+TOP    ?= pipeline
 HEIGHTMAP ?=
 TEXTURE   ?=
 RINGS     ?= 1
@@ -179,7 +182,7 @@ RENDER_SRC = $(if $(HEIGHTMAP),--heightmap "$(HEIGHTMAP)" $(if $(TEXTURE),--text
 render: $(STAMP)
 	@mkdir -p out
 	@$(ENV) $(PY) scripts/render.py $(RENDER_SRC) --angle $(ANGLE) --method $(METHOD) \
-	    --size $(SIZE) --engine rtl --rings $(RINGS) --out out/render.png \
+	    --size $(SIZE) --engine rtl --top $(TOP) --rings $(RINGS) --out out/render.png \
 	    --model-out out/render_model.png --stats out/render_stats.json
 
 # A moving height field through the RTL (scripts/animate.py; docs/pyramid.md "make animate"): per

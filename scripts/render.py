@@ -7,7 +7,7 @@ or through the pipeline RTL (Verilator) and the model, pixel for pixel compared.
             [--angle front|oblique|grazing|DEGREES] [--method NAME] [--engine f64|f24|rtl]
             [--size N] [--map-size N] [--out PNG] [--stats JSON] [--jobs J] [--no-mip]
             [--model-out PNG] [--latency L|MIN:MAX] [--rtl-tile N] [--rtl-blocks rows|morton]
-            [--checked] [--clock-mhz F]
+            [--checked] [--clock-mhz F] [--top pipeline|system]
 
 Writes the image (PNG through OpenImageIO) and a JSON of statistics.  Without --texture a user
 height map is coloured by a height ramp (``height_ramp``); without --normal-map its normals come
@@ -30,7 +30,11 @@ routed result at all, the paper's 84 MHz, labelled as assumed); ``paper_clock_mh
 progress line (rewritten in place with ``\r``) is shown only when stderr is a terminal.
 Exit status 1 when the RTL and the model differ (the count and the first pixels are printed).
 Approximate methods have no RTL: --engine rtl with one is a user error (exit 2); render them on
-the model with --engine f64.
+the model with --engine f64.  ``--top system`` runs the frame through the system top
+``rtl/top/pidm_top.sv`` instead (``tb.harness.pidm_system``: the harness plays the CPU, writing
+the registers, and the memory behind its four AXI ports; the image is read back from the
+framebuffer and the status buffer; ``cycles`` then counts from the CTRL.start write to the
+interrupt).
 """
 from __future__ import annotations
 
@@ -158,6 +162,8 @@ def main(argv: list[str] | None = None) -> int:
                     "memory ports, L or MIN:MAX clocks drawn per burst (default 20)")
     ap.add_argument("--rtl-tile", default="16", help="--engine rtl: fragments in N x N pixel "
                     "blocks, as a tiled rasteriser emits them (1: raster order; default 16)")
+    ap.add_argument("--top", default="pipeline", choices=("pipeline", "system"),
+                    help="--engine rtl: the pipeline top (default) or the system top pidm_top")
     ap.add_argument("--rtl-blocks", default="rows", choices=("rows", "morton"),
                     help="--engine rtl: order of the blocks: row by row (default) or along a "
                     "Z-order curve")
@@ -203,6 +209,8 @@ def main(argv: list[str] | None = None) -> int:
         rings = 0
     if rings not in (1, 2):
         fail(PROG, f"--rings must be 1 or 2, got {args.rings!r}")
+    if args.top == "system" and rings != 1:
+        fail(PROG, "--rings goes with --top pipeline (the system harness has one ring)")
     clock: tuple[float, str] | None = None
     if args.clock_mhz is not None:
         try:
@@ -215,7 +223,7 @@ def main(argv: list[str] | None = None) -> int:
     if not rtl:
         for opt, given in (("--model-out", args.model_out is not None),
                            ("--checked", args.checked), ("--clock-mhz", args.clock_mhz),
-                           ("--rings", rings != 1)):
+                           ("--top", args.top != "pipeline"), ("--rings", rings != 1)):
             if given:
                 fail(PROG, f"{opt} goes with --engine rtl")
     angle = parse_angle(args.angle)
@@ -288,7 +296,7 @@ def main(argv: list[str] | None = None) -> int:
             dm_pipeline.check_limits(frame)
         except dm_pipeline.RtlLimitError as e:
             fail(PROG, f"the pipeline RTL cannot render this: {e}")
-        built = build_harness(args.checked, args.quiet, rings)
+        built = build_harness(args.checked, args.quiet, rings, args.top)
         if built is None:
             return 1
         build_secs = built
@@ -360,14 +368,21 @@ def checked_variant(checked: bool) -> bool:
     return checked or os.environ.get("RTL_ENGINE_CHECKED", "") == "1"
 
 
-def build_harness(checked: bool, quiet: bool, rings: int = 1) -> float | None:
-    """Build the pipeline harness (``rings`` traverse rings) if it is not current; the seconds
-    it took (None: it failed, the reason is printed)."""
-    from tb.harness import dm_pipeline
+def build_harness(checked: bool, quiet: bool, rings: int = 1, top: str = "pipeline"
+                  ) -> float | None:
+    """Build the pipeline harness (``rings`` traverse rings), or the system harness, if it is
+    not current; the seconds it took (None: it failed, the reason is printed)."""
+    from tb.harness import dm_pipeline, pidm_system
     from tb.harness.build import RtlEngineError
 
     variant = dm_pipeline.default_variant(checked_variant(checked))
     try:
+        if top == "system":
+            if pidm_system.is_built(variant):
+                return 0.0
+            t0 = time.time()
+            pidm_system.build(variant, quiet=quiet)
+            return time.time() - t0
         if dm_pipeline.is_built(variant, rings):
             return 0.0
         t0 = time.time()
@@ -385,15 +400,16 @@ def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Ima
                clock: tuple[float, str] | None, build_secs: float, t_start: float,
                rings: int = 1) -> int:
     """--engine rtl: the frame through the pipeline RTL, compared with the model's image."""
-    from tb.harness import dm_pipeline
+    from tb.harness import dm_pipeline, pidm_system
     from tb.harness.build import RtlEngineError
 
     checked = checked_variant(args.checked)
+    rtl_mod: Any = pidm_system if args.top == "system" else dm_pipeline
     n = len(ref.frags)
     prog = Progress(f"render {frame.method}/rtl {cam.image_w}x{cam.image_h} (pixels)", n,
                     enabled=progress_wanted(args.quiet))
     try:
-        img, st = dm_pipeline.render_rtl(frame, cam, frags=ref.frags, tile=rtl_tile,
+        img, st = rtl_mod.render_rtl(frame, cam, frags=ref.frags, tile=rtl_tile,
                                          blocks=args.rtl_blocks,
                                          latency=latency, seed=seed, checked=checked,
                                          rings=rings, progress=lambda d, t: prog.update(d))
@@ -427,7 +443,7 @@ def render_rtl(args: Any, frame: shade.Frame, cam: camera.Camera, ref: shade.Ima
         "image": [cam.image_h, cam.image_w], "image_pixels": cam.image_w * cam.image_h,
         "covered_pixels": len(ref.frags), "hits": st["hits"], "invalid": st["invalid"],
         "errors": st["errors"], "axi_latency": list(latency), "fragment_tile": rtl_tile,
-        "fragment_blocks": args.rtl_blocks,
+        "fragment_blocks": args.rtl_blocks, "top": args.top,
         "harness_variant": st["harness_variant"], "rings": rings,
         "method": frame.method, "engine": "rtl", "scene": model_stats["scene"],
         "angle": model_stats["angle"], "elevation_deg": model_stats["elevation_deg"],

@@ -1,0 +1,467 @@
+// SPDX-License-Identifier: Apache-2.0
+// pidm_top: the displacement-mapping core as a system IP: registers on AXI4-Lite, fragments in
+// and pixels out over AXI4, the two memory read masters of the pipeline, an interrupt line.
+//
+//   s_axil (CPU) -> pidm_regs (generated from rtl/top/pidm_regs.rdl) -> pidm_cfg -> cfg_*;
+//                   frame descriptor, control, status, interrupts, statistics
+//   m_axi_f (AR/R)  -> frag_dma -> dm_pipeline -> pix_dma -> m_axi_w (AW/W/B)
+//                                  |  m_axi_h (AR/R): height pyramid
+//                                  |  m_axi_t (AR/R): colour and normal textures
+//   irq_o = INTR_STATE & INTR_ENABLE (frame_done, axi_error)
+//
+// Memory formats (rtl/top/pidm_pkg.sv): the fragment record (64 bytes; pixel id {y, x}, x in
+// FB_LAYOUT.xbits bits), the framebuffer pixel (RGBA8 at FB_BASE + y * FB_PITCH + 4 x) and the
+// status word (STATUS_BASE + the same offset, when FB_LAYOUT.status_en).
+//
+// The frame (state_q):
+//   IDLE --CTRL.start, configuration good--> RUN: frag_dma and pix_dma take the frame
+//     descriptor; busy.  CTRL.start with a bad configuration (below) sets ERROR.bad_config and
+//     INTR_STATE.axi_error and stays IDLE.
+//   RUN: frag_dma streams the records into dm_pipeline, pix_dma writes its pixels.  The frame
+//     ends when frag_dma is done, dm_pipeline holds no pixel and pix_dma is idle (every write's B
+//     response back): IDLE, INTR_STATE.frame_done.  An AXI error (RRESP / BRESP other than OKAY
+//     on any of the four masters) sets its ERROR flag and INTR_STATE.axi_error at once and
+//     ends the frame early: frag_dma stops reading fragments (it drains its reads), the
+//     fragments already in the pipeline finish and are written, then IDLE with frame_done.
+//   CTRL.soft_reset in RUN -> STOP: frag_dma stops and drains, pix_dma drops the pixels that
+//     still come (a write already offered completes), dm_pipeline finishes the fragments inside
+//     (every AXI read it issued is answered: no port is left mid-transaction); then FLUSH.
+//     CTRL.soft_reset in IDLE -> FLUSH.  FLUSH: dm_pipeline is reset for one clock (its caches
+//     forget every line, its statistics return to 0, its slot free list refills, during which
+//     it takes no fragment), then IDLE; no frame_done.  Configuration registers and ERROR keep
+//     their values.  The caches are not otherwise invalidated: after changing the pyramid or
+//     the textures in memory, software writes CTRL.soft_reset before the next frame.
+// Every wait above is bounded (the masters' outstanding transactions, the pipeline's slots), so
+// none can hang while the AXI slaves answer.
+//
+// Bad configuration (checked at CTRL.start; ERROR.bad_config): FRAG_COUNT 0 or wider than
+// CNT_W; FRAG_BASE not 64-byte aligned; FB_BASE, STATUS_BASE or FB_PITCH not 4-byte aligned;
+// FB_PITCH of 2^PITCH_W bytes or more;
+// FB_LAYOUT.xbits > PIX_W; HEIGHT.MODE.method not a method code (0 .. 9); a texture's MIP level
+// count 0 or above TEX_LEVELS; a height map of width or height 0.  The buffer bases' bits above
+// ADDR_W are ignored (the register map's 64-bit addresses serve every ADDR_W).
+//
+// Configuration registers feed dm_pipeline's cfg_* inputs directly: they must not change while
+// STATUS.busy is 1 (the driver's obligation, as for dm_pipeline).  The pipeline's height and
+// texture addresses are 32 bits (traverse_pkg::ADDR_W, pipe_pkg::TEX_ADDR_W): its masters
+// reach the first 4 GiB of the ADDR_W space (upper address bits 0).
+module pidm_top
+  import f24_pkg::*;
+  import traverse_pkg::MAX_LEVELS;
+  import traverse_pkg::ITER_W;
+  import traverse_pkg::DIM_W;
+  import traverse_pkg::LVL_W;
+  import traverse_pkg::CODE_W;
+  import pipe_pkg::TEX_LEVELS;
+  import pipe_pkg::TEX_DIM_W;
+  import pipe_pkg::TEX_ADDR_W;
+  import pipe_pkg::MIP_LEVEL_W;
+  import shade_pkg::shade_cfg_t;
+  import pidm_pkg::*;
+#(
+  parameter int unsigned ADDR_W     = 32,  // AXI address width of the four masters (>= 32)
+  parameter int unsigned DATA_W     = 64,  // AXI data width of the four masters (64 .. 256)
+  parameter int unsigned PIX_W      = 24,  // pixel id width (<= FRAG_ID_BITS)
+  parameter int unsigned TRIS       = 16,  // triangle table entries
+  parameter int unsigned F_ID_W     = 4,   // AXI ID widths: fragments, framebuffer writes,
+  parameter int unsigned W_ID_W     = 4,
+  parameter int unsigned H_ID_W     = 4,   //   heights,
+  parameter int unsigned T_ID_W     = 6,   //   textures (> log2 of tex_cache MSHRS)
+  parameter int unsigned ARCACHE    = 3,   // AxCACHE of every read / write: normal non-cacheable
+  parameter int unsigned AWCACHE    = 3,   //   bufferable
+  parameter int unsigned ARPROT     = 0,   // AxPROT: unprivileged, secure, data
+  parameter int unsigned AWPROT     = 0,
+  parameter int unsigned CNT_W      = 32,  // fragment / pixel counters of a frame
+  parameter int unsigned PITCH_W    = 20,  // framebuffer pitch: < 2^PITCH_W bytes
+  parameter int unsigned FRAG_BURST = 4,   // frag_dma: records per burst
+  parameter int unsigned FRAG_FIFO  = 8,   // frag_dma: records buffered
+  parameter int unsigned PIX_OUTST  = 8,   // pix_dma: writes outstanding
+  parameter int unsigned TRI_W      = (TRIS > 1) ? $clog2(TRIS) : 1
+) (
+  input  logic                 clk_i,
+  input  logic                 rst_ni,
+  output logic                 irq_o,
+  // AXI4-Lite slave: the registers (4 KiB)
+  input  logic                 s_axil_awvalid,
+  output logic                 s_axil_awready,
+  input  logic [11:0]          s_axil_awaddr,
+  input  logic [2:0]           s_axil_awprot,
+  input  logic                 s_axil_wvalid,
+  output logic                 s_axil_wready,
+  input  logic [31:0]          s_axil_wdata,
+  input  logic [3:0]           s_axil_wstrb,
+  output logic                 s_axil_bvalid,
+  input  logic                 s_axil_bready,
+  output logic [1:0]           s_axil_bresp,
+  input  logic                 s_axil_arvalid,
+  output logic                 s_axil_arready,
+  input  logic [11:0]          s_axil_araddr,
+  input  logic [2:0]           s_axil_arprot,
+  output logic                 s_axil_rvalid,
+  input  logic                 s_axil_rready,
+  output logic [31:0]          s_axil_rdata,
+  output logic [1:0]           s_axil_rresp,
+  // AXI4 read master: fragment records
+  output logic [F_ID_W-1:0]    m_axi_f_arid,
+  output logic [ADDR_W-1:0]    m_axi_f_araddr,
+  output logic [7:0]           m_axi_f_arlen,
+  output logic [2:0]           m_axi_f_arsize,
+  output logic [1:0]           m_axi_f_arburst,
+  output logic                 m_axi_f_arlock,
+  output logic [3:0]           m_axi_f_arcache,
+  output logic [2:0]           m_axi_f_arprot,
+  output logic [3:0]           m_axi_f_arqos,
+  output logic                 m_axi_f_arvalid,
+  input  logic                 m_axi_f_arready,
+  input  logic [F_ID_W-1:0]    m_axi_f_rid,
+  input  logic [DATA_W-1:0]    m_axi_f_rdata,
+  input  logic [1:0]           m_axi_f_rresp,
+  input  logic                 m_axi_f_rlast,
+  input  logic                 m_axi_f_rvalid,
+  output logic                 m_axi_f_rready,
+  // AXI4 write master: framebuffer and status words
+  output logic [W_ID_W-1:0]    m_axi_w_awid,
+  output logic [ADDR_W-1:0]    m_axi_w_awaddr,
+  output logic [7:0]           m_axi_w_awlen,
+  output logic [2:0]           m_axi_w_awsize,
+  output logic [1:0]           m_axi_w_awburst,
+  output logic                 m_axi_w_awlock,
+  output logic [3:0]           m_axi_w_awcache,
+  output logic [2:0]           m_axi_w_awprot,
+  output logic [3:0]           m_axi_w_awqos,
+  output logic                 m_axi_w_awvalid,
+  input  logic                 m_axi_w_awready,
+  output logic [DATA_W-1:0]    m_axi_w_wdata,
+  output logic [DATA_W/8-1:0]  m_axi_w_wstrb,
+  output logic                 m_axi_w_wlast,
+  output logic                 m_axi_w_wvalid,
+  input  logic                 m_axi_w_wready,
+  input  logic [W_ID_W-1:0]    m_axi_w_bid,
+  input  logic [1:0]           m_axi_w_bresp,
+  input  logic                 m_axi_w_bvalid,
+  output logic                 m_axi_w_bready,
+  // AXI4 read master: heights
+  output logic [H_ID_W-1:0]    m_axi_h_arid,
+  output logic [ADDR_W-1:0]    m_axi_h_araddr,
+  output logic [7:0]           m_axi_h_arlen,
+  output logic [2:0]           m_axi_h_arsize,
+  output logic [1:0]           m_axi_h_arburst,
+  output logic                 m_axi_h_arlock,
+  output logic [3:0]           m_axi_h_arcache,
+  output logic [2:0]           m_axi_h_arprot,
+  output logic [3:0]           m_axi_h_arqos,
+  output logic                 m_axi_h_arvalid,
+  input  logic                 m_axi_h_arready,
+  input  logic [H_ID_W-1:0]    m_axi_h_rid,
+  input  logic [DATA_W-1:0]    m_axi_h_rdata,
+  input  logic [1:0]           m_axi_h_rresp,
+  input  logic                 m_axi_h_rlast,
+  input  logic                 m_axi_h_rvalid,
+  output logic                 m_axi_h_rready,
+  // AXI4 read master: textures
+  output logic [T_ID_W-1:0]    m_axi_t_arid,
+  output logic [ADDR_W-1:0]    m_axi_t_araddr,
+  output logic [7:0]           m_axi_t_arlen,
+  output logic [2:0]           m_axi_t_arsize,
+  output logic [1:0]           m_axi_t_arburst,
+  output logic                 m_axi_t_arlock,
+  output logic [3:0]           m_axi_t_arcache,
+  output logic [2:0]           m_axi_t_arprot,
+  output logic [3:0]           m_axi_t_arqos,
+  output logic                 m_axi_t_arvalid,
+  input  logic                 m_axi_t_arready,
+  input  logic [T_ID_W-1:0]    m_axi_t_rid,
+  input  logic [DATA_W-1:0]    m_axi_t_rdata,
+  input  logic [1:0]           m_axi_t_rresp,
+  input  logic                 m_axi_t_rlast,
+  input  logic                 m_axi_t_rvalid,
+  output logic                 m_axi_t_rready
+);
+
+  if (ADDR_W < 32 || ADDR_W > 64 || PIX_W > FRAG_ID_BITS || PITCH_W > 32 || CNT_W > 32)
+  begin : g_check_params
+    $error("pidm_top: ADDR_W (32 .. 64), PIX_W, PITCH_W or CNT_W out of range");
+  end
+
+  // ---- registers ---------------------------------------------------------------------------
+  pidm_regs_pkg::pidm_regs__in_t  hw_in;
+  pidm_regs_pkg::pidm_regs__out_t hw;
+
+  pidm_regs u_regs (
+    .clk(clk_i), .rst_n(rst_ni),
+    .s_axil_awready, .s_axil_awvalid, .s_axil_awaddr, .s_axil_awprot,
+    .s_axil_wready, .s_axil_wvalid, .s_axil_wdata, .s_axil_wstrb,
+    .s_axil_bready, .s_axil_bvalid, .s_axil_bresp,
+    .s_axil_arready, .s_axil_arvalid, .s_axil_araddr, .s_axil_arprot,
+    .s_axil_rready, .s_axil_rvalid, .s_axil_rdata, .s_axil_rresp,
+    .hwif_in(hw_in), .hwif_out(hw));
+
+  // ---- the frame descriptor and its check ----------------------------------------------------
+  logic [63:0] frag_base64, fb_base64, st_base64;
+  assign frag_base64 = {hw.FRAME.FRAG_BASE.HI.val.value, hw.FRAME.FRAG_BASE.LO.val.value};
+  assign fb_base64   = {hw.FRAME.FB_BASE.HI.val.value, hw.FRAME.FB_BASE.LO.val.value};
+  assign st_base64   = {hw.FRAME.STATUS_BASE.HI.val.value, hw.FRAME.STATUS_BASE.LO.val.value};
+
+  if (ADDR_W < 64) begin : g_addr_hi   // address bits above ADDR_W: ignored
+    logic unused_hi;
+    assign unused_hi = ^{frag_base64[63:ADDR_W], fb_base64[63:ADDR_W], st_base64[63:ADDR_W]};
+  end
+
+  logic [31:0] frag_count, fb_pitch;
+  logic [4:0]  xbits;
+  assign frag_count = hw.FRAME.FRAG_COUNT.val.value;
+  assign fb_pitch   = hw.FRAME.FB_PITCH.val.value;
+  assign xbits      = hw.FRAME.FB_LAYOUT.xbits.value;
+
+  function automatic logic levels_bad(input logic [5:0] n);
+    return n == 6'd0 || 32'(n) > TEX_LEVELS;
+  endfunction
+
+  logic bad_cfg;
+  assign bad_cfg = frag_count == '0 || ((64'(frag_count) >> CNT_W) != 64'd0)
+                || frag_base64[$clog2(FRAG_BYTES)-1:0] != '0
+                || fb_base64[1:0] != 2'b00 || st_base64[1:0] != 2'b00 || fb_pitch[1:0] != 2'b00
+                || ((64'(fb_pitch) >> PITCH_W) != 64'd0)
+                || 32'(xbits) > PIX_W
+                || hw.HEIGHT.MODE.method.value > 4'(traverse_pkg::M_PARK_XOR)
+                || levels_bad(hw.SHADE.MIP.levels_colour.value)
+                || levels_bad(hw.SHADE.MIP.levels_normal.value)
+                || hw.HEIGHT.SIZE.width.value == '0 || hw.HEIGHT.SIZE.height.value == '0;
+
+  // ---- frame state -------------------------------------------------------------------------
+  typedef enum logic [1:0] {S_IDLE, S_RUN, S_STOP, S_FLUSH} state_e;
+  state_e state_q;
+
+  logic start_cmd, soft_rst, go, bad_start, frame_end, stop_end;
+  logic frag_busy, frag_err, pix_idle, pix_err, dm_idle;
+  logic err_seen_q, frag_err_q, pix_err_q;
+  logic h_err_beat, t_err_beat, frag_err_new, pix_err_new, any_err;
+
+  assign start_cmd = hw.CTRL.start.value;
+  assign soft_rst  = hw.CTRL.soft_reset.value;
+  assign go        = state_q == S_IDLE && start_cmd && !bad_cfg;
+  assign bad_start = state_q == S_IDLE && start_cmd && bad_cfg;
+
+  logic drained;   // frag_dma done, no pixel in the pipeline, every write answered
+  assign drained   = !frag_busy && dm_idle && pix_idle;
+  assign frame_end = state_q == S_RUN && !soft_rst && drained;
+  assign stop_end  = state_q == S_STOP && drained;
+
+  // dm_pipeline's reset: the system reset, or FLUSH (a register: no reset from logic paths)
+  logic pipe_rst_nq;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) pipe_rst_nq <= 1'b1;
+    else         pipe_rst_nq <= !(state_q == S_IDLE && !go && soft_rst) && !stop_end;
+  end
+
+  assign h_err_beat   = m_axi_h_rvalid && m_axi_h_rready && m_axi_h_rresp != 2'b00;
+  assign t_err_beat   = m_axi_t_rvalid && m_axi_t_rready && m_axi_t_rresp != 2'b00;
+  assign frag_err_new = frag_err && !frag_err_q;
+  assign pix_err_new  = pix_err && !pix_err_q;
+  assign any_err      = h_err_beat || t_err_beat || frag_err_new || pix_err_new;
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      state_q    <= S_IDLE;
+      err_seen_q <= 1'b0;
+      frag_err_q <= 1'b0;
+      pix_err_q  <= 1'b0;
+    end else begin
+      frag_err_q <= frag_err;
+      pix_err_q  <= pix_err;
+      unique case (state_q)
+        S_IDLE:  if (go) state_q <= S_RUN;
+                 else if (soft_rst) state_q <= S_FLUSH;
+        S_RUN:   if (soft_rst) state_q <= S_STOP;
+                 else if (drained) state_q <= S_IDLE;
+        S_STOP:  if (drained) state_q <= S_FLUSH;
+        S_FLUSH: state_q <= S_IDLE;
+        default: state_q <= S_IDLE;
+      endcase
+      if (go)           err_seen_q <= 1'b0;
+      else if (any_err) err_seen_q <= 1'b1;
+    end
+  end
+
+  // ---- fragments: frag_dma -> dm_pipeline ----------------------------------------------------
+  logic             fr_valid, fr_ready;
+  logic [PIX_W-1:0] fr_id;
+  f24_t             fr_u0, fr_v0, fr_pl0;
+  logic [TRI_W-1:0] fr_tri;
+  f24_t [8:0]       fr_tbn;
+  f24_t [2:0]       fr_view;
+  logic [CNT_W-1:0] frag_sent;
+
+  frag_dma #(
+    .ADDR_W(ADDR_W), .DATA_W(DATA_W), .ID_W(F_ID_W), .ARCACHE(ARCACHE), .ARPROT(ARPROT),
+    .MAX_BURST(FRAG_BURST), .FIFO_RECS(FRAG_FIFO), .CNT_W(CNT_W), .PIX_W(PIX_W), .TRI_W(TRI_W)
+  ) u_frag (
+    .clk_i, .rst_ni,
+    .start_i(go), .abort_i(state_q == S_STOP || soft_rst || err_seen_q || any_err),
+    .base_i(frag_base64[ADDR_W-1:0]), .count_i(CNT_W'(frag_count)),
+    .busy_o(frag_busy), .done_o(), .err_o(frag_err), .sent_o(frag_sent),
+    .frag_valid_o(fr_valid), .frag_ready_i(fr_ready), .frag_id_o(fr_id), .frag_u0_o(fr_u0),
+    .frag_v0_o(fr_v0), .frag_pl0_o(fr_pl0), .frag_tri_o(fr_tri), .frag_tbn_o(fr_tbn),
+    .frag_view_o(fr_view),
+    .m_axi_arid(m_axi_f_arid), .m_axi_araddr(m_axi_f_araddr), .m_axi_arlen(m_axi_f_arlen),
+    .m_axi_arsize(m_axi_f_arsize), .m_axi_arburst(m_axi_f_arburst),
+    .m_axi_arlock(m_axi_f_arlock), .m_axi_arcache(m_axi_f_arcache),
+    .m_axi_arprot(m_axi_f_arprot), .m_axi_arqos(m_axi_f_arqos),
+    .m_axi_arvalid(m_axi_f_arvalid), .m_axi_arready(m_axi_f_arready),
+    .m_axi_rid(m_axi_f_rid), .m_axi_rdata(m_axi_f_rdata), .m_axi_rresp(m_axi_f_rresp),
+    .m_axi_rlast(m_axi_f_rlast), .m_axi_rvalid(m_axi_f_rvalid), .m_axi_rready(m_axi_f_rready));
+
+  // ---- the pipeline ------------------------------------------------------------------------
+  logic                px_valid, px_ready, px_hit, px_inv, px_err;
+  logic [PIX_W-1:0]    px_id;
+  logic [2:0][7:0]     px_rgb;
+  logic [ITER_W-1:0]   px_iters;
+  logic [47:0] st_cycles, st_pixels, st_iters, st_h_hits, st_h_misses, st_h_bytes,
+               st_t_requests, st_t_quad_hits, st_t_line_misses, st_t_texel_hits, st_t_bytes;
+  logic [31:0] h_araddr, t_araddr;
+
+  // the configuration registers as dm_pipeline's cfg_* ports and triangle-table write port
+  logic [3:0]                        c_method;
+  logic [DIM_W-1:0]                  c_width, c_height;
+  logic [LVL_W-1:0]                  c_root_level;
+  logic                              c_bits16, c_mip_en, tt_we;
+  logic [31:0]                       c_base;
+  logic [MAX_LEVELS-1:0][31:0]       c_level_off;
+  logic [CODE_W-1:0]                 c_root_code;
+  logic [ITER_W-1:0]                 c_iter_cap;
+  f24_t                              c_depth, tt_wdata;
+  logic [MIP_LEVEL_W:0]              c_levels_colour, c_levels_normal;
+  shade_cfg_t                        c_shade;
+  logic [2:0][7:0]                   c_miss_rgb;
+  f24_t [1:0]                        c_tex_su, c_tex_sv;
+  logic [1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0]  c_tex_w, c_tex_h;
+  logic [1:0][TEX_ADDR_W-1:0]        c_tex_base;
+  logic [1:0][TEX_LEVELS-1:0][TEX_ADDR_W-1:0] c_tex_off;
+  logic [TRI_W:0]                    tt_waddr;
+
+  pidm_cfg #(.TRIS(TRIS), .TRI_W(TRI_W)) u_cfg (
+    .clk_i, .rst_ni, .hwif_i(hw),
+    .cfg_method_o(c_method), .cfg_width_o(c_width), .cfg_height_o(c_height),
+    .cfg_root_level_o(c_root_level), .cfg_bits16_o(c_bits16), .cfg_base_o(c_base),
+    .cfg_level_off_o(c_level_off), .cfg_root_code_o(c_root_code), .cfg_iter_cap_o(c_iter_cap),
+    .cfg_depth_o(c_depth), .cfg_mip_en_o(c_mip_en), .cfg_levels_colour_o(c_levels_colour),
+    .cfg_levels_normal_o(c_levels_normal), .cfg_shade_o(c_shade), .cfg_miss_rgb_o(c_miss_rgb),
+    .cfg_tex_su_o(c_tex_su), .cfg_tex_sv_o(c_tex_sv), .cfg_tex_width_o(c_tex_w),
+    .cfg_tex_height_o(c_tex_h), .cfg_tex_base_o(c_tex_base), .cfg_tex_level_off_o(c_tex_off),
+    .tt_we_o(tt_we), .tt_waddr_o(tt_waddr), .tt_wdata_o(tt_wdata));
+
+  dm_pipeline #(
+    .PIX_W(PIX_W), .TRIS(TRIS), .H_ID_W(H_ID_W), .T_ID_W(T_ID_W), .AXI_DATA_W(DATA_W)
+  ) u_pipe (
+    .clk_i, .rst_ni(rst_ni && pipe_rst_nq),
+    .cfg_method_i(c_method), .cfg_width_i(c_width), .cfg_height_i(c_height),
+    .cfg_root_level_i(c_root_level), .cfg_bits16_i(c_bits16), .cfg_base_i(c_base),
+    .cfg_level_off_i(c_level_off), .cfg_root_code_i(c_root_code), .cfg_iter_cap_i(c_iter_cap),
+    .cfg_depth_i(c_depth), .cfg_mip_en_i(c_mip_en), .cfg_levels_colour_i(c_levels_colour),
+    .cfg_levels_normal_i(c_levels_normal), .cfg_shade_i(c_shade), .cfg_miss_rgb_i(c_miss_rgb),
+    .cfg_tex_su_i(c_tex_su), .cfg_tex_sv_i(c_tex_sv), .cfg_tex_width_i(c_tex_w),
+    .cfg_tex_height_i(c_tex_h), .cfg_tex_base_i(c_tex_base), .cfg_tex_level_off_i(c_tex_off),
+    .tt_we_i(tt_we), .tt_waddr_i(tt_waddr), .tt_wdata_i(tt_wdata),
+    .frag_valid_i(fr_valid), .frag_ready_o(fr_ready), .frag_id_i(fr_id), .frag_u0_i(fr_u0),
+    .frag_v0_i(fr_v0), .frag_pl0_i(fr_pl0), .frag_tri_i(fr_tri), .frag_tbn_i(fr_tbn),
+    .frag_view_i(fr_view),
+    .px_valid_o(px_valid), .px_ready_i(px_ready), .px_id_o(px_id), .px_rgb_o(px_rgb),
+    .px_hit_o(px_hit), .px_invalid_o(px_inv), .px_err_o(px_err), .px_iters_o(px_iters),
+    .m_axi_h_arid, .m_axi_h_araddr(h_araddr), .m_axi_h_arlen, .m_axi_h_arsize,
+    .m_axi_h_arburst, .m_axi_h_arvalid, .m_axi_h_arready, .m_axi_h_rid, .m_axi_h_rdata,
+    .m_axi_h_rresp, .m_axi_h_rlast, .m_axi_h_rvalid, .m_axi_h_rready,
+    .m_axi_t_arid, .m_axi_t_araddr(t_araddr), .m_axi_t_arlen, .m_axi_t_arsize,
+    .m_axi_t_arburst, .m_axi_t_arvalid, .m_axi_t_arready, .m_axi_t_rid, .m_axi_t_rdata,
+    .m_axi_t_rresp, .m_axi_t_rlast, .m_axi_t_rvalid, .m_axi_t_rready,
+    .clr_stats_i(hw.CTRL.clear_stats.value),
+    .stat_cycles_o(st_cycles), .stat_pixels_o(st_pixels), .stat_iters_o(st_iters),
+    .stat_h_hits_o(st_h_hits), .stat_h_misses_o(st_h_misses), .stat_h_bytes_o(st_h_bytes),
+    .stat_t_requests_o(st_t_requests), .stat_t_quad_hits_o(st_t_quad_hits),
+    .stat_t_line_misses_o(st_t_line_misses), .stat_t_texel_hits_o(st_t_texel_hits),
+    .stat_t_bytes_o(st_t_bytes), .idle_o(dm_idle));
+
+  assign m_axi_h_araddr  = ADDR_W'(h_araddr);
+  assign m_axi_t_araddr  = ADDR_W'(t_araddr);
+  assign m_axi_h_arlock  = 1'b0;
+  assign m_axi_h_arcache = 4'(ARCACHE);
+  assign m_axi_h_arprot  = 3'(ARPROT);
+  assign m_axi_h_arqos   = 4'd0;
+  assign m_axi_t_arlock  = 1'b0;
+  assign m_axi_t_arcache = 4'(ARCACHE);
+  assign m_axi_t_arprot  = 3'(ARPROT);
+  assign m_axi_t_arqos   = 4'd0;
+
+  // ---- pixels: dm_pipeline -> pix_dma ------------------------------------------------------
+  logic [CNT_W-1:0] pix_taken, pix_written;
+
+  pix_dma #(
+    .ADDR_W(ADDR_W), .DATA_W(DATA_W), .ID_W(W_ID_W), .AWCACHE(AWCACHE), .AWPROT(AWPROT),
+    .MAX_OUTST(PIX_OUTST), .PIX_W(PIX_W), .PITCH_W(PITCH_W), .ITER_W(ITER_W), .CNT_W(CNT_W)
+  ) u_pix (
+    .clk_i, .rst_ni,
+    .start_i(go), .abort_i(state_q == S_STOP || soft_rst),
+    .fb_base_i(fb_base64[ADDR_W-1:0]), .st_base_i(st_base64[ADDR_W-1:0]),
+    .pitch_i(fb_pitch[PITCH_W-1:0]), .st_en_i(hw.FRAME.FB_LAYOUT.status_en.value),
+    .xbits_i(xbits), .idle_o(pix_idle), .err_o(pix_err), .pixels_o(pix_taken),
+    .written_o(pix_written),
+    .px_valid_i(px_valid), .px_ready_o(px_ready), .px_id_i(px_id), .px_rgb_i(px_rgb),
+    .px_hit_i(px_hit), .px_invalid_i(px_inv), .px_err_i(px_err), .px_iters_i(px_iters),
+    .m_axi_awid(m_axi_w_awid), .m_axi_awaddr(m_axi_w_awaddr), .m_axi_awlen(m_axi_w_awlen),
+    .m_axi_awsize(m_axi_w_awsize), .m_axi_awburst(m_axi_w_awburst),
+    .m_axi_awlock(m_axi_w_awlock), .m_axi_awcache(m_axi_w_awcache),
+    .m_axi_awprot(m_axi_w_awprot), .m_axi_awqos(m_axi_w_awqos),
+    .m_axi_awvalid(m_axi_w_awvalid), .m_axi_awready(m_axi_w_awready),
+    .m_axi_wdata(m_axi_w_wdata), .m_axi_wstrb(m_axi_w_wstrb), .m_axi_wlast(m_axi_w_wlast),
+    .m_axi_wvalid(m_axi_w_wvalid), .m_axi_wready(m_axi_w_wready), .m_axi_bid(m_axi_w_bid),
+    .m_axi_bresp(m_axi_w_bresp), .m_axi_bvalid(m_axi_w_bvalid), .m_axi_bready(m_axi_w_bready));
+
+  // ---- status, errors, interrupts, statistics ----------------------------------------------
+  always_comb begin
+    hw_in.HWCFG.pix_w.next      = 8'(PIX_W);
+    hw_in.HWCFG.tris.next       = 8'(TRIS);
+    hw_in.HWCFG.addr_w.next     = 8'(ADDR_W);
+    hw_in.HWCFG.data_bytes.next = 8'(DATA_W / 8);
+    hw_in.STATUS.busy.next      = state_q != S_IDLE;
+    hw_in.STATUS.idle.next      = dm_idle;
+    hw_in.ERROR.h_axi.hwset      = h_err_beat;
+    hw_in.ERROR.t_axi.hwset      = t_err_beat;
+    hw_in.ERROR.frag_dma.hwset   = frag_err_new;
+    hw_in.ERROR.fb_write.hwset   = pix_err_new;
+    hw_in.ERROR.bad_config.hwset = bad_start;
+    hw_in.PROGRESS.pixels.next   = 32'(pix_written);
+    hw_in.INTR_STATE.frame_done.next = frame_end || hw.INTR_TEST.frame_done.value;
+    hw_in.INTR_STATE.axi_error.next  = any_err || bad_start || hw.INTR_TEST.axi_error.value;
+    hw_in.STATS.cycles.LO.val.next        = st_cycles[31:0];
+    hw_in.STATS.cycles.HI.val.next        = st_cycles[47:32];
+    hw_in.STATS.pixels.LO.val.next        = st_pixels[31:0];
+    hw_in.STATS.pixels.HI.val.next        = st_pixels[47:32];
+    hw_in.STATS.iters.LO.val.next         = st_iters[31:0];
+    hw_in.STATS.iters.HI.val.next         = st_iters[47:32];
+    hw_in.STATS.h_hits.LO.val.next        = st_h_hits[31:0];
+    hw_in.STATS.h_hits.HI.val.next        = st_h_hits[47:32];
+    hw_in.STATS.h_misses.LO.val.next      = st_h_misses[31:0];
+    hw_in.STATS.h_misses.HI.val.next      = st_h_misses[47:32];
+    hw_in.STATS.h_bytes.LO.val.next       = st_h_bytes[31:0];
+    hw_in.STATS.h_bytes.HI.val.next       = st_h_bytes[47:32];
+    hw_in.STATS.t_requests.LO.val.next    = st_t_requests[31:0];
+    hw_in.STATS.t_requests.HI.val.next    = st_t_requests[47:32];
+    hw_in.STATS.t_quad_hits.LO.val.next   = st_t_quad_hits[31:0];
+    hw_in.STATS.t_quad_hits.HI.val.next   = st_t_quad_hits[47:32];
+    hw_in.STATS.t_line_misses.LO.val.next = st_t_line_misses[31:0];
+    hw_in.STATS.t_line_misses.HI.val.next = st_t_line_misses[47:32];
+    hw_in.STATS.t_texel_hits.LO.val.next  = st_t_texel_hits[31:0];
+    hw_in.STATS.t_texel_hits.HI.val.next  = st_t_texel_hits[47:32];
+    hw_in.STATS.t_bytes.LO.val.next       = st_t_bytes[31:0];
+    hw_in.STATS.t_bytes.HI.val.next       = st_t_bytes[47:32];
+  end
+
+  assign irq_o = hw.INTR_STATE.intr;
+
+  // unused: the ERROR flags' values (software reads them), frag_dma's delivered count and
+  // pix_dma's taken count (the bound checker reads them)
+  logic unused;
+  assign unused = ^{hw.ERROR.h_axi.value, hw.ERROR.t_axi.value, hw.ERROR.frag_dma.value,
+                    hw.ERROR.fb_write.value, hw.ERROR.bad_config.value,
+                    frag_sent, pix_taken};
+
+endmodule
