@@ -42,10 +42,9 @@ def directed() -> tuple[np.ndarray, np.ndarray]:
     us: list[int] = []
     tiny = [1 << 16, (1 << 16) | 1, (2 << 16) | 0xFFFF, (40 << 16) | 0x1234, (59 << 16) | 1,
             (60 << 16) | 1, (60 << 16) | 0xFFFF, (61 << 16) | 1]
-    for u in [0, NEG_ZERO, (NEG_ZERO | 5)] + tiny:
+    # (-0 with a fraction: a zero whatever its fraction holds)
+    for u in [0, NEG_ZERO, NEG_ZERO | 5, 7] + tiny:
         for b in (0, 1, 2, 3, 1 << 15, (1 << 16) - 1):
-            if u == (NEG_ZERO | 5):
-                u = NEG_ZERO  # -0 whatever its fraction holds
             bs.append(b)
             us.append(u)
     for e in range(44, 79):
