@@ -68,47 +68,19 @@ module axi_read_mux #(
     assign unused = ^{clk_i, rst_ni};
   end else begin : g_mux
     // ---- AR: round-robin grant, held until the handshake ---------------------------------------
-    logic [SEL_W-1:0] prio_q;    // the master looked at first
     logic [SEL_W-1:0] gnt;       // the granted master
-    logic             lock_q;    // the granted arvalid was up and not accepted last clock
-    logic [SEL_W-1:0] lock_sel_q;
-
-    always_comb begin
-      gnt = prio_q;
-      if (lock_q) begin
-        gnt = lock_sel_q;
-      end else begin
-        // the first requesting master at or after prio_q
-        for (int k = N - 1; k >= 0; k--) begin
-          automatic logic [SEL_W-1:0] m = SEL_W'((int'(prio_q) + k) % N);
-          if (s_arvalid_i[m]) gnt = m;
-        end
-      end
-    end
+    rr_hold_arb #(.N(N)) u_arb (
+      .clk_i, .rst_ni, .req_i(s_arvalid_i), .ready_i(m_arready_i), .gnt_o(gnt),
+      .valid_o(m_arvalid_o));
 
     assign m_arid_o    = {gnt, s_arid_i[gnt]};
     assign m_araddr_o  = s_araddr_i[gnt];
     assign m_arlen_o   = s_arlen_i[gnt];
     assign m_arsize_o  = s_arsize_i[gnt];
     assign m_arburst_o = s_arburst_i[gnt];
-    assign m_arvalid_o = s_arvalid_i[gnt];
     always_comb begin
       s_arready_o      = '0;
       s_arready_o[gnt] = m_arready_i;
-    end
-
-    always_ff @(posedge clk_i) begin
-      if (!rst_ni) begin
-        prio_q     <= '0;
-        lock_q     <= 1'b0;
-        lock_sel_q <= '0;
-      end else begin
-        lock_q     <= m_arvalid_o && !m_arready_i;
-        lock_sel_q <= gnt;
-        if (m_arvalid_o && m_arready_i) begin
-          prio_q <= (int'(gnt) == N - 1) ? '0 : gnt + 1'b1;
-        end
-      end
     end
 
     // ---- R: by rid's top bits ------------------------------------------------------------------

@@ -178,22 +178,11 @@ module traverse_rings
   end
 
   // ---- results: round-robin, the grant held while its result waits ------------------------------
-  logic [SEL_W-1:0] prio_q, gnt, hold_sel_q;
-  logic             hold_q;
+  logic [SEL_W-1:0] gnt;
+  rr_hold_arb #(.N(R)) u_res_arb (
+    .clk_i, .rst_ni, .req_i(r_res_valid), .ready_i(res_ready_i), .gnt_o(gnt),
+    .valid_o(res_valid_o));
 
-  always_comb begin
-    gnt = prio_q;
-    if (hold_q) begin
-      gnt = hold_sel_q;
-    end else begin
-      for (int k = R - 1; k >= 0; k--) begin
-        automatic logic [SEL_W-1:0] m = SEL_W'((int'(prio_q) + k) % R);
-        if (r_res_valid[m]) gnt = m;
-      end
-    end
-  end
-
-  assign res_valid_o   = r_res_valid[gnt];
   assign res_id_o      = r_id[gnt];
   assign res_t_o       = r_t[gnt];
   assign res_u_o       = r_u[gnt];
@@ -210,16 +199,8 @@ module traverse_rings
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      prio_q     <= '0;
-      hold_q     <= 1'b0;
-      hold_sel_q <= '0;
       inside_q   <= '0;
     end else begin
-      hold_q     <= res_valid_o && !res_ready_i;
-      hold_sel_q <= gnt;
-      if (res_valid_o && res_ready_i) begin
-        prio_q <= (int'(gnt) == R - 1) ? '0 : gnt + 1'b1;
-      end
       for (int r = 0; r < R; r++) begin
         inside_q[r] <= inside_q[r] + CNT_W'(r_ray_valid[r] && r_ray_ready[r])
                                    - CNT_W'(r_res_valid[r] && r_res_ready[r]);
