@@ -243,6 +243,27 @@ def test_synth_record(tmp_path):
         assert results.read_text() == before
 
 
+def test_system_top_record(tmp_path):
+    """The system top, routed out of context, is recorded as a top marked `out_of_context`, from a
+    report's `tops` or, for a report without it, from its block and place-and-route entries."""
+    settings = {"seed": 1, "router": "auto", "device_name": "LFE5U-85F", "rtl": {"commit": "c0ffee1"}}
+    counts = {"lut": 70000, "ff": 36000, "dsp": 46, "bram": 150}
+    t = synth.top_record(synth.SYSTEM_TOP, counts, 55.5, settings, 1, ooc=True)
+    assert t["out_of_context"] is True and t["router"] == synth.resolved_router("auto", True)
+    report = {"blocks": {synth.SYSTEM_TOP: counts},
+              "pnr": {synth.SYSTEM_TOP: {"fmax_mhz": 55.5, "out_of_context": True}},
+              "settings": settings}
+    assert synth.system_top_record(report) == t
+    assert synth.system_top_record({"blocks": {}, "pnr": {}, "settings": settings}) is None
+    out, results = tmp_path / "out", tmp_path / "synth-ecp5.json"
+    out.mkdir()
+    (out / "report.json").write_text(json.dumps(report))
+    results.write_text(json.dumps({"tops": [{"name": synth.TOP, "rings": 1, "fmax_mhz": 57.3}]}))
+    assert synth.record(out / "report.json", results) == [synth.SYSTEM_TOP]
+    assert json.loads(results.read_text())["tops"] == [
+        {"name": synth.TOP, "rings": 1, "fmax_mhz": 57.3}, t]
+
+
 def test_committed_results_have_top_fields():
     """docs/results/synth-ecp5.json holds one entry per routed top in the shape --record writes."""
     doc = json.loads(synth.RESULTS.read_text())

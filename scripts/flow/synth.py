@@ -42,6 +42,9 @@ TOP = "dm_pipeline_fpga_top"
 TOP2 = f"{TOP}_r2"
 #: The tops: key -> traverse rings.
 TOP_RINGS = {TOP: 1, TOP2: 2}
+#: The system top (rtl/top/pidm_top.sv): more pins than the package has, so it is placed and routed
+#: out of context (a register on every port, no I/O); its result joins the `tops` marked so.
+SYSTEM_TOP = "pidm_top"
 LPF = ROOT / "constraints" / "dm_pipeline.lpf"
 DEVICE = {"85k": "LFE5U-85F", "45k": "LFE5U-45F", "25k": "LFE5U-25F", "12k": "LFE5U-12F"}
 #: What each device has (Lattice ECP5 family data sheet): LUT4s (= flip-flops), MULT18X18D,
@@ -839,6 +842,8 @@ RESULTS = ROOT / "docs" / "results" / "synth-ecp5.json"
 #: The fields of a routed top's entry in report.json's `tops` and in RESULTS.
 TOP_FIELDS = ("name", "rings", "lut", "ff", "dsp", "bram", "fmax_mhz", "seed", "router", "device",
               "rtl_commit")
+#: Fields an entry carries only when they hold: `out_of_context` (true for the system top).
+TOP_OPTIONAL = ("out_of_context",)
 
 
 def rtl_commit(commit: str, changes: list[str]) -> str:
@@ -848,14 +853,30 @@ def rtl_commit(commit: str, changes: list[str]) -> str:
 
 
 def top_record(name: str, counts: dict, fmax_mhz: float, settings: dict,
-               rings: int | None) -> dict:
+               rings: int | None, ooc: bool = False) -> dict:
     """A routed top's entry of report.json's `tops` (TOP_FIELDS): its ECP5 counts, the routed
     fmax, the run's seed, router and device, the RTL's commit, and how many traverse rings
-    (traverse_loop instances) it has."""
-    return {"name": name, "rings": rings, "lut": counts["lut"], "ff": counts["ff"],
-            "dsp": counts["dsp"], "bram": counts["bram"], "fmax_mhz": fmax_mhz,
-            "seed": settings["seed"], "router": resolved_router(settings["router"], False),
-            "device": settings["device_name"], "rtl_commit": settings["rtl"]["commit"]}
+    (traverse_loop instances) it has; `out_of_context: true` when it was routed out of context
+    (`ooc`: the system top)."""
+    r = {"name": name, "rings": rings, "lut": counts["lut"], "ff": counts["ff"],
+         "dsp": counts["dsp"], "bram": counts["bram"], "fmax_mhz": fmax_mhz,
+         "seed": settings["seed"], "router": resolved_router(settings["router"], ooc),
+         "device": settings["device_name"], "rtl_commit": settings["rtl"]["commit"]}
+    if ooc:
+        r["out_of_context"] = True
+    return r
+
+
+def system_top_record(report: dict) -> dict | None:
+    """The system top's `tops` entry from a report whose blocks include its out-of-context place
+    and route (`blocks` and `pnr` under SYSTEM_TOP); None when the report has none."""
+    b = report.get("blocks", {}).get(SYSTEM_TOP)
+    p = report.get("pnr", {}).get(SYSTEM_TOP)
+    st = report.get("settings")
+    if not (isinstance(b, dict) and isinstance(p, dict) and isinstance(st, dict)
+            and p.get("fmax_mhz")):
+        return None
+    return top_record(SYSTEM_TOP, b, p["fmax_mhz"], st, 1, ooc=True)
 
 
 def merge_tops(old: list, new: list) -> list:
@@ -881,7 +902,13 @@ def record(report_path: Path, results: Path) -> list[str]:
     except (OSError, ValueError) as e:
         raise ValueError(f"cannot read {report_path}: {e}") from None
     tops = report.get("tops") if isinstance(report, dict) else None
-    if not isinstance(tops, list) or not tops:
+    tops = list(tops) if isinstance(tops, list) else []
+    if isinstance(report, dict) and not any(isinstance(t, dict) and t.get("name") == SYSTEM_TOP
+                                            for t in tops):
+        sys_top = system_top_record(report)   # a report from before the system top joined `tops`
+        if sys_top is not None:
+            tops.append(sys_top)
+    if not tops:
         raise ValueError(f"{report_path} has no routed top (`tops`): nothing to record")
     for t in tops:
         missing = [k for k in TOP_FIELDS if not isinstance(t, dict) or k not in t]
@@ -895,7 +922,7 @@ def record(report_path: Path, results: Path) -> list[str]:
             raise ValueError(f"cannot read {results}: {e}") from None
         old = doc.get("tops", []) if isinstance(doc, dict) else []
     merged = merge_tops(old if isinstance(old, list) else [],
-                        [{k: t[k] for k in TOP_FIELDS} for t in tops])
+                        [{k: t[k] for k in TOP_FIELDS + TOP_OPTIONAL if k in t} for t in tops])
     results.parent.mkdir(parents=True, exist_ok=True)
     results.write_text(json.dumps({"tops": merged}, indent=2) + "\n")
     return [t["name"] for t in tops]
@@ -1111,6 +1138,10 @@ def main() -> int:
             p = flow.pnr(b, ooc=True)
             new["pnr"][b.name] = p
             e["fmax_mhz"] = p["fmax_mhz"]
+            if b.name == SYSTEM_TOP and p.get("fmax_mhz"):
+                with save_lock:
+                    new.setdefault("tops", []).append(
+                        top_record(SYSTEM_TOP, e, p["fmax_mhz"], settings, 1, ooc=True))
         elif is_top and top_pnr:
             # the one-ring top's result is the report's own (top_pnr, fmax_mhz); the others' go
             # under top_pnr_<key>
