@@ -42,7 +42,7 @@ PIX_W = 24
 
 SYSTEM = HarnessSpec(
     name="system", top="pidm_top",
-    rtl_dirs=("common", "fp", "traverse", "cache", "mip", "pipe", "top"),
+    rtl_dirs=("common", "fp", "traverse", "cache", "mip", "pipe", "pyramid", "top"),
     sources=(HARNESS_DIR / "system_harness.cpp", HARNESS_DIR / "system_harness.h",
              ROOT / "sw" / "pidm_regs.h", *COMMON_SOURCES),
     binary="system_harness", params=PARAMS, build_dir=BUILD / "system",
