@@ -29,6 +29,10 @@ invalidates the height cache); SLVERR on a build's writes and on its reads (ERRO
 pyr_read, both interrupts, the next build exact); starts refused while the other side is busy
 (ERROR.start_refused; the running build or frame is exact); bad PYR configurations.
 
+pidm_top_no_builder (``make test-long``, TB_LONG=1: a second build of pidm_top with PYR_BUILD 0):
+PYR.INFO reads 0 present, CTRL.pyr_start sets ERROR.pyr_config and INTR_STATE.axi_error and
+nothing else, and a frame is exact.
+
 Environment: SEED.
 """
 from __future__ import annotations
@@ -41,6 +45,7 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge
 from cocotbext.axi import AxiLiteBus, AxiLiteMaster, AxiReadBus, AxiWriteBus
@@ -607,5 +612,38 @@ async def pidm_top_pyramid(dut):
           "configurations; every following build and frame exact")
 
 
+NO_BUILDER = os.environ.get("PIDM_NO_BUILDER") == "1"
+
+
+@cocotb.test(skip=not NO_BUILDER)
+async def pidm_top_no_builder(dut):
+    """PYR_BUILD = 0: a pyramid start is refused with ERROR.pyr_config; frames work."""
+    rng = random.Random(seed() + 3)
+    s = Sys(dut, rng)
+    await s.reset()
+    info = await s.rd_fields("PYR.INFO")
+    assert info == {"present": 0, "max_lg": 10}, f"PYR.INFO {info}"
+    sc = Scene(CLEAN)
+    s.load(sc.packed)
+    await pyr_program(s, sc.frame.pyr, sc.packed.region("heights").base)
+    await s.wr("CTRL", R("CTRL").value(pyr_start=1))
+    await ClockCycles(dut.clk_i, 10)
+    intr = await s.ack()
+    err = R("ERROR").fields_of(await s.rd("ERROR"))
+    status = await s.rd_fields("STATUS")
+    assert intr == {"frame_done": 0, "axi_error": 1, "pyr_done": 0}, f"INTR {intr}"
+    assert err == {**{k: 0 for k in err}, "pyr_config": 1}, f"ERROR {err}"
+    assert status["pyr_busy"] == 0 and status["pyr_done"] == 0 and status["busy"] == 0
+    await s.wr("ERROR", (1 << 32) - 1)
+    await full_frame(s, sc, dut._log)
+    print("PIDM_TOP no builder: pyramid start refused (pyr_config), the frame exact")
+
+
 def test_pidm_top() -> None:
     runner.run("pidm_top", "test_pidm_top", HERE, opt="-O0")
+
+
+@pytest.mark.skipif(not runner.long_stimulus(), reason="a second pidm_top build: TB_LONG=1")
+def test_pidm_top_no_builder() -> None:
+    runner.run("pidm_top", "test_pidm_top", HERE, parameters={"PYR_BUILD": 0}, opt="-O0",
+               extra_env={"PIDM_NO_BUILDER": "1"}, testcase="pidm_top_no_builder")
