@@ -189,11 +189,12 @@ render: $(STAMP)
 # frame the hardware pyramid builder (full build, then dirty-rectangle rebuilds) and the pipeline,
 # the built pyramid and every pixel compared with the model; writes out/animate/frame_NNN.png,
 # animation.gif and stats.json; exits 1 if a frame differs.  ANIMATE_ARGS passes options
-# (--motion dent, --frames, --map-size, --image; scripts/animate.py --help).
+# (--motion dent, --frames, --map-size, --image; scripts/animate.py --help).  TOP=system runs the
+# frame loop through pidm_top: the builder and the frame started through its registers.
 ANIMATE_ARGS ?=
 animate: $(STAMP)
 	@mkdir -p out
-	@$(ENV) $(PY) scripts/animate.py --scene $(SCENE) --out out/animate $(ANIMATE_ARGS)
+	@$(ENV) $(PY) scripts/animate.py --scene $(SCENE) --top $(TOP) --out out/animate $(ANIMATE_ARGS)
 
 # FPGA synthesis (scripts/flow/synth.py; README "Synthesis"): Yosys synth_ecp5 and synth_xilinx
 # resource counts of every block, nextpnr-ecp5 place and route on an LFE5U-85F speed 8 of each block out of

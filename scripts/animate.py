@@ -13,6 +13,14 @@ every pixel (rgb, hit, invalid, iterations) must equal the model's f24 render of
 The height cache: each frame's pipeline run starts from reset, so the cache holds nothing of the
 previous frame's pyramid (it is invalidated whole between frames).
 
+``--top system``: the frame loop through the system top ``rtl/top/pidm_top.sv``
+(``tb/harness/pidm_system.py``, one harness run per frame on the memory the previous frame left):
+the new level 0 is written over the height region, the pyramid is rebuilt by the builder inside
+pidm_top through its registers (PYR, CTRL.pyr_start, the pyr_done interrupt: in full for frame 0,
+then the dirty rectangle), and the frame is rendered (CTRL.start, frame_done); the build's end
+invalidates the height cache.  The same checks and statistics (``render_cycles``: CTRL.start to the
+interrupt).
+
 Writes ``<out>/frame_NNN.png``, ``<out>/animation.gif`` (every frame, one GIF subimage each,
 through OpenImageIO) and ``<out>/stats.json``: ``frames``, ``identical`` (every frame), and
 ``per_frame``: ``pyramid_cycles`` (the builder's clocks, 0 when nothing changed),
@@ -99,6 +107,50 @@ def write_gif(path: Path, frames: list[npt.NDArray[np.uint8]], fps: int) -> None
     out.close()
 
 
+def run_system(a: Any, log: Any, frame0: shade.Frame, cam: camera.Camera,
+               maps: list[npt.NDArray[np.uint16]]
+               ) -> tuple[list[dict[str, Any]], list[npt.NDArray[np.uint8]]]:
+    """The frame loop through pidm_top (``--top system``): per frame the new level 0 over the
+    height memory, a build through the registers, the frame; (per-frame statistics, images)."""
+    from tb.harness import dm_pipeline, pidm_system, pyr_run
+
+    bound = pyramid_bus.full_rebuild(a.map_size, a.map_size, BITS,
+                                     pidm_system.PARAMS["DATA_W"]).clocks
+    per_frame: list[dict[str, Any]] = []
+    rgbs: list[npt.NDArray[np.uint8]] = []
+    memory: bytearray | None = None
+    prev: npt.NDArray[np.uint16] | None = None
+    for k, codes in enumerate(maps):
+        pyr = heightmap.build(codes, BITS)
+        want = pyr.memory_image()
+        if memory is None:
+            memory = bytearray(len(want))          # the pyramid's levels start as zeros
+            rect: tuple[int, int, int, int] | None = (0, 0, pyr.width - 1, pyr.height - 1)
+        else:
+            rect = pyr_run.dirty_rect(prev, codes) if prev is not None else None
+        lv0 = pyr.levels[0].astype("<u1").tobytes()
+        memory[:len(lv0)] = lv0
+        frame = replace(frame0, pyr=pyr)
+        img, st, built = pidm_system.build_and_render(frame, cam, bytes(memory), rect,
+                                                      build_pyramid=rect is not None)
+        memory = bytearray(built)
+        prev = codes
+        pyr_ok = built == want
+        ref = shade.render(frame, cam)
+        bad = len(dm_pipeline.compare(img.out, ref.out))
+        rgbs.append(img.rgb)
+        write_png(a.out / f"frame_{k:03d}.png", img.rgb)
+        per_frame.append({
+            "pyramid_cycles": int(st["pyramid_cycles"]), "pyramid_bound_cycles": bound,
+            "render_cycles": int(st["cycles"]), "identical": bool(pyr_ok and bad == 0),
+            "pyramid_identical": bool(pyr_ok), "pixels_differ": bad,
+            "dirty_rect": list(rect) if rect is not None else None})
+        log(f"frame {k}: dirty {rect}, pyramid {st['pyramid_cycles']} clocks (full-rebuild "
+            f"bound {bound}), pyramid {'identical' if pyr_ok else 'DIFFERS'}; render "
+            f"{st['cycles']} clocks, {bad} pixels differ")
+    return per_frame, rgbs
+
+
 def run(a: Any, log: Any) -> dict[str, Any]:
     """The animation: returns the statistics (stats.json's content)."""
     from tb.harness import dm_pipeline, pyr_run
@@ -107,6 +159,11 @@ def run(a: Any, log: Any) -> dict[str, Any]:
     frame0, cam = dm_pipeline.scene_frame(a.scene, a.map_size, a.angle, a.image, a.method)
     maps = [heightmap.quantize(heights(np.asarray(sc.heights, dtype=np.float64), a.motion, k,
                                        a.frames), BITS) for k in range(a.frames)]
+    if a.top == "system":
+        log(f"system top RTL: {a.frames} maps of {a.map_size} x {a.map_size}")
+        per_frame, rgbs = run_system(a, log, frame0, cam, maps)
+        return finish(a, log, per_frame, rgbs, "invalidated by each pyramid build's end "
+                                               "(pidm_top resets dm_pipeline after a build)")
     log(f"pyramid builder RTL: {a.frames} maps of {a.map_size} x {a.map_size}")
     t0 = time.monotonic()
     built = pyr_run.run_builds(np.stack(maps), BITS, a.out / "work")
@@ -146,6 +203,15 @@ def run(a: Any, log: Any) -> dict[str, Any]:
         log(f"frame {k}: dirty {rect}, pyramid {built.clocks[k]} clocks (full-rebuild bound "
             f"{bound}), pyramid {'identical' if pyr_ok else 'DIFFERS'}; render "
             f"{st['cycles']} clocks, {bad} pixels differ")
+    return finish(a, log, per_frame, rgbs, "invalidated whole between frames (each frame's "
+                                           "pipeline run starts from reset)")
+
+
+def finish(a: Any, log: Any, per_frame: list[dict[str, Any]],
+           rgbs: list[npt.NDArray[np.uint8]], cache: str) -> dict[str, Any]:
+    """The GIF and the statistics (stats.json's content)."""
+    from tb.harness import pyr_run
+
     gif = a.out / "animation.gif"
     try:
         write_gif(gif, rgbs, a.fps)
@@ -157,8 +223,7 @@ def run(a: Any, log: Any) -> dict[str, Any]:
             "scene": a.scene, "motion": a.motion, "map_size": a.map_size, "image": a.image,
             "angle": a.angle, "method": a.method, "bits": BITS,
             "bus_bits": pyr_run.PYR_PARAMS["AXI_DATA_W"], "animation": gif_name,
-            "height_cache": "invalidated whole between frames (each frame's pipeline run starts "
-                            "from reset)",
+            "height_cache": cache,
             "per_frame": per_frame}
 
 
@@ -174,6 +239,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--angle", default="oblique", choices=tuple(camera.VIEWS))
     ap.add_argument("--method", default="park", choices=traverse.EXACT_METHODS)
     ap.add_argument("--fps", type=int, default=4, help="frames per second of the GIF")
+    ap.add_argument("--top", default="pipeline", choices=("pipeline", "system"),
+                    help="pipeline: the builder and dm_pipeline in two harnesses; system: "
+                         "both inside pidm_top, driven through its registers")
     ap.add_argument("--out", type=Path, default=ROOT / "out" / "animate")
     a = ap.parse_args(argv)
     if not 1 <= a.frames <= 1000:

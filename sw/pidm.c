@@ -11,7 +11,9 @@ static_assert(offsetof(pidm_regs_t, STATS.t_bytes) == offsetof(pidm_regs_t, STAT
 static_assert(offsetof(pidm_regs_t, STATS.h_bytes) == offsetof(pidm_regs_t, STATS) + 8 * PIDM_STAT_H_BYTES,
               "STATS layout");
 
-#define OFF_TEX_END ((uint32_t)sizeof(pidm_regs_t))
+#define OFF_TEX_END PIDM_OFF(PYR)
+
+static_assert(PIDM_PYR_LEVELS == sizeof(((pidm_regs_t *)0)->PYR.LEVEL_OFF) / 4, "PYR.LEVEL_OFF");
 
 uint32_t pidm_rd(struct pidm_dev *dev, uint32_t off) {
     if (dev->rd) return dev->rd(dev, off);
@@ -54,6 +56,10 @@ int pidm_init(struct pidm_dev *dev, volatile void *base) {
 
 static int busy(struct pidm_dev *dev) {
     return (pidm_rd(dev, PIDM_OFF(STATUS)) & PIDM_REGS__STATUS__BUSY_bm) != 0;
+}
+
+static int pyr_busy(struct pidm_dev *dev) {
+    return (pidm_rd(dev, PIDM_OFF(STATUS)) & PIDM_REGS__STATUS__PYR_BUSY_bm) != 0;
 }
 
 static int config_offset(uint32_t off) {
@@ -100,8 +106,8 @@ int pidm_start(struct pidm_dev *dev, const struct pidm_frame *f) {
     pidm_wr(dev, PIDM_OFF(FRAME.FB_LAYOUT),
             (f->xbits << PIDM_REGS__FRAME__FB_LAYOUT__XBITS_bp)
                 | (f->status_en ? PIDM_REGS__FRAME__FB_LAYOUT__STATUS_EN_bm : 0u));
-    pidm_wr(dev, PIDM_OFF(INTR_STATE), PIDM_IRQ_ALL);
-    dev->irq_seen = 0;
+    pidm_wr(dev, PIDM_OFF(INTR_STATE), PIDM_IRQ_FRAME);
+    dev->irq_seen &= ~PIDM_IRQ_FRAME;
     pidm_wr(dev, PIDM_OFF(CTRL), PIDM_REGS__CTRL__START_bm);
     return PIDM_OK;
 }
@@ -116,7 +122,7 @@ static int frame_result(struct pidm_dev *dev) {
 int pidm_poll_done(struct pidm_dev *dev, uint32_t max_polls) {
     if (!dev) return PIDM_ERR_ARG;
     for (uint32_t i = 0; i < max_polls; i++) {
-        uint32_t st = (pidm_rd(dev, PIDM_OFF(INTR_STATE)) | dev->irq_seen) & PIDM_IRQ_ALL;
+        uint32_t st = (pidm_rd(dev, PIDM_OFF(INTR_STATE)) | dev->irq_seen) & PIDM_IRQ_FRAME;
         if (st && !busy(dev)) return frame_result(dev);
     }
     return PIDM_ERR_TIMEOUT;
@@ -147,6 +153,74 @@ int pidm_wait_irq(struct pidm_dev *dev, void (*wait)(void *ctx), void *ctx, uint
         return frame_result(dev);
     }
     return PIDM_ERR_TIMEOUT;
+}
+
+unsigned pidm_pyr_offsets(uint32_t width, uint32_t height, int bits16,
+                          uint32_t off[PIDM_PYR_LEVELS]) {
+    for (unsigned k = 0; k < PIDM_PYR_LEVELS; k++) off[k] = 0;
+    uint32_t side = width > height ? width : height;
+    if (width == 0 || height == 0 || side > (1u << (PIDM_PYR_LEVELS - 1))) return 0;
+    unsigned n = 0;
+    while ((1u << n) < side) n++;
+    uint32_t o = 0;
+    for (unsigned k = 0; k <= n; k++) {
+        off[k] = o;
+        uint32_t s = (1u << n) >> k;
+        uint32_t bytes = s * s * (bits16 ? 2u : 1u);
+        o += (bytes + 63u) & ~63u;
+    }
+    return n + 1;
+}
+
+void pidm_pyr_full(struct pidm_pyr *p) {
+    pidm_pyr_offsets(p->width, p->height, p->bits16, p->level_off);
+    p->x0 = 0;
+    p->y0 = 0;
+    p->x1 = p->width ? p->width - 1 : 0;
+    p->y1 = p->height ? p->height - 1 : 0;
+}
+
+int pidm_pyr_start(struct pidm_dev *dev, const struct pidm_pyr *p) {
+    if (!dev || !p) return PIDM_ERR_ARG;
+    uint32_t info = pidm_rd(dev, PIDM_OFF(PYR.INFO));
+    uint32_t max_side = 1u << ((info & PIDM_REGS__PYR__INFO__MAX_LG_bm) >> PIDM_REGS__PYR__INFO__MAX_LG_bp);
+    if (!(info & PIDM_REGS__PYR__INFO__PRESENT_bm) || p->width == 0 || p->height == 0
+        || p->width > max_side || p->height > max_side || p->x0 > p->x1 || p->y0 > p->y1
+        || p->x1 >= p->width || p->y1 >= p->height)
+        return PIDM_ERR_ARG;
+    if (busy(dev) || pyr_busy(dev)) return PIDM_ERR_BUSY;
+    pidm_wr(dev, PIDM_OFF(PYR.FORMAT), p->bits16 ? PIDM_REGS__PYR__FORMAT__BITS16_bm : 0u);
+    pidm_wr(dev, PIDM_OFF(PYR.SIZE), (p->width << PIDM_REGS__PYR__SIZE__WIDTH_bp)
+                                         | (p->height << PIDM_REGS__PYR__SIZE__HEIGHT_bp));
+    wr64(dev, PIDM_OFF(PYR.SRC_BASE), p->src_base);
+    wr64(dev, PIDM_OFF(PYR.PYR_BASE), p->pyr_base);
+    pidm_wr(dev, PIDM_OFF(PYR.DIRTY0), (p->x0 << PIDM_REGS__PYR__DIRTY0__X0_bp)
+                                           | (p->y0 << PIDM_REGS__PYR__DIRTY0__Y0_bp));
+    pidm_wr(dev, PIDM_OFF(PYR.DIRTY1), (p->x1 << PIDM_REGS__PYR__DIRTY1__X1_bp)
+                                           | (p->y1 << PIDM_REGS__PYR__DIRTY1__Y1_bp));
+    for (unsigned k = 0; k < PIDM_PYR_LEVELS; k++)
+        pidm_wr(dev, PIDM_OFF(PYR.LEVEL_OFF[k]), p->level_off[k]);
+    pidm_wr(dev, PIDM_OFF(INTR_STATE), PIDM_IRQ_PYR_DONE | PIDM_IRQ_AXI_ERROR);
+    dev->irq_seen &= ~(PIDM_IRQ_PYR_DONE | PIDM_IRQ_AXI_ERROR);
+    pidm_wr(dev, PIDM_OFF(CTRL), PIDM_REGS__CTRL__PYR_START_bm);
+    return PIDM_OK;
+}
+
+// The build has ended when it raised pyr_done (or axi_error: a start refused at once) and
+// STATUS.pyr_busy is 0.
+int pidm_pyr_poll_done(struct pidm_dev *dev, uint32_t max_polls) {
+    if (!dev) return PIDM_ERR_ARG;
+    for (uint32_t i = 0; i < max_polls; i++) {
+        uint32_t st = (pidm_rd(dev, PIDM_OFF(INTR_STATE)) | dev->irq_seen)
+                      & (PIDM_IRQ_PYR_DONE | PIDM_IRQ_AXI_ERROR);
+        if (st && !pyr_busy(dev)) return frame_result(dev);
+    }
+    return PIDM_ERR_TIMEOUT;
+}
+
+int pidm_pyr_build(struct pidm_dev *dev, const struct pidm_pyr *p, uint32_t max_polls) {
+    int rc = pidm_pyr_start(dev, p);
+    return rc != PIDM_OK ? rc : pidm_pyr_poll_done(dev, max_polls);
 }
 
 void pidm_read_stats(struct pidm_dev *dev, struct pidm_stats *out) {
@@ -187,6 +261,10 @@ static const struct {
     {PIDM_REGS__ERROR__FRAG_DMA_bm, "frag_dma"},
     {PIDM_REGS__ERROR__FB_WRITE_bm, "fb_write"},
     {PIDM_REGS__ERROR__BAD_CONFIG_bm, "bad_config"},
+    {PIDM_REGS__ERROR__PYR_READ_bm, "pyr_read"},
+    {PIDM_REGS__ERROR__PYR_WRITE_bm, "pyr_write"},
+    {PIDM_REGS__ERROR__PYR_CONFIG_bm, "pyr_config"},
+    {PIDM_REGS__ERROR__START_REFUSED_bm, "start_refused"},
 };
 
 size_t pidm_error_string(uint32_t flags, char *buf, size_t len) {
@@ -211,7 +289,7 @@ const char *pidm_strerror(int rc) {
     switch (rc) {
     case PIDM_OK: return "ok";
     case PIDM_ERR_ID: return "not a pidm_top (ID or VERSION)";
-    case PIDM_ERR_BUSY: return "a frame is running";
+    case PIDM_ERR_BUSY: return "a frame or a pyramid build is running";
     case PIDM_ERR_HW: return "the frame ended with an error";
     case PIDM_ERR_TIMEOUT: return "timed out";
     case PIDM_ERR_ARG: return "bad argument";

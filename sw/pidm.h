@@ -12,6 +12,14 @@
 //   rc = pidm_poll_done(&dev, 100000000);         // or: interrupts (pidm_irq_handler)
 //   pidm_read_stats(&dev, &stats);
 //
+// A pyramid build (the hardware builder, PYR registers; level 0 already in memory):
+//   struct pidm_pyr p = {.src_base = b, .pyr_base = b, .width = w, .height = h};
+//   pidm_pyr_full(&p);                            // dirty rectangle = the whole map, offsets
+//   pidm_pyr_start(&dev, &p);                     // PYR registers, then CTRL.pyr_start
+//   rc = pidm_pyr_poll_done(&dev, 1000000);       // or: the PIDM_IRQ_PYR_DONE interrupt
+// (pidm_pyr_build does the three.)  The build's end invalidates the core's height cache; a
+// frame started after it reads the new pyramid.
+//
 // Every register access goes through pidm_rd / pidm_wr: a volatile 32-bit load or store at
 // base + offset, unless pidm_set_mmio installed other accessors (a bus bridge, a simulator, the
 // unit test's register model).  The driver keeps no hidden state besides the last interrupt
@@ -31,7 +39,7 @@ extern "C" {
 // ---- return codes ---------------------------------------------------------------------------
 #define PIDM_OK           0
 #define PIDM_ERR_ID      -1  // ID or VERSION major does not match: not a pidm_top
-#define PIDM_ERR_BUSY    -2  // a frame is running
+#define PIDM_ERR_BUSY    -2  // a frame or a pyramid build is running
 #define PIDM_ERR_HW      -3  // the frame ended with ERROR flags set (pidm_error_flags)
 #define PIDM_ERR_TIMEOUT -4  // the poll / wait budget ran out
 #define PIDM_ERR_ARG     -5  // a bad argument (NULL, an address outside the configuration)
@@ -42,9 +50,15 @@ extern "C" {
 // Interrupt causes (INTR_STATE / INTR_ENABLE / INTR_TEST bits).
 #define PIDM_IRQ_FRAME_DONE PIDM_REGS__INTR_STATE__FRAME_DONE_bm
 #define PIDM_IRQ_AXI_ERROR  PIDM_REGS__INTR_STATE__AXI_ERROR_bm
-#define PIDM_IRQ_ALL        (PIDM_IRQ_FRAME_DONE | PIDM_IRQ_AXI_ERROR)
+#define PIDM_IRQ_PYR_DONE   PIDM_REGS__INTR_STATE__PYR_DONE_bm
+#define PIDM_IRQ_FRAME      (PIDM_IRQ_FRAME_DONE | PIDM_IRQ_AXI_ERROR)  // a frame's causes
+#define PIDM_IRQ_ALL        (PIDM_IRQ_FRAME_DONE | PIDM_IRQ_AXI_ERROR | PIDM_IRQ_PYR_DONE)
 
-// Configuration space a register write list may touch: TT_WRITE and 0x200 .. the map's end.
+// Pyramid levels the PYR block describes (PYR.LEVEL_OFF entries).
+#define PIDM_PYR_LEVELS 16u
+
+// Configuration space a register write list may touch: TT_WRITE and HEIGHT .. the end of TEX
+// (the PYR block is written by pidm_pyr_start only).
 #define PIDM_OFF(reg) ((uint32_t)offsetof(pidm_regs_t, reg))
 
 struct pidm_dev;
@@ -75,6 +89,19 @@ struct pidm_frame {
     uint32_t xbits;        // pixel id = {y, x}: x in the low xbits bits
     uint64_t status_base;  // per-pixel status words (same layout as the framebuffer)
     int status_en;         // write status words
+};
+
+// A pyramid build (PYR registers): level 0 (W x H codes, row pitch N = the padded power-of-two
+// side) at src_base, levels 1..n written at pyr_base + level_off[k]; only the ancestors of the
+// dirty rectangle (x0, y0)-(x1, y1), bounds inclusive, unless it is the whole map.
+struct pidm_pyr {
+    uint64_t src_base;     // level 0, a multiple of the AXI data width in bytes
+    uint64_t pyr_base;     // the pyramid image, the same alignment
+    uint32_t width;        // W, 1 .. 2^PYR.INFO.max_lg
+    uint32_t height;       // H
+    int bits16;            // unorm16 codes (else unorm8)
+    uint32_t x0, y0, x1, y1;                  // the dirty rectangle
+    uint32_t level_off[PIDM_PYR_LEVELS];      // byte offset of level k from pyr_base
 };
 
 // dm_pipeline's statistics, in register order.
@@ -128,6 +155,25 @@ void pidm_clear_stats(struct pidm_dev *dev);
 // Soft reset: abort the frame, reset the pipeline and the DMA engines; waits (max_polls reads)
 // until STATUS.busy is 0.  The configuration registers keep their values.
 int pidm_soft_reset(struct pidm_dev *dev, uint32_t max_polls);
+
+// ---- the pyramid builder ---------------------------------------------------------------------
+// The levels of a W x H map (n + 1: level 0 .. n, N = 2^n >= max(W, H)), and each level's byte
+// offset in the pyramid image (model.heightmap.Pyramid.level_offsets(): every level's size
+// rounded up to 64 bytes) into off[0 .. n], 0 above; 0 when W or H is 0 or above 2^15.
+unsigned pidm_pyr_offsets(uint32_t width, uint32_t height, int bits16,
+                          uint32_t off[PIDM_PYR_LEVELS]);
+// Fill p's level offsets and set its dirty rectangle to the whole map (a full rebuild).
+void pidm_pyr_full(struct pidm_pyr *p);
+// Write the PYR registers, clear INTR_STATE.pyr_done and axi_error, pulse CTRL.pyr_start.
+// PIDM_ERR_BUSY while a frame or a build runs; PIDM_ERR_ARG for no builder (PYR.INFO.present
+// 0), a size above 2^PYR.INFO.max_lg, or an empty rectangle or one outside the map.
+int pidm_pyr_start(struct pidm_dev *dev, const struct pidm_pyr *p);
+// Poll until the build ends (INTR_STATE pyr_done, or axi_error for a refused start, and
+// STATUS.pyr_busy 0): PIDM_OK, PIDM_ERR_HW (ERROR flags set: pyr_read, pyr_write, pyr_config,
+// start_refused) or PIDM_ERR_TIMEOUT.
+int pidm_pyr_poll_done(struct pidm_dev *dev, uint32_t max_polls);
+// pidm_pyr_start, then pidm_pyr_poll_done.
+int pidm_pyr_build(struct pidm_dev *dev, const struct pidm_pyr *p, uint32_t max_polls);
 
 // Errors: the ERROR flags, clearing them, and their names ("h_axi t_axi ..." into buf).
 uint32_t pidm_error_flags(struct pidm_dev *dev);

@@ -22,7 +22,7 @@ extern "C" {
 #define PIDM_REGS__VERSION__MINOR_bm 0xffff
 #define PIDM_REGS__VERSION__MINOR_bp 0
 #define PIDM_REGS__VERSION__MINOR_bw 16
-#define PIDM_REGS__VERSION__MINOR_reset 0x0
+#define PIDM_REGS__VERSION__MINOR_reset 0x1
 #define PIDM_REGS__VERSION__MAJOR_bm 0xffff0000
 #define PIDM_REGS__VERSION__MAJOR_bp 16
 #define PIDM_REGS__VERSION__MAJOR_bw 16
@@ -55,6 +55,10 @@ extern "C" {
 #define PIDM_REGS__CTRL__CLEAR_STATS_bp 2
 #define PIDM_REGS__CTRL__CLEAR_STATS_bw 1
 #define PIDM_REGS__CTRL__CLEAR_STATS_reset 0x0
+#define PIDM_REGS__CTRL__PYR_START_bm 0x8
+#define PIDM_REGS__CTRL__PYR_START_bp 3
+#define PIDM_REGS__CTRL__PYR_START_bw 1
+#define PIDM_REGS__CTRL__PYR_START_reset 0x0
 
 // reg - pidm_regs.STATUS
 #define PIDM_REGS__STATUS__BUSY_bm 0x1
@@ -63,6 +67,15 @@ extern "C" {
 #define PIDM_REGS__STATUS__IDLE_bm 0x2
 #define PIDM_REGS__STATUS__IDLE_bp 1
 #define PIDM_REGS__STATUS__IDLE_bw 1
+#define PIDM_REGS__STATUS__PYR_BUSY_bm 0x4
+#define PIDM_REGS__STATUS__PYR_BUSY_bp 2
+#define PIDM_REGS__STATUS__PYR_BUSY_bw 1
+#define PIDM_REGS__STATUS__PYR_DONE_bm 0x8
+#define PIDM_REGS__STATUS__PYR_DONE_bp 3
+#define PIDM_REGS__STATUS__PYR_DONE_bw 1
+#define PIDM_REGS__STATUS__PYR_ERR_CODE_bm 0xf0
+#define PIDM_REGS__STATUS__PYR_ERR_CODE_bp 4
+#define PIDM_REGS__STATUS__PYR_ERR_CODE_bw 4
 
 // reg - pidm_regs.ERROR
 #define PIDM_REGS__ERROR__H_AXI_bm 0x1
@@ -85,6 +98,22 @@ extern "C" {
 #define PIDM_REGS__ERROR__BAD_CONFIG_bp 4
 #define PIDM_REGS__ERROR__BAD_CONFIG_bw 1
 #define PIDM_REGS__ERROR__BAD_CONFIG_reset 0x0
+#define PIDM_REGS__ERROR__PYR_READ_bm 0x20
+#define PIDM_REGS__ERROR__PYR_READ_bp 5
+#define PIDM_REGS__ERROR__PYR_READ_bw 1
+#define PIDM_REGS__ERROR__PYR_READ_reset 0x0
+#define PIDM_REGS__ERROR__PYR_WRITE_bm 0x40
+#define PIDM_REGS__ERROR__PYR_WRITE_bp 6
+#define PIDM_REGS__ERROR__PYR_WRITE_bw 1
+#define PIDM_REGS__ERROR__PYR_WRITE_reset 0x0
+#define PIDM_REGS__ERROR__PYR_CONFIG_bm 0x80
+#define PIDM_REGS__ERROR__PYR_CONFIG_bp 7
+#define PIDM_REGS__ERROR__PYR_CONFIG_bw 1
+#define PIDM_REGS__ERROR__PYR_CONFIG_reset 0x0
+#define PIDM_REGS__ERROR__START_REFUSED_bm 0x100
+#define PIDM_REGS__ERROR__START_REFUSED_bp 8
+#define PIDM_REGS__ERROR__START_REFUSED_bw 1
+#define PIDM_REGS__ERROR__START_REFUSED_reset 0x0
 
 // reg - pidm_regs.PROGRESS
 #define PIDM_REGS__PROGRESS__PIXELS_bm 0xffffffff
@@ -100,6 +129,10 @@ extern "C" {
 #define PIDM_REGS__INTR_STATE__AXI_ERROR_bp 1
 #define PIDM_REGS__INTR_STATE__AXI_ERROR_bw 1
 #define PIDM_REGS__INTR_STATE__AXI_ERROR_reset 0x0
+#define PIDM_REGS__INTR_STATE__PYR_DONE_bm 0x4
+#define PIDM_REGS__INTR_STATE__PYR_DONE_bp 2
+#define PIDM_REGS__INTR_STATE__PYR_DONE_bw 1
+#define PIDM_REGS__INTR_STATE__PYR_DONE_reset 0x0
 
 // reg - pidm_regs.INTR_ENABLE
 #define PIDM_REGS__INTR_ENABLE__FRAME_DONE_bm 0x1
@@ -110,6 +143,10 @@ extern "C" {
 #define PIDM_REGS__INTR_ENABLE__AXI_ERROR_bp 1
 #define PIDM_REGS__INTR_ENABLE__AXI_ERROR_bw 1
 #define PIDM_REGS__INTR_ENABLE__AXI_ERROR_reset 0x0
+#define PIDM_REGS__INTR_ENABLE__PYR_DONE_bm 0x4
+#define PIDM_REGS__INTR_ENABLE__PYR_DONE_bp 2
+#define PIDM_REGS__INTR_ENABLE__PYR_DONE_bw 1
+#define PIDM_REGS__INTR_ENABLE__PYR_DONE_reset 0x0
 
 // reg - pidm_regs.INTR_TEST
 #define PIDM_REGS__INTR_TEST__FRAME_DONE_bm 0x1
@@ -120,6 +157,10 @@ extern "C" {
 #define PIDM_REGS__INTR_TEST__AXI_ERROR_bp 1
 #define PIDM_REGS__INTR_TEST__AXI_ERROR_bw 1
 #define PIDM_REGS__INTR_TEST__AXI_ERROR_reset 0x0
+#define PIDM_REGS__INTR_TEST__PYR_DONE_bm 0x4
+#define PIDM_REGS__INTR_TEST__PYR_DONE_bp 2
+#define PIDM_REGS__INTR_TEST__PYR_DONE_bw 1
+#define PIDM_REGS__INTR_TEST__PYR_DONE_reset 0x0
 
 // reg - pidm_regs.FRAME.FRAG_BASE.LO
 #define PIDM_REGS__FRAME__FRAG_BASE__LO__VAL_bm 0xffffffff
@@ -607,6 +648,106 @@ typedef struct __attribute__ ((__packed__)) {
     uint8_t RESERVED_c0_ff[0x40];
 } pidm_regs__TEXx__stride100_t;
 
+// reg - pidm_regs.PYR.INFO
+#define PIDM_REGS__PYR__INFO__PRESENT_bm 0x1
+#define PIDM_REGS__PYR__INFO__PRESENT_bp 0
+#define PIDM_REGS__PYR__INFO__PRESENT_bw 1
+#define PIDM_REGS__PYR__INFO__MAX_LG_bm 0xf0
+#define PIDM_REGS__PYR__INFO__MAX_LG_bp 4
+#define PIDM_REGS__PYR__INFO__MAX_LG_bw 4
+
+// reg - pidm_regs.PYR.FORMAT
+#define PIDM_REGS__PYR__FORMAT__BITS16_bm 0x1
+#define PIDM_REGS__PYR__FORMAT__BITS16_bp 0
+#define PIDM_REGS__PYR__FORMAT__BITS16_bw 1
+#define PIDM_REGS__PYR__FORMAT__BITS16_reset 0x0
+
+// reg - pidm_regs.PYR.SIZE
+#define PIDM_REGS__PYR__SIZE__WIDTH_bm 0xffff
+#define PIDM_REGS__PYR__SIZE__WIDTH_bp 0
+#define PIDM_REGS__PYR__SIZE__WIDTH_bw 16
+#define PIDM_REGS__PYR__SIZE__WIDTH_reset 0x0
+#define PIDM_REGS__PYR__SIZE__HEIGHT_bm 0xffff0000
+#define PIDM_REGS__PYR__SIZE__HEIGHT_bp 16
+#define PIDM_REGS__PYR__SIZE__HEIGHT_bw 16
+#define PIDM_REGS__PYR__SIZE__HEIGHT_reset 0x0
+
+// reg - pidm_regs.PYR.SRC_BASE.LO
+#define PIDM_REGS__PYR__SRC_BASE__LO__VAL_bm 0xffffffff
+#define PIDM_REGS__PYR__SRC_BASE__LO__VAL_bp 0
+#define PIDM_REGS__PYR__SRC_BASE__LO__VAL_bw 32
+#define PIDM_REGS__PYR__SRC_BASE__LO__VAL_reset 0x0
+
+// reg - pidm_regs.PYR.SRC_BASE.HI
+#define PIDM_REGS__PYR__SRC_BASE__HI__VAL_bm 0xffffffff
+#define PIDM_REGS__PYR__SRC_BASE__HI__VAL_bp 0
+#define PIDM_REGS__PYR__SRC_BASE__HI__VAL_bw 32
+#define PIDM_REGS__PYR__SRC_BASE__HI__VAL_reset 0x0
+
+// regfile - pidm_regs.PYR.SRC_BASE
+typedef struct __attribute__ ((__packed__)) {
+    uint32_t LO;
+    uint32_t HI;
+} pidm_regs__PYR__SRC_BASE_t;
+
+// reg - pidm_regs.PYR.PYR_BASE.LO
+#define PIDM_REGS__PYR__PYR_BASE__LO__VAL_bm 0xffffffff
+#define PIDM_REGS__PYR__PYR_BASE__LO__VAL_bp 0
+#define PIDM_REGS__PYR__PYR_BASE__LO__VAL_bw 32
+#define PIDM_REGS__PYR__PYR_BASE__LO__VAL_reset 0x0
+
+// reg - pidm_regs.PYR.PYR_BASE.HI
+#define PIDM_REGS__PYR__PYR_BASE__HI__VAL_bm 0xffffffff
+#define PIDM_REGS__PYR__PYR_BASE__HI__VAL_bp 0
+#define PIDM_REGS__PYR__PYR_BASE__HI__VAL_bw 32
+#define PIDM_REGS__PYR__PYR_BASE__HI__VAL_reset 0x0
+
+// regfile - pidm_regs.PYR.PYR_BASE
+typedef struct __attribute__ ((__packed__)) {
+    uint32_t LO;
+    uint32_t HI;
+} pidm_regs__PYR__PYR_BASE_t;
+
+// reg - pidm_regs.PYR.DIRTY0
+#define PIDM_REGS__PYR__DIRTY0__X0_bm 0xffff
+#define PIDM_REGS__PYR__DIRTY0__X0_bp 0
+#define PIDM_REGS__PYR__DIRTY0__X0_bw 16
+#define PIDM_REGS__PYR__DIRTY0__X0_reset 0x0
+#define PIDM_REGS__PYR__DIRTY0__Y0_bm 0xffff0000
+#define PIDM_REGS__PYR__DIRTY0__Y0_bp 16
+#define PIDM_REGS__PYR__DIRTY0__Y0_bw 16
+#define PIDM_REGS__PYR__DIRTY0__Y0_reset 0x0
+
+// reg - pidm_regs.PYR.DIRTY1
+#define PIDM_REGS__PYR__DIRTY1__X1_bm 0xffff
+#define PIDM_REGS__PYR__DIRTY1__X1_bp 0
+#define PIDM_REGS__PYR__DIRTY1__X1_bw 16
+#define PIDM_REGS__PYR__DIRTY1__X1_reset 0x0
+#define PIDM_REGS__PYR__DIRTY1__Y1_bm 0xffff0000
+#define PIDM_REGS__PYR__DIRTY1__Y1_bp 16
+#define PIDM_REGS__PYR__DIRTY1__Y1_bw 16
+#define PIDM_REGS__PYR__DIRTY1__Y1_reset 0x0
+
+// reg - pidm_regs.PYR.LEVEL_OFF[]
+#define PIDM_REGS__PYR__LEVEL_OFFX__VAL_bm 0xffffffff
+#define PIDM_REGS__PYR__LEVEL_OFFX__VAL_bp 0
+#define PIDM_REGS__PYR__LEVEL_OFFX__VAL_bw 32
+#define PIDM_REGS__PYR__LEVEL_OFFX__VAL_reset 0x0
+
+// regfile - pidm_regs.PYR
+typedef struct __attribute__ ((__packed__)) {
+    uint32_t INFO;
+    uint32_t FORMAT;
+    uint32_t SIZE;
+    uint8_t RESERVED_c_f[0x4];
+    pidm_regs__PYR__SRC_BASE_t SRC_BASE;
+    pidm_regs__PYR__PYR_BASE_t PYR_BASE;
+    uint32_t DIRTY0;
+    uint32_t DIRTY1;
+    uint8_t RESERVED_28_3f[0x18];
+    uint32_t LEVEL_OFF[16];
+} pidm_regs__PYR_t;
+
 // addrmap - pidm_regs
 typedef struct __attribute__ ((__packed__)) {
     uint32_t ID;
@@ -632,10 +773,11 @@ typedef struct __attribute__ ((__packed__)) {
     pidm_regs__SHADE_t SHADE;
     uint8_t RESERVED_340_3ff[0xc0];
     pidm_regs__TEXx__stride100_t TEX[2];
+    pidm_regs__PYR_t PYR;
 } pidm_regs_t;
 
 
-static_assert(sizeof(pidm_regs_t) == 0x600, "Packing error");
+static_assert(sizeof(pidm_regs_t) == 0x680, "Packing error");
 
 #ifdef __cplusplus
 }

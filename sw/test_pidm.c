@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // Host-side unit test of the pidm driver (sw/pidm.c): the driver runs against a register file in
 // memory (fake MMIO through pidm_set_mmio) that behaves as rtl/top/pidm_regs.rdl says for the
-// registers the driver touches (ID, VERSION, HWCFG reset values; CTRL single pulses; STATUS.busy
-// falling after a number of reads; INTR_STATE and ERROR write-1-to-clear).  Every write is
+// registers the driver touches (ID, VERSION, HWCFG, PYR.INFO reset values; CTRL single pulses;
+// STATUS.busy and STATUS.pyr_busy falling after a number of reads; INTR_STATE and ERROR
+// write-1-to-clear).  Every write is
 // logged, and the tests check the exact byte offsets and values against the documented map
 // (docs/registers.md), not against the generated header the driver uses.
 // Built and run by tests/test_sw_driver.py (cc -Wall -Wextra -Werror -std=c11); exit 0 when every
@@ -13,7 +14,7 @@
 #include "pidm.h"
 
 // ---- the simulated register file ----------------------------------------------------------------
-#define NWORDS (0x600 / 4)
+#define NWORDS (0x700 / 4)
 #define LOG_MAX 256
 
 struct sim {
@@ -22,7 +23,9 @@ struct sim {
     unsigned nlog, nreads;
     int busy_reads;        // STATUS reads left while busy (-1: not busy)
     uint32_t end_errors;   // ERROR flags the running frame ends with
-    unsigned starts, soft_resets, clears;
+    int pyr_reads;         // reads left while a pyramid build runs (-1: none)
+    uint32_t pyr_errors;   // ERROR flags the build ends with
+    unsigned starts, soft_resets, clears, pyr_starts;
 };
 
 // Time passes with every read: a running frame ends after busy_reads reads (of any register).
@@ -37,8 +40,17 @@ static uint32_t sim_rd(struct pidm_dev *dev, uint32_t off) {
             s->reg[0x020 / 4] |= 2u;                    // INTR_STATE.axi_error
         }
     }
-    if (off == 0x014)  // STATUS: busy, idle
-        return (s->busy_reads > 0 ? 1u : 0u) | (s->busy_reads > 0 ? 0u : 2u);
+    if (s->pyr_reads > 0 && --s->pyr_reads == 0) {
+        s->pyr_reads = -1;
+        s->reg[0x020 / 4] |= 4u;                        // INTR_STATE.pyr_done
+        if (s->pyr_errors) {
+            s->reg[0x018 / 4] |= s->pyr_errors;
+            s->reg[0x020 / 4] |= 2u;
+        }
+    }
+    if (off == 0x014)  // STATUS: busy, idle, pyr_busy
+        return (s->busy_reads > 0 ? 1u : 0u) | (s->busy_reads > 0 ? 0u : 2u)
+               | (s->pyr_reads > 0 ? 4u : 0u);
     return s->reg[off / 4];
 }
 
@@ -50,14 +62,15 @@ static void sim_wr(struct pidm_dev *dev, uint32_t off, uint32_t v) {
     }
     s->nlog++;
     switch (off) {
-    case 0x000: case 0x004: case 0x008: case 0x014: case 0x01C: break;  // read-only
+    case 0x000: case 0x004: case 0x008: case 0x014: case 0x01C: case 0x600: break;  // read-only
     case 0x010:  // CTRL: single pulses, read back 0
         if (v & 1u) { s->starts++; if (s->busy_reads < 0) s->busy_reads = 5; }
         if (v & 2u) { s->soft_resets++; s->busy_reads = -1; }
         if (v & 4u) s->clears++;
+        if (v & 8u) { s->pyr_starts++; if (s->pyr_reads < 0) s->pyr_reads = 4; }
         break;
     case 0x018: case 0x020: s->reg[off / 4] &= ~v; break;  // W1C
-    case 0x028: s->reg[0x020 / 4] |= v & 3u; break;        // INTR_TEST
+    case 0x028: s->reg[0x020 / 4] |= v & 7u; break;        // INTR_TEST
     default: s->reg[off / 4] = v;
     }
 }
@@ -65,9 +78,11 @@ static void sim_wr(struct pidm_dev *dev, uint32_t off, uint32_t v) {
 static void sim_reset(struct sim *s) {
     memset(s, 0, sizeof *s);
     s->reg[0x000 / 4] = 0x5049444Du;
-    s->reg[0x004 / 4] = 0x00010000u;
+    s->reg[0x004 / 4] = 0x00010001u;
     s->reg[0x008 / 4] = 20u | (16u << 8) | (32u << 16) | (8u << 24);  // PIX_W, TRIS, ADDR_W, bytes
+    s->reg[0x600 / 4] = 1u | (10u << 4);                               // PYR.INFO: present, 1024
     s->busy_reads = -1;
+    s->pyr_reads = -1;
 }
 
 static void sim_clear_log(struct sim *s) { s->nlog = 0; s->nreads = 0; }
@@ -111,17 +126,19 @@ static void test_offsets(void) {
     CHECK(PIDM_OFF(TT_WRITE) == 0x100 && PIDM_OFF(HEIGHT) == 0x200 && PIDM_OFF(SHADE) == 0x300);
     CHECK(PIDM_OFF(HEIGHT.LEVEL_OFF[3]) == 0x24C && PIDM_OFF(SHADE.LIGHT_X) == 0x320);
     CHECK(PIDM_OFF(TEX[1].LEVEL_SIZE[2]) == 0x588 && PIDM_OFF(TEX[0].LEVEL_OFF[0]) == 0x440);
-    CHECK(sizeof(pidm_regs_t) == 0x600);
+    CHECK(PIDM_OFF(PYR) == 0x600 && PIDM_OFF(PYR.SRC_BASE) == 0x610 && PIDM_OFF(PYR.PYR_BASE) == 0x618);
+    CHECK(PIDM_OFF(PYR.DIRTY1) == 0x624 && PIDM_OFF(PYR.LEVEL_OFF[15]) == 0x67C);
+    CHECK(sizeof(pidm_regs_t) == 0x680);
 }
 
 static void test_init(struct sim *s, struct pidm_dev *dev) {
     sim_reset(s);
     memset(dev, 0, sizeof *dev);
     pidm_set_mmio(dev, sim_rd, sim_wr, s);
-    s->reg[0x020 / 4] = 3u;  // stale causes from before
+    s->reg[0x020 / 4] = 7u;  // stale causes from before
     CHECK(pidm_probe(dev) == PIDM_OK);
     CHECK(dev->hwcfg == s->reg[0x008 / 4]);
-    CHECK_LOG(s, {0x024, 0}, {0x020, 3});
+    CHECK_LOG(s, {0x024, 0}, {0x020, 7});
     CHECK(s->reg[0x020 / 4] == 0);
 
     struct pidm_dev bad = {0};
@@ -141,7 +158,7 @@ static void test_init(struct sim *s, struct pidm_dev *dev) {
     mem[2] = 0xABCDu;
     mem[0x020 / 4] = 0;
     struct pidm_dev d3;
-    CHECK(pidm_init(&d3, mem) == PIDM_OK && d3.hwcfg == 0xABCDu && mem[0x020 / 4] == 3u);
+    CHECK(pidm_init(&d3, mem) == PIDM_OK && d3.hwcfg == 0xABCDu && mem[0x020 / 4] == 7u);
     CHECK(pidm_init(&d3, NULL) == PIDM_ERR_ARG);
 }
 
@@ -239,7 +256,7 @@ static void test_start_poll(struct sim *s, struct pidm_dev *dev) {
 static void test_irq(struct sim *s, struct pidm_dev *dev) {
     sim_clear_log(s);
     pidm_irq_enable(dev, PIDM_IRQ_ALL | 0x100u);
-    CHECK_LOG(s, {0x024, 3});
+    CHECK_LOG(s, {0x024, 7});
     // The handler reads INTR_STATE and clears exactly what it read.
     s->reg[0x020 / 4] = 2u;
     sim_clear_log(s);
@@ -288,15 +305,76 @@ static void test_stats_reset(struct sim *s, struct pidm_dev *dev) {
     CHECK(s->soft_resets == 1 && s->busy_reads == -1);
 }
 
+static void test_pyr(struct sim *s, struct pidm_dev *dev) {
+    // Level offsets as model.heightmap.Pyramid.level_offsets(): 100 x 60 unorm8 pads to 128.
+    uint32_t off[PIDM_PYR_LEVELS];
+    CHECK(pidm_pyr_offsets(100, 60, 0, off) == 8);
+    CHECK(off[0] == 0 && off[1] == 16384 && off[2] == 16384 + 4096 && off[3] == 21504);
+    CHECK(off[6] == 21504 + 256 + 64 + 64 && off[7] == off[6] + 64 && off[8] == 0);
+    CHECK(pidm_pyr_offsets(1, 1, 1, off) == 1 && off[0] == 0 && off[1] == 0);
+    CHECK(pidm_pyr_offsets(3, 2, 1, off) == 3 && off[1] == 64 && off[2] == 128);
+    CHECK(pidm_pyr_offsets(0, 4, 0, off) == 0 && pidm_pyr_offsets(1u << 16, 4, 0, off) == 0);
+    // A full build of 100 x 60 unorm16 at two 64-bit bases.
+    struct pidm_pyr p = {.src_base = 0x0000000180000000ull, .pyr_base = 0x90000040ull,
+                         .width = 100, .height = 60, .bits16 = 1};
+    pidm_pyr_full(&p);
+    CHECK(p.x0 == 0 && p.y0 == 0 && p.x1 == 99 && p.y1 == 59 && p.level_off[1] == 32768);
+    sim_clear_log(s);
+    CHECK(pidm_pyr_start(dev, &p) == PIDM_OK);
+    CHECK(s->nlog == 10 + PIDM_PYR_LEVELS && s->pyr_starts == 1);
+    CHECK_LOG(s, {0x604, 1}, {0x608, 100u | (60u << 16)}, {0x610, 0x80000000}, {0x614, 1},
+              {0x618, 0x90000040}, {0x61C, 0}, {0x620, 0}, {0x624, 99u | (59u << 16)},
+              {0x640, 0}, {0x644, 32768}, {0x648, 32768 + 8192}, {0x64C, 43008},
+              {0x650, 43008 + 512}, {0x654, 43008 + 512 + 128}, {0x658, 43008 + 512 + 192},
+              {0x65C, 43008 + 512 + 256}, {0x660, 0}, {0x664, 0}, {0x668, 0}, {0x66C, 0},
+              {0x670, 0}, {0x674, 0}, {0x678, 0}, {0x67C, 0}, {0x020, 6}, {0x010, 8});
+    // Running: a frame or another build is refused without a write.
+    sim_clear_log(s);
+    CHECK(pidm_pyr_start(dev, &p) == PIDM_ERR_BUSY && s->nlog == 0);
+    CHECK(pidm_pyr_poll_done(dev, 100) == PIDM_OK);
+    CHECK(s->reg[0x020 / 4] == 4u);  // pyr_done raised
+    // A dirty rectangle, a build that ends on a write error, a timeout.
+    p.x0 = 10; p.y0 = 20; p.x1 = 10; p.y1 = 31;
+    s->pyr_errors = 1u << 6;
+    sim_clear_log(s);
+    CHECK(pidm_pyr_build(dev, &p, 100) == PIDM_ERR_HW);
+    CHECK(s->log_val[6] == (10u | (20u << 16)) && s->log_val[7] == (10u | (31u << 16)));
+    CHECK(pidm_error_flags(dev) == 0x40u);
+    pidm_clear_errors(dev, 0x40u);
+    s->pyr_errors = 0;
+    CHECK(pidm_pyr_start(dev, &p) == PIDM_OK);
+    CHECK(pidm_pyr_poll_done(dev, 1) == PIDM_ERR_TIMEOUT);
+    CHECK(pidm_pyr_poll_done(dev, 100) == PIDM_OK);
+    // Bad arguments: nothing written.
+    sim_clear_log(s);
+    struct pidm_pyr q = p;
+    q.x1 = 100;                        // outside the map
+    CHECK(pidm_pyr_start(dev, &q) == PIDM_ERR_ARG);
+    q = p; q.y0 = 32;                  // empty
+    CHECK(pidm_pyr_start(dev, &q) == PIDM_ERR_ARG);
+    q = p; q.width = 1025;             // above 2^PYR.INFO.max_lg
+    CHECK(pidm_pyr_start(dev, &q) == PIDM_ERR_ARG);
+    CHECK(pidm_pyr_start(dev, NULL) == PIDM_ERR_ARG && s->nlog == 0);
+    s->reg[0x600 / 4] = 10u << 4;      // no builder in this instance
+    CHECK(pidm_pyr_start(dev, &p) == PIDM_ERR_ARG && s->nlog == 0);
+    s->reg[0x600 / 4] = 1u | (10u << 4);
+    // A frame running: no build.
+    s->busy_reads = 100;
+    CHECK(pidm_pyr_start(dev, &p) == PIDM_ERR_BUSY && s->nlog == 0);
+    s->busy_reads = -1;
+}
+
 static void test_strings(void) {
     char buf[64];
     CHECK(pidm_error_string(0, buf, sizeof buf) == 0 && buf[0] == '\0');
-    pidm_error_string(0x1Fu | 0x40u, buf, sizeof buf);
-    CHECK(strcmp(buf, "h_axi t_axi frag_dma fb_write bad_config unknown:0x40") == 0);
+    pidm_error_string(0x1Fu | 0x1000u, buf, sizeof buf);
+    CHECK(strcmp(buf, "h_axi t_axi frag_dma fb_write bad_config unknown:0x1000") == 0);
+    pidm_error_string(0x1E0u, buf, sizeof buf);
+    CHECK(strcmp(buf, "pyr_read pyr_write pyr_config start_refused") == 0);
     char small[8];
     size_t n = pidm_error_string(0x10u, small, sizeof small);  // truncated, still terminated
     CHECK(n == strlen("bad_config") && strcmp(small, "bad_con") == 0);
-    CHECK(strcmp(pidm_strerror(PIDM_ERR_BUSY), "a frame is running") == 0);
+    CHECK(strcmp(pidm_strerror(PIDM_ERR_BUSY), "a frame or a pyramid build is running") == 0);
     CHECK(strcmp(pidm_strerror(42), "unknown") == 0);
 }
 
@@ -310,6 +388,7 @@ int main(void) {
     test_start_poll(&s, &dev);
     test_irq(&s, &dev);
     test_stats_reset(&s, &dev);
+    test_pyr(&s, &dev);
     test_strings();
     printf("test_pidm: %u checks, %u failed\n", checks, failures);
     return failures ? 1 : 0;

@@ -4,7 +4,9 @@
 Needs Verilator (builds the pyr_build simulation and the pipeline harness on first use).  Checks:
 every frame identical, the stats' shape, a dirty rectangle after frame 0; a corrupted built
 pyramid is caught (the render reads the builder's bytes, so a wrong byte cannot pass); usage
-errors exit 2 with one line.
+errors exit 2 with one line.  ``--top system``: the same loop through pidm_top (the builder and
+the frame started through its registers, tb/harness/pidm_system.py): every frame identical, the
+same statistics, a corrupted read-back caught.
 """
 from __future__ import annotations
 
@@ -15,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from scripts import animate
-from tb.harness import pyr_run
+from tb.harness import pidm_system, pyr_run
 
 pytestmark = pytest.mark.skipif(shutil.which("verilator") is None, reason="needs Verilator")
 
@@ -59,6 +61,27 @@ def test_animate_catches_a_wrong_pyramid(tmp_path: Path, monkeypatch: pytest.Mon
     assert rc == 1 and st["identical"] is False
     assert st["per_frame"][0]["identical"] is True
     assert st["per_frame"][1]["pyramid_identical"] is False
+
+
+def test_animate_system(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    rc, st = run(tmp_path, "--motion", "dent", "--top", "system")
+    assert rc == 0 and st["identical"] is True and len(st["per_frame"]) == 3
+    for p in st["per_frame"]:
+        assert KEYS <= set(p), p
+        assert p["identical"] is True and p["render_cycles"] > 0 and p["pyramid_cycles"] > 0
+    assert st["per_frame"][0]["dirty_rect"] == [0, 0, 31, 31]
+    assert st["per_frame"][1]["dirty_rect"] not in (None, [0, 0, 31, 31])
+    real = pidm_system.build_and_render
+
+    def corrupt(*args, **kw):  # type: ignore[no-untyped-def]
+        img, stats, heights = real(*args, **kw)
+        h = bytearray(heights)
+        h[1024] ^= 0xFF                      # level 1's first texel of a 32x32 map
+        return img, stats, bytes(h)
+
+    monkeypatch.setattr(pidm_system, "build_and_render", corrupt)
+    rc, st = run(tmp_path / "bad", "--frames", "1", "--motion", "dent", "--top", "system")
+    assert rc == 1 and st["per_frame"][0]["pyramid_identical"] is False
 
 
 def test_animate_usage_errors(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:

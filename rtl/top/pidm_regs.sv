@@ -328,6 +328,22 @@ module pidm_regs (
             logic LEVEL_OFF[16];
             logic LEVEL_SIZE[16];
         } TEX[2];
+        struct {
+            logic INFO;
+            logic FORMAT;
+            logic SIZE;
+            struct {
+                logic LO;
+                logic HI;
+            } SRC_BASE;
+            struct {
+                logic LO;
+                logic HI;
+            } PYR_BASE;
+            logic DIRTY0;
+            logic DIRTY1;
+            logic LEVEL_OFF[16];
+        } PYR;
     } decoded_reg_strb_t;
     decoded_reg_strb_t decoded_reg_strb;
     logic decoded_err;
@@ -413,6 +429,18 @@ module pidm_regs (
                 decoded_reg_strb.TEX[i0].LEVEL_SIZE[i1] = cpuif_req_masked & (cpuif_addr == 12'h480 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4);
             end
         end
+        decoded_reg_strb.PYR.INFO = cpuif_req_masked & (cpuif_addr == 12'h600) & !cpuif_req_is_wr;
+        decoded_reg_strb.PYR.FORMAT = cpuif_req_masked & (cpuif_addr == 12'h604);
+        decoded_reg_strb.PYR.SIZE = cpuif_req_masked & (cpuif_addr == 12'h608);
+        decoded_reg_strb.PYR.SRC_BASE.LO = cpuif_req_masked & (cpuif_addr == 12'h610);
+        decoded_reg_strb.PYR.SRC_BASE.HI = cpuif_req_masked & (cpuif_addr == 12'h614);
+        decoded_reg_strb.PYR.PYR_BASE.LO = cpuif_req_masked & (cpuif_addr == 12'h618);
+        decoded_reg_strb.PYR.PYR_BASE.HI = cpuif_req_masked & (cpuif_addr == 12'h61c);
+        decoded_reg_strb.PYR.DIRTY0 = cpuif_req_masked & (cpuif_addr == 12'h620);
+        decoded_reg_strb.PYR.DIRTY1 = cpuif_req_masked & (cpuif_addr == 12'h624);
+        for(int i0=0; i0<16; i0++) begin
+            decoded_reg_strb.PYR.LEVEL_OFF[i0] = cpuif_req_masked & (cpuif_addr == 12'h640 + (12)'(i0) * 12'h4);
+        end
         decoded_err = '0;
     end
 
@@ -440,6 +468,10 @@ module pidm_regs (
                 logic next;
                 logic load_next;
             } clear_stats;
+            struct {
+                logic next;
+                logic load_next;
+            } pyr_start;
         } CTRL;
         struct {
             struct {
@@ -462,6 +494,22 @@ module pidm_regs (
                 logic next;
                 logic load_next;
             } bad_config;
+            struct {
+                logic next;
+                logic load_next;
+            } pyr_read;
+            struct {
+                logic next;
+                logic load_next;
+            } pyr_write;
+            struct {
+                logic next;
+                logic load_next;
+            } pyr_config;
+            struct {
+                logic next;
+                logic load_next;
+            } start_refused;
         } ERROR;
         struct {
             struct {
@@ -472,6 +520,10 @@ module pidm_regs (
                 logic next;
                 logic load_next;
             } axi_error;
+            struct {
+                logic next;
+                logic load_next;
+            } pyr_done;
         } INTR_STATE;
         struct {
             struct {
@@ -482,6 +534,10 @@ module pidm_regs (
                 logic next;
                 logic load_next;
             } axi_error;
+            struct {
+                logic next;
+                logic load_next;
+            } pyr_done;
         } INTR_ENABLE;
         struct {
             struct {
@@ -492,6 +548,10 @@ module pidm_regs (
                 logic next;
                 logic load_next;
             } axi_error;
+            struct {
+                logic next;
+                logic load_next;
+            } pyr_done;
         } INTR_TEST;
         struct {
             struct {
@@ -737,6 +797,78 @@ module pidm_regs (
                 } height;
             } LEVEL_SIZE[16];
         } TEX[2];
+        struct {
+            struct {
+                struct {
+                    logic next;
+                    logic load_next;
+                } bits16;
+            } FORMAT;
+            struct {
+                struct {
+                    logic [15:0] next;
+                    logic load_next;
+                } width;
+                struct {
+                    logic [15:0] next;
+                    logic load_next;
+                } height;
+            } SIZE;
+            struct {
+                struct {
+                    struct {
+                        logic [31:0] next;
+                        logic load_next;
+                    } val;
+                } LO;
+                struct {
+                    struct {
+                        logic [31:0] next;
+                        logic load_next;
+                    } val;
+                } HI;
+            } SRC_BASE;
+            struct {
+                struct {
+                    struct {
+                        logic [31:0] next;
+                        logic load_next;
+                    } val;
+                } LO;
+                struct {
+                    struct {
+                        logic [31:0] next;
+                        logic load_next;
+                    } val;
+                } HI;
+            } PYR_BASE;
+            struct {
+                struct {
+                    logic [15:0] next;
+                    logic load_next;
+                } x0;
+                struct {
+                    logic [15:0] next;
+                    logic load_next;
+                } y0;
+            } DIRTY0;
+            struct {
+                struct {
+                    logic [15:0] next;
+                    logic load_next;
+                } x1;
+                struct {
+                    logic [15:0] next;
+                    logic load_next;
+                } y1;
+            } DIRTY1;
+            struct {
+                struct {
+                    logic [31:0] next;
+                    logic load_next;
+                } val;
+            } LEVEL_OFF[16];
+        } PYR;
     } field_combo_t;
     field_combo_t field_combo;
 
@@ -751,6 +883,9 @@ module pidm_regs (
             struct {
                 logic value;
             } clear_stats;
+            struct {
+                logic value;
+            } pyr_start;
         } CTRL;
         struct {
             struct {
@@ -768,6 +903,18 @@ module pidm_regs (
             struct {
                 logic value;
             } bad_config;
+            struct {
+                logic value;
+            } pyr_read;
+            struct {
+                logic value;
+            } pyr_write;
+            struct {
+                logic value;
+            } pyr_config;
+            struct {
+                logic value;
+            } start_refused;
         } ERROR;
         struct {
             struct {
@@ -776,6 +923,9 @@ module pidm_regs (
             struct {
                 logic value;
             } axi_error;
+            struct {
+                logic value;
+            } pyr_done;
         } INTR_STATE;
         struct {
             struct {
@@ -784,6 +934,9 @@ module pidm_regs (
             struct {
                 logic value;
             } axi_error;
+            struct {
+                logic value;
+            } pyr_done;
         } INTR_ENABLE;
         struct {
             struct {
@@ -792,6 +945,9 @@ module pidm_regs (
             struct {
                 logic value;
             } axi_error;
+            struct {
+                logic value;
+            } pyr_done;
         } INTR_TEST;
         struct {
             struct {
@@ -995,6 +1151,66 @@ module pidm_regs (
                 } height;
             } LEVEL_SIZE[16];
         } TEX[2];
+        struct {
+            struct {
+                struct {
+                    logic value;
+                } bits16;
+            } FORMAT;
+            struct {
+                struct {
+                    logic [15:0] value;
+                } width;
+                struct {
+                    logic [15:0] value;
+                } height;
+            } SIZE;
+            struct {
+                struct {
+                    struct {
+                        logic [31:0] value;
+                    } val;
+                } LO;
+                struct {
+                    struct {
+                        logic [31:0] value;
+                    } val;
+                } HI;
+            } SRC_BASE;
+            struct {
+                struct {
+                    struct {
+                        logic [31:0] value;
+                    } val;
+                } LO;
+                struct {
+                    struct {
+                        logic [31:0] value;
+                    } val;
+                } HI;
+            } PYR_BASE;
+            struct {
+                struct {
+                    logic [15:0] value;
+                } x0;
+                struct {
+                    logic [15:0] value;
+                } y0;
+            } DIRTY0;
+            struct {
+                struct {
+                    logic [15:0] value;
+                } x1;
+                struct {
+                    logic [15:0] value;
+                } y1;
+            } DIRTY1;
+            struct {
+                struct {
+                    logic [31:0] value;
+                } val;
+            } LEVEL_OFF[16];
+        } PYR;
     } field_storage_t;
     field_storage_t field_storage;
 
@@ -1076,6 +1292,32 @@ module pidm_regs (
         end
     end
     assign hwif_out.CTRL.clear_stats.value = field_storage.CTRL.clear_stats.value;
+    // Field: pidm_regs.CTRL.pyr_start
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.CTRL.pyr_start.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.CTRL && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.CTRL.pyr_start.value & ~decoded_wr_biten[3:3]) | (decoded_wr_data[3:3] & decoded_wr_biten[3:3]);
+            load_next_c = '1;
+        end else begin // singlepulse clears back to 0
+            next_c = '0;
+            load_next_c = '1;
+        end
+        field_combo.CTRL.pyr_start.next = next_c;
+        field_combo.CTRL.pyr_start.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.CTRL.pyr_start.value <= 1'h0;
+        end else begin
+            if(field_combo.CTRL.pyr_start.load_next) begin
+                field_storage.CTRL.pyr_start.value <= field_combo.CTRL.pyr_start.next;
+            end
+        end
+    end
+    assign hwif_out.CTRL.pyr_start.value = field_storage.CTRL.pyr_start.value;
     // Field: pidm_regs.ERROR.h_axi
     always_comb begin
         automatic logic [0:0] next_c;
@@ -1206,6 +1448,110 @@ module pidm_regs (
         end
     end
     assign hwif_out.ERROR.bad_config.value = field_storage.ERROR.bad_config.value;
+    // Field: pidm_regs.ERROR.pyr_read
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.ERROR.pyr_read.value;
+        load_next_c = '0;
+        if(hwif_in.ERROR.pyr_read.hwset) begin // HW Set
+            next_c = '1;
+            load_next_c = '1;
+        end else if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.ERROR.pyr_read.value & ~(decoded_wr_data[5:5] & decoded_wr_biten[5:5]);
+            load_next_c = '1;
+        end
+        field_combo.ERROR.pyr_read.next = next_c;
+        field_combo.ERROR.pyr_read.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.ERROR.pyr_read.value <= 1'h0;
+        end else begin
+            if(field_combo.ERROR.pyr_read.load_next) begin
+                field_storage.ERROR.pyr_read.value <= field_combo.ERROR.pyr_read.next;
+            end
+        end
+    end
+    assign hwif_out.ERROR.pyr_read.value = field_storage.ERROR.pyr_read.value;
+    // Field: pidm_regs.ERROR.pyr_write
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.ERROR.pyr_write.value;
+        load_next_c = '0;
+        if(hwif_in.ERROR.pyr_write.hwset) begin // HW Set
+            next_c = '1;
+            load_next_c = '1;
+        end else if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.ERROR.pyr_write.value & ~(decoded_wr_data[6:6] & decoded_wr_biten[6:6]);
+            load_next_c = '1;
+        end
+        field_combo.ERROR.pyr_write.next = next_c;
+        field_combo.ERROR.pyr_write.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.ERROR.pyr_write.value <= 1'h0;
+        end else begin
+            if(field_combo.ERROR.pyr_write.load_next) begin
+                field_storage.ERROR.pyr_write.value <= field_combo.ERROR.pyr_write.next;
+            end
+        end
+    end
+    assign hwif_out.ERROR.pyr_write.value = field_storage.ERROR.pyr_write.value;
+    // Field: pidm_regs.ERROR.pyr_config
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.ERROR.pyr_config.value;
+        load_next_c = '0;
+        if(hwif_in.ERROR.pyr_config.hwset) begin // HW Set
+            next_c = '1;
+            load_next_c = '1;
+        end else if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.ERROR.pyr_config.value & ~(decoded_wr_data[7:7] & decoded_wr_biten[7:7]);
+            load_next_c = '1;
+        end
+        field_combo.ERROR.pyr_config.next = next_c;
+        field_combo.ERROR.pyr_config.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.ERROR.pyr_config.value <= 1'h0;
+        end else begin
+            if(field_combo.ERROR.pyr_config.load_next) begin
+                field_storage.ERROR.pyr_config.value <= field_combo.ERROR.pyr_config.next;
+            end
+        end
+    end
+    assign hwif_out.ERROR.pyr_config.value = field_storage.ERROR.pyr_config.value;
+    // Field: pidm_regs.ERROR.start_refused
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.ERROR.start_refused.value;
+        load_next_c = '0;
+        if(hwif_in.ERROR.start_refused.hwset) begin // HW Set
+            next_c = '1;
+            load_next_c = '1;
+        end else if(decoded_reg_strb.ERROR && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.ERROR.start_refused.value & ~(decoded_wr_data[8:8] & decoded_wr_biten[8:8]);
+            load_next_c = '1;
+        end
+        field_combo.ERROR.start_refused.next = next_c;
+        field_combo.ERROR.start_refused.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.ERROR.start_refused.value <= 1'h0;
+        end else begin
+            if(field_combo.ERROR.start_refused.load_next) begin
+                field_storage.ERROR.start_refused.value <= field_combo.ERROR.start_refused.next;
+            end
+        end
+    end
+    assign hwif_out.ERROR.start_refused.value = field_storage.ERROR.start_refused.value;
     // Field: pidm_regs.INTR_STATE.frame_done
     always_comb begin
         automatic logic [0:0] next_c;
@@ -1256,9 +1602,35 @@ module pidm_regs (
             end
         end
     end
+    // Field: pidm_regs.INTR_STATE.pyr_done
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.INTR_STATE.pyr_done.value;
+        load_next_c = '0;
+        if(hwif_in.INTR_STATE.pyr_done.next) begin // stickybit
+            next_c = '1;
+            load_next_c = '1;
+        end else if(decoded_reg_strb.INTR_STATE && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.INTR_STATE.pyr_done.value & ~(decoded_wr_data[2:2] & decoded_wr_biten[2:2]);
+            load_next_c = '1;
+        end
+        field_combo.INTR_STATE.pyr_done.next = next_c;
+        field_combo.INTR_STATE.pyr_done.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.INTR_STATE.pyr_done.value <= 1'h0;
+        end else begin
+            if(field_combo.INTR_STATE.pyr_done.load_next) begin
+                field_storage.INTR_STATE.pyr_done.value <= field_combo.INTR_STATE.pyr_done.next;
+            end
+        end
+    end
     assign hwif_out.INTR_STATE.intr =
         |(field_storage.INTR_STATE.frame_done.value & field_storage.INTR_ENABLE.frame_done.value)
-        || |(field_storage.INTR_STATE.axi_error.value & field_storage.INTR_ENABLE.axi_error.value);
+        || |(field_storage.INTR_STATE.axi_error.value & field_storage.INTR_ENABLE.axi_error.value)
+        || |(field_storage.INTR_STATE.pyr_done.value & field_storage.INTR_ENABLE.pyr_done.value);
     // Field: pidm_regs.INTR_ENABLE.frame_done
     always_comb begin
         automatic logic [0:0] next_c;
@@ -1300,6 +1672,28 @@ module pidm_regs (
         end else begin
             if(field_combo.INTR_ENABLE.axi_error.load_next) begin
                 field_storage.INTR_ENABLE.axi_error.value <= field_combo.INTR_ENABLE.axi_error.next;
+            end
+        end
+    end
+    // Field: pidm_regs.INTR_ENABLE.pyr_done
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.INTR_ENABLE.pyr_done.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.INTR_ENABLE && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.INTR_ENABLE.pyr_done.value & ~decoded_wr_biten[2:2]) | (decoded_wr_data[2:2] & decoded_wr_biten[2:2]);
+            load_next_c = '1;
+        end
+        field_combo.INTR_ENABLE.pyr_done.next = next_c;
+        field_combo.INTR_ENABLE.pyr_done.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.INTR_ENABLE.pyr_done.value <= 1'h0;
+        end else begin
+            if(field_combo.INTR_ENABLE.pyr_done.load_next) begin
+                field_storage.INTR_ENABLE.pyr_done.value <= field_combo.INTR_ENABLE.pyr_done.next;
             end
         end
     end
@@ -1355,6 +1749,32 @@ module pidm_regs (
         end
     end
     assign hwif_out.INTR_TEST.axi_error.value = field_storage.INTR_TEST.axi_error.value;
+    // Field: pidm_regs.INTR_TEST.pyr_done
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.INTR_TEST.pyr_done.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.INTR_TEST && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.INTR_TEST.pyr_done.value & ~decoded_wr_biten[2:2]) | (decoded_wr_data[2:2] & decoded_wr_biten[2:2]);
+            load_next_c = '1;
+        end else begin // singlepulse clears back to 0
+            next_c = '0;
+            load_next_c = '1;
+        end
+        field_combo.INTR_TEST.pyr_done.next = next_c;
+        field_combo.INTR_TEST.pyr_done.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.INTR_TEST.pyr_done.value <= 1'h0;
+        end else begin
+            if(field_combo.INTR_TEST.pyr_done.load_next) begin
+                field_storage.INTR_TEST.pyr_done.value <= field_combo.INTR_TEST.pyr_done.next;
+            end
+        end
+    end
+    assign hwif_out.INTR_TEST.pyr_done.value = field_storage.INTR_TEST.pyr_done.value;
     // Field: pidm_regs.FRAME.FRAG_BASE.LO.val
     always_comb begin
         automatic logic [31:0] next_c;
@@ -2330,6 +2750,284 @@ module pidm_regs (
             assign hwif_out.TEX[i0].LEVEL_SIZE[i1].height.value = field_storage.TEX[i0].LEVEL_SIZE[i1].height.value;
         end
     end
+    // Field: pidm_regs.PYR.FORMAT.bits16
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.PYR.FORMAT.bits16.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.PYR.FORMAT && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.PYR.FORMAT.bits16.value & ~decoded_wr_biten[0:0]) | (decoded_wr_data[0:0] & decoded_wr_biten[0:0]);
+            load_next_c = '1;
+        end
+        field_combo.PYR.FORMAT.bits16.next = next_c;
+        field_combo.PYR.FORMAT.bits16.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.PYR.FORMAT.bits16.value <= 1'h0;
+        end else begin
+            if(field_combo.PYR.FORMAT.bits16.load_next) begin
+                field_storage.PYR.FORMAT.bits16.value <= field_combo.PYR.FORMAT.bits16.next;
+            end
+        end
+    end
+    assign hwif_out.PYR.FORMAT.bits16.value = field_storage.PYR.FORMAT.bits16.value;
+    // Field: pidm_regs.PYR.SIZE.width
+    always_comb begin
+        automatic logic [15:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.PYR.SIZE.width.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.PYR.SIZE && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.PYR.SIZE.width.value & ~decoded_wr_biten[15:0]) | (decoded_wr_data[15:0] & decoded_wr_biten[15:0]);
+            load_next_c = '1;
+        end
+        field_combo.PYR.SIZE.width.next = next_c;
+        field_combo.PYR.SIZE.width.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.PYR.SIZE.width.value <= 16'h0;
+        end else begin
+            if(field_combo.PYR.SIZE.width.load_next) begin
+                field_storage.PYR.SIZE.width.value <= field_combo.PYR.SIZE.width.next;
+            end
+        end
+    end
+    assign hwif_out.PYR.SIZE.width.value = field_storage.PYR.SIZE.width.value;
+    // Field: pidm_regs.PYR.SIZE.height
+    always_comb begin
+        automatic logic [15:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.PYR.SIZE.height.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.PYR.SIZE && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.PYR.SIZE.height.value & ~decoded_wr_biten[31:16]) | (decoded_wr_data[31:16] & decoded_wr_biten[31:16]);
+            load_next_c = '1;
+        end
+        field_combo.PYR.SIZE.height.next = next_c;
+        field_combo.PYR.SIZE.height.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.PYR.SIZE.height.value <= 16'h0;
+        end else begin
+            if(field_combo.PYR.SIZE.height.load_next) begin
+                field_storage.PYR.SIZE.height.value <= field_combo.PYR.SIZE.height.next;
+            end
+        end
+    end
+    assign hwif_out.PYR.SIZE.height.value = field_storage.PYR.SIZE.height.value;
+    // Field: pidm_regs.PYR.SRC_BASE.LO.val
+    always_comb begin
+        automatic logic [31:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.PYR.SRC_BASE.LO.val.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.PYR.SRC_BASE.LO && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.PYR.SRC_BASE.LO.val.value & ~decoded_wr_biten[31:0]) | (decoded_wr_data[31:0] & decoded_wr_biten[31:0]);
+            load_next_c = '1;
+        end
+        field_combo.PYR.SRC_BASE.LO.val.next = next_c;
+        field_combo.PYR.SRC_BASE.LO.val.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.PYR.SRC_BASE.LO.val.value <= 32'h0;
+        end else begin
+            if(field_combo.PYR.SRC_BASE.LO.val.load_next) begin
+                field_storage.PYR.SRC_BASE.LO.val.value <= field_combo.PYR.SRC_BASE.LO.val.next;
+            end
+        end
+    end
+    assign hwif_out.PYR.SRC_BASE.LO.val.value = field_storage.PYR.SRC_BASE.LO.val.value;
+    // Field: pidm_regs.PYR.SRC_BASE.HI.val
+    always_comb begin
+        automatic logic [31:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.PYR.SRC_BASE.HI.val.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.PYR.SRC_BASE.HI && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.PYR.SRC_BASE.HI.val.value & ~decoded_wr_biten[31:0]) | (decoded_wr_data[31:0] & decoded_wr_biten[31:0]);
+            load_next_c = '1;
+        end
+        field_combo.PYR.SRC_BASE.HI.val.next = next_c;
+        field_combo.PYR.SRC_BASE.HI.val.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.PYR.SRC_BASE.HI.val.value <= 32'h0;
+        end else begin
+            if(field_combo.PYR.SRC_BASE.HI.val.load_next) begin
+                field_storage.PYR.SRC_BASE.HI.val.value <= field_combo.PYR.SRC_BASE.HI.val.next;
+            end
+        end
+    end
+    assign hwif_out.PYR.SRC_BASE.HI.val.value = field_storage.PYR.SRC_BASE.HI.val.value;
+    // Field: pidm_regs.PYR.PYR_BASE.LO.val
+    always_comb begin
+        automatic logic [31:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.PYR.PYR_BASE.LO.val.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.PYR.PYR_BASE.LO && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.PYR.PYR_BASE.LO.val.value & ~decoded_wr_biten[31:0]) | (decoded_wr_data[31:0] & decoded_wr_biten[31:0]);
+            load_next_c = '1;
+        end
+        field_combo.PYR.PYR_BASE.LO.val.next = next_c;
+        field_combo.PYR.PYR_BASE.LO.val.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.PYR.PYR_BASE.LO.val.value <= 32'h0;
+        end else begin
+            if(field_combo.PYR.PYR_BASE.LO.val.load_next) begin
+                field_storage.PYR.PYR_BASE.LO.val.value <= field_combo.PYR.PYR_BASE.LO.val.next;
+            end
+        end
+    end
+    assign hwif_out.PYR.PYR_BASE.LO.val.value = field_storage.PYR.PYR_BASE.LO.val.value;
+    // Field: pidm_regs.PYR.PYR_BASE.HI.val
+    always_comb begin
+        automatic logic [31:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.PYR.PYR_BASE.HI.val.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.PYR.PYR_BASE.HI && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.PYR.PYR_BASE.HI.val.value & ~decoded_wr_biten[31:0]) | (decoded_wr_data[31:0] & decoded_wr_biten[31:0]);
+            load_next_c = '1;
+        end
+        field_combo.PYR.PYR_BASE.HI.val.next = next_c;
+        field_combo.PYR.PYR_BASE.HI.val.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.PYR.PYR_BASE.HI.val.value <= 32'h0;
+        end else begin
+            if(field_combo.PYR.PYR_BASE.HI.val.load_next) begin
+                field_storage.PYR.PYR_BASE.HI.val.value <= field_combo.PYR.PYR_BASE.HI.val.next;
+            end
+        end
+    end
+    assign hwif_out.PYR.PYR_BASE.HI.val.value = field_storage.PYR.PYR_BASE.HI.val.value;
+    // Field: pidm_regs.PYR.DIRTY0.x0
+    always_comb begin
+        automatic logic [15:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.PYR.DIRTY0.x0.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.PYR.DIRTY0 && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.PYR.DIRTY0.x0.value & ~decoded_wr_biten[15:0]) | (decoded_wr_data[15:0] & decoded_wr_biten[15:0]);
+            load_next_c = '1;
+        end
+        field_combo.PYR.DIRTY0.x0.next = next_c;
+        field_combo.PYR.DIRTY0.x0.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.PYR.DIRTY0.x0.value <= 16'h0;
+        end else begin
+            if(field_combo.PYR.DIRTY0.x0.load_next) begin
+                field_storage.PYR.DIRTY0.x0.value <= field_combo.PYR.DIRTY0.x0.next;
+            end
+        end
+    end
+    assign hwif_out.PYR.DIRTY0.x0.value = field_storage.PYR.DIRTY0.x0.value;
+    // Field: pidm_regs.PYR.DIRTY0.y0
+    always_comb begin
+        automatic logic [15:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.PYR.DIRTY0.y0.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.PYR.DIRTY0 && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.PYR.DIRTY0.y0.value & ~decoded_wr_biten[31:16]) | (decoded_wr_data[31:16] & decoded_wr_biten[31:16]);
+            load_next_c = '1;
+        end
+        field_combo.PYR.DIRTY0.y0.next = next_c;
+        field_combo.PYR.DIRTY0.y0.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.PYR.DIRTY0.y0.value <= 16'h0;
+        end else begin
+            if(field_combo.PYR.DIRTY0.y0.load_next) begin
+                field_storage.PYR.DIRTY0.y0.value <= field_combo.PYR.DIRTY0.y0.next;
+            end
+        end
+    end
+    assign hwif_out.PYR.DIRTY0.y0.value = field_storage.PYR.DIRTY0.y0.value;
+    // Field: pidm_regs.PYR.DIRTY1.x1
+    always_comb begin
+        automatic logic [15:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.PYR.DIRTY1.x1.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.PYR.DIRTY1 && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.PYR.DIRTY1.x1.value & ~decoded_wr_biten[15:0]) | (decoded_wr_data[15:0] & decoded_wr_biten[15:0]);
+            load_next_c = '1;
+        end
+        field_combo.PYR.DIRTY1.x1.next = next_c;
+        field_combo.PYR.DIRTY1.x1.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.PYR.DIRTY1.x1.value <= 16'h0;
+        end else begin
+            if(field_combo.PYR.DIRTY1.x1.load_next) begin
+                field_storage.PYR.DIRTY1.x1.value <= field_combo.PYR.DIRTY1.x1.next;
+            end
+        end
+    end
+    assign hwif_out.PYR.DIRTY1.x1.value = field_storage.PYR.DIRTY1.x1.value;
+    // Field: pidm_regs.PYR.DIRTY1.y1
+    always_comb begin
+        automatic logic [15:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.PYR.DIRTY1.y1.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.PYR.DIRTY1 && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.PYR.DIRTY1.y1.value & ~decoded_wr_biten[31:16]) | (decoded_wr_data[31:16] & decoded_wr_biten[31:16]);
+            load_next_c = '1;
+        end
+        field_combo.PYR.DIRTY1.y1.next = next_c;
+        field_combo.PYR.DIRTY1.y1.load_next = load_next_c;
+    end
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            field_storage.PYR.DIRTY1.y1.value <= 16'h0;
+        end else begin
+            if(field_combo.PYR.DIRTY1.y1.load_next) begin
+                field_storage.PYR.DIRTY1.y1.value <= field_combo.PYR.DIRTY1.y1.next;
+            end
+        end
+    end
+    assign hwif_out.PYR.DIRTY1.y1.value = field_storage.PYR.DIRTY1.y1.value;
+    for(genvar i0=0; i0<16; i0++) begin
+        // Field: pidm_regs.PYR.LEVEL_OFF[].val
+        always_comb begin
+            automatic logic [31:0] next_c;
+            automatic logic load_next_c;
+            next_c = field_storage.PYR.LEVEL_OFF[i0].val.value;
+            load_next_c = '0;
+            if(decoded_reg_strb.PYR.LEVEL_OFF[i0] && decoded_req_is_wr) begin // SW write
+                next_c = (field_storage.PYR.LEVEL_OFF[i0].val.value & ~decoded_wr_biten[31:0]) | (decoded_wr_data[31:0] & decoded_wr_biten[31:0]);
+                load_next_c = '1;
+            end
+            field_combo.PYR.LEVEL_OFF[i0].val.next = next_c;
+            field_combo.PYR.LEVEL_OFF[i0].val.load_next = load_next_c;
+        end
+        always_ff @(posedge clk) begin
+            if(~rst_n) begin
+                field_storage.PYR.LEVEL_OFF[i0].val.value <= 32'h0;
+            end else begin
+                if(field_combo.PYR.LEVEL_OFF[i0].val.load_next) begin
+                    field_storage.PYR.LEVEL_OFF[i0].val.value <= field_combo.PYR.LEVEL_OFF[i0].val.next;
+                end
+            end
+        end
+        assign hwif_out.PYR.LEVEL_OFF[i0].val.value = field_storage.PYR.LEVEL_OFF[i0].val.value;
+    end
 
     //--------------------------------------------------------------------------
     // Write response
@@ -2355,7 +3053,7 @@ module pidm_regs (
             readback_data_var[31:0] = 32'h5049444d;
         end
         if(rd_mux_addr == 12'h4) begin
-            readback_data_var[15:0] = 16'h0;
+            readback_data_var[15:0] = 16'h1;
             readback_data_var[31:16] = 16'h1;
         end
         if(rd_mux_addr == 12'h8) begin
@@ -2368,10 +3066,14 @@ module pidm_regs (
             readback_data_var[0] = field_storage.CTRL.start.value;
             readback_data_var[1] = field_storage.CTRL.soft_reset.value;
             readback_data_var[2] = field_storage.CTRL.clear_stats.value;
+            readback_data_var[3] = field_storage.CTRL.pyr_start.value;
         end
         if(rd_mux_addr == 12'h14) begin
             readback_data_var[0] = hwif_in.STATUS.busy.next;
             readback_data_var[1] = hwif_in.STATUS.idle.next;
+            readback_data_var[2] = hwif_in.STATUS.pyr_busy.next;
+            readback_data_var[3] = hwif_in.STATUS.pyr_done.next;
+            readback_data_var[7:4] = hwif_in.STATUS.pyr_err_code.next;
         end
         if(rd_mux_addr == 12'h18) begin
             readback_data_var[0] = field_storage.ERROR.h_axi.value;
@@ -2379,6 +3081,10 @@ module pidm_regs (
             readback_data_var[2] = field_storage.ERROR.frag_dma.value;
             readback_data_var[3] = field_storage.ERROR.fb_write.value;
             readback_data_var[4] = field_storage.ERROR.bad_config.value;
+            readback_data_var[5] = field_storage.ERROR.pyr_read.value;
+            readback_data_var[6] = field_storage.ERROR.pyr_write.value;
+            readback_data_var[7] = field_storage.ERROR.pyr_config.value;
+            readback_data_var[8] = field_storage.ERROR.start_refused.value;
         end
         if(rd_mux_addr == 12'h1c) begin
             readback_data_var[31:0] = hwif_in.PROGRESS.pixels.next;
@@ -2386,14 +3092,17 @@ module pidm_regs (
         if(rd_mux_addr == 12'h20) begin
             readback_data_var[0] = field_storage.INTR_STATE.frame_done.value;
             readback_data_var[1] = field_storage.INTR_STATE.axi_error.value;
+            readback_data_var[2] = field_storage.INTR_STATE.pyr_done.value;
         end
         if(rd_mux_addr == 12'h24) begin
             readback_data_var[0] = field_storage.INTR_ENABLE.frame_done.value;
             readback_data_var[1] = field_storage.INTR_ENABLE.axi_error.value;
+            readback_data_var[2] = field_storage.INTR_ENABLE.pyr_done.value;
         end
         if(rd_mux_addr == 12'h28) begin
             readback_data_var[0] = field_storage.INTR_TEST.frame_done.value;
             readback_data_var[1] = field_storage.INTR_TEST.axi_error.value;
+            readback_data_var[2] = field_storage.INTR_TEST.pyr_done.value;
         end
         if(rd_mux_addr == 12'h40) begin
             readback_data_var[31:0] = field_storage.FRAME.FRAG_BASE.LO.val.value;
@@ -2571,6 +3280,42 @@ module pidm_regs (
                     readback_data_var[15:0] = field_storage.TEX[i0].LEVEL_SIZE[i1].width.value;
                     readback_data_var[31:16] = field_storage.TEX[i0].LEVEL_SIZE[i1].height.value;
                 end
+            end
+        end
+        if(rd_mux_addr == 12'h600) begin
+            readback_data_var[0] = hwif_in.PYR.INFO.present.next;
+            readback_data_var[7:4] = hwif_in.PYR.INFO.max_lg.next;
+        end
+        if(rd_mux_addr == 12'h604) begin
+            readback_data_var[0] = field_storage.PYR.FORMAT.bits16.value;
+        end
+        if(rd_mux_addr == 12'h608) begin
+            readback_data_var[15:0] = field_storage.PYR.SIZE.width.value;
+            readback_data_var[31:16] = field_storage.PYR.SIZE.height.value;
+        end
+        if(rd_mux_addr == 12'h610) begin
+            readback_data_var[31:0] = field_storage.PYR.SRC_BASE.LO.val.value;
+        end
+        if(rd_mux_addr == 12'h614) begin
+            readback_data_var[31:0] = field_storage.PYR.SRC_BASE.HI.val.value;
+        end
+        if(rd_mux_addr == 12'h618) begin
+            readback_data_var[31:0] = field_storage.PYR.PYR_BASE.LO.val.value;
+        end
+        if(rd_mux_addr == 12'h61c) begin
+            readback_data_var[31:0] = field_storage.PYR.PYR_BASE.HI.val.value;
+        end
+        if(rd_mux_addr == 12'h620) begin
+            readback_data_var[15:0] = field_storage.PYR.DIRTY0.x0.value;
+            readback_data_var[31:16] = field_storage.PYR.DIRTY0.y0.value;
+        end
+        if(rd_mux_addr == 12'h624) begin
+            readback_data_var[15:0] = field_storage.PYR.DIRTY1.x1.value;
+            readback_data_var[31:16] = field_storage.PYR.DIRTY1.y1.value;
+        end
+        for(int i0=0; i0<16; i0++) begin
+            if(rd_mux_addr == 12'h640 + (12)'(i0) * 12'h4) begin
+                readback_data_var[31:0] = field_storage.PYR.LEVEL_OFF[i0].val.value;
             end
         end
         readback_data = readback_data_var;

@@ -7,7 +7,7 @@ package pidm_regs_pkg;
 
     localparam PIDM_REGS_DATA_WIDTH = 32;
     localparam PIDM_REGS_MIN_ADDR_WIDTH = 12;
-    localparam PIDM_REGS_SIZE = 'h600;
+    localparam PIDM_REGS_SIZE = 'h680;
 
     typedef struct {
         logic [7:0] next;
@@ -41,8 +41,23 @@ package pidm_regs_pkg;
     } pidm_regs__STATUS__idle__in_t;
 
     typedef struct {
+        logic next;
+    } pidm_regs__STATUS__pyr_busy__in_t;
+
+    typedef struct {
+        logic next;
+    } pidm_regs__STATUS__pyr_done__in_t;
+
+    typedef struct {
+        logic [3:0] next;
+    } pidm_regs__STATUS__pyr_err_code__in_t;
+
+    typedef struct {
         pidm_regs__STATUS__busy__in_t busy;
         pidm_regs__STATUS__idle__in_t idle;
+        pidm_regs__STATUS__pyr_busy__in_t pyr_busy;
+        pidm_regs__STATUS__pyr_done__in_t pyr_done;
+        pidm_regs__STATUS__pyr_err_code__in_t pyr_err_code;
     } pidm_regs__STATUS__in_t;
 
     typedef struct {
@@ -66,11 +81,31 @@ package pidm_regs_pkg;
     } pidm_regs__ERROR__bad_config__in_t;
 
     typedef struct {
+        logic hwset;
+    } pidm_regs__ERROR__pyr_read__in_t;
+
+    typedef struct {
+        logic hwset;
+    } pidm_regs__ERROR__pyr_write__in_t;
+
+    typedef struct {
+        logic hwset;
+    } pidm_regs__ERROR__pyr_config__in_t;
+
+    typedef struct {
+        logic hwset;
+    } pidm_regs__ERROR__start_refused__in_t;
+
+    typedef struct {
         pidm_regs__ERROR__h_axi__in_t h_axi;
         pidm_regs__ERROR__t_axi__in_t t_axi;
         pidm_regs__ERROR__frag_dma__in_t frag_dma;
         pidm_regs__ERROR__fb_write__in_t fb_write;
         pidm_regs__ERROR__bad_config__in_t bad_config;
+        pidm_regs__ERROR__pyr_read__in_t pyr_read;
+        pidm_regs__ERROR__pyr_write__in_t pyr_write;
+        pidm_regs__ERROR__pyr_config__in_t pyr_config;
+        pidm_regs__ERROR__start_refused__in_t start_refused;
     } pidm_regs__ERROR__in_t;
 
     typedef struct {
@@ -90,8 +125,13 @@ package pidm_regs_pkg;
     } pidm_regs__INTR_STATE__axi_error__in_t;
 
     typedef struct {
+        logic next;
+    } pidm_regs__INTR_STATE__pyr_done__in_t;
+
+    typedef struct {
         pidm_regs__INTR_STATE__frame_done__in_t frame_done;
         pidm_regs__INTR_STATE__axi_error__in_t axi_error;
+        pidm_regs__INTR_STATE__pyr_done__in_t pyr_done;
     } pidm_regs__INTR_STATE__in_t;
 
     typedef struct {
@@ -340,12 +380,30 @@ package pidm_regs_pkg;
     } pidm_regs__STATS__in_t;
 
     typedef struct {
+        logic next;
+    } pidm_regs__PYR__INFO__present__in_t;
+
+    typedef struct {
+        logic [3:0] next;
+    } pidm_regs__PYR__INFO__max_lg__in_t;
+
+    typedef struct {
+        pidm_regs__PYR__INFO__present__in_t present;
+        pidm_regs__PYR__INFO__max_lg__in_t max_lg;
+    } pidm_regs__PYR__INFO__in_t;
+
+    typedef struct {
+        pidm_regs__PYR__INFO__in_t INFO;
+    } pidm_regs__PYR__in_t;
+
+    typedef struct {
         pidm_regs__HWCFG__in_t HWCFG;
         pidm_regs__STATUS__in_t STATUS;
         pidm_regs__ERROR__in_t ERROR;
         pidm_regs__PROGRESS__in_t PROGRESS;
         pidm_regs__INTR_STATE__in_t INTR_STATE;
         pidm_regs__STATS__in_t STATS;
+        pidm_regs__PYR__in_t PYR;
     } pidm_regs__in_t;
 
     typedef struct {
@@ -361,9 +419,14 @@ package pidm_regs_pkg;
     } pidm_regs__CTRL__clear_stats__out_t;
 
     typedef struct {
+        logic value;
+    } pidm_regs__CTRL__pyr_start__out_t;
+
+    typedef struct {
         pidm_regs__CTRL__start__out_t start;
         pidm_regs__CTRL__soft_reset__out_t soft_reset;
         pidm_regs__CTRL__clear_stats__out_t clear_stats;
+        pidm_regs__CTRL__pyr_start__out_t pyr_start;
     } pidm_regs__CTRL__out_t;
 
     typedef struct {
@@ -387,11 +450,31 @@ package pidm_regs_pkg;
     } pidm_regs__ERROR__bad_config__out_t;
 
     typedef struct {
+        logic value;
+    } pidm_regs__ERROR__pyr_read__out_t;
+
+    typedef struct {
+        logic value;
+    } pidm_regs__ERROR__pyr_write__out_t;
+
+    typedef struct {
+        logic value;
+    } pidm_regs__ERROR__pyr_config__out_t;
+
+    typedef struct {
+        logic value;
+    } pidm_regs__ERROR__start_refused__out_t;
+
+    typedef struct {
         pidm_regs__ERROR__h_axi__out_t h_axi;
         pidm_regs__ERROR__t_axi__out_t t_axi;
         pidm_regs__ERROR__frag_dma__out_t frag_dma;
         pidm_regs__ERROR__fb_write__out_t fb_write;
         pidm_regs__ERROR__bad_config__out_t bad_config;
+        pidm_regs__ERROR__pyr_read__out_t pyr_read;
+        pidm_regs__ERROR__pyr_write__out_t pyr_write;
+        pidm_regs__ERROR__pyr_config__out_t pyr_config;
+        pidm_regs__ERROR__start_refused__out_t start_refused;
     } pidm_regs__ERROR__out_t;
 
     typedef struct {
@@ -407,8 +490,13 @@ package pidm_regs_pkg;
     } pidm_regs__INTR_TEST__axi_error__out_t;
 
     typedef struct {
+        logic value;
+    } pidm_regs__INTR_TEST__pyr_done__out_t;
+
+    typedef struct {
         pidm_regs__INTR_TEST__frame_done__out_t frame_done;
         pidm_regs__INTR_TEST__axi_error__out_t axi_error;
+        pidm_regs__INTR_TEST__pyr_done__out_t pyr_done;
     } pidm_regs__INTR_TEST__out_t;
 
     typedef struct {
@@ -770,6 +858,113 @@ package pidm_regs_pkg;
     } pidm_regs__TEXx__out_t;
 
     typedef struct {
+        logic value;
+    } pidm_regs__PYR__FORMAT__bits16__out_t;
+
+    typedef struct {
+        pidm_regs__PYR__FORMAT__bits16__out_t bits16;
+    } pidm_regs__PYR__FORMAT__out_t;
+
+    typedef struct {
+        logic [15:0] value;
+    } pidm_regs__PYR__SIZE__width__out_t;
+
+    typedef struct {
+        logic [15:0] value;
+    } pidm_regs__PYR__SIZE__height__out_t;
+
+    typedef struct {
+        pidm_regs__PYR__SIZE__width__out_t width;
+        pidm_regs__PYR__SIZE__height__out_t height;
+    } pidm_regs__PYR__SIZE__out_t;
+
+    typedef struct {
+        logic [31:0] value;
+    } pidm_regs__PYR__SRC_BASE__LO__val__out_t;
+
+    typedef struct {
+        pidm_regs__PYR__SRC_BASE__LO__val__out_t val;
+    } pidm_regs__PYR__SRC_BASE__LO__out_t;
+
+    typedef struct {
+        logic [31:0] value;
+    } pidm_regs__PYR__SRC_BASE__HI__val__out_t;
+
+    typedef struct {
+        pidm_regs__PYR__SRC_BASE__HI__val__out_t val;
+    } pidm_regs__PYR__SRC_BASE__HI__out_t;
+
+    typedef struct {
+        pidm_regs__PYR__SRC_BASE__LO__out_t LO;
+        pidm_regs__PYR__SRC_BASE__HI__out_t HI;
+    } pidm_regs__PYR__SRC_BASE__out_t;
+
+    typedef struct {
+        logic [31:0] value;
+    } pidm_regs__PYR__PYR_BASE__LO__val__out_t;
+
+    typedef struct {
+        pidm_regs__PYR__PYR_BASE__LO__val__out_t val;
+    } pidm_regs__PYR__PYR_BASE__LO__out_t;
+
+    typedef struct {
+        logic [31:0] value;
+    } pidm_regs__PYR__PYR_BASE__HI__val__out_t;
+
+    typedef struct {
+        pidm_regs__PYR__PYR_BASE__HI__val__out_t val;
+    } pidm_regs__PYR__PYR_BASE__HI__out_t;
+
+    typedef struct {
+        pidm_regs__PYR__PYR_BASE__LO__out_t LO;
+        pidm_regs__PYR__PYR_BASE__HI__out_t HI;
+    } pidm_regs__PYR__PYR_BASE__out_t;
+
+    typedef struct {
+        logic [15:0] value;
+    } pidm_regs__PYR__DIRTY0__x0__out_t;
+
+    typedef struct {
+        logic [15:0] value;
+    } pidm_regs__PYR__DIRTY0__y0__out_t;
+
+    typedef struct {
+        pidm_regs__PYR__DIRTY0__x0__out_t x0;
+        pidm_regs__PYR__DIRTY0__y0__out_t y0;
+    } pidm_regs__PYR__DIRTY0__out_t;
+
+    typedef struct {
+        logic [15:0] value;
+    } pidm_regs__PYR__DIRTY1__x1__out_t;
+
+    typedef struct {
+        logic [15:0] value;
+    } pidm_regs__PYR__DIRTY1__y1__out_t;
+
+    typedef struct {
+        pidm_regs__PYR__DIRTY1__x1__out_t x1;
+        pidm_regs__PYR__DIRTY1__y1__out_t y1;
+    } pidm_regs__PYR__DIRTY1__out_t;
+
+    typedef struct {
+        logic [31:0] value;
+    } pidm_regs__PYR__LEVEL_OFFx__val__out_t;
+
+    typedef struct {
+        pidm_regs__PYR__LEVEL_OFFx__val__out_t val;
+    } pidm_regs__PYR__LEVEL_OFFx__out_t;
+
+    typedef struct {
+        pidm_regs__PYR__FORMAT__out_t FORMAT;
+        pidm_regs__PYR__SIZE__out_t SIZE;
+        pidm_regs__PYR__SRC_BASE__out_t SRC_BASE;
+        pidm_regs__PYR__PYR_BASE__out_t PYR_BASE;
+        pidm_regs__PYR__DIRTY0__out_t DIRTY0;
+        pidm_regs__PYR__DIRTY1__out_t DIRTY1;
+        pidm_regs__PYR__LEVEL_OFFx__out_t LEVEL_OFF[16];
+    } pidm_regs__PYR__out_t;
+
+    typedef struct {
         pidm_regs__CTRL__out_t CTRL;
         pidm_regs__ERROR__out_t ERROR;
         pidm_regs__INTR_STATE__out_t INTR_STATE;
@@ -779,5 +974,6 @@ package pidm_regs_pkg;
         pidm_regs__HEIGHT__out_t HEIGHT;
         pidm_regs__SHADE__out_t SHADE;
         pidm_regs__TEXx__out_t TEX[2];
+        pidm_regs__PYR__out_t PYR;
     } pidm_regs__out_t;
 endpackage

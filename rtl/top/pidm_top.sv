@@ -7,7 +7,8 @@
 //   m_axi_f (AR/R)  -> frag_dma -> dm_pipeline -> pix_dma -> m_axi_w (AW/W/B)
 //                                  |  m_axi_h (AR/R): height pyramid
 //                                  |  m_axi_t (AR/R): colour and normal textures
-//   irq_o = INTR_STATE & INTR_ENABLE (frame_done, axi_error)
+//   pyr_build (PYR_BUILD): reads level 0 over m_axi_h, writes levels 1..n over m_axi_w
+//   irq_o = INTR_STATE & INTR_ENABLE (frame_done, axi_error, pyr_done)
 //
 // Memory formats (rtl/top/pidm_pkg.sv): the fragment record (64 bytes; pixel id {y, x}, x in
 // FB_LAYOUT.xbits bits), the framebuffer pixel (RGBA8 at FB_BASE + y * FB_PITCH + 4 x) and the
@@ -33,6 +34,29 @@
 //     the textures in memory, software writes CTRL.soft_reset before the next frame.
 // Every wait above is bounded (the masters' outstanding transactions, the pipeline's slots), so
 // none can hang while the AXI slaves answer.
+//
+// The pyramid build (PYR registers, rtl/pyramid/pyr_build.sv, docs/pyramid.md):
+//   IDLE --CTRL.pyr_start, PYR configuration in range--> BUILD: pyr_build owns the height read
+//     port m_axi_h (its reads of level 0 and, for a dirty rebuild, of the levels) and the write
+//     port m_axi_w (its writes of levels 1..n); STATUS.pyr_busy.  The ports' owner is state_q
+//     (BUILD: the builder, any other state: dm_pipeline and pix_dma), so it changes only on
+//     IDLE -> BUILD (the pipeline holds no pixel, so its height reads are all answered, and
+//     pix_dma has every B response) and BUILD -> BFLUSH (pyr_build's done_o: its reader and
+//     writer are idle, every read burst and every write answered): never with a transaction
+//     of either side outstanding.  The builder's ID is 0 on both ports.
+//   BUILD ends with pyr_build's done_o -> BFLUSH: dm_pipeline is reset for one clock as in
+//     FLUSH, which invalidates the height cache (and the texture cache; the statistics return
+//     to 0): no line of the old pyramid is served by the next frame.  Then IDLE with
+//     INTR_STATE.pyr_done, STATUS.pyr_done, STATUS.pyr_err_code = the builder's err_code_o,
+//     ERROR.pyr_read / pyr_write for its AXI errors and ERROR.pyr_config for a configuration it
+//     refused (the three raise INTR_STATE.axi_error).  CTRL.soft_reset during a build is
+//     ignored (pyr_build has no abort; the build ends within its bounded length and BFLUSH
+//     resets the pipeline anyway).
+//   Refused starts (ERROR.start_refused and INTR_STATE.axi_error, nothing else happens):
+//     CTRL.start in BUILD or BFLUSH; CTRL.pyr_start outside IDLE or in the same write as
+//     CTRL.start or CTRL.soft_reset.  CTRL.start during a frame stays ignored as before.
+//   CTRL.pyr_start with a size, a rectangle corner or an offset index beyond PYR_MAX_LG, or
+//     with PYR_BUILD = 0: ERROR.pyr_config and INTR_STATE.axi_error at once, no build.
 //
 // Bad configuration (checked at CTRL.start; ERROR.bad_config): FRAG_COUNT 0 or wider than
 // CNT_W; FRAG_BASE not 64-byte aligned; FB_BASE, STATUS_BASE or FB_PITCH not 4-byte aligned;
@@ -76,6 +100,9 @@ module pidm_top
   parameter int unsigned FRAG_BURST = 4,   // frag_dma: records per burst
   parameter int unsigned FRAG_FIFO  = 8,   // frag_dma: records buffered
   parameter int unsigned PIX_OUTST  = 8,   // pix_dma: writes outstanding
+  parameter bit          PYR_BUILD  = 1'b1, // 1: the pyramid builder pyr_build is present
+  parameter int unsigned PYR_MAX_LG = 10,  // pyr_build: largest map side 2^PYR_MAX_LG (<= 15)
+  parameter int unsigned PYR_BURST  = 16,  // pyr_build: beats per burst at most
   parameter int unsigned TRI_W      = (TRIS > 1) ? $clog2(TRIS) : 1
 ) (
   input  logic                 clk_i,
@@ -178,9 +205,10 @@ module pidm_top
   output logic                 m_axi_t_rready
 );
 
-  if (ADDR_W < 32 || ADDR_W > 64 || PIX_W > FRAG_ID_BITS || PITCH_W > 32 || CNT_W > 32)
+  if (ADDR_W < 32 || ADDR_W > 64 || PIX_W > FRAG_ID_BITS || PITCH_W > 32 || CNT_W > 32
+      || PYR_MAX_LG < 1 || PYR_MAX_LG > 15)
   begin : g_check_params
-    $error("pidm_top: ADDR_W (32 .. 64), PIX_W, PITCH_W or CNT_W out of range");
+    $error("pidm_top: ADDR_W (32 .. 64), PIX_W, PITCH_W, CNT_W or PYR_MAX_LG out of range");
   end
 
   // ---- registers ---------------------------------------------------------------------------
@@ -229,10 +257,14 @@ module pidm_top
                 || hw.HEIGHT.SIZE.width.value == '0 || hw.HEIGHT.SIZE.height.value == '0;
 
   // ---- frame state -------------------------------------------------------------------------
-  typedef enum logic [1:0] {S_IDLE, S_RUN, S_STOP, S_FLUSH} state_e;
+  typedef enum logic [2:0] {S_IDLE, S_RUN, S_STOP, S_FLUSH, S_BUILD, S_BFLUSH} state_e;
   state_e state_q;
 
   logic start_cmd, soft_rst, go, bad_start, frame_end, stop_end;
+  logic pyr_cmd, pyr_go, pyr_bad_start, pyr_cfg_bad, refused, pyr_end, pyr_done_ev;
+  logic b_done, b_busy;
+  logic [3:0] b_code;
+  logic own_b;   // the builder owns m_axi_h and m_axi_w
   logic frag_busy, frag_err, pix_idle, pix_err, dm_idle;
   logic err_seen_q, frag_err_q, pix_err_q;
   logic h_err_beat, t_err_beat, frag_err_new, pix_err_new, any_err;
@@ -241,6 +273,14 @@ module pidm_top
   assign soft_rst  = hw.CTRL.soft_reset.value;
   assign go        = state_q == S_IDLE && start_cmd && !bad_cfg;
   assign bad_start = state_q == S_IDLE && start_cmd && bad_cfg;
+  assign pyr_cmd   = hw.CTRL.pyr_start.value;
+  assign pyr_go    = state_q == S_IDLE && pyr_cmd && !start_cmd && !soft_rst && !pyr_cfg_bad;
+  assign pyr_bad_start = state_q == S_IDLE && pyr_cmd && !start_cmd && !soft_rst && pyr_cfg_bad;
+  assign refused   = (start_cmd && (state_q == S_BUILD || state_q == S_BFLUSH))
+                  || (pyr_cmd && (state_q != S_IDLE || start_cmd || soft_rst));
+  assign pyr_end   = state_q == S_BUILD && b_done;
+  assign pyr_done_ev = state_q == S_BFLUSH;
+  assign own_b     = state_q == S_BUILD;
 
   logic drained;   // frag_dma done, no pixel in the pipeline, every write answered
   assign drained   = !frag_busy && dm_idle && pix_idle;
@@ -251,10 +291,10 @@ module pidm_top
   logic pipe_rst_nq;
   always_ff @(posedge clk_i) begin
     if (!rst_ni) pipe_rst_nq <= 1'b1;
-    else         pipe_rst_nq <= !(state_q == S_IDLE && !go && soft_rst) && !stop_end;
+    else         pipe_rst_nq <= !(state_q == S_IDLE && !go && soft_rst) && !stop_end && !pyr_end;
   end
 
-  assign h_err_beat   = m_axi_h_rvalid && m_axi_h_rready && m_axi_h_rresp != 2'b00;
+  assign h_err_beat   = !own_b && m_axi_h_rvalid && m_axi_h_rready && m_axi_h_rresp != 2'b00;
   assign t_err_beat   = m_axi_t_rvalid && m_axi_t_rready && m_axi_t_rresp != 2'b00;
   assign frag_err_new = frag_err && !frag_err_q;
   assign pix_err_new  = pix_err && !pix_err_q;
@@ -272,10 +312,13 @@ module pidm_top
       unique case (state_q)
         S_IDLE:  if (go) state_q <= S_RUN;
                  else if (soft_rst) state_q <= S_FLUSH;
+                 else if (pyr_go) state_q <= S_BUILD;
         S_RUN:   if (soft_rst) state_q <= S_STOP;
                  else if (drained) state_q <= S_IDLE;
         S_STOP:  if (drained) state_q <= S_FLUSH;
         S_FLUSH: state_q <= S_IDLE;
+        S_BUILD: if (b_done) state_q <= S_BFLUSH;
+        S_BFLUSH: state_q <= S_IDLE;
         default: state_q <= S_IDLE;
       endcase
       if (go)           err_seen_q <= 1'b0;
@@ -319,6 +362,12 @@ module pidm_top
   logic [47:0] st_cycles, st_pixels, st_iters, st_h_hits, st_h_misses, st_h_bytes,
                st_t_requests, st_t_quad_hits, st_t_line_misses, st_t_texel_hits, st_t_bytes;
   logic [31:0] h_araddr, t_araddr;
+  // dm_pipeline's side of the height port (before the owner mux)
+  logic [H_ID_W-1:0] p_h_arid;
+  logic [7:0]        p_h_arlen;
+  logic [2:0]        p_h_arsize;
+  logic [1:0]        p_h_arburst;
+  logic              p_h_arvalid, p_h_arready, p_h_rvalid, p_h_rready;
 
   // the configuration registers as dm_pipeline's cfg_* ports and triangle-table write port
   logic [3:0]                        c_method;
@@ -367,9 +416,10 @@ module pidm_top
     .frag_view_i(fr_view),
     .px_valid_o(px_valid), .px_ready_i(px_ready), .px_id_o(px_id), .px_rgb_o(px_rgb),
     .px_hit_o(px_hit), .px_invalid_o(px_inv), .px_err_o(px_err), .px_iters_o(px_iters),
-    .m_axi_h_arid, .m_axi_h_araddr(h_araddr), .m_axi_h_arlen, .m_axi_h_arsize,
-    .m_axi_h_arburst, .m_axi_h_arvalid, .m_axi_h_arready, .m_axi_h_rid, .m_axi_h_rdata,
-    .m_axi_h_rresp, .m_axi_h_rlast, .m_axi_h_rvalid, .m_axi_h_rready,
+    .m_axi_h_arid(p_h_arid), .m_axi_h_araddr(h_araddr), .m_axi_h_arlen(p_h_arlen),
+    .m_axi_h_arsize(p_h_arsize), .m_axi_h_arburst(p_h_arburst), .m_axi_h_arvalid(p_h_arvalid),
+    .m_axi_h_arready(p_h_arready), .m_axi_h_rid, .m_axi_h_rdata, .m_axi_h_rresp,
+    .m_axi_h_rlast, .m_axi_h_rvalid(p_h_rvalid), .m_axi_h_rready(p_h_rready),
     .m_axi_t_arid, .m_axi_t_araddr(t_araddr), .m_axi_t_arlen, .m_axi_t_arsize,
     .m_axi_t_arburst, .m_axi_t_arvalid, .m_axi_t_arready, .m_axi_t_rid, .m_axi_t_rdata,
     .m_axi_t_rresp, .m_axi_t_rlast, .m_axi_t_rvalid, .m_axi_t_rready,
@@ -380,7 +430,6 @@ module pidm_top
     .stat_t_line_misses_o(st_t_line_misses), .stat_t_texel_hits_o(st_t_texel_hits),
     .stat_t_bytes_o(st_t_bytes), .idle_o(dm_idle));
 
-  assign m_axi_h_araddr  = ADDR_W'(h_araddr);
   assign m_axi_t_araddr  = ADDR_W'(t_araddr);
   assign m_axi_h_arlock  = 1'b0;
   assign m_axi_h_arcache = 4'(ARCACHE);
@@ -393,6 +442,19 @@ module pidm_top
 
   // ---- pixels: dm_pipeline -> pix_dma ------------------------------------------------------
   logic [CNT_W-1:0] pix_taken, pix_written;
+  // pix_dma's side of the write port (before the owner mux)
+  logic [W_ID_W-1:0]   p_w_awid;
+  logic [ADDR_W-1:0]   p_w_awaddr;
+  logic [7:0]          p_w_awlen;
+  logic [2:0]          p_w_awsize;
+  logic [1:0]          p_w_awburst;
+  logic                p_w_awlock;
+  logic [3:0]          p_w_awcache, p_w_awqos;
+  logic [2:0]          p_w_awprot;
+  logic                p_w_awvalid, p_w_awready, p_w_wlast, p_w_wvalid, p_w_wready;
+  logic [DATA_W-1:0]   p_w_wdata;
+  logic [DATA_W/8-1:0] p_w_wstrb;
+  logic                p_w_bvalid, p_w_bready;
 
   pix_dma #(
     .ADDR_W(ADDR_W), .DATA_W(DATA_W), .ID_W(W_ID_W), .AWCACHE(AWCACHE), .AWPROT(AWPROT),
@@ -406,14 +468,140 @@ module pidm_top
     .written_o(pix_written),
     .px_valid_i(px_valid), .px_ready_o(px_ready), .px_id_i(px_id), .px_rgb_i(px_rgb),
     .px_hit_i(px_hit), .px_invalid_i(px_inv), .px_err_i(px_err), .px_iters_i(px_iters),
-    .m_axi_awid(m_axi_w_awid), .m_axi_awaddr(m_axi_w_awaddr), .m_axi_awlen(m_axi_w_awlen),
-    .m_axi_awsize(m_axi_w_awsize), .m_axi_awburst(m_axi_w_awburst),
-    .m_axi_awlock(m_axi_w_awlock), .m_axi_awcache(m_axi_w_awcache),
-    .m_axi_awprot(m_axi_w_awprot), .m_axi_awqos(m_axi_w_awqos),
-    .m_axi_awvalid(m_axi_w_awvalid), .m_axi_awready(m_axi_w_awready),
-    .m_axi_wdata(m_axi_w_wdata), .m_axi_wstrb(m_axi_w_wstrb), .m_axi_wlast(m_axi_w_wlast),
-    .m_axi_wvalid(m_axi_w_wvalid), .m_axi_wready(m_axi_w_wready), .m_axi_bid(m_axi_w_bid),
-    .m_axi_bresp(m_axi_w_bresp), .m_axi_bvalid(m_axi_w_bvalid), .m_axi_bready(m_axi_w_bready));
+    .m_axi_awid(p_w_awid), .m_axi_awaddr(p_w_awaddr), .m_axi_awlen(p_w_awlen),
+    .m_axi_awsize(p_w_awsize), .m_axi_awburst(p_w_awburst),
+    .m_axi_awlock(p_w_awlock), .m_axi_awcache(p_w_awcache),
+    .m_axi_awprot(p_w_awprot), .m_axi_awqos(p_w_awqos),
+    .m_axi_awvalid(p_w_awvalid), .m_axi_awready(p_w_awready),
+    .m_axi_wdata(p_w_wdata), .m_axi_wstrb(p_w_wstrb), .m_axi_wlast(p_w_wlast),
+    .m_axi_wvalid(p_w_wvalid), .m_axi_wready(p_w_wready), .m_axi_bid(m_axi_w_bid),
+    .m_axi_bresp(m_axi_w_bresp), .m_axi_bvalid(p_w_bvalid), .m_axi_bready(p_w_bready));
+
+  // ---- the pyramid builder and the owner mux of m_axi_h and m_axi_w --------------------------
+  // The PYR registers as pyr_build's configuration: sizes and rectangle corners must fit its
+  // SZ_W / XY_W bits (else ERROR.pyr_config at CTRL.pyr_start, no build); the 64-bit bases'
+  // bits above ADDR_W are ignored as the frame's are; LEVEL_OFF[0 .. PYR_MAX_LG] are used.
+  localparam int unsigned PSZ_W = PYR_MAX_LG + 1;
+  localparam int unsigned PXY_W = PYR_MAX_LG;
+  logic [63:0] src_base64, pyr_base64;
+  logic [15:0] pw16, ph16, px0, py0, px1, py1;
+  logic [PYR_MAX_LG:0][ADDR_W-1:0] pyr_off;
+  assign src_base64 = {hw.PYR.SRC_BASE.HI.val.value, hw.PYR.SRC_BASE.LO.val.value};
+  assign pyr_base64 = {hw.PYR.PYR_BASE.HI.val.value, hw.PYR.PYR_BASE.LO.val.value};
+  if (ADDR_W < 64) begin : g_pyr_addr_hi   // address bits above ADDR_W: ignored
+    logic unused_pyr_hi;
+    assign unused_pyr_hi = ^{src_base64[63:ADDR_W], pyr_base64[63:ADDR_W]};
+  end
+  assign pw16 = hw.PYR.SIZE.width.value;
+  assign ph16 = hw.PYR.SIZE.height.value;
+  assign px0  = hw.PYR.DIRTY0.x0.value;
+  assign py0  = hw.PYR.DIRTY0.y0.value;
+  assign px1  = hw.PYR.DIRTY1.x1.value;
+  assign py1  = hw.PYR.DIRTY1.y1.value;
+  for (genvar k = 0; k <= PYR_MAX_LG; k++) begin : g_pyr_off
+    assign pyr_off[k] = ADDR_W'(hw.PYR.LEVEL_OFF[k].val.value);
+  end
+  assign pyr_cfg_bad = !PYR_BUILD
+                    || ((32'(pw16) >> PSZ_W) != 0) || ((32'(ph16) >> PSZ_W) != 0)
+                    || ((32'(px0) >> PXY_W) != 0) || ((32'(py0) >> PXY_W) != 0)
+                    || ((32'(px1) >> PXY_W) != 0) || ((32'(py1) >> PXY_W) != 0);
+
+  // the builder's side of the two ports
+  logic              b_arid, b_awid;
+  logic [ADDR_W-1:0] b_araddr, b_awaddr;
+  logic [7:0]        b_arlen, b_awlen;
+  logic [2:0]        b_arsize, b_awsize;
+  logic [1:0]        b_arburst, b_awburst;
+  logic              b_arvalid, b_rready, b_awvalid, b_wlast, b_wvalid, b_bready;
+  logic [DATA_W-1:0]   b_wdata;
+  logic [DATA_W/8-1:0] b_wstrb;
+
+  if (PYR_BUILD) begin : g_pyr
+    logic [3:0] b_arcache, b_awcache;   // = ARCACHE / AWCACHE (parameters of the instance)
+    logic [2:0] b_arprot, b_awprot;     // = ARPROT / AWPROT
+    logic       b_err;                  // = |b_code
+    pyr_build #(
+      .ADDR_W(ADDR_W), .AXI_DATA_W(DATA_W), .ID_W(1), .MAX_LG(PYR_MAX_LG), .BURST(PYR_BURST),
+      .AXI_CACHE(4'(ARCACHE)), .AXI_PROT(3'(ARPROT))
+    ) u_pyr (
+      .clk_i, .rst_ni,
+      .cfg_src_base_i(src_base64[ADDR_W-1:0]), .cfg_pyr_base_i(pyr_base64[ADDR_W-1:0]),
+      .cfg_level_off_i(pyr_off), .cfg_width_i(PSZ_W'(pw16)), .cfg_height_i(PSZ_W'(ph16)),
+      .cfg_bits16_i(hw.PYR.FORMAT.bits16.value),
+      .dirty_x0_i(PXY_W'(px0)), .dirty_y0_i(PXY_W'(py0)),
+      .dirty_x1_i(PXY_W'(px1)), .dirty_y1_i(PXY_W'(py1)),
+      .start_i(pyr_go), .busy_o(b_busy), .done_o(b_done), .err_o(b_err), .err_code_o(b_code),
+      .m_axi_arid(b_arid), .m_axi_araddr(b_araddr), .m_axi_arlen(b_arlen),
+      .m_axi_arsize(b_arsize), .m_axi_arburst(b_arburst), .m_axi_arcache(b_arcache),
+      .m_axi_arprot(b_arprot), .m_axi_arvalid(b_arvalid), .m_axi_arready(m_axi_h_arready && own_b),
+      .m_axi_rid(m_axi_h_rid[0]), .m_axi_rdata(m_axi_h_rdata), .m_axi_rresp(m_axi_h_rresp),
+      .m_axi_rlast(m_axi_h_rlast), .m_axi_rvalid(m_axi_h_rvalid && own_b), .m_axi_rready(b_rready),
+      .m_axi_awid(b_awid), .m_axi_awaddr(b_awaddr), .m_axi_awlen(b_awlen),
+      .m_axi_awsize(b_awsize), .m_axi_awburst(b_awburst), .m_axi_awcache(b_awcache),
+      .m_axi_awprot(b_awprot), .m_axi_awvalid(b_awvalid), .m_axi_awready(m_axi_w_awready && own_b),
+      .m_axi_wdata(b_wdata), .m_axi_wstrb(b_wstrb), .m_axi_wlast(b_wlast),
+      .m_axi_wvalid(b_wvalid), .m_axi_wready(m_axi_w_wready && own_b),
+      .m_axi_bid(m_axi_w_bid[0]), .m_axi_bresp(m_axi_w_bresp),
+      .m_axi_bvalid(m_axi_w_bvalid && own_b), .m_axi_bready(b_bready));
+    logic unused_pyr;
+    assign unused_pyr = ^{b_arcache, b_awcache, b_arprot, b_awprot, b_err};
+  end else begin : g_no_pyr
+    assign b_busy = 1'b0;
+    assign b_done = 1'b0;
+    assign b_code = '0;
+    assign {b_arid, b_araddr, b_arlen, b_arsize, b_arburst, b_arvalid, b_rready} = '0;
+    assign {b_awid, b_awaddr, b_awlen, b_awsize, b_awburst, b_awvalid} = '0;
+    assign {b_wdata, b_wstrb, b_wlast, b_wvalid, b_bready} = '0;
+    logic unused_pyr_cfg;   // no builder: its configuration is not read
+    assign unused_pyr_cfg = ^{src_base64[ADDR_W-1:0], pyr_base64[ADDR_W-1:0], pyr_off};
+  end
+
+  // the owner mux: own_b (state BUILD) selects the builder, else dm_pipeline / pix_dma; the
+  // other side's valid and ready inputs are held at 0
+  assign m_axi_h_arid    = own_b ? H_ID_W'(b_arid) : p_h_arid;
+  assign m_axi_h_araddr  = own_b ? b_araddr : ADDR_W'(h_araddr);
+  assign m_axi_h_arlen   = own_b ? b_arlen : p_h_arlen;
+  assign m_axi_h_arsize  = own_b ? b_arsize : p_h_arsize;
+  assign m_axi_h_arburst = own_b ? b_arburst : p_h_arburst;
+  assign m_axi_h_arvalid = own_b ? b_arvalid : p_h_arvalid;
+  assign m_axi_h_rready  = own_b ? b_rready : p_h_rready;
+  assign p_h_arready     = m_axi_h_arready && !own_b;
+  assign p_h_rvalid      = m_axi_h_rvalid && !own_b;
+
+  assign m_axi_w_awid    = own_b ? W_ID_W'(b_awid) : p_w_awid;
+  assign m_axi_w_awaddr  = own_b ? b_awaddr : p_w_awaddr;
+  assign m_axi_w_awlen   = own_b ? b_awlen : p_w_awlen;
+  assign m_axi_w_awsize  = own_b ? b_awsize : p_w_awsize;
+  assign m_axi_w_awburst = own_b ? b_awburst : p_w_awburst;
+  assign m_axi_w_awlock  = own_b ? 1'b0 : p_w_awlock;
+  assign m_axi_w_awcache = own_b ? 4'(AWCACHE) : p_w_awcache;
+  assign m_axi_w_awprot  = own_b ? 3'(AWPROT) : p_w_awprot;
+  assign m_axi_w_awqos   = own_b ? 4'd0 : p_w_awqos;
+  assign m_axi_w_awvalid = own_b ? b_awvalid : p_w_awvalid;
+  assign m_axi_w_wdata   = own_b ? b_wdata : p_w_wdata;
+  assign m_axi_w_wstrb   = own_b ? b_wstrb : p_w_wstrb;
+  assign m_axi_w_wlast   = own_b ? b_wlast : p_w_wlast;
+  assign m_axi_w_wvalid  = own_b ? b_wvalid : p_w_wvalid;
+  assign m_axi_w_bready  = own_b ? b_bready : p_w_bready;
+  assign p_w_awready     = m_axi_w_awready && !own_b;
+  assign p_w_wready      = m_axi_w_wready && !own_b;
+  assign p_w_bvalid      = m_axi_w_bvalid && !own_b;
+
+  // the build's result, kept until the next CTRL.pyr_start
+  logic       pyr_done_q;
+  logic [3:0] pyr_code_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      pyr_done_q <= 1'b0;
+      pyr_code_q <= '0;
+    end else if (pyr_go) begin
+      pyr_done_q <= 1'b0;
+      pyr_code_q <= '0;
+    end else if (pyr_end) begin
+      pyr_done_q <= 1'b1;
+      pyr_code_q <= b_code;
+    end
+  end
 
   // ---- status, errors, interrupts, statistics ----------------------------------------------
   always_comb begin
@@ -421,16 +609,28 @@ module pidm_top
     hw_in.HWCFG.tris.next       = 8'(TRIS);
     hw_in.HWCFG.addr_w.next     = 8'(ADDR_W);
     hw_in.HWCFG.data_bytes.next = 8'(DATA_W / 8);
-    hw_in.STATUS.busy.next      = state_q != S_IDLE;
+    hw_in.STATUS.busy.next      = state_q == S_RUN || state_q == S_STOP || state_q == S_FLUSH;
     hw_in.STATUS.idle.next      = dm_idle;
+    hw_in.STATUS.pyr_busy.next  = state_q == S_BUILD || state_q == S_BFLUSH;
+    hw_in.STATUS.pyr_done.next  = pyr_done_q && state_q != S_BFLUSH;
+    hw_in.STATUS.pyr_err_code.next = pyr_code_q;
+    hw_in.PYR.INFO.present.next = PYR_BUILD;
+    hw_in.PYR.INFO.max_lg.next  = 4'(PYR_MAX_LG);
     hw_in.ERROR.h_axi.hwset      = h_err_beat;
     hw_in.ERROR.t_axi.hwset      = t_err_beat;
     hw_in.ERROR.frag_dma.hwset   = frag_err_new;
     hw_in.ERROR.fb_write.hwset   = pix_err_new;
     hw_in.ERROR.bad_config.hwset = bad_start;
+    hw_in.ERROR.pyr_read.hwset   = pyr_end && b_code[0];
+    hw_in.ERROR.pyr_write.hwset  = pyr_end && b_code[1];
+    hw_in.ERROR.pyr_config.hwset = (pyr_end && b_code[2]) || pyr_bad_start;
+    hw_in.ERROR.start_refused.hwset = refused;
     hw_in.PROGRESS.pixels.next   = 32'(pix_written);
     hw_in.INTR_STATE.frame_done.next = frame_end || hw.INTR_TEST.frame_done.value;
-    hw_in.INTR_STATE.axi_error.next  = any_err || bad_start || hw.INTR_TEST.axi_error.value;
+    hw_in.INTR_STATE.axi_error.next  = any_err || bad_start || refused || pyr_bad_start
+                                     || (pyr_end && b_code[2:0] != 3'b000)
+                                     || hw.INTR_TEST.axi_error.value;
+    hw_in.INTR_STATE.pyr_done.next   = pyr_done_ev || hw.INTR_TEST.pyr_done.value;
     hw_in.STATS.cycles.LO.val.next        = st_cycles[31:0];
     hw_in.STATS.cycles.HI.val.next        = st_cycles[47:32];
     hw_in.STATS.pixels.LO.val.next        = st_pixels[31:0];
@@ -462,6 +662,8 @@ module pidm_top
   logic unused;
   assign unused = ^{hw.ERROR.h_axi.value, hw.ERROR.t_axi.value, hw.ERROR.frag_dma.value,
                     hw.ERROR.fb_write.value, hw.ERROR.bad_config.value,
-                    frag_sent, pix_taken};
+                    hw.ERROR.pyr_read.value, hw.ERROR.pyr_write.value,
+                    hw.ERROR.pyr_config.value, hw.ERROR.start_refused.value,
+                    frag_sent, pix_taken, b_busy, b_code[3]};
 
 endmodule

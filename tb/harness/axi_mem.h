@@ -152,6 +152,13 @@ class AxiReadSlave {
   }
 
   uint64_t pending() const { return pending_; }
+  // Byte access for a write port that shares this memory: false outside [lo, hi).
+  bool poke(uint64_t a, uint8_t v) {
+    if (a < lo_ || a >= hi_) return false;
+    mem_[a - lo_] = v;
+    return true;
+  }
+  uint8_t peek(uint64_t a) const { return (a >= lo_ && a < hi_) ? mem_[a - lo_] : 0; }
   AxiStats st;
 
  private:

@@ -58,8 +58,9 @@ using ReadMem = harness::AxiReadSlave<kDataBytes, 64>;
 
 const char* kUsage = R"(usage: system_harness --in FILE --out FILE [options]
 
-Runs pidm_top (registers, fragment DMA, pipeline, framebuffer DMA) on a frame: the harness is the
-CPU (AXI4-Lite) and the memory (four AXI4 ports).
+Runs pidm_top (registers, fragment DMA, pipeline, framebuffer DMA) on a frame, after a pyramid
+build when the input has one: the harness is the CPU (AXI4-Lite) and the memory (four AXI4
+ports).
 
   --in FILE          input (system_harness.h)
   --out FILE         framebuffer and status buffer after the frame
@@ -220,6 +221,12 @@ class WriteMem {
     return bvalid_;
   }
   uint64_t outstanding() const { return aw_.size() + b_.size(); }
+  // The read port memory whose bytes [lo, hi) this port may write too (the heights region).
+  void share(ReadMem* m, uint64_t lo, uint64_t hi) {
+    shared_ = m;
+    shared_lo_ = lo;
+    shared_hi_ = hi;
+  }
   const std::vector<Buf>& bufs() const { return bufs_; }
   AxiStats st;
 
@@ -240,9 +247,16 @@ class WriteMem {
         ++st.bytes;
         return;
       }
-    fail(3, "AXI writes: byte at 0x%" PRIx64 " outside the framebuffer and status buffer", a);
+    if (shared_ && a >= shared_lo_ && a < shared_hi_ && shared_->poke(a, v)) {
+      ++st.bytes;
+      return;
+    }
+    fail(3, "AXI writes: byte at 0x%" PRIx64 " outside the framebuffer, status buffer and heights",
+         a);
   }
   std::vector<Buf> bufs_;
+  ReadMem* shared_ = nullptr;
+  uint64_t shared_lo_ = 0, shared_hi_ = 0;
   uint32_t lat_;
   Coin stall_;
   std::deque<Burst> aw_;
@@ -263,6 +277,8 @@ class Sim {
     ctx_->randReset(2);
     ctx_->randSeed(static_cast<int>(o.seed & 0x7FFFFFFF));
     top_ = std::make_unique<Vpidm_top>(ctx_.get(), "TOP");
+    const Region& h = region(in, sysh::kPortH);
+    wmem_.share(&hmem_, h.base, h.base + h.data.size());
   }
   ~Sim() { top_->final(); }
   Sim(const Sim&) = delete;
@@ -429,7 +445,8 @@ class Sim {
 
 #define REG(r) static_cast<uint32_t>(offsetof(pidm_regs_t, r))
 
-void write_output(const std::string& path, const WriteMem& w, const Input& in) {
+void write_output(const std::string& path, const WriteMem& w, const ReadMem& hmem,
+                  const Input& in, uint32_t pyr_cycles) {
   FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) fail(1, "cannot write %s: %s", path.c_str(), std::strerror(errno));
   const std::vector<uint8_t>* fb = nullptr;
@@ -441,13 +458,18 @@ void write_output(const std::string& path, const WriteMem& w, const Input& in) {
   if (!fb) fail(1, "the input has no framebuffer region at 0x%08x", in.h.fb_base);
   static const std::vector<uint8_t> none;
   if (!st) st = &none;
-  uint32_t head[4];
+  const Region& hr = region(in, sysh::kPortH);
+  std::vector<uint8_t> heights(hr.data.size());
+  for (size_t i = 0; i < heights.size(); ++i) heights[i] = hmem.peek(hr.base + i);
+  uint32_t head[8] = {};
   std::memcpy(head, sysh::kOutMagic, 8);
   head[2] = static_cast<uint32_t>(fb->size());
   head[3] = static_cast<uint32_t>(st->size());
+  head[4] = static_cast<uint32_t>(heights.size());
+  head[5] = pyr_cycles;
   bool ok = std::fwrite(head, sizeof head, 1, f) == 1;
   const uint8_t pad[4] = {};
-  for (const auto* b : {fb, st}) {
+  for (const auto* b : {fb, st, static_cast<const std::vector<uint8_t>*>(&heights)}) {
     if (!b->empty()) ok = ok && std::fwrite(b->data(), 1, b->size(), f) == b->size();
     const size_t p = (4 - b->size() % 4) % 4;
     if (p) ok = ok && std::fwrite(pad, 1, p, f) == p;
@@ -467,12 +489,28 @@ int main(int argc, char** argv) {
   const Input in = read_input(o.in);
   const uint32_t n = in.h.n_frags;
   if (in.writes.empty()) fail(1, "no register writes (the last one starts the frame)");
+  const size_t n_pyr = in.h.n_pyr;
+  if (n_pyr >= in.writes.size()) fail(1, "%zu pyramid writes of %zu: no frame", n_pyr,
+                                      in.writes.size());
 
   const auto t0 = std::chrono::steady_clock::now();
   Sim sim(in, o);
   sim.reset();
   if (sim.read(REG(ID)) != PIDM_REGS__ID__ID_reset) fail(3, "ID register: not a pidm_top");
-  for (size_t i = 0; i + 1 < in.writes.size(); ++i) sim.write(in.writes[i].addr, in.writes[i].value);
+  uint64_t pyr_cycles = 0;
+  if (n_pyr) {   // the pyramid build: its writes, the last one CTRL.pyr_start, its interrupt
+    for (size_t i = 0; i + 1 < n_pyr; ++i) sim.write(in.writes[i].addr, in.writes[i].value);
+    const uint64_t t = sim.now();
+    sim.write(in.writes[n_pyr - 1].addr, in.writes[n_pyr - 1].value);
+    sim.wait_irq(o.timeout ? o.timeout : 4000000ull);
+    pyr_cycles = sim.now() - t;
+    const uint32_t pi = sim.read(REG(INTR_STATE));
+    const uint32_t pe = sim.read(REG(ERROR));
+    if (pi != PIDM_REGS__INTR_STATE__PYR_DONE_bm || pe != 0)
+      fail(3, "pyramid build ended with INTR_STATE 0x%x, ERROR 0x%x", pi, pe);
+    sim.write(REG(INTR_STATE), pi);
+  }
+  for (size_t i = n_pyr; i + 1 < in.writes.size(); ++i) sim.write(in.writes[i].addr, in.writes[i].value);
   const uint64_t start = sim.now();
   sim.write(in.writes.back().addr, in.writes.back().value);
   const uint64_t timeout = o.timeout ? o.timeout : 2000000ull + 4000ull * n;
@@ -499,7 +537,7 @@ int main(int argc, char** argv) {
     fail(3, "frame ended with INTR_STATE 0x%x, ERROR 0x%x", intr, err);
   if (progress != n || v[1] != n)
     fail(3, "PROGRESS %u, STATS.pixels %" PRIu64 " for %u fragments", progress, v[1], n);
-  write_output(o.out, sim.wmem(), in);
+  write_output(o.out, sim.wmem(), sim.hmem(), in, static_cast<uint32_t>(pyr_cycles));
 
   const uint64_t h_hits = v[3], h_misses = v[4], t_req = v[6], t_qh = v[7], t_th = v[9];
   const double cps = wall > 0 ? static_cast<double>(sim.now()) / wall : 0.0;
@@ -507,6 +545,7 @@ int main(int argc, char** argv) {
     FILE* f = std::fopen(o.stats.c_str(), "w");
     if (!f) fail(1, "cannot write %s: %s", o.stats.c_str(), std::strerror(errno));
     std::fprintf(f, "{\n  \"pixels\": %u,\n  \"cycles\": %" PRIu64 ",\n", n, cycles);
+    std::fprintf(f, "  \"pyramid_cycles\": %" PRIu64 ",\n", pyr_cycles);
     std::fprintf(f, "  \"busy_cycles\": %" PRIu64 ",\n  \"iterations\": %" PRIu64 ",\n", v[0],
                  v[2]);
     std::fprintf(f, "  \"height_cache_hits\": %" PRIu64 ",\n  \"height_cache_misses\": %" PRIu64

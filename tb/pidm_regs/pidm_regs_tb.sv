@@ -64,7 +64,9 @@ module pidm_regs_tb
   output logic                 start_o,
   output logic                 soft_reset_o,
   output logic                 clear_stats_o,
-  output logic [4:0]           error_o,       // h_axi, t_axi, frag_dma, fb_write, bad_config
+  output logic                 pyr_start_o,
+  output logic [8:0]           error_o,       // h_axi, t_axi, frag_dma, fb_write, bad_config,
+                                              // pyr_read, pyr_write, pyr_config, start_refused
   output logic                 intr_o,
   output logic [63:0]          frag_base_o,
   output logic [31:0]          frag_count_o,
@@ -76,8 +78,10 @@ module pidm_regs_tb
   // hardware inputs
   input  logic                 busy_i,
   input  logic                 idle_i,
-  input  logic [4:0]           error_set_i,
-  input  logic [1:0]           intr_event_i,  // frame_done, axi_error
+  input  logic [8:0]           error_set_i,
+  input  logic [2:0]           intr_event_i,  // frame_done, axi_error, pyr_done
+  input  logic [5:0]           pyr_status_i,  // STATUS pyr_busy, pyr_done, pyr_err_code[3:0]
+  input  logic [4:0]           pyr_info_i,    // PYR.INFO present, max_lg[3:0]
   input  logic [31:0]          progress_i,
   input  logic [10:0][47:0]    stats_i,       // [0] cycles .. [10] t_bytes
   input  logic [31:0]          hwcfg_i
@@ -104,7 +108,10 @@ module pidm_regs_tb
   assign start_o       = hwif_out.CTRL.start.value;
   assign soft_reset_o  = hwif_out.CTRL.soft_reset.value;
   assign clear_stats_o = hwif_out.CTRL.clear_stats.value;
-  assign error_o = {hwif_out.ERROR.bad_config.value, hwif_out.ERROR.fb_write.value,
+  assign pyr_start_o   = hwif_out.CTRL.pyr_start.value;
+  assign error_o = {hwif_out.ERROR.start_refused.value, hwif_out.ERROR.pyr_config.value,
+                    hwif_out.ERROR.pyr_write.value, hwif_out.ERROR.pyr_read.value,
+                    hwif_out.ERROR.bad_config.value, hwif_out.ERROR.fb_write.value,
                     hwif_out.ERROR.frag_dma.value, hwif_out.ERROR.t_axi.value,
                     hwif_out.ERROR.h_axi.value};
   assign intr_o        = hwif_out.INTR_STATE.intr;
@@ -124,14 +131,24 @@ module pidm_regs_tb
     hwif_in.HWCFG.data_bytes.next = hwcfg_i[31:24];
     hwif_in.STATUS.busy.next      = busy_i;
     hwif_in.STATUS.idle.next      = idle_i;
+    hwif_in.STATUS.pyr_busy.next  = pyr_status_i[0];
+    hwif_in.STATUS.pyr_done.next  = pyr_status_i[1];
+    hwif_in.STATUS.pyr_err_code.next = pyr_status_i[5:2];
+    hwif_in.PYR.INFO.present.next = pyr_info_i[0];
+    hwif_in.PYR.INFO.max_lg.next  = pyr_info_i[4:1];
     hwif_in.ERROR.h_axi.hwset      = error_set_i[0];
     hwif_in.ERROR.t_axi.hwset      = error_set_i[1];
     hwif_in.ERROR.frag_dma.hwset   = error_set_i[2];
     hwif_in.ERROR.fb_write.hwset   = error_set_i[3];
     hwif_in.ERROR.bad_config.hwset = error_set_i[4];
+    hwif_in.ERROR.pyr_read.hwset   = error_set_i[5];
+    hwif_in.ERROR.pyr_write.hwset  = error_set_i[6];
+    hwif_in.ERROR.pyr_config.hwset = error_set_i[7];
+    hwif_in.ERROR.start_refused.hwset = error_set_i[8];
     hwif_in.PROGRESS.pixels.next   = progress_i;
     hwif_in.INTR_STATE.frame_done.next = intr_event_i[0] | hwif_out.INTR_TEST.frame_done.value;
     hwif_in.INTR_STATE.axi_error.next  = intr_event_i[1] | hwif_out.INTR_TEST.axi_error.value;
+    hwif_in.INTR_STATE.pyr_done.next   = intr_event_i[2] | hwif_out.INTR_TEST.pyr_done.value;
     hwif_in.STATS.cycles.LO.val.next        = stats_i[0][31:0];
     hwif_in.STATS.cycles.HI.val.next        = stats_i[0][47:32];
     hwif_in.STATS.pixels.LO.val.next        = stats_i[1][31:0];

@@ -39,6 +39,8 @@ async def setup(dut) -> AxiLiteMaster:
     dut.progress_i.value = 0
     dut.stats_i.value = 0
     dut.hwcfg_i.value = 0
+    dut.pyr_status_i.value = 0
+    dut.pyr_info_i.value = 0
     axil = AxiLiteMaster(AxiLiteBus.from_prefix(dut, "s_axil"), dut.clk_i, dut.rst_ni,
                          reset_active_level=False)
     dut.rst_ni.value = 0
@@ -153,17 +155,18 @@ async def control_status_interrupts(dut):
         assert cond, msg
 
     check(await read(axil, R("ID").addr) == 0x5049444D, "ID")
-    check(await read(axil, R("VERSION").addr) == 0x00010000, "VERSION")
+    check(await read(axil, R("VERSION").addr) == 0x00010001, "VERSION")
     hw = int(rng.integers(0, 1 << 32))
     dut.hwcfg_i.value = hw
     check(await read(axil, R("HWCFG").addr) == hw, "HWCFG")
     # CTRL: each bit one clock high, reads 0
     ctrl = R("CTRL")
+    ports = ("start_o", "soft_reset_o", "clear_stats_o", "pyr_start_o")
     for field, port in (("start", "start_o"), ("soft_reset", "soft_reset_o"),
-                        ("clear_stats", "clear_stats_o")):
+                        ("clear_stats", "clear_stats_o"), ("pyr_start", "pyr_start_o")):
         v = await pulse_seen(dut, port, lambda f=field: write(axil, ctrl.addr, ctrl.value(**{f: 1})))
         check(sum(v) == 1, f"CTRL.{field}: high {sum(v)} clocks")
-        for other in ("start_o", "soft_reset_o", "clear_stats_o"):
+        for other in ports:
             if other != port:
                 check(int(getattr(dut, other).value) == 0, f"CTRL.{field} pulsed {other}")
         check(await read(axil, ctrl.addr) == 0, f"CTRL reads 0 after {field}")
@@ -173,6 +176,16 @@ async def control_status_interrupts(dut):
     for busy, idle in ((1, 0), (0, 1), (1, 1)):
         dut.busy_i.value, dut.idle_i.value = busy, idle
         check(await read(axil, R("STATUS").addr) == busy | idle << 1, "STATUS")
+    dut.busy_i.value, dut.idle_i.value = 0, 1
+    for pst in (0b000001, 0b000010, 0b101110, 0b111111, 0):
+        dut.pyr_status_i.value = pst
+        want = R("STATUS").value(busy=0, idle=1, pyr_busy=pst & 1, pyr_done=pst >> 1 & 1,
+                                 pyr_err_code=pst >> 2)
+        check(await read(axil, R("STATUS").addr) == want, f"STATUS pyr fields {pst:#b}")
+    for info in (0b10101, 0b00001, 0):
+        dut.pyr_info_i.value = info
+        check(R("PYR.INFO").fields_of(await read(axil, R("PYR.INFO").addr))
+              == {"present": info & 1, "max_lg": info >> 1}, f"PYR.INFO {info:#b}")
     prog = int(rng.integers(0, 1 << 32))
     dut.progress_i.value = prog
     check(await read(axil, R("PROGRESS").addr) == prog, "PROGRESS")
@@ -199,6 +212,16 @@ async def control_status_interrupts(dut):
     check(await read(axil, err.addr) == 0b10000, "ERROR W1C")
     await write(axil, err.addr, 0b11111)
     check(await read(axil, err.addr) == 0, "ERROR cleared")
+    dut.error_set_i.value = 0b101100000
+    await RisingEdge(dut.clk_i)
+    dut.error_set_i.value = 0
+    await ClockCycles(dut.clk_i, 3)
+    check(R("ERROR").fields_of(await read(axil, err.addr))
+          == {**{f: 0 for f in err.fields}, "pyr_read": 1, "pyr_write": 1, "start_refused": 1},
+          "ERROR pyramid bits after hwset")
+    check(int(dut.error_o.value) == 0b101100000, "ERROR pyramid bits to hardware")
+    await write(axil, err.addr, 0x1FF)
+    check(await read(axil, err.addr) == 0, "ERROR pyramid bits cleared")
     # Interrupts
     st, en, ts = R("INTR_STATE").addr, R("INTR_ENABLE").addr, R("INTR_TEST").addr
     check(await read(axil, st) == 0 and int(dut.intr_o.value) == 0, "INTR idle")
@@ -223,9 +246,23 @@ async def control_status_interrupts(dut):
     check(await read(axil, st) == 0b10 and int(dut.intr_o.value) == 1, "INTR_TEST sets axi_error")
     check(await read(axil, ts) == 0, "INTR_TEST reads 0")
     await write(axil, st, 0b11)
+    dut.intr_event_i.value = 0b100
+    await RisingEdge(dut.clk_i)
+    dut.intr_event_i.value = 0
+    await ClockCycles(dut.clk_i, 2)
+    check(await read(axil, st) == 0b100 and int(dut.intr_o.value) == 0,
+          "INTR_STATE pyr_done set by the event, not enabled")
+    await write(axil, en, 0b100)
+    await ClockCycles(dut.clk_i, 2)
+    check(int(dut.intr_o.value) == 1, "pyr_done interrupt when enabled")
+    await write(axil, st, 0b100)
+    await write(axil, ts, 0b100)
+    await ClockCycles(dut.clk_i, 2)
+    check(await read(axil, st) == 0b100 and int(dut.intr_o.value) == 1, "INTR_TEST sets pyr_done")
+    await write(axil, st, 0b111)
     await write(axil, en, 0)
     # An unmapped address reads 0 with OKAY, a write there changes nothing
-    for a in (0x00C, 0x02C, 0x0F0, 0x104, 0x280, 0x3FC, 0x4C0, 0x5C0, 0xFFC):
+    for a in (0x00C, 0x02C, 0x0F0, 0x104, 0x280, 0x3FC, 0x4C0, 0x5C0, 0x628, 0x6C0, 0xFFC):
         await write(axil, a, 0xFFFFFFFF)
         check(await read(axil, a) == 0, f"unmapped {a:#x} reads 0")
     check(await read(axil, R("ID").addr) == 0x5049444D, "ID after unmapped writes")
