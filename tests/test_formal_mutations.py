@@ -90,6 +90,17 @@ MUTANTS = {
         "if (!rst_ni && !in_rst_q) epoch_q <= epoch_q + EPOCH_W'(1);",
         "if (!rst_ni && !in_rst_q) epoch_q <= epoch_q;",
         "cache_axi_read:bmc_rst", "(?:stale_ignored|inv_stale|r_beat_expected|r_outstanding)"),
+    "ring_id_duplicated": (
+        "rtl/traverse/traverse_loop.sv",
+        "v_q     <= {v_q[D-2:0], (v_q[D-1] && !retire) || admit};",
+        "v_q     <= {v_q[D-2:0], v_q[D-1] || admit};",
+        "traverse_loop:bmc_ids", r"(?:g_ids\.(?:id_in_ring|id_leave_once)|ring_ids_distinct)"),
+    "rings_result_dropped": (
+        "rtl/traverse/traverse_rings.sv",
+        "r_res_ready[gnt] = res_ready_i;",
+        "r_res_ready      = {R{res_ready_i}};",
+        "traverse_rings:bmc_ids",
+        r"(?:take_one|g_ids\.(?:rid_count|rid_leave_once|rid_ring)|inv_held)"),
     "axi_ar_dropped": (
         "rtl/cache/cache_axi_read.sv",
         "if (!ar_v_q || m_axi_arready) ar_v_q <= ap_v_q;",
