@@ -17,7 +17,10 @@ holds (the merge rule dropped: merge_no_alloc or mshr_unique); cache_axi_read ke
 error bit after its last beat (the MSHR's next line is marked bad: r_err_marks, or the
 wrapper's inv_slave a clock earlier), with AR_REG drops the AR register's valid before arready
 (ar_stable), and does not advance the epoch at a reset (a beat of a read from before the reset
-is taken for the current epoch's: stale_ignored, or the wrapper's inv_stale first).  A
+is taken for the current epoch's: stale_ignored, or the wrapper's inv_stale first).  Ray ids:
+the traverse ring keeps a retired ray in its slot (its id leaves and stays: id_in_ring), and
+traverse_rings takes a result from every ring at a handshake (the other rings' results are
+lost: take_one or an id check).  A
 further case removes one property from what the front end sees and shows the driver refuses the
 run (the guard against properties dropped silently).
 
