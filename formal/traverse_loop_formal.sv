@@ -8,12 +8,13 @@
 // finished: the only way the datapath reaches the ring's control) by a free value each clock, so
 // the proof holds for every finishing decision of every ray, whatever the arithmetic computes;
 // the datapath's own checks (plane_operand_in_range, live_ray_has_no_result,
-// descent_not_admitted, bdiff_operand_in_range) are removed from this model (they are about
-// the arithmetic; simulation checks them).  Everything else is free: the new rays (id, fields,
+// descent_not_admitted, bdiff_operand_in_range) and the slot counters' slot_counter are removed
+// from this model (they are about the arithmetic and the tables; simulation checks them).  Everything else is free: the new rays (id, fields,
 // whether setup finished them), the result FIFO's full flag, the configuration.  Assumed: the
 // height cache answers only a lookup made LOOKUP_LAT clocks earlier (no_spurious_response, the
 // cache's side), a new ray's id is not in the ring (id_enter_free: dm_pipeline's slot ids are
-// unique, the free list proof), and reset in the first clock.
+// unique, the free list proof), and reset in the first clock; resets may come again at any time
+// (in the prove and cover tasks; the BMC task, TRAVERSE_LOOP_ONE_RESET, resets only first).
 module traverse_loop_formal
   import f24_pkg::*;
   import traverse_pkg::*;
@@ -52,8 +53,11 @@ module traverse_loop_formal
   always_ff @(posedge clk_i) started_q <= 1'b1;
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);
-    else            assume (rst_ni);
+    if (!started_q) assume (!rst_ni);   // (a reset may come again at any time ...)
+`ifdef TRAVERSE_LOOP_ONE_RESET
+    else            assume (rst_ni);    // (... but in the BMC task: 24 steps with free resets
+                                        // took minutes)
+`endif
     assume (!rs_valid_i || u_dut.u_assert.lk_d_q[LOOKUP_LAT-1]);  // the checker's history
     assume (!new_valid_i || !u_dut.u_assert.g_ids.in_ring_q[new_id_i]);
   end

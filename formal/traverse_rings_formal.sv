@@ -11,7 +11,7 @@
 //   inv_hold   the arbiter's held grant is a ring whose result is still shown.
 // Free: the ray stream (valid, id), the result stream's ready, the rings' choices.  Assumed: a
 // ray's id is not inside when the stream offers it (rid_enter_free: dm_pipeline's slot ids are
-// unique, the free list proof), reset in the first clock.
+// unique, the free list proof), reset in the first clock and at any time after.
 module traverse_rings_formal
   import f24_pkg::*;
   import traverse_pkg::*;
@@ -91,8 +91,7 @@ module traverse_rings_formal
   end
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);
-    else            assume (rst_ni);
+    if (!started_q) assume (!rst_ni);   // (a reset may come again at any time)
     assume (!ray_valid_i || !u_dut.u_assert.g_ids.in_q[ray_id_i]);
   end
 

@@ -7,7 +7,7 @@
 // The float datapath is cut: the script makes the ray setup computes (out_ray_o) a free value,
 // so the id path is proven alone, whatever the arithmetic.  Free: the rays (ids, fields), the
 // configuration, idle_i.  Assumed: no ray in the clock after one (ray_spacing, the unit's
-// admission), reset in the first clock.
+// admission), reset in the first clock and at any time after.
 module traverse_setup_formal
   import f24_pkg::*;
   import traverse_pkg::*;
@@ -46,8 +46,7 @@ module traverse_setup_formal
   end
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);
-    else            assume (rst_ni);
+    if (!started_q) assume (!rst_ni);   // (a reset may come again at any time)
     assume (!in_valid_i || !u_dut.v_q[0]);
   end
 
