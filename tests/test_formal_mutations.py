@@ -17,7 +17,10 @@ holds (the merge rule dropped: merge_no_alloc or mshr_unique); cache_axi_read ke
 error bit after its last beat (the MSHR's next line is marked bad: r_err_marks, or the
 wrapper's inv_slave a clock earlier), with AR_REG drops the AR register's valid before arready
 (ar_stable), and does not advance the epoch at a reset (a beat of a read from before the reset
-is taken for the current epoch's: stale_ignored, or the wrapper's inv_stale first).  A
+is taken for the current epoch's: stale_ignored, or the wrapper's inv_stale first).  Ray ids:
+the traverse ring keeps a retired ray in its slot (its id leaves and stays: id_in_ring), and
+traverse_rings takes a result from every ring at a handshake (the other rings' results are
+lost: take_one or an id check).  A
 further case removes one property from what the front end sees and shows the driver refuses the
 run (the guard against properties dropped silently).
 
@@ -90,6 +93,17 @@ MUTANTS = {
         "if (!rst_ni && !in_rst_q) epoch_q <= epoch_q + EPOCH_W'(1);",
         "if (!rst_ni && !in_rst_q) epoch_q <= epoch_q;",
         "cache_axi_read:bmc_rst", "(?:stale_ignored|inv_stale|r_beat_expected|r_outstanding)"),
+    "ring_id_duplicated": (
+        "rtl/traverse/traverse_loop.sv",
+        "v_q     <= {v_q[D-2:0], (v_q[D-1] && !retire) || admit};",
+        "v_q     <= {v_q[D-2:0], v_q[D-1] || admit};",
+        "traverse_loop:bmc_ids", r"(?:g_ids\.(?:id_in_ring|id_leave_once)|ring_ids_distinct)"),
+    "rings_result_dropped": (
+        "rtl/traverse/traverse_rings.sv",
+        "r_res_ready[gnt] = res_ready_i;",
+        "r_res_ready      = {R{res_ready_i}};",
+        "traverse_rings:bmc_ids",
+        r"(?:take_one|g_ids\.(?:rid_count|rid_leave_once|rid_ring)|inv_held)"),
     "axi_ar_dropped": (
         "rtl/cache/cache_axi_read.sv",
         "if (!ar_v_q || m_axi_arready) ar_v_q <= ap_v_q;",

@@ -20,6 +20,18 @@
 //   tf_pairs         the filter's results alternate colour, normal map, and a normal-map result
 //                    belongs to the pixel of the colour result before it (what the pairing into
 //                    shade_unit relies on).
+// Slot ids, each leaving once: a shadow of the slots in use (use_q: set when a fragment takes
+// the free list's head, cleared when its pixel leaves) and of those in the traversal (trav_q:
+// set with use_q, cleared when traverse_rings' result for the slot is taken):
+//   slot_enter_free  a fragment takes a slot not in use (the free list gives no id twice);
+//   slot_trav_once   a traversal result is for a slot in the traversal (each slot's ray comes
+//                    back once, and only for a fragment inside);
+//   slot_out_once    a pixel leaves for a slot in use whose traversal is over (one pixel per
+//                    fragment, after its ray);
+//   slot_count       the slots in use = live_q (none lost: with slots_conserved, every slot is
+//                    in the free list or in use).
+// The pieces of this path are proven in formal (docs/formal.md): the free list, FIFO #0's
+// admission and order, traverse_rings' dealing and return, the traverse ring's ids.
 `ifndef SYNTHESIS
 module dm_pipeline_assert #(
   parameter int unsigned PIX_W = 20,   // dm_pipeline's PIX_W
@@ -50,7 +62,12 @@ module dm_pipeline_assert #(
   input logic                           tc_req_ready_i,
   input logic                           tf_valid_i,
   input logic                           tf_nmap_i,     // tf_tag[1]: a normal-map result
-  input logic [$clog2(SLOTS)-1:0]       sh_in_slot_i
+  input logic [$clog2(SLOTS)-1:0]       sh_in_slot_i,
+  input logic                           acc_i,         // acc: a fragment takes a slot
+  input logic [$clog2(SLOTS)-1:0]       free_head_i,   // free_head: the slot it takes
+  input logic                           res_take_i,    // res_valid && res_ready
+  input logic [$clog2(SLOTS)-1:0]       res_id_i,      // res_id: the slot of the result
+  input logic [$clog2(SLOTS)-1:0]       o_slot_i       // o_slot_q: the slot of the pixel out
 );
 
   localparam int unsigned SLOT_W    = $clog2(SLOTS);
@@ -101,6 +118,43 @@ module dm_pipeline_assert #(
     mip_tag_q <= mip_tag_i;
   end
 
+  // The slots in use and in the traversal.
+  logic [SLOTS-1:0] use_q, trav_q;
+  logic             px_done;
+  logic [SLOT_W:0]  n_use;
+  assign px_done = px_valid_i && px_ready_i;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      use_q  <= '0;
+      trav_q <= '0;
+    end else begin
+      if (px_done)    use_q[o_slot_i]   <= 1'b0;
+      if (res_take_i) trav_q[res_id_i]  <= 1'b0;
+      if (acc_i) begin
+        use_q[free_head_i]  <= 1'b1;
+        trav_q[free_head_i] <= 1'b1;
+      end
+    end
+  end
+  always_comb begin
+    n_use = '0;
+    for (int i = 0; i < SLOTS; i++) n_use = n_use + (SLOT_W+1)'(use_q[i]);
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (rst_ni) begin
+      slot_enter_free: assert (!acc_i || !use_q[free_head_i])
+        else $error("dm_pipeline: slot %0d taken while in use", free_head_i);
+      slot_trav_once:  assert (!res_take_i || (trav_q[res_id_i] && use_q[res_id_i]))
+        else $error("dm_pipeline: traversal result for slot %0d, not in the traversal", res_id_i);
+      slot_out_once:   assert (!px_done || (use_q[o_slot_i] && !trav_q[o_slot_i]))
+        else $error("dm_pipeline: pixel out for slot %0d, not in use or still traversing",
+                    o_slot_i);
+      slot_count:      assert (n_use == live_i)
+        else $error("dm_pipeline: %0d slots in use, live_q %0d", n_use, live_i);
+    end
+  end
+
   always_ff @(posedge clk_i) begin
     if (rst_ni && !init_i) begin
       slots_conserved: assert (free_count_i + live_i == (SLOT_W+1)'(SLOTS))
@@ -140,5 +194,6 @@ bind dm_pipeline dm_pipeline_assert #(.PIX_W(PIX_W), .SLOTS(SLOTS)) u_assert (
   .nl_valid_i(nl_valid_q), .mip_tag_i(mip_tag), .sh_valid_i(sh_valid), .out_full_i(out_full),
   .px_valid_i(px_valid_o), .px_ready_i, .px_id_i(px_id_o), .px_rgb_i(px_rgb_o),
   .tc_req_valid_i(tc_req_valid), .tc_req_ready_i(tc_req_ready), .tf_valid_i(tf_valid),
-  .tf_nmap_i(tf_tag[1]), .sh_in_slot_i(sh_in_slot));
+  .tf_nmap_i(tf_tag[1]), .sh_in_slot_i(sh_in_slot), .acc_i(acc), .free_head_i(free_head),
+  .res_take_i(res_valid && res_ready), .res_id_i(res_id), .o_slot_i(o_slot_q));
 `endif

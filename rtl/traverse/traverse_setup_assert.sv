@@ -1,25 +1,84 @@
 // SPDX-License-Identifier: Apache-2.0
-// traverse_setup_assert: the simulation check of traverse_setup, bound into every instance (the
-// `bind` at the end of this file; not in synthesis).  Immediate assertions in a clocked block, in
-// the form the formal flow's front end (Yosys read_slang) accepts.
+// traverse_setup_assert: the checks of traverse_setup, bound into every instance (the `bind` at
+// the end of this file; not in synthesis), checked by simulation and proven by `make formal`
+// (formal/traverse_setup.sby, the float datapath cut; docs/formal.md).  Immediate assertions in
+// a clocked block, in the form the formal flow's front end (Yosys read_slang) accepts.
 //
-//   ray_spacing  u and v share the float units a clock apart: no ray in the clock after one.
+//   ray_spacing     u and v share the float units a clock apart: no ray in the clock after one
+//                   (the user's obligation);
+//   setup_id_order  a tracked ray (formal: any ray, picked freely; simulation: every ray that
+//                   enters while none is tracked) comes out SETUP_LAT clocks after it entered,
+//                   with its id: the pipeline neither loses, duplicates nor swaps ids;
+//   trk_in_setup    while inside, the tracked ray's stage holds a ray and its id (the table
+//                   entry of stages T0 - T15, the output registers of T16 - T19): the invariant
+//                   that makes the induction step hold.
 `ifndef SYNTHESIS
-module traverse_setup_assert (
-  input logic clk_i,
-  input logic rst_ni,
-  input logic in_valid_i,
-  input logic v0_i   // traverse_setup's v_q[0]: stage T0 holds a ray
+module traverse_setup_assert
+  import traverse_pkg::*;
+#(
+  parameter int unsigned ID_W = 16   // traverse_setup's ID_W
+) (
+  input logic                clk_i,
+  input logic                rst_ni,
+  input logic                in_valid_i,
+  input logic [ID_W-1:0]     in_id_i,
+  input logic [SETUP_LAT-1:0] v_i,        // traverse_setup's v_q: stage Ts holds a ray
+  input logic                out_valid_i,
+  input logic [ID_W-1:0]     out_id_i,
+  input logic [ID_W-1:0]     stage_id_i [SETUP_LAT]  // the id each stage holds (see the bind)
 );
+
+  localparam int unsigned NS = SETUP_LAT;
+  localparam int unsigned AW = $clog2(NS);
+
+  // pick: which ray to track.  Formal leaves it undriven (a free input: every ray may be the
+  // tracked one); simulation tracks whenever it can.
+  logic pick;
+`ifndef FORMAL
+  assign pick = 1'b1;
+`endif
+  logic            trk_q;      // a ray is tracked
+  logic [ID_W-1:0] trk_id_q;   // its id
+  logic [AW-1:0]   trk_s_q;    // its stage
+  logic            trk_out;    // it leaves in this clock
+  assign trk_out = trk_q && trk_s_q == AW'(NS - 1);
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      trk_q <= 1'b0;
+    end else if (in_valid_i && pick && (!trk_q || trk_out)) begin
+      trk_q    <= 1'b1;
+      trk_id_q <= in_id_i;
+      trk_s_q  <= '0;
+    end else if (trk_out) begin
+      trk_q <= 1'b0;
+    end else if (trk_q) begin
+      trk_s_q <= trk_s_q + AW'(1);
+    end
+  end
 
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
-      ray_spacing: assert (!in_valid_i || !v0_i)
+      ray_spacing: assert (!in_valid_i || !v_i[0])
         else $error("traverse_setup: rays on two consecutive clocks");
+      setup_id_order: assert (!trk_out || (out_valid_i && out_id_i == trk_id_q))
+        else $error("traverse_setup: ray id %0d due out, out_valid %0d id %0d", trk_id_q,
+                    out_valid_i, out_id_i);
+      trk_in_setup: assert (!trk_q || (32'(trk_s_q) < NS && v_i[trk_s_q]
+                                       && stage_id_i[trk_s_q] == trk_id_q))
+        else $error("traverse_setup: the tracked ray (id %0d) is not at its stage %0d", trk_id_q,
+                    trk_s_q);
     end
   end
 
 endmodule
 
-bind traverse_setup traverse_setup_assert u_assert (.clk_i, .rst_ni, .in_valid_i, .v0_i(v_q[0]));
+// stage_id_i: stages T0 - T15 read their entry of the id table (sl[s]: the stage's entry),
+// T16 - T19 the output registers out_q[0] - out_q[3].
+bind traverse_setup traverse_setup_assert #(.ID_W(ID_W)) u_assert (
+  .clk_i, .rst_ni, .in_valid_i, .in_id_i, .v_i(v_q), .out_valid_i(out_valid_o),
+  .out_id_i(out_id_o),
+  .stage_id_i('{id_q[sl[0]], id_q[sl[1]], id_q[sl[2]], id_q[sl[3]], id_q[sl[4]], id_q[sl[5]],
+                id_q[sl[6]], id_q[sl[7]], id_q[sl[8]], id_q[sl[9]], id_q[sl[10]], id_q[sl[11]],
+                id_q[sl[12]], id_q[sl[13]], id_q[sl[14]], id_q[sl[15]], out_q[0].id,
+                out_q[1].id, out_q[2].id, out_q[3].id}));
 `endif

@@ -12,6 +12,14 @@
 //   setup_fifo_never_overflows  setup never writes the setup FIFO while full;
 //   ray_in_stable / res_out_stable  stream protocol: once valid, the payload stable and valid
 //                               held until the transfer.
+// Ray ids, with ID_W <= ID_TRACK_W (dm_pipeline's slot ids): a shadow of the ids inside
+// (in_unit_q: set when a ray is taken, cleared when its result is taken):
+//   uid_enter_free              a ray's id is not inside when it is taken (the user's
+//                               obligation: ids unique in flight);
+//   uid_leave_once              a result's id is inside when it is taken (no id leaves twice,
+//                               none made up).
+// formal/traverse_unit.sby proves them, and that every id inside is in exactly one place of the
+// unit (setup, its FIFO, the ring, the result FIFO), with the float datapath cut.
 `ifndef SYNTHESIS
 module traverse_unit_assert
   import f24_pkg::*;
@@ -19,7 +27,8 @@ module traverse_unit_assert
 #(
   parameter int unsigned ID_W             = 16,  // traverse_unit's ID_W
   parameter int unsigned SETUP_FIFO_DEPTH = 32,  // traverse_unit's SETUP_FIFO_DEPTH
-  parameter int unsigned RES_FIFO_DEPTH   = 16   // traverse_unit's RES_FIFO_DEPTH
+  parameter int unsigned RES_FIFO_DEPTH   = 16,  // traverse_unit's RES_FIFO_DEPTH
+  parameter int unsigned ID_TRACK_W       = 10   // the id shadow up to this ID_W
 ) (
   input logic                                   clk_i,
   input logic                                   rst_ni,
@@ -40,7 +49,8 @@ module traverse_unit_assert
   input f24_t                                   ray_dv_i,
   input logic                                   res_valid_i,  // res_valid_o
   input logic                                   res_ready_i,
-  input logic [ID_W+$bits(result_t)-1:0]        rf_head_i     // rf_head: the result's payload
+  input logic [ID_W+$bits(result_t)-1:0]        rf_head_i,    // rf_head: the result's payload
+  input logic [ID_W-1:0]                        res_id_i      // res_id_o
 );
 
   localparam int unsigned IF_W  = $clog2(SETUP_FIFO_DEPTH + 31 + RES_FIFO_DEPTH + 1);
@@ -65,6 +75,30 @@ module traverse_unit_assert
     end
     ray_q     <= {ray_id_i, ray_u0_i, ray_v0_i, ray_du_i, ray_dv_i};
     rf_head_q <= rf_head_i;
+  end
+
+  if (ID_W <= ID_TRACK_W) begin : g_ids
+    localparam int unsigned NID = 1 << ID_W;
+    logic [NID-1:0] in_unit_q;   // ids taken whose results are not
+    logic           in_fire, out_fire;
+    assign in_fire  = ray_valid_i && ray_ready_i;
+    assign out_fire = res_valid_i && res_ready_i;
+    always_ff @(posedge clk_i) begin
+      if (!rst_ni) begin
+        in_unit_q <= '0;
+      end else begin
+        if (out_fire) in_unit_q[res_id_i] <= 1'b0;
+        if (in_fire)  in_unit_q[ray_id_i] <= 1'b1;
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (rst_ni) begin
+        uid_enter_free: assert (!in_fire || !in_unit_q[ray_id_i])
+          else $error("traverse_unit: ray id %0d taken while inside", ray_id_i);
+        uid_leave_once: assert (!out_fire || in_unit_q[res_id_i])
+          else $error("traverse_unit: result id %0d not inside", res_id_i);
+      end
+    end
   end
 
   always_ff @(posedge clk_i) begin
@@ -93,5 +127,6 @@ bind traverse_unit traverse_unit_assert #(.ID_W(ID_W), .SETUP_FIFO_DEPTH(SETUP_F
   .clk_i, .rst_ni, .inflight_i(inflight_q), .su_busy_i(su_busy), .sf_count_i(sf_count),
   .sf_used_i(sf_used_q), .lp_busy_i(lp_busy), .rf_count_i(rf_count), .su_valid_i(su_valid),
   .sf_full_i(sf_full), .ray_valid_i, .ray_ready_i(ray_ready_o), .ray_id_i, .ray_u0_i, .ray_v0_i,
-  .ray_du_i, .ray_dv_i, .res_valid_i(res_valid_o), .res_ready_i, .rf_head_i(rf_head));
+  .ray_du_i, .ray_dv_i, .res_valid_i(res_valid_o), .res_ready_i, .rf_head_i(rf_head),
+  .res_id_i(res_id_o));
 `endif
