@@ -13,14 +13,16 @@ package shade_pkg;
   // Each user reads only the constants it needs.
   /* verilator lint_off UNUSEDPARAM */
 
-  // Critical path: view vector (input register 1, mul 1, add 2, add 2, rsqrt 3, mul 1), half
-  // vector (add 2, mul 1, add 2, add 2, rsqrt 3, mul 1), n.h (mul 1, add 2, add 2), max 1, four
-  // squarings 4, KS mul 1, colour add 2, clamp 1, x255 mul 1, +0.5 add 2, floor 1, two clocks
-  // more for G and B, which follow R on one lane a clock apart each, and three for the
+  // Critical path (a shared unit's operation starts a clock after the result it takes, which
+  // its operand register holds): view vector (mul 1, add 1 + 2, add 1 + 2, rsqrt 1 + 3,
+  // mul 1 + 1), half vector (add 2, mul 1 + 1, add 1 + 2, add 1 + 2, rsqrt 1 + 3, mul 1 + 1),
+  // n.h (mul 1 + 1, add 1 + 2, the wait for dot(n, l) 1, add 1 + 2), max 1, four squarings 4,
+  // KS mul 1, the wait for a 1, colour add 1 + 2, clamp 1, x255 mul 1, +0.5 add 2, floor 1, two
+  // clocks more for G and B, which follow R on one lane a clock apart each, and three for the
   // alignment (a pixel enters the core on phase 0 mod 4, up to 3 clocks late; the others wait
-  // at the output).
+  // at the output).  shade_unit.sv's header has the stage schedule.
   // rsqrt: f24_rsqrt #(.LAT(3)) (pipe_pkg::F24_RSQRT_LAT).
-  localparam int unsigned SHADE_LAT = 44;
+  localparam int unsigned SHADE_LAT = 59;
 
   // Per-frame configuration: every field is the f24 pattern of the model's const(...) of that
   // quantity (model.f24.from_float of the float64 value; the driver precomputes them), static

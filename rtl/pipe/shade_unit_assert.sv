@@ -11,12 +11,12 @@
 //                  never gets two in one clock;
 //   phase_replica  every phase replica (ps_q) is ph_q, one-hot;
 //   unit_once      every float unit with more than one operation gets one pixel per clock at
-//                  most (the stages it takes its operands in: the table below).
+//                  most (the stages it works on its operands in: the table below).
 `ifndef SYNTHESIS
 module shade_unit_assert
   import shade_pkg::*;
 #(
-  parameter int unsigned NPS = 20   // shade_unit's NPS: shared units with an operand select
+  parameter int unsigned NPS = 21   // shade_unit's NPS: operand selects with a phase replica
 ) (
   input logic                  clk_i,
   input logic                  rst_ni,
@@ -47,17 +47,16 @@ module shade_unit_assert
   endfunction
 
   // Every float unit with more than one operation: the stages it takes its operands in.
-  localparam int NSH = 26;
+  localparam int NSH = 25;
   logic [CS:1] shared [NSH];
   assign shared = '{
-    ops(1, 12, 0, 0),   ops(1, 19, 20, 30),  ops(8, 9, 0, 0),     ops(8, 9, 0, 0),    // mul
-    ops(9, 10, 0, 0),   ops(12, 13, 26, 27), ops(19, 20, 21, 22), ops(20, 21, 0, 0),
-    ops(20, 21, 0, 0),  ops(20, 21, 0, 0),   ops(28, 29, 30, 31), ops(29, 30, 0, 0),
-    ops(35, 36, 37, 0),
-    ops(1, 2, 0, 0),    ops(1, 2, 0, 0),     ops(4, 15, 0, 0),    ops(9, 10, 0, 0),   // add
-    ops(10, 11, 0, 0),  ops(12, 13, 0, 0),   ops(21, 22, 0, 0),   ops(23, 24, 0, 0),
-    ops(27, 32, 0, 0),  ops(32, 33, 0, 0),   ops(36, 37, 38, 0),
-    ops(6, 16, 17, 0),  ops(38, 39, 40, 0)};                                          // rsqrt, idx
+    ops(1, 18, 0, 0),   ops(1, 19, 20, 46),  ops(3, 4, 0, 0),     ops(4, 13, 0, 0),   // mul
+    ops(13, 14, 0, 0),  ops(17, 18, 40, 0),  ops(19, 32, 33, 0),  ops(20, 21, 0, 0),
+    ops(30, 31, 0, 0),  ops(21, 30, 32, 0),  ops(45, 46, 0, 0),   ops(50, 51, 52, 0),
+    ops(1, 2, 0, 0),    ops(1, 3, 0, 0),     ops(6, 23, 0, 0),    ops(6, 15, 0, 0),   // add
+    ops(14, 15, 0, 0),  ops(9, 20, 0, 0),    ops(23, 34, 0, 0),   ops(36, 37, 0, 0),
+    ops(42, 48, 0, 0),  ops(47, 48, 0, 0),   ops(51, 52, 53, 0),
+    ops(9, 15, 26, 0),  ops(53, 54, 55, 0)};                                          // rsqrt, idx
 
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin

@@ -26,7 +26,7 @@
 // multiplexers of the state cost ~7,000 LUT4s, and the ring's registers cost no more flip-flops
 // than the table's.)  Activity bits per stage move with the slots too: the slot holds a ray
 // (v_q), a live ray (S1 - S4), the height read returned data (ok) or an error (S4 - S17), the pass
-// hits or descends (S8 - S12), the pass descends (S8 - S18).
+// hits or descends (S8 - S13), the pass descends (S8 - S18).
 //
 // Clock enables: a unit advances only while its stages hold a pass that uses its result, and
 // holds its registers otherwise (less switching, and less work for a simulator).  Until the
@@ -62,19 +62,21 @@
 //   S7   inside / miss / hit / down / cross
 //        du * (that time)                                           f24_mul      S7 -> S8
 //        du * t_end                                                 f24_mul      S7 -> S8
-//   S8   u0 + du * (that time)                                      f24_add      S8 -> S10
-//        u0 + du t_end                                              f24_add      S8 -> S10
-//   S10  position at t_new (a hit's u) or at the plane (a crossing)
-//        floor(position) (a descent, or selective's P1 for a crossing) f24_to_index S10 -> S11
-//        floor(position at t_end)                                   f24_to_index S10 -> S11
-//   S11  crossing's time; crossing, part 1: neighbour cell, parent, selective's stay
+//   S8   u0 + du * (that time) (f24_add at LAT 3)                   f24_add      S8 -> S11
+//        u0 + du t_end                                              f24_add      S8 -> S11
+//   S11  position at t_new (a hit's u) or at the plane (a crossing)
+//        floor(position) (a descent, or selective's P1 for a crossing) f24_to_index S11 -> S12
+//        floor(position at t_end)                                   f24_to_index S11 -> S12
+//   S12  crossing's time; crossing, part 1: neighbour cell, parent, selective's stay
 //        (traverse_pkg::cross_pre); descent: the two positions clipped to the node
-//   S12  crossing, part 2: level-up policy (cross_up); descent: new level (one; multi: `levels`
+//   S13  crossing, part 2: level-up policy (cross_up); descent: new level (one; multi: `levels`
 //        until the first crossing; XOR of the ends) (descend_pick)
-//   S13  child estimate c = floor(p) >> k' (p clipped to the node); its entry / exit
-//        boundary integers (c + (s < 0 / s > 0)) << k'; the child's range at level k'
-//   S14  entry / exit boundary - u0 (fixed point, see below)        traverse_bdiff S14 -> S17
-//        the three cells locate's correction chooses from
+//   S14  the child's entry / exit boundary integers (c + (s < 0 / s > 0)) << k' (c the child
+//        estimate floor(p) >> k', p clipped to the node), straight into traverse_bdiff, whose
+//        first stage only registers them: entry / exit boundary - u0 (fixed point, see below)
+//                                                                   traverse_bdiff S14 -> S17
+//        child estimate c, the child's range at level k'
+//   S15  the three cells locate's correction chooses from
 //   S16  the state's copies for S17
 //   S17  (boundary - u0) * (1/du)                                   f24_mul      S17 -> S18
 //        next state (hit / miss / down / cross / lookup miss / cap)
@@ -97,7 +99,11 @@
 // (selective's P1 for a crossing; a pass needs never both).  Picking that time first (S6) costs the
 // ring a stage: 19 deep (the paper's is 15), because the descent's locate (time, position, floor,
 // clip, level, boundaries, two crossing times, correction) follows the plane's arrival as a
-// dependent chain of 12 clocks (S6 - S18).  (Computing the positions at t and at the plane both,
+// dependent chain of 12 clocks (S6 - S18).  The position adders run at three clocks (their
+// two-clock first stage, alignment shift and carry chain together, was the ring's slowest path)
+// in the same ring: the boundary integers, which had a register of their own before
+// traverse_bdiff's first stage (a register of the same integers, shifted by wiring), now go
+// straight into that stage.  (Computing the positions at t and at the plane both,
 // and picking one in parallel, took a ring of 18 and two f24_mul, two f24_add more per axis pair.)
 //
 // Lookup misses: the ray keeps its state and goes round again; the iteration is not counted
@@ -149,6 +155,13 @@ module traverse_loop
 
   localparam int unsigned D  = LOOP_DEPTH;  // traverse_pkg: stages S0 .. S18
   localparam int unsigned SW = $clog2(D);   // block RAM table index width
+  // The position adders (u0 + du t, S8): three clocks (f24_add's LAT 3, the same word), so that
+  // no stage holds the adder's alignment shift and its carry chain together (at two clocks the
+  // adder's first stage was the ring's slowest path); the schedule (header) is written for 3.
+  localparam int unsigned POS_ADD_LAT = 3;
+  if (POS_ADD_LAT != 3) begin : g_check_pos_lat
+    $error("traverse_loop: the stage schedule is written for POS_ADD_LAT = 3");
+  end
 
   typedef logic [SW-1:0] slot_idx_t;
 
@@ -215,10 +228,10 @@ module traverse_loop
   // data; "inside": the pass hits or descends.
   f24_t             t_new_q  [17:7];   // [S6 ok]              S17: max(t, plane)
   act_t             act_q    [16:8];   // [S7 ok]              S16
-  f24_pair_t        pos_q    [17:11];  // [S10 inside]          S17: position at t_new
-  f24_t             xt_q     [17:12];  // [S11 ok, not inside] S17: the crossing's time
+  f24_pair_t        pos_q    [17:12];  // [S11 inside]          S17: position at t_new
+  f24_t             xt_q     [17:13];  // [S12 ok, not inside] S17: the crossing's time
                                        // max(t, t_exit)
-  cross_node_t      cross_q  [17:13];  // [S12 ok, not inside] S17: the crossing's new node, up
+  cross_node_t      cross_q  [17:14];  // [S13 ok, not inside] S17: the crossing's new node, up
   // Per ray, in block RAM: du, dv and 1/du, 1/dv, one entry per slot (see the header), written
   // when the ray enters the ring.  They are read only into registers, so synthesis can put them
   // in block RAM (ram_style; a 16x4 LUT RAM costs 6 LUT4s).  Their reads are made a stage early
@@ -232,7 +245,7 @@ module traverse_loop
   logic [D-1:0] v_q;               // v_q[s]: the slot in stage s holds a ray
   logic         ok4, err4;         // the height read of the ray in S4 returned data / an error
   logic [17:5]  ok_q, err_q;       // ok4, err4 of the ray in stage s (meaningful with v_q[s])
-  logic [12:8]  in_q;              // in_q[s]: ok, and the pass hits or descends (inside its node)
+  logic [13:8]  in_q;              // in_q[s]: ok, and the pass hits or descends (inside its node)
   logic [18:8]  dn_q;              // dn_q[s]: ok, and the pass descends
   logic [4:1]   lv_q;              // lv_q[s]: the slot in stage s holds a live ray (not done)
   logic         xor_desc, sel_up;  // the method uses the XOR descent / the selective level-up
@@ -264,7 +277,7 @@ module traverse_loop
   f24_pair_t  inv3_q, inv4_q;      // S3 (block RAM read register), S4
   dirs_t      d5_q;                // S5
   tval_t      tmap5_q;             // S5: t_map
-  exit_t      ex_q [11:6];         // S6 - S11: t_exit (computed in S5)
+  exit_t      ex_q [12:6];         // S6 - S12: t_exit (computed in S5)
   tval_t      tmap6_q;             // S6: t_map
   tval_t      t6_q;                // S6
   f24_pair_t  duv5_q, duv6_q, duv7_q;  // S5 (block RAM read register), S6, S7
@@ -273,20 +286,20 @@ module traverse_loop
   tmin_t      tmin7_q;             // S7 (computed in S6)
   logic       leaf7_q;             // S7: the node is at level 0
   f24_pair_t  uv8_q;               // S8
-  f24_pair_t  uv10_q;              // S10
-  dirs_t      d10_q, d11_q, d12_q, d13_q, d14_q;  // S10 - S14
-  node_t      n10_q, n11_q, n12_q, n13_q;         // S10 - S13
-  sidx_pair_t lo11_q, hi11_q;      // S11: the node's level-0 cells (computed in S10)
-  logic       crossed11_q, prev11_q, prev12_q;   // S11, S12: status bits
-  tval_t      t11_q;               // S11
-  cross_pre_t xpre12_q;            // S12: crossing, part 1 (computed in S11)
-  sidx_pair_t a12_q, b12_q;        // S12: positions at t_new, t_end clipped to the node
-  logic [4:0] nkm12_q;             // S12: multi's new level
-  sidx_pair_t a13_q;               // S13
-  logic [LVL_W-1:0] nk13_q, nk14_q;  // S13, S14: the descent's new level (computed in S12)
-  logic [IDX_W-1:0] kben_x14_q, kbex_x14_q, kben_y14_q, kbex_y14_q;  // S14 (computed in S13)
-  sidx_pair_t c14_q, lo14_q, hi14_q;  // S14: child estimate, the child's range at level k'
-  desc_t      dsc_q [18:15];       // S15 - S18: new level, locate's candidates (from S14)
+  f24_pair_t  uv11_q;              // S11
+  dirs_t      d11_q, d12_q, d13_q, d14_q, d15_q;  // S11 - S15
+  node_t      n11_q, n12_q, n13_q, n14_q;         // S11 - S14
+  sidx_pair_t lo12_q, hi12_q;      // S12: the node's level-0 cells (computed in S11)
+  logic       crossed12_q, prev12_q, prev13_q;   // S12, S13: status bits
+  tval_t      t12_q;               // S12
+  cross_pre_t xpre13_q;            // S13: crossing, part 1 (computed in S12)
+  sidx_pair_t a13_q, b13_q;        // S13: positions at t_new, t_end clipped to the node
+  logic [4:0] nkm13_q;             // S13: multi's new level
+  sidx_pair_t a14_q;               // S14
+  logic [LVL_W-1:0] nk14_q, nk15_q;  // S14, S15: the descent's new level (computed in S13)
+  logic [IDX_W-1:0] kben_x14, kbex_x14, kben_y14, kbex_y14;  // S14: the child's boundaries
+  sidx_pair_t c15_q, lo15_q, hi15_q;  // S15: child estimate, the child's range at level k'
+  desc_t      dsc_q [18:16];       // S16 - S18: new level, locate's candidates (from S15)
   f24_pair_t  inv16_q, inv17_q;    // S16 (block RAM read register), S17
   status_t    st17_q;              // S17
   logic [ITER_W-1:0] it17_q;       // S17: iterations + 1
@@ -405,29 +418,31 @@ module traverse_loop
   f24_mul u_dtp_x (.clk_i, .en_i(ok_q[7]), .a_i(duv7_q.u), .b_i(tp7_q), .y_o(dtp_x));
   f24_mul u_dtp_y (.clk_i, .en_i(ok_q[7]), .a_i(duv7_q.v), .b_i(tp7_q), .y_o(dtp_y));
 
-  // ---- S8: u0 + du * that time, u0 + du t_end ---------------------------------------------------
+  // ---- S8: u0 + du * that time, u0 + du t_end (f24_add at POS_ADD_LAT = 3) -------------------
   f24_t pos_x, pos_y;
-  logic pos_en;  // S8 - S9 hold a pass whose height read returned data
-  assign pos_en  = ok_q[8] || ok_q[9];
-  f24_add u_pos_x (.clk_i, .en_i(pos_en), .a_i(uv8_q.u), .b_i(dtp_x), .y_o(pos_x));
-  f24_add u_pos_y (.clk_i, .en_i(pos_en), .a_i(uv8_q.v), .b_i(dtp_y), .y_o(pos_y));
+  logic pos_en;  // S8 - S10 hold a pass whose height read returned data
+  assign pos_en  = ok_q[8] || ok_q[9] || ok_q[10];
+  f24_add #(.LAT(POS_ADD_LAT)) u_pos_x (.clk_i, .en_i(pos_en), .a_i(uv8_q.u), .b_i(dtp_x),
+                                        .y_o(pos_x));
+  f24_add #(.LAT(POS_ADD_LAT)) u_pos_y (.clk_i, .en_i(pos_en), .a_i(uv8_q.v), .b_i(dtp_y),
+                                        .y_o(pos_y));
 
-  // ---- S10: floors of the position (at t_new or the plane), at t_end --------------------------
+  // ---- S11: floors of the position (at t_new or the plane), at t_end --------------------------
   // A descent floors the position at t_new, a crossing of the selective level-up the one at the
   // plane (P1): never both in one pass, so they share a unit.
   logic signed [IDX_W-1:0] ia_x, ia_y, ie_x, ie_y;
   logic unused_sat_ax, unused_sat_ay;
   logic ia_en;
-  assign ia_en = dn_q[10] || (sel_up && ok_q[10] && !in_q[10]);
+  assign ia_en = dn_q[11] || (sel_up && ok_q[11] && !in_q[11]);
   f24_to_index #(.W(IDX_W)) u_ia_x (.clk_i, .en_i(ia_en),
-    .a_i(d10_q.sx.mv ? pos_x : uv10_q.u), .idx_o(ia_x), .sat_o(unused_sat_ax));
+    .a_i(d11_q.sx.mv ? pos_x : uv11_q.u), .idx_o(ia_x), .sat_o(unused_sat_ax));
   f24_to_index #(.W(IDX_W)) u_ia_y (.clk_i, .en_i(ia_en),
-    .a_i(d10_q.sy.mv ? pos_y : uv10_q.v), .idx_o(ia_y), .sat_o(unused_sat_ay));
+    .a_i(d11_q.sy.mv ? pos_y : uv11_q.v), .idx_o(ia_y), .sat_o(unused_sat_ay));
 
-  // ---- S6 - S11: the XOR descent's position at t_end and its floor (XOR_PATH only) -----------
+  // ---- S6 - S12: the XOR descent's position at t_end and its floor (XOR_PATH only) -----------
   if (XOR_PATH) begin : g_xor
     f24_t due_x, due_y, pose_x, pose_y;
-    logic pose_en;  // S8 - S9 hold a pass of the XOR descent whose height read returned data
+    logic pose_en;  // S8 - S10 hold a pass of the XOR descent whose height read returned data
     logic unused_sat_ex, unused_sat_ey;
     tval_t tm1_5_q;  // S5: min(t_map, 1)
     f24_t  tend6_q, tend7_q;  // S6, S7: t_end (computed in S5)
@@ -444,19 +459,21 @@ module traverse_loop
                      .y_o(due_x));
     f24_mul u_due_y (.clk_i, .en_i(xor_desc && ok_q[7]), .a_i(duv7_q.v), .b_i(tend7_q),
                      .y_o(due_y));
-    f24_add u_pose_x (.clk_i, .en_i(pose_en), .a_i(uv8_q.u), .b_i(due_x), .y_o(pose_x));
-    f24_add u_pose_y (.clk_i, .en_i(pose_en), .a_i(uv8_q.v), .b_i(due_y), .y_o(pose_y));
-    f24_to_index #(.W(IDX_W)) u_ie_x (.clk_i, .en_i(xor_desc && dn_q[10]),
-      .a_i(d10_q.sx.mv ? pose_x : uv10_q.u), .idx_o(ie_x), .sat_o(unused_sat_ex));
-    f24_to_index #(.W(IDX_W)) u_ie_y (.clk_i, .en_i(xor_desc && dn_q[10]),
-      .a_i(d10_q.sy.mv ? pose_y : uv10_q.v), .idx_o(ie_y), .sat_o(unused_sat_ey));
+    f24_add #(.LAT(POS_ADD_LAT)) u_pose_x (.clk_i, .en_i(pose_en), .a_i(uv8_q.u), .b_i(due_x),
+                                           .y_o(pose_x));
+    f24_add #(.LAT(POS_ADD_LAT)) u_pose_y (.clk_i, .en_i(pose_en), .a_i(uv8_q.v), .b_i(due_y),
+                                           .y_o(pose_y));
+    f24_to_index #(.W(IDX_W)) u_ie_x (.clk_i, .en_i(xor_desc && dn_q[11]),
+      .a_i(d11_q.sx.mv ? pose_x : uv11_q.u), .idx_o(ie_x), .sat_o(unused_sat_ex));
+    f24_to_index #(.W(IDX_W)) u_ie_y (.clk_i, .en_i(xor_desc && dn_q[11]),
+      .a_i(d11_q.sy.mv ? pose_y : uv11_q.v), .idx_o(ie_y), .sat_o(unused_sat_ey));
   end else begin : g_no_xor
     // (descend_pick reads the ends' floors for DESC_XOR only, which is never run here)
     assign ie_x = ia_x;
     assign ie_y = ia_y;
   end
 
-  // ---- S13: child estimate, its entry / exit boundaries, the child's range --------------------
+  // ---- S14: child estimate, its entry / exit boundaries, the child's range --------------------
   // c = clip(floor(p) >> k', child range) = clip(floor(p), node) >> k' (the node's range is
   // whole cells of level k'), so c << k' is the clipped p with its low k' bits cleared.
   function automatic logic [IDX_W-1:0] child_bound(input sidx_t a, input logic [LVL_W-1:0] nk,
@@ -465,21 +482,27 @@ module traverse_loop
   endfunction
 
   // The XOR descent's second end (without XOR_PATH the first: descend_pick does not read it)
-  sidx_pair_t b12;
-  assign b12 = XOR_PATH ? b12_q : a12_q;
+  sidx_pair_t b13;
+  assign b13 = XOR_PATH ? b13_q : a13_q;
 
-  logic [LVL_W-1:0] dd13;  // levels descended
-  assign dd13 = n13_q.k - nk13_q;
+  logic [LVL_W-1:0] dd14;  // levels descended
+  assign dd14 = n14_q.k - nk14_q;
 
   // ---- S14 - S17: crossing times of the child's boundaries -----------------------------------
-  // entry and exit boundary - u0 per axis, one traverse_bdiff (its shift of u0 shared)
+  // entry and exit boundary - u0 per axis, one traverse_bdiff (its shift of u0 shared).  The
+  // boundary integers go straight from their logic (S14's registers a14_q, nk14_q, d14_q) into
+  // the unit, whose first stage only registers them (b * 2^19: wiring).
+  assign kben_x14 = child_bound(a14_q.x, nk14_q, d14_q.sx.mv && d14_q.sx.neg);
+  assign kbex_x14 = child_bound(a14_q.x, nk14_q, d14_q.sx.mv && !d14_q.sx.neg);
+  assign kben_y14 = child_bound(a14_q.y, nk14_q, d14_q.sy.mv && d14_q.sy.neg);
+  assign kbex_y14 = child_bound(a14_q.y, nk14_q, d14_q.sy.mv && !d14_q.sy.neg);
   f24_t dbx [2], dby [2];  // {entry, exit} - u0
   f24_t den_x, dex_x, den_y, dex_y, ten_x, tex_x, ten_y, tex_y;
   logic bd_en;  // S14 - S16 hold a descent
   assign bd_en = dn_q[14] || dn_q[15] || dn_q[16];
-  traverse_bdiff #(.W(IDX_W), .NB(2)) u_dbx (.clk_i, .en_i(bd_en), .b_i('{kben_x14_q, kbex_x14_q}),
+  traverse_bdiff #(.W(IDX_W), .NB(2)) u_dbx (.clk_i, .en_i(bd_en), .b_i('{kben_x14, kbex_x14}),
                                              .u_i(uv_q[14].u), .y_o(dbx));
-  traverse_bdiff #(.W(IDX_W), .NB(2)) u_dby (.clk_i, .en_i(bd_en), .b_i('{kben_y14_q, kbex_y14_q}),
+  traverse_bdiff #(.W(IDX_W), .NB(2)) u_dby (.clk_i, .en_i(bd_en), .b_i('{kben_y14, kbex_y14}),
                                              .u_i(uv_q[14].v), .y_o(dby));
   assign den_x = dbx[0];
   assign dex_x = dbx[1];
@@ -575,7 +598,7 @@ module traverse_loop
   always_ff @(posedge clk_i) begin
     ok_q  <= {ok_q[16:5], ok4};
     err_q <= {err_q[16:5], err4};
-    in_q  <= {in_q[11:8], ok_q[7] && inside7};
+    in_q  <= {in_q[12:8], ok_q[7] && inside7};
     dn_q  <= {dn_q[17:8], ok_q[7] && act7.down};
     lv_q  <= {lv_q[3:1], live0_q};
   end
@@ -605,69 +628,65 @@ module traverse_loop
       tp7_q    <= (inside6 && t_first6) ? t6_q.t : plane;
       duv7_q   <= duv6_q;
     end
-    for (int s = 6; s < 11; s++) begin
+    for (int s = 6; s < 12; s++) begin
       if (ok_q[s]) ex_q[s+1] <= ex_q[s];
     end
     if (ok_q[7]) uv8_q <= uv_q[7];
-    if (ok_q[9]) begin
-      uv10_q <= uv_q[9];
-      d10_q  <= dir_q[9];
-      n10_q  <= node_q[9];
-    end
     if (ok_q[10]) begin
-      d11_q       <= d10_q;
-      n11_q       <= n10_q;
-      lo11_q      <= '{x: node_lo(n10_q.k, n10_q.cx), y: node_lo(n10_q.k, n10_q.cy)};
-      hi11_q      <= '{x: node_hi(n10_q.k, n10_q.cx), y: node_hi(n10_q.k, n10_q.cy)};
-      crossed11_q <= stat_q[10].crossed;
-      prev11_q    <= stat_q[10].prev_cross;
-      t11_q       <= tval(t_q[10]);
+      uv11_q <= uv_q[10];
+      d11_q  <= dir_q[10];
+      n11_q  <= node_q[10];
     end
-    // S11 -> S12: the crossing's first part, the descent's clipped positions
-    if (ok_q[11] && !in_q[11]) begin
-      xpre12_q <= cross_pre(n11_q.k, n11_q.cx, n11_q.cy, ex_q[11].eqx, ex_q[11].eqy, d11_q.sx,
-                            d11_q.sy, ia_x, ia_y);
-      prev12_q <= prev11_q;
+    if (ok_q[11]) begin
+      d12_q       <= d11_q;
+      n12_q       <= n11_q;
+      lo12_q      <= '{x: node_lo(n11_q.k, n11_q.cx), y: node_lo(n11_q.k, n11_q.cy)};
+      hi12_q      <= '{x: node_hi(n11_q.k, n11_q.cx), y: node_hi(n11_q.k, n11_q.cy)};
+      crossed12_q <= stat_q[11].crossed;
+      prev12_q    <= stat_q[11].prev_cross;
+      t12_q       <= tval(t_q[11]);
     end
-    if (dn_q[11]) begin
-      a12_q   <= '{x: clip_idx(sidx_t'(ia_x), lo11_q.x, hi11_q.x),
-                   y: clip_idx(sidx_t'(ia_y), lo11_q.y, hi11_q.y)};
-      b12_q   <= '{x: clip_idx(sidx_t'(ie_x), lo11_q.x, hi11_q.x),
-                   y: clip_idx(sidx_t'(ie_y), lo11_q.y, hi11_q.y)};
-      nkm12_q <= multi_level(cfg_i.policy.levels, n11_q.k, crossed11_q);
-      n12_q   <= n11_q;
-      d12_q   <= d11_q;
+    // S12 -> S13: the crossing's first part, the descent's clipped positions
+    if (ok_q[12] && !in_q[12]) begin
+      xpre13_q <= cross_pre(n12_q.k, n12_q.cx, n12_q.cy, ex_q[12].eqx, ex_q[12].eqy, d12_q.sx,
+                            d12_q.sy, ia_x, ia_y);
+      prev13_q <= prev12_q;
     end
-    // S12 -> S13: the new level
     if (dn_q[12]) begin
-      nk13_q <= descend_pick(desc, n12_q.k, nkm12_q, a12_q.x, b12.x, a12_q.y, b12.y);
-      a13_q  <= a12_q;
-      n13_q  <= n12_q;
-      d13_q  <= d12_q;
+      a13_q   <= '{x: clip_idx(sidx_t'(ia_x), lo12_q.x, hi12_q.x),
+                   y: clip_idx(sidx_t'(ia_y), lo12_q.y, hi12_q.y)};
+      b13_q   <= '{x: clip_idx(sidx_t'(ie_x), lo12_q.x, hi12_q.x),
+                   y: clip_idx(sidx_t'(ie_y), lo12_q.y, hi12_q.y)};
+      nkm13_q <= multi_level(cfg_i.policy.levels, n12_q.k, crossed12_q);
+      n13_q   <= n12_q;
+      d13_q   <= d12_q;
     end
-    // S13 -> S14: the child's boundary integers, estimate and range
+    // S13 -> S14: the new level
     if (dn_q[13]) begin
-      kben_x14_q <= child_bound(a13_q.x, nk13_q, d13_q.sx.mv && d13_q.sx.neg);
-      kbex_x14_q <= child_bound(a13_q.x, nk13_q, d13_q.sx.mv && !d13_q.sx.neg);
-      kben_y14_q <= child_bound(a13_q.y, nk13_q, d13_q.sy.mv && d13_q.sy.neg);
-      kbex_y14_q <= child_bound(a13_q.y, nk13_q, d13_q.sy.mv && !d13_q.sy.neg);
-      c14_q      <= '{x: a13_q.x >>> nk13_q, y: a13_q.y >>> nk13_q};
-      lo14_q     <= '{x: node_lo(dd13, n13_q.cx), y: node_lo(dd13, n13_q.cy)};
-      hi14_q     <= '{x: node_hi(dd13, n13_q.cx), y: node_hi(dd13, n13_q.cy)};
-      nk14_q     <= nk13_q;
-      d14_q      <= d13_q;
+      nk14_q <= descend_pick(desc, n13_q.k, nkm13_q, a13_q.x, b13.x, a13_q.y, b13.y);
+      a14_q  <= a13_q;
+      n14_q  <= n13_q;
+      d14_q  <= d13_q;
     end
-    // S14 -> S15: locate's three candidates
+    // S14 -> S15: the child's estimate and range (its boundary integers: S14, above)
     if (dn_q[14]) begin
-      dsc_q[15] <= '{nk: nk14_q,
-        x: '{back: CELL_W'(clip_idx(c14_q.x - dir_val(d14_q.sx), lo14_q.x, hi14_q.x)),
-             est:  CELL_W'(c14_q.x),
-             fwd:  CELL_W'(clip_idx(c14_q.x + dir_val(d14_q.sx), lo14_q.x, hi14_q.x))},
-        y: '{back: CELL_W'(clip_idx(c14_q.y - dir_val(d14_q.sy), lo14_q.y, hi14_q.y)),
-             est:  CELL_W'(c14_q.y),
-             fwd:  CELL_W'(clip_idx(c14_q.y + dir_val(d14_q.sy), lo14_q.y, hi14_q.y))}};
+      c15_q      <= '{x: a14_q.x >>> nk14_q, y: a14_q.y >>> nk14_q};
+      lo15_q     <= '{x: node_lo(dd14, n14_q.cx), y: node_lo(dd14, n14_q.cy)};
+      hi15_q     <= '{x: node_hi(dd14, n14_q.cx), y: node_hi(dd14, n14_q.cy)};
+      nk15_q     <= nk14_q;
+      d15_q      <= d14_q;
     end
-    for (int s = 15; s < 18; s++) begin
+    // S15 -> S16: locate's three candidates
+    if (dn_q[15]) begin
+      dsc_q[16] <= '{nk: nk15_q,
+        x: '{back: CELL_W'(clip_idx(c15_q.x - dir_val(d15_q.sx), lo15_q.x, hi15_q.x)),
+             est:  CELL_W'(c15_q.x),
+             fwd:  CELL_W'(clip_idx(c15_q.x + dir_val(d15_q.sx), lo15_q.x, hi15_q.x))},
+        y: '{back: CELL_W'(clip_idx(c15_q.y - dir_val(d15_q.sy), lo15_q.y, hi15_q.y)),
+             est:  CELL_W'(c15_q.y),
+             fwd:  CELL_W'(clip_idx(c15_q.y + dir_val(d15_q.sy), lo15_q.y, hi15_q.y))}};
+    end
+    for (int s = 16; s < 18; s++) begin
       if (dn_q[s]) dsc_q[s+1] <= dsc_q[s];
     end
     if (dn_q[15]) inv16_q <= inv_q[sl_q[15]];
@@ -721,17 +740,17 @@ module traverse_loop
     // read returned data; hits and descents; crossings).
     for (int s = 8; s < 18; s++) t_new_q[s] <= t_new_q[s-1];
     for (int s = 9; s < 17; s++) act_q[s] <= act_q[s-1];
-    for (int s = 12; s < 18; s++) pos_q[s] <= pos_q[s-1];
-    for (int s = 13; s < 18; s++) xt_q[s] <= xt_q[s-1];
-    for (int s = 14; s < 18; s++) cross_q[s] <= cross_q[s-1];
+    for (int s = 13; s < 18; s++) pos_q[s] <= pos_q[s-1];
+    for (int s = 14; s < 18; s++) xt_q[s] <= xt_q[s-1];
+    for (int s = 15; s < 18; s++) cross_q[s] <= cross_q[s-1];
     if (ok_q[6]) t_new_q[7] <= t_first6 ? t6_q.t : plane;
     if (ok_q[7]) act_q[8]   <= act7;
-    if (in_q[10]) pos_q[11] <= '{u: pos_x, v: pos_y};
-    if (ok_q[11] && !in_q[11]) begin
-      xt_q[12] <= ord_max_first(t11_q.ord, ex_q[11].te.ord) ? t11_q.t : ex_q[11].te.t;
-    end
+    if (in_q[11]) pos_q[12] <= '{u: pos_x, v: pos_y};
     if (ok_q[12] && !in_q[12]) begin
-      cross_q[13] <= cross_up(cfg_i.policy.level_up, cfg_i.n, xpre12_q, prev12_q);
+      xt_q[13] <= ord_max_first(t12_q.ord, ex_q[12].te.ord) ? t12_q.t : ex_q[12].te.t;
+    end
+    if (ok_q[13] && !in_q[13]) begin
+      cross_q[14] <= cross_up(cfg_i.policy.level_up, cfg_i.n, xpre13_q, prev13_q);
     end
   end
 

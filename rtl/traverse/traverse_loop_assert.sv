@@ -53,7 +53,7 @@ module traverse_loop_assert
   input logic [IDX_W-1:0]              kb1_i [2],          // kbx1_q, kby1_q
   input f24_t                          uv1_i [2],          // uv_q[1]
   input logic                          dn14_i,             // dn_q[14]: a descent in S14
-  input logic [IDX_W-1:0]              kb14_i [4],         // kben_x14_q, kbex_x14_q, kben_y, kbex_y
+  input logic [IDX_W-1:0]              kb14_i [4],         // kben_x14, kbex_x14, kben_y14, kbex_y14
   input f24_t                          uv14_i [2],         // uv_q[14]
   input logic [LOOP_DEPTH-1:0]         v_i,                // v_q: the slots holding a ray
   input logic [ID_W-1:0]               id_i [LOOP_DEPTH],  // id_q: their ids
@@ -167,7 +167,7 @@ bind traverse_loop traverse_loop_assert #(.ID_W(ID_W)) u_assert (
   .admit_i(admit), .v_last_i(v_q[LOOP_DEPTH-1]), .retire_i(retire), .live17_i(live17),
   .st17_final_i(st17.hit || st17.invalid || st17.capped || st17.err), .down18_i(down18_q),
   .lv1_i(lv_q[1]), .kb1_i('{kbx1_q, kby1_q}), .uv1_i('{uv_q[1].u, uv_q[1].v}), .dn14_i(dn_q[14]),
-  .kb14_i('{kben_x14_q, kbex_x14_q, kben_y14_q, kbex_y14_q}),
+  .kb14_i('{kben_x14, kbex_x14, kben_y14, kbex_y14}),
   .uv14_i('{uv_q[14].u, uv_q[14].v}), .v_i(v_q), .id_i(id_q), .bypass_i(bypass),
   .new_id_i);
 `endif

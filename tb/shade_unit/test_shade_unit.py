@@ -351,8 +351,8 @@ async def shade_random_and_directed(dut):
         d.col_i.value = (int(r[2]) << 48) | (int(r[1]) << 24) | int(r[0])
         await RisingEdge(d.clk_i)
         await FallingEdge(d.clk_i)
+    d.valid_i.value = 0  # reset() waits a clock first: no pixel then (any SHADE_LAT)
     await bench.reset()
-    d.valid_i.value = 0
     for _ in range(2 * SHADE_LAT):
         d.en_i.value = 1
         await RisingEdge(d.clk_i)
