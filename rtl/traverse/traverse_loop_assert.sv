@@ -133,6 +133,10 @@ module traverse_loop_assert
           else $error("traverse_loop: ids in the slots differ from the ids that entered");
       end
     end
+  end else begin : g_no_ids
+    // Ids wider than ID_TRACK_W: no shadow; its inputs are read nowhere else.
+    logic unused_ids;
+    assign unused_ids = ^{bypass_i, new_id_i};
   end
 
   always_ff @(posedge clk_i) begin

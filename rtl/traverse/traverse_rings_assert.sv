@@ -107,6 +107,10 @@ module traverse_rings_assert #(
           else $error("traverse_rings: ids inside per ring differ from the rings' counts");
       end
     end
+  end else begin : g_no_ids
+    // Ids wider than ID_TRACK_W: no shadow; its inputs are read nowhere else.
+    logic unused_ids;
+    assign unused_ids = ^{ray_id_i, ring_res_id_i, res_take_o_i, res_id_i};
   end
 
 endmodule
