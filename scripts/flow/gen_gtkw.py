@@ -65,8 +65,8 @@ TRAVERSE: list[tuple[str, list[Sig]]] = [
         ("u_unit.u_loop.tx_raw", 24, HEX), ("u_unit.u_loop.ty_raw", 24, HEX),
         ("u_unit.u_loop.tend6_q", 24, HEX),
         ("u_unit.u_loop.inside7", 1, BIN)]),
-    ("S13: descent (the new level, levels descended)", [
-        ("u_unit.u_loop.nk13_q", 4, DEC), ("u_unit.u_loop.dd13", 4, DEC)]),
+    ("S14: descent (the new level, levels descended)", [
+        ("u_unit.u_loop.nk14_q", 4, DEC), ("u_unit.u_loop.dd14", 4, DEC)]),
     ("S17: the iteration's action and the next state", [
         ("u_unit.u_loop.live17", 1, BIN), ("u_unit.u_loop.act17_q.is_hit", 1, BIN),
         ("u_unit.u_loop.act17_q.down", 1, BIN), ("u_unit.u_loop.act17_q.miss", 1, BIN),

@@ -31,6 +31,7 @@ import threading
 import time
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
+import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -101,9 +102,12 @@ BLOCKS = [
     Block("pyr_build", "pyr_build", {"AXI_DATA_W": 64, "MAX_LG": 10, "BURST": 16},
           what="max-mipmap pyramid builder, maps up to 1024x1024"),
     Block("dm_pipeline", "dm_pipeline", pnr=False, what="the whole unit (ports: ~4,000 bits)"),
-    # Five AXI ports (~620 pins, more than the package has): placed and routed out of context.
-    Block("pidm_top", "pidm_top",
-          what="the system top: register block, fragment and framebuffer DMA, the pipeline"),
+    # Five AXI ports (~620 pins, more than the package has): counts by default; --system-pnr
+    # places and routes it out of context (it fills 91% of the LFE5U-85F without the pyramid
+    # builder and did not route in an hour: docs/synthesis.md "The system top").
+    Block("pidm_top", "pidm_top", pnr=False,
+          what="the system top: register block, pyramid builder, fragment and framebuffer DMA, "
+               "the pipeline"),
     Block(TOP, TOP, pnr=False, what="dm_pipeline + register port (the P&R top)"),
     Block(TOP2, TOP, {"N_RINGS": 2}, pnr=False,
           what="the P&R top with two traverse rings (N_RINGS 2)"),
@@ -960,6 +964,10 @@ def main() -> int:
     ap.add_argument("--no-xilinx", action="store_true", help="skip synth_xilinx")
     ap.add_argument("--no-block-pnr", action="store_true",
                     help="skip the out-of-context place and route of the blocks")
+    ap.add_argument("--system-pnr", action="store_true",
+                    help=f"place and route the system top ({SYSTEM_TOP}) out of context too "
+                         "(off by default: it does not route on the LFE5U-85F today, see "
+                         "docs/synthesis.md 'The system top')")
     ap.add_argument("--device", default="85k", choices=sorted(DEVICE))
     ap.add_argument("--package", default="CABGA756")
     ap.add_argument("--speed", type=int, default=8, choices=(6, 7, 8))
@@ -1056,6 +1064,9 @@ def main() -> int:
         return fail(f"{e.args[0]} not found (run `make setup`: it comes from requirements.txt)")
 
     blocks = [with_params(b, overrides.get(b.name, {})) for b in BLOCKS if b.name in names]
+    if args.system_pnr:
+        blocks = [dataclasses.replace(b, pnr=True) if b.module == SYSTEM_TOP else b
+                  for b in blocks]
     top_pnr = (any(t in names for t in TOP_RINGS) and not args.blocks_only
                and not args.float_units and not args.no_top_pnr)
     if args.float_units:
