@@ -5,7 +5,7 @@
 // The AXI4-Lite master is free within the protocol (assumed): reset in the first clock, no VALID
 // during reset, every VALID held with its payload stable until READY; its addresses are free in
 // the prove task, from a set (in_set) in the bmc and cover tasks.  The hardware inputs
-// (hwif_in: HWCFG, STATUS, PROGRESS, STATS, the ERROR hardware sets, the interrupt events) are
+// (hwif_in: HWCFG, STATUS, PROGRESS, STATS, PYR.INFO, the ERROR hardware sets, the interrupt events) are
 // free; INTR_STATE's inputs are wired as the system top wires them: event | INTR_TEST pulse.
 //
 // A request takes effect when the generated block's AXI front end hands it to the register core
@@ -59,9 +59,14 @@ module pidm_regs_formal (
   input  logic [31:0]       hwcfg_i,
   input  logic              busy_i,
   input  logic              idle_i,
-  input  logic [4:0]        error_set_i,
+  input  logic [8:0]        error_set_i,
   input  logic [31:0]       progress_i,
-  input  logic [1:0]        intr_event_i,
+  input  logic [2:0]        intr_event_i,
+  input  logic              pyr_busy_i,     // STATUS.pyr_busy, pyr_done, pyr_err_code
+  input  logic              pyr_done_i,
+  input  logic [3:0]        pyr_err_i,
+  input  logic              pyr_present_i,  // PYR.INFO.present, max_lg
+  input  logic [3:0]        pyr_max_lg_i,
   input  logic [10:0][47:0] stats_i
 );
 
@@ -96,9 +101,19 @@ module pidm_regs_formal (
     hwif_in.ERROR.frag_dma.hwset   = error_set_i[2];
     hwif_in.ERROR.fb_write.hwset   = error_set_i[3];
     hwif_in.ERROR.bad_config.hwset = error_set_i[4];
+    hwif_in.ERROR.pyr_read.hwset   = error_set_i[5];
+    hwif_in.ERROR.pyr_write.hwset  = error_set_i[6];
+    hwif_in.ERROR.pyr_config.hwset = error_set_i[7];
+    hwif_in.ERROR.start_refused.hwset = error_set_i[8];
+    hwif_in.STATUS.pyr_busy.next     = pyr_busy_i;
+    hwif_in.STATUS.pyr_done.next     = pyr_done_i;
+    hwif_in.STATUS.pyr_err_code.next = pyr_err_i;
+    hwif_in.PYR.INFO.present.next    = pyr_present_i;
+    hwif_in.PYR.INFO.max_lg.next     = pyr_max_lg_i;
     hwif_in.PROGRESS.pixels.next   = progress_i;
     hwif_in.INTR_STATE.frame_done.next = intr_event_i[0] | hwif_out.INTR_TEST.frame_done.value;
     hwif_in.INTR_STATE.axi_error.next  = intr_event_i[1] | hwif_out.INTR_TEST.axi_error.value;
+    hwif_in.INTR_STATE.pyr_done.next   = intr_event_i[2] | hwif_out.INTR_TEST.pyr_done.value;
     hwif_in.STATS.cycles.LO.val.next        = stats_i[0][31:0];
     hwif_in.STATS.cycles.HI.val.next        = stats_i[0][47:32];
     hwif_in.STATS.pixels.LO.val.next        = stats_i[1][31:0];
@@ -165,11 +180,12 @@ module pidm_regs_formal (
   function automatic logic in_set(logic [11:0] a);
     case ({a[11:2], 2'b00})
       12'h040, 12'h060, 12'h200, 12'h204, 12'h240, 12'h27C, 12'h300, 12'h304, 12'h33C, 12'h400,
-      12'h508, 12'h5BC, 12'h100, 12'h024, 12'h018, 12'h020, 12'h010, 12'h028,     // tracked
-      12'h000, 12'h004, 12'h008, 12'h014, 12'h01C, 12'h080, 12'h0D4,              // read-only
+      12'h508, 12'h5BC, 12'h100, 12'h024, 12'h018, 12'h020, 12'h010, 12'h028,
+      12'h608, 12'h604,                                                           // tracked
+      12'h000, 12'h004, 12'h008, 12'h014, 12'h01C, 12'h080, 12'h0D4, 12'h600,     // read-only
       12'h208,                                                                    // untracked
       12'h00C, 12'h02C, 12'h064, 12'h0D8, 12'h104, 12'h214, 12'h308, 12'h340,
-      12'h4C0, 12'h600, 12'hFFC:                                                  // unmapped
+      12'h4C0, 12'h60C, 12'h680, 12'hFFC:                                         // unmapped
         return 1'b1;
       default: return 1'b0;
     endcase
@@ -267,7 +283,7 @@ module pidm_regs_formal (
   // ---------------------------------------------------------------------------------------
   // The tracked registers: address, defined bits, reset value, kind; their field values
   // ---------------------------------------------------------------------------------------
-  localparam int unsigned NT = 18;
+  localparam int unsigned NT = 20;
   localparam int unsigned K_RW = 0, K_W1C = 1, K_PULSE = 2;
 
   // T_* index constants used below
@@ -289,11 +305,13 @@ module pidm_regs_formal (
       10: return 12'h508;   // TEX[1].BASE           RW 32 bits
       11: return 12'h5BC;   // TEX[1].LEVEL_SIZE[15] RW width, height
       12: return 12'h100;   // TT_WRITE              RW data[23:0], addr[31:24] (swmod)
-      13: return 12'h024;   // INTR_ENABLE           RW [1:0] (no hardware output)
-      14: return 12'h018;   // ERROR                 W1C [4:0], hardware set
-      15: return 12'h020;   // INTR_STATE            W1C [1:0], hardware set (event | INTR_TEST)
-      16: return 12'h010;   // CTRL                  singlepulse [2:0]
-      default: return 12'h028;  // INTR_TEST         singlepulse [1:0]
+      13: return 12'h024;   // INTR_ENABLE           RW [2:0] (no hardware output)
+      14: return 12'h018;   // ERROR                 W1C [8:0], hardware set
+      15: return 12'h020;   // INTR_STATE            W1C [2:0], hardware set (event | INTR_TEST)
+      16: return 12'h010;   // CTRL                  singlepulse [3:0]
+      17: return 12'h028;   // INTR_TEST             singlepulse [2:0]
+      18: return 12'h608;   // PYR.SIZE              RW width[15:0], height[31:16]
+      default: return 12'h604;  // PYR.FORMAT        RW bits16[0]
     endcase
   endfunction
 
@@ -303,11 +321,12 @@ module pidm_regs_formal (
       2:  return 32'h0000_01FF;
       6:  return 32'h003F_3F01;
       7, 8, 9: return 32'h00FF_FFFF;
-      13: return 32'h0000_0003;
-      14: return 32'h0000_001F;
-      15: return 32'h0000_0003;
-      16: return 32'h0000_0007;
-      17: return 32'h0000_0003;
+      13: return 32'h0000_0007;
+      14: return 32'h0000_01FF;
+      15: return 32'h0000_0007;
+      16: return 32'h0000_000F;
+      17: return 32'h0000_0007;
+      19: return 32'h0000_0001;
       default: return 32'hFFFF_FFFF;
     endcase
   endfunction
@@ -347,19 +366,26 @@ module pidm_regs_formal (
                 hwif_out.TEX[1].LEVEL_SIZE[15].width.value};
     view[12] = {hwif_out.TT_WRITE.addr.value, hwif_out.TT_WRITE.data.value};
     // INTR_ENABLE and INTR_STATE have no hardware outputs but the interrupt line: their storage
-    view[13] = {30'b0, u_dut.field_storage.INTR_ENABLE.axi_error.value,
+    view[13] = {29'b0, u_dut.field_storage.INTR_ENABLE.pyr_done.value,
+                u_dut.field_storage.INTR_ENABLE.axi_error.value,
                 u_dut.field_storage.INTR_ENABLE.frame_done.value};
-    view[14] = {27'b0, hwif_out.ERROR.bad_config.value, hwif_out.ERROR.fb_write.value,
+    view[14] = {23'b0, hwif_out.ERROR.start_refused.value, hwif_out.ERROR.pyr_config.value,
+                hwif_out.ERROR.pyr_write.value, hwif_out.ERROR.pyr_read.value,
+                hwif_out.ERROR.bad_config.value, hwif_out.ERROR.fb_write.value,
                 hwif_out.ERROR.frag_dma.value, hwif_out.ERROR.t_axi.value,
                 hwif_out.ERROR.h_axi.value};
-    view[15] = {30'b0, u_dut.field_storage.INTR_STATE.axi_error.value,
+    view[15] = {29'b0, u_dut.field_storage.INTR_STATE.pyr_done.value,
+                u_dut.field_storage.INTR_STATE.axi_error.value,
                 u_dut.field_storage.INTR_STATE.frame_done.value};
-    view[16] = {29'b0, hwif_out.CTRL.clear_stats.value, hwif_out.CTRL.soft_reset.value,
-                hwif_out.CTRL.start.value};
-    view[17] = {30'b0, hwif_out.INTR_TEST.axi_error.value, hwif_out.INTR_TEST.frame_done.value};
+    view[16] = {28'b0, hwif_out.CTRL.pyr_start.value, hwif_out.CTRL.clear_stats.value,
+                hwif_out.CTRL.soft_reset.value, hwif_out.CTRL.start.value};
+    view[17] = {29'b0, hwif_out.INTR_TEST.pyr_done.value, hwif_out.INTR_TEST.axi_error.value,
+                hwif_out.INTR_TEST.frame_done.value};
+    view[18] = {hwif_out.PYR.SIZE.height.value, hwif_out.PYR.SIZE.width.value};
+    view[19] = {31'b0, hwif_out.PYR.FORMAT.bits16.value};
     for (int unsigned i = 0; i < NT; i++) hwset[i] = '0;
-    hwset[T_ERROR] = {27'b0, error_set_i};
-    hwset[T_STATE] = {30'b0, intr_event_i | view[T_TEST][1:0]};
+    hwset[T_ERROR] = {23'b0, error_set_i};
+    hwset[T_STATE] = {29'b0, intr_event_i | view[T_TEST][2:0]};
   end
 
   // The shadows: the register values the RDL prescribes for the committed writes.
@@ -393,6 +419,8 @@ module pidm_regs_formal (
     if (t == 12'h300 || t == 12'h304 || (t >= 12'h320 && t <= 12'h33C)) return 1'b1;
     if (t >= 12'h400 && t < 12'h600 && (t[7:0] <= 8'h08 || (t[7:0] >= 8'h40 && t[7:0] <= 8'hBC)))
       return 1'b1;
+    if ((t >= 12'h600 && t <= 12'h608) || (t >= 12'h610 && t <= 12'h624)
+        || (t >= 12'h640 && t <= 12'h67C)) return 1'b1;
     return 1'b0;
   endfunction
 
@@ -401,9 +429,10 @@ module pidm_regs_formal (
     rq_push_exp = '0;                                        // unmapped: 0
     case ({ar_addr[11:2], 2'b00})
       12'h000: rq_push_exp = 32'h5049_444D;                  // ID
-      12'h004: rq_push_exp = 32'h0001_0000;                  // VERSION 1.0
+      12'h004: rq_push_exp = 32'h0001_0001;                  // VERSION 1.1
       12'h008: rq_push_exp = hwcfg_i;                        // HWCFG
-      12'h014: rq_push_exp = {30'b0, idle_i, busy_i};        // STATUS
+      12'h014: rq_push_exp = {24'b0, pyr_err_i, pyr_done_i, pyr_busy_i, idle_i, busy_i}; // STATUS
+      12'h600: rq_push_exp = {24'b0, pyr_max_lg_i, 3'b0, pyr_present_i};  // PYR.INFO
       12'h01C: rq_push_exp = progress_i;                     // PROGRESS
       12'h080: rq_push_exp = stats_i[0][31:0];               // STATS.cycles.LO
       12'h0D4: rq_push_exp = {16'b0, stats_i[10][47:32]};    // STATS.t_bytes.HI
@@ -419,9 +448,9 @@ module pidm_regs_formal (
   end
 
   // INTR_TEST pulses that must show in INTR_STATE the clock after (no INTR_STATE write then).
-  logic [1:0] test_q;
+  logic [2:0] test_q;
   always_ff @(posedge clk_i)
-    test_q <= (rst_ni && !wr_sel[T_STATE]) ? view[T_TEST][1:0] : 2'b00;
+    test_q <= (rst_ni && !wr_sel[T_STATE]) ? view[T_TEST][2:0] : 3'b000;
 
   // Waiting requests (for the no-starvation properties).
   logic [1:0] wr_wait_q, rd_wait_q;
@@ -505,8 +534,8 @@ module pidm_regs_formal (
       // --- registers ---
       tt_swmod:      assert (hwif_out.TT_WRITE.data.swmod == (wr_sel[T_TT] && |w_strb[2:0]));
       intr_line:     assert (hwif_out.INTR_STATE.intr
-                             == |(shadow[T_STATE][1:0] & shadow[T_ENABLE][1:0]));
-      test_sets_state: assert ((view[T_STATE][1:0] & test_q) == test_q);
+                             == |(shadow[T_STATE][2:0] & shadow[T_ENABLE][2:0]));
+      test_sets_state: assert ((view[T_STATE][2:0] & test_q) == test_q);
       // --- reachability ---
       c_write:         cover (b_hs);
       c_read:          cover (r_hs && rq_chk[rq_rp] && rdata != '0);
