@@ -20,7 +20,8 @@ wrapper's inv_slave a clock earlier), with AR_REG drops the AR register's valid 
 is taken for the current epoch's: stale_ignored, or the wrapper's inv_stale first).  Ray ids:
 the traverse ring keeps a retired ray in its slot (its id leaves and stays: id_in_ring), and
 traverse_rings takes a result from every ring at a handshake (the other rings' results are
-lost: take_one or an id check).  A
+lost: take_one or an id check); view_calc's tag pipeline does not take a fragment that
+enters two clocks after another (its tag is dropped: vtag_inside).  A
 further case removes one property from what the front end sees and shows the driver refuses the
 run (the guard against properties dropped silently).
 
@@ -109,6 +110,12 @@ MUTANTS = {
         "if (!ar_v_q || m_axi_arready) ar_v_q <= ap_v_q;",
         "ar_v_q <= ap_v_q;",
         "cache_axi_read:bmc_reg", "ar_stable"),
+    "view_tag_dropped": (
+        "rtl/pipe/view_calc.sv",
+        ".clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o, .stage_valid_o(stage_v));",
+        ".clk_i, .rst_ni, .en_i, .valid_i(valid_i && !stage_v[2]), .tag_i, .valid_o, .tag_o,"
+        " .stage_valid_o(stage_v));",
+        "view_calc:bmc_tags", "(?:vtag_inside|vtag_leave_once)"),
 }
 
 
