@@ -115,12 +115,13 @@ module f24_add
     logic [3:0]       lz;       // "exact" side: leading zeros of sum[17:2]
   } sel_t;
 
-  // Trailing zeros of a significand {1, f}: 0..16.
-  function automatic logic [4:0] sig_tz(input logic [FRAC_W-1:0] f);
+  // Trailing zeros of a significand {1, f} plus 3 (the window's extra bits): 3..19, encoded
+  // directly (no adder after the count).
+  function automatic logic [4:0] sig_tz3(input logic [FRAC_W-1:0] f);
     logic [4:0] n;
-    n = 5'd16;
+    n = 5'(FRAC_W + EXT_W);
     for (int i = FRAC_W - 1; i >= 0; i--) begin
-      if (f[i]) n = 5'(i);
+      if (f[i]) n = 5'(i + EXT_W);
     end
     return n;
   endfunction
@@ -143,8 +144,8 @@ module f24_add
     // The sticky bit for b shifted by d_ab and for a shifted by d_ba, picked by a_big like d:
     // significand bit i of z sits at window bit i + 3 - d and falls out when i + 3 < d, so some
     // one falls out when the lowest one (bit tz) does.
-    st_ab  = (b[22:16] != 7'd0) && ({2'b0, sig_tz(b[15:0])} + 7'd3 < d_ab);
-    st_ba  = (a[22:16] != 7'd0) && ({2'b0, sig_tz(a[15:0])} + 7'd3 < d_ba);
+    st_ab  = (b[22:16] != 7'd0) && ({2'b0, sig_tz3(b[15:0])} < d_ab);
+    st_ba  = (a[22:16] != 7'd0) && ({2'b0, sig_tz3(a[15:0])} < d_ba);
     x_zero = (x[22:16] == 7'd0);
     z_zero = (z[22:16] == 7'd0);
     z_spec = (z[22:16] == EXP_SPEC);
