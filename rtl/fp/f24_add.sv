@@ -67,7 +67,7 @@ module f24_add
   // The operands swapped, before the alignment shift (the register of stage 1 at LAT = 4).
   typedef struct packed {
     logic             special;  // NaN or Inf result
-    f24_t             spec_y;
+    logic             nan;      // the special result is the NaN (else the Inf of sign s)
     logic             zero;     // the sum is exactly zero
     logic             s;        // result sign (see align_t)
     logic [6:0]       e;        // biased exponent of the larger operand
@@ -81,7 +81,7 @@ module f24_add
   // The operands swapped and aligned, before the add (the register of stage 1 at LAT >= 3).
   typedef struct packed {
     logic             special;  // NaN or Inf result
-    f24_t             spec_y;
+    logic             nan;      // the special result is the NaN (else the Inf of sign s)
     logic             zero;     // the sum is exactly zero
     logic             s;        // result sign (see align_t)
     logic [6:0]       e;        // biased exponent of the larger operand
@@ -93,7 +93,7 @@ module f24_add
   // The sum (the register of stage 1 at LAT = 2).
   typedef struct packed {
     logic             special;  // NaN or Inf result
-    f24_t             spec_y;
+    logic             nan;      // the special result is the NaN (else the Inf of sign s)
     logic             zero;     // the sum is exactly zero
     logic             s;        // result sign: the larger operand's; for a zero sum, -0 only
                                 // for (-0) + (-0)
@@ -104,13 +104,14 @@ module f24_add
   // Both normalisations up to their last step (the register of stage 2 at LAT >= 3).
   typedef struct packed {
     logic             special;  // NaN or Inf result
-    f24_t             spec_y;
+    logic             nan;      // the special result is the NaN (else the Inf of sign s)
     logic             zero;     // the sum is exactly zero
     logic             s;        // result sign
     logic             rnd_side; // the leading one at sum bit 20, 19 or 18: the "round" side
-    logic [23:0]      ef;       // "round" side: {biased exponent before rounding, fraction}
-    logic             up;       // "round" side: round up (RNE)
-    logic [6:0]       e;        // "exact" side: biased exponent of the larger operand
+    logic [6:0]       e;        // biased exponent of the larger operand
+    logic [FRAC_W-1:0] frac;    // "round" side: the fraction below the leading one
+    logic             up;       // "round" side: round up (RNE); 0 on the "exact" side
+    logic [7:0]       adj;      // exponent change, p - 19 for the leading one at sum bit p
     logic [15:0]      sx;       // "exact" side: sum[17:2]
     logic [3:0]       lz;       // "exact" side: leading zeros of sum[17:2]
   } sel_t;
@@ -155,8 +156,7 @@ module f24_add
     // two zeros (x zero implies z zero) or for equal magnitudes subtracted; |x| > |z| >= 0
     // otherwise gives a nonzero sum.  A zero x means a zero sum, flagged apart.
     return '{special: (x[22:16] == EXP_SPEC),
-             spec_y:  (x[15:0] != 16'd0 || (z_spec && sub)) ? F24_NAN
-                                                             : {x[23], EXP_SPEC, 16'd0},
+             nan:     (x[15:0] != 16'd0 || (z_spec && sub)),
              zero:    x_zero || (sub && a[22:0] == b[22:0]),
              s:       (x_zero || (sub && a[22:0] == b[22:0])) ? (a[23] & b[23]) : x[23],
              e:       x[22:16],
@@ -172,7 +172,7 @@ module f24_add
     // Window: bit 20 carry, 19..3 the significand, 2..0 guard, round, sticky.  A shift of 20 or
     // more (d[4:0] >= 20, or d >= 32) empties the window.
     z_sh = ({1'b0, w.sig_z, {EXT_W{1'b0}}} >> w.d[4:0]) & {SUM_W{w.d[6:5] == 2'd0}};
-    return '{special: w.special, spec_y: w.spec_y, zero: w.zero, s: w.s, e: w.e, sub: w.sub,
+    return '{special: w.special, nan: w.nan, zero: w.zero, s: w.s, e: w.e, sub: w.sub,
              xf:      w.xf,
              z_al:    z_sh | {{(SUM_W-1){1'b0}}, w.sticky}};
   endfunction
@@ -185,61 +185,73 @@ module f24_add
   function automatic align_t add_sum(input prep_t p);
     logic [SUM_W-1:0] x_al;
     x_al = {1'b0, 1'b1, p.xf, {EXT_W{1'b0}}};
-    return '{special: p.special, spec_y: p.spec_y, zero: p.zero, s: p.s, e: p.e,
+    return '{special: p.special, nan: p.nan, zero: p.zero, s: p.s, e: p.e,
              sum:     x_al + (p.z_al ^ {SUM_W{p.sub}}) + SUM_W'(p.sub)};
   endfunction
 
   // ---------------------------------------------------------------- normalise: select
+  // The leading one of sum[20:2] at bit p (2 .. 20; a nonzero sum has one there unless it is
+  // flagged zero): p - 19 as an 8-bit two's complement exponent change, and 17 - p (the leading
+  // zeros of sum[17:2]) for p <= 17.  One priority encoder gives both codes, no adder.
+  function automatic logic [11:0] lead_codes(input logic [18:0] v);  // v = sum[20:2]
+    logic [7:0] adj;
+    logic [3:0] lz;
+    adj = 8'd0;
+    lz  = 4'd0;
+    for (int p = 2; p <= 20; p++) begin
+      if (v[p-2]) begin
+        adj = 8'(p - 19);
+        lz  = 4'((17 - p) & 15);
+      end
+    end
+    return {adj, lz};
+  endfunction
+
   function automatic sel_t add_select(input align_t r);
     // "round" side: leading one at bit 20, 19 or 18, exponent e + 1, e, e - 1.
     logic [FRAC_W-1:0]  frac;    // the fraction below the leading one
     logic               guard, sticky;
-    logic [7:0]         e_r;     // biased exponent before rounding, 0..127
-    // "exact" side: leading one at bit 17 .. 2.
-    // lz32[4] is 0 here: unused by design.
-    /* verilator lint_off UNUSEDSIGNAL */
-    logic [4:0]         lz32;    // leading zeros of {sum[17:2], 16 zeros}: below 16 here
-    /* verilator lint_on UNUSEDSIGNAL */
     if (r.sum[20]) begin
-      frac = r.sum[19:4];  guard = r.sum[3];  sticky = |r.sum[2:0];  e_r = {1'b0, r.e} + 8'd1;
+      frac = r.sum[19:4];  guard = r.sum[3];  sticky = |r.sum[2:0];
     end else if (r.sum[19]) begin
-      frac = r.sum[18:3];  guard = r.sum[2];  sticky = |r.sum[1:0];  e_r = {1'b0, r.e};
+      frac = r.sum[18:3];  guard = r.sum[2];  sticky = |r.sum[1:0];
     end else begin
-      frac = r.sum[17:2];  guard = r.sum[1];  sticky = r.sum[0];     e_r = {1'b0, r.e} - 8'd1;
+      frac = r.sum[17:2];  guard = r.sum[1];  sticky = r.sum[0];
     end
-    lz32 = f24_clz32({r.sum[17:2], 16'd0});
-    return '{special:  r.special, spec_y: r.spec_y, zero: r.zero, s: r.s,
+    // On the "exact" side the sum has no ones below bit 2, so guard = 0 and up = 0.
+    return '{special:  r.special, nan: r.nan, zero: r.zero, s: r.s,
              rnd_side: (r.sum[20:18] != 3'd0),
-             ef:       {e_r, frac},
-             up:       guard & (sticky | frac[0]),
              e:        r.e,
+             frac:     frac,
+             up:       guard & (sticky | frac[0]),
+             adj:      lead_codes(r.sum[20:2])[11:4],
              sx:       r.sum[17:2],
-             lz:       lz32[3:0]};
+             lz:       lead_codes(r.sum[20:2])[3:0]};
   endfunction
 
   // ---------------------------------------------------------------- normalise: round, pack
   function automatic f24_t add_finish(input sel_t t);
-    logic [23:0]        rnd;     // {exponent, fraction} after rounding; exponent 0..128
-    f24_t               y_rnd;
+    logic [23:0]        rnd;     // {exponent, fraction} after the exponent change and rounding
+    logic [7:0]         er;      // rnd's exponent: "round" side 0..128, "exact" side -16..124
     // nrm[15] is the leading one: unused by design.
     /* verilator lint_off UNUSEDSIGNAL */
     logic [15:0]        nrm;     // sum[17:2] << lz: leading one at bit 15
     /* verilator lint_on UNUSEDSIGNAL */
-    logic signed [8:0]  e_x;     // "exact" side's exponent, e - 2 - lz
-    f24_t               y_exact;
-    rnd     = t.ef + 24'(t.up);
-    // A rounded exponent of 0 is below 2^-62 (flush to zero), 127 or more above F24_MAX.
-    y_rnd   = (rnd[23:16] == 8'd0) ? {t.s, 23'd0}
-            : (rnd[23] || rnd[22:16] == EXP_SPEC) ? {t.s, EXP_SPEC, 16'd0}
-            : {t.s, rnd[22:0]};
-    nrm     = t.sx << t.lz;
-    e_x     = $signed({2'b0, t.e}) - 9'sd2 - $signed({5'd0, t.lz});
-    // Bit 0 of the fraction is below the lowest bit the difference can have.
-    y_exact = (e_x <= 9'sd0) ? {t.s, 23'd0} : {t.s, e_x[6:0], nrm[14:0], 1'b0};
-    return t.special  ? t.spec_y
-         : t.zero     ? {t.s, 23'd0}
-         : t.rnd_side ? y_rnd
-         :              y_exact;
+    logic               flush, ovf;
+    // One carry chain: {e, fraction} + {p - 19, rounding increment}.  On the "exact" side the
+    // fraction field holds sum[17:2] plus 0 (no carry into the exponent), so er = e - 2 - lz.
+    rnd   = {1'b0, t.e, t.frac} + {t.adj, 15'd0, t.up};
+    er    = rnd[23:16];
+    nrm   = t.sx << t.lz;
+    // A result exponent of 0 or below is under 2^-62 (flush to zero), 127 or more above
+    // F24_MAX (the "round" side only: the "exact" side's er is below e, and negative at bit 7).
+    flush = (er == 8'd0) || (!t.rnd_side && er[7]);
+    ovf   = t.rnd_side && (er[7] || er[6:0] == EXP_SPEC);
+    // Bit 0 of the "exact" side's fraction is below the lowest bit the difference can have.
+    return t.special          ? (t.nan ? F24_NAN : {t.s, EXP_SPEC, 16'd0})
+         : (t.zero || flush)  ? {t.s, 23'd0}
+         : ovf                ? {t.s, EXP_SPEC, 16'd0}
+         :                      {t.s, er[6:0], t.rnd_side ? rnd[15:0] : {nrm[14:0], 1'b0}};
   endfunction
 
   // ---------------------------------------------------------------- the stages
