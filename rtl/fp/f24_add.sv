@@ -70,7 +70,7 @@ module f24_add
     logic             nan;      // the special result is the NaN (else the Inf of sign s)
     logic             zero;     // the sum is exactly zero
     logic             s;        // result sign (see align_t)
-    logic [6:0]       e;        // biased exponent of the larger operand
+    logic [7:0]       e17;      // biased exponent of the larger operand minus 17 (signed)
     logic             sub;      // effective subtraction
     logic [FRAC_W-1:0] xf;      // fraction of the larger operand
     logic [SIG_W-1:0] sig_z;    // significand of the smaller operand, 0 for a zero operand
@@ -84,7 +84,7 @@ module f24_add
     logic             nan;      // the special result is the NaN (else the Inf of sign s)
     logic             zero;     // the sum is exactly zero
     logic             s;        // result sign (see align_t)
-    logic [6:0]       e;        // biased exponent of the larger operand
+    logic [7:0]       e17;      // biased exponent of the larger operand minus 17 (signed)
     logic             sub;      // effective subtraction
     logic [FRAC_W-1:0] xf;      // fraction of the larger operand
     logic [SUM_W-1:0] z_al;     // the smaller operand aligned to the window, sticky in bit 0
@@ -97,7 +97,7 @@ module f24_add
     logic             zero;     // the sum is exactly zero
     logic             s;        // result sign: the larger operand's; for a zero sum, -0 only
                                 // for (-0) + (-0)
-    logic [6:0]       e;        // biased exponent of the larger operand
+    logic [7:0]       e17;      // biased exponent of the larger operand minus 17 (signed)
     logic [SUM_W-1:0] sum;      // |a + b| in units of 2^(e-63-19), sticky jammed in
   } align_t;
 
@@ -108,12 +108,11 @@ module f24_add
     logic             zero;     // the sum is exactly zero
     logic             s;        // result sign
     logic             rnd_side; // the leading one at sum bit 20, 19 or 18: the "round" side
-    logic [6:0]       e;        // biased exponent of the larger operand
+    logic [7:0]       e17;      // biased exponent of the larger operand minus 17 (signed)
     logic [FRAC_W-1:0] frac;    // "round" side: the fraction below the leading one
     logic             up;       // "round" side: round up (RNE); 0 on the "exact" side
-    logic [7:0]       adj;      // exponent change, p - 19 for the leading one at sum bit p
+    logic [4:0]       q;        // the leading one of sum[20:2] at bit q (sum bit q + 2)
     logic [15:0]      sx;       // "exact" side: sum[17:2]
-    logic [3:0]       lz;       // "exact" side: leading zeros of sum[17:2]
   } sel_t;
 
   // Trailing zeros of a significand {1, f} plus 3 (the window's extra bits): 3..19, encoded
@@ -159,7 +158,7 @@ module f24_add
              nan:     (x[15:0] != 16'd0 || (z_spec && sub)),
              zero:    x_zero || (sub && a[22:0] == b[22:0]),
              s:       (x_zero || (sub && a[22:0] == b[22:0])) ? (a[23] & b[23]) : x[23],
-             e:       x[22:16],
+             e17:     {1'b0, x[22:16]} - 8'd17,
              sub:     sub,
              xf:      x[15:0],
              sig_z:   z_zero ? '0 : {1'b1, z[15:0]},
@@ -172,7 +171,7 @@ module f24_add
     // Window: bit 20 carry, 19..3 the significand, 2..0 guard, round, sticky.  A shift of 20 or
     // more (d[4:0] >= 20, or d >= 32) empties the window.
     z_sh = ({1'b0, w.sig_z, {EXT_W{1'b0}}} >> w.d[4:0]) & {SUM_W{w.d[6:5] == 2'd0}};
-    return '{special: w.special, nan: w.nan, zero: w.zero, s: w.s, e: w.e, sub: w.sub,
+    return '{special: w.special, nan: w.nan, zero: w.zero, s: w.s, e17: w.e17, sub: w.sub,
              xf:      w.xf,
              z_al:    z_sh | {{(SUM_W-1){1'b0}}, w.sticky}};
   endfunction
@@ -185,32 +184,19 @@ module f24_add
   function automatic align_t add_sum(input prep_t p);
     logic [SUM_W-1:0] x_al;
     x_al = {1'b0, 1'b1, p.xf, {EXT_W{1'b0}}};
-    return '{special: p.special, nan: p.nan, zero: p.zero, s: p.s, e: p.e,
+    return '{special: p.special, nan: p.nan, zero: p.zero, s: p.s, e17: p.e17,
              sum:     x_al + (p.z_al ^ {SUM_W{p.sub}}) + SUM_W'(p.sub)};
   endfunction
 
   // ---------------------------------------------------------------- normalise: select
-  // The leading one of sum[20:2] at bit p (2 .. 20; a nonzero sum has one there unless it is
-  // flagged zero): p - 19 as an 8-bit two's complement exponent change, and 17 - p (the leading
-  // zeros of sum[17:2]) for p <= 17.  One priority encoder gives both codes, no adder.
-  function automatic logic [11:0] lead_codes(input logic [18:0] v);  // v = sum[20:2]
-    logic [7:0] adj;
-    logic [3:0] lz;
-    adj = 8'd0;
-    lz  = 4'd0;
-    for (int p = 2; p <= 20; p++) begin
-      if (v[p-2]) begin
-        adj = 8'(p - 19);
-        lz  = 4'((17 - p) & 15);
-      end
-    end
-    return {adj, lz};
-  endfunction
-
   function automatic sel_t add_select(input align_t r);
     // "round" side: leading one at bit 20, 19 or 18, exponent e + 1, e, e - 1.
     logic [FRAC_W-1:0]  frac;    // the fraction below the leading one
     logic               guard, sticky;
+    logic [4:0]         lz32;    // leading zeros of {13 zeros, sum[20:2]}
+    // The leading one of sum[20:2] (a nonzero sum has one there unless it is flagged zero) at
+    // bit q = 31 - lz32 = ~lz32: 18, 17, 16 on the "round" side, 15 .. 0 on the "exact" side.
+    lz32 = f24_clz32({13'd0, r.sum[20:2]});
     if (r.sum[20]) begin
       frac = r.sum[19:4];  guard = r.sum[3];  sticky = |r.sum[2:0];
     end else if (r.sum[19]) begin
@@ -221,12 +207,11 @@ module f24_add
     // On the "exact" side the sum has no ones below bit 2, so guard = 0 and up = 0.
     return '{special:  r.special, nan: r.nan, zero: r.zero, s: r.s,
              rnd_side: (r.sum[20:18] != 3'd0),
-             e:        r.e,
+             e17:      r.e17,
              frac:     frac,
              up:       guard & (sticky | frac[0]),
-             adj:      lead_codes(r.sum[20:2])[11:4],
-             sx:       r.sum[17:2],
-             lz:       lead_codes(r.sum[20:2])[3:0]};
+             q:        ~lz32,
+             sx:       r.sum[17:2]};
   endfunction
 
   // ---------------------------------------------------------------- normalise: round, pack
@@ -240,9 +225,9 @@ module f24_add
     logic               flush, ovf;
     // One carry chain: {e, fraction} + {p - 19, rounding increment}.  On the "exact" side the
     // fraction field holds sum[17:2] plus 0 (no carry into the exponent), so er = e - 2 - lz.
-    rnd   = {1'b0, t.e, t.frac} + {t.adj, 15'd0, t.up};
+    rnd   = {t.e17, t.frac} + {3'd0, t.q, 15'd0, t.up};
     er    = rnd[23:16];
-    nrm   = t.sx << t.lz;
+    nrm   = t.sx << ~t.q[3:0];
     // A result exponent of 0 or below is under 2^-62 (flush to zero), 127 or more above
     // F24_MAX (the "round" side only: the "exact" side's er is below e, and negative at bit 7).
     flush = (er == 8'd0) || (!t.rnd_side && er[7]);
