@@ -5,28 +5,33 @@
 // LAT = 2 (the default, the paper's):
 // Stage 1: swap so |a| >= |b|, align the smaller significand with a guard, a round and a
 //          sticky bit (every bit shifted further out is ORed into the sticky bit; the sticky bit
-//          comes from a trailing-zero count compared with the shift, not from a shifter), add or
-//          subtract in one carry chain; flag an exactly zero sum (two zeros, or equal magnitudes
-//          cancelling) and the special result (NaN / Inf) from the larger operand's class.
-// Stage 2: two normalisations side by side, selected by the top three bits of the sum:
+//          comes from a trailing-zero count compared with the shift, not from a shifter: the
+//          count of either operand, each encoded as tz + 3 with no adder, compared with the
+//          difference taken in that order, picked by the swap), add or subtract in one carry
+//          chain; flag an exactly zero sum (two zeros, or equal magnitudes cancelling) and the
+//          special result (NaN / Inf) from the larger operand's class.
+// Stage 2: the position q of the leading one of sum[20:2] (one leading-zero count), and two
+//          normalisations side by side, selected by the top three bits of the sum:
 //          - "round": the leading one at sum bit 20, 19 or 18 (a carry, no change, one bit of
-//            cancellation): a three-way shift, round to nearest even, pack;
+//            cancellation): a three-way select of the fraction, round to nearest even;
 //          - "exact": the leading one at bit 17 or below, which only a subtraction of operands
 //            at most one binade apart gives, and then every bit of the difference fits 17 bits:
-//            leading-zero count and shift, no rounding.
-//          The long shift and the rounding carry chain are never in series.
+//            a left shift by the leading zeros (15 - q), no rounding.
+//          One carry chain serves both: {e - 17, fraction} + {q, rounding increment}, whose
+//          exponent field is e + 1, e, e - 1 on the "round" side (q = 18, 17, 16, plus the
+//          rounding carry) and e - 2 - (15 - q) on the "exact" side (its fraction field,
+//          sum[17:2] plus 0, carries nothing).  Then the range check and the choice between
+//          specials, zero, Inf, "round" and "exact".  The long shift and the carry chain are
+//          never in series.
 // LAT = 3 (for clock speed): the same logic cut at two other places, so that no stage holds
 // both a long shifter and a carry chain that depends on it:
 //   stage 1 "align": swap, exponent difference, alignment shift and sticky bit (no add);
 //   stage 2 "add":   the one carry chain of the add, then the "round" side's three-way select
-//                    (fraction, guard, sticky, exponent, round-up bit) and the "exact" side's
-//                    leading-zero count;
-//   stage 3 "pack":  the rounding carry chain and its range check beside the "exact" side's
-//                    shift, then the last choice between specials, zero, "round" and "exact".
+//                    (fraction, guard, sticky, round-up bit) and the leading-zero count (q);
+//   stage 3 "pack":  the carry chain of the exponent and rounding and its range check beside
+//                    the "exact" side's shift, then the last choice.
 // LAT = 4: stage 1 of LAT = 3 cut once more, after the swap and before the alignment shift:
-//   stage 1 "swap":  the magnitude compare, the swap, the exponent difference and the sticky bit
-//                    (a trailing-zero count compared with the difference: this stage's longest
-//                    path, and the longest of the unit at LAT = 3 and 4);
+//   stage 1 "swap":  the magnitude compare, the swap, the exponent difference and the sticky bit;
 //   stage 2 "shift": the alignment shift;
 //   stages 3 and 4:  "add" and "pack" as at LAT = 3.
 //
@@ -190,7 +195,7 @@ module f24_add
 
   // ---------------------------------------------------------------- normalise: select
   function automatic sel_t add_select(input align_t r);
-    // "round" side: leading one at bit 20, 19 or 18, exponent e + 1, e, e - 1.
+    // "round" side: leading one at bit 20, 19 or 18.
     logic [FRAC_W-1:0]  frac;    // the fraction below the leading one
     logic               guard, sticky;
     logic [4:0]         lz32;    // leading zeros of {13 zeros, sum[20:2]}
@@ -223,8 +228,9 @@ module f24_add
     logic [15:0]        nrm;     // sum[17:2] << lz: leading one at bit 15
     /* verilator lint_on UNUSEDSIGNAL */
     logic               flush, ovf;
-    // One carry chain: {e, fraction} + {p - 19, rounding increment}.  On the "exact" side the
-    // fraction field holds sum[17:2] plus 0 (no carry into the exponent), so er = e - 2 - lz.
+    // One carry chain: {e - 17, fraction} + {q, rounding increment}.  On the "exact" side the
+    // fraction field holds sum[17:2] plus 0 (no carry into the exponent), so er = e - 2 - lz
+    // with lz = 15 - q.
     rnd   = {t.e17, t.frac} + {3'd0, t.q, 15'd0, t.up};
     er    = rnd[23:16];
     nrm   = t.sx << ~t.q[3:0];
