@@ -54,8 +54,11 @@ module f24_to_index
     logic               s;        // sign of a nonzero a (a zero or subnormal pattern gives 0)
     logic [6:0]         ea;       // biased exponent
     logic [17:0]        v;        // the signed significand: +-{1, f}, two's complement
-    logic [FW-1:0]      fix;      // floor(a) * 2^16 + fraction bits, for 1 <= |a| < 2^(W-1)
-    logic signed [W-1:0] lo;      // floor(a) for |a| < 1 (or exactly +-1.0, ea = 63)
+    // fix[15:0] are the fraction bits that the floor drops: not used.
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [FW-1:0]      fix;      // floor(a) * 2^16 + fraction bits, for 2 <= |a| < 2^(W-1)
+    /* verilator lint_on UNUSEDSIGNAL */
+    logic signed [W-1:0] lo;      // floor(a) for |a| < 2 (ea <= 63)
     s   = a[23] && (a[22:16] != 7'd0);
     ea  = a[22:16];
     // Negate the 17-bit significand first (a short carry chain), then shift the two's complement
