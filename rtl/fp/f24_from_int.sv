@@ -11,18 +11,22 @@
 //     rounding; its exponent is 79 - (leading zeros).
 //   - |k| >= 2^17 (W > 18 only; W = 20 in the design: bit length 18 or 19) needs at most W - 19
 //     bits of left shift: the count sees the bits above bit 16 with bit 17's place forced to one,
-//     so the shift is short (one 2:1 mux at W = 20).  Guard, sticky and the round-up bit come from
-//     that shift, and {exponent, fraction} + 1 (the rounded-up result: a fraction of all ones
-//     carries into the exponent, which is exactly 2.0 renormalised) runs in a carry chain beside
-//     the exact path's shifter; the round-up bit only chooses.
+//     so the shift is short (one 2:1 mux at W = 20).  It is rounded before that shift: half an
+//     ulp (at the guard position for the count) is added to the magnitude in one carry chain
+//     beside the exact path's shifter, the sum is shifted, and on a tie (guard 1, sticky 0, from
+//     the magnitude shifted alone) its last bit is cleared (the sum is then the odd neighbour of
+//     the even result).  A sum that carries out of the bit length is exactly a power of two: the
+//     shifted sum's top bit adds one to the exponent, the fraction is 0.
 //   - No range check: the exponent is 63 + (bit length - 1), at most 63 + 62 for any |k| below
 //     2^63 (plus one when rounding carries), and 2^63 itself is exact, so it stays in [63, 126].
 // LAT = 2 (for clock speed): stage 1 the negation and the two leading-zero counts, stage 2 the
 // shifts, the rounding and the choice of the result: the same operations as LAT = 1's function,
 // split in two functions (written apart because Yosys maps the two functions composed into a
 // different netlist from the single one: LAT = 1 keeps the single function's).
-// Equal to the previous single round-and-pack (f24_pkg::f24_round_pack) for every W; checked by a
-// Yosys SAT miter for W = 2 .. 64 (a selection) and by the cocotb test against the model.
+// Equal to the previous single round-and-pack (f24_pkg::f24_round_pack) for every W, and to the
+// previous form of the rounding (shift, then {exponent, fraction} + 1 chosen by the round-up bit);
+// checked by Yosys SAT miters for W = 2 .. 64 (a selection) and by the cocotb test against the
+// model.
 module f24_from_int
   import f24_pkg::*;
 #(
@@ -43,6 +47,34 @@ module f24_from_int
     $error("f24_from_int: LAT must be 1 or 2");
   end
 
+  // The big path works on mag zero-extended to BW bits (at least 18: only W > 18 uses it); its
+  // shift lzr is at most W - 19, so RW bits of it are enough.
+  localparam int unsigned BW = (W > 19) ? W - 1 : 18;
+  localparam int unsigned RW = (W > 20) ? $clog2(W - 18) : 1;
+  localparam logic [BW-1:0] HALF = BW'(1) << (BW - 18);          // half an ulp for lzr = 0
+  localparam logic [BW-1:0] STM  = (BW'(1) << (BW - 18)) - BW'(1);  // the bits below the guard
+
+  // |k| >= 2^17 (W > 18 only): the magnitude has bit length BW - lzr >= 18, its last
+  // BW - 17 - lzr bits drop.  Rounded to nearest even by adding half an ulp to the magnitude
+  // itself (one carry chain, before the shift) and clearing the last bit on a tie (guard 1,
+  // sticky 0: the sum is then the odd neighbour of the even result); the sum is shifted by lzr
+  // afterwards.  A sum that carries out of the bit length is exactly a power of two: fraction 0,
+  // the exponent one higher (bit BW of the shifted sum).
+  function automatic f24_t round_big(input logic s, input logic [W-2:0] mag,
+                                     input logic [RW-1:0] lzr);
+    logic [BW-1:0] ub;     // mag, BW bits
+    logic [BW-1:0] ul;     // ub << lzr: the leading one at bit BW - 1
+    logic          tie;    // guard 1, sticky 0
+    logic [BW:0]   r;      // ub + half an ulp
+    logic [BW:0]   rl;     // r << lzr: the leading one at bit BW - 1, or BW after a carry
+    ub  = BW'(mag);
+    ul  = ub << lzr;
+    tie = ul[BW-18] && ((ul & STM) == '0);
+    r   = {1'b0, ub} + {1'b0, HALF >> lzr};
+    rl  = r << lzr;
+    return {s, 7'(7'(63 + W - 2) - 7'(lzr) + 7'(rl[BW])), rl[BW-2:BW-16], rl[BW-17] && !tie};
+  endfunction
+
   // LAT = 1: the conversion as one function of k.
   function automatic f24_t from_int(input logic signed [W-1:0] k);
     logic               s;
@@ -56,12 +88,7 @@ module f24_from_int
     // |k| >= 2^17 (W > 18 only): at most W - 19 leading zeros, rounded to nearest even.
     logic               big;
     logic [63:0]        u;      // mag left-aligned in 64 bits
-    logic [5:0]         lzr;    // leading zeros of u, at most W - 19 (a one is forced in below)
-    logic [62:0]        nx;     // u << lzr below its leading one (at bit 63 when big)
-    logic [6:0]         er;     // biased exponent, 63 + W - 2 - lzr
-    logic               up;     // round up: above halfway, or halfway with an odd significand
-    logic [22:0]        ri;     // {er, fraction} + 1: the rounded-up result (a fraction of all
-                                // ones carries into the exponent: exactly 2.0 renormalised)
+    logic [RW-1:0]      lzr;    // leading zeros of u, at most W - 19 (a one is forced in below)
     s    = k[W-1];
     kmin = s && (k[W-2:0] == '0);
     mag  = s ? -k[W-2:0] : k[W-2:0];
@@ -71,17 +98,12 @@ module f24_from_int
     ex   = 7'd79 - {2'd0, lzx};
     big  = (ml[63:17] != 47'd0);
     u    = ml << (65 - W);
-    lzr  = f24_clz64(u | (64'd1 << (82 - W)));
-    nx   = 63'(u << lzr);
-    er   = 7'(63 + W - 2) - {1'b0, lzr};
-    up   = nx[46] && (nx[45:0] != 46'd0 || nx[47]);
-    ri   = {er, nx[62:47]} + 23'd1;
+    lzr  = RW'(f24_clz64(u | (64'd1 << (82 - W))));
     // 0 gives +0.  The exponent never leaves [1, 126]: |k| <= 2^63, and 2^63 itself is exact.
     return (k == '0) ? '0
          : kmin      ? {1'b1, 7'(63 + W - 1), 16'd0}
          : !big      ? {s, ex, nxx}
-         : up        ? {s, ri}
-         :             {s, er, nx[62:47]};
+         :             round_big(s, mag, lzr);
   endfunction
 
   // Stage 1's result (the register between the stages at LAT = 2).
@@ -92,7 +114,7 @@ module f24_from_int
     logic [W-2:0] mag;    // |k| for every other k (W - 1 bits)
     logic         big;    // |k| >= 2^17
     logic [4:0]   lzx;    // leading zeros of mag[16:0] (garbage for 0, which is not used)
-    logic [5:0]   lzr;    // leading zeros of mag left-aligned, at most W - 19 (a one forced in)
+    logic [RW-1:0] lzr;   // leading zeros of mag left-aligned, at most W - 19 (a one forced in)
   } conv_t;
 
   // Stage 1: the magnitude and both leading-zero counts.
@@ -111,36 +133,24 @@ module f24_from_int
              mag:  mag,
              big:  (ml[63:17] != 47'd0),
              lzx:  f24_clz32({ml[16:0], 15'd0}),
-             lzr:  f24_clz64(u | (64'd1 << (82 - W)))};
+             lzr:  RW'(f24_clz64(u | (64'd1 << (82 - W))))};
   endfunction
 
   // Stage 2: the shifts, the rounding and the result.
   function automatic f24_t from_int_pack(input conv_t c);
-    logic [63:0]        ml;     // mag, zero-extended
+    logic [16:0]        ml;     // mag's low 17 bits (zero-extended for W < 18)
     // |k| < 2^17: exact.  Normalise the low 17 bits; no rounding.
     logic [15:0]        nxx;    // mag[16:0] << lzx below its leading one (at bit 16)
     logic [6:0]         ex;     // its biased exponent, 63 + 16 - lzx
     // |k| >= 2^17 (W > 18 only): at most W - 19 leading zeros, rounded to nearest even.
-    logic [63:0]        u;      // mag left-aligned in 64 bits
-    logic [62:0]        nx;     // u << lzr below its leading one (at bit 63 when big)
-    logic [6:0]         er;     // biased exponent, 63 + W - 2 - lzr
-    logic               up;     // round up: above halfway, or halfway with an odd significand
-    logic [22:0]        ri;     // {er, fraction} + 1: the rounded-up result (a fraction of all
-                                // ones carries into the exponent: exactly 2.0 renormalised)
-    ml   = 64'(c.mag);
-    nxx  = 16'(ml[16:0] << c.lzx);
+    ml   = 17'(c.mag);
+    nxx  = 16'(ml << c.lzx);
     ex   = 7'd79 - {2'd0, c.lzx};
-    u    = ml << (65 - W);
-    nx   = 63'(u << c.lzr);
-    er   = 7'(63 + W - 2) - {1'b0, c.lzr};
-    up   = nx[46] && (nx[45:0] != 46'd0 || nx[47]);
-    ri   = {er, nx[62:47]} + 23'd1;
     // 0 gives +0.  The exponent never leaves [1, 126]: |k| <= 2^63, and 2^63 itself is exact.
     return c.zero  ? '0
          : c.kmin  ? {1'b1, 7'(63 + W - 1), 16'd0}
          : !c.big  ? {c.s, ex, nxx}
-         : up      ? {c.s, ri}
-         :           {c.s, er, nx[62:47]};
+         :           round_big(c.s, c.mag, c.lzr);
   endfunction
 
   // Each stage is a function of its inputs, evaluated where its register is enabled (a simulator

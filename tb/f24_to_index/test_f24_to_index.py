@@ -73,5 +73,12 @@ def test_f24_to_index_w8(lat: int):
                     parameters={"W": 8})
 
 
+@pytest.mark.parametrize("lat", LATS)
+def test_f24_to_index_w9(lat: int):
+    """W = 9: shade_unit's colour conversion (f24_to_index #(.W(9)))."""
+    fp_unit.run_lat("f24_to_index", "test_f24_to_index", Path(__file__).parent, lat, DEFAULT_LAT,
+                    parameters={"W": 9})
+
+
 def test_f24_to_index_lats():
     fp_unit.check_lats("f24_to_index", LATS)
