@@ -43,11 +43,12 @@
 //   S16 du held
 //   S17 outputs (straight from registers: du held, dv, ks = seg)
 // Float units: 4 f24_mul, 2 f24_add, 1 f24_div (7, 4, 1 at one fragment per 2 clocks with x and
-// y sharing; 11, 6, 1 at one per clock).  The multiplies cannot go below 4 without aligning the
-// fragments to a phase (the scale multiplies are 12 stages after the products): three for the
-// nine products, one for the two scale multiplies.  Applying the NaN of an unusable view by
-// forcing the multiplier's operand k to NaN gives exactly the model's NaN (every NaN a unit
-// produces is 0x7F8000) and keeps the outputs free of logic after the registers.
+// y sharing; 11, 6, 1 at one per clock): three multipliers for the nine products, one for the
+// two scale multiplies.  Three multipliers would need the fragments aligned to a phase (hold
+// registers for the words and the results, as in shade_unit), since the scale multiplies come
+// 12 to 15 stages after the products.  Applying the NaN of an unusable view by forcing the
+// multiplier's operand k to NaN gives exactly the model's NaN (every NaN a unit produces is
+// 0x7F8000) and keeps the outputs free of logic after the registers.
 module view_calc
   import f24_pkg::*;
   import pipe_pkg::*;
