@@ -3,7 +3,7 @@
 // (formal/pipe_f0.sby), wired as rtl/pipe/dm_pipeline.sv wires it: a fragment is accepted when
 // it is offered, the free list has a slot, the unit is not filling its free list, the credit
 // (u_f0_credit: LIMIT = F0_DEPTH, held_i = FIFO #0's fill) has room and no fragment was accepted
-// in the clock before; view_calc's valid and tag travel in its pipe_valid_tag (LAT =
+// in the 3 clocks before; view_calc's valid and tag travel in its pipe_valid_tag (LAT =
 // VIEW_CALC_LAT, en_i = 1); what comes out is written into FIFO #0 (traverse_fifo, RAM_STYLE
 // "block") without looking at full_o; traverse_system reads the head whenever it is ready.  The
 // datapath around is left out: its words are the tag (free here).
@@ -31,16 +31,17 @@ module pipe_f0_formal
 
   localparam int unsigned F0_CW = $clog2(F0_DEPTH) + 1;
 
-  logic             acc, acc_q, f0_room, vc_valid, f0_wr, f0_rd, f0_full, f0_empty;
+  logic             acc, f0_room, vc_valid, f0_wr, f0_rd, f0_full, f0_empty;
+  logic [2:0]       acc_q;           // [k]: a fragment was accepted k + 1 clocks ago
   logic [W-1:0]     vc_tag, f0_head;
   logic [F0_CW-1:0] vc_cnt, f0_count;
   logic [LAT:1]     vc_stage;
 
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) acc_q <= 1'b0;
-    else         acc_q <= acc;
+    if (!rst_ni) acc_q <= '0;
+    else         acc_q <= {acc_q[1:0], acc};
   end
-  assign acc = frag_valid_i && !init_i && !free_empty_i && f0_room && !acc_q;
+  assign acc = frag_valid_i && !init_i && !free_empty_i && f0_room && acc_q == '0;
 
   pipe_valid_tag #(.TAG_W(W), .DEPTH(LAT)) u_view (
     .clk_i, .rst_ni, .en_i(1'b1), .valid_i(acc), .tag_i, .valid_o(vc_valid), .tag_o(vc_tag),

@@ -21,7 +21,7 @@ is taken for the current epoch's: stale_ignored, or the wrapper's inv_stale firs
 the traverse ring keeps a retired ray in its slot (its id leaves and stays: id_in_ring), and
 traverse_rings takes a result from every ring at a handshake (the other rings' results are
 lost: take_one or an id check); view_calc's tag pipeline does not take a fragment that
-enters two clocks after another (its tag is dropped: vtag_inside).  A
+enters four clocks after another (its tag is dropped: vtag_inside).  A
 further case removes one property from what the front end sees and shows the driver refuses the
 run (the guard against properties dropped silently).
 
@@ -113,7 +113,7 @@ MUTANTS = {
     "view_tag_dropped": (
         "rtl/pipe/view_calc.sv",
         ".clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o, .stage_valid_o(stage_v));",
-        ".clk_i, .rst_ni, .en_i, .valid_i(valid_i && !stage_v[2]), .tag_i, .valid_o, .tag_o,"
+        ".clk_i, .rst_ni, .en_i, .valid_i(valid_i && !stage_v[4]), .tag_i, .valid_o, .tag_o,"
         " .stage_valid_o(stage_v));",
         "view_calc:bmc_tags", "(?:vtag_inside|vtag_leave_once)"),
 }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// spacing_assert: the check of a unit that shares its datapath over two clocks (view_calc,
-// mip_level, tex_addr): no input on the enabled clock after one.  A checker module for `bind`
+// spacing_assert: the check of a unit that shares its datapath over two clocks (mip_level,
+// tex_addr): no input on the enabled clock after one.  A checker module for `bind`
 // (the binds stand in <unit>_assert.sv beside each unit; not in synthesis).  Immediate assertion
 // in a clocked block, the form the formal flow's front end (Yosys read_slang) accepts.
 `ifndef SYNTHESIS

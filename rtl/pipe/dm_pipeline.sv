@@ -19,8 +19,9 @@
 // shade_unit) never stall (en_i = 1); admission into them is by credit instead (pipe_credit; the
 // paper's controller that keeps FIFO #0 from overflowing):
 //   - a fragment enters view_calc only if FIFO #0 has room for it and every fragment already in
-//     view_calc (fragments in view_calc + FIFO #0 count < F0_DEPTH), and not in the clock after
-//     another (view_calc computes x and y in consecutive clocks on the same float units);
+//     view_calc (fragments in view_calc + FIFO #0 count < F0_DEPTH), and not in the 3 clocks
+//     after another (view_calc computes z, x and y in consecutive clocks on the same float
+//     units; a fragment every 4th clock matches the back end's hit every 4th clock);
 //   - a hit leaves traverse_system only if the texture-request FIFOs have room for it and every
 //     hit between admission and the FIFOs (< REQ_DEPTH) and the out FIFO has room for
 //     every hit not yet out (< OUT_DEPTH);
@@ -216,13 +217,14 @@ module dm_pipeline
 
   logic              f0_room;
 
-  // Not in the clock after an accepted fragment: view_calc's x and y share its float units.
-  logic acc_q;
+  // Not in the 3 clocks after an accepted fragment: view_calc's z, x and y share its float
+  // units (a fragment every 4th clock at most, the rate the back end takes hits at).
+  logic [2:0] acc_q;  // [k]: a fragment was accepted k + 1 clocks ago
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) acc_q <= 1'b0;
-    else         acc_q <= acc;
+    if (!rst_ni) acc_q <= '0;
+    else         acc_q <= {acc_q[1:0], acc};
   end
-  assign frag_ready_o = !init_q && !free_empty && f0_room && !acc_q;
+  assign frag_ready_o = !init_q && !free_empty && f0_room && acc_q == '0;
   assign acc      = frag_valid_i && frag_ready_o;
   assign free_pop = acc;
 

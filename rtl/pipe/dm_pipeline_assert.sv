@@ -8,6 +8,8 @@
 //   slots_conserved  free + live = SLOTS once the free list is filled;
 //   fifo0_credit     the credits hold: FIFO #0 never sees a write while full;
 //   req_credit       ... nor the texture-request FIFO a lookup's address while full;
+//   frag_spacing     view_calc shares its float units over 4 clocks: a fragment accepted every
+//                    4th clock at most (counted here apart from acc_q);
 //   hit_spacing      one address unit serves both textures: a hit every 4th clock at most
 //                    (counted here apart from hit_adm_q);
 //   nl_tag_held      the held normal-map lookup reads mip_level's tag a clock after its result:
@@ -72,6 +74,14 @@ module dm_pipeline_assert #(
 
   localparam int unsigned SLOT_W    = $clog2(SLOTS);
   localparam int unsigned MIP_TAG_W = SLOT_W + 48;
+
+  // Clocks since the last fragment accepted, saturating at 3.
+  logic [1:0] frag_age_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni)                 frag_age_q <= 2'd3;
+    else if (acc_i)              frag_age_q <= 2'd0;
+    else if (frag_age_q != 2'd3) frag_age_q <= frag_age_q + 2'd1;
+  end
 
   // Clocks since the last hit admitted, saturating at 3.
   logic [1:0] hit_age_q;
@@ -165,6 +175,8 @@ module dm_pipeline_assert #(
         else $error("dm_pipeline: FIFO #0 written while full");
       req_credit:   assert (!ta_valid_i || (ta_tex_i ? !rq_n_full_i : !rq_c_full_i))
         else $error("dm_pipeline: texture-request FIFO written while full");
+      frag_spacing: assert (!acc_i || frag_age_q == 2'd3)
+        else $error("dm_pipeline: fragments %0d clocks apart (4 at least)", frag_age_q + 2'd1);
       hit_spacing:  assert (!hit_adm_i || hit_age_q == 2'd3)
         else $error("dm_pipeline: hits %0d clocks apart (4 at least)", hit_age_q + 2'd1);
       nl_tag_held:  assert (!nl_valid_i || mip_tag_i == mip_tag_q)

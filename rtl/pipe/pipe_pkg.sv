@@ -26,10 +26,12 @@ package pipe_pkg;
   // f24_div: f24_pkg::F24_DIV_LAT (the divider's LAT parameter, set where the units use it).
 
   // ---- view_calc (model/view.py) ------------------------------------------------------------
-  // z = dot(N, V): mul, add, add; then div(D, -z); the NaN select of k (one register); the
-  // scale's operand register; mul(x, k); mul(y, k) a clock later (one multiplier for both).
-  localparam int unsigned VIEW_CALC_LAT = F24_MUL_LAT + 2 * F24_ADD_LAT
-                                        + f24_pkg::F24_DIV_LAT + 1 + 1 + F24_MUL_LAT + 1;  // 17
+  // z = dot(N, V): the products' operand register, mul, add, add; then div(D, -z); the NaN
+  // select of k into the scale's operand register; mul(x, k); mul(y, k) a clock later (one
+  // multiplier for both), du held a clock.  A fragment every 4th clock at most (z, x and y on
+  // the same units in consecutive clocks).
+  localparam int unsigned VIEW_CALC_LAT = 1 + F24_MUL_LAT + 2 * F24_ADD_LAT
+                                        + f24_pkg::F24_DIV_LAT + 1 + F24_MUL_LAT + 1;  // 17
 
   // ---- tri_table / mip_level (model/texture.py "MIP level", model/mip.py) -------------------------
   localparam int unsigned TRI_TABLE_LAT = 1;   // registered read

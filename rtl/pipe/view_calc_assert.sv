@@ -4,8 +4,9 @@
 // (formal/view_calc.sby; docs/formal.md).  Immediate assertions in a clocked block, in the form
 // the formal flow's front end (Yosys read_slang) accepts.
 //
-//   spacing          x and y share lane TB and the scale multiplier: no fragment on the enabled
-//                    clock after one (rtl/common/spacing_assert.sv; the user's obligation);
+//   spacing          z, x and y share the dot-product units and x and y the scale multiplier,
+//                    in consecutive stages: no fragment within 3 enabled clocks after one (the
+//                    user's obligation);
 // The tags (view_calc carries dm_pipeline's slot id in them): a shadow of the tags inside, as a
 // multiset of their top KW = min(TAG_W, ID_TRACK_W) bits (the key; tags may repeat, so a count
 // per key, not a bit):
@@ -30,7 +31,8 @@ module view_calc_assert
   input logic             valid_i,
   input logic [TAG_W-1:0] tag_i,
   input logic             valid_o_i,   // view_calc's valid_o
-  input logic [TAG_W-1:0] tag_o_i      // tag_o
+  input logic [TAG_W-1:0] tag_o_i,     // tag_o
+  input logic [3:1]       stage_v_i    // view_calc's stage_v[3:1]: a fragment in S1 .. S3
 );
 
   localparam int unsigned NS = VIEW_CALC_LAT;
@@ -77,6 +79,8 @@ module view_calc_assert
 
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
+      spacing:         assert (!(en_i && valid_i) || stage_v_i == '0)
+        else $error("view_calc: a fragment within 4 enabled clocks of another");
       vtag_leave_once: assert (!(en_i && valid_o_i) || cnt_q[key_out] != '0)
         else $error("view_calc: a tag (key %0h) out that is not inside", key_out);
       vtag_inside:     assert (inside_ok)
@@ -87,7 +91,5 @@ module view_calc_assert
 endmodule
 
 bind view_calc view_calc_assert #(.TAG_W(TAG_W)) u_assert (.clk_i, .rst_ni, .en_i, .valid_i,
-  .tag_i, .valid_o_i(valid_o), .tag_o_i(tag_o));
-bind view_calc spacing_assert #(.WHAT("view_calc: fragments")) u_spacing (.clk_i, .rst_ni,
-  .en_i, .valid_i, .taken_i(stage_v[1]));
+  .tag_i, .valid_o_i(valid_o), .tag_o_i(tag_o), .stage_v_i(stage_v[3:1]));
 `endif

@@ -7,8 +7,8 @@ Stimulus (every word an f24 pattern; the model gets the patterns' values):
   views (down tiny: k overflows); single words replaced by NaN / Inf / zero / subnormal /
   extreme patterns; zero TBNs; fully random patterns.  The depth scale D is configuration: the
   stream runs once per D (20.48, 1, the largest finite value, the smallest normal, +Inf, +0,
-  negative, NaN), with random en_i gaps and valid bubbles, a fragment every other enabled clock
-  at most (tb/common/valid_pipe.py, spacing 2: x and y share their float units), and a reset of
+  negative, NaN), with random en_i gaps and valid bubbles, a fragment every 4th enabled clock at
+  most (tb/common/valid_pipe.py, spacing 4: z, x and y share their float units), and a reset of
   a full pipeline while stalled.
 """
 from __future__ import annotations
@@ -24,6 +24,7 @@ from tb.common import fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 
 LATENCY = 17  # pipe_pkg::VIEW_CALC_LAT (the divider: f24_pkg::F24_DIV_LAT = 8)
+SPACING = 4   # enabled clocks from one fragment to the next, at least (view_calc's spacing)
 WORDS = ["tx_i", "ty_i", "tz_i", "bx_i", "by_i", "bz_i", "nx_i", "ny_i", "nz_i",
          "vx_i", "vy_i", "vz_i"]
 OUTS = ["du_o", "dv_o", "seg_o"]
@@ -130,8 +131,9 @@ DEPTHS = {"20.48": int(f24.from_float(20.48)), "1": f24.ONE, "max finite": f24.M
 @cocotb.test()
 async def view_calc_random_and_directed(dut):
     rng = np.random.default_rng(fp_unit.seed())
-    # x and y share their float units: a fragment every other enabled clock at most
-    pipe = ValidPipe(dut, LATENCY, WORDS, OUTS, "RTL vs model.view.view_calc (f24)", spacing=2)
+    # z, x and y share their float units: a fragment every 4th enabled clock at most
+    pipe = ValidPipe(dut, LATENCY, WORDS, OUTS, "RTL vs model.view.view_calc (f24)",
+                     spacing=SPACING)
     await pipe.reset()
     total, classes = 0, {}
     for i, (dname, dword) in enumerate(DEPTHS.items()):
