@@ -35,7 +35,7 @@ module cache_sdp_ram #(
     $error("cache_sdp_ram: LANES must be a power of two dividing WIDTH (LW, SW derived)");
   end
 
-  logic [LANES-1:0][LW-1:0] mem_q [DEPTH];
+  (* no_rw_check *) logic [LANES-1:0][LW-1:0] mem_q [DEPTH];
 
   always_ff @(posedge clk_i) begin
     if (we_i) mem_q[waddr_i] <= wdata_i;
