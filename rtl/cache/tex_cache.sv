@@ -302,7 +302,9 @@ module tex_cache
   //    read it.  inc counts at the commit (per sub-cache and way), dec at the head (likewise).  An
   //    allocation writes inc = dec + 1 (its own reference), so the pair is exact from the slot's
   //    first allocation since the reset on; a slot that is not live is unreferenced (free) whatever
-  //    the two hold;
+  //    the two hold.  The passes release their references in the order they took them, so a
+  //    pass's release sets dec to the inc its own reference made: the pass carries that value
+  //    through the FIFO (pass_t.rc), and the release writes it without reading dec;
   //  - the pseudo-LRU bits of a set (per sub-cache).  The lookup uses them only when every way of
   //    the set is live (a way that is not live is free and invalid, so it is taken first), so each
   //    way has been allocated, and touched, since the reset; a touch writes every node on the
@@ -323,6 +325,8 @@ module tex_cache
     logic [NSUB-1:0][WIN_W-1:0]  win;   // the window each sub-cache reads
     logic [3:0][1:0]             tsub;  // their sub-cache
     logic [3:0][TOFF_W-1:0]      toff;  // their word in that window (0 .. WW)
+    logic [NSUB-1:0][RC_W-1:0]   rc;    // each slot's inc after the pass's reference: the dec
+                                        // its release writes (see "Directory" at the state)
     logic                        last;  // the request's last pass
   } pass_t;
 
@@ -458,6 +462,13 @@ module tex_cache
   logic [2:0] cm_texel_hits_q;
   logic       cm_qhit_q;
   logic [2:0] e_texel_hits;
+  logic [NSUB-1:0][RC_W-1:0] e_inc;  // the slots' inc after the pass's reference
+
+  always_comb begin
+    for (int c = 0; c < NSUB; c++) begin
+      e_inc[c] = (lk_alloc[c] ? b_dec[c][lk_way[c]] : f_inc[c][lk_way[c]]) + RC_W'(1);
+    end
+  end
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) cm_valid_q <= 1'b0;
@@ -471,7 +482,7 @@ module tex_cache
       // (the victim: not pending, no fill due)
       cm_ag_q[c]   <= with_way(f_ag[c], lk_way[c], !b_fg[c][lk_way[c]]);
       cm_live_q[c] <= with_way(f_live[c], lk_way[c], 1'b1);
-      cm_inc_q[c]  <= (lk_alloc[c] ? b_dec[c][lk_way[c]] : f_inc[c][lk_way[c]]) + RC_W'(1);
+      cm_inc_q[c]  <= e_inc[c];
     end
     cm_pass_q       <= e_pass;
     cm_texel_hits_q <= e_texel_hits;
@@ -496,6 +507,7 @@ module tex_cache
     e_pass.win  = lk_win;
     e_pass.tsub = e_psub;
     e_pass.toff = e_toff;
+    e_pass.rc   = e_inc;
     e_pass.last = e_last;
   end
 
@@ -669,19 +681,17 @@ module tex_cache
       logic [TAGB-1:0] tag_mem [SETS];
       logic [RC_W-1:0] inc_mem [SETS];
       logic [RC_W-1:0] dec_mem [SETS];
-      logic [RC_W-1:0] hd_dec;           // dec of the head's slot
 
       always_ff @(posedge clk_i) begin
         if (take && cm_pass_q.way[c] == WAY_W'(w)) begin
           if (cm_alloc_q[c]) tag_mem[cm_pass_q.set[c]] <= cm_tag_q[c];
           inc_mem[cm_pass_q.set[c]] <= cm_inc_q[c];
         end
-        if (give && hd_q.way[c] == WAY_W'(w)) dec_mem[hd_q.set[c]] <= hd_dec + RC_W'(1);
+        if (give && hd_q.way[c] == WAY_W'(w)) dec_mem[hd_q.set[c]] <= hd_q.rc[c];
       end
       assign set_tag[c][w] = tag_mem[a_set[c]];
       assign set_inc[c][w] = inc_mem[a_set[c]];
       assign set_dec[c][w] = dec_mem[a_set[c]];
-      assign hd_dec        = dec_mem[hd_q.set[c]];
 
 `ifndef SYNTHESIS  // the memories' copies for tex_cache_assert (see vw_live)
       assign vw_tag[c][w] = tag_mem;

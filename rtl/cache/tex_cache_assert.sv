@@ -91,6 +91,7 @@ module tex_cache_assert #(
   input logic [NSUB-1:0][WAY_W-1:0]         hd_way,
   input logic [3:0]                         hd_tsel,      // ... texels
   input logic [3:0][TOFF_W-1:0]             hd_toff,
+  input logic [NSUB-1:0][RC_W-1:0]          hd_rc,        // ... counts its release writes
   input logic                               hd_is_head,   // the head register equals the
                                                           // FIFO's head entry
   input logic                               nx_is_next,   // the next-head register equals
@@ -166,6 +167,7 @@ module tex_cache_assert #(
   logic [SET_W-1:0] mshr_set_v [MSHRS];
   logic [WAY_W-1:0] mshr_way_v [MSHRS];
   logic [NSUB-1:0]  lk_live, hd_live;    // the committing pass's / the head's slot is live
+  logic [NSUB-1:0][RC_W-1:0] dir_dec_hd;  // the head's slot's dec
 
   always_comb begin
     for (int c = 0; c < NSUB; c++) begin
@@ -188,6 +190,7 @@ module tex_cache_assert #(
     for (int c = 0; c < NSUB; c++) begin
       lk_live[c] = valid_v[c][cm_set[c]][cm_way[c]] || err_v[c][cm_set[c]][cm_way[c]];
       hd_live[c] = valid_v[c][hd_set[c]][hd_way[c]] || err_v[c][hd_set[c]][hd_way[c]];
+      dir_dec_hd[c] = vw_dec[c][hd_way[c]][hd_set[c]];
     end
   end
 
@@ -387,6 +390,10 @@ module tex_cache_assert #(
           assert (!(w_acc_q && w_sub_q == 2'(c) && w_set_q == hd_set[c] && w_way_q == hd_way[c]))
             else $error("tex_cache: sub-cache %0d slot (%0d, %0d) read while a beat is written",
                         c, hd_set[c], hd_way[c]);
+          // The release writes the pass's own reference count: dec + 1 (release_count).
+          assert (hd_rc[c] == dir_dec_hd[c] + RC_W'(1))
+            else $error("tex_cache: sub-cache %0d releases count %0d, dec is %0d", c, hd_rc[c],
+                        dir_dec_hd[c]);
           // rc_no_underflow
           assert (hd_live[c] && dir_rc[c][hd_set[c]][hd_way[c]] != '0)
             else $error("tex_cache: reference count underflow");
@@ -484,7 +491,7 @@ bind tex_cache tex_cache_assert #(
   .fl_q(u_free.mem_q), .fl_hd_q(u_free.rp_q), .fl_cnt_q(u_free.cnt_q),
   .cm_used(cm_pass_q.used), .cm_set(cm_pass_q.set), .cm_way(cm_pass_q.way),
   .hd_used(hd_q.used), .hd_set(hd_q.set), .hd_way(hd_q.way), .hd_tsel(hd_q.tsel),
-  .hd_toff(hd_q.toff), .fifo_wp_q(u_fifo.wp_q), .fifo_rp_q(u_fifo.rp_q), .fifo_cnt_q(fifo_cnt),
+  .hd_toff(hd_q.toff), .hd_rc(hd_q.rc), .fifo_wp_q(u_fifo.wp_q), .fifo_rp_q(u_fifo.rp_q), .fifo_cnt_q(fifo_cnt),
   .hd_is_head(hd_q == u_fifo.mem_q[u_fifo.rp_q]),
   .nx_is_next(nx_q == u_fifo.mem_q[FP_W'(u_fifo.rp_q + FP_W'(1))])
 );
