@@ -230,9 +230,11 @@ module tex_cache_data #(
     ram_rd_q   <= ram_rd;
   end
 
-  // The output buffer: 129 bits an entry, in block RAM (4 EBRs instead of 33 LUT RAMs).
+  // The output buffer: 129 bits an entry, in LUT RAM (33 16x4 RAMs; in block RAM it took 4 EBRs
+  // and, for the read of an entry pushed in the clock before, about as many LUTs in a copy of
+  // the written entry and its multiplexer).
   circ_queue #(
-    .WIDTH($bits(rsp_t)), .DEPTH(OUT_DEPTH), .NPUSH(1), .NPOP(1), .RAM_STYLE("block")
+    .WIDTH($bits(rsp_t)), .DEPTH(OUT_DEPTH), .NPUSH(1), .NPOP(1), .RAM_STYLE("distributed")
   ) u_out (
     .clk_i, .rst_ni, .push_i(out_push), .wr_i(out_push), .wdata_i(h1_rsp), .pop_n_i(out_pop),
     .rdata_o(out_rd), .peek_o(), .count_o(out_cnt));

@@ -211,8 +211,9 @@ module tex_cache_front #(
   end
 
   // ---------------------------------------------------------------- pass queue
-  // The passes selected and not yet in the FIFO: PQ_DEPTH registers used as a queue (pq_q),
-  // written at pq_wp_q.  The lookup takes two clocks, a read stage and a decide stage (below):
+  // The passes selected and not yet in the FIFO: a queue of PQ_DEPTH entries (pq_q, LUT RAM:
+  // one write port, read asynchronously for the read stage's pass and its sets), written at
+  // pq_wp_q.  The lookup takes two clocks, a read stage and a decide stage (below):
   // pq_ip_q is the next entry the read stage takes, pq_rp_q the oldest entry, the pass in the
   // decide stage when it holds one (b_valid_q), freed when that pass enters the FIFO (e_fire_i).
   // When the decide stage cannot let its pass go (the FIFO is full, an MSHR is missing, every way
@@ -235,7 +236,7 @@ module tex_cache_front #(
     logic                       last;  // the request's last pass
   } pq_t;
 
-  pq_t [PQ_DEPTH-1:0]         pq_q;
+  pq_t                        pq_q [PQ_DEPTH];
   logic [2:0]                 pq_wp_q, pq_ip_q, pq_rp_q;  // (one bit above the index: full / empty)
   pq_t                        pq_d;      // the selected pass as it is written
   pq_t                        a_pass;    // the pass the read stage takes (pq_q[pq_ip_q])
