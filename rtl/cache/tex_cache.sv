@@ -7,9 +7,10 @@
 // once its lines are there.
 //
 // Files: tex_cache_front (entry register, pass selection, pass queue), tex_cache_lookup (the
-// lookup's read and decide stages), tex_cache_data (data RAMs, texel select, output buffer),
-// cache_axi_read (AR queue and channel, reset epoch, R beat counts, reset sweep); here the
-// directory, the commit register, the request FIFO and its head, the MSHRs and the statistics.
+// lookup's read and decide stages), tex_cache_data (data RAMs, texel select, output buffer, the
+// requests' tag queue), cache_axi_read (AR queue and channel, reset epoch, R beat counts, reset
+// sweep); here the directory, the commit register, the request FIFO and its head, the MSHRs and
+// the statistics.
 // The simulation checks and coverage points are in tex_cache_assert (bound into tex_cache).
 //
 // ---- Streams -----------------------------------------------------------------------------------
