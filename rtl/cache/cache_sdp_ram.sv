@@ -35,7 +35,10 @@ module cache_sdp_ram #(
     $error("cache_sdp_ram: LANES must be a power of two dividing WIDTH (LW, SW derived)");
   end
 
-  logic [LANES-1:0][LW-1:0] mem_q [DEPTH];
+  // no_rw_check: the users never use a read of a word written in the same clock (see above), so
+  // Yosys need not emulate the old-data rule around the block RAM (a copy of the written word, an
+  // address compare and a multiplexer per read bit).
+  (* no_rw_check *) logic [LANES-1:0][LW-1:0] mem_q [DEPTH];
 
   always_ff @(posedge clk_i) begin
     if (we_i) mem_q[waddr_i] <= wdata_i;

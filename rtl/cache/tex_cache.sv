@@ -7,9 +7,10 @@
 // once its lines are there.
 //
 // Files: tex_cache_front (entry register, pass selection, pass queue), tex_cache_lookup (the
-// lookup's read and decide stages), tex_cache_data (data RAMs, texel select, output buffer),
-// cache_axi_read (AR queue and channel, reset epoch, R beat counts, reset sweep); here the
-// directory, the commit register, the request FIFO and its head, the MSHRs and the statistics.
+// lookup's read and decide stages), tex_cache_data (data RAMs, texel select, output buffer, the
+// requests' tag queue), cache_axi_read (AR queue and channel, reset epoch, R beat counts, reset
+// sweep); here the directory, the commit register, the request FIFO and its head, the MSHRs and
+// the statistics.
 // The simulation checks and coverage points are in tex_cache_assert (bound into tex_cache).
 //
 // ---- Streams -----------------------------------------------------------------------------------
@@ -218,6 +219,11 @@ module tex_cache
   localparam int unsigned FP_W       = $clog2(FIFO_DEPTH);
   localparam int unsigned FC_W       = $clog2(FIFO_DEPTH + 1);
   localparam int unsigned OUT_DEPTH  = 4;                        // (a power of two)
+  localparam int unsigned PQ_DEPTH   = 4;                        // pass queue entries
+  // Request tags (tex_cache_data's tag queue, a power of two): room for every request accepted
+  // and not yet answered, at most one in the entry register, PQ_DEPTH in the pass queue,
+  // FIFO_DEPTH in the commit register and the FIFO, OUT_DEPTH in the answer path.
+  localparam int unsigned TQ_DEPTH   = 1 << $clog2(1 + PQ_DEPTH + FIFO_DEPTH + OUT_DEPTH);
   // data RAM windows (see "data RAMs" in tex_cache_data)
   localparam int unsigned LWORDS     = LINE_BYTES / 4;           // words per line
   localparam int unsigned WW         = (WIN_WORDS < LWORDS) ? WIN_WORDS : LWORDS;
@@ -297,7 +303,9 @@ module tex_cache
   //    read it.  inc counts at the commit (per sub-cache and way), dec at the head (likewise).  An
   //    allocation writes inc = dec + 1 (its own reference), so the pair is exact from the slot's
   //    first allocation since the reset on; a slot that is not live is unreferenced (free) whatever
-  //    the two hold;
+  //    the two hold.  The passes release their references in the order they took them, so a
+  //    pass's release sets dec to the inc its own reference made: the pass carries that value
+  //    through the FIFO (pass_t.rc), and the release writes it without reading dec;
   //  - the pseudo-LRU bits of a set (per sub-cache).  The lookup uses them only when every way of
   //    the set is live (a way that is not live is free and invalid, so it is taken first), so each
   //    way has been allocated, and touched, since the reset; a touch writes every node on the
@@ -318,7 +326,8 @@ module tex_cache
     logic [NSUB-1:0][WIN_W-1:0]  win;   // the window each sub-cache reads
     logic [3:0][1:0]             tsub;  // their sub-cache
     logic [3:0][TOFF_W-1:0]      toff;  // their word in that window (0 .. WW)
-    logic [TAG_W-1:0]            tag;
+    logic [NSUB-1:0][RC_W-1:0]   rc;    // each slot's inc after the pass's reference: the dec
+                                        // its release writes (see "Directory" at the state)
     logic                        last;  // the request's last pass
   } pass_t;
 
@@ -361,7 +370,6 @@ module tex_cache
   // ---------------------------------------------------------------- entry, passes, pass queue
   // (tex_cache_front) The request's passes, as the lookup's read stage (a_*) and decide stage
   // (b_valid, lk_*, e_*) take them.
-  localparam int unsigned PQ_DEPTH = 4;    // pass queue entries
   logic                       a_issue;     // the read stage has a pass
   logic [NSUB-1:0][SET_W-1:0] a_set;       // its sets (registered: the directory's read address)
   logic [NSUB-1:0][TAGB-1:0]  a_tag;       // its tags
@@ -374,18 +382,17 @@ module tex_cache
   logic [3:0]                 e_sel;
   logic [3:0][1:0]            e_psub;
   logic [3:0][TOFF_W-1:0]     e_toff;
-  logic [TAG_W-1:0]           e_tag;
   logic                       e_last;
   logic                       e_fire;      // the decide stage's pass enters the FIFO
 
   tex_cache_front #(
-    .ADDR_W(ADDR_W), .TAG_W(TAG_W), .OFF_W(OFF_W), .SET_W(SET_W), .WW(WW), .PQ_DEPTH(PQ_DEPTH)
+    .ADDR_W(ADDR_W), .OFF_W(OFF_W), .SET_W(SET_W), .WW(WW), .PQ_DEPTH(PQ_DEPTH)
   ) u_front (
     .clk_i, .rst_ni, .swp_i(swp),
-    .req_valid_i, .req_ready_o, .req_addr_i, .req_tag_i,
+    .req_valid_i, .req_ready_o, .req_addr_i,
     .a_issue_o(a_issue), .a_set_o(a_set), .a_tag_o(a_tag),
     .b_valid_o(b_valid), .lk_v_o(lk_v), .lk_la_o(lk_la), .lk_set_o(lk_set), .lk_tag_o(lk_tag),
-    .lk_win_o(lk_win), .e_sel_o(e_sel), .e_psub_o(e_psub), .e_toff_o(e_toff), .e_tag_o(e_tag),
+    .lk_win_o(lk_win), .e_sel_o(e_sel), .e_psub_o(e_psub), .e_toff_o(e_toff),
     .e_last_o(e_last), .e_fire_i(e_fire));
 
   // ---------------------------------------------------------------- lookup: tags, victims
@@ -456,6 +463,13 @@ module tex_cache
   logic [2:0] cm_texel_hits_q;
   logic       cm_qhit_q;
   logic [2:0] e_texel_hits;
+  logic [NSUB-1:0][RC_W-1:0] e_inc;  // the slots' inc after the pass's reference
+
+  always_comb begin
+    for (int c = 0; c < NSUB; c++) begin
+      e_inc[c] = (lk_alloc[c] ? b_dec[c][lk_way[c]] : f_inc[c][lk_way[c]]) + RC_W'(1);
+    end
+  end
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) cm_valid_q <= 1'b0;
@@ -469,7 +483,7 @@ module tex_cache
       // (the victim: not pending, no fill due)
       cm_ag_q[c]   <= with_way(f_ag[c], lk_way[c], !b_fg[c][lk_way[c]]);
       cm_live_q[c] <= with_way(f_live[c], lk_way[c], 1'b1);
-      cm_inc_q[c]  <= (lk_alloc[c] ? b_dec[c][lk_way[c]] : f_inc[c][lk_way[c]]) + RC_W'(1);
+      cm_inc_q[c]  <= e_inc[c];
     end
     cm_pass_q       <= e_pass;
     cm_texel_hits_q <= e_texel_hits;
@@ -494,7 +508,7 @@ module tex_cache
     e_pass.win  = lk_win;
     e_pass.tsub = e_psub;
     e_pass.toff = e_toff;
-    e_pass.tag  = e_tag;
+    e_pass.rc   = e_inc;
     e_pass.last = e_last;
   end
 
@@ -601,13 +615,14 @@ module tex_cache
   // after a pop, merged with the request's earlier passes and buffered for the response stream.
   tex_cache_data #(
     .DATA_W(DATA_W), .TAG_W(TAG_W), .SETS(SETS), .WAYS(WAYS), .WW(WW), .NWIN(NWIN),
-    .BEAT_W(BEAT_W), .OUT_DEPTH(OUT_DEPTH)
+    .BEAT_W(BEAT_W), .OUT_DEPTH(OUT_DEPTH), .TQ_DEPTH(TQ_DEPTH)
   ) u_data (
     .clk_i, .rst_ni,
+    .tq_push_i(req_fire), .tq_tag_i(req_tag_i),
     .w_acc_i(w_acc_q), .w_sub_i(w_sub_q), .w_set_i(w_set_q), .w_way_i(w_way_q),
     .w_beat_i(w_beat_q), .w_data_i(w_data_q),
     .hd_set_i(hd_q.set), .hd_way_i(hd_q.way), .hd_win_i(hd_q.win), .hd_tsel_i(hd_q.tsel),
-    .hd_tsub_i(hd_q.tsub), .hd_toff_i(hd_q.toff), .hd_tag_i(hd_q.tag), .hd_last_i(hd_q.last),
+    .hd_tsub_i(hd_q.tsub), .hd_toff_i(hd_q.toff), .hd_last_i(hd_q.last),
     .hd_err_i(|hd_err), .h_pop_i(h_pop), .out_room_o(out_room),
     .rsp_valid_o, .rsp_ready_i, .rsp_texel_o, .rsp_err_o, .rsp_tag_o);
 
@@ -667,19 +682,17 @@ module tex_cache
       logic [TAGB-1:0] tag_mem [SETS];
       logic [RC_W-1:0] inc_mem [SETS];
       logic [RC_W-1:0] dec_mem [SETS];
-      logic [RC_W-1:0] hd_dec;           // dec of the head's slot
 
       always_ff @(posedge clk_i) begin
         if (take && cm_pass_q.way[c] == WAY_W'(w)) begin
           if (cm_alloc_q[c]) tag_mem[cm_pass_q.set[c]] <= cm_tag_q[c];
           inc_mem[cm_pass_q.set[c]] <= cm_inc_q[c];
         end
-        if (give && hd_q.way[c] == WAY_W'(w)) dec_mem[hd_q.set[c]] <= hd_dec + RC_W'(1);
+        if (give && hd_q.way[c] == WAY_W'(w)) dec_mem[hd_q.set[c]] <= hd_q.rc[c];
       end
       assign set_tag[c][w] = tag_mem[a_set[c]];
       assign set_inc[c][w] = inc_mem[a_set[c]];
       assign set_dec[c][w] = dec_mem[a_set[c]];
-      assign hd_dec        = dec_mem[hd_q.set[c]];
 
 `ifndef SYNTHESIS  // the memories' copies for tex_cache_assert (see vw_live)
       assign vw_tag[c][w] = tag_mem;

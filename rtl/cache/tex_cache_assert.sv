@@ -17,6 +17,7 @@ module tex_cache_assert #(
   parameter int unsigned FIFO_DEPTH = 64,
   parameter int unsigned OUT_DEPTH  = 4,
   parameter int unsigned PQ_DEPTH   = 4,
+  parameter int unsigned TQ_DEPTH   = 128, // tag queue entries (tex_cache_data)
   parameter int unsigned WW         = 2,   // words per data window
   parameter int unsigned LA_W       = 27,  // line address width
   parameter int unsigned SET_W      = 5,
@@ -90,6 +91,7 @@ module tex_cache_assert #(
   input logic [NSUB-1:0][WAY_W-1:0]         hd_way,
   input logic [3:0]                         hd_tsel,      // ... texels
   input logic [3:0][TOFF_W-1:0]             hd_toff,
+  input logic [NSUB-1:0][RC_W-1:0]          hd_rc,        // ... counts its release writes
   input logic                               hd_is_head,   // the head register equals the
                                                           // FIFO's head entry
   input logic                               nx_is_next,   // the next-head register equals
@@ -98,6 +100,11 @@ module tex_cache_assert #(
   input logic                               out_push,
   input logic                               out_pop,
   input logic [2:0]                         out_cnt_q,
+  // tag queue (tex_cache_data)
+  input logic [$clog2(TQ_DEPTH)-1:0]        tq_wp_q,
+  input logic [$clog2(TQ_DEPTH)-1:0]        tq_rp_q,
+  // a beat written into the data RAMs (its slot: w_sub_q, w_set_q, w_way_q)
+  input logic                               w_acc_q,
   // fills (the registered beat) and R channel
   input logic                               w_fill_q,
   input logic                               w_bad_q,
@@ -160,6 +167,7 @@ module tex_cache_assert #(
   logic [SET_W-1:0] mshr_set_v [MSHRS];
   logic [WAY_W-1:0] mshr_way_v [MSHRS];
   logic [NSUB-1:0]  lk_live, hd_live;    // the committing pass's / the head's slot is live
+  logic [NSUB-1:0][RC_W-1:0] dir_dec_hd;  // the head's slot's dec
 
   always_comb begin
     for (int c = 0; c < NSUB; c++) begin
@@ -182,6 +190,7 @@ module tex_cache_assert #(
     for (int c = 0; c < NSUB; c++) begin
       lk_live[c] = valid_v[c][cm_set[c]][cm_way[c]] || err_v[c][cm_set[c]][cm_way[c]];
       hd_live[c] = valid_v[c][hd_set[c]][hd_way[c]] || err_v[c][hd_set[c]][hd_way[c]];
+      dir_dec_hd[c] = vw_dec[c][hd_way[c]][hd_set[c]];
     end
   end
 
@@ -223,6 +232,18 @@ module tex_cache_assert #(
       sh_slot_la[w_sub_q][w_set_q][w_way_q] <= w_la_q;
       sh_slot_ok[w_set_q][w_way_q][w_sub_q] <= 1'b1;
     end
+  end
+
+  // The tag queue: its entries are the requests accepted and not answered.
+  localparam int unsigned TQ_W = $clog2(TQ_DEPTH);
+  int unsigned     tq_cnt_q;   // requests accepted and not answered
+  logic            p_tq_push_q;
+  logic [TQ_W-1:0] p_tq_wp_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) tq_cnt_q <= 0;
+    else         tq_cnt_q <= tq_cnt_q + 32'(req_valid_i && req_ready_o) - 32'(out_pop);
+    p_tq_push_q <= rst_ni && req_valid_i && req_ready_o;
+    p_tq_wp_q   <= tq_wp_q;
   end
 
   // The clock before, for the stream checks ("a |=> b").
@@ -295,6 +316,14 @@ module tex_cache_assert #(
         else $error("tex_cache: output buffer overflow");
       out_no_underflow: assert (!out_pop || out_cnt_q != '0)
         else $error("tex_cache: output buffer underflow");
+      // The tag queue never overflows, holds an answer's tag, and the answer at the head never
+      // uses the RAM's read of an entry written in the clock before (no_rw_check: the read of a
+      // word written in the same clock is undefined on the FPGA).
+      tag_queue_count: assert (tq_cnt_q < TQ_DEPTH && TQ_W'(tq_wp_q - tq_rp_q) == TQ_W'(tq_cnt_q)
+                               && (!rsp_valid_o || tq_cnt_q != 0))
+        else $error("tex_cache: tag queue count %0d inconsistent", tq_cnt_q);
+      tag_queue_read: assert (!(rsp_valid_o && p_tq_push_q && p_tq_wp_q == tq_rp_q))
+        else $error("tex_cache: the answer's tag is read in the clock it is written");
       // MSHRs: the AR queue holds at most the busy MSHRs; the free list holds exactly the MSHRs
       // that are not busy and not taken by the pass in the commit register.
       arq_within_busy: assert (arq_cnt <= busy_cnt)
@@ -355,6 +384,16 @@ module tex_cache_assert #(
             else $error("tex_cache: sub-cache %0d commits a stale reference count", c);
         end
         if (h_pop && hd_used[c]) begin
+          // The data RAMs' read of the head's slot is used (the clock after): no beat is written
+          // into that slot in this clock (no_rw_check, as for the tag queue).
+          // data_read_no_collision
+          assert (!(w_acc_q && w_sub_q == 2'(c) && w_set_q == hd_set[c] && w_way_q == hd_way[c]))
+            else $error("tex_cache: sub-cache %0d slot (%0d, %0d) read while a beat is written",
+                        c, hd_set[c], hd_way[c]);
+          // The release writes the pass's own reference count: dec + 1 (release_count).
+          assert (hd_rc[c] == dir_dec_hd[c] + RC_W'(1))
+            else $error("tex_cache: sub-cache %0d releases count %0d, dec is %0d", c, hd_rc[c],
+                        dir_dec_hd[c]);
           // rc_no_underflow
           assert (hd_live[c] && dir_rc[c][hd_set[c]][hd_way[c]] != '0)
             else $error("tex_cache: reference count underflow");
@@ -434,7 +473,8 @@ endmodule
 `ifndef SYNTHESIS
 bind tex_cache tex_cache_assert #(
   .ADDR_W(ADDR_W), .TAG_W(TAG_W), .NSUB(NSUB), .SETS(SETS), .WAYS(WAYS), .MSHRS(MSHRS),
-  .FIFO_DEPTH(FIFO_DEPTH), .OUT_DEPTH(OUT_DEPTH), .PQ_DEPTH(PQ_DEPTH), .WW(WW), .LA_W(LA_W),
+  .FIFO_DEPTH(FIFO_DEPTH), .OUT_DEPTH(OUT_DEPTH), .PQ_DEPTH(PQ_DEPTH), .TQ_DEPTH(TQ_DEPTH),
+  .WW(WW), .LA_W(LA_W),
   .SET_W(SET_W), .WAY_W(WAY_W), .TAGB(TAGB), .RC_W(RC_W), .FP_W(FP_W), .FC_W(FC_W),
   .QCNT_W(QCNT_W), .MIDX_W(MIDX_W), .PLRU_W(PLRU_W), .TOFF_W(TOFF_W)
 ) u_assert (
@@ -447,10 +487,11 @@ bind tex_cache tex_cache_assert #(
   .b_is_oldest(u_front.b_pass_q == u_front.pq_q[u_front.pq_rp_q[1:0]]),
   .f_vld(u_lookup.f_vld), .f_pnd(u_lookup.f_pnd),
   .out_push(u_data.out_push), .out_pop(u_data.out_pop), .out_cnt_q(u_data.out_cnt),
+  .tq_wp_q(u_data.tq_wp_q), .tq_rp_q(u_data.tq_rp_q),
   .fl_q(u_free.mem_q), .fl_hd_q(u_free.rp_q), .fl_cnt_q(u_free.cnt_q),
   .cm_used(cm_pass_q.used), .cm_set(cm_pass_q.set), .cm_way(cm_pass_q.way),
   .hd_used(hd_q.used), .hd_set(hd_q.set), .hd_way(hd_q.way), .hd_tsel(hd_q.tsel),
-  .hd_toff(hd_q.toff), .fifo_wp_q(u_fifo.wp_q), .fifo_rp_q(u_fifo.rp_q), .fifo_cnt_q(fifo_cnt),
+  .hd_toff(hd_q.toff), .hd_rc(hd_q.rc), .fifo_wp_q(u_fifo.wp_q), .fifo_rp_q(u_fifo.rp_q), .fifo_cnt_q(fifo_cnt),
   .hd_is_head(hd_q == u_fifo.mem_q[u_fifo.rp_q]),
   .nx_is_next(nx_q == u_fifo.mem_q[FP_W'(u_fifo.rp_q + FP_W'(1))])
 );

@@ -14,6 +14,8 @@ module tex_cache_data #(
   parameter int unsigned NWIN      = 4,   // windows per line
   parameter int unsigned BEAT_W    = 2,   // beat index width
   parameter int unsigned OUT_DEPTH = 4,   // output buffer entries (4: pointers of 2 bits)
+  parameter int unsigned TQ_DEPTH  = 128, // tag queue entries (a power of two >= 2): more than
+                                          // the requests that can be accepted and not answered
   // derived (tex_cache's values)
   parameter int unsigned SET_W     = $clog2(SETS),
   parameter int unsigned WAY_W     = $clog2(WAYS),
@@ -22,6 +24,9 @@ module tex_cache_data #(
 ) (
   input  logic                       clk_i,
   input  logic                       rst_ni,
+  // an accepted request's side-band tag (in request order)
+  input  logic                       tq_push_i,
+  input  logic [TAG_W-1:0]           tq_tag_i,
   // the registered R beat: written into its sub-cache's RAM at its slot and window
   input  logic                       w_acc_i,
   input  logic [1:0]                 w_sub_i,
@@ -36,7 +41,6 @@ module tex_cache_data #(
   input  logic [3:0]                 hd_tsel_i,
   input  logic [3:0][1:0]            hd_tsub_i,
   input  logic [3:0][TOFF_W-1:0]     hd_toff_i,
-  input  logic [TAG_W-1:0]           hd_tag_i,
   input  logic                       hd_last_i,
   input  logic                       hd_err_i,     // a line of the pass came back with an error
   input  logic                       h_pop_i,      // the head pass leaves the FIFO
@@ -64,27 +68,27 @@ module tex_cache_data #(
   if (OUT_DEPTH != 4 || DATA_W > 32 * WW) begin : g_check
     $error("tex_cache_data: OUT_DEPTH must be 4 and DATA_W <= 32 * WW");
   end
+  if (TQ_DEPTH < 2 || (1 << $clog2(TQ_DEPTH)) != TQ_DEPTH) begin : g_check_tq
+    $error("tex_cache_data: TQ_DEPTH must be a power of two >= 2");
+  end
 
   // Head read stage (the clock after the pop: the RAMs read the lines).
   logic              h0_valid_q, h0_last_q, h0_err_q;
   logic [3:0]        h0_tsel_q;
   logic [3:0][1:0]   h0_tsub_q;
   logic [3:0][TOFF_W-1:0] h0_toff_q;
-  logic [TAG_W-1:0]  h0_tag_q;
   // Select stage (the clock after: the RAMs' words in registers, ram_rd_q).
   logic              h1_valid_q, h1_last_q, h1_err_q;
   logic [3:0]        h1_tsel_q;
   logic [3:0][1:0]   h1_tsub_q;
   logic [3:0][TOFF_W-1:0] h1_toff_q;
-  logic [TAG_W-1:0]  h1_tag_q;
   logic [3:0][31:0]  acc_texel_q;  // texels of the earlier passes of the request
   logic              acc_err_q;
 
-  // Output buffer.
+  // Output buffer (the answers; their tags: the tag queue).
   typedef struct packed {
     logic [3:0][31:0] texel;
     logic             err;
-    logic [TAG_W-1:0] tag;
   } rsp_t;
 
   rsp_t              out_rd;     // the buffer's head (u_out)
@@ -168,14 +172,25 @@ module tex_cache_data #(
   logic [3:0][31:0] h1_texel;
   rsp_t             h1_rsp;
 
+  // The select as explicit multiplexers: per word of the window, the texel's sub-cache (4:1),
+  // then the word (WW + 1 : 1).  (Indexing the registered words with {sub-cache, word} at once
+  // made Yosys build a shifter over all NSUB * (WW + 1) words: more than twice the LUTs.)
   always_comb begin
+    logic [WW:0][31:0] by_sub;  // word k of the texel's sub-cache's read
     for (int t = 0; t < 4; t++) begin
+      for (int k = 0; k <= WW; k++) begin
+        case (h1_tsub_q[t])
+          2'd0:    by_sub[k] = ram_rd_q[0][k];
+          2'd1:    by_sub[k] = ram_rd_q[1][k];
+          2'd2:    by_sub[k] = ram_rd_q[2][k];
+          default: by_sub[k] = ram_rd_q[3][k];
+        endcase
+      end
       h1_texel[t] = acc_texel_q[t];
-      if (h1_tsel_q[t]) h1_texel[t] = ram_rd_q[h1_tsub_q[t]][h1_toff_q[t]];
+      if (h1_tsel_q[t]) h1_texel[t] = by_sub[h1_toff_q[t]];
     end
     h1_rsp.texel = h1_texel;
     h1_rsp.err   = acc_err_q || h1_err_q;
-    h1_rsp.tag   = h1_tag_q;
   end
 
   logic out_push;
@@ -207,19 +222,19 @@ module tex_cache_data #(
     h0_tsel_q  <= hd_tsel_i;
     h0_tsub_q  <= hd_tsub_i;
     h0_toff_q  <= hd_toff_i;
-    h0_tag_q   <= hd_tag_i;
     h1_last_q  <= h0_last_q;
     h1_err_q   <= h0_err_q;
     h1_tsel_q  <= h0_tsel_q;
     h1_tsub_q  <= h0_tsub_q;
     h1_toff_q  <= h0_toff_q;
-    h1_tag_q   <= h0_tag_q;
     ram_rd_q   <= ram_rd;
   end
 
-  // The output buffer: 185 bits an entry, in block RAM (6 EBRs instead of 42 LUT RAMs).
+  // The output buffer: 129 bits an entry, in LUT RAM (33 16x4 RAMs; in block RAM it took 4 EBRs
+  // and, for the read of an entry pushed in the clock before, about as many LUTs in a copy of
+  // the written entry and its multiplexer).
   circ_queue #(
-    .WIDTH($bits(rsp_t)), .DEPTH(OUT_DEPTH), .NPUSH(1), .NPOP(1), .RAM_STYLE("block")
+    .WIDTH($bits(rsp_t)), .DEPTH(OUT_DEPTH), .NPUSH(1), .NPOP(1), .RAM_STYLE("distributed")
   ) u_out (
     .clk_i, .rst_ni, .push_i(out_push), .wr_i(out_push), .wdata_i(h1_rsp), .pop_n_i(out_pop),
     .rdata_o(out_rd), .peek_o(), .count_o(out_cnt));
@@ -227,6 +242,34 @@ module tex_cache_data #(
   assign rsp_valid_o = (out_cnt != '0);
   assign rsp_texel_o = out_rd.texel;
   assign rsp_err_o   = out_rd.err;
-  assign rsp_tag_o   = out_rd.tag;
+
+  // ---------------------------------------------------------------- request tags
+  // The side-band tags wait in a queue of their own, in request order (pushed as a request is
+  // accepted, popped with its answer), so that they pass neither through the pass queue and the
+  // FIFO (per pass) nor through the answer path.  Block RAM, read through its registered port
+  // every clock at the queue's head after this clock's pop, so rsp_tag_o comes from the RAM's
+  // read register.  No read of the entry written in the same clock is ever used: a request is
+  // answered 8 clocks after its handshake at the earliest, so its tag has been in the RAM for 7
+  // clocks when its answer reaches the buffer's head (tex_cache_assert checks the distance).
+  localparam int unsigned TQ_W = $clog2(TQ_DEPTH);
+  (* ram_style = "block", no_rw_check *) logic [TAG_W-1:0] tq_mem [TQ_DEPTH];
+  logic [TQ_W-1:0]  tq_wp_q, tq_rp_q, tq_rp_d;
+  logic [TAG_W-1:0] tq_rd_q;
+
+  assign tq_rp_d = tq_rp_q + TQ_W'(out_pop);
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      tq_wp_q <= '0;
+      tq_rp_q <= '0;
+    end else begin
+      if (tq_push_i) tq_wp_q <= tq_wp_q + TQ_W'(1);
+      tq_rp_q <= tq_rp_d;
+    end
+    if (tq_push_i) tq_mem[tq_wp_q] <= tq_tag_i;
+    tq_rd_q <= tq_mem[tq_rp_d];
+  end
+
+  assign rsp_tag_o = tq_rd_q;
 
 endmodule

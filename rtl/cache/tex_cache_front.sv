@@ -6,10 +6,10 @@
 // the passes: a_* is the pass of the read stage (its sets a_set_o, from a register of their own,
 // its tags), b_valid_o / lk_* / e_* the pass of the decide stage, which leaves the queue when it
 // enters the FIFO (e_fire_i) and is otherwise read again (a replay).  See tex_cache.sv for the
-// organisation (sub-caches, row bits, windows) and the request stream's rules.
+// organisation (sub-caches, row bits, windows) and the request stream's rules.  The requests'
+// side-band tags do not pass here: tex_cache_data queues them apart (see "request tags" there).
 module tex_cache_front #(
   parameter int unsigned ADDR_W   = 32,  // byte address width
-  parameter int unsigned TAG_W    = 8,   // side-band width
   parameter int unsigned OFF_W    = 5,   // log2 line bytes
   parameter int unsigned SET_W    = 5,   // log2 sets
   parameter int unsigned WW       = 2,   // words per data window (a power of two)
@@ -30,7 +30,6 @@ module tex_cache_front #(
   input  logic                            req_valid_i,
   output logic                            req_ready_o,
   input  logic [3:0][ADDR_W-1:0]          req_addr_i,
-  input  logic [TAG_W-1:0]                req_tag_i,
   // the lookup's read stage: its pass (if a_issue_o), that pass's sets (registered) and tags
   output logic                            a_issue_o,
   output logic [3:0][SET_W-1:0]           a_set_o,
@@ -45,7 +44,6 @@ module tex_cache_front #(
   output logic [3:0]                      e_sel_o,      // texels of the pass,
   output logic [3:0][1:0]                 e_psub_o,     // ... their sub-caches
   output logic [3:0][TOFF_W-1:0]          e_toff_o,     // ... and words in the windows
-  output logic [TAG_W-1:0]                e_tag_o,      // the request's tag
   output logic                            e_last_o,     // the request's last pass
   input  logic                            e_fire_i      // the decide stage's pass enters the FIFO
 );
@@ -72,11 +70,27 @@ module tex_cache_front #(
     return s;
   endfunction
 
+  // The line of set s and tag g in a sub-cache of parity par (set_of's inverse given the tag:
+  // the low set field is the set XOR the tag's low bits; the line's bit 0 is the parity), 0 when
+  // the sub-cache is unused (v = 0, with s and g 0), as the selection writes it.  The pass queue
+  // keeps sets and tags only, not the lines besides.
+  function automatic logic [LA_W-1:0] la_of(input logic v, input logic par,
+                                            input logic [SET_W-1:0] s,
+                                            input logic [TAGB-1:0] g);
+    logic [LA_W-1:0] la;
+    la = '0;
+    la[0] = v && par;
+    for (int unsigned i = 0; i < SET_W; i++) begin
+      la[1 + i] = s[i];
+      if (i < TAGB) la[1 + i] = s[i] ^ g[i];
+    end
+    la[LA_W-1 -: TAGB] = g;
+    return la;
+  endfunction
 
   // Entry register (the request being looked up).
   logic                   s0_valid_q;
   logic [3:0][ADDR_W-1:0] s0_addr_q;
-  logic [TAG_W-1:0]       s0_tag_q;
   logic [3:0]             s0_todo_q;   // texels not yet sent in a pass
   logic [3:0]             s0_row_q;    // row bit per texel
   logic [3:0][3:0]        s0_join_q;   // [u][t], u < t: texel t may share texel u's read (below)
@@ -197,8 +211,9 @@ module tex_cache_front #(
   end
 
   // ---------------------------------------------------------------- pass queue
-  // The passes selected and not yet in the FIFO: PQ_DEPTH registers used as a queue (pq_q),
-  // written at pq_wp_q.  The lookup takes two clocks, a read stage and a decide stage (below):
+  // The passes selected and not yet in the FIFO: a queue of PQ_DEPTH entries (pq_q, LUT RAM:
+  // one write port, read asynchronously for the read stage's pass and its sets), written at
+  // pq_wp_q.  The lookup takes two clocks, a read stage and a decide stage (below):
   // pq_ip_q is the next entry the read stage takes, pq_rp_q the oldest entry, the pass in the
   // decide stage when it holds one (b_valid_q), freed when that pass enters the FIFO (e_fire_i).
   // When the decide stage cannot let its pass go (the FIFO is full, an MSHR is missing, every way
@@ -211,18 +226,17 @@ module tex_cache_front #(
   // being selected); the fourth makes the pointers plain binary counters.
   typedef struct packed {
     logic [NSUB-1:0]            v;     // sub-caches the pass reads
-    logic [NSUB-1:0][LA_W-1:0]  la;
-    logic [NSUB-1:0][SET_W-1:0] set;
-    logic [NSUB-1:0][TAGB-1:0]  tag;   // the line address bits above the low set field
+    logic [NSUB-1:0][SET_W-1:0] set;   // their lines' sets
+    logic [NSUB-1:0][TAGB-1:0]  tag;   // ... and tags, the line address bits above the low set
+                                       // field (the line: la_of)
     logic [NSUB-1:0][WIN_W-1:0] win;
     logic [3:0]                 sel;   // texels of the pass
     logic [3:0][1:0]            psub;  // their sub-caches
     logic [3:0][WSEL_W-1:0]     word;  // their words in the line
-    logic [TAG_W-1:0]           rtag;  // the request's tag
     logic                       last;  // the request's last pass
   } pq_t;
 
-  pq_t [PQ_DEPTH-1:0]         pq_q;
+  pq_t                        pq_q [PQ_DEPTH];
   logic [2:0]                 pq_wp_q, pq_ip_q, pq_rp_q;  // (one bit above the index: full / empty)
   pq_t                        pq_d;      // the selected pass as it is written
   pq_t                        a_pass;    // the pass the read stage takes (pq_q[pq_ip_q])
@@ -255,7 +269,6 @@ module tex_cache_front #(
 
   always_comb begin
     pq_d.v    = sl_v;
-    pq_d.la   = sl_la;
     for (int c = 0; c < NSUB; c++) begin
       pq_d.set[c] = set_of(sl_la[c]);
       pq_d.tag[c] = sl_la[c][LA_W-1 -: TAGB];
@@ -264,7 +277,6 @@ module tex_cache_front #(
     pq_d.sel  = sl_sel;
     pq_d.psub = e_sub;
     pq_d.word = e_word;
-    pq_d.rtag = s0_tag_q;
     pq_d.last = sl_last;
   end
 
@@ -287,7 +299,8 @@ module tex_cache_front #(
 
   always_comb begin
     lk_v_o   = b_pass_q.v;
-    lk_la_o  = b_pass_q.la;
+    for (int c = 0; c < NSUB; c++) lk_la_o[c] = la_of(b_pass_q.v[c], c % 2 == 1,
+                                                       b_pass_q.set[c], b_pass_q.tag[c]);
     lk_set_o = b_pass_q.set;
     lk_tag_o = b_pass_q.tag;
     lk_win_o = b_pass_q.win;
@@ -297,7 +310,6 @@ module tex_cache_front #(
     for (int t = 0; t < 4; t++) begin
       e_toff_o[t] = TOFF_W'(32'(b_pass_q.word[t]) - 32'(b_pass_q.win[b_pass_q.psub[t]]) * WW);
     end
-    e_tag_o  = b_pass_q.rtag;
     e_last_o = b_pass_q.last;
   end
 
@@ -325,7 +337,6 @@ module tex_cache_front #(
     end
     if (req_fire) begin
       s0_addr_q <= req_addr_i;
-      s0_tag_q  <= req_tag_i;
       s0_row_q  <= in_row;
       s0_join_q <= in_join;
     end

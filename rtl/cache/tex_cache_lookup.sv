@@ -112,10 +112,11 @@ module tex_cache_lookup #(
   logic [NSUB-1:0]                     a_seteq, a_tageq;
 
   always_comb begin
-    logic                fw, fw_alloc, live, done_bad;
-    logic [TAGB-1:0]     tag;
+    logic                fw, fw_alloc, live, done_bad, cm_hit;
     for (int c = 0; c < NSUB; c++) begin
       fw        = cm_valid_i && cm_used_i[c] && cm_set_i[c] == a_set_i[c];
+      // (the forwarded tag compared once per sub-cache, not multiplexed into every way's compare)
+      cm_hit    = cm_tag_i[c] == a_tag_i[c];
       a_plru[c] = fw ? cm_plru_i[c] : set_plru_i[c];
       a_ag[c]   = (fw && cm_alloc_i[c]) ? cm_ag_i[c] : set_ag_i[c];
       a_live[c] = (fw && cm_alloc_i[c]) ? cm_live_i[c] : set_live_i[c];
@@ -126,8 +127,8 @@ module tex_cache_lookup #(
         a_vld[c][w]  = fw_alloc || (live && !done_bad);
         a_pnd[c][w]  = fw_alloc || (live && set_ag_i[c][w] != set_fg_i[c][w]);
         a_err[c][w]  = !fw_alloc && live && done_bad;
-        tag          = fw_alloc ? cm_tag_i[c] : set_tag_i[c][w];
-        a_hit[c][w]  = tag == a_tag_i[c];  // (a hit when valid too: in the decide stage)
+        // (a hit when valid too: in the decide stage)
+        a_hit[c][w]  = fw_alloc ? cm_hit : set_tag_i[c][w] == a_tag_i[c];
         a_inc[c][w]  = (fw && cm_way_i[c] == WAY_W'(w)) ? cm_inc_i[c] : set_inc_i[c][w];
         a_idle[c][w] = a_inc[c][w] == set_dec_i[c][w];
       end
