@@ -4,13 +4,15 @@
 // (formal/traverse_setup.sby, the float datapath cut; docs/formal.md).  Immediate assertions in
 // a clocked block, in the form the formal flow's front end (Yosys read_slang) accepts.
 //
-//   ray_spacing     u and v share the float units a clock apart: no ray in the clock after one
-//                   (the user's obligation);
+//   ray_phase       a ray enters only while in_ready_o (the user's obligation), so that any two
+//                   rays are a multiple of 4 clocks apart (the float units are shared over 4
+//                   clocks: u and v a clock apart, two operations of an axis 6 stages apart);
+//   ray_spacing     no ray in the 3 clocks after one (what ray_phase implies, checked on its own);
 //   setup_id_order  a tracked ray (formal: any ray, picked freely; simulation: every ray that
 //                   enters while none is tracked) comes out SETUP_LAT clocks after it entered,
 //                   with its id: the pipeline neither loses, duplicates nor swaps ids;
 //   trk_in_setup    while inside, the tracked ray's stage holds a ray and its id (the table
-//                   entry of stages T0 - T15, the output registers of T16 - T19): the invariant
+//                   entry of stages T0 - T15, the output registers of T16 - T20): the invariant
 //                   that makes the induction step hold.
 `ifndef SYNTHESIS
 module traverse_setup_assert
@@ -20,6 +22,7 @@ module traverse_setup_assert
 ) (
   input logic                clk_i,
   input logic                rst_ni,
+  input logic                in_ready_i,       // traverse_setup's in_ready_o
   input logic                in_valid_i,
   input logic [ID_W-1:0]     in_id_i,
   input logic [SETUP_LAT-1:0] v_i,        // traverse_setup's v_q: stage Ts holds a ray
@@ -58,8 +61,10 @@ module traverse_setup_assert
 
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
-      ray_spacing: assert (!in_valid_i || !v_i[0])
-        else $error("traverse_setup: rays on two consecutive clocks");
+      ray_phase: assert (!in_valid_i || in_ready_i)
+        else $error("traverse_setup: a ray entered while in_ready_o = 0");
+      ray_spacing: assert (!in_valid_i || v_i[2:0] == '0)
+        else $error("traverse_setup: a ray less than 4 clocks after the one before");
       setup_id_order: assert (!trk_out || (out_valid_i && out_id_i == trk_id_q))
         else $error("traverse_setup: ray id %0d due out, out_valid %0d id %0d", trk_id_q,
                     out_valid_i, out_id_i);
@@ -73,12 +78,12 @@ module traverse_setup_assert
 endmodule
 
 // stage_id_i: stages T0 - T15 read their entry of the id table (sl[s]: the stage's entry),
-// T16 - T19 the output registers out_q[0] - out_q[3].
+// T16 - T20 the output registers out_q[0] - out_q[4].
 bind traverse_setup traverse_setup_assert #(.ID_W(ID_W)) u_assert (
-  .clk_i, .rst_ni, .in_valid_i, .in_id_i, .v_i(v_q), .out_valid_i(out_valid_o),
+  .clk_i, .rst_ni, .in_ready_i(in_ready_o), .in_valid_i, .in_id_i, .v_i(v_q), .out_valid_i(out_valid_o),
   .out_id_i(out_id_o),
   .stage_id_i('{id_q[sl[0]], id_q[sl[1]], id_q[sl[2]], id_q[sl[3]], id_q[sl[4]], id_q[sl[5]],
                 id_q[sl[6]], id_q[sl[7]], id_q[sl[8]], id_q[sl[9]], id_q[sl[10]], id_q[sl[11]],
                 id_q[sl[12]], id_q[sl[13]], id_q[sl[14]], id_q[sl[15]], out_q[0].id,
-                out_q[1].id, out_q[2].id, out_q[3].id}));
+                out_q[1].id, out_q[2].id, out_q[3].id, out_q[4].id}));
 `endif
