@@ -12,25 +12,29 @@
 // In: the ray's four numbers as f24 words (the model's ar.r() of the float64 ray).  Out, SETUP_LAT
 // clocks later (traverse_pkg: F24_DIV_LAT + 13 = 21): the ray record (traverse_pkg::ray_t) with
 // the per-ray constants, the start time t0, the start level and the start cell, or done = 1 for
-// an invalid ray or one that never enters the map (the model's "gone": no iteration).
+// an invalid ray or one that never enters the map (the model's "gone": no iteration).  Of an
+// invalid ray's record only u0, v0, t, done and invalid are defined (traverse_loop passes such a
+// ray on at once with those).
 //
-// Float units: 1 f24_div, 3 f24_mul, 4 f24_add (one for the start time t0 only, while idle),
-// 2 f24_from_int, 2 f24_to_index, 2 f24_from_unorm (t0 only); one DSP per multiplier.
+// Float units: 1 f24_div, 3 f24_mul (one DSP each), 1 f24_add, 1 f24_to_index and 1
+// traverse_bdiff of two lanes (boundary - u0 in fixed point, the word of f24_from_int then
+// f24_add, as in the ring).  The start time t0 takes no unit of its own (below).
 //
 // Axis items.  A ray is two items in one lane: its u item enters with the ray, its v item one
 // clock later (the v inputs are held a clock).  Item stage Is holds the u item of the ray in
 // stage Ts or the v item of the ray in T(s+1); an operation of Is runs on its unit for u in one
 // clock and for v in the next.  Where the two axes meet, the u item's value is held a clock in a
-// register and combined with the v item's: invalid (T8), t_map and t_end (T11), the start cell
+// register and combined with the v item's: invalid (T10), t_map and t_end (T11), the start cell
 // and the end point's cell (T18, into the start level).
 //
 // Shared units.  A unit that serves two operations of item stages Ia and Ia+6 is busy in the
 // clocks of phase a, a+1 (mod 4) for the first and a+2, a+3 for the second: never both, as rays
 // are a multiple of 4 clocks apart.  Every float unit takes its operands from registers: a
-// unit's result (the same unit's for both operations: b - u0 and u0 + d t are fed by the same
-// from_int and multiplier at both stages, the crossing-time multiplier and the floor by the same
-// adders), or an operand register that a select loads one clock before the unit reads it
-// (kf_q, md_q, mt_q, pa_q, mi_q, mvx_q / p0x_q), never a select in front of a unit.
+// unit's result (the same unit's for both operations: the position adder is fed by the same
+// multiplier at both stages, the crossing-time multipliers by the same boundary differences,
+// the floor by the same adder), or an operand register that a select loads one clock before the
+// unit reads it (pu_q, kf_q, kg_q, md_q, mt_q, pa_q, mi_q, mvx_q / p0x_q), never a select in
+// front of a unit.
 //
 // Stage schedule (T0 = the clock after in_valid_i; per-axis rows give the u item's stages, the v
 // item's are one later; "a -> b": a unit takes operands at Ia, result at Ib; [X] names the unit).
@@ -38,27 +42,24 @@
 // the rest of the first mode starts C = F24_DIV_LAT - 2 = 6 clocks later, at I6, so that 1/du is
 // in a register at I9 where the crossing time needs it.  Nothing before I8 depends on 1/du.
 //   I0  1/du (1/dv)                                             f24_div I0 -> I8
-//   I5  operand registers: exit boundary of the map kb = du > 0 ? W : 0 (H for v) [F], du and t0
-//       [B]
-//   I6  invalid checks (NaN / Inf field, negative start)
-//       kb as a float                                           [F] f24_from_int I6 -> I7
+//   I5  operand registers: u0, the exit boundary of the map kb = du > 0 ? W : 0 and W (H, H
+//       for v) [D], du and t0 [B]
+//   I6  checks: NaN / Inf field, negative start, u0 >= 2^16
+//       kb - u0, W - u0                                         [D] traverse_bdiff I6 -> I9
 //       du * t0                                                 [B] f24_mul I6 -> I7
-//       floor(u0) (start < W, < H)                              [Y] f24_to_index I6 -> I7
-//   I7  u: the checks | floor(u0) >= W held; T8 (v): invalid = u's | v's
-//       kb - u0                                                 [M] f24_add I7 -> I9
-//       u0 + du t0                                              [P] f24_add I7 -> I9
+//   I7  u0 + du t0                                              [P] f24_add I7 -> I9
 //   I8  sx = sign(du) if du != 0 and 1/du finite
-//   I9  (kb - u0) * (1/du)                                      [A] f24_mul I9 -> I10
+//   I9  u: the checks | u0 >= W (W - u0 <= 0) held; T10 (v): invalid = u's | v's
+//       (kb - u0) * (1/du)                                      [A] f24_mul I9 -> I10
 //       floor(position at t0) (u0 if sx = 0)                    [X] f24_to_index I9 -> I10
 //   I10 tmx (inf if sx = 0) held; locate estimate c = clip(floor, -1, N), its entry / exit
 //       boundary integers
 //   T11 (v item in I10): t_map = min(tmx, ty); t_end = clip ? min(1, t_map) : 1
-//   I11 operand registers: entry boundary [F], exit boundary [G], du and t_end [B]
+//   I11 operand registers: u0, entry and exit boundary [D], du and t_end [B]
 //   T12 gone = t_map <= t0
-//   I12 entry / exit boundary of c as floats                    [F], [G] f24_from_int I12 -> I13
+//   I12 entry - u0, exit - u0                                   [D] traverse_bdiff I12 -> I15
 //       du * t_end                                              [B] f24_mul I12 -> I13
-//   I13 entry - u0, exit - u0                                   [M], [E] f24_add I13 -> I15
-//       u0 + du t_end                                           [P] f24_add I13 -> I15
+//   I13 u0 + du t_end                                           [P] f24_add I13 -> I15
 //   I15 (boundary - u0) * (1/du): crossing times                [A], [C] f24_mul I15 -> I16
 //       floor(position at t_end) (u0 if sx = 0)                 [X] f24_to_index I15 -> I16
 //       locate's three candidates (the estimate, one cell back, one on; clipped to [-1, N])
@@ -67,9 +68,9 @@
 //   T18 start cell and end cell clipped to the map, outside, XOR     traverse_start_level
 //   T19 start level k by bit length (leading-zero count)             T18 -> T20
 //   T20 gone |= start cell outside the map; cell >> k: out
-// Units: [A] [B] [C] f24_mul, [M] [P] [E] f24_add, [F] [G] f24_from_int, [X] [Y] f24_to_index;
-// [A], [B], [F], [M], [P], [X] serve two operations 6 stages apart.
-// In the code, item stage I(C+k) is iv[C+k] / ss[k], and a name ending in the digit k (p0_0_q,
+// Units: [A] [B] [C] f24_mul, [P] f24_add, [D] traverse_bdiff, [X] f24_to_index; [A], [B], [D],
+// [P] and [X] serve two operations 6 stages apart ([P] and [B] the start time while idle).
+// In the code, item stage I(C+k) is iv[C+k] / ss[k], and a name ending in the digit k (bad2_q,
 // dir3_q, ...) is a value of item stage I(C+k); a ray stage Ts is v_q[s] / sl[s].
 //
 // Tables.  A ray's values do not move from stage to stage.  A phase counter ph_q steps every
@@ -89,9 +90,9 @@
 // otherwise (less switching, and less work for a simulator); likewise a stage computes what it
 // writes into a table only while it holds an item.
 //
-// The start time t0 (0, or max(0, 1 - H_root) for the clip policy) is the same for every ray; a
-// small pipeline derives it from the configuration (ready 4 clocks after a change).  It runs while
-// the unit is idle (idle_i), the only time the configuration may change, and holds otherwise.
+// The start time t0 (0, or max(0, 1 - H_root) for the clip policy) is the same for every ray; it
+// is derived from the configuration on [P] and [B] (ready 4 clocks after a change) while the
+// unit is idle (idle_i), the only time the configuration may change, and held otherwise.
 module traverse_setup
   import f24_pkg::*;
   import traverse_pkg::*;
@@ -131,7 +132,7 @@ module traverse_setup
 
   // Ray tables (see the header); the stage that writes each field is in brackets.
   logic [ID_W-1:0] id_q      [NT];  // [in]
-  logic            invalid_q [NT];  // [T(C+2)] NaN / Inf field, negative start, start >= W / H
+  logic            invalid_q [NT];  // [T(C+4)] NaN / Inf field, negative start, start >= W / H
   f24_t            t_map_q   [NT];  // [T(C+6)] time of leaving the map's extent
   logic            gone_q    [NT];  // [T(C+6)] t_map <= t0: never enters
   // Item tables: u0 / v0, du / dv [in: u item with the ray, v item the clock after];
@@ -144,8 +145,8 @@ module traverse_setup
   // The v item's inputs, held from the ray's clock to its own.
   f24_t            v0_h_q, dv_h_q;
   // Values that live one clock or are held for the v item.
-  logic            bad_q;           // I(C+0) -> I(C+1): NaN / Inf field or a negative start
-  logic            bad_u_q;         // T(C+1) -> T(C+2): the u item's checks
+  logic            bad_q;           // I(C+0) -> I(C+1): NaN / Inf field, negative, >= 2^16
+  logic            bad_u_q;         // T(C+3) -> T(C+4): the u item's checks
   f24_t            tmx_q;           // T(C+4) -> T(C+5): the u item's time of leaving the map
   f24_t            t_map6_q;        // T(C+5) -> T(C+6): t_map, for the table and gone
   sidx_t           c0x_q, c0y_q;    // T(C+10) / T(C+11) -> T(C+12): the corrected start cell
@@ -171,24 +172,35 @@ module traverse_setup
   assign in_ready_o = (ph_q[1:0] == 2'd3);
 
   // ---- configuration-derived constants -------------------------------------------------------
-  sidx_t width_s, height_s, size_s;   // W, H, N = 2^n
-  assign width_s  = sidx_t'(cfg_i.width);
-  assign height_s = sidx_t'(cfg_i.height);
+  sidx_t size_s;                      // N = 2^n
   assign size_s   = sidx_t'(1) <<< cfg_i.n;
 
-  // t0 = clip ? max(+0, 1 - H_root) : +0 (model: np.maximum(zeros, sub(one, h_root))).
-  f24_t h_root8, h_root16, t0_raw, t0_d, t0_q;
+  // t0 = clip ? max(+0, 1 - H_root) : +0 (model: np.maximum(zeros, sub(one, h_root))).  While
+  // idle, [P] adds -H_root (pa_q, from the configuration's root code: f24_from_unorm's
+  // conversion, as a function here) and 1 * 1 ([B] on md_q = mt_q = 1): the word of
+  // f24_add(1, -H_root) (a correctly rounded sum does not depend on the operands' order), as
+  // early as with units of its own.
+  function automatic f24_t unorm_to_f24(input logic [15:0] k, input logic bits16);
+    logic [4:0]         lz;     // leading zeros of the code (garbage for 0, which is not used)
+    /* verilator lint_off UNUSEDSIGNAL */  // (its low bits are below the sticky position)
+    logic [31:0]        rep;    // the code repeated, then shifted so its leading one is on top
+    /* verilator lint_on UNUSEDSIGNAL */
+    logic signed [11:0] e;      // biased exponent: k / (2^W - 1) in [2^-(lz+1), 2^-lz)
+    logic [15:0]        kw;     // the code, left-aligned in 16 bits
+    kw  = bits16 ? k : {k[7:0], 8'd0};
+    lz  = f24_clz32({kw, 16'd0});
+    rep = bits16 ? ({k, k} << lz) : ({k[7:0], k[7:0], k[7:0], k[7:0]} << lz);
+    e   = 12'sd62 - $signed({7'd0, lz});
+    return (kw == '0) ? '0 : f24_round_pack(1'b0, e, rep[31 -: 17], rep[14], 1'b1);
+  endfunction
+  f24_t h_root, t0_d, t0_q;
   f24_ord_t ot0;                      // t0 in comparable form
-  f24_from_unorm #(.W(8))  u_root8  (.clk_i, .en_i(idle_i), .k_i(cfg_i.root_code[7:0]),
-                                     .y_o(h_root8));
-  f24_from_unorm #(.W(16)) u_root16 (.clk_i, .en_i(idle_i), .k_i(cfg_i.root_code), .y_o(h_root16));
-  f24_add u_root_plane (.clk_i, .en_i(idle_i), .a_i(F24_ONE),
-                        .b_i(f24_neg(cfg_i.bits16 ? h_root16 : h_root8)), .y_o(t0_raw));
-  assign t0_d = cfg_i.policy.clip ? f24_max(F24_POS_ZERO, t0_raw) : F24_POS_ZERO;
+  assign h_root = unorm_to_f24(cfg_i.root_code, cfg_i.bits16);
   always_ff @(posedge clk_i) begin
     if (idle_i) t0_q <= t0_d;
   end
   assign ot0 = f24_ord(t0_q);
+  assign t0_d = cfg_i.policy.clip ? f24_max(F24_POS_ZERO, ap) : F24_POS_ZERO;
 
   // ---- operand registers and registered table reads -----------------------------------------
   // A float unit takes its operands from registers, never through a table read or a select (a
@@ -200,12 +212,13 @@ module traverse_setup
   // for their first operation (I(C+k-1)) or their second (I(C+k+5)): never in one clock, as
   // rays are a multiple of 4 clocks apart.
   f24_t      div_b_q;                       // I0: du, then dv (from the input)
-  f24_t      p0_0_q;                        // I(C+0): u0 (the checks, floor(u0))
-  logic [IDX_W-1:0] kf_q;                   // [F] I(C+0): kb; I(C+6): the entry boundary
-  logic [IDX_W-1:0] kg_q;                   // [G] I(C+6): the exit boundary
-  f24_t      md_q;                          // [B] I(C+0), I(C+6): du
-  f24_t      mt_q;                          // [B] I(C+0): t0; I(C+6), I(C+7): t_end
-  f24_t      pa_q;                          // [M] [P] [E] I(C+1), I(C+7): u0
+  f24_t      pu_q;                          // [D] I(C+0), I(C+6): u0 (and the checks)
+  logic [IDX_W-1:0] kf_q;                   // [D] I(C+0): kb; I(C+6): the entry boundary
+  logic [IDX_W-1:0] kg_q;                   // [D] I(C+0): W / H; I(C+6): the exit boundary
+  f24_t      md_q;                          // [B] I(C+0), I(C+6): du (1 while idle)
+  f24_t      mt_q;                          // [B] I(C+0): t0; I(C+6), I(C+7): t_end (1 idle)
+  f24_t      pa_q;                          // [P] I(C+1), I(C+7): u0 (-H_root while idle)
+  logic      bad2_q, bad3_q;                // I(C+2), I(C+3): bad_q passed on
   f24_t      mi_q;                          // [A] [C] I(C+3), I(C+9): 1/du
   logic      mvx_q;                         // [X] I(C+3), I(C+9): the axis moves
   f24_t      p0x_q;                         // [X] I(C+3), I(C+9): u0
@@ -225,29 +238,35 @@ module traverse_setup
   f24_div #(.LAT(F24_DIV_LAT)) u_inv (.clk_i, .en_i(|v_q[F24_DIV_LAT:0]), .a_i(F24_ONE),
                                       .b_i(div_b_q), .y_o(inv));
 
-  // [F] kb (I(C+0)), the entry boundary (I(C+6)); [G] the exit boundary (I(C+6))
-  f24_t      kf_f, kg_f;
-  f24_from_int #(.W(IDX_W)) u_kf (.clk_i, .en_i(iv[C] || iv[C+6]), .k_i(kf_q), .y_o(kf_f));
-  f24_from_int #(.W(IDX_W)) u_kg (.clk_i, .en_i(iv[C+6]), .k_i(kg_q), .y_o(kg_f));
-  // [B] du * t0 (I(C+0)), du * t_end (I(C+6))
+  // [D] kb - u0 and W - u0 (H - v0) (I(C+0) -> I(C+3)), entry - u0 and exit - u0 (I(C+6) ->
+  // I(C+9)): boundary - u0 in fixed point, the word of f24_add(f24_from_int(b), -u0) for
+  // 0 <= b < 2^16 and u0 a non-negative f24 below 2^16 (traverse_bdiff; its bound checker
+  // compares every such operand set with those two units).  Outside that range: u0 only of a ray
+  // the checks flag invalid (whose crossing times, t_map and start cell nothing reads: the ring
+  // passes an invalid ray's u0, v0 and t0 on, traverse_loop's bypass), and b = -1 (an entry or
+  // exit boundary of the estimate c = -1) only where the candidate that crossing time picks,
+  // c - s or c + s clipped to [-1, N], is c itself; traverse_setup_assert checks both.
+  logic signed [IDX_W-1:0] bd_b [2];
+  f24_t      bd [2];
+  assign bd_b = '{kf_q, kg_q};
+  traverse_bdiff #(.W(IDX_W), .NB(2)) u_bd (
+    .clk_i, .en_i(iv[C] || iv[C+1] || iv[C+2] || iv[C+6] || iv[C+7] || iv[C+8]),
+    .b_i(bd_b), .u_i(pu_q), .y_o(bd));
+  // [B] du * t0 (I(C+0)), du * t_end (I(C+6)); 1 * 1 while idle
   f24_t      mb;
-  f24_mul u_mb (.clk_i, .en_i(iv[C] || iv[C+6]), .a_i(md_q), .b_i(mt_q), .y_o(mb));
-  // [Y] floor(u0) (I(C+0))
-  logic signed [IDX_W-1:0] i0;
-  logic unused_sat_0;
-  f24_to_index #(.W(IDX_W)) u_i0 (.clk_i, .en_i(iv[C]), .a_i(p0_0_q), .idx_o(i0),
-                                  .sat_o(unused_sat_0));
+  f24_mul u_mb (.clk_i, .en_i(iv[C] || iv[C+6] || idle_i), .a_i(md_q), .b_i(mt_q), .y_o(mb));
 
-  // [M] kb - u0 (I(C+1)), entry - u0 (I(C+7)); [P] u0 + du t0 (I(C+1)), u0 + du t_end (I(C+7));
-  // [E] exit - u0 (I(C+7))
-  f24_t      am, ap, ae;
-  logic      bad1;                    // this item's checks: NaN / Inf, negative, start >= W / H
-  f24_add u_am (.clk_i, .en_i(iv[C+1] || iv[C+2] || iv[C+7] || iv[C+8]), .a_i(kf_f),
-                .b_i(f24_neg(pa_q)), .y_o(am));
-  f24_add u_ap (.clk_i, .en_i(iv[C+1] || iv[C+2] || iv[C+7] || iv[C+8]), .a_i(pa_q), .b_i(mb),
-                .y_o(ap));
-  f24_add u_ae (.clk_i, .en_i(iv[C+7] || iv[C+8]), .a_i(kg_f), .b_i(f24_neg(pa_q)), .y_o(ae));
-  assign bad1 = bad_q || (sidx_t'(i0) >= (v_q[C+2] ? height_s : width_s));
+  // [P] u0 + du t0 (I(C+1)), u0 + du t_end (I(C+7)); -H_root + 1 while idle
+  f24_t      ap;
+  logic      bad0;                    // this item's NaN / Inf, negative and >= 2^16 checks
+  logic      bad1;                    // all of its checks: bad0, start >= W / H
+  f24_add u_ap (.clk_i, .en_i(iv[C+1] || iv[C+2] || iv[C+7] || iv[C+8] || idle_i), .a_i(pa_q),
+                .b_i(mb), .y_o(ap));
+  assign bad0 = !f24_is_finite(pu_q) || !f24_is_finite(md_q) || (pu_q[23] && !f24_is_zero(pu_q))
+             || (pu_q[22:16] > 7'd78);
+  // I(C+3): start >= W (H) when W - u0 (H - v0) is negative or +0 (exact or correctly rounded:
+  // never rounded to zero)
+  assign bad1 = bad3_q || bd[1][23] || (bd[1][22:0] == '0);
 
   // I(C+2): the direction (written to the table and forwarded to I(C+3))
   f24_t      d2;
@@ -260,8 +279,8 @@ module traverse_setup
   f24_t      ma, mc;
   logic signed [IDX_W-1:0] ix;
   logic unused_sat_x;
-  f24_mul u_ma (.clk_i, .en_i(iv[C+3] || iv[C+9]), .a_i(am), .b_i(mi_q), .y_o(ma));
-  f24_mul u_mc (.clk_i, .en_i(iv[C+9]), .a_i(ae), .b_i(mi_q), .y_o(mc));
+  f24_mul u_ma (.clk_i, .en_i(iv[C+3] || iv[C+9]), .a_i(bd[0]), .b_i(mi_q), .y_o(ma));
+  f24_mul u_mc (.clk_i, .en_i(iv[C+9]), .a_i(bd[1]), .b_i(mi_q), .y_o(mc));
   f24_to_index #(.W(IDX_W)) u_ix (.clk_i, .en_i(iv[C+3] || iv[C+9]),
     .a_i(mvx_q ? ap : p0x_q), .idx_o(ix), .sat_o(unused_sat_x));
 
@@ -310,29 +329,33 @@ module traverse_setup
       dv_h_q <= in_dv_i;
     end
     if (in_valid_i || v_q[0]) div_b_q <= in_valid_i ? in_du_i : dv_h_q;
-    // I(C-1) (first operations) / I(C+5) (second operations)
-    if (iv[C-1]) p0_0_q <= p0_q[sl[C-1]];
+    // I(C-1) (first operations) / I(C+5) (second operations); constants for t0 while idle
     if (iv[C+5]) begin
+      pu_q <= p0_q[ss[5]];
       kf_q <= kben_q;
+      kg_q <= kbex_q;
       md_q <= d_q[ss[5]];
     end else if (iv[C-1]) begin
+      pu_q <= p0_q[sl[C-1]];
       kf_q <= (!d_r[23] && !f24_is_zero(d_r)) ? IDX_W'(v_q[C] ? cfg_i.height : cfg_i.width)
                                                : '0;
+      kg_q <= IDX_W'(v_q[C] ? cfg_i.height : cfg_i.width);
       md_q <= d_r;
+    end else if (idle_i) begin
+      md_q <= F24_ONE;
     end
-    if (iv[C+5]) kg_q <= kbex_q;
     // t0 for I(C+0) (loaded in the clocks of I(C-1)), t_end for both items of I(C+6) (loaded
     // in T(C+5), where the v item's time arrives)
     if (v_q[C+5])     mt_q <= t_end5;
     else if (iv[C-1]) mt_q <= t0_q;
+    else if (idle_i)  mt_q <= F24_ONE;
     // I(C+0) / I(C+6)
-    if (iv[C+6])    pa_q <= p0_q[ss[6]];
-    else if (iv[C]) pa_q <= p0_0_q;
-    if (iv[C]) begin
-      bad_q  <= !f24_is_finite(p0_0_q) || !f24_is_finite(md_q) ||
-                (p0_0_q[23] && !f24_is_zero(p0_0_q));
-    end
-    if (v_q[C+1]) bad_u_q <= bad1;
+    if (iv[C] || iv[C+6]) pa_q <= pu_q;
+    else if (idle_i)      pa_q <= f24_neg(h_root);
+    if (iv[C])   bad_q  <= bad0;
+    if (iv[C+1]) bad2_q <= bad_q;
+    if (iv[C+2]) bad3_q <= bad2_q;
+    if (v_q[C+3]) bad_u_q <= bad1;
     // I(C+2) / I(C+8)
     if (iv[C+8]) begin
       mi_q  <= inv_q[ss[8]];
@@ -383,8 +406,8 @@ module traverse_setup
       d_q[sl[NT-1]]  <= in_valid_i ? in_du_i : dv_h_q;
     end
     // A stage computes and writes only while it holds an item.
-    // T(C+2): invalid = the u item's checks or the v item's (the v item in I(C+1))
-    if (v_q[C+2]) invalid_q[sl[C+2]] <= bad_u_q || bad1;
+    // T(C+4): invalid = the u item's checks or the v item's (the v item in I(C+3))
+    if (v_q[C+4]) invalid_q[sl[C+4]] <= bad_u_q || bad1;
     // I(C+2) -> I(C+3): reciprocal and direction
     if (iv[C+2]) begin
       inv_q[ss[2]] <= inv;
