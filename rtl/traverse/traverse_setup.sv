@@ -200,7 +200,6 @@ module traverse_setup
     if (idle_i) t0_q <= t0_d;
   end
   assign ot0 = f24_ord(t0_q);
-  assign t0_d = cfg_i.policy.clip ? f24_max(F24_POS_ZERO, ap) : F24_POS_ZERO;
 
   // ---- operand registers and registered table reads -----------------------------------------
   // A float unit takes its operands from registers, never through a table read or a select (a
@@ -262,6 +261,7 @@ module traverse_setup
   logic      bad1;                    // all of its checks: bad0, start >= W / H
   f24_add u_ap (.clk_i, .en_i(iv[C+1] || iv[C+2] || iv[C+7] || iv[C+8] || idle_i), .a_i(pa_q),
                 .b_i(mb), .y_o(ap));
+  assign t0_d = cfg_i.policy.clip ? f24_max(F24_POS_ZERO, ap) : F24_POS_ZERO;
   assign bad0 = !f24_is_finite(pu_q) || !f24_is_finite(md_q) || (pu_q[23] && !f24_is_zero(pu_q))
              || (pu_q[22:16] > 7'd78);
   // I(C+3): start >= W (H) when W - u0 (H - v0) is negative or +0 (exact or correctly rounded:

@@ -8,13 +8,15 @@
 //                   rays are a multiple of 4 clocks apart (the float units are shared over 4
 //                   clocks: u and v a clock apart, two operations of an axis 6 stages apart);
 //   ray_spacing     no ray in the 3 clocks after one (what ray_phase implies, checked on its own);
+//   ray_phase_of_stage  a ray in stage Ts only at phase s mod 4 (the induction invariant of
+//                   ray_spacing);
 //   setup_id_order  a tracked ray (formal: any ray, picked freely; simulation: every ray that
 //                   enters while none is tracked) comes out SETUP_LAT clocks after it entered,
 //                   with its id: the pipeline neither loses, duplicates nor swaps ids;
 //   trk_in_setup    while inside, the tracked ray's stage holds a ray and its id (the table
 //                   entry of stages T0 - T15, the output registers of T16 - T20): the invariant
 //                   that makes the induction step hold.
-// Data checks (simulation only: the formal task cuts the float datapath):
+// Data checks (simulation; formal/traverse_setup.sby cuts the float datapath and removes them):
 //   bdiff_range     the fixed-point boundary differences get operands in traverse_bdiff's range
 //                   (0 <= b < 2^16, u0 non-negative below 2^16) for every item of a ray the
 //                   checks do not flag invalid, but for b = -1 with the estimate c = -1 (an
@@ -39,6 +41,7 @@ module traverse_setup_assert
   input logic                out_valid_i,
   input logic [ID_W-1:0]     out_id_i,
   input logic [ID_W-1:0]     stage_id_i [SETUP_LAT], // the id each stage holds (see the bind)
+  input logic [1:0]          ph_i,         // traverse_setup's phase (ph_q mod 4)
   input logic                idle_i,
   input logic [CODE_W-1:0]   root_code_i,  // cfg_i.root_code, .bits16, .policy.clip
   input logic                bits16_i,
@@ -82,12 +85,23 @@ module traverse_setup_assert
     end
   end
 
+  // A ray in stage Ts: the phase is s mod 4 (the invariant that makes ray_spacing inductive).
+  logic phase_ok;
+  always_comb begin
+    phase_ok = 1'b1;
+    for (int s = 0; s < NS; s++) begin
+      if (v_i[s] && ph_i != 2'(s)) phase_ok = 1'b0;
+    end
+  end
+
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
       ray_phase: assert (!in_valid_i || in_ready_i)
         else $error("traverse_setup: a ray entered while in_ready_o = 0");
       ray_spacing: assert (!in_valid_i || v_i[2:0] == '0)
         else $error("traverse_setup: a ray less than 4 clocks after the one before");
+      ray_phase_of_stage: assert (phase_ok)
+        else $error("traverse_setup: a ray in a stage off the phase");
       setup_id_order: assert (!trk_out || (out_valid_i && out_id_i == trk_id_q))
         else $error("traverse_setup: ray id %0d due out, out_valid %0d id %0d", trk_id_q,
                     out_valid_i, out_id_i);
@@ -98,7 +112,6 @@ module traverse_setup_assert
     end
   end
 
-`ifndef FORMAL
   function automatic logic b_ok(input logic signed [IDX_W-1:0] b);
     return b >= 0 && b < (IDX_W'(1) <<< 16);
   endfunction
@@ -142,19 +155,14 @@ module traverse_setup_assert
                     ref_t0_q);
     end
   end
-`else
-  logic unused_data;
-  assign unused_data = ^{idle_i, root_code_i, bits16_i, clip_i, t0_i, bd_first_i, bd_bad_i, bd_second_i, bd_inv_i,
-                         bd_est_i, bd_kf_i, bd_kg_i, bd_u_i};
-`endif
 
 endmodule
 
 // stage_id_i: stages T0 - T15 read their entry of the id table (sl[s]: the stage's entry),
 // T16 - T20 the output registers out_q[0] - out_q[4].
 bind traverse_setup traverse_setup_assert #(.ID_W(ID_W)) u_assert (
-  .clk_i, .rst_ni, .in_ready_i(in_ready_o), .in_valid_i, .in_id_i, .v_i(v_q), .out_valid_i(out_valid_o),
-  .out_id_i(out_id_o),
+  .clk_i, .rst_ni, .ph_i(ph_q[1:0]), .in_ready_i(in_ready_o), .in_valid_i, .in_id_i, .v_i(v_q),
+  .out_valid_i(out_valid_o), .out_id_i(out_id_o),
   .stage_id_i('{id_q[sl[0]], id_q[sl[1]], id_q[sl[2]], id_q[sl[3]], id_q[sl[4]], id_q[sl[5]],
                 id_q[sl[6]], id_q[sl[7]], id_q[sl[8]], id_q[sl[9]], id_q[sl[10]], id_q[sl[11]],
                 id_q[sl[12]], id_q[sl[13]], id_q[sl[14]], id_q[sl[15]], out_q[0].id,
