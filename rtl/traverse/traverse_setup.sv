@@ -16,9 +16,10 @@
 // invalid ray's record only u0, v0, t, done and invalid are defined (traverse_loop passes such a
 // ray on at once with those).
 //
-// Float units: 1 f24_div, 3 f24_mul (one DSP each), 1 f24_add, 1 f24_to_index and 1
-// traverse_bdiff of two lanes (boundary - u0 in fixed point, the word of f24_from_int then
-// f24_add, as in the ring).  The start time t0 takes no unit of its own (below).
+// Float units: 1 f24_div, 3 f24_mul (one DSP each), 3 f24_add, 2 f24_from_int and 1
+// f24_to_index.  The start time t0 takes no unit of its own (below).  (The ring's fixed-point
+// boundary difference, traverse_bdiff, would save about an adder's area here but limits the
+// block's clock: its 35-bit difference and leading-zero count in one stage.)
 //
 // Axis items.  A ray is two items in one lane: its u item enters with the ray, its v item one
 // clock later (the v inputs are held a clock).  Item stage Is holds the u item of the ray in
@@ -30,11 +31,11 @@
 // Shared units.  A unit that serves two operations of item stages Ia and Ia+6 is busy in the
 // clocks of phase a, a+1 (mod 4) for the first and a+2, a+3 for the second: never both, as rays
 // are a multiple of 4 clocks apart.  Every float unit takes its operands from registers: a
-// unit's result (the same unit's for both operations: the position adder is fed by the same
-// multiplier at both stages, the crossing-time multipliers by the same boundary differences,
-// the floor by the same adder), or an operand register that a select loads one clock before the
-// unit reads it (pu_q, kf_q, kg_q, md_q, mt_q, pa_q, mi_q, mvx_q / p0x_q), never a select in
-// front of a unit.
+// unit's result (the same unit's for both operations: the boundary adders are fed by the same
+// conversions at both stages, the position adder by the same multiplier, the crossing-time
+// multipliers by the same boundary adders, the floor by the same position adder), or an operand
+// register that a select loads one clock before the unit reads it (kf_q, kg_q, md_q, mt_q,
+// pa_q, mi_q, mvx_q / p0x_q), never a select in front of a unit.
 //
 // Stage schedule (T0 = the clock after in_valid_i; per-axis rows give the u item's stages, the v
 // item's are one later; "a -> b": a unit takes operands at Ia, result at Ib; [X] names the unit).
@@ -42,12 +43,13 @@
 // the rest of the first mode starts C = F24_DIV_LAT - 2 = 6 clocks later, at I6, so that 1/du is
 // in a register at I9 where the crossing time needs it.  Nothing before I8 depends on 1/du.
 //   I0  1/du (1/dv)                                             f24_div I0 -> I8
-//   I5  operand registers: u0, the exit boundary of the map kb = du > 0 ? W : 0 and W (H, H
-//       for v) [D], du and t0 [B]
-//   I6  checks: NaN / Inf field, negative start, u0 >= 2^16
-//       kb - u0, W - u0                                         [D] traverse_bdiff I6 -> I9
+//   I5  operand registers: the exit boundary of the map kb = du > 0 ? W : 0 [F] and W [G]
+//       (H, H for v), du and t0 [B], u0
+//   I6  checks: NaN / Inf field, negative start
+//       kb, W as floats                                         [F], [G] f24_from_int I6 -> I7
 //       du * t0                                                 [B] f24_mul I6 -> I7
-//   I7  u0 + du t0                                              [P] f24_add I7 -> I9
+//   I7  kb - u0, W - u0                                         [M], [E] f24_add I7 -> I9
+//       u0 + du t0                                              [P] f24_add I7 -> I9
 //   I8  sx = sign(du) if du != 0 and 1/du finite
 //   I9  u: the checks | u0 >= W (W - u0 <= 0) held; T10 (v): invalid = u's | v's
 //       (kb - u0) * (1/du)                                      [A] f24_mul I9 -> I10
@@ -55,11 +57,12 @@
 //   I10 tmx (inf if sx = 0) held; locate estimate c = clip(floor, -1, N), its entry / exit
 //       boundary integers
 //   T11 (v item in I10): t_map = min(tmx, ty); t_end = clip ? min(1, t_map) : 1
-//   I11 operand registers: u0, entry and exit boundary [D], du and t_end [B]
+//   I11 operand registers: entry and exit boundary [F], [G], du and t_end [B], u0
 //   T12 gone = t_map <= t0
-//   I12 entry - u0, exit - u0                                   [D] traverse_bdiff I12 -> I15
+//   I12 entry, exit boundary as floats                         [F], [G] f24_from_int I12 -> I13
 //       du * t_end                                              [B] f24_mul I12 -> I13
-//   I13 u0 + du t_end                                           [P] f24_add I13 -> I15
+//   I13 entry - u0, exit - u0                                   [M], [E] f24_add I13 -> I15
+//       u0 + du t_end                                           [P] f24_add I13 -> I15
 //   I15 (boundary - u0) * (1/du): crossing times                [A], [C] f24_mul I15 -> I16
 //       floor(position at t_end) (u0 if sx = 0)                 [X] f24_to_index I15 -> I16
 //       locate's three candidates (the estimate, one cell back, one on; clipped to [-1, N])
@@ -68,8 +71,8 @@
 //   T18 start cell and end cell clipped to the map, outside, XOR     traverse_start_level
 //   T19 start level k by bit length (leading-zero count)             T18 -> T20
 //   T20 gone |= start cell outside the map; cell >> k: out
-// Units: [A] [B] [C] f24_mul, [P] f24_add, [D] traverse_bdiff, [X] f24_to_index; [A], [B], [D],
-// [P] and [X] serve two operations 6 stages apart ([P] and [B] the start time while idle).
+// Units: [A] [B] [C] f24_mul, [M] [E] [P] f24_add, [F] [G] f24_from_int, [X] f24_to_index; all
+// but [C] serve two operations 6 stages apart ([P] and [B] the start time while idle).
 // In the code, item stage I(C+k) is iv[C+k] / ss[k], and a name ending in the digit k (bad2_q,
 // dir3_q, ...) is a value of item stage I(C+k); a ray stage Ts is v_q[s] / sl[s].
 //
@@ -211,12 +214,12 @@ module traverse_setup
   // for their first operation (I(C+k-1)) or their second (I(C+k+5)): never in one clock, as
   // rays are a multiple of 4 clocks apart.
   f24_t      div_b_q;                       // I0: du, then dv (from the input)
-  f24_t      pu_q;                          // [D] I(C+0), I(C+6): u0 (and the checks)
-  logic [IDX_W-1:0] kf_q;                   // [D] I(C+0): kb; I(C+6): the entry boundary
-  logic [IDX_W-1:0] kg_q;                   // [D] I(C+0): W / H; I(C+6): the exit boundary
+  f24_t      pu_q;                          // I(C+0), I(C+6): u0 (for pa_q, and the checks)
+  logic [IDX_W-1:0] kf_q;                   // [F] I(C+0): kb; I(C+6): the entry boundary
+  logic [IDX_W-1:0] kg_q;                   // [G] I(C+0): W / H; I(C+6): the exit boundary
   f24_t      md_q;                          // [B] I(C+0), I(C+6): du (1 while idle)
   f24_t      mt_q;                          // [B] I(C+0): t0; I(C+6), I(C+7): t_end (1 idle)
-  f24_t      pa_q;                          // [P] I(C+1), I(C+7): u0 (-H_root while idle)
+  f24_t      pa_q;                          // [M] [E] [P] I(C+1), I(C+7): u0 (-H_root idle)
   logic      bad2_q, bad3_q;                // I(C+2), I(C+3): bad_q passed on
   f24_t      mi_q;                          // [A] [C] I(C+3), I(C+9): 1/du
   logic      mvx_q;                         // [X] I(C+3), I(C+9): the axis moves
@@ -237,36 +240,31 @@ module traverse_setup
   f24_div #(.LAT(F24_DIV_LAT)) u_inv (.clk_i, .en_i(|v_q[F24_DIV_LAT:0]), .a_i(F24_ONE),
                                       .b_i(div_b_q), .y_o(inv));
 
-  // [D] kb - u0 and W - u0 (H - v0) (I(C+0) -> I(C+3)), entry - u0 and exit - u0 (I(C+6) ->
-  // I(C+9)): boundary - u0 in fixed point, the word of f24_add(f24_from_int(b), -u0) for
-  // 0 <= b < 2^16 and u0 a non-negative f24 below 2^16 (traverse_bdiff; its bound checker
-  // compares every such operand set with those two units).  Outside that range: u0 only of a ray
-  // the checks flag invalid (whose crossing times, t_map and start cell nothing reads: the ring
-  // passes an invalid ray's u0, v0 and t0 on, traverse_loop's bypass), and b = -1 (an entry or
-  // exit boundary of the estimate c = -1) only where the candidate that crossing time picks,
-  // c - s or c + s clipped to [-1, N], is c itself; traverse_setup_assert checks both.
-  logic signed [IDX_W-1:0] bd_b [2];
-  f24_t      bd [2];
-  assign bd_b = '{kf_q, kg_q};
-  traverse_bdiff #(.W(IDX_W), .NB(2)) u_bd (
-    .clk_i, .en_i(iv[C] || iv[C+1] || iv[C+2] || iv[C+6] || iv[C+7] || iv[C+8]),
-    .b_i(bd_b), .u_i(pu_q), .y_o(bd));
+  // [F] kb, the entry boundary; [G] W (H), the exit boundary (I(C+0), I(C+6)) as floats
+  f24_t      kf_f, kg_f;
+  f24_from_int #(.W(IDX_W)) u_kf (.clk_i, .en_i(iv[C] || iv[C+6]), .k_i(kf_q), .y_o(kf_f));
+  f24_from_int #(.W(IDX_W)) u_kg (.clk_i, .en_i(iv[C] || iv[C+6]), .k_i(kg_q), .y_o(kg_f));
   // [B] du * t0 (I(C+0)), du * t_end (I(C+6)); 1 * 1 while idle
   f24_t      mb;
   f24_mul u_mb (.clk_i, .en_i(iv[C] || iv[C+6] || idle_i), .a_i(md_q), .b_i(mt_q), .y_o(mb));
 
   // [P] u0 + du t0 (I(C+1)), u0 + du t_end (I(C+7)); -H_root + 1 while idle
   f24_t      ap;
-  logic      bad0;                    // this item's NaN / Inf, negative and >= 2^16 checks
+  logic      bad0;                    // this item's NaN / Inf and negative checks
   logic      bad1;                    // all of its checks: bad0, start >= W / H
   f24_add u_ap (.clk_i, .en_i(iv[C+1] || iv[C+2] || iv[C+7] || iv[C+8] || idle_i), .a_i(pa_q),
                 .b_i(mb), .y_o(ap));
+  // [M] kb - u0 (I(C+1)), entry - u0 (I(C+7)); [E] W - u0 (H - v0) (I(C+1)), exit - u0 (I(C+7))
+  f24_t      am, ae;
+  f24_add u_am (.clk_i, .en_i(iv[C+1] || iv[C+2] || iv[C+7] || iv[C+8]), .a_i(kf_f),
+                .b_i(f24_neg(pa_q)), .y_o(am));
+  f24_add u_ae (.clk_i, .en_i(iv[C+1] || iv[C+2] || iv[C+7] || iv[C+8]), .a_i(kg_f),
+                .b_i(f24_neg(pa_q)), .y_o(ae));
   assign t0_d = cfg_i.policy.clip ? f24_max(F24_POS_ZERO, ap) : F24_POS_ZERO;
-  assign bad0 = !f24_is_finite(pu_q) || !f24_is_finite(md_q) || (pu_q[23] && !f24_is_zero(pu_q))
-             || (pu_q[22:16] > 7'd78);
-  // I(C+3): start >= W (H) when W - u0 (H - v0) is negative or +0 (exact or correctly rounded:
-  // never rounded to zero)
-  assign bad1 = bad3_q || bd[1][23] || (bd[1][22:0] == '0);
+  assign bad0 = !f24_is_finite(pu_q) || !f24_is_finite(md_q) || (pu_q[23] && !f24_is_zero(pu_q));
+  // I(C+3): start >= W (H) when W - u0 (H - v0) is negative or +0 (correctly rounded: a
+  // difference of a finite u0 and an integer is never rounded to zero)
+  assign bad1 = bad3_q || ae[23] || (ae[22:0] == '0);
 
   // I(C+2): the direction (written to the table and forwarded to I(C+3))
   f24_t      d2;
@@ -279,8 +277,8 @@ module traverse_setup
   f24_t      ma, mc;
   logic signed [IDX_W-1:0] ix;
   logic unused_sat_x;
-  f24_mul u_ma (.clk_i, .en_i(iv[C+3] || iv[C+9]), .a_i(bd[0]), .b_i(mi_q), .y_o(ma));
-  f24_mul u_mc (.clk_i, .en_i(iv[C+9]), .a_i(bd[1]), .b_i(mi_q), .y_o(mc));
+  f24_mul u_ma (.clk_i, .en_i(iv[C+3] || iv[C+9]), .a_i(am), .b_i(mi_q), .y_o(ma));
+  f24_mul u_mc (.clk_i, .en_i(iv[C+9]), .a_i(ae), .b_i(mi_q), .y_o(mc));
   f24_to_index #(.W(IDX_W)) u_ix (.clk_i, .en_i(iv[C+3] || iv[C+9]),
     .a_i(mvx_q ? ap : p0x_q), .idx_o(ix), .sat_o(unused_sat_x));
 

@@ -16,12 +16,7 @@
 //   trk_in_setup    while inside, the tracked ray's stage holds a ray and its id (the table
 //                   entry of stages T0 - T15, the output registers of T16 - T20): the invariant
 //                   that makes the induction step hold.
-// Data checks (simulation; formal/traverse_setup.sby cuts the float datapath and removes them):
-//   bdiff_range     the fixed-point boundary differences get operands in traverse_bdiff's range
-//                   (0 <= b < 2^16, u0 non-negative below 2^16) for every item of a ray the
-//                   checks do not flag invalid, but for b = -1 with the estimate c = -1 (an
-//                   edge of the cell left of the map, whose crossing time picks c - s or c + s
-//                   clipped to [-1, N]: c itself);
+// Data check (simulation; formal/traverse_setup.sby cuts the float datapath and removes it):
 //   t0_same_as_units  the start time (1 - H_root on the shared adder and multiplier, H_root by
 //                   a function) is the word of f24_from_unorm and f24_add(1, -H_root) beside
 //                   it, whenever a ray is inside after 4 idle clocks.
@@ -46,15 +41,7 @@ module traverse_setup_assert
   input logic [CODE_W-1:0]   root_code_i,  // cfg_i.root_code, .bits16, .policy.clip
   input logic                bits16_i,
   input logic                clip_i,
-  input f24_t                t0_i,         // t0_q
-  input logic                bd_first_i,   // an item in I(C+0), and its checks
-  input logic                bd_bad_i,
-  input logic                bd_second_i,  // an item in I(C+6), its ray's invalid flag and
-  input logic                bd_inv_i,     // estimate
-  input sidx_t               bd_est_i,
-  input logic signed [IDX_W-1:0] bd_kf_i,  // the operands: kf_q, kg_q, pu_q
-  input logic signed [IDX_W-1:0] bd_kg_i,
-  input f24_t                bd_u_i
+  input f24_t                t0_i          // t0_q
 );
 
   localparam int unsigned NS = SETUP_LAT;
@@ -112,13 +99,6 @@ module traverse_setup_assert
     end
   end
 
-  function automatic logic b_ok(input logic signed [IDX_W-1:0] b);
-    return b >= 0 && b < (IDX_W'(1) <<< 16);
-  endfunction
-  function automatic logic u_ok(input f24_t u);
-    return u[22:16] <= 7'd78 && (!u[23] || u[22:0] == '0);
-  endfunction
-
   // The reference start time: the units the first mode used before sharing.
   f24_t h8, h16, ref_t0;
   logic [2:0] idle_n_q;   // idle clocks in a row, up to 4
@@ -141,15 +121,6 @@ module traverse_setup_assert
 
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
-      bdiff_range: assert (!(bd_first_i && !bd_bad_i) || (b_ok(bd_kf_i) && b_ok(bd_kg_i)))
-        else $error("traverse_setup: boundary difference operands b %0d, %0d out of range",
-                    bd_kf_i, bd_kg_i);
-      bdiff_range_2: assert (!(bd_second_i && !bd_inv_i)
-                             || (u_ok(bd_u_i)
-                                 && (b_ok(bd_kf_i) || (bd_kf_i == -1 && bd_est_i == -1))
-                                 && (b_ok(bd_kg_i) || (bd_kg_i == -1 && bd_est_i == -1))))
-        else $error("traverse_setup: boundary difference operands b %0d, %0d, u0 %h, c %0d",
-                    bd_kf_i, bd_kg_i, bd_u_i, bd_est_i);
       t0_same_as_units: assert (idle_i || !t0_chk_q || t0_i == ref_t0_q)
         else $error("traverse_setup: t0 %h, f24_add(1, -f24_from_unorm(root)) gives %h", t0_i,
                     ref_t0_q);
@@ -168,7 +139,5 @@ bind traverse_setup traverse_setup_assert #(.ID_W(ID_W)) u_assert (
                 id_q[sl[12]], id_q[sl[13]], id_q[sl[14]], id_q[sl[15]], out_q[0].id,
                 out_q[1].id, out_q[2].id, out_q[3].id, out_q[4].id}),
   .idle_i, .root_code_i(cfg_i.root_code), .bits16_i(cfg_i.bits16), .clip_i(cfg_i.policy.clip),
-  .t0_i(t0_q), .bd_first_i(iv[C]), .bd_bad_i(bad0), .bd_second_i(iv[C+6]),
-  .bd_inv_i(invalid_q[v_q[C+6] ? sl[C+6] : sl[C+7]]), .bd_est_i(est_q[ss[6]]), .bd_kf_i(kf_q),
-  .bd_kg_i(kg_q), .bd_u_i(pu_q));
+  .t0_i(t0_q));
 `endif
