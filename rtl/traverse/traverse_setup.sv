@@ -34,8 +34,9 @@
 // unit's result (the same unit's for both operations: the boundary adders are fed by the same
 // conversions at both stages, the position adder by the same multiplier, the crossing-time
 // multipliers by the same boundary adders, the floor by the same position adder), or an operand
-// register that a select loads one clock before the unit reads it (kf_q, kg_q, md_q, mt_q,
-// pa_q, mi_q, mvx_q / p0x_q), never a select in front of a unit.
+// register that a select loads one clock before the unit reads it (kf_q, kg_q, pu_q, md_q, mt_q,
+// pa_q, mi_q, mvx_q / p0x_q), never a select in front of a unit.  The boundary adders [M], [E]
+// take 3 clocks (f24_add LAT 3, for the clock), their conversions a clock earlier.
 //
 // Stage schedule (T0 = the clock after in_valid_i; per-axis rows give the u item's stages, the v
 // item's are one later; "a -> b": a unit takes operands at Ia, result at Ib; [X] names the unit).
@@ -43,26 +44,27 @@
 // the rest of the first mode starts C = F24_DIV_LAT - 2 = 6 clocks later, at I6, so that 1/du is
 // in a register at I9 where the crossing time needs it.  Nothing before I8 depends on 1/du.
 //   I0  1/du (1/dv)                                             f24_div I0 -> I8
-//   I5  operand registers: the exit boundary of the map kb = du > 0 ? W : 0 [F] and W [G]
-//       (H, H for v), du and t0 [B], u0
+//   I4  operand registers: the exit boundary of the map kb = du > 0 ? W : 0 [F] and W [G]
+//       (H, H for v)
+//   I5  kb, W as floats                                         [F], [G] f24_from_int I5 -> I6
+//       operand registers: du and t0 [B], u0
 //   I6  checks: NaN / Inf field, negative start
-//       kb, W as floats                                         [F], [G] f24_from_int I6 -> I7
+//       kb - u0, W - u0                                         [M], [E] f24_add LAT 3 I6 -> I9
 //       du * t0                                                 [B] f24_mul I6 -> I7
-//   I7  kb - u0, W - u0                                         [M], [E] f24_add I7 -> I9
-//       u0 + du t0                                              [P] f24_add I7 -> I9
+//   I7  u0 + du t0                                              [P] f24_add I7 -> I9
 //   I8  sx = sign(du) if du != 0 and 1/du finite
 //   I9  u: the checks | u0 >= W (W - u0 <= 0) held; T10 (v): invalid = u's | v's
 //       (kb - u0) * (1/du)                                      [A] f24_mul I9 -> I10
 //       floor(position at t0) (u0 if sx = 0)                    [X] f24_to_index I9 -> I10
 //   I10 tmx (inf if sx = 0) held; locate estimate c = clip(floor, -1, N), its entry / exit
-//       boundary integers
+//       boundary integers (operand registers of [F], [G])
 //   T11 (v item in I10): t_map = min(tmx, ty); t_end = clip ? min(1, t_map) : 1
-//   I11 operand registers: entry and exit boundary [F], [G], du and t_end [B], u0
+//   I11 entry, exit boundary as floats                         [F], [G] f24_from_int I11 -> I12
+//       operand registers: du and t_end [B], u0
 //   T12 gone = t_map <= t0
-//   I12 entry, exit boundary as floats                         [F], [G] f24_from_int I12 -> I13
+//   I12 entry - u0, exit - u0                                   [M], [E] f24_add LAT 3 I12 -> I15
 //       du * t_end                                              [B] f24_mul I12 -> I13
-//   I13 entry - u0, exit - u0                                   [M], [E] f24_add I13 -> I15
-//       u0 + du t_end                                           [P] f24_add I13 -> I15
+//   I13 u0 + du t_end                                           [P] f24_add I13 -> I15
 //   I15 (boundary - u0) * (1/du): crossing times                [A], [C] f24_mul I15 -> I16
 //       floor(position at t_end) (u0 if sx = 0)                 [X] f24_to_index I15 -> I16
 //       locate's three candidates (the estimate, one cell back, one on; clipped to [-1, N])
@@ -157,7 +159,7 @@ module traverse_setup
                                               // end point
 
   logic [NS-1:0]   v_q;             // v_q[s]: stage Ts holds a ray
-  logic [NT-1:C-1] iv;              // iv[s]: item stage Is holds an item (u of Ts, v of T(s+1))
+  logic [NT-1:C-2] iv;              // iv[s]: item stage Is holds an item (u of Ts, v of T(s+1))
   slot_idx_t       ph_q;            // phase: stage s holds the entry (ph_q - s) mod NT
   slot_idx_t       sl [NT];         // sl[s] = (ph_q - s) mod NT, s = 0 .. NT-1
   slot_idx_t       ss [10];         // ss[k] = sl[C+k] (I(C+0) .. I(C+9))
@@ -167,7 +169,7 @@ module traverse_setup
       sl[s] = (ph_q >= SW'(s)) ? ph_q - SW'(s) : ph_q + SW'(NT - s);
     end
     for (int k = 0; k < 10; k++) ss[k] = sl[C+k];
-    for (int s = C - 1; s < NT; s++) iv[s] = v_q[s] || v_q[s+1];
+    for (int s = C - 2; s < NT; s++) iv[s] = v_q[s] || v_q[s+1];
   end
 
   // A ray enters at phase 3 (mod 4), so that it is in T0 at phase 0 and owns an entry that is a
@@ -214,24 +216,24 @@ module traverse_setup
   // for their first operation (I(C+k-1)) or their second (I(C+k+5)): never in one clock, as
   // rays are a multiple of 4 clocks apart.
   f24_t      div_b_q;                       // I0: du, then dv (from the input)
-  f24_t      pu_q;                          // I(C+0), I(C+6): u0 (for pa_q, and the checks)
-  logic [IDX_W-1:0] kf_q;                   // [F] I(C+0): kb; I(C+6): the entry boundary
-  logic [IDX_W-1:0] kg_q;                   // [G] I(C+0): W / H; I(C+6): the exit boundary
+  f24_t      pu_q;                          // [M] [E] I(C+0), I(C+6): u0 (and the checks)
+  logic [IDX_W-1:0] kf_q;                   // [F] I(C-1): kb; I(C+5): the entry boundary
+  logic [IDX_W-1:0] kg_q;                   // [G] I(C-1): W / H; I(C+5): the exit boundary
   f24_t      md_q;                          // [B] I(C+0), I(C+6): du (1 while idle)
   f24_t      mt_q;                          // [B] I(C+0): t0; I(C+6), I(C+7): t_end (1 idle)
-  f24_t      pa_q;                          // [M] [E] [P] I(C+1), I(C+7): u0 (-H_root idle)
+  f24_t      pa_q;                          // [P] I(C+1), I(C+7): u0 (-H_root while idle)
   logic      bad2_q, bad3_q;                // I(C+2), I(C+3): bad_q passed on
   f24_t      mi_q;                          // [A] [C] I(C+3), I(C+9): 1/du
   logic      mvx_q;                         // [X] I(C+3), I(C+9): the axis moves
   f24_t      p0x_q;                         // [X] I(C+3), I(C+9): u0
   dir_t      dir3_q, dir4_q;                // I(C+3), I(C+4)
-  logic [IDX_W-1:0] kben_q, kbex_q;         // I(C+5): computed in I(C+4)
   // locate's candidates: one cell back, the estimate, one cell on (each clipped to [-1, N]).
   typedef struct packed {
     sidx_t back, est, fwd;
   } cand_t;
   cand_t     loc10_q;                       // I(C+10): computed in I(C+9)
   f24_t      d_r;                           // the table read for I(C+0)
+  f24_t      d_r2;                          // the table read for I(C-1)
 
   // ---- float units ---------------------------------------------------------------------------
   // I0: the reciprocal; the divider advances while an item is in it (I0 .. I(F24_DIV_LAT-1),
@@ -240,10 +242,10 @@ module traverse_setup
   f24_div #(.LAT(F24_DIV_LAT)) u_inv (.clk_i, .en_i(|v_q[F24_DIV_LAT:0]), .a_i(F24_ONE),
                                       .b_i(div_b_q), .y_o(inv));
 
-  // [F] kb, the entry boundary; [G] W (H), the exit boundary (I(C+0), I(C+6)) as floats
+  // [F] kb, the entry boundary; [G] W (H), the exit boundary (I(C-1), I(C+5)) as floats
   f24_t      kf_f, kg_f;
-  f24_from_int #(.W(IDX_W)) u_kf (.clk_i, .en_i(iv[C] || iv[C+6]), .k_i(kf_q), .y_o(kf_f));
-  f24_from_int #(.W(IDX_W)) u_kg (.clk_i, .en_i(iv[C] || iv[C+6]), .k_i(kg_q), .y_o(kg_f));
+  f24_from_int #(.W(IDX_W)) u_kf (.clk_i, .en_i(iv[C-1] || iv[C+5]), .k_i(kf_q), .y_o(kf_f));
+  f24_from_int #(.W(IDX_W)) u_kg (.clk_i, .en_i(iv[C-1] || iv[C+5]), .k_i(kg_q), .y_o(kg_f));
   // [B] du * t0 (I(C+0)), du * t_end (I(C+6)); 1 * 1 while idle
   f24_t      mb;
   f24_mul u_mb (.clk_i, .en_i(iv[C] || iv[C+6] || idle_i), .a_i(md_q), .b_i(mt_q), .y_o(mb));
@@ -254,12 +256,15 @@ module traverse_setup
   logic      bad1;                    // all of its checks: bad0, start >= W / H
   f24_add u_ap (.clk_i, .en_i(iv[C+1] || iv[C+2] || iv[C+7] || iv[C+8] || idle_i), .a_i(pa_q),
                 .b_i(mb), .y_o(ap));
-  // [M] kb - u0 (I(C+1)), entry - u0 (I(C+7)); [E] W - u0 (H - v0) (I(C+1)), exit - u0 (I(C+7))
+  // [M] kb - u0 (I(C+0)), entry - u0 (I(C+6)); [E] W - u0 (H - v0) (I(C+0)), exit - u0
+  // (I(C+6)); 3 clocks (f24_add LAT 3: the alignment's sticky bits and the sum in two stages)
   f24_t      am, ae;
-  f24_add u_am (.clk_i, .en_i(iv[C+1] || iv[C+2] || iv[C+7] || iv[C+8]), .a_i(kf_f),
-                .b_i(f24_neg(pa_q)), .y_o(am));
-  f24_add u_ae (.clk_i, .en_i(iv[C+1] || iv[C+2] || iv[C+7] || iv[C+8]), .a_i(kg_f),
-                .b_i(f24_neg(pa_q)), .y_o(ae));
+  f24_add #(.LAT(3)) u_am (.clk_i,
+    .en_i(iv[C] || iv[C+1] || iv[C+2] || iv[C+6] || iv[C+7] || iv[C+8]), .a_i(kf_f),
+    .b_i(f24_neg(pu_q)), .y_o(am));
+  f24_add #(.LAT(3)) u_ae (.clk_i,
+    .en_i(iv[C] || iv[C+1] || iv[C+2] || iv[C+6] || iv[C+7] || iv[C+8]), .a_i(kg_f),
+    .b_i(f24_neg(pu_q)), .y_o(ae));
   assign t0_d = cfg_i.policy.clip ? f24_max(F24_POS_ZERO, ap) : F24_POS_ZERO;
   assign bad0 = !f24_is_finite(pu_q) || !f24_is_finite(md_q) || (pu_q[23] && !f24_is_zero(pu_q));
   // I(C+3): start >= W (H) when W - u0 (H - v0) is negative or +0 (correctly rounded: a
@@ -320,7 +325,8 @@ module traverse_setup
   assign c0_10 = correct(loc10_q, f24_ord(ma), f24_ord(mc), ot0);
 
   // The registered reads, the operand registers and the per-item registers.
-  assign d_r = d_q[sl[C-1]];
+  assign d_r  = d_q[sl[C-1]];
+  assign d_r2 = d_q[sl[C-2]];
   always_ff @(posedge clk_i) begin
     if (in_valid_i) begin
       v0_h_q <= in_v0_i;
@@ -330,17 +336,22 @@ module traverse_setup
     // I(C-1) (first operations) / I(C+5) (second operations); constants for t0 while idle
     if (iv[C+5]) begin
       pu_q <= p0_q[ss[5]];
-      kf_q <= kben_q;
-      kg_q <= kbex_q;
       md_q <= d_q[ss[5]];
     end else if (iv[C-1]) begin
       pu_q <= p0_q[sl[C-1]];
-      kf_q <= (!d_r[23] && !f24_is_zero(d_r)) ? IDX_W'(v_q[C] ? cfg_i.height : cfg_i.width)
-                                               : '0;
-      kg_q <= IDX_W'(v_q[C] ? cfg_i.height : cfg_i.width);
       md_q <= d_r;
     end else if (idle_i) begin
       md_q <= F24_ONE;
+    end
+    // I(C-2) / I(C+4): the boundaries for [F] and [G] (the estimate's entry and exit from the
+    // floor this clock)
+    if (iv[C+4]) begin
+      kf_q <= IDX_W'(est4 + sidx_t'(dir4_q.mv && dir4_q.neg));
+      kg_q <= IDX_W'(est4 + sidx_t'(dir4_q.mv && !dir4_q.neg));
+    end else if (iv[C-2]) begin
+      kf_q <= (!d_r2[23] && !f24_is_zero(d_r2)) ? IDX_W'(v_q[C-1] ? cfg_i.height : cfg_i.width)
+                                                 : '0;
+      kg_q <= IDX_W'(v_q[C-1] ? cfg_i.height : cfg_i.width);
     end
     // t0 for I(C+0) (loaded in the clocks of I(C-1)), t_end for both items of I(C+6) (loaded
     // in T(C+5), where the v item's time arrives)
@@ -368,10 +379,6 @@ module traverse_setup
     if (iv[C+3]) dir4_q <= dir3_q;
     if (v_q[C+4]) tmx_q <= tm4;
     if (v_q[C+5]) t_map6_q <= t_map5;
-    if (iv[C+4]) begin
-      kben_q <= IDX_W'(est4 + sidx_t'(dir4_q.mv && dir4_q.neg));
-      kbex_q <= IDX_W'(est4 + sidx_t'(dir4_q.mv && !dir4_q.neg));
-    end
     if (iv[C+9]) loc10_q <= candidates(est_q[ss[9]], dir_q[ss[9]], -sidx_t'(1), size_s);
     if (v_q[C+10]) begin
       c0x_q   <= c0_10;
