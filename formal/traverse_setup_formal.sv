@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // traverse_setup_formal: the traverse unit's setup pipeline (traverse_setup) under SymbiYosys
 // (formal/traverse_setup.sby), for its ray ids: the properties are the bound
-// traverse_setup_assert's (setup_id_order, trk_in_setup, ray_spacing) and the wrapper's
+// traverse_setup_assert's (setup_id_order, trk_in_setup, ray_phase, ray_spacing) and the wrapper's
 //   out_when_in  a ray comes out exactly SETUP_LAT clocks after a ray went in (none lost, none
 //                made up).
 // The float datapath is cut: the script makes the ray setup computes (out_ray_o) a free value,
 // so the id path is proven alone, whatever the arithmetic.  Free: the rays (ids, fields), the
-// configuration, idle_i.  Assumed: no ray in the clock after one (ray_spacing, the unit's
+// configuration, idle_i.  Assumed: a ray only while in_ready_o (ray_phase, the unit's
 // admission), reset in the first clock and at any time after.
 module traverse_setup_formal
   import f24_pkg::*;
@@ -26,6 +26,7 @@ module traverse_setup_formal
   input f24_t            in_dv_i
 );
 
+  logic                    in_ready;
   logic                    out_valid;
   logic [ID_W-1:0]         out_id;
   ray_t                    out_ray;
@@ -33,7 +34,8 @@ module traverse_setup_formal
 
   traverse_setup #(.ID_W(ID_W)) u_dut (
     .clk_i, .rst_ni, .cfg_i, .idle_i, .in_valid_i, .in_id_i, .in_u0_i, .in_v0_i, .in_du_i,
-    .in_dv_i, .out_valid_o(out_valid), .out_id_o(out_id), .out_ray_o(out_ray), .busy_o(busy));
+    .in_dv_i, .in_ready_o(in_ready), .out_valid_o(out_valid), .out_id_o(out_id),
+    .out_ray_o(out_ray), .busy_o(busy));
 
   logic started_q = 1'b0;   // 0 in the first clock only
   always_ff @(posedge clk_i) started_q <= 1'b1;
@@ -47,7 +49,7 @@ module traverse_setup_formal
 
   always_comb begin
     if (!started_q) assume (!rst_ni);   // (a reset may come again at any time)
-    assume (!in_valid_i || !u_dut.v_q[0]);
+    assume (!in_valid_i || in_ready);
   end
 
   always_ff @(posedge clk_i) begin
@@ -55,7 +57,7 @@ module traverse_setup_formal
       out_when_in: assert (out_valid == in_q[SETUP_LAT-1] && u_dut.v_q == in_q
                            && 32'(busy) == 32'($countones(in_q)));
       c_out:       cover (out_valid && u_dut.u_assert.trk_out);
-      c_busy:      cover (busy == SETUP_BUSY_W'(SETUP_LAT / 2));
+      c_busy:      cover (busy == SETUP_BUSY_W'(SETUP_LAT / 4));  // rays 4 clocks apart
     end
   end
 

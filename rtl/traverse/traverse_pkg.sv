@@ -26,9 +26,9 @@ package traverse_pkg;
   // Stages of traverse_loop's ring (one ray slot each): one pass = one iteration = LOOP_DEPTH
   // clocks.
   localparam int unsigned LOOP_DEPTH = 19;
-  // traverse_setup: the reciprocals (f24_div, F24_DIV_LAT clocks), then 12 more stages (its
+  // traverse_setup: the reciprocals (f24_div, F24_DIV_LAT clocks), then 13 more stages (its
   // header); busy_o counts the rays in it, 0 .. SETUP_LAT.
-  localparam int unsigned SETUP_LAT    = F24_DIV_LAT + 12;  // 20
+  localparam int unsigned SETUP_LAT    = F24_DIV_LAT + 13;  // 21
   localparam int unsigned SETUP_BUSY_W = $clog2(SETUP_LAT + 1);
 
   localparam f24_t F24_POS_ZERO = 24'h000000;

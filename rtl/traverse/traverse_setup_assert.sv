@@ -4,28 +4,44 @@
 // (formal/traverse_setup.sby, the float datapath cut; docs/formal.md).  Immediate assertions in
 // a clocked block, in the form the formal flow's front end (Yosys read_slang) accepts.
 //
-//   ray_spacing     u and v share the float units a clock apart: no ray in the clock after one
-//                   (the user's obligation);
+//   ray_phase       a ray enters only while in_ready_o (the user's obligation), so that any two
+//                   rays are a multiple of 4 clocks apart (the float units are shared over 4
+//                   clocks: u and v a clock apart, two operations of an axis 6 stages apart);
+//   ray_spacing     no ray in the 3 clocks after one (what ray_phase implies, checked on its own);
+//   ray_phase_of_stage  a ray in stage Ts only at phase s mod 4 (the induction invariant of
+//                   ray_spacing);
 //   setup_id_order  a tracked ray (formal: any ray, picked freely; simulation: every ray that
 //                   enters while none is tracked) comes out SETUP_LAT clocks after it entered,
 //                   with its id: the pipeline neither loses, duplicates nor swaps ids;
 //   trk_in_setup    while inside, the tracked ray's stage holds a ray and its id (the table
-//                   entry of stages T0 - T15, the output registers of T16 - T19): the invariant
+//                   entry of stages T0 - T15, the output registers of T16 - T20): the invariant
 //                   that makes the induction step hold.
+// Data check (simulation; formal/traverse_setup.sby cuts the float datapath and removes it):
+//   t0_same_as_units  the start time (1 - H_root on the shared adder and multiplier, H_root by
+//                   a function) is the word of f24_from_unorm and f24_add(1, -H_root) beside
+//                   it, whenever a ray is inside after 4 idle clocks.
 `ifndef SYNTHESIS
 module traverse_setup_assert
+  import f24_pkg::*;
   import traverse_pkg::*;
 #(
   parameter int unsigned ID_W = 16   // traverse_setup's ID_W
 ) (
   input logic                clk_i,
   input logic                rst_ni,
+  input logic                in_ready_i,       // traverse_setup's in_ready_o
   input logic                in_valid_i,
   input logic [ID_W-1:0]     in_id_i,
   input logic [SETUP_LAT-1:0] v_i,        // traverse_setup's v_q: stage Ts holds a ray
   input logic                out_valid_i,
   input logic [ID_W-1:0]     out_id_i,
-  input logic [ID_W-1:0]     stage_id_i [SETUP_LAT]  // the id each stage holds (see the bind)
+  input logic [ID_W-1:0]     stage_id_i [SETUP_LAT], // the id each stage holds (see the bind)
+  input logic [1:0]          ph_i,         // traverse_setup's phase (ph_q mod 4)
+  input logic                idle_i,
+  input logic [CODE_W-1:0]   root_code_i,  // cfg_i.root_code, .bits16, .policy.clip
+  input logic                bits16_i,
+  input logic                clip_i,
+  input f24_t                t0_i          // t0_q
 );
 
   localparam int unsigned NS = SETUP_LAT;
@@ -56,10 +72,23 @@ module traverse_setup_assert
     end
   end
 
+  // A ray in stage Ts: the phase is s mod 4 (the invariant that makes ray_spacing inductive).
+  logic phase_ok;
+  always_comb begin
+    phase_ok = 1'b1;
+    for (int s = 0; s < NS; s++) begin
+      if (v_i[s] && ph_i != 2'(s)) phase_ok = 1'b0;
+    end
+  end
+
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
-      ray_spacing: assert (!in_valid_i || !v_i[0])
-        else $error("traverse_setup: rays on two consecutive clocks");
+      ray_phase: assert (!in_valid_i || in_ready_i)
+        else $error("traverse_setup: a ray entered while in_ready_o = 0");
+      ray_spacing: assert (!in_valid_i || v_i[2:0] == '0)
+        else $error("traverse_setup: a ray less than 4 clocks after the one before");
+      ray_phase_of_stage: assert (phase_ok)
+        else $error("traverse_setup: a ray in a stage off the phase");
       setup_id_order: assert (!trk_out || (out_valid_i && out_id_i == trk_id_q))
         else $error("traverse_setup: ray id %0d due out, out_valid %0d id %0d", trk_id_q,
                     out_valid_i, out_id_i);
@@ -70,15 +99,45 @@ module traverse_setup_assert
     end
   end
 
+  // The reference start time: the units the first mode used before sharing.
+  f24_t h8, h16, ref_t0;
+  logic [2:0] idle_n_q;   // idle clocks in a row, up to 4
+  logic       t0_chk_q;   // the unit was idle 4 clocks before the ray now inside
+  f24_from_unorm #(.W(8))  u_ref_h8  (.clk_i, .en_i(idle_i), .k_i(root_code_i[7:0]), .y_o(h8));
+  f24_from_unorm #(.W(16)) u_ref_h16 (.clk_i, .en_i(idle_i), .k_i(root_code_i), .y_o(h16));
+  f24_add u_ref_plane (.clk_i, .en_i(idle_i), .a_i(F24_ONE), .b_i(f24_neg(bits16_i ? h16 : h8)),
+                       .y_o(ref_t0));
+  f24_t ref_t0_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      idle_n_q <= '0;
+      t0_chk_q <= 1'b0;
+    end else begin
+      idle_n_q <= !idle_i ? '0 : (idle_n_q == 3'd4) ? idle_n_q : idle_n_q + 3'd1;
+      if (idle_i) t0_chk_q <= (idle_n_q == 3'd4);
+    end
+    if (idle_i) ref_t0_q <= clip_i ? f24_max(F24_POS_ZERO, ref_t0) : F24_POS_ZERO;
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (rst_ni) begin
+      t0_same_as_units: assert (idle_i || !t0_chk_q || t0_i == ref_t0_q)
+        else $error("traverse_setup: t0 %h, f24_add(1, -f24_from_unorm(root)) gives %h", t0_i,
+                    ref_t0_q);
+    end
+  end
+
 endmodule
 
 // stage_id_i: stages T0 - T15 read their entry of the id table (sl[s]: the stage's entry),
-// T16 - T19 the output registers out_q[0] - out_q[3].
+// T16 - T20 the output registers out_q[0] - out_q[4].
 bind traverse_setup traverse_setup_assert #(.ID_W(ID_W)) u_assert (
-  .clk_i, .rst_ni, .in_valid_i, .in_id_i, .v_i(v_q), .out_valid_i(out_valid_o),
-  .out_id_i(out_id_o),
+  .clk_i, .rst_ni, .ph_i(ph_q[1:0]), .in_ready_i(in_ready_o), .in_valid_i, .in_id_i, .v_i(v_q),
+  .out_valid_i(out_valid_o), .out_id_i(out_id_o),
   .stage_id_i('{id_q[sl[0]], id_q[sl[1]], id_q[sl[2]], id_q[sl[3]], id_q[sl[4]], id_q[sl[5]],
                 id_q[sl[6]], id_q[sl[7]], id_q[sl[8]], id_q[sl[9]], id_q[sl[10]], id_q[sl[11]],
                 id_q[sl[12]], id_q[sl[13]], id_q[sl[14]], id_q[sl[15]], out_q[0].id,
-                out_q[1].id, out_q[2].id, out_q[3].id}));
+                out_q[1].id, out_q[2].id, out_q[3].id, out_q[4].id}),
+  .idle_i, .root_code_i(cfg_i.root_code), .bits16_i(cfg_i.bits16), .clip_i(cfg_i.policy.clip),
+  .t0_i(t0_q));
 `endif

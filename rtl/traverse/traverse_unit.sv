@@ -2,16 +2,17 @@
 // traverse_unit: ray / height-field intersection through the max-mipmap pyramid, bit-exact with
 // model.traverse.trace(pyr, rays, method, "f24") (hit, t, u, v, invalid, iterations).
 //
-//   ray stream -> traverse_setup (first mode, SETUP_LAT = 20 stages) -> setup FIFO
+//   ray stream -> traverse_setup (first mode, SETUP_LAT = 21 stages) -> setup FIFO
 //              -> traverse_loop (second mode, 19-slot ring, one height lookup per pass)
 //              -> result FIFO -> result stream (rays leave in completion order, not input order)
 //
 // Flow control (valid never depends on ready):
 //   - ray_ready_o: a credit counter covers setup and the setup FIFO (SETUP_FIFO_DEPTH rays), so
-//     the setup pipeline never stalls and its FIFO never overflows.  It is also 0 in the clock
-//     after a ray is taken: traverse_setup computes a ray's u and v axes on one set of float
-//     units in consecutive clocks, so it takes a ray every other clock at most (far above what
-//     the loop finishes: a ray takes several passes of the 19-slot ring).
+//     the setup pipeline never stalls and its FIFO never overflows.  It is also 0 in three
+//     clocks of every four (traverse_setup's in_ready_o, a free-running phase): traverse_setup
+//     shares its float units over 4 clocks, so it takes a ray every 4th clock at most (above
+//     what the loop finishes: a ray takes several passes of the 19-slot ring, and the back end
+//     takes a hit every 4th clock at most).
 //   - The loop takes a new ray only into an empty slot at its entry (re-circulating rays first).
 //   - Result back-pressure never loses a ray: a finished ray leaves the ring only when the result
 //     FIFO has room, otherwise it keeps circulating (no lookups) and tries again a pass later; an
@@ -33,7 +34,7 @@ module traverse_unit
   import traverse_pkg::*;
 #(
   parameter int unsigned ID_W             = 16,
-  parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > SETUP_LAT (20)
+  parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > SETUP_LAT (21)
   parameter int unsigned RES_FIFO_DEPTH   = 16,  // power of two
   parameter int unsigned CNT_W            = 32,  // statistics counters
   parameter bit          XOR_PATH         = 1'b1 // 0: no XOR descent path (traverse_loop)
@@ -110,16 +111,14 @@ module traverse_unit
   logic in_fire, out_fire;
   logic [SF_AW:0] sf_used_q;  // rays in setup and in the setup FIFO
   logic           sf_pop;
-  logic           in_fire_q;  // a ray was taken in the clock before
-  assign ray_ready_o = (sf_used_q < (SF_AW+1)'(SETUP_FIFO_DEPTH)) && !in_fire_q;
+  logic           su_in_ready;  // traverse_setup's phase: one clock in four
+  assign ray_ready_o = (sf_used_q < (SF_AW+1)'(SETUP_FIFO_DEPTH)) && su_in_ready;
   assign in_fire     = ray_valid_i && ray_ready_o;
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       sf_used_q <= '0;
-      in_fire_q <= 1'b0;
     end else begin
       sf_used_q <= sf_used_q + (SF_AW+1)'(in_fire) - (SF_AW+1)'(sf_pop);
-      in_fire_q <= in_fire;
     end
   end
 
@@ -129,7 +128,7 @@ module traverse_unit
   ray_t            su_ray;
   logic [SETUP_BUSY_W-1:0] su_busy;
   traverse_setup #(.ID_W(ID_W)) u_setup (
-    .clk_i, .rst_ni, .cfg_i(cfg), .idle_i(idle_o),
+    .clk_i, .rst_ni, .cfg_i(cfg), .idle_i(idle_o), .in_ready_o(su_in_ready),
     .in_valid_i(in_fire), .in_id_i(ray_id_i), .in_u0_i(ray_u0_i), .in_v0_i(ray_v0_i),
     .in_du_i(ray_du_i), .in_dv_i(ray_dv_i),
     .out_valid_o(su_valid), .out_id_o(su_id), .out_ray_o(su_ray), .busy_o(su_busy)

@@ -28,7 +28,7 @@ MAX_LEVELS, DIM_W, ITER_W, ADDR_W = sv_params.values("traverse_pkg", "MAX_LEVELS
 #: Clocks from a lookup request to its response (traverse_pkg::LOOKUP_LAT).
 LOOKUP_LAT = sv_params.value("traverse_pkg", "LOOKUP_LAT")
 #: Stages of the loop ring (one ray slot each; traverse_pkg::LOOP_DEPTH) and of the setup pipeline
-#: (traverse_pkg::SETUP_LAT: the pipelined divider's f24_pkg::F24_DIV_LAT clocks, then 12 more).
+#: (traverse_pkg::SETUP_LAT: the pipelined divider's f24_pkg::F24_DIV_LAT clocks, then 13 more).
 LOOP_DEPTH = sv_params.value("traverse_pkg", "LOOP_DEPTH")
 SETUP_DEPTH = sv_params.value("traverse_pkg", "SETUP_LAT")
 
