@@ -24,8 +24,7 @@
 //             clock after its commit, never in the clock of a write's answer (rd_ack_next,
 //             ack_one); a response is shown exactly when one is owed and answered, B only for
 //             a write, R only for a read (resp_shown, b_for_write, r_for_read); B / R held
-//             with stable payload until READY (b_stable,
-//             r_stable); every response OKAY (bresp_okay, rresp_okay: the block has no error
+//             with stable payload until READY (b_stable, r_stable); every response OKAY (bresp_okay, rresp_okay: the block has no error
 //             response; writes to read-only or unmapped addresses are ignored, answered OKAY).
 //   writes    a reference copy ("shadow") of a representative set of registers (tracked below:
 //             full-width and multi-field RW registers with reserved bits, f24 words, array
