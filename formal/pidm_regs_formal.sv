@@ -10,14 +10,21 @@
 //
 // A request takes effect when the generated block's AXI front end hands it to the register core
 // (its cpuif request, `commit` below); the wrapper keeps its own copy of every accepted AW, W and
-// AR (the block holds at most one of each) and of the responses owed (at most two: the block's
-// response buffer), and proves:
+// AR (the block holds at most one of each) and of the responses owed (at most three: the
+// block's response buffer of three entries, whose pointers wrap at 3).  The block's read path
+// is retimed (peakrdl-regblock --rt-read-fanin): the register core samples the read value in
+// the commit clock and answers (cpuif_rd_ack) one clock later; a write is never committed in
+// the clock after a read (the generated front end stalls it one clock, so that the write's
+// answer, given in its commit clock, does not meet the read's).  The wrapper proves:
 //   protocol  every AW+W pair and every AR is committed once, with its address, data and
-//             strobes (wr_commit_*, rd_commit_*), within a clock of being ready unless two
-//             responses are owed (commit_when_room, wr_no_starve, rd_no_starve); a response is
-//             shown exactly when one is owed, B only for a write, R only for a read (resp_shown,
-//             b_for_write, r_for_read); B / R held with stable payload until READY (b_stable,
-//             r_stable); every response OKAY (bresp_okay, rresp_okay: the block has no error
+//             strobes (wr_commit_*, rd_commit_*), in the clock it is ready unless three
+//             responses are owed or, for a write, the clock before committed a read
+//             (commit_when_room); a waiting write commits within three clocks with room, a
+//             waiting read within three (wr_no_starve, rd_no_starve); a read is answered the
+//             clock after its commit, never in the clock of a write's answer (rd_ack_next,
+//             ack_one); a response is shown exactly when one is owed and answered, B only for
+//             a write, R only for a read (resp_shown, b_for_write, r_for_read); B / R held
+//             with stable payload until READY (b_stable, r_stable); every response OKAY (bresp_okay, rresp_okay: the block has no error
 //             response; writes to read-only or unmapped addresses are ignored, answered OKAY).
 //   writes    a reference copy ("shadow") of a representative set of registers (tracked below:
 //             full-width and multi-field RW registers with reserved bits, f24 words, array
@@ -31,8 +38,10 @@
 //             (hwif_out, or the block's storage where the field has no hardware output) equal
 //             their shadow (field_match): writes to the other addresses leave them alone.
 //   reads     a read of a tracked register returns its shadow (reserved bits 0), of ID / VERSION
-//             / HWCFG / STATUS / PROGRESS / a STATS word its value, of an unmapped word 0
-//             (rd_value when the block reads, rdata_match when R carries it).
+//             / HWCFG / STATUS / PROGRESS / a STATS word its value, of an unmapped word 0, all
+//             as they were in the commit clock (the expected value is captured then; rd_value
+//             checks it when the block answers, one clock later; rdata_match when R carries
+//             it).
 //   others    TT_WRITE's swmod strobe exactly in the clock of a write with a data strobe
 //             (tt_swmod); the interrupt line is OR(INTR_STATE & INTR_ENABLE) (intr_line); an
 //             INTR_TEST pulse sets INTR_STATE unless software writes INTR_STATE in that clock
@@ -251,32 +260,49 @@ module pidm_regs_formal (
     end
   end
 
-  // Responses owed, oldest first: a write's B or a read's R with the data it must carry.
-  logic [1:0]  rq_cnt;
-  logic        rq_rp;                     // the oldest entry
-  logic        rq_wr  [2];
-  logic        rq_chk [2];                // a read whose data is known (exp)
-  logic [31:0] rq_exp [2];
+  // Responses owed, oldest first: a write's B or a read's R with the data it must carry.  Three
+  // entries, indexed as the block's response buffer: 0, 1, 2, then 0 again.
+  function automatic logic [1:0] idx3(logic [1:0] b, logic [2:0] k);   // (b + k) mod 3
+    logic [3:0] t;
+    t = 4'(b) + 4'(k);
+    if (t >= 4'd6) t = t - 4'd6;
+    else if (t >= 4'd3) t = t - 4'd3;
+    return t[1:0];
+  endfunction
+
+  logic [2:0]  rq_cnt;                    // responses owed (committed, not yet taken by B / R)
+  logic [1:0]  rq_rp;                     // the oldest entry
+  logic [1:0]  rq_wp;                     // the next free entry
+  logic [1:0]  rq_new;                    // the newest entry
+  logic        rq_wr  [3];
+  logic        rq_chk [3];                // a read whose data is known (exp)
+  logic [31:0] rq_exp [3];
   logic        rq_push, rq_pop;
   logic        rq_push_chk;
   logic [31:0] rq_push_exp;
   logic        rq_head_wr;
+  logic        rd_commit_q;               // a read committed in the clock before: not answered yet
+  logic [2:0]  rq_ans;                    // responses owed and answered (in the block's buffer)
   assign rq_push    = wr_commit || rd_commit;
   assign rq_pop     = b_hs || r_hs;
+  assign rq_wp      = idx3(rq_rp, rq_cnt);
+  assign rq_new     = idx3(rq_rp, rq_cnt + 3'd2);   // rq_cnt - 1 (mod 3)
   assign rq_head_wr = rq_wr[rq_rp];
+  assign rq_ans     = rq_cnt - 3'(rd_commit_q);
 
   always_ff @(posedge clk_i) begin
+    rd_commit_q <= rd_commit;
     if (!rst_ni) begin
       rq_cnt <= '0;
-      rq_rp  <= 1'b0;
+      rq_rp  <= '0;
     end else begin
       if (rq_push) begin
-        rq_wr[rq_rp ^ rq_cnt[0]]  <= wr_commit;
-        rq_chk[rq_rp ^ rq_cnt[0]] <= rd_commit && rq_push_chk;
-        rq_exp[rq_rp ^ rq_cnt[0]] <= rq_push_exp;
+        rq_wr[rq_wp]  <= wr_commit;
+        rq_chk[rq_wp] <= rd_commit && rq_push_chk;
+        rq_exp[rq_wp] <= rq_push_exp;
       end
-      rq_cnt <= rq_cnt + 2'(rq_push) - 2'(rq_pop);
-      if (rq_pop) rq_rp <= !rq_rp;
+      rq_cnt <= rq_cnt + 3'(rq_push) - 3'(rq_pop);
+      if (rq_pop) rq_rp <= idx3(rq_rp, 3'd1);
     end
   end
 
@@ -459,8 +485,8 @@ module pidm_regs_formal (
       wr_wait_q <= '0;
       rd_wait_q <= '0;
     end else begin
-      wr_wait_q <= (aw_p && w_p && rq_cnt < 2'd2 && !wr_commit) ? wr_wait_q + 2'(wr_wait_q != 2'd3) : '0;
-      rd_wait_q <= (ar_p && rq_cnt < 2'd2 && !rd_commit) ? rd_wait_q + 2'(rd_wait_q != 2'd3) : '0;
+      wr_wait_q <= (aw_p && w_p && rq_cnt < 3'd3 && !wr_commit) ? wr_wait_q + 2'(wr_wait_q != 2'd3) : '0;
+      rd_wait_q <= (ar_p && rq_cnt < 3'd3 && !rd_commit) ? rd_wait_q + 2'(rd_wait_q != 2'd3) : '0;
     end
   end
 
@@ -478,8 +504,25 @@ module pidm_regs_formal (
     rdata_q  <= rdata;
   end
 
-  logic [1:0] dut_pending;   // responses in the block's buffer
-  assign dut_pending = u_dut.axil_resp_wptr - u_dut.axil_resp_rptr;
+  // Responses in the block's buffer: its pointers are {lap, index 0..2}.
+  logic [2:0] dut_pending;
+  assign dut_pending = (u_dut.axil_resp_wptr[2] == u_dut.axil_resp_rptr[2])
+                       ? 3'(u_dut.axil_resp_wptr[1:0]) - 3'(u_dut.axil_resp_rptr[1:0])
+                       : 3'd3 + 3'(u_dut.axil_resp_wptr[1:0]) - 3'(u_dut.axil_resp_rptr[1:0]);
+
+  // The answered entries of the wrapper's queue are the block's buffer entries.
+  logic entries_match;
+  always_comb begin
+    entries_match = 1'b1;
+    for (int unsigned k = 0; k < 3; k++) begin
+      logic [1:0] e;
+      e = idx3(rq_rp, 3'(k));
+      if (3'(k) < rq_ans
+          && !(u_dut.axil_resp_buffer_is_wr[e] == rq_wr[e] && !u_dut.axil_resp_buffer_err[e]
+               && (!rq_chk[e] || (!rq_wr[e] && u_dut.axil_resp_buffer_rdata[e] == rq_exp[e]))))
+        entries_match = 1'b0;
+    end
+  end
 
   logic wr_commit_q, intr_q;   // for the covers
   always_ff @(posedge clk_i) begin
@@ -495,42 +538,46 @@ module pidm_regs_formal (
       aw_one:        assert (!(aw_hs && aw_p && !wr_commit));
       w_one:         assert (!(w_hs && w_p && !wr_commit));
       ar_one:        assert (!(ar_hs && ar_p && !rd_commit));
-      wr_commit_req: assert (!wr_commit || (aw_p && w_p && rq_cnt < 2'd2));
+      wr_commit_req: assert (!wr_commit || (aw_p && w_p && rq_cnt < 3'd3 && !rd_commit_q));
       wr_commit_fields: assert (!wr_commit || (u_dut.cpuif_addr == {aw_addr[11:2], 2'b00}
                                 && u_dut.cpuif_wr_data == w_data && u_dut.cpuif_wr_biten == w_biten));
-      rd_commit_req: assert (!rd_commit || (ar_p && rq_cnt < 2'd2));
+      rd_commit_req: assert (!rd_commit || (ar_p && rq_cnt < 3'd3));
       rd_commit_addr: assert (!rd_commit || u_dut.cpuif_addr == {ar_addr[11:2], 2'b00});
-      commit_when_room: assert (!(((aw_p && w_p) || ar_p) && rq_cnt < 2'd2)
-                                || wr_commit || rd_commit);
-      wr_no_starve:  assert (wr_wait_q == 2'd0 || (wr_wait_q == 2'd1 && u_dut.axil_prev_was_rd));
-      rd_no_starve:  assert (rd_wait_q == 2'd0 || (rd_wait_q == 2'd1 && !u_dut.axil_prev_was_rd));
-      resp_bound:    assert (rq_cnt <= 2'd2);
-      resp_shown:    assert ((bvalid || rvalid) == (rq_cnt != 2'd0));
-      b_for_write:   assert (!bvalid || (rq_cnt != 2'd0 && rq_head_wr));
-      r_for_read:    assert (!rvalid || (rq_cnt != 2'd0 && !rq_head_wr));
+      // with room, a clock without a commit is only a complete write's stall after a read
+      commit_when_room: assert (!((ar_p || (aw_p && w_p)) && rq_cnt < 3'd3)
+                                || wr_commit || rd_commit || (aw_p && w_p && rd_commit_q));
+      // a write passed over by a read, then stalled one clock, commits in the third clock
+      wr_no_starve:  assert (wr_wait_q == 2'd0 || (wr_wait_q == 2'd1 && u_dut.axil_prev_was_rd)
+                             || (wr_wait_q == 2'd2 && u_dut.axil_prev_was_rd && !rd_commit_q));
+      // a read passed over by a stalled write, then by the write, commits in the third clock
+      rd_no_starve:  assert (rd_wait_q == 2'd0
+                             || (rd_wait_q == 2'd1 && (!u_dut.axil_prev_was_rd || (aw_p && w_p)))
+                             || (rd_wait_q == 2'd2 && !u_dut.axil_prev_was_rd));
+      rd_ack_next:   assert (u_dut.cpuif_rd_ack == rd_commit_q);
+      ack_one:       assert (!(u_dut.cpuif_rd_ack && u_dut.cpuif_wr_ack));
+      resp_bound:    assert (rq_cnt <= 3'd3);
+      resp_shown:    assert ((bvalid || rvalid) == (rq_ans != 3'd0));
+      b_for_write:   assert (!bvalid || (rq_ans != 3'd0 && rq_head_wr));
+      r_for_read:    assert (!rvalid || (rq_ans != 3'd0 && !rq_head_wr));
       b_stable:      assert (!b_wait_q || (bvalid && bresp == bresp_q));
       r_stable:      assert (!r_wait_q || (rvalid && rdata == rdata_q && rresp == rresp_q));
       bresp_okay:    assert (!bvalid || bresp == 2'b00);
       rresp_okay:    assert (!rvalid || rresp == 2'b00);
-      rd_value:      assert (!rd_commit || !rq_push_chk || u_dut.cpuif_rd_data == rq_push_exp);
+      // the value expected at the commit, checked when the block answers (one clock later)
+      rd_value:      assert (!u_dut.cpuif_rd_ack || !rq_chk[rq_new] || u_dut.cpuif_rd_data == rq_exp[rq_new]);
       rdata_match:   assert (!rvalid || !rq_chk[rq_rp] || rdata == rq_exp[rq_rp]);
       // --- the front end's state is the wrapper's copy (induction lemmas) ---
       front_aw:      assert (u_dut.axil_awvalid == aw_p && (!aw_p || u_dut.axil_awaddr == aw_addr));
       front_w:       assert (u_dut.axil_wvalid == w_p
                              && (!w_p || (u_dut.axil_wdata == w_data && u_dut.axil_wstrb == w_strb)));
       front_ar:      assert (u_dut.axil_arvalid == ar_p && (!ar_p || u_dut.axil_araddr == ar_addr));
-      front_count:   assert (u_dut.axil_n_in_flight == rq_cnt && dut_pending == rq_cnt
-                             && u_dut.axil_resp_rptr[0] == rq_rp);
-      front_entries: assert ((rq_cnt == 2'd0 || (u_dut.axil_resp_buffer_is_wr[rq_rp] == rq_wr[rq_rp]
-                                                 && !u_dut.axil_resp_buffer_err[rq_rp]
-                                                 && (!rq_chk[rq_rp] || rq_wr[rq_rp] == 1'b0)
-                                                 && (!rq_chk[rq_rp]
-                                                     || u_dut.axil_resp_buffer_rdata[rq_rp] == rq_exp[rq_rp])))
-                             && (rq_cnt != 2'd2 || (u_dut.axil_resp_buffer_is_wr[!rq_rp] == rq_wr[!rq_rp]
-                                                 && !u_dut.axil_resp_buffer_err[!rq_rp]
-                                                 && (!rq_chk[!rq_rp] || rq_wr[!rq_rp] == 1'b0)
-                                                 && (!rq_chk[!rq_rp]
-                                                     || u_dut.axil_resp_buffer_rdata[!rq_rp] == rq_exp[!rq_rp]))));
+      front_count:   assert (3'(u_dut.axil_n_in_flight) == rq_cnt && dut_pending == rq_ans
+                             && u_dut.axil_resp_rptr[1:0] == rq_rp && rq_rp != 2'd3
+                             && u_dut.axil_resp_wptr[1:0] != 2'd3
+                             && u_dut.readback_done_rt == rd_commit_q
+                             && u_dut.cpuif_req_stall_sr[0] == rd_commit_q
+                             && (!rd_commit_q || (rq_cnt != 3'd0 && !rq_wr[rq_new])));
+      front_entries: assert (entries_match);
       // --- registers ---
       tt_swmod:      assert (hwif_out.TT_WRITE.data.swmod == (wr_sel[T_TT] && |w_strb[2:0]));
       intr_line:     assert (hwif_out.INTR_STATE.intr

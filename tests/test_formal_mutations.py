@@ -235,8 +235,8 @@ REGS_MUTANTS = {
         r"\\?g_t\[14\]\.field_match"),
     # HEIGHT.MODE.bits16 read back in reserved bit 9 instead of bit 8
     "regs_read_wrong_bit": (
-        "readback_data_var[8] = field_storage.HEIGHT.MODE.bits16.value;",
-        "readback_data_var[9] = field_storage.HEIGHT.MODE.bits16.value;",
+        "readback_data_var[ad_hi(12'h200)][8] = field_storage.HEIGHT.MODE.bits16.value;",
+        "readback_data_var[ad_hi(12'h200)][9] = field_storage.HEIGHT.MODE.bits16.value;",
         r"(?:rd_value|rdata_match|front_entries)"),
 }
 

@@ -49,7 +49,7 @@ module pidm_regs (
     logic cpuif_wr_ack;
     logic cpuif_wr_err;
 
-    // Max Outstanding Transactions: 2
+    // Max Outstanding Transactions: 3
     logic [1:0] axil_n_in_flight;
     logic axil_prev_was_rd;
     logic axil_arvalid;
@@ -129,7 +129,7 @@ module pidm_regs (
         axil_ar_accept = '0;
         axil_aw_accept = '0;
 
-        if(axil_n_in_flight < 2'd2) begin
+        if(axil_n_in_flight < 2'd3) begin
             // Can safely issue more transactions without overwhelming response buffer
             if(axil_arvalid && !axil_prev_was_rd) begin
                 cpuif_req = '1;
@@ -152,16 +152,21 @@ module pidm_regs (
 
 
     // AXI4-Lite Response Logic
-    logic axil_resp_buffer_is_wr[2];
-    logic axil_resp_buffer_err[2];
-    logic [31:0] axil_resp_buffer_rdata[2];
+    logic axil_resp_buffer_is_wr[4];
+    logic axil_resp_buffer_err[4];
+    logic [31:0] axil_resp_buffer_rdata[4];
+    // axil_resp_buffer is intentionally padded to the next power of two despite
+    // only requiring 3 entries.
+    // This is to avoid quirks in some tools that cannot handle indexing into a non-power-of-2 array.
+    // Unused entries are expected to be optimized away
 
-    logic [1:0] axil_resp_wptr;
-    logic [1:0] axil_resp_rptr;
+
+    logic [2:0] axil_resp_wptr;
+    logic [2:0] axil_resp_rptr;
 
     always_ff @(posedge clk) begin
         if(~rst_n) begin
-            for(int i=0; i<2; i++) begin
+            for(int i=0; i<3; i++) begin
                 axil_resp_buffer_is_wr[i] <= '0;
                 axil_resp_buffer_err[i] <= '0;
                 axil_resp_buffer_rdata[i] <= '0;
@@ -172,20 +177,30 @@ module pidm_regs (
             // Store responses in buffer until AXI response channel accepts them
             if(cpuif_rd_ack || cpuif_wr_ack) begin
                 if(cpuif_rd_ack) begin
-                    axil_resp_buffer_is_wr[axil_resp_wptr[0:0]] <= '0;
-                    axil_resp_buffer_err[axil_resp_wptr[0:0]] <= cpuif_rd_err;
-                    axil_resp_buffer_rdata[axil_resp_wptr[0:0]] <= cpuif_rd_data;
+                    axil_resp_buffer_is_wr[axil_resp_wptr[1:0]] <= '0;
+                    axil_resp_buffer_err[axil_resp_wptr[1:0]] <= cpuif_rd_err;
+                    axil_resp_buffer_rdata[axil_resp_wptr[1:0]] <= cpuif_rd_data;
 
                 end else if(cpuif_wr_ack) begin
-                    axil_resp_buffer_is_wr[axil_resp_wptr[0:0]] <= '1;
-                    axil_resp_buffer_err[axil_resp_wptr[0:0]] <= cpuif_wr_err;
+                    axil_resp_buffer_is_wr[axil_resp_wptr[1:0]] <= '1;
+                    axil_resp_buffer_err[axil_resp_wptr[1:0]] <= cpuif_wr_err;
                 end
-                axil_resp_wptr <= axil_resp_wptr + 1'b1;
+                if(axil_resp_wptr[1:0] == 2) begin
+                    axil_resp_wptr[1:0] <= '0;
+                    axil_resp_wptr[2] <= ~axil_resp_wptr[2];
+                end else begin
+                    axil_resp_wptr[1:0] <= axil_resp_wptr[1:0] + 1'b1;
+                end
             end
 
             // Advance read pointer when acknowledged
             if(axil_resp_acked) begin
-                axil_resp_rptr <= axil_resp_rptr + 1'b1;
+                if(axil_resp_rptr[1:0] == 2) begin
+                    axil_resp_rptr[1:0] <= '0;
+                    axil_resp_rptr[2] <= ~axil_resp_rptr[2];
+                end else begin
+                    axil_resp_rptr[1:0] <= axil_resp_rptr[1:0] + 1'b1;
+                end
             end
         end
     end
@@ -195,7 +210,7 @@ module pidm_regs (
         s_axil_bvalid = '0;
         s_axil_rvalid = '0;
         if(axil_resp_rptr != axil_resp_wptr) begin
-            if(axil_resp_buffer_is_wr[axil_resp_rptr[0:0]]) begin
+            if(axil_resp_buffer_is_wr[axil_resp_rptr[1:0]]) begin
                 s_axil_bvalid = '1;
                 if(s_axil_bready) axil_resp_acked = '1;
             end else begin
@@ -204,8 +219,8 @@ module pidm_regs (
             end
         end
 
-        s_axil_rdata = axil_resp_buffer_rdata[axil_resp_rptr[0:0]];
-        if(axil_resp_buffer_err[axil_resp_rptr[0:0]]) begin
+        s_axil_rdata = axil_resp_buffer_rdata[axil_resp_rptr[1:0]];
+        if(axil_resp_buffer_err[axil_resp_rptr[1:0]]) begin
             s_axil_bresp = 2'b10;
             s_axil_rresp = 2'b10;
         end else begin
@@ -216,9 +231,19 @@ module pidm_regs (
 
     logic cpuif_req_masked;
 
-    // Read & write latencies are balanced. Stalls not required
+    // Read latency > write latency. May need to delay next write that follows a read
+    logic [0:0] cpuif_req_stall_sr;
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            cpuif_req_stall_sr <= '0;
+        end else if(cpuif_req && !cpuif_req_is_wr) begin
+            cpuif_req_stall_sr <= '1;
+        end else begin
+            cpuif_req_stall_sr <= (cpuif_req_stall_sr >> 'd1);
+        end
+    end
     assign cpuif_req_stall_rd = '0;
-    assign cpuif_req_stall_wr = '0;
+    assign cpuif_req_stall_wr = cpuif_req_stall_sr[0];
     assign cpuif_req_masked = cpuif_req
                             & !(!cpuif_req_is_wr & cpuif_req_stall_rd)
                             & !(cpuif_req_is_wr & cpuif_req_stall_wr);
@@ -3046,280 +3071,314 @@ module pidm_regs (
     logic readback_err;
     logic readback_done;
     logic [31:0] readback_data;
+    function automatic bit [6:0] ad_low(bit [11:0] addr);
+        return addr[6:0];
+    endfunction
+    function automatic bit [4:0] ad_hi(bit [11:0] addr);
+        return addr[11:7];
+    endfunction
+
+    // readback stage 1
+    logic [31:0] readback_data_rt_c[32];
     always_comb begin
-        automatic logic [31:0] readback_data_var;
-        readback_data_var = '0;
-        if(rd_mux_addr == 12'h0) begin
-            readback_data_var[31:0] = 32'h5049444d;
+        automatic logic [31:0] readback_data_var[32];
+        for(int i=0; i<32; i++) readback_data_var[i] = '0;
+        if(ad_low(rd_mux_addr) == ad_low(12'h0)) begin
+            readback_data_var[ad_hi(12'h0)][31:0] = 32'h5049444d;
         end
-        if(rd_mux_addr == 12'h4) begin
-            readback_data_var[15:0] = 16'h1;
-            readback_data_var[31:16] = 16'h1;
+        if(ad_low(rd_mux_addr) == ad_low(12'h4)) begin
+            readback_data_var[ad_hi(12'h4)][15:0] = 16'h1;
+            readback_data_var[ad_hi(12'h4)][31:16] = 16'h1;
         end
-        if(rd_mux_addr == 12'h8) begin
-            readback_data_var[7:0] = hwif_in.HWCFG.pix_w.next;
-            readback_data_var[15:8] = hwif_in.HWCFG.tris.next;
-            readback_data_var[23:16] = hwif_in.HWCFG.addr_w.next;
-            readback_data_var[31:24] = hwif_in.HWCFG.data_bytes.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'h8)) begin
+            readback_data_var[ad_hi(12'h8)][7:0] = hwif_in.HWCFG.pix_w.next;
+            readback_data_var[ad_hi(12'h8)][15:8] = hwif_in.HWCFG.tris.next;
+            readback_data_var[ad_hi(12'h8)][23:16] = hwif_in.HWCFG.addr_w.next;
+            readback_data_var[ad_hi(12'h8)][31:24] = hwif_in.HWCFG.data_bytes.next;
         end
-        if(rd_mux_addr == 12'h10) begin
-            readback_data_var[0] = field_storage.CTRL.start.value;
-            readback_data_var[1] = field_storage.CTRL.soft_reset.value;
-            readback_data_var[2] = field_storage.CTRL.clear_stats.value;
-            readback_data_var[3] = field_storage.CTRL.pyr_start.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h10)) begin
+            readback_data_var[ad_hi(12'h10)][0] = field_storage.CTRL.start.value;
+            readback_data_var[ad_hi(12'h10)][1] = field_storage.CTRL.soft_reset.value;
+            readback_data_var[ad_hi(12'h10)][2] = field_storage.CTRL.clear_stats.value;
+            readback_data_var[ad_hi(12'h10)][3] = field_storage.CTRL.pyr_start.value;
         end
-        if(rd_mux_addr == 12'h14) begin
-            readback_data_var[0] = hwif_in.STATUS.busy.next;
-            readback_data_var[1] = hwif_in.STATUS.idle.next;
-            readback_data_var[2] = hwif_in.STATUS.pyr_busy.next;
-            readback_data_var[3] = hwif_in.STATUS.pyr_done.next;
-            readback_data_var[7:4] = hwif_in.STATUS.pyr_err_code.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'h14)) begin
+            readback_data_var[ad_hi(12'h14)][0] = hwif_in.STATUS.busy.next;
+            readback_data_var[ad_hi(12'h14)][1] = hwif_in.STATUS.idle.next;
+            readback_data_var[ad_hi(12'h14)][2] = hwif_in.STATUS.pyr_busy.next;
+            readback_data_var[ad_hi(12'h14)][3] = hwif_in.STATUS.pyr_done.next;
+            readback_data_var[ad_hi(12'h14)][7:4] = hwif_in.STATUS.pyr_err_code.next;
         end
-        if(rd_mux_addr == 12'h18) begin
-            readback_data_var[0] = field_storage.ERROR.h_axi.value;
-            readback_data_var[1] = field_storage.ERROR.t_axi.value;
-            readback_data_var[2] = field_storage.ERROR.frag_dma.value;
-            readback_data_var[3] = field_storage.ERROR.fb_write.value;
-            readback_data_var[4] = field_storage.ERROR.bad_config.value;
-            readback_data_var[5] = field_storage.ERROR.pyr_read.value;
-            readback_data_var[6] = field_storage.ERROR.pyr_write.value;
-            readback_data_var[7] = field_storage.ERROR.pyr_config.value;
-            readback_data_var[8] = field_storage.ERROR.start_refused.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h18)) begin
+            readback_data_var[ad_hi(12'h18)][0] = field_storage.ERROR.h_axi.value;
+            readback_data_var[ad_hi(12'h18)][1] = field_storage.ERROR.t_axi.value;
+            readback_data_var[ad_hi(12'h18)][2] = field_storage.ERROR.frag_dma.value;
+            readback_data_var[ad_hi(12'h18)][3] = field_storage.ERROR.fb_write.value;
+            readback_data_var[ad_hi(12'h18)][4] = field_storage.ERROR.bad_config.value;
+            readback_data_var[ad_hi(12'h18)][5] = field_storage.ERROR.pyr_read.value;
+            readback_data_var[ad_hi(12'h18)][6] = field_storage.ERROR.pyr_write.value;
+            readback_data_var[ad_hi(12'h18)][7] = field_storage.ERROR.pyr_config.value;
+            readback_data_var[ad_hi(12'h18)][8] = field_storage.ERROR.start_refused.value;
         end
-        if(rd_mux_addr == 12'h1c) begin
-            readback_data_var[31:0] = hwif_in.PROGRESS.pixels.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'h1c)) begin
+            readback_data_var[ad_hi(12'h1c)][31:0] = hwif_in.PROGRESS.pixels.next;
         end
-        if(rd_mux_addr == 12'h20) begin
-            readback_data_var[0] = field_storage.INTR_STATE.frame_done.value;
-            readback_data_var[1] = field_storage.INTR_STATE.axi_error.value;
-            readback_data_var[2] = field_storage.INTR_STATE.pyr_done.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h20)) begin
+            readback_data_var[ad_hi(12'h20)][0] = field_storage.INTR_STATE.frame_done.value;
+            readback_data_var[ad_hi(12'h20)][1] = field_storage.INTR_STATE.axi_error.value;
+            readback_data_var[ad_hi(12'h20)][2] = field_storage.INTR_STATE.pyr_done.value;
         end
-        if(rd_mux_addr == 12'h24) begin
-            readback_data_var[0] = field_storage.INTR_ENABLE.frame_done.value;
-            readback_data_var[1] = field_storage.INTR_ENABLE.axi_error.value;
-            readback_data_var[2] = field_storage.INTR_ENABLE.pyr_done.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h24)) begin
+            readback_data_var[ad_hi(12'h24)][0] = field_storage.INTR_ENABLE.frame_done.value;
+            readback_data_var[ad_hi(12'h24)][1] = field_storage.INTR_ENABLE.axi_error.value;
+            readback_data_var[ad_hi(12'h24)][2] = field_storage.INTR_ENABLE.pyr_done.value;
         end
-        if(rd_mux_addr == 12'h28) begin
-            readback_data_var[0] = field_storage.INTR_TEST.frame_done.value;
-            readback_data_var[1] = field_storage.INTR_TEST.axi_error.value;
-            readback_data_var[2] = field_storage.INTR_TEST.pyr_done.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h28)) begin
+            readback_data_var[ad_hi(12'h28)][0] = field_storage.INTR_TEST.frame_done.value;
+            readback_data_var[ad_hi(12'h28)][1] = field_storage.INTR_TEST.axi_error.value;
+            readback_data_var[ad_hi(12'h28)][2] = field_storage.INTR_TEST.pyr_done.value;
         end
-        if(rd_mux_addr == 12'h40) begin
-            readback_data_var[31:0] = field_storage.FRAME.FRAG_BASE.LO.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h40)) begin
+            readback_data_var[ad_hi(12'h40)][31:0] = field_storage.FRAME.FRAG_BASE.LO.val.value;
         end
-        if(rd_mux_addr == 12'h44) begin
-            readback_data_var[31:0] = field_storage.FRAME.FRAG_BASE.HI.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h44)) begin
+            readback_data_var[ad_hi(12'h44)][31:0] = field_storage.FRAME.FRAG_BASE.HI.val.value;
         end
-        if(rd_mux_addr == 12'h48) begin
-            readback_data_var[31:0] = field_storage.FRAME.FRAG_COUNT.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h48)) begin
+            readback_data_var[ad_hi(12'h48)][31:0] = field_storage.FRAME.FRAG_COUNT.val.value;
         end
-        if(rd_mux_addr == 12'h4c) begin
-            readback_data_var[31:0] = field_storage.FRAME.FB_PITCH.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h4c)) begin
+            readback_data_var[ad_hi(12'h4c)][31:0] = field_storage.FRAME.FB_PITCH.val.value;
         end
-        if(rd_mux_addr == 12'h50) begin
-            readback_data_var[31:0] = field_storage.FRAME.FB_BASE.LO.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h50)) begin
+            readback_data_var[ad_hi(12'h50)][31:0] = field_storage.FRAME.FB_BASE.LO.val.value;
         end
-        if(rd_mux_addr == 12'h54) begin
-            readback_data_var[31:0] = field_storage.FRAME.FB_BASE.HI.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h54)) begin
+            readback_data_var[ad_hi(12'h54)][31:0] = field_storage.FRAME.FB_BASE.HI.val.value;
         end
-        if(rd_mux_addr == 12'h58) begin
-            readback_data_var[31:0] = field_storage.FRAME.STATUS_BASE.LO.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h58)) begin
+            readback_data_var[ad_hi(12'h58)][31:0] = field_storage.FRAME.STATUS_BASE.LO.val.value;
         end
-        if(rd_mux_addr == 12'h5c) begin
-            readback_data_var[31:0] = field_storage.FRAME.STATUS_BASE.HI.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h5c)) begin
+            readback_data_var[ad_hi(12'h5c)][31:0] = field_storage.FRAME.STATUS_BASE.HI.val.value;
         end
-        if(rd_mux_addr == 12'h60) begin
-            readback_data_var[4:0] = field_storage.FRAME.FB_LAYOUT.xbits.value;
-            readback_data_var[8] = field_storage.FRAME.FB_LAYOUT.status_en.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h60)) begin
+            readback_data_var[ad_hi(12'h60)][4:0] = field_storage.FRAME.FB_LAYOUT.xbits.value;
+            readback_data_var[ad_hi(12'h60)][8] = field_storage.FRAME.FB_LAYOUT.status_en.value;
         end
-        if(rd_mux_addr == 12'h80) begin
-            readback_data_var[31:0] = hwif_in.STATS.cycles.LO.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'h80)) begin
+            readback_data_var[ad_hi(12'h80)][31:0] = hwif_in.STATS.cycles.LO.val.next;
         end
-        if(rd_mux_addr == 12'h84) begin
-            readback_data_var[15:0] = hwif_in.STATS.cycles.HI.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'h84)) begin
+            readback_data_var[ad_hi(12'h84)][15:0] = hwif_in.STATS.cycles.HI.val.next;
         end
-        if(rd_mux_addr == 12'h88) begin
-            readback_data_var[31:0] = hwif_in.STATS.pixels.LO.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'h88)) begin
+            readback_data_var[ad_hi(12'h88)][31:0] = hwif_in.STATS.pixels.LO.val.next;
         end
-        if(rd_mux_addr == 12'h8c) begin
-            readback_data_var[15:0] = hwif_in.STATS.pixels.HI.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'h8c)) begin
+            readback_data_var[ad_hi(12'h8c)][15:0] = hwif_in.STATS.pixels.HI.val.next;
         end
-        if(rd_mux_addr == 12'h90) begin
-            readback_data_var[31:0] = hwif_in.STATS.iters.LO.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'h90)) begin
+            readback_data_var[ad_hi(12'h90)][31:0] = hwif_in.STATS.iters.LO.val.next;
         end
-        if(rd_mux_addr == 12'h94) begin
-            readback_data_var[15:0] = hwif_in.STATS.iters.HI.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'h94)) begin
+            readback_data_var[ad_hi(12'h94)][15:0] = hwif_in.STATS.iters.HI.val.next;
         end
-        if(rd_mux_addr == 12'h98) begin
-            readback_data_var[31:0] = hwif_in.STATS.h_hits.LO.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'h98)) begin
+            readback_data_var[ad_hi(12'h98)][31:0] = hwif_in.STATS.h_hits.LO.val.next;
         end
-        if(rd_mux_addr == 12'h9c) begin
-            readback_data_var[15:0] = hwif_in.STATS.h_hits.HI.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'h9c)) begin
+            readback_data_var[ad_hi(12'h9c)][15:0] = hwif_in.STATS.h_hits.HI.val.next;
         end
-        if(rd_mux_addr == 12'ha0) begin
-            readback_data_var[31:0] = hwif_in.STATS.h_misses.LO.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'ha0)) begin
+            readback_data_var[ad_hi(12'ha0)][31:0] = hwif_in.STATS.h_misses.LO.val.next;
         end
-        if(rd_mux_addr == 12'ha4) begin
-            readback_data_var[15:0] = hwif_in.STATS.h_misses.HI.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'ha4)) begin
+            readback_data_var[ad_hi(12'ha4)][15:0] = hwif_in.STATS.h_misses.HI.val.next;
         end
-        if(rd_mux_addr == 12'ha8) begin
-            readback_data_var[31:0] = hwif_in.STATS.h_bytes.LO.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'ha8)) begin
+            readback_data_var[ad_hi(12'ha8)][31:0] = hwif_in.STATS.h_bytes.LO.val.next;
         end
-        if(rd_mux_addr == 12'hac) begin
-            readback_data_var[15:0] = hwif_in.STATS.h_bytes.HI.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'hac)) begin
+            readback_data_var[ad_hi(12'hac)][15:0] = hwif_in.STATS.h_bytes.HI.val.next;
         end
-        if(rd_mux_addr == 12'hb0) begin
-            readback_data_var[31:0] = hwif_in.STATS.t_requests.LO.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'hb0)) begin
+            readback_data_var[ad_hi(12'hb0)][31:0] = hwif_in.STATS.t_requests.LO.val.next;
         end
-        if(rd_mux_addr == 12'hb4) begin
-            readback_data_var[15:0] = hwif_in.STATS.t_requests.HI.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'hb4)) begin
+            readback_data_var[ad_hi(12'hb4)][15:0] = hwif_in.STATS.t_requests.HI.val.next;
         end
-        if(rd_mux_addr == 12'hb8) begin
-            readback_data_var[31:0] = hwif_in.STATS.t_quad_hits.LO.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'hb8)) begin
+            readback_data_var[ad_hi(12'hb8)][31:0] = hwif_in.STATS.t_quad_hits.LO.val.next;
         end
-        if(rd_mux_addr == 12'hbc) begin
-            readback_data_var[15:0] = hwif_in.STATS.t_quad_hits.HI.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'hbc)) begin
+            readback_data_var[ad_hi(12'hbc)][15:0] = hwif_in.STATS.t_quad_hits.HI.val.next;
         end
-        if(rd_mux_addr == 12'hc0) begin
-            readback_data_var[31:0] = hwif_in.STATS.t_line_misses.LO.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'hc0)) begin
+            readback_data_var[ad_hi(12'hc0)][31:0] = hwif_in.STATS.t_line_misses.LO.val.next;
         end
-        if(rd_mux_addr == 12'hc4) begin
-            readback_data_var[15:0] = hwif_in.STATS.t_line_misses.HI.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'hc4)) begin
+            readback_data_var[ad_hi(12'hc4)][15:0] = hwif_in.STATS.t_line_misses.HI.val.next;
         end
-        if(rd_mux_addr == 12'hc8) begin
-            readback_data_var[31:0] = hwif_in.STATS.t_texel_hits.LO.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'hc8)) begin
+            readback_data_var[ad_hi(12'hc8)][31:0] = hwif_in.STATS.t_texel_hits.LO.val.next;
         end
-        if(rd_mux_addr == 12'hcc) begin
-            readback_data_var[15:0] = hwif_in.STATS.t_texel_hits.HI.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'hcc)) begin
+            readback_data_var[ad_hi(12'hcc)][15:0] = hwif_in.STATS.t_texel_hits.HI.val.next;
         end
-        if(rd_mux_addr == 12'hd0) begin
-            readback_data_var[31:0] = hwif_in.STATS.t_bytes.LO.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'hd0)) begin
+            readback_data_var[ad_hi(12'hd0)][31:0] = hwif_in.STATS.t_bytes.LO.val.next;
         end
-        if(rd_mux_addr == 12'hd4) begin
-            readback_data_var[15:0] = hwif_in.STATS.t_bytes.HI.val.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'hd4)) begin
+            readback_data_var[ad_hi(12'hd4)][15:0] = hwif_in.STATS.t_bytes.HI.val.next;
         end
-        if(rd_mux_addr == 12'h100) begin
-            readback_data_var[23:0] = field_storage.TT_WRITE.data.value;
-            readback_data_var[31:24] = field_storage.TT_WRITE.addr.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h100)) begin
+            readback_data_var[ad_hi(12'h100)][23:0] = field_storage.TT_WRITE.data.value;
+            readback_data_var[ad_hi(12'h100)][31:24] = field_storage.TT_WRITE.addr.value;
         end
-        if(rd_mux_addr == 12'h200) begin
-            readback_data_var[3:0] = field_storage.HEIGHT.MODE.method.value;
-            readback_data_var[7:4] = field_storage.HEIGHT.MODE.root_level.value;
-            readback_data_var[8] = field_storage.HEIGHT.MODE.bits16.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h200)) begin
+            readback_data_var[ad_hi(12'h200)][3:0] = field_storage.HEIGHT.MODE.method.value;
+            readback_data_var[ad_hi(12'h200)][7:4] = field_storage.HEIGHT.MODE.root_level.value;
+            readback_data_var[ad_hi(12'h200)][8] = field_storage.HEIGHT.MODE.bits16.value;
         end
-        if(rd_mux_addr == 12'h204) begin
-            readback_data_var[15:0] = field_storage.HEIGHT.SIZE.width.value;
-            readback_data_var[31:16] = field_storage.HEIGHT.SIZE.height.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h204)) begin
+            readback_data_var[ad_hi(12'h204)][15:0] = field_storage.HEIGHT.SIZE.width.value;
+            readback_data_var[ad_hi(12'h204)][31:16] = field_storage.HEIGHT.SIZE.height.value;
         end
-        if(rd_mux_addr == 12'h208) begin
-            readback_data_var[31:0] = field_storage.HEIGHT.BASE.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h208)) begin
+            readback_data_var[ad_hi(12'h208)][31:0] = field_storage.HEIGHT.BASE.val.value;
         end
-        if(rd_mux_addr == 12'h20c) begin
-            readback_data_var[15:0] = field_storage.HEIGHT.ROOT.root_code.value;
-            readback_data_var[31:16] = field_storage.HEIGHT.ROOT.iter_cap.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h20c)) begin
+            readback_data_var[ad_hi(12'h20c)][15:0] = field_storage.HEIGHT.ROOT.root_code.value;
+            readback_data_var[ad_hi(12'h20c)][31:16] = field_storage.HEIGHT.ROOT.iter_cap.value;
         end
-        if(rd_mux_addr == 12'h210) begin
-            readback_data_var[23:0] = field_storage.HEIGHT.DEPTH.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h210)) begin
+            readback_data_var[ad_hi(12'h210)][23:0] = field_storage.HEIGHT.DEPTH.val.value;
         end
         for(int i0=0; i0<16; i0++) begin
-            if(rd_mux_addr == 12'h240 + (12)'(i0) * 12'h4) begin
-                readback_data_var[31:0] = field_storage.HEIGHT.LEVEL_OFF[i0].val.value;
+            if(ad_low(rd_mux_addr) == ad_low(12'h240 + (12)'(i0) * 12'h4)) begin
+                readback_data_var[ad_hi(12'h240 + (12)'(i0) * 12'h4)][31:0] = field_storage.HEIGHT.LEVEL_OFF[i0].val.value;
             end
         end
-        if(rd_mux_addr == 12'h300) begin
-            readback_data_var[0] = field_storage.SHADE.MIP.mip_en.value;
-            readback_data_var[13:8] = field_storage.SHADE.MIP.levels_colour.value;
-            readback_data_var[21:16] = field_storage.SHADE.MIP.levels_normal.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h300)) begin
+            readback_data_var[ad_hi(12'h300)][0] = field_storage.SHADE.MIP.mip_en.value;
+            readback_data_var[ad_hi(12'h300)][13:8] = field_storage.SHADE.MIP.levels_colour.value;
+            readback_data_var[ad_hi(12'h300)][21:16] = field_storage.SHADE.MIP.levels_normal.value;
         end
-        if(rd_mux_addr == 12'h304) begin
-            readback_data_var[7:0] = field_storage.SHADE.MISS_RGB.red.value;
-            readback_data_var[15:8] = field_storage.SHADE.MISS_RGB.green.value;
-            readback_data_var[23:16] = field_storage.SHADE.MISS_RGB.blue.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h304)) begin
+            readback_data_var[ad_hi(12'h304)][7:0] = field_storage.SHADE.MISS_RGB.red.value;
+            readback_data_var[ad_hi(12'h304)][15:8] = field_storage.SHADE.MISS_RGB.green.value;
+            readback_data_var[ad_hi(12'h304)][23:16] = field_storage.SHADE.MISS_RGB.blue.value;
         end
-        if(rd_mux_addr == 12'h320) begin
-            readback_data_var[23:0] = field_storage.SHADE.LIGHT_X.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h320)) begin
+            readback_data_var[ad_hi(12'h320)][23:0] = field_storage.SHADE.LIGHT_X.val.value;
         end
-        if(rd_mux_addr == 12'h324) begin
-            readback_data_var[23:0] = field_storage.SHADE.LIGHT_Y.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h324)) begin
+            readback_data_var[ad_hi(12'h324)][23:0] = field_storage.SHADE.LIGHT_Y.val.value;
         end
-        if(rd_mux_addr == 12'h328) begin
-            readback_data_var[23:0] = field_storage.SHADE.LIGHT_Z.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h328)) begin
+            readback_data_var[ad_hi(12'h328)][23:0] = field_storage.SHADE.LIGHT_Z.val.value;
         end
-        if(rd_mux_addr == 12'h32c) begin
-            readback_data_var[23:0] = field_storage.SHADE.AMBIENT.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h32c)) begin
+            readback_data_var[ad_hi(12'h32c)][23:0] = field_storage.SHADE.AMBIENT.val.value;
         end
-        if(rd_mux_addr == 12'h330) begin
-            readback_data_var[23:0] = field_storage.SHADE.KD.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h330)) begin
+            readback_data_var[ad_hi(12'h330)][23:0] = field_storage.SHADE.KD.val.value;
         end
-        if(rd_mux_addr == 12'h334) begin
-            readback_data_var[23:0] = field_storage.SHADE.KS.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h334)) begin
+            readback_data_var[ad_hi(12'h334)][23:0] = field_storage.SHADE.KS.val.value;
         end
-        if(rd_mux_addr == 12'h338) begin
-            readback_data_var[23:0] = field_storage.SHADE.D.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h338)) begin
+            readback_data_var[ad_hi(12'h338)][23:0] = field_storage.SHADE.D.val.value;
         end
-        if(rd_mux_addr == 12'h33c) begin
-            readback_data_var[23:0] = field_storage.SHADE.D2.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h33c)) begin
+            readback_data_var[ad_hi(12'h33c)][23:0] = field_storage.SHADE.D2.val.value;
         end
         for(int i0=0; i0<2; i0++) begin
-            if(rd_mux_addr == 12'h400 + (12)'(i0) * 12'h100) begin
-                readback_data_var[23:0] = field_storage.TEX[i0].SU.val.value;
+            if(ad_low(rd_mux_addr) == ad_low(12'h400 + (12)'(i0) * 12'h100)) begin
+                readback_data_var[ad_hi(12'h400 + (12)'(i0) * 12'h100)][23:0] = field_storage.TEX[i0].SU.val.value;
             end
-            if(rd_mux_addr == 12'h404 + (12)'(i0) * 12'h100) begin
-                readback_data_var[23:0] = field_storage.TEX[i0].SV.val.value;
+            if(ad_low(rd_mux_addr) == ad_low(12'h404 + (12)'(i0) * 12'h100)) begin
+                readback_data_var[ad_hi(12'h404 + (12)'(i0) * 12'h100)][23:0] = field_storage.TEX[i0].SV.val.value;
             end
-            if(rd_mux_addr == 12'h408 + (12)'(i0) * 12'h100) begin
-                readback_data_var[31:0] = field_storage.TEX[i0].BASE.val.value;
+            if(ad_low(rd_mux_addr) == ad_low(12'h408 + (12)'(i0) * 12'h100)) begin
+                readback_data_var[ad_hi(12'h408 + (12)'(i0) * 12'h100)][31:0] = field_storage.TEX[i0].BASE.val.value;
             end
             for(int i1=0; i1<16; i1++) begin
-                if(rd_mux_addr == 12'h440 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4) begin
-                    readback_data_var[31:0] = field_storage.TEX[i0].LEVEL_OFF[i1].val.value;
+                if(ad_low(rd_mux_addr) == ad_low(12'h440 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4)) begin
+                    readback_data_var[ad_hi(12'h440 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4)][31:0] = field_storage.TEX[i0].LEVEL_OFF[i1].val.value;
                 end
             end
             for(int i1=0; i1<16; i1++) begin
-                if(rd_mux_addr == 12'h480 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4) begin
-                    readback_data_var[15:0] = field_storage.TEX[i0].LEVEL_SIZE[i1].width.value;
-                    readback_data_var[31:16] = field_storage.TEX[i0].LEVEL_SIZE[i1].height.value;
+                if(ad_low(rd_mux_addr) == ad_low(12'h480 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4)) begin
+                    readback_data_var[ad_hi(12'h480 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4)][15:0] = field_storage.TEX[i0].LEVEL_SIZE[i1].width.value;
+                    readback_data_var[ad_hi(12'h480 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4)][31:16] = field_storage.TEX[i0].LEVEL_SIZE[i1].height.value;
                 end
             end
         end
-        if(rd_mux_addr == 12'h600) begin
-            readback_data_var[0] = hwif_in.PYR.INFO.present.next;
-            readback_data_var[7:4] = hwif_in.PYR.INFO.max_lg.next;
+        if(ad_low(rd_mux_addr) == ad_low(12'h600)) begin
+            readback_data_var[ad_hi(12'h600)][0] = hwif_in.PYR.INFO.present.next;
+            readback_data_var[ad_hi(12'h600)][7:4] = hwif_in.PYR.INFO.max_lg.next;
         end
-        if(rd_mux_addr == 12'h604) begin
-            readback_data_var[0] = field_storage.PYR.FORMAT.bits16.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h604)) begin
+            readback_data_var[ad_hi(12'h604)][0] = field_storage.PYR.FORMAT.bits16.value;
         end
-        if(rd_mux_addr == 12'h608) begin
-            readback_data_var[15:0] = field_storage.PYR.SIZE.width.value;
-            readback_data_var[31:16] = field_storage.PYR.SIZE.height.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h608)) begin
+            readback_data_var[ad_hi(12'h608)][15:0] = field_storage.PYR.SIZE.width.value;
+            readback_data_var[ad_hi(12'h608)][31:16] = field_storage.PYR.SIZE.height.value;
         end
-        if(rd_mux_addr == 12'h610) begin
-            readback_data_var[31:0] = field_storage.PYR.SRC_BASE.LO.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h610)) begin
+            readback_data_var[ad_hi(12'h610)][31:0] = field_storage.PYR.SRC_BASE.LO.val.value;
         end
-        if(rd_mux_addr == 12'h614) begin
-            readback_data_var[31:0] = field_storage.PYR.SRC_BASE.HI.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h614)) begin
+            readback_data_var[ad_hi(12'h614)][31:0] = field_storage.PYR.SRC_BASE.HI.val.value;
         end
-        if(rd_mux_addr == 12'h618) begin
-            readback_data_var[31:0] = field_storage.PYR.PYR_BASE.LO.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h618)) begin
+            readback_data_var[ad_hi(12'h618)][31:0] = field_storage.PYR.PYR_BASE.LO.val.value;
         end
-        if(rd_mux_addr == 12'h61c) begin
-            readback_data_var[31:0] = field_storage.PYR.PYR_BASE.HI.val.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h61c)) begin
+            readback_data_var[ad_hi(12'h61c)][31:0] = field_storage.PYR.PYR_BASE.HI.val.value;
         end
-        if(rd_mux_addr == 12'h620) begin
-            readback_data_var[15:0] = field_storage.PYR.DIRTY0.x0.value;
-            readback_data_var[31:16] = field_storage.PYR.DIRTY0.y0.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h620)) begin
+            readback_data_var[ad_hi(12'h620)][15:0] = field_storage.PYR.DIRTY0.x0.value;
+            readback_data_var[ad_hi(12'h620)][31:16] = field_storage.PYR.DIRTY0.y0.value;
         end
-        if(rd_mux_addr == 12'h624) begin
-            readback_data_var[15:0] = field_storage.PYR.DIRTY1.x1.value;
-            readback_data_var[31:16] = field_storage.PYR.DIRTY1.y1.value;
+        if(ad_low(rd_mux_addr) == ad_low(12'h624)) begin
+            readback_data_var[ad_hi(12'h624)][15:0] = field_storage.PYR.DIRTY1.x1.value;
+            readback_data_var[ad_hi(12'h624)][31:16] = field_storage.PYR.DIRTY1.y1.value;
         end
         for(int i0=0; i0<16; i0++) begin
-            if(rd_mux_addr == 12'h640 + (12)'(i0) * 12'h4) begin
-                readback_data_var[31:0] = field_storage.PYR.LEVEL_OFF[i0].val.value;
+            if(ad_low(rd_mux_addr) == ad_low(12'h640 + (12)'(i0) * 12'h4)) begin
+                readback_data_var[ad_hi(12'h640 + (12)'(i0) * 12'h4)][31:0] = field_storage.PYR.LEVEL_OFF[i0].val.value;
             end
         end
-        readback_data = readback_data_var;
-        readback_done = decoded_req & ~decoded_req_is_wr;
+        readback_data_rt_c = readback_data_var;
+    end
+
+    logic [31:0] readback_data_rt[32];
+    logic readback_done_rt;
+    logic readback_err_rt;
+    logic [11:0] readback_addr_rt;
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            for(int i=0; i<32; i++) readback_data_rt[i] <= '0;
+            readback_done_rt <= '0;
+            readback_err_rt <= '0;
+            readback_addr_rt <= '0;
+        end else begin
+            readback_data_rt <= readback_data_rt_c;
+            readback_err_rt <= decoded_err;
+            readback_done_rt <= decoded_req & ~decoded_req_is_wr;
+            readback_addr_rt <= rd_mux_addr;
+        end
+    end
+
+
+
+    // readback stage 2
+    always_comb begin
+        readback_data = readback_data_rt[readback_addr_rt[11:7]];
+        readback_done = readback_done_rt;
         readback_err = '0;
     end
 

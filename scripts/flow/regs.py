@@ -6,8 +6,12 @@
     python scripts/flow/regs.py --check    # regenerate into a temp dir; exit 1 if one is stale
 
 PeakRDL (pinned in requirements.txt) does the work: peakrdl-regblock (AXI4-Lite, flattened ports,
-synchronous active-low reset ``rst_n``, 12-bit address: the 4 KiB map), peakrdl-cheader and
-peakrdl-markdown.  Each generated source file gets the SPDX line and a "generated, do not edit"
+synchronous active-low reset ``rst_n``, 12-bit address: the 4 KiB map, the read path retimed
+with ``--rt-read-fanin``), peakrdl-cheader and peakrdl-markdown.  The retimed read path splits
+the readback multiplexer into 32 groups with a register between them (a read answers one clock
+later): without it the readback is one chain of a multiplexer per register, several hundred
+cells deep, which YoWASP's Yosys cannot map (its XAIGER2 pass walks such a chain recursively and
+runs out of WebAssembly stack: ``wasm trap: call stack exhausted``).  Each generated source file gets the SPDX line and a "generated, do not edit"
 line on top; nothing else is changed.  Exit status 2 (one line) when PeakRDL is missing or
 rejects the .rdl file.
 """
@@ -73,7 +77,8 @@ def generate(out: Path) -> None:
     for o in OUTPUTS:
         (out / o.path).parent.mkdir(parents=True, exist_ok=True)
     run([tool, "regblock", rdl, "-o", str(out / "rtl/top"), "--cpuif", "axi4-lite-flat",
-         "--default-reset", "rst_n", "--type-style", "hier", "--addr-width", "12"])
+         "--default-reset", "rst_n", "--type-style", "hier", "--addr-width", "12",
+         "--rt-read-fanin"])
     run([tool, "c-header", rdl, "-o", str(out / "sw/pidm_regs.h"), "--std", "gnu11",
          "--type-style", "hier"])
     run([tool, "markdown", rdl, "-o", str(out / "docs/registers.md")])
