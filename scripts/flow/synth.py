@@ -113,9 +113,9 @@ BLOCKS = [
           what="the P&R top with two traverse rings (N_RINGS 2)"),
 ]
 BLOCK_NAMES = [b.name for b in BLOCKS]
-#: Blocks run only when --blocks names them.  pidm_top: with the pyramid builder, YoWASP's Yosys
-#: runs out of WebAssembly stack in synth_ecp5's XAIGER2 step (docs/synthesis.md "The system
-#: top"), which would stop a whole `make synth`.
+#: Blocks run only when --blocks names them.  pidm_top: its Yosys run alone takes about an hour on
+#: a 2-core machine, and with the pyramid builder it does not fit the LFE5U-85F yet
+#: (docs/synthesis.md "The system top").
 OPT_IN = {SYSTEM_TOP}
 
 
