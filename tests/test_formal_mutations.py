@@ -116,6 +116,11 @@ MUTANTS = {
         ".clk_i, .rst_ni, .en_i, .valid_i(valid_i && !stage_v[2]), .tag_i, .valid_o, .tag_o,"
         " .stage_valid_o(stage_v));",
         "view_calc:bmc_tags", "(?:vtag_inside|vtag_leave_once)"),
+    "tex_tag_off_by_one": (
+        "rtl/cache/tex_cache.sv",
+        ".hd_tag_i(hd_q.tag)",
+        ".hd_tag_i(nx_q.tag)",
+        "tex_cache:bmc_tags", "(?:inv_tag|rsp_tag_order)"),
 }
 
 
