@@ -3,10 +3,12 @@
 // at the end of this file; not in synthesis): a shadow of the directory's state bits and of the
 // lines held by the data slots and read by the queued passes, the invariants of the directory,
 // the reference counts, the MSHRs, the queues and the streams, and the coverage points
-// tb/tex_cache reads (u_assert.sim_*).  Every check is an immediate assertion in a clocked block
-// (the state before the clock edge, as a concurrent assertion samples it); "disable iff
-// (!rst_ni)" is a guard on rst_ni, and "a |=> b" a guard on registered copies of the clock
-// before.  The AXI channel checks are cache_axi_read_assert's.
+// tb/tex_cache reads (u_assert.sim_*); and the tags: every response carries the tag of the
+// oldest request not answered (rsp_tag_order, proven by formal/tex_cache.sby with the queue
+// checks).  Every check is an immediate assertion in a clocked block (the state before the clock
+// edge, as a concurrent assertion samples it); "disable iff (!rst_ni)" is a guard on rst_ni, and
+// "a |=> b" a guard on registered copies of the clock before.  The AXI channel checks are
+// cache_axi_read_assert's.
 module tex_cache_assert #(
   parameter int unsigned ADDR_W     = 32,
   parameter int unsigned TAG_W      = 8,
