@@ -20,13 +20,12 @@
 // queue): walking the stages from the output buffer back to the entry register, counting
 // requests by their last passes (a request in the entry register counts there), the count is the
 // requests owed (inv_count), which is the tag queue's fill (inv_tq_count, with
-// tex_cache_assert's count of it); the tracked request's
-// tag is in the tag queue as many entries behind its read pointer as requests are ahead of it
-// (inv_tq_tag); the queue's registered read is its head entry, except in the clock after a
-// request was written there (inv_tq_read), and that request is then in the entry register
-// (inv_tq_push); the FIFO and the output buffer never hold more than their room (inv_fifo_room,
-// inv_out_room); the FIFO's registered read is its third entry (inv_peek, which refills the
-// register behind the head).
+// tex_cache_assert's count of it); the tracked request's tag is in the tag queue as many entries
+// behind its read pointer as requests are ahead of it (inv_tq_tag); the queue's registered read
+// is its head entry, except in the clock after a request was written there (inv_tq_read), and
+// that request is then in the entry register (inv_tq_push); the FIFO and the output buffer never
+// hold more than their room (inv_fifo_room, inv_out_room); the FIFO's registered read is its
+// third entry (inv_peek, which refills the register behind the head).
 module tex_cache_formal #(
   parameter int unsigned ADDR_W     = 6,   // tex_cache's parameters, small
   parameter int unsigned LINE_BYTES = 8,
