@@ -21,7 +21,10 @@ is taken for the current epoch's: stale_ignored, or the wrapper's inv_stale firs
 the traverse ring keeps a retired ray in its slot (its id leaves and stays: id_in_ring), and
 traverse_rings takes a result from every ring at a handshake (the other rings' results are
 lost: take_one or an id check); view_calc's tag pipeline does not take a fragment that
-enters four clocks after another (its tag is dropped: vtag_inside).  A
+enters four clocks after another (its tag is dropped: vtag_inside); tex_cache reads the
+response's tag from the tag queue's entry behind the head (inv_tq_read, or rsp_tag_order);
+dm_pipeline pops the miss FIFO while the output register takes a shaded pixel (the miss is
+lost: merge_count, inv_place or merge_leave_once).  A
 further case removes one property from what the front end sees and shows the driver refuses the
 run (the guard against properties dropped silently).
 
@@ -116,6 +119,16 @@ MUTANTS = {
         ".clk_i, .rst_ni, .en_i, .valid_i(valid_i && !stage_v[4]), .tag_i, .valid_o, .tag_o,"
         " .stage_valid_o(stage_v));",
         "view_calc:bmc_tags", "(?:vtag_inside|vtag_leave_once)"),
+    "tex_tag_off_by_one": (
+        "rtl/cache/tex_cache_data.sv",
+        "tq_rd_q <= tq_mem[tq_rp_d];",
+        "tq_rd_q <= tq_mem[tq_rp_d + TQ_W'(1)];",
+        "tex_cache:bmc_tags", "(?:inv_tq_read|rsp_tag_order)"),
+    "merge_miss_dropped": (
+        "rtl/pipe/dm_pipeline.sv",
+        "assign miss_rd = o_load && out_empty && !miss_empty;",
+        "assign miss_rd = o_load && !miss_empty;",
+        "dm_pipeline:bmc_merge", "(?:merge_count|inv_place|merge_leave_once)"),
 }
 
 
@@ -153,8 +166,10 @@ def test_mutant_fails_with_trace(name: str):
     assert p.returncode == 1, out
     assert out.strip().splitlines()[-1].endswith(" 1 failed"), out
     assert re.search(rf"{re.escape(task)} \(\w+\) FAIL", out), out
-    # a property of a bound checker (u_assert) or of the formal wrapper (the top)
-    assert re.search(rf"failed assertion (?:\S*u_assert\.|\w+_formal\.){prop}\b", out), out
+    # a property of a bound checker (u_assert), of the formal wrapper (the top) or of a formal
+    # checker bound into the top (u_formal)
+    assert re.search(rf"failed assertion (?:\S*u_assert\.|\w+_formal\.|\S*u_formal\.){prop}\b",
+                     out), out
     traces = [root / m for m in re.findall(r"^  trace: (\S+\.vcd)$", out, re.M)]
     assert traces, out
     import pywellen

@@ -3,10 +3,12 @@
 // at the end of this file; not in synthesis): a shadow of the directory's state bits and of the
 // lines held by the data slots and read by the queued passes, the invariants of the directory,
 // the reference counts, the MSHRs, the queues and the streams, and the coverage points
-// tb/tex_cache reads (u_assert.sim_*).  Every check is an immediate assertion in a clocked block
-// (the state before the clock edge, as a concurrent assertion samples it); "disable iff
-// (!rst_ni)" is a guard on rst_ni, and "a |=> b" a guard on registered copies of the clock
-// before.  The AXI channel checks are cache_axi_read_assert's.
+// tb/tex_cache reads (u_assert.sim_*); and the tags: every response carries the tag of the
+// oldest request not answered (rsp_tag_order, proven by formal/tex_cache.sby with the queue
+// checks).  Every check is an immediate assertion in a clocked block (the state before the clock
+// edge, as a concurrent assertion samples it); "disable iff (!rst_ni)" is a guard on rst_ni, and
+// "a |=> b" a guard on registered copies of the clock before.  The AXI channel checks are
+// cache_axi_read_assert's.
 module tex_cache_assert #(
   parameter int unsigned ADDR_W     = 32,
   parameter int unsigned TAG_W      = 8,
@@ -120,7 +122,6 @@ module tex_cache_assert #(
   input logic                               mshr_busy_q [MSHRS],
   input logic [1:0]                         mshr_sub_q  [MSHRS],
   input logic [QCNT_W-1:0]                  arq_cnt,
-  input logic [MIDX_W-1:0]                  fl_q        [MSHRS],
   input logic [MIDX_W-1:0]                  fl_hd_q,
   input logic [QCNT_W-1:0]                  fl_cnt_q,
   // the memories (tex_cache's simulation views): directory words per sub-cache and set,
@@ -273,6 +274,119 @@ module tex_cache_assert #(
     for (int c = 0; c < NSUB; c++) cm_n = cm_n + 3'(cm_valid_q && cm_alloc_q[c]);
   end
 
+  // The checks over every MSHR, slot and sub-cache, each folded into one flag (with the first
+  // place that fails, for the message), so that each is one labelled assertion (a label inside
+  // a loop would name several checks alike, which the formal front end refuses).
+  logic lp_fl_ok, lp_pend_ok, lp_tag_ok, lp_victim_ok, lp_rc_ovf_ok, lp_inc_ok, lp_rc_unf_ok,
+        lp_line_ok, lp_mshr_ok, lp_uniq_ok, lp_rdcol_ok, lp_relc_ok;
+  int   lp_fl_m, lp_victim_c, lp_inc_c, lp_line_c, lp_mshr_m, lp_rdcol_c, lp_relc_c;
+  int   lp_pend_at [3];
+  int   lp_tag_at [2];
+  int   lp_uniq_at [2];
+  always_comb begin
+    lp_fl_ok = 1'b1;
+    lp_fl_m  = 0;
+    // (the free list's entries read one by one through a hierarchical reference: the whole
+    // array as a port would keep the formal front end from inferring that storage)
+    for (int j = 0; j < MSHRS; j++) begin
+      if (j < 32'(fl_cnt_q) && mshr_busy_q[tex_cache.u_free.mem_q[(32'(fl_hd_q) + j) % MSHRS]]
+          && lp_fl_ok) begin
+        lp_fl_ok = 1'b0;
+        lp_fl_m  = int'(tex_cache.u_free.mem_q[(32'(fl_hd_q) + j) % MSHRS]);
+      end
+    end
+    lp_pend_ok = 1'b1;
+    lp_tag_ok  = 1'b1;
+    lp_pend_at = '{0, 0, 0};
+    lp_tag_at  = '{0, 0};
+    for (int c = 0; c < NSUB; c++) begin
+      for (int s = 0; s < SETS; s++) begin
+        for (int w = 0; w < WAYS; w++) begin
+          if (pend_v[c][s][w] && dir_rc[c][s][w] == '0 && lp_pend_ok) begin
+            lp_pend_ok = 1'b0;
+            lp_pend_at = '{c, s, w};
+          end
+          for (int v = w + 1; v < WAYS; v++) begin
+            if (valid_v[c][s][w] && valid_v[c][s][v] && dir_tag[c][s][w] == dir_tag[c][s][v]
+                && lp_tag_ok) begin
+              lp_tag_ok = 1'b0;
+              lp_tag_at = '{c, s};
+            end
+          end
+        end
+      end
+    end
+    lp_victim_ok = 1'b1;
+    lp_rc_ovf_ok = 1'b1;
+    lp_inc_ok    = 1'b1;
+    lp_rc_unf_ok = 1'b1;
+    lp_line_ok   = 1'b1;
+    lp_victim_c  = 0;
+    lp_inc_c     = 0;
+    lp_line_c    = 0;
+    lp_rdcol_ok  = 1'b1;
+    lp_relc_ok   = 1'b1;
+    lp_rdcol_c   = 0;
+    lp_relc_c    = 0;
+    for (int c = 0; c < NSUB; c++) begin
+      if (cm_valid_q && cm_alloc_q[c]
+          && !((!lk_live[c] || dir_rc[c][cm_set[c]][cm_way[c]] == '0)
+               && !pend_v[c][cm_set[c]][cm_way[c]]) && lp_victim_ok) begin
+        lp_victim_ok = 1'b0;
+        lp_victim_c  = c;
+      end
+      if (cm_valid_q && cm_used[c] && !cm_alloc_q[c]
+          && dir_rc[c][cm_set[c]][cm_way[c]] == '1) lp_rc_ovf_ok = 1'b0;
+      if (cm_valid_q && cm_used[c] && !cm_alloc_q[c]
+          && cm_inc_q[c] != dir_inc[c][cm_set[c]][cm_way[c]] + RC_W'(1) && lp_inc_ok) begin
+        lp_inc_ok = 1'b0;
+        lp_inc_c  = c;
+      end
+      if (h_pop && hd_used[c] && w_acc_q && w_sub_q == 2'(c) && w_set_q == hd_set[c]
+          && w_way_q == hd_way[c] && lp_rdcol_ok) begin
+        lp_rdcol_ok = 1'b0;
+        lp_rdcol_c  = c;
+      end
+      if (h_pop && hd_used[c] && hd_rc[c] != dir_dec_hd[c] + RC_W'(1) && lp_relc_ok) begin
+        lp_relc_ok = 1'b0;
+        lp_relc_c  = c;
+      end
+      if (h_pop && hd_used[c] && !(hd_live[c] && dir_rc[c][hd_set[c]][hd_way[c]] != '0))
+        lp_rc_unf_ok = 1'b0;
+      if (h_pop && hd_used[c] && !err_v[c][hd_set[c]][hd_way[c]]
+          && !(sh_slot_ok[hd_set[c]][hd_way[c]][c]
+               && sh_slot_la[c][hd_set[c]][hd_way[c]] == sh_pass_la[fifo_rp_q][c])
+          && lp_line_ok) begin
+        lp_line_ok = 1'b0;
+        lp_line_c  = c;
+      end
+    end
+    lp_mshr_ok = 1'b1;
+    lp_uniq_ok = 1'b1;
+    lp_mshr_m  = 0;
+    lp_uniq_at = '{0, 0};
+    for (int m = 0; m < MSHRS; m++) begin
+      if (mshr_busy_q[m]
+          && !(pend_v[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
+               && valid_v[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
+               && dir_tag[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
+                  == mshr_la_v[m][LA_W-1 -: TAGB]
+               && spec_set(mshr_la_v[m]) == mshr_set_v[m]) && lp_mshr_ok) begin
+        lp_mshr_ok = 1'b0;
+        lp_mshr_m  = m;
+      end
+      for (int n = m + 1; n < MSHRS; n++) begin
+        if (mshr_busy_q[m] && mshr_busy_q[n] && mshr_sub_q[n] == mshr_sub_q[m]
+            && (mshr_la_v[n] == mshr_la_v[m]
+                || (mshr_set_v[n] == mshr_set_v[m] && mshr_way_v[n] == mshr_way_v[m]))
+            && lp_uniq_ok) begin
+          lp_uniq_ok = 1'b0;
+          lp_uniq_at = '{m, n};
+        end
+      end
+    end
+  end
+
   // ---------------------------------------------------------------- checks
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
@@ -330,105 +444,110 @@ module tex_cache_assert #(
         else $error("tex_cache: AR queue holds more reads than busy MSHRs");
       free_list_count: assert (32'(busy_cnt) + 32'(fl_cnt_q) + 32'(cm_n) == MSHRS)
         else $error("tex_cache: free-list count differs from the MSHRs not busy");
-      for (int j = 0; j < MSHRS; j++) begin
-        if (j < 32'(fl_cnt_q)) begin
-          // free_list_not_busy
-          assert (!mshr_busy_q[fl_q[(32'(fl_hd_q) + j) % MSHRS]])
-            else $error("tex_cache: busy MSHR %0d on the free list",
-                        fl_q[(32'(fl_hd_q) + j) % MSHRS]);
-        end
-      end
+      free_list_not_busy: assert (lp_fl_ok)
+        else $error("tex_cache: busy MSHR %0d on the free list", lp_fl_m);
     end
     if (rst_ni && !swp) begin  // (the live bits are cleared once the sweep ends)
       state_bits: assert (valid_v == ref_valid_q && pend_v == ref_pend_q && err_v == ref_err_q)
         else $error("tex_cache: directory state bits differ from their reference");
       // Invariants of every slot: a pending slot is referenced (by its allocator at least);
       // valid tags of a set are unique.
-      for (int c = 0; c < NSUB; c++) begin
-        for (int s = 0; s < SETS; s++) begin
-          for (int w = 0; w < WAYS; w++) begin
-            // pending_referenced
-            assert (!pend_v[c][s][w] || dir_rc[c][s][w] != '0)
-              else $error("tex_cache: sub-cache %0d set %0d way %0d pending but unreferenced",
-                          c, s, w);
-            for (int v = w + 1; v < WAYS; v++) begin
-              // tag_unique
-              assert (!(valid_v[c][s][w] && valid_v[c][s][v]
-                        && dir_tag[c][s][w] == dir_tag[c][s][v]))
-                else $error("tex_cache: sub-cache %0d set %0d holds a line twice", c, s);
-            end
-          end
-        end
-      end
-      for (int c = 0; c < NSUB; c++) begin
-        // No eviction of a referenced line: a victim is unreferenced (hence not pending), in
-        // the directory as its allocation is written (the commit clock).
-        if (cm_valid_q && cm_alloc_q[c]) begin
-          // victim_unreferenced
-          assert ((!lk_live[c]
-                   || dir_rc[c][cm_set[c]][cm_way[c]] == '0)
-                  && !pend_v[c][cm_set[c]][cm_way[c]])
-            else $error("tex_cache: sub-cache %0d evicts a referenced line", c);
-        end
-        // Reference counts never wrap.
-        if (cm_valid_q && cm_used[c]) begin
-          // rc_no_overflow
-          assert (cm_alloc_q[c] || dir_rc[c][cm_set[c]][cm_way[c]] != '1)
-            else $error("tex_cache: reference count overflow");
-        end
-        // The forwarded view is what the directory holds once the commit is written.
-        if (cm_valid_q && cm_used[c]) begin
-          // commit_inc
-          assert (cm_alloc_q[c]
-                  || cm_inc_q[c] == dir_inc[c][cm_set[c]][cm_way[c]] + RC_W'(1))
-            else $error("tex_cache: sub-cache %0d commits a stale reference count", c);
-        end
-        if (h_pop && hd_used[c]) begin
-          // The data RAMs' read of the head's slot is used (the clock after): no beat is written
-          // into that slot in this clock (no_rw_check, as for the tag queue).
-          // data_read_no_collision
-          assert (!(w_acc_q && w_sub_q == 2'(c) && w_set_q == hd_set[c] && w_way_q == hd_way[c]))
-            else $error("tex_cache: sub-cache %0d slot (%0d, %0d) read while a beat is written",
-                        c, hd_set[c], hd_way[c]);
-          // The release writes the pass's own reference count: dec + 1 (release_count).
-          assert (hd_rc[c] == dir_dec_hd[c] + RC_W'(1))
-            else $error("tex_cache: sub-cache %0d releases count %0d, dec is %0d", c, hd_rc[c],
-                        dir_dec_hd[c]);
-          // rc_no_underflow
-          assert (hd_live[c] && dir_rc[c][hd_set[c]][hd_way[c]] != '0)
-            else $error("tex_cache: reference count underflow");
-          // The slot read at the head holds the line the pass looked up (unless it errored).
-          // head_reads_its_line
-          assert (err_v[c][hd_set[c]][hd_way[c]]
-                  || (sh_slot_ok[hd_set[c]][hd_way[c]][c]
-                      && sh_slot_la[c][hd_set[c]][hd_way[c]]
-                         == sh_pass_la[fifo_rp_q][c]))
-            else $error("tex_cache: head reads sub-cache %0d slot (%0d, %0d): line %h, not %h",
-                        c, hd_set[c], hd_way[c],
-                        sh_slot_la[c][hd_set[c]][hd_way[c]], sh_pass_la[fifo_rp_q][c]);
-        end
-      end
+      pending_referenced: assert (lp_pend_ok)
+        else $error("tex_cache: sub-cache %0d set %0d way %0d pending but unreferenced",
+                    lp_pend_at[0], lp_pend_at[1], lp_pend_at[2]);
+      tag_unique: assert (lp_tag_ok)
+        else $error("tex_cache: sub-cache %0d set %0d holds a line twice", lp_tag_at[0],
+                    lp_tag_at[1]);
+      // No eviction of a referenced line: a victim is unreferenced (hence not pending), in the
+      // directory as its allocation is written (the commit clock).
+      victim_unreferenced: assert (lp_victim_ok)
+        else $error("tex_cache: sub-cache %0d evicts a referenced line", lp_victim_c);
+      // Reference counts never wrap.
+      rc_no_overflow: assert (lp_rc_ovf_ok)
+        else $error("tex_cache: reference count overflow");
+      // The forwarded view is what the directory holds once the commit is written.
+      commit_inc: assert (lp_inc_ok)
+        else $error("tex_cache: sub-cache %0d commits a stale reference count", lp_inc_c);
+      // The data RAMs' read of the head's slot is used (the clock after): no beat is written
+      // into that slot in this clock (no_rw_check, as for the tag queue).
+      data_read_no_collision: assert (lp_rdcol_ok)
+        else $error("tex_cache: sub-cache %0d slot (%0d, %0d) read while a beat is written",
+                    lp_rdcol_c, hd_set[lp_rdcol_c], hd_way[lp_rdcol_c]);
+      // The release writes the pass's own reference count: dec + 1.
+      release_count: assert (lp_relc_ok)
+        else $error("tex_cache: sub-cache %0d releases count %0d, dec is %0d", lp_relc_c,
+                    hd_rc[lp_relc_c], dir_dec_hd[lp_relc_c]);
+      rc_no_underflow: assert (lp_rc_unf_ok)
+        else $error("tex_cache: reference count underflow");
+      // The slot read at the head holds the line the pass looked up (unless it errored).
+      head_reads_its_line: assert (lp_line_ok)
+        else $error("tex_cache: head reads sub-cache %0d slot (%0d, %0d): line %h, not %h",
+                    lp_line_c, hd_set[lp_line_c], hd_way[lp_line_c],
+                    sh_slot_la[lp_line_c][hd_set[lp_line_c]][hd_way[lp_line_c]],
+                    sh_pass_la[fifo_rp_q][lp_line_c]);
       // MSHRs: a busy MSHR's slot is valid, pending and tagged with its line; no two busy MSHRs
       // fill one slot.
-      for (int m = 0; m < MSHRS; m++) begin
-        if (mshr_busy_q[m]) begin
-          // mshr_slot_pending
-          assert (pend_v[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
-              && valid_v[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
-              && dir_tag[mshr_sub_q[m]][mshr_set_v[m]][mshr_way_v[m]]
-                 == mshr_la_v[m][LA_W-1 -: TAGB]
-              && spec_set(mshr_la_v[m]) == mshr_set_v[m])
-            else $error("tex_cache: MSHR %0d does not own a pending slot of its line", m);
-          for (int n = m + 1; n < MSHRS; n++) begin
-            // mshr_unique
-            assert (!(mshr_busy_q[n] && mshr_sub_q[n] == mshr_sub_q[m]
-                      && (mshr_la_v[n] == mshr_la_v[m]
-                          || (mshr_set_v[n] == mshr_set_v[m]
-                              && mshr_way_v[n] == mshr_way_v[m]))))
-              else $error("tex_cache: MSHRs %0d and %0d read the same line / slot", m, n);
-          end
-        end
+      mshr_slot_pending: assert (lp_mshr_ok)
+        else $error("tex_cache: MSHR %0d does not own a pending slot of its line", lp_mshr_m);
+      mshr_unique: assert (lp_uniq_ok)
+        else $error("tex_cache: MSHRs %0d and %0d read the same line / slot", lp_uniq_at[0],
+                    lp_uniq_at[1]);
+    end
+  end
+
+  // ---------------------------------------------------------------- responses: tags in order
+  // Every response carries the tag of the oldest request not yet answered: none is lost,
+  // duplicated or reordered (whatever the lookup, the memory and the data RAMs do).
+  // tg_owed_q counts the requests accepted and not yet answered; a tracked request (picked
+  // freely in formal, in simulation every request that finds none tracked) keeps its tag and the
+  // number of requests ahead of it, and the response given when none is left ahead must carry
+  // its tag (rsp_tag_order); a response only while one is owed (rsp_owed), and never more owed
+  // than the cache can hold (owed_bound: entry register, pass queue, FIFO with its commit
+  // register, output buffer with the two head stages; the tag queue is sized by this bound).
+  // Proven by formal/tex_cache.sby (docs/formal.md).
+  localparam int unsigned OWED_MAX = 1 + PQ_DEPTH + FIFO_DEPTH + OUT_DEPTH;
+  localparam int unsigned OWED_W   = $clog2(OWED_MAX + 1) + 1;  // (one bit to spare)
+  wire               tg_pick;     // track this request (free in formal: a net, read once)
+`ifndef FORMAL
+  assign tg_pick = 1'b1;
+`endif
+  logic              tg_req, tg_rsp;      // request / response handshakes
+  logic [OWED_W-1:0] tg_owed_q;           // requests accepted and not answered
+  logic              tg_trk_q;            // a request is tracked
+  logic [TAG_W-1:0]  tg_tag_q;            // ... its tag
+  logic [OWED_W-1:0] tg_ahead_q;          // ... the requests owed before it
+  logic              tg_out;              // ... it is answered in this clock
+  logic              tg_start;            // this clock's request becomes the tracked one
+  assign tg_req   = req_valid_i && req_ready_o;
+  assign tg_rsp   = rsp_valid_o && rsp_ready_i;
+  assign tg_out   = tg_trk_q && tg_rsp && tg_ahead_q == '0;
+  assign tg_start = tg_req && tg_pick && (!tg_trk_q || tg_out);
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      tg_owed_q <= '0;
+      tg_trk_q  <= 1'b0;
+    end else begin
+      tg_owed_q <= tg_owed_q + OWED_W'(tg_req) - OWED_W'(tg_rsp);
+      if (tg_start) begin
+        tg_trk_q   <= 1'b1;
+        tg_tag_q   <= req_tag_i;
+        tg_ahead_q <= tg_owed_q - OWED_W'(tg_rsp);
+      end else if (tg_out) begin
+        tg_trk_q <= 1'b0;
+      end else if (tg_trk_q && tg_rsp) begin
+        tg_ahead_q <= tg_ahead_q - OWED_W'(1);
       end
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (rst_ni) begin
+      rsp_owed: assert (!rsp_valid_o || tg_owed_q != '0)
+        else $error("tex_cache: a response with no request owed");
+      rsp_tag_order: assert (!tg_out || rsp_tag_o == tg_tag_q)
+        else $error("tex_cache: response tag %0h, the oldest request's %0h", rsp_tag_o,
+                    tg_tag_q);
+      owed_bound: assert (32'(tg_owed_q) <= OWED_MAX && (!tg_trk_q || tg_ahead_q < tg_owed_q))
+        else $error("tex_cache: %0d requests owed", tg_owed_q);
     end
   end
 
@@ -488,7 +607,7 @@ bind tex_cache tex_cache_assert #(
   .f_vld(u_lookup.f_vld), .f_pnd(u_lookup.f_pnd),
   .out_push(u_data.out_push), .out_pop(u_data.out_pop), .out_cnt_q(u_data.out_cnt),
   .tq_wp_q(u_data.tq_wp_q), .tq_rp_q(u_data.tq_rp_q),
-  .fl_q(u_free.mem_q), .fl_hd_q(u_free.rp_q), .fl_cnt_q(u_free.cnt_q),
+  .fl_hd_q(u_free.rp_q), .fl_cnt_q(u_free.cnt_q),
   .cm_used(cm_pass_q.used), .cm_set(cm_pass_q.set), .cm_way(cm_pass_q.way),
   .hd_used(hd_q.used), .hd_set(hd_q.set), .hd_way(hd_q.way), .hd_tsel(hd_q.tsel),
   .hd_toff(hd_q.toff), .hd_rc(hd_q.rc), .fifo_wp_q(u_fifo.wp_q), .fifo_rp_q(u_fifo.rp_q), .fifo_cnt_q(fifo_cnt),

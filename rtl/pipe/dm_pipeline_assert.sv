@@ -32,8 +32,12 @@
 //                    fragment, after its ray);
 //   slot_count       the slots in use = live_q (none lost: with slots_conserved, every slot is
 //                    in the free list or in use).
+// The merge into the output register (mg_q: the slots between the miss FIFO or the out FIFO and
+// the pixel out): merge_enter_free, merge_leave_once, merge_count (below).
 // The pieces of this path are proven in formal (docs/formal.md): the free list, FIFO #0's
-// admission and order, traverse_rings' dealing and return, the traverse ring's ids.
+// admission and order, traverse_rings' dealing and return, the traverse ring's ids, the merge
+// (formal/dm_pipeline.sby: merge_leave_once, merge_count, px_stable; merge_enter_free and
+// out_credit assumed there).
 `ifndef SYNTHESIS
 module dm_pipeline_assert #(
   parameter int unsigned PIX_W = 20,   // dm_pipeline's PIX_W
@@ -69,7 +73,11 @@ module dm_pipeline_assert #(
   input logic [$clog2(SLOTS)-1:0]       free_head_i,   // free_head: the slot it takes
   input logic                           res_take_i,    // res_valid && res_ready
   input logic [$clog2(SLOTS)-1:0]       res_id_i,      // res_id: the slot of the result
-  input logic [$clog2(SLOTS)-1:0]       o_slot_i       // o_slot_q: the slot of the pixel out
+  input logic [$clog2(SLOTS)-1:0]       o_slot_i,      // o_slot_q: the slot of the pixel out
+  input logic                           miss_wr_i,     // miss_wr: a result into the miss FIFO
+  input logic [$clog2(SLOTS)-1:0]       sh_slot_i,     // the slot of shade_unit's pixel (sh_tag)
+  input logic [31:0]                    miss_count_i,  // the miss FIFO's count
+  input logic [31:0]                    out_count_i    // the shaded-pixel FIFO's count
 );
 
   localparam int unsigned SLOT_W    = $clog2(SLOTS);
@@ -165,6 +173,41 @@ module dm_pipeline_assert #(
     end
   end
 
+  // The merge into the output register: a slot is in it (mg_q) from its result's entry into the
+  // miss FIFO or its shaded pixel's into the out FIFO until its pixel leaves.
+  //   merge_enter_free  a slot enters the merge only when not in it, and not from both sides in
+  //                     one clock (what the traversal and the back end guarantee);
+  //   merge_leave_once  a pixel leaves for a slot in the merge (so once per entry);
+  //   merge_count       the slots in the merge = the miss FIFO's + the out FIFO's entries + the
+  //                     output register's pixel (none lost inside).
+  logic [SLOTS-1:0] mg_q;
+  logic [SLOT_W:0]  n_mg;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      mg_q <= '0;
+    end else begin
+      if (px_done)    mg_q[o_slot_i]  <= 1'b0;
+      if (miss_wr_i)  mg_q[res_id_i]  <= 1'b1;
+      if (sh_valid_i) mg_q[sh_slot_i] <= 1'b1;
+    end
+  end
+  always_comb begin
+    n_mg = '0;
+    for (int i = 0; i < SLOTS; i++) n_mg = n_mg + (SLOT_W+1)'(mg_q[i]);
+  end
+  always_ff @(posedge clk_i) begin
+    if (rst_ni) begin
+      merge_enter_free: assert ((!miss_wr_i || !mg_q[res_id_i]) && (!sh_valid_i || !mg_q[sh_slot_i])
+                                && !(miss_wr_i && sh_valid_i && res_id_i == sh_slot_i))
+        else $error("dm_pipeline: slot %0d / %0d enters the merge twice", res_id_i, sh_slot_i);
+      merge_leave_once: assert (!px_done || mg_q[o_slot_i])
+        else $error("dm_pipeline: pixel out for slot %0d, not in the merge", o_slot_i);
+      merge_count:      assert (32'(n_mg) == miss_count_i + out_count_i + 32'(px_valid_i))
+        else $error("dm_pipeline: %0d slots in the merge, %0d + %0d + %0d held", n_mg,
+                    miss_count_i, out_count_i, px_valid_i);
+    end
+  end
+
   always_ff @(posedge clk_i) begin
     if (rst_ni && !init_i) begin
       slots_conserved: assert (free_count_i + live_i == (SLOT_W+1)'(SLOTS))
@@ -207,5 +250,7 @@ bind dm_pipeline dm_pipeline_assert #(.PIX_W(PIX_W), .SLOTS(SLOTS)) u_assert (
   .px_valid_i(px_valid_o), .px_ready_i, .px_id_i(px_id_o), .px_rgb_i(px_rgb_o),
   .tc_req_valid_i(tc_req_valid), .tc_req_ready_i(tc_req_ready), .tf_valid_i(tf_valid),
   .tf_nmap_i(tf_tag[1]), .sh_in_slot_i(sh_in_slot), .acc_i(acc), .free_head_i(free_head),
-  .res_take_i(res_valid && res_ready), .res_id_i(res_id), .o_slot_i(o_slot_q));
+  .res_take_i(res_valid && res_ready), .res_id_i(res_id), .o_slot_i(o_slot_q),
+  .miss_wr_i(miss_wr), .sh_slot_i(sh_tag[$clog2(SLOTS):1]),
+  .miss_count_i(32'(miss_count)), .out_count_i(32'(out_count)));
 `endif
