@@ -26,9 +26,10 @@
 //   park_only_not_done      only a ray at the tail that is not done parks;
 //   park_old_leaves         a head that has waited PARK_MAX clocks leaves at once unless the tail
 //                           holds a finished ray the result FIFO has no room for;
-//   park_wait_bound         the clocks the head has waited, not counting those, are at most
-//                           PARK_MAX (and the queue's own count of them, pk_hw, at least that):
-//                           no parked ray starves;
+//   park_wait_bound         the clocks the head has waited, not counting those, are at most the
+//                           queue's own count of them (pk_hw), and that at most PARK_MAX: no
+//                           parked ray starves (each waits at most PARK_DEPTH (PARK_MAX + 1)
+//                           such clocks);
 //   rays_conserved          rays in the ring + parked = rays admitted - rays retired.
 // Ray ids (every id leaves once; proven by formal/traverse_loop.sby with the float datapath cut,
 // docs/formal.md):
@@ -166,7 +167,7 @@ module traverse_loop_assert
         else $error("traverse_loop: a finished ray or no ray parks");
       park_old_leaves:    assert (!pk_old_i || blocked || unpark_i)
         else $error("traverse_loop: the park queue's head waited PARK_MAX clocks and stays");
-      park_wait_bound:    assert (32'(w_q) <= PARK_MAX && w_q <= pk_hw_i)
+      park_wait_bound:    assert (w_q <= pk_hw_i && 32'(pk_hw_i) <= PARK_MAX)
         else $error("traverse_loop: the park queue's head waited %0d clocks (%0d)", w_q, pk_hw_i);
       rays_conserved:     assert (32'(n_q) == 32'($countones(v_i)) + 32'(pk_cnt_i))
         else $error("traverse_loop: rays in the ring %0d + parked %0d != admitted - retired %0d",
