@@ -646,7 +646,8 @@ module traverse_loop
     logic [PCW-1:0] cnt_q;
     logic [7:0]     ts_q;          // clock counter for the entries' time stamps
     logic [PHW-1:0] hw_q;          // clocks the head has waited, saturating at PARK_MAX
-    logic           miss18_q;      // S18: the ray's lookup missed this pass
+    logic           miss18_q;      // S18: the ray's height read returned neither data nor an
+                                   // error (a lookup miss, for a ray that is not done)
     f24_pair_t      pduv18_q, pinv18_q;  // S18: du, dv, 1/du, 1/dv (block RAM read registers)
     logic           ne, full, ready, cand;
     logic [7:0]     age;
@@ -679,7 +680,10 @@ module traverse_loop
       end
     end
     always_ff @(posedge clk_i) begin
-      miss18_q <= live17 && !ok_q[17] && !err_q[17];
+      // (not live17: a ray that is not done in S18 was live in S17, and the status's done flag
+      // would bring the float datapath into the park decision, which the formal model cuts at
+      // done18_q)
+      miss18_q <= !ok_q[17] && !err_q[17];
       if (v_q[17]) begin
         pduv18_q <= duv_q[sl_q[17]];
         pinv18_q <= inv_q[sl_q[17]];
