@@ -142,8 +142,9 @@ module traverse_loop
   parameter bit          XOR_PATH = 1'b1,
   // Parking (header: "Parking"): 1: a ray whose lookup missed may leave the ring for the park
   // queue, its slot free for another ray.  0: no park queue (the ring without parking, clock for
-  // clock).
-  parameter bit          PARK       = 1'b1,
+  // clock; no park register, no queue, no extra table read port).  Off by default: the park
+  // decision costs the ring about 10 MHz out of context (docs/traverse.md, "Parking").
+  parameter bit          PARK       = 1'b0,
   // park queue entries (LUT RAM); LOOP_DEPTH + PARK_DEPTH <= 31 (busy_o counts ring and queue)
   parameter int unsigned PARK_DEPTH = 12,
   // clocks a parked ray waits (for its line to arrive) before it takes a free slot ahead of new
@@ -632,7 +633,9 @@ module traverse_loop
     $error("traverse_loop: PARK_DEPTH 1 .. %0d, PARK_WAIT <= 255, PARK_MAX >= 1",
            31 - LOOP_DEPTH);
   end
+  /* verilator lint_off UNUSEDSIGNAL */  // its time stamp: read only with PARK
   park_t          pk_head;         // the queue's head
+  /* verilator lint_on UNUSEDSIGNAL */
   logic [PCW-1:0] pk_cnt;          // rays parked
   logic [PAW-1:0] pk_rd;           // (checker) the head's entry
   logic [PQ-1:0]  pk_v;            // (checker) pk_v[i]: entry i holds a ray
