@@ -649,7 +649,12 @@ async def watch_park(dut, tally: dict[str, int]) -> None:
         tally["depth"] = depth
 
 
-@cocotb.test()
+#: The build with PARK = 1 (test_traverse_system_park) runs only the park queue's test; the
+#: default build (PARK = 0, no park queue) skips it.
+PARK_BUILD = os.environ.get("TRAVERSE_PARK") == "1"
+
+
+@cocotb.test(skip=not PARK_BUILD)
 async def traverse_system_incoherent_park(dut):
     """Incoherent rays (random positions and directions, like a ray tracer's secondary rays) on
     a 256x256 map, twice: with a slow memory (40 .. 80 clocks per line, AR / R pauses), and with
@@ -694,3 +699,10 @@ async def traverse_system_incoherent_park(dut):
 def test_traverse_system():
     # A 4 KiB cache (the defaults are 32 KiB): these batches then evict and refill lines often.
     runner.run("traverse_system", "test_traverse_system", HERE, parameters={"SETS": 64, "WAYS": 2})
+
+
+def test_traverse_system_park():
+    # The ring with its park queue (PARK = 1; off by default), the same 4 KiB cache.
+    runner.run("traverse_system", "test_traverse_system", HERE,
+               parameters={"SETS": 64, "WAYS": 2, "PARK": 1},
+               extra_env={"TRAVERSE_PARK": "1"}, testcase="traverse_system_incoherent_park")
