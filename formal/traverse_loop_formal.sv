@@ -4,8 +4,8 @@
 // id checks (ring_ids_distinct, id_enter_free, id_leave_once, id_in_ring: over the ring and the
 // park queue) and its control checks (new_ray_only_in_bubble, no_spurious_response, and the park
 // queue's park_no_overflow, park_no_underflow, park_in_range, park_only_not_done,
-// park_old_leaves, park_wait_bound, rays_conserved), with PARK = 1 (the ring's default is 0) and
-// a park queue of PARK_DEPTH = 2.
+// park_old_leaves, park_old_flag, park_wait_bound, rays_conserved), with PARK = 1 (the ring's
+// default is 0) and a park queue of PARK_DEPTH = 2.
 //
 // The float datapath is cut: the .sby script replaces the register done18_q (the ray in S18 has
 // finished: the only way the datapath reaches the ring's control) by a free value each clock, so

@@ -622,7 +622,6 @@ module traverse_loop
     f24_t            tmap, t;
     node_t           node;
     status_t         stat;
-    logic [7:0]      ts;           // the clock it parked (mod 256)
   } park_t;
   localparam int unsigned PQ   = (PARK_DEPTH > 0) ? PARK_DEPTH : 1;
   localparam int unsigned PAW  = (PQ > 1) ? $clog2(PQ) : 1;
@@ -633,9 +632,7 @@ module traverse_loop
     $error("traverse_loop: PARK_DEPTH 1 .. %0d, PARK_WAIT <= 255, PARK_MAX >= 1",
            31 - LOOP_DEPTH);
   end
-  /* verilator lint_off UNUSEDSIGNAL */  // its time stamp: read only with PARK
   park_t          pk_head;         // the queue's head
-  /* verilator lint_on UNUSEDSIGNAL */
   logic [PCW-1:0] pk_cnt;          // rays parked
   logic [PAW-1:0] pk_rd;           // (checker) the head's entry
   logic [PQ-1:0]  pk_v;            // (checker) pk_v[i]: entry i holds a ray
@@ -644,7 +641,9 @@ module traverse_loop
   logic [PHW-1:0] pk_hw;           // (checker) clocks the head has waited (saturating)
   if (PARK) begin : g_park
     (* ram_style = "distributed" *) park_t pk_q [PQ];
+    logic [7:0]     ts_mem [PQ];   // the clock each entry parked (mod 256; two read ports)
     logic [PAW-1:0] rd_q, wr;      // head, next free entry (rd + count, mod PQ)
+    logic [PAW-1:0] rd1;           // the entry after the head (rd + 1, mod PQ)
     logic [PAW:0]   wsum;
     logic [PCW-1:0] cnt_q;
     logic [7:0]     ts_q;          // clock counter for the entries' time stamps
@@ -653,14 +652,28 @@ module traverse_loop
                                    // error (a lookup miss, for a ray that is not done)
     f24_pair_t      pduv18_q, pinv18_q;  // S18: du, dv, 1/du, 1/dv (block RAM read registers)
     logic           ne, full, ready, cand;
-    logic [7:0]     age;
+    // The head's two flags, registered (computed a clock ahead for the head of the next clock,
+    // off the park decision's path): old_q = pk_old (the head has waited PARK_MAX clocks),
+    // wait_q = its age (clocks since it parked, mod 256) >= PARK_WAIT.
+    logic           old_q, wait_q, old_d, wait_d;
+    logic [7:0]     age1, age1_nxt;  // next clock's age of the head, of the entry after it
     assign wsum   = (PAW+1)'(rd_q) + (PAW+1)'(cnt_q);
     assign wr     = (wsum >= (PAW+1)'(PQ)) ? PAW'(wsum - (PAW+1)'(PQ)) : PAW'(wsum);
     assign ne     = (cnt_q != '0);
     assign full   = (cnt_q == PCW'(PQ));
-    assign age    = ts_q - pk_head.ts;
-    assign pk_old = ne && (hw_q == PHW'(PARK_MAX));
-    assign ready  = pk_old || (age >= 8'(PARK_WAIT));
+    assign rd1    = (rd_q == PAW'(PQ - 1)) ? '0 : rd_q + PAW'(1);
+    assign pk_old = old_q;
+    assign ready  = old_q || wait_q;
+    // Next clock's head: the same (no unpark); the entry after it (unpark, 2 or more parked);
+    // or the ray parking in this clock (an empty queue, or one ray that unparks): age 1.
+    assign age1     = ts_q + 8'd1 - ts_mem[rd_q];
+    assign age1_nxt = ts_q + 8'd1 - ts_mem[rd1];
+    assign wait_d   = unpark ? ((cnt_q > PCW'(1)) ? (age1_nxt >= 8'(PARK_WAIT))
+                                                  : (8'd1 >= 8'(PARK_WAIT)))
+                             : ne ? (age1 >= 8'(PARK_WAIT)) : (8'd1 >= 8'(PARK_WAIT));
+    // hw_q's next value is PARK_MAX (and the queue not empty) exactly when the head stays and
+    // has waited PARK_MAX - 1 clocks or more
+    assign old_d    = ne && !unpark && (32'(hw_q) + 1 >= PARK_MAX);
     assign cand   = ne && (ready || !new_cand);
     assign park   = v_q[D-1] && !done18_q && (miss18_q || pk_old) && (new_cand || cand)
                     && (!full || cand);
@@ -675,7 +688,11 @@ module traverse_loop
         cnt_q <= '0;
         ts_q  <= '0;
         hw_q  <= '0;
+        old_q  <= 1'b0;
+        wait_q <= 1'b0;
       end else begin
+        old_q  <= old_d;
+        wait_q <= wait_d;
         ts_q  <= ts_q + 8'd1;
         cnt_q <= cnt_q + PCW'(park) - PCW'(unpark);
         if (unpark) rd_q <= (rd_q == PAW'(PQ - 1)) ? '0 : rd_q + PAW'(1);
@@ -694,7 +711,8 @@ module traverse_loop
       if (park) begin
         pk_q[wr] <= '{id: id_q[D-1], uv: uv_q[D-1], duv: pduv18_q, inv: pinv18_q,
                       dir: dir_q[D-1], tmap: tmap_q[D-1], t: t_q[D-1],
-                      node: down18_q ? ndn18 : node_q[D-1], stat: stat_q[D-1], ts: ts_q};
+                      node: down18_q ? ndn18 : node_q[D-1], stat: stat_q[D-1]};
+        ts_mem[wr] <= ts_q;
       end
     end
     for (genvar g = 0; g < PQ; g++) begin : g_pk_v

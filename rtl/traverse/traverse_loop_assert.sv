@@ -26,6 +26,8 @@
 //   park_only_not_done      only a ray at the tail that is not done parks;
 //   park_old_leaves         a head that has waited PARK_MAX clocks leaves at once unless the tail
 //                           holds a finished ray the result FIFO has no room for;
+//   park_old_flag           the registered "waited PARK_MAX clocks" flag (pk_old) is the queue's
+//                           count of them at PARK_MAX with a ray parked;
 //   park_wait_bound         the clocks the head has waited, not counting those, are at most the
 //                           queue's own count of them (pk_hw), and that at most PARK_MAX: no
 //                           parked ray starves (each waits at most PARK_DEPTH (PARK_MAX + 1)
@@ -167,6 +169,8 @@ module traverse_loop_assert
         else $error("traverse_loop: a finished ray or no ray parks");
       park_old_leaves:    assert (!pk_old_i || blocked || unpark_i)
         else $error("traverse_loop: the park queue's head waited PARK_MAX clocks and stays");
+      park_old_flag:      assert (pk_old_i == (pk_cnt_i != '0 && 32'(pk_hw_i) == PARK_MAX))
+        else $error("traverse_loop: the park queue's registered PARK_MAX flag is %0d", pk_old_i);
       park_wait_bound:    assert (w_q <= pk_hw_i && 32'(pk_hw_i) <= PARK_MAX)
         else $error("traverse_loop: the park queue's head waited %0d clocks (%0d)", w_q, pk_hw_i);
       rays_conserved:     assert (32'(n_q) == 32'($countones(v_i)) + 32'(pk_cnt_i))
