@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // traverse_loop_formal: the traverse ring (traverse_loop) under SymbiYosys
 // (formal/traverse_loop.sby), for its ray ids: the properties are the bound traverse_loop_assert's
-// id checks (ring_ids_distinct, id_enter_free, id_leave_once, id_in_ring) and its control checks
-// (slot_counter, new_ray_only_in_bubble, no_spurious_response).
+// id checks (ring_ids_distinct, id_enter_free, id_leave_once, id_in_ring: over the ring and the
+// park queue) and its control checks (new_ray_only_in_bubble, no_spurious_response, and the park
+// queue's park_no_overflow, park_no_underflow, park_in_range, park_only_not_done,
+// park_old_leaves, park_old_flag, park_wait_bound, rays_conserved), with PARK = 1 (the ring's
+// default is 0) and a park queue of PARK_DEPTH = 2.
 //
 // The float datapath is cut: the .sby script replaces the register done18_q (the ray in S18 has
 // finished: the only way the datapath reaches the ring's control) by a free value each clock, so
@@ -19,7 +22,10 @@ module traverse_loop_formal
   import f24_pkg::*;
   import traverse_pkg::*;
 #(
-  parameter int unsigned ID_W = 5   // 32 ids for the ring's 19 slots
+  parameter int unsigned ID_W       = 5,  // 32 ids for the ring's 19 slots
+  // park queue entries: 2 (the queue's logic is the same for any depth; the default 12 makes
+  // the induction step take the solver more than 10 minutes)
+  parameter int unsigned PARK_DEPTH = 2
 ) (
   input logic              clk_i,
   input logic              rst_ni,
@@ -41,7 +47,7 @@ module traverse_loop_formal
   logic              st_iter, st_down, st_cross, st_up;
   logic [4:0]        busy;
 
-  traverse_loop #(.ID_W(ID_W)) u_dut (
+  traverse_loop #(.ID_W(ID_W), .PARK(1'b1), .PARK_DEPTH(PARK_DEPTH)) u_dut (
     .clk_i, .rst_ni, .cfg_i, .new_valid_i, .new_id_i, .new_ray_i, .new_pop_o(new_pop),
     .res_full_i, .res_push_o(res_push), .res_id_o(res_id), .res_o(res),
     .lk_valid_o(lk_valid), .lk_addr_o(lk_addr), .lk_wide_o(lk_wide),

@@ -57,6 +57,8 @@ module dm_pipeline
   parameter int unsigned PIX_W      = 20,   // pixel id width (px_id_o = frag_id_i)
   parameter int unsigned SLOTS      = 128,  // fragments in flight (power of two)
   parameter int unsigned N_RINGS    = 1,    // traverse rings, each with its own height cache
+  parameter bit          PARK       = 1'b0, // 1: each ring parks missed rays (traverse_loop)
+  parameter int unsigned PARK_DEPTH = 12,   // park queue entries per ring (traverse_loop)
   parameter int unsigned TRIS       = 16,   // triangle table entries
   parameter int unsigned F0_DEPTH   = 16,   // FIFO #0 (power of two)
   parameter int unsigned REQ_DEPTH  = 16,   // texture-request FIFOs, pixels (power of two)
@@ -285,7 +287,8 @@ module dm_pipeline
 
   assign f0_rd = !f0_empty && ray_ready;
 
-  traverse_rings #(.N_RINGS(N_RINGS), .RAY_ID_W(SLOT_W), .AXI_ID_W(H_ID_W),
+  traverse_rings #(.N_RINGS(N_RINGS), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH),
+                   .RAY_ID_W(SLOT_W), .AXI_ID_W(H_ID_W),
                    .AXI_DATA_W(AXI_DATA_W), .LINE_BYTES(H_LINE_BYTES), .SETS(H_SETS),
                    .WAYS(H_WAYS)) u_trav (
     .clk_i, .rst_ni,

@@ -110,6 +110,25 @@
 // (iterations = height reads that returned data).  A read error finishes the ray with err = 1.
 // Back-pressure: a finished ray leaves only when the result FIFO has room; otherwise it keeps
 // circulating (no lookups, state untouched) and tries again one pass later.
+//
+// Parking (PARK): with incoherent rays most lookups miss, and a missed ray would hold its slot
+// for a whole pass for nothing while new rays wait in the setup FIFO.  At the tail a ray whose
+// lookup missed (state unchanged) may instead leave the ring for the park queue, a FIFO of
+// PARK_DEPTH entries in LUT RAM holding all it resumes with: id, u0, v0, directions, t_map, the
+// traversal state (node, t, status, iterations), du, dv, 1/du, 1/dv (read from the tables in S17
+// into their own read registers) and the clock it parked.  Its slot then takes a new ray at once.
+// It parks only when a ray takes its slot in the same clock (a new ray, or the queue's head) and
+// the queue has room (or its head leaves in that clock); otherwise it circulates as without
+// parking.  The queue's head takes a free slot at the tail, before any new ray, once it has been
+// parked PARK_WAIT clocks (its line has had time to arrive; the parked ray looks it up again in
+// S1 after re-entering), or at once when no new ray waits.  The bound on waiting: once the head
+// has waited PARK_MAX clocks it takes the slot of whatever ray reaches the tail that is not done,
+// and that ray parks in its place (any pass: the tail holds a ray's complete state, with the
+// descent's node corrected in S18); only a finished ray that the result FIFO has no room for
+// delays it.  Entering from the queue writes the ray's table entries like a new ray's.  Results
+// never depend on when a ray runs (a lookup that misses changes nothing), so they are the same
+// word for word with and without parking; only the clock counts differ.  busy_o counts the rays
+// in the ring and the queue.
 module traverse_loop
   import f24_pkg::*;
   import traverse_pkg::*;
@@ -120,7 +139,20 @@ module traverse_loop
   // descends as the multi-level descent instead (DESC_XOR runs as DESC_MULTI with the same
   // `levels`: park-xor becomes start level, multi-level descent of 3 levels, selective level-up,
   // clip; bit-exact with the model's method of those fields, not with park-xor).
-  parameter bit          XOR_PATH = 1'b1
+  parameter bit          XOR_PATH = 1'b1,
+  // Parking (header: "Parking"): 1: a ray whose lookup missed may leave the ring for the park
+  // queue, its slot free for another ray.  0: no park queue (the ring without parking, clock for
+  // clock; no park register, no queue, no extra table read port).  Off by default: the park
+  // decision costs the ring about 10 MHz out of context (docs/traverse.md, "Parking").
+  parameter bit          PARK       = 1'b0,
+  // park queue entries (LUT RAM); LOOP_DEPTH + PARK_DEPTH <= 31 (busy_o counts ring and queue)
+  parameter int unsigned PARK_DEPTH = 12,
+  // clocks a parked ray waits (for its line to arrive) before it takes a free slot ahead of new
+  // rays (with no new ray waiting it takes one at once)
+  parameter int unsigned PARK_WAIT  = 16,
+  // clocks the park queue's head waits before it takes the slot of any ray at the tail that is
+  // not done (that ray is parked in its place): the bound on waiting
+  parameter int unsigned PARK_MAX   = 4 * LOOP_DEPTH
 ) (
   input  logic              clk_i,
   input  logic              rst_ni,
@@ -150,7 +182,7 @@ module traverse_loop
   output logic              st_down_o,   // ... that descended
   output logic              st_cross_o,  // ... that crossed to a neighbour
   output logic              st_up_o,     // ... that crossed and went up a level
-  output logic [4:0]        busy_o       // rays in the ring
+  output logic [4:0]        busy_o       // rays in the ring and the park queue
 );
 
   localparam int unsigned D  = LOOP_DEPTH;  // traverse_pkg: stages S0 .. S18
@@ -563,13 +595,142 @@ module traverse_loop
   /* verilator lint_off UNUSEDSIGNAL */  // the tail reads the result flags only
   status_t st18;
   /* verilator lint_on UNUSEDSIGNAL */
-  logic    retire, bypass, admit;
+  logic    retire, bypass, admit, new_cand, free18;
+  logic    park, unpark;  // the ray at the tail parks; the park queue's head takes the slot
   assign st18   = stat_q[D-1];
   assign retire = v_q[D-1] && done18_q && !res_full_i;
   // A ray that setup already finished (invalid, or never enters the map) goes straight to the
   // result FIFO when the tail does not use it this clock.
-  assign bypass = !retire && new_valid_i && new_ray_i.done && !res_full_i;
-  assign admit  = new_valid_i && !new_ray_i.done && (!v_q[D-1] || retire);
+  assign bypass   = !retire && new_valid_i && new_ray_i.done && !res_full_i;
+  // The slot at the tail is free: no ray, or its ray retires or parks.  A parked ray that takes
+  // it (unpark) goes before a new ray.
+  assign new_cand = new_valid_i && !new_ray_i.done;
+  assign free18   = !v_q[D-1] || retire || park;
+  assign admit    = new_cand && free18 && !unpark;
+
+  // ---- S18: the park queue (PARK) -------------------------------------------------------------
+  // A FIFO of PARK_DEPTH entries (LUT RAM) holding everything a ray resumes with.  A ray at the
+  // tail that is not done parks when its lookup missed this pass (its state is unchanged), or
+  // when the queue's head has waited PARK_MAX clocks (any pass: its state is complete at the
+  // tail), if a ray takes its slot at once (a new ray, or the head) and the queue has room (or
+  // the head leaves in the same clock).  The head takes a free slot (before a new ray) when it
+  // has waited PARK_WAIT clocks, or when no new ray waits.
+  typedef struct packed {
+    logic [ID_W-1:0] id;
+    f24_pair_t       uv, duv, inv;
+    dirs_t           dir;
+    f24_t            tmap, t;
+    node_t           node;
+    status_t         stat;
+  } park_t;
+  localparam int unsigned PQ   = (PARK_DEPTH > 0) ? PARK_DEPTH : 1;
+  localparam int unsigned PAW  = (PQ > 1) ? $clog2(PQ) : 1;
+  localparam int unsigned PCW  = $clog2(PQ + 1);
+  localparam int unsigned PHW  = $clog2(PARK_MAX + 1);
+  if (PARK && (PARK_DEPTH < 1 || LOOP_DEPTH + PARK_DEPTH > 31 || PARK_WAIT > 255
+               || PARK_MAX < 1)) begin : g_check_park
+    $error("traverse_loop: PARK_DEPTH 1 .. %0d, PARK_WAIT <= 255, PARK_MAX >= 1",
+           31 - LOOP_DEPTH);
+  end
+  park_t          pk_head;         // the queue's head
+  logic [PCW-1:0] pk_cnt;          // rays parked
+  logic [PAW-1:0] pk_rd;           // (checker) the head's entry
+  logic [PQ-1:0]  pk_v;            // (checker) pk_v[i]: entry i holds a ray
+  logic [ID_W-1:0] pk_id [PQ];     // (checker) their ids
+  logic           pk_old;          // (checker) the head has waited PARK_MAX clocks
+  logic [PHW-1:0] pk_hw;           // (checker) clocks the head has waited (saturating)
+  if (PARK) begin : g_park
+    (* ram_style = "distributed" *) park_t pk_q [PQ];
+    logic [7:0]     ts_mem [PQ];   // the clock each entry parked (mod 256; two read ports)
+    logic [PAW-1:0] rd_q, wr;      // head, next free entry (rd + count, mod PQ)
+    logic [PAW-1:0] rd1;           // the entry after the head (rd + 1, mod PQ)
+    logic [PAW:0]   wsum;
+    logic [PCW-1:0] cnt_q;
+    logic [7:0]     ts_q;          // clock counter for the entries' time stamps
+    logic [PHW-1:0] hw_q;          // clocks the head has waited, saturating at PARK_MAX
+    logic           miss18_q;      // S18: the ray's height read returned neither data nor an
+                                   // error (a lookup miss, for a ray that is not done)
+    f24_pair_t      pduv18_q, pinv18_q;  // S18: du, dv, 1/du, 1/dv (block RAM read registers)
+    logic           ne, full, ready, cand;
+    // The head's two flags, registered (computed a clock ahead for the head of the next clock,
+    // off the park decision's path): old_q = pk_old (the head has waited PARK_MAX clocks),
+    // wait_q = its age (clocks since it parked, mod 256) >= PARK_WAIT.
+    logic           old_q, wait_q, old_d, wait_d;
+    logic [7:0]     age1, age1_nxt;  // next clock's age of the head, of the entry after it
+    assign wsum   = (PAW+1)'(rd_q) + (PAW+1)'(cnt_q);
+    assign wr     = (wsum >= (PAW+1)'(PQ)) ? PAW'(wsum - (PAW+1)'(PQ)) : PAW'(wsum);
+    assign ne     = (cnt_q != '0);
+    assign full   = (cnt_q == PCW'(PQ));
+    assign rd1    = (rd_q == PAW'(PQ - 1)) ? '0 : rd_q + PAW'(1);
+    assign pk_old = old_q;
+    assign ready  = old_q || wait_q;
+    // Next clock's head: the same (no unpark); the entry after it (unpark, 2 or more parked);
+    // or the ray parking in this clock (an empty queue, or one ray that unparks): age 1.
+    assign age1     = ts_q + 8'd1 - ts_mem[rd_q];
+    assign age1_nxt = ts_q + 8'd1 - ts_mem[rd1];
+    assign wait_d   = unpark ? ((cnt_q > PCW'(1)) ? (age1_nxt >= 8'(PARK_WAIT))
+                                                  : (8'd1 >= 8'(PARK_WAIT)))
+                             : ne ? (age1 >= 8'(PARK_WAIT)) : (8'd1 >= 8'(PARK_WAIT));
+    // hw_q's next value is PARK_MAX (and the queue not empty) exactly when the head stays and
+    // has waited PARK_MAX - 1 clocks or more
+    assign old_d    = ne && !unpark && (32'(hw_q) + 1 >= PARK_MAX);
+    assign cand   = ne && (ready || !new_cand);
+    assign park   = v_q[D-1] && !done18_q && (miss18_q || pk_old) && (new_cand || cand)
+                    && (!full || cand);
+    assign unpark = cand && free18;
+    assign pk_head = pk_q[rd_q];
+    assign pk_cnt  = cnt_q;
+    assign pk_rd   = rd_q;
+    assign pk_hw   = hw_q;
+    always_ff @(posedge clk_i) begin
+      if (!rst_ni) begin
+        rd_q  <= '0;
+        cnt_q <= '0;
+        ts_q  <= '0;
+        hw_q  <= '0;
+        old_q  <= 1'b0;
+        wait_q <= 1'b0;
+      end else begin
+        old_q  <= old_d;
+        wait_q <= wait_d;
+        ts_q  <= ts_q + 8'd1;
+        cnt_q <= cnt_q + PCW'(park) - PCW'(unpark);
+        if (unpark) rd_q <= (rd_q == PAW'(PQ - 1)) ? '0 : rd_q + PAW'(1);
+        hw_q  <= (unpark || !ne) ? '0 : pk_old ? hw_q : hw_q + PHW'(1);
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      // (not live17: a ray that is not done in S18 was live in S17, and the status's done flag
+      // would bring the float datapath into the park decision, which the formal model cuts at
+      // done18_q)
+      miss18_q <= !ok_q[17] && !err_q[17];
+      if (v_q[17]) begin
+        pduv18_q <= duv_q[sl_q[17]];
+        pinv18_q <= inv_q[sl_q[17]];
+      end
+      if (park) begin
+        pk_q[wr] <= '{id: id_q[D-1], uv: uv_q[D-1], duv: pduv18_q, inv: pinv18_q,
+                      dir: dir_q[D-1], tmap: tmap_q[D-1], t: t_q[D-1],
+                      node: down18_q ? ndn18 : node_q[D-1], stat: stat_q[D-1]};
+        ts_mem[wr] <= ts_q;
+      end
+    end
+    for (genvar g = 0; g < PQ; g++) begin : g_pk_v
+      assign pk_v[g]  = ((g >= rd_q) ? (PCW'(g) - PCW'(rd_q)) : (PCW'(g + PQ) - PCW'(rd_q)))
+                        < cnt_q;
+      assign pk_id[g] = pk_q[g].id;
+    end
+  end else begin : g_no_park
+    assign park    = 1'b0;
+    assign unpark  = 1'b0;
+    assign pk_head = '0;
+    assign pk_cnt  = '0;
+    assign pk_rd   = '0;
+    assign pk_v    = '0;
+    assign pk_id   = '{default: '0};
+    assign pk_old  = 1'b0;
+    assign pk_hw   = '0;
+  end
 
   assign new_pop_o  = bypass || admit;
   assign res_push_o = retire || bypass;
@@ -590,8 +751,8 @@ module traverse_loop
       v_q     <= '0;
       live0_q <= 1'b0;
     end else begin
-      v_q     <= {v_q[D-2:0], (v_q[D-1] && !retire) || admit};
-      live0_q <= admit || (v_q[D-1] && !done18_q);
+      v_q     <= {v_q[D-2:0], (v_q[D-1] && !retire && !park) || admit || unpark};
+      live0_q <= admit || unpark || (v_q[D-1] && !done18_q && !park);
     end
   end
 
@@ -716,17 +877,19 @@ module traverse_loop
     end
     // S18 -> S0: the ray re-circulates (its descent's node, if it descended), or a new ray fills
     // the bubble
-    id_q[0]   <= admit ? new_id_i : id_q[D-1];
-    uv_q[0]   <= admit ? '{u: new_ray_i.u0, v: new_ray_i.v0} : uv_q[D-1];
-    dir_q[0]  <= admit ? '{sx: new_ray_i.sx, sy: new_ray_i.sy} : dir_q[D-1];
-    tmap_q[0] <= admit ? new_ray_i.t_map : tmap_q[D-1];
-    node_q[0] <= admit ? n_new : down18_q ? ndn18 : node_q[D-1];
-    t_q[0]    <= admit ? new_ray_i.t : t_q[D-1];
+    // the bubble, or a parked ray comes back
+    id_q[0]   <= admit ? new_id_i : unpark ? pk_head.id : id_q[D-1];
+    uv_q[0]   <= admit ? '{u: new_ray_i.u0, v: new_ray_i.v0} : unpark ? pk_head.uv : uv_q[D-1];
+    dir_q[0]  <= admit ? '{sx: new_ray_i.sx, sy: new_ray_i.sy}
+               : unpark ? pk_head.dir : dir_q[D-1];
+    tmap_q[0] <= admit ? new_ray_i.t_map : unpark ? pk_head.tmap : tmap_q[D-1];
+    node_q[0] <= admit ? n_new : unpark ? pk_head.node : down18_q ? ndn18 : node_q[D-1];
+    t_q[0]    <= admit ? new_ray_i.t : unpark ? pk_head.t : t_q[D-1];
     stat_q[0] <= admit ? status_t'{crossed: new_ray_i.crossed, prev_cross: new_ray_i.prev_cross,
                                    done: new_ray_i.done, hit: new_ray_i.hit,
                                    invalid: new_ray_i.invalid, capped: new_ray_i.capped,
                                    err: new_ray_i.err, iters: new_ray_i.iters}
-                       : stat_q[D-1];
+               : unpark ? pk_head.stat : stat_q[D-1];
     // S17 -> S18: the next state (only a live ray whose lookup answered changes); a hit's u, v
     // take the place of u0, v0 (no stage reads those again)
     if (err17 || iter17) stat_q[18] <= nst17;
@@ -754,17 +917,17 @@ module traverse_loop
     end
   end
 
-  // The block RAM tables: written when a ray enters the ring, in its slot's entry (that slot is
-  // in S0 next clock).
+  // The block RAM tables: written when a ray enters the ring (new or from the park queue), in
+  // its slot's entry (that slot is in S0 next clock).
   always_ff @(posedge clk_i) begin
-    if (admit) begin
-      duv_q[sl_q[D-1]] <= '{u: new_ray_i.du, v: new_ray_i.dv};
-      inv_q[sl_q[D-1]] <= '{u: new_ray_i.inv_du, v: new_ray_i.inv_dv};
+    if (admit || unpark) begin
+      duv_q[sl_q[D-1]] <= unpark ? pk_head.duv : '{u: new_ray_i.du, v: new_ray_i.dv};
+      inv_q[sl_q[D-1]] <= unpark ? pk_head.inv : '{u: new_ray_i.inv_du, v: new_ray_i.inv_dv};
     end
   end
 
   always_comb begin
-    busy_o = 5'($countones(v_q));
+    busy_o = 5'($countones(v_q)) + 5'(pk_cnt);
   end
 
   // The simulation checks are in traverse_loop_assert.sv (bound into every instance).

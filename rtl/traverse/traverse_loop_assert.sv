@@ -10,31 +10,49 @@
 //   plane_operand_in_range  f24_one_minus takes H in [+0, 1] only (f24_from_unorm gives nothing
 //                           else);
 //   new_ray_only_in_bubble  a new ray enters only where the last stage holds no ray or one that
-//                           retires;
+//                           retires or parks;
 //   live_ray_has_no_result  a ray that is not done has none of the final flags (S17 relies on
 //                           it);
-//   descent_not_admitted    the descent's node and a new ray never take one entry in one clock;
+//   descent_not_admitted    the descent's node and a new (or parked) ray never take one entry in
+//                           one clock (unless the descending ray parks);
 //   bdiff_operand_in_range  traverse_bdiff (boundary - u0) takes boundaries in [0, 2^15] and
 //                           positions u0 in [+-0, 2^15) only, where it gives f24_add's word: the
 //                           exit boundaries of a live ray in S1, the child's boundaries of a
 //                           descent in S14.
+// The park queue (PARK):
+//   park_no_overflow        no ray parks in a full queue (unless the head leaves in that clock);
+//   park_no_underflow       no ray leaves an empty queue;
+//   park_in_range           the queue's count is at most PARK_DEPTH and its head an entry;
+//   park_only_not_done      only a ray at the tail that is not done parks;
+//   park_old_leaves         a head that has waited PARK_MAX clocks leaves at once unless the tail
+//                           holds a finished ray the result FIFO has no room for;
+//   park_old_flag           the registered "waited PARK_MAX clocks" flag (pk_old) is the queue's
+//                           count of them at PARK_MAX with a ray parked;
+//   park_wait_bound         the clocks the head has waited, not counting those, are at most the
+//                           queue's own count of them (pk_hw), and that at most PARK_MAX: no
+//                           parked ray starves (each waits at most PARK_DEPTH (PARK_MAX + 1)
+//                           such clocks);
+//   rays_conserved          rays in the ring + parked = rays admitted - rays retired.
 // Ray ids (every id leaves once; proven by formal/traverse_loop.sby with the float datapath cut,
 // docs/formal.md):
-//   ring_ids_distinct       no two slots of the ring hold one id (any ID_W);
-//   and with ID_W <= ID_TRACK_W a shadow of the ids in the ring (in_ring_q: set when a ray
-//   enters the ring, cleared when it retires):
+//   ring_ids_distinct       no two slots of the ring or the park queue hold one id (any ID_W);
+//   and with ID_W <= ID_TRACK_W a shadow of the ids in the ring or the park queue (in_ring_q: set
+//   when a new ray enters the ring, cleared when it retires):
 //   id_enter_free           a new ray's id (entering the ring, or straight to the result FIFO)
 //                           is not in the ring: the user's obligation (ids unique in flight);
 //   id_leave_once           a retiring ray's id is in the ring (no id leaves twice);
-//   id_in_ring              every id of the shadow is in a slot of the ring and every ray in
-//                           the ring has an id of the shadow (no id lost, none made up).
+//   id_in_ring              every id of the shadow is in a slot of the ring or an entry of the
+//                           park queue and every ray there has an id of the shadow (no id lost,
+//                           none made up).
 `ifndef SYNTHESIS
 module traverse_loop_assert
   import f24_pkg::*;
   import traverse_pkg::*;
 #(
   parameter int unsigned ID_W       = 8,   // traverse_loop's ID_W
-  parameter int unsigned ID_TRACK_W = 10   // the shadow of ids in the ring up to this ID_W
+  parameter int unsigned ID_TRACK_W = 10,  // the shadow of ids in the ring up to this ID_W
+  parameter int unsigned PQ         = 1,   // park queue entries (traverse_loop's PQ)
+  parameter int unsigned PARK_MAX   = 1    // traverse_loop's PARK_MAX
 ) (
   input logic                          clk_i,
   input logic                          rst_ni,
@@ -58,7 +76,17 @@ module traverse_loop_assert
   input logic [LOOP_DEPTH-1:0]         v_i,                // v_q: the slots holding a ray
   input logic [ID_W-1:0]               id_i [LOOP_DEPTH],  // id_q: their ids
   input logic                          bypass_i,           // bypass: a new ray straight out
-  input logic [ID_W-1:0]               new_id_i
+  input logic [ID_W-1:0]               new_id_i,
+  input logic                          done18_i,           // done18_q
+  input logic                          res_full_i,
+  input logic                          park_i,             // park
+  input logic                          unpark_i,           // unpark
+  input logic [$clog2(PQ+1)-1:0]       pk_cnt_i,           // pk_cnt: rays parked
+  input logic [$clog2(PQ)+(PQ==1)-1:0] pk_rd_i,            // the queue's head entry
+  input logic [PQ-1:0]                 pk_v_i,             // pk_v: entries holding a ray
+  input logic [ID_W-1:0]               pk_id_i [PQ],       // pk_id: their ids
+  input logic                          pk_old_i,           // pk_old
+  input logic [$clog2(PARK_MAX+1)-1:0] pk_hw_i             // pk_hw
 );
 
   localparam int unsigned D = LOOP_DEPTH;
@@ -87,14 +115,67 @@ module traverse_loop_assert
     end
   end
 
-  // No two slots hold one id (O(D^2) comparisons, any ID_W).
+  // The slots of the ring and then the park queue's entries.
+  localparam int unsigned NA = D + PQ;
+  logic            all_v  [NA];
+  logic [ID_W-1:0] all_id [NA];
+  always_comb begin
+    for (int s = 0; s < D; s++) begin
+      all_v[s]  = v_i[s];
+      all_id[s] = id_i[s];
+    end
+    for (int e = 0; e < PQ; e++) begin
+      all_v[D+e]  = pk_v_i[e];
+      all_id[D+e] = pk_id_i[e];
+    end
+  end
+
+  // No two slots or entries hold one id (O((D + PQ)^2) comparisons, any ID_W).
   logic ids_distinct;
   always_comb begin
     ids_distinct = 1'b1;
-    for (int s = 0; s < D; s++) begin
-      for (int u = s + 1; u < D; u++) begin
-        if (v_i[s] && v_i[u] && id_i[s] == id_i[u]) ids_distinct = 1'b0;
+    for (int s = 0; s < NA; s++) begin
+      for (int u = s + 1; u < NA; u++) begin
+        if (all_v[s] && all_v[u] && all_id[s] == all_id[u]) ids_distinct = 1'b0;
       end
+    end
+  end
+
+  // ---- the park queue --------------------------------------------------------------------------
+  localparam int unsigned PHW = $clog2(PARK_MAX + 1);
+  localparam int unsigned NW  = $clog2(NA + 1);
+  logic           blocked;   // the tail holds a finished ray the result FIFO has no room for
+  logic [PHW-1:0] w_q;       // clocks the head has waited, blocked clocks not counted
+  logic [NW-1:0]  n_q;       // rays admitted - rays retired
+  assign blocked = v_last_i && done18_i && res_full_i;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      w_q <= '0;
+      n_q <= '0;
+    end else begin
+      w_q <= (unpark_i || pk_cnt_i == '0) ? '0 : blocked ? w_q : w_q + PHW'(1);
+      n_q <= n_q + NW'(admit_i) - NW'(retire_i);
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (rst_ni) begin
+      park_no_overflow:   assert (!park_i || unpark_i || 32'(pk_cnt_i) < PQ)
+        else $error("traverse_loop: a ray parks in a full park queue");
+      park_no_underflow:  assert (!unpark_i || pk_cnt_i != '0)
+        else $error("traverse_loop: a parked ray leaves an empty park queue");
+      park_in_range:      assert (32'(pk_cnt_i) <= PQ && 32'(pk_rd_i) < PQ)
+        else $error("traverse_loop: park queue count %0d, head %0d", pk_cnt_i, pk_rd_i);
+      park_only_not_done: assert (!park_i || (v_last_i && !done18_i))
+        else $error("traverse_loop: a finished ray or no ray parks");
+      park_old_leaves:    assert (!pk_old_i || blocked || unpark_i)
+        else $error("traverse_loop: the park queue's head waited PARK_MAX clocks and stays");
+      park_old_flag:      assert (pk_old_i == (pk_cnt_i != '0 && 32'(pk_hw_i) == PARK_MAX))
+        else $error("traverse_loop: the park queue's registered PARK_MAX flag is %0d", pk_old_i);
+      park_wait_bound:    assert (w_q <= pk_hw_i && 32'(pk_hw_i) <= PARK_MAX)
+        else $error("traverse_loop: the park queue's head waited %0d clocks (%0d)", w_q, pk_hw_i);
+      rays_conserved:     assert (32'(n_q) == 32'($countones(v_i)) + 32'(pk_cnt_i))
+        else $error("traverse_loop: rays in the ring %0d + parked %0d != admitted - retired %0d",
+                    $countones(v_i), pk_cnt_i, n_q);
     end
   end
   always_ff @(posedge clk_i) begin
@@ -108,7 +189,7 @@ module traverse_loop_assert
   if (ID_W <= ID_TRACK_W) begin : g_ids
     localparam int unsigned NID = 1 << ID_W;
     logic [NID-1:0] in_ring_q;   // ids that entered the ring and have not retired
-    logic [NID-1:0] occ;         // ids held by a slot
+    logic [NID-1:0] occ;         // ids held by a slot or a park queue entry
     always_ff @(posedge clk_i) begin
       if (!rst_ni) begin
         in_ring_q <= '0;
@@ -120,7 +201,7 @@ module traverse_loop_assert
     always_comb begin
       for (int x = 0; x < NID; x++) begin
         occ[x] = 1'b0;
-        for (int s = 0; s < D; s++) occ[x] = occ[x] || (v_i[s] && id_i[s] == ID_W'(x));
+        for (int s = 0; s < NA; s++) occ[x] = occ[x] || (all_v[s] && all_id[s] == ID_W'(x));
       end
     end
     always_ff @(posedge clk_i) begin
@@ -145,11 +226,11 @@ module traverse_loop_assert
         else $error("traverse_loop: height response without a request");
       plane_operand_in_range: assert (!ok5_i || (!h_i[23] && (h_i[22:16] < 7'd63 || h_i == F24_ONE)))
         else $error("traverse_loop: H = %h outside [+0, 1]", h_i);
-      new_ray_only_in_bubble: assert (!admit_i || !v_last_i || retire_i)
+      new_ray_only_in_bubble: assert (!(admit_i || unpark_i) || !v_last_i || retire_i || park_i)
         else $error("traverse_loop: a new ray admitted over a ray that stays");
       live_ray_has_no_result: assert (!live17_i || !st17_final_i)
         else $error("traverse_loop: a live ray in S17 has a final flag");
-      descent_not_admitted: assert (!down18_i || !admit_i)
+      descent_not_admitted: assert (!down18_i || !(admit_i || unpark_i) || park_i)
         else $error("traverse_loop: a descent and a new ray in one clock");
       bdiff_operand_in_range: assert (
           (!lv1_i || (bound_ok(kb1_i[0]) && bound_ok(kb1_i[1])
@@ -166,12 +247,14 @@ module traverse_loop_assert
 
 endmodule
 
-bind traverse_loop traverse_loop_assert #(.ID_W(ID_W)) u_assert (
+bind traverse_loop traverse_loop_assert #(.ID_W(ID_W), .PQ(PQ), .PARK_MAX(PARK_MAX)) u_assert (
   .clk_i, .rst_ni, .sl_i(sl_q), .lk_valid_i(lk_valid_o), .rs_valid_i, .ok5_i(ok_q[5]), .h_i(h),
   .admit_i(admit), .v_last_i(v_q[LOOP_DEPTH-1]), .retire_i(retire), .live17_i(live17),
   .st17_final_i(st17.hit || st17.invalid || st17.capped || st17.err), .down18_i(down18_q),
   .lv1_i(lv_q[1]), .kb1_i('{kbx1_q, kby1_q}), .uv1_i('{uv_q[1].u, uv_q[1].v}), .dn14_i(dn_q[14]),
   .kb14_i('{kben_x14, kbex_x14, kben_y14, kbex_y14}),
   .uv14_i('{uv_q[14].u, uv_q[14].v}), .v_i(v_q), .id_i(id_q), .bypass_i(bypass),
-  .new_id_i);
+  .new_id_i, .done18_i(done18_q), .res_full_i, .park_i(park), .unpark_i(unpark),
+  .pk_cnt_i(pk_cnt), .pk_rd_i(pk_rd), .pk_v_i(pk_v), .pk_id_i(pk_id), .pk_old_i(pk_old),
+  .pk_hw_i(pk_hw));
 `endif

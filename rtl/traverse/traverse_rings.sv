@@ -24,6 +24,8 @@ module traverse_rings
   parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > setup latency for full rate
   parameter int unsigned RES_FIFO_DEPTH   = 16,  // power of two
   parameter int unsigned UNIT_CNT_W       = 48,  // width of the units' statistics counters
+  parameter bit          PARK             = 1'b0, // 1: park queue for missed rays (traverse_loop)
+  parameter int unsigned PARK_DEPTH       = 12,  // park queue entries (traverse_loop)
   parameter int unsigned LINE_BYTES       = 32,  // height-cache line (one AXI burst per fill)
   parameter int unsigned SETS             = 256, // height-cache sets per ring (power of two)
   parameter int unsigned WAYS             = 4,   // height-cache ways (power of two)
@@ -127,7 +129,8 @@ module traverse_rings
   for (genvar r = 0; r < R; r++) begin : g_ring
     traverse_system #(
       .RAY_ID_W(RAY_ID_W), .SETUP_FIFO_DEPTH(SETUP_FIFO_DEPTH), .RES_FIFO_DEPTH(RES_FIFO_DEPTH),
-      .UNIT_CNT_W(UNIT_CNT_W), .LINE_BYTES(LINE_BYTES), .SETS(SETS), .WAYS(WAYS), .MSHRS(MSHRS),
+      .UNIT_CNT_W(UNIT_CNT_W), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH),
+      .LINE_BYTES(LINE_BYTES), .SETS(SETS), .WAYS(WAYS), .MSHRS(MSHRS),
       .AXI_ID_W(RID_W), .AXI_DATA_W(AXI_DATA_W)
     ) u_sys (
       .clk_i, .rst_ni,

@@ -26,6 +26,8 @@ module traverse_system
   parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > setup latency for full rate
   parameter int unsigned RES_FIFO_DEPTH   = 16,  // power of two
   parameter int unsigned UNIT_CNT_W       = 48,  // width of the unit's statistics counters
+  parameter bit          PARK             = 1'b0, // 1: park queue for missed rays (traverse_loop)
+  parameter int unsigned PARK_DEPTH       = 12,  // park queue entries (traverse_loop)
   // height cache
   parameter int unsigned LINE_BYTES       = 32,  // cache line (one AXI burst per line fill)
   parameter int unsigned SETS             = 256, // sets (power of two); 256 x 4 x 32 B = 32 KiB
@@ -111,7 +113,7 @@ module traverse_system
 
   traverse_unit #(
     .ID_W(RAY_ID_W), .SETUP_FIFO_DEPTH(SETUP_FIFO_DEPTH), .RES_FIFO_DEPTH(RES_FIFO_DEPTH),
-    .CNT_W(UNIT_CNT_W)
+    .CNT_W(UNIT_CNT_W), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH)
   ) u_unit (
     .clk_i, .rst_ni,
     .cfg_method_i, .cfg_width_i, .cfg_height_i, .cfg_root_level_i, .cfg_bits16_i, .cfg_base_i,

@@ -37,7 +37,9 @@ module traverse_unit
   parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > SETUP_LAT (21)
   parameter int unsigned RES_FIFO_DEPTH   = 16,  // power of two
   parameter int unsigned CNT_W            = 32,  // statistics counters
-  parameter bit          XOR_PATH         = 1'b1 // 0: no XOR descent path (traverse_loop)
+  parameter bit          XOR_PATH         = 1'b1, // 0: no XOR descent path (traverse_loop)
+  parameter bit          PARK             = 1'b0, // 1: park queue for missed rays (traverse_loop)
+  parameter int unsigned PARK_DEPTH       = 12    // park queue entries (traverse_loop)
 ) (
   input  logic                              clk_i,
   input  logic                              rst_ni,
@@ -152,7 +154,9 @@ module traverse_unit
   logic [RF_AW:0]  rf_count;
   logic            st_iter, st_down, st_cross, st_up;
   logic [4:0]      lp_busy;
-  traverse_loop #(.ID_W(ID_W), .XOR_PATH(XOR_PATH)) u_loop (
+  traverse_loop #(
+    .ID_W(ID_W), .XOR_PATH(XOR_PATH), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH)
+  ) u_loop (
     .clk_i, .rst_ni, .cfg_i(cfg),
     .new_valid_i(!sf_empty), .new_id_i(sf_head[SF_W-1 -: ID_W]),
     .new_ray_i(ray_t'(sf_head[$bits(ray_t)-1:0])), .new_pop_o(sf_pop),

@@ -16,7 +16,8 @@ memory with --latency clocks of read latency).  Two runs per case:
 "incoherent"): start positions uniform over the map, azimuths uniform in [0, 2 pi), horizontal run
 over the ray's whole depth (|du, dv|) uniform in [0, --size / 2] texels, in random order, like the
 secondary rays of a ray tracer (no two neighbours in the stream share a tile or a direction);
---seed picks them.
+--seed picks them.  --park measures the ring with its park queue (traverse_loop PARK = 1, a
+harness build of its own; off by default).
 
 Every RTL result is compared with the f24 engine (t, u, v, hit, invalid, iterations): a
 difference fails the run (exit status 1).  Writes JSON (--out) and a markdown table (--md) and
@@ -63,11 +64,13 @@ def compare(res: Any, ref: Any) -> int:
     return int(bad.sum())
 
 
-def run_case(pyr: heightmap.Pyramid, rays: Any, method: str, latency: int) -> dict[str, Any]:
+def run_case(pyr: heightmap.Pyramid, rays: Any, method: str, latency: int,
+             park: bool = False) -> dict[str, Any]:
     ref = traverse.trace(pyr, rays, method, "f24")
     row: dict[str, Any] = {"rays": len(rays), "iterations": int(ref.iterations.sum())}
     for warm in (False, True):
-        res, st = traverse_system.trace_rtl(pyr, rays, method, latency=latency, warm=warm)
+        res, st = traverse_system.trace_rtl(pyr, rays, method, latency=latency, warm=warm,
+                                             park=park)
         key = "warm" if warm else "cold"
         row[key] = {k: st[k] for k in ("cycles", "iterations", "lookups", "height_cache_hits",
                                        "height_cache_misses", "mem_lines", "mem_bytes",
@@ -107,6 +110,8 @@ def main() -> int:
     ap.add_argument("--incoherent", type=int, default=0, metavar="N",
                     help="N incoherent rays per scene instead of the camera views (see above)")
     ap.add_argument("--seed", type=int, default=1, help="random seed of --incoherent's rays")
+    ap.add_argument("--park", action="store_true",
+                    help="the ring with its park queue (traverse_loop PARK = 1; default off)")
     ap.add_argument("--out", type=Path, default=ROOT / "out" / "bench" / "rtl.json")
     ap.add_argument("--md", type=Path, default=ROOT / "out" / "bench" / "rtl.md")
     a = ap.parse_args()
@@ -124,7 +129,7 @@ def main() -> int:
         if val < lo:
             fail(PROG, f"{what} must be >= {lo}, got {val}")
     try:
-        traverse_system.build("fast", quiet=False)
+        traverse_system.build("fast", quiet=False, park=a.park)
     except traverse_system.RtlEngineError as e:
         fail(PROG, str(e).splitlines()[0])
     rows: list[dict[str, Any]] = []
@@ -142,7 +147,7 @@ def main() -> int:
                 rays = cam.tiled_rays(a.tile).rays
             for method in methods:
                 row = {"scene": name, "angle": angle, "method": method,
-                       **run_case(pyr, rays, method, a.latency)}
+                       **run_case(pyr, rays, method, a.latency, a.park)}
                 row.update({f"{k}_{key}": v for key in ("cold", "warm")
                             for k, v in derived(row, key).items()})
                 rows.append(row)
@@ -204,7 +209,8 @@ def main() -> int:
     a.out.write_text(json.dumps({
         "settings": {"size": a.size, "image": a.image, "tile": a.tile, "latency": a.latency,
                      "incoherent": a.incoherent, "seed": a.seed,
-                     "params": traverse_system.PARAMS},
+                     "params": traverse_system.PARK_PARAMS if a.park
+                     else traverse_system.PARAMS},
         "rows": rows, "summary": summary, "mismatches": mism, "sim_clocks": sim_clocks,
         "sim_wall_seconds": sim_wall,
         "paper": {"mhz": PAPER_MHZ, "units": PAPER_UNITS, "mpixels_per_s": PAPER_MPIX,

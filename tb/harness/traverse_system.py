@@ -140,17 +140,25 @@ def _training_input(path: Path) -> None:
 TRAVERSE = HarnessSpec(name="traverse", top=TOP, rtl_dirs=RTL_DIRS, sources=HARNESS_SOURCES,
                        binary=BINARY, params=PARAMS, build_dir=BUILD, training=_training_input,
                        required=(CACHE_SV,))
+#: The same harness with the ring's park queue (traverse_loop PARK = 1), in its own build dir.
+PARK_PARAMS: dict[str, int] = {**PARAMS, "PARK": 1}
+TRAVERSE_PARK = HarnessSpec(name="traverse_park", top=TOP, rtl_dirs=RTL_DIRS,
+                            sources=HARNESS_SOURCES, binary=BINARY, params=PARK_PARAMS,
+                            build_dir=BUILD / "traverse_park", training=_training_input,
+                            required=(CACHE_SV,))
 
 
-def is_built(variant: str = "fast") -> bool:
+def is_built(variant: str = "fast", *, park: bool = False) -> bool:
     """True when the variant's binary is current (:func:`build` would not rebuild it)."""
-    return _build.is_built(TRAVERSE, variant)
+    return _build.is_built(TRAVERSE_PARK if park else TRAVERSE, variant)
 
 
-def build(variant: str = "fast", *, force: bool = False, quiet: bool = True) -> Path:
+def build(variant: str = "fast", *, force: bool = False, quiet: bool = True,
+          park: bool = False) -> Path:
     """Build the traverse harness variant when its inputs changed; returns the binary's path
-    (:func:`tb.harness.build.build` with :data:`TRAVERSE`)."""
-    return _build.build(TRAVERSE, variant, force=force, quiet=quiet)
+    (:func:`tb.harness.build.build` with :data:`TRAVERSE`, or :data:`TRAVERSE_PARK` with
+    ``park``: the ring with its park queue)."""
+    return _build.build(TRAVERSE_PARK if park else TRAVERSE, variant, force=force, quiet=quiet)
 
 
 # ---- run -----------------------------------------------------------------------------------------
@@ -168,19 +176,19 @@ def run_batch(pyr: Pyramid, rays: Rays, method: str, *,
               ray_gap: float = 0.0, res_stall: float = 0.0, ar_stall: float = 0.0,
               rvalid_gap: float = 0.0, err_ranges: Sequence[tuple[int, int]] = (),
               base: int = DEFAULT_BASE, warm: bool = False, timeout: int | None = None,
-              waves: str | Path | None = None, checked: bool | None = None
-              ) -> tuple[npt.NDArray[Any], dict[str, Any]]:
+              waves: str | Path | None = None, checked: bool | None = None,
+              park: bool = False) -> tuple[npt.NDArray[Any], dict[str, Any]]:
     """Run one batch through the harness; returns the raw records (OUT_RECORD) and the stats.
 
     Every knob is a harness option (``traverse_harness --help``).  ``checked``: run the variant
     with the RTL's assertions on (default: the environment's ``RTL_ENGINE_CHECKED=1``; waves
-    always have them).  Raises RtlEngineError with the
+    always have them).  ``park``: the build with the ring's park queue.  Raises RtlEngineError with the
     harness's message when the run fails (timeout, a ray lost or returned twice, AXI violation).
     """
     lo, hi = _latency(latency)
     if checked is None:
         checked = os.environ.get("RTL_ENGINE_CHECKED", "") == "1"
-    binary = build("waves" if waves else "checked" if checked else "fast")
+    binary = build("waves" if waves else "checked" if checked else "fast", park=park)
     n = len(rays)
     with tempfile.TemporaryDirectory(prefix="traverse_system_") as tmp:
         tdir = Path(tmp)
@@ -219,7 +227,7 @@ def trace_rtl(pyr: Pyramid, rays: Rays, method: str, *,
     per-clock probability of a gap in the ray stream, of res_ready low and of an rvalid bubble
     (0: none).  waves: write an FST waveform there (builds the ``waves`` variant).  Further
     ``options`` go to :func:`run_batch` (ray_gap, res_stall, ar_stall, rvalid_gap override the
-    backpressure defaults; err_ranges, base, warm, timeout).
+    backpressure defaults; err_ranges, base, warm, timeout, park).
     Returns (TraceResult, stats); per-ray capped / err flags are counted in stats.
     """
     bp = float(backpressure)

@@ -18,6 +18,11 @@ read outside the image.  SLVERR case: whole cache lines of the pyramid answer SL
 model path (per-ray ``record``) reads a texel in them must come back with res_err (after exactly
 the iterations before that read, no hit), every other ray exactly as the model.
 
+Incoherent case: random positions and directions on a 256x256 map, with a slow memory (40 .. 80
+clocks per line) and then with the result stream nearly stalled, bit-exact as above, with the ring's park queue watched:
+rays must park, the queue must fill (missed rays then stay in the ring), parked rays must wait
+while the result FIFO is full, and every parked ray must come back.
+
 Printed / recorded per case: cache hit rate and clocks per iteration (busy clocks of the unit and
 wall clocks of the run).
 
@@ -611,6 +616,93 @@ async def traverse_system_counters_wrap(dut):
           "agree with the model")
 
 
+def incoherent_rays(rng: np.random.Generator, size: int, n: int) -> Rays:
+    """``n`` rays from uniform positions on a ``size`` x ``size`` map in uniform directions, with
+    a horizontal run uniform in [0, size / 2] (scripts/bench/bench_rtl.py --incoherent's rays)."""
+    ang = rng.uniform(0.0, 2.0 * np.pi, n)
+    run = rng.uniform(0.0, size / 2, n)
+    return Rays(rng.uniform(0.0, size, n), rng.uniform(0.0, size, n),
+                run * np.cos(ang), run * np.sin(ang))
+
+
+async def watch_park(dut, tally: dict[str, int]) -> None:
+    """Count, at every falling edge, the park queue's events in the ring (traverse_loop's
+    park / unpark, the queue's count; traverse_unit's result FIFO full flag)."""
+    lp = dut.u_unit.u_loop
+    depth = len(lp.pk_v)
+    last = 1 << (len(lp.v_q) - 1)   # v_q's bit of the ring's tail
+    while True:
+        await FallingEdge(dut.clk_i)
+        if not int(dut.rst_ni.value):
+            continue
+        cnt = int(lp.pk_cnt.value)
+        park, unpark = int(lp.park.value), int(lp.unpark.value)
+        tally["parks"] += park
+        tally["unparks"] += unpark
+        tally["max_parked"] = max(tally["max_parked"], cnt)
+        tally["full"] += cnt == depth
+        # a missed ray at the tail that stays in the ring because the queue is full
+        if (cnt == depth and not park and not unpark and int(lp.v_q.value) & last
+                and not int(lp.done18_q.value) and int(lp.g_park.miss18_q.value)):
+            tally["full_stay"] += 1
+        tally["backpressure"] += bool(cnt and int(dut.u_unit.rf_full.value))
+        tally["depth"] = depth
+
+
+#: The build with PARK = 1 (test_traverse_system_park) runs only the park queue's test; the
+#: default build (PARK = 0, no park queue) skips it.
+PARK_BUILD = os.environ.get("TRAVERSE_PARK") == "1"
+
+
+@cocotb.test(skip=not PARK_BUILD)
+async def traverse_system_incoherent_park(dut):
+    """Incoherent rays (random positions and directions, like a ray tracer's secondary rays) on
+    a 256x256 map, twice: with a slow memory (40 .. 80 clocks per line, AR / R pauses), and with
+    the result stream taken in 0.4% of the clocks (the result FIFO fills up).  Most lookups miss,
+    so missed rays park, the park queue fills up (missed rays then stay in the ring), parked rays
+    wait while the result FIFO is full; every parked ray comes back, every result as the
+    model's."""
+    s = seed()
+    rng = np.random.default_rng(s + 7)
+    h = Harness(dut, random.Random(s + 7))
+    await h.reset()
+    pyr = scene_pyr("rocks", 256, 256, 8)
+    base = h.place(pyr)
+    runs = [Case("256x256 rocks u8 incoherent, slow memory", pyr, base,
+                 incoherent_rays(rng, 256, scale(300)), ("park",), valid_p=1.0, ready_p=0.5,
+                 ar_pause=0.3, r_pause=0.3, lat=(40, 80)),
+            Case("256x256 rocks u8 incoherent, results stalled", pyr, base,
+                 incoherent_rays(rng, 256, scale(300)), ("park-xor",), valid_p=1.0,
+                 ready_p=0.004, ar_pause=0.0, r_pause=0.0, lat=(10, 30))]
+    tally = dict.fromkeys(("parks", "unparks", "max_parked", "full", "full_stay",
+                           "backpressure", "depth"), 0)
+    mon = cocotb.start_soon(watch_park(dut, tally))
+    bad = []
+    for case in runs:
+        for method in case.methods:
+            o = await run_case(h, case, method, dut._log)
+            if o["mism"] or o["sbad"]:
+                bad.append(f"{o['name']}: {o['mism']} mismatches; {o['sbad']}")
+    mon.cancel()
+    msg = (f"TRAVERSE_SYSTEM park queue: {tally['parks']} parked, {tally['unparks']} back, "
+           f"at most {tally['max_parked']} of {tally['depth']} parked, full {tally['full']} "
+           f"clocks ({tally['full_stay']} missed rays stayed in the ring), "
+           f"{tally['backpressure']} clocks parked rays with the result FIFO full")
+    dut._log.info(msg)
+    print(msg)
+    assert not bad, "; ".join(bad)
+    assert tally["parks"] > 0 and tally["parks"] == tally["unparks"], msg
+    assert tally["max_parked"] == tally["depth"] and tally["full_stay"] > 0, msg
+    assert tally["backpressure"] > 0, msg
+
+
 def test_traverse_system():
     # A 4 KiB cache (the defaults are 32 KiB): these batches then evict and refill lines often.
     runner.run("traverse_system", "test_traverse_system", HERE, parameters={"SETS": 64, "WAYS": 2})
+
+
+def test_traverse_system_park():
+    # The ring with its park queue (PARK = 1; off by default), the same 4 KiB cache.
+    runner.run("traverse_system", "test_traverse_system", HERE,
+               parameters={"SETS": 64, "WAYS": 2, "PARK": 1},
+               extra_env={"TRAVERSE_PARK": "1"}, testcase="traverse_system_incoherent_park")
