@@ -21,6 +21,8 @@ module traverse_system
   parameter int unsigned MSHRS            = 4,
   parameter int unsigned AXI_ID_W         = 4,
   parameter int unsigned AXI_DATA_W       = 64,
+  parameter bit          PARK             = 1'b0, // (unused: the real ring's park queue)
+  parameter int unsigned PARK_DEPTH       = 12,  // (unused)
   parameter int unsigned CAP              = 2    // rays held
 ) (
   input  logic                              clk_i,
