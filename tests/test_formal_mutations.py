@@ -99,8 +99,8 @@ MUTANTS = {
         "cache_axi_read:bmc_rst", "(?:stale_ignored|inv_stale|r_beat_expected|r_outstanding)"),
     "ring_id_duplicated": (
         "rtl/traverse/traverse_loop.sv",
-        "v_q     <= {v_q[D-2:0], (v_q[D-1] && !retire) || admit};",
-        "v_q     <= {v_q[D-2:0], v_q[D-1] || admit};",
+        "v_q     <= {v_q[D-2:0], (v_q[D-1] && !retire && !park) || admit || unpark};",
+        "v_q     <= {v_q[D-2:0], (v_q[D-1] && !park) || admit || unpark};",
         "traverse_loop:bmc_ids", r"(?:g_ids\.(?:id_in_ring|id_leave_once)|ring_ids_distinct)"),
     "rings_result_dropped": (
         "rtl/traverse/traverse_rings.sv",
