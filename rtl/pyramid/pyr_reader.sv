@@ -92,7 +92,11 @@ module pyr_reader #(
   logic [RW-1:0]     a_row_q;
   logic [WW-1:0]     a_w_q;
   logic [ADDR_W-1:0] a_row_addr_q;  // address of the row's first word
+  // a_addr_q[LGB-1:0] (a row's byte offset inside its first beat) is read by nothing: bursts
+  // start at the beat's address.
+  /* verilator lint_off UNUSEDSIGNAL */
   logic [ADDR_W-1:0] a_addr_q;      // address of the burst's first word
+  /* verilator lint_on UNUSEDSIGNAL */
   logic [12:0]       a_to4k;        // beats to the next 4 KiB boundary
   logic [WW:0]       a_left_q;      // words left in the row
   logic              a_lastrow_q;   // the rectangle's last row
@@ -102,7 +106,8 @@ module pyr_reader #(
   logic [OW-1:0]     outst_q;       // bursts issued, last beat not yet received
   logic              ar_hs, r_hs, r_last_beat;
 
-  assign a_to4k = 13'((13'h1000 - {1'b0, a_addr_q[11:0]}) >> LGB);
+  // from the burst's first beat's address (a row may start inside a beat)
+  assign a_to4k = 13'((13'h1000 - {1'b0, a_addr_q[11:LGB], {LGB{1'b0}}}) >> LGB);
   always_comb begin
     a_len = BLW'(BURST);
     if (a_left_q < (WW+1)'(a_len)) a_len = BLW'(a_left_q);
