@@ -75,21 +75,23 @@
 //                                                                      f24_mul      -> S5 .. S32
 //   S6   vv = (du^2 + dv^2) + D2 @6 / nn = (nx2 + ny2) + nz2 @9 / hx2 + hy2 @20 /
 //        hh = (hx2 + hy2) + hz2 @23                                    f24_add      -> S8 .. S25
-//        nx2 + ny2 @6 / h_y = l_y + v_y @15                            f24_add      -> S8 / S17
+//        nx2 + ny2 @6 / h_x = l_x + v_x @15 / h_z = l_z + v_z @16 / nlx + nly @25
+//        (n_y l_y delayed S22 -> S24)                                  f24_add      -> S8 .. S27
+//        h_y = l_y + v_y @15 / nhx + nhy @34 / dot(n, l) = (nlx + nly) + nlz @36 /
+//        dot(n, h) = (nhx + nhy) + nhz @37 (nlx + nly delayed S27 -> S35, nlz S22 -> S35,
+//        nhz S34 -> S36)                                               f24_add      -> S17 .. S39
 //   S9   rv = rsqrt(vv) @9 / rn = rsqrt(nn) @15 / rh = rsqrt(hh) @26   f24_rsqrt    -> S12 / .. S29
 //   S11  max(nn, EPS), held S12 -> S14                                 reg          S11 -> S12
 //   S13  v_x = -du rv @13 / v_z = D rv @14 (rv held)                   f24_mul      -> S14 / S15
-//   S14  h_x = l_x + v_x @14 / h_z = l_z + v_z @15 (direct from v)     f24_add      -> S16 / S17
-//        h delayed S16 -> S29 (lane 0), h_y S17 -> S29
-//   S17  h_x^2 @17 / h_z^2 @18 / KD ndl @40                            f24_mul      -> S18 / .. S41
+//   S15  h_x, h_z, h_y (above): h delayed S17 -> S29 (lane 0), h_y S17 -> S29
+//   S18  h_x^2 @18 / h_z^2 @19 / KD ndl @40                            f24_mul      -> S19 / .. S41
+//        (h_z^2 delayed S20 -> S22)
 //   S19  (n_x rn, n_z rn: above) n_y rn @19 / n_x h_x @32 / n_z h_z @33
 //                                                                      f24_mul      -> S20 / .. S34
 //   S20  n_x l_x @20 / n_z l_z @21 (direct from the unit normal)       f24_mul      -> S21 / S22
 //        unit normal delayed S20 -> S31 (lanes)
 //   S21  n_y l_y @21 / h_y rh @30 / n_y h_y @32                        f24_mul      -> S22 / .. S33
-//   S23  nlx + nly @23 / nhx + nhy @34 / dot(n, l) = (nlx + nly) + nlz @36 / dot(n, h) @37
-//        (nlx + nly delayed S25 -> S35, nlz S22 -> S35, nhz S34 -> S36)
-//                                                                      f24_add      -> S25 .. S39
+//   S25  nlx + nly @25 and the dot products @36, @37 (above)
 //   S38  ndl = max(dot(n, l), 0) -> S39, ndh = max(dot(n, h), 0) -> S40   reg (one)
 //   S40  s = ndh^2 @40, s^4 @41, s^8 @42, s^16 @43, sp = KS s^16 @44: five f24_mul, each fed
 //        directly by the one before (no select)                        f24_mul      -> S41 .. S45
@@ -108,9 +110,10 @@
 // the schedule above is written for that latency (checked at elaboration).
 //
 // Float units: 16 f24_mul (11 shared: u_dvnc and u_ny2h with four operations, u_hkd, u_nunh1,
-// u_hunh1 and u_k with three, 5 with two; the five of the s^16 chain unshared), 7 f24_add (all
-// shared: u_nc, u_nua, u_nv and u_dd with four, u_kh with three, u_nxyh1 and u_ha with two), 1
-// f24_rsqrt (three operations), 1 f24_to_index #(9) (three); no f24_cmp (34, 21, 3 and 2 before
+// u_hunh1 and u_k with three, 5 with two; the five of the s^16 chain unshared), 6 f24_add (all
+// shared: u_nc, u_nua, u_nv, u_nxh and u_hd with four, u_kh with three; 23 additions, one unit
+// per phase of each: the h_x / h_z pair a clock after v, nlx + nly two clocks after its
+// operands, both into slack), 1 f24_rsqrt (three operations), 1 f24_to_index #(9) (three); no f24_cmp (34, 21, 3 and 2 before
 // sharing).  Exact logic (no rounding involved, each into one register): 3 doublers,
 // max(nn, EPS), one max(., 0) for ndl then ndh, and 1 clamp.
 //
@@ -243,12 +246,11 @@ module shade_unit
   // which the placer keeps next to it: a select driven by cv_q[1], shared by five units, was
   // 2.5 ns of routing into an adder's stage 1 (77 MHz out of context).  The copies are not
   // merged by synthesis: each register's next value is its own rotation.
-  localparam int unsigned NPS = 17;  // operand selects (units and the clamp's)
+  localparam int unsigned NPS = 16;  // operand selects (units and the clamp's)
   localparam int unsigned PS_UV2HY2 = 0,  PS_DVNC = 1,   PS_NUA = 2,    PS_NV = 3,
-                          PS_NY2H = 4,    PS_VA = 5,     PS_NXYH1 = 6,  PS_HA = 7,
+                          PS_NY2H = 4,    PS_VA = 5,     PS_NXH = 6,    PS_HD = 7,
                           PS_HKD = 8,     PS_RVNH = 9,   PS_NUNH1 = 10, PS_NLA = 11,
-                          PS_HUNH1 = 12,  PS_DD = 13,    PS_CAA = 14,   PS_NC = 15,
-                          PS_CL = 16;
+                          PS_HUNH1 = 12,  PS_CAA = 13,   PS_NC = 14,    PS_CL = 15;
   logic [3:0] ps_q [NPS];
 
   for (genvar u = 0; u < NPS; u++) begin : g_ps
@@ -286,15 +288,13 @@ module shade_unit
   f24_t nsqa_s45;                   // n_x^2 (S4), n_z^2 (S5)
   f24_t ny2h_s514_3132;             // n_y^2 (S5), v_y (S14), unit half vector x (S31), z (S32)
   f24_t va_s1415;                   // v_x (S14), v_z (S15)
-  f24_t nxyh1_s817;                 // nx2 + ny2 (S8), h_y (S17)
-  f24_t ha_s1617;                   // h_x (S16), h_z (S17)
-  f24_t hkd_s1841;                  // h_x^2 (S18), h_z^2 (S19), KD ndl (S41)
+  f24_t nxh_s81718_27;              // nx2 + ny2 (S8), h_x (S17), h_z (S18), nlx + nly (S27)
+  f24_t hkd_s1920_41;               // h_x^2 (S19), h_z^2 (S20), KD ndl (S41)
   f24_t rvnh_s121829;               // rv (S12), rn (S18), rh (S29)
   f24_t nunh1_s2034;                // unit normal y (S20), n_x h_x (S33), n_z h_z (S34)
   f24_t nla_s2122;                  // n_x l_x (S21), n_z l_z (S22)
   f24_t hunh1_s2233;                // n_y l_y (S22), unit half vector y (S31), n_y h_y (S33)
-  f24_t dd_s2536_3839;              // nlx + nly (S25), nhx + nhy (S36), dot(n, l) (S38),
-                                    // dot(n, h) (S39)
+  f24_t hd_s17_3639;                // h_y (S17), nhx + nhy (S36), dot(n, l) (S38), dot(n, h) (S39)
   f24_t s2_s41, s4_s42, s8_s43, s16_s44, sp_s45;  // ndh^2, ^4, ^8, ^16; sp = KS s^16
   f24_t caa_s4647;                  // C_x a (S46), C_z a (S47)
   f24_t k_s51, kh_s53;              // c 255, c 255 + 0.5 (R, then G and B a clock apart each)
@@ -311,13 +311,14 @@ module shade_unit
   f24_t       n1_q   [4:18];        // n_y
   f24_t       nsq_q  [5:7];         // stream n_x^2, n_z^2
   f24_t       nnm_q  [12:14];       // max(nn, EPS)
-  f24_t       hk_q   [19:21];       // stream h_x^2, h_z^2
-  f24_t       ha_q   [17:29];       // stream h_x, h_z
+  f24_t       hk_q   [20:21];       // stream h_x^2, h_z^2
+  f24_t       ha_q   [18:29];       // stream h_x, h_z
   f24_t       hy_q   [18:29];       // h_y
   f24_t       nu_q   [21:31];       // stream unit normal x, z
   f24_t       nuy_q  [21:31];       // unit normal y
   f24_t       nla_q  [22:34];       // stream n_x l_x, n_z l_z
-  f24_t       dxy_q  [26:35];       // nlx + nly
+  f24_t       nly_q  [23:24];       // n_y l_y
+  f24_t       dxy_q  [28:35];       // nlx + nly
   f24_t       nhz_q  [35:36];       // n_z h_z
   f24_t       m_q;                  // ndl = max(dot(n, l), 0) (S39), then ndh (S40)
   f24_t       a_q;                  // S45: a
@@ -350,11 +351,11 @@ module shade_unit
       for (int s = 6; s <= 7; s++) nsq_q[s] <= nsq_q[s-1];
       nnm_q[12] <= max_np(nv_s81122_25, SHADE_EPS);
       for (int s = 13; s <= 14; s++) nnm_q[s] <= nnm_q[s-1];
-      hk_q[19] <= hkd_s1841;
-      for (int s = 20; s <= 21; s++) hk_q[s] <= hk_q[s-1];
-      ha_q[17] <= ha_s1617;
-      hy_q[18] <= nxyh1_s817;
-      for (int s = 18; s <= 29; s++) ha_q[s] <= ha_q[s-1];
+      hk_q[20] <= hkd_s1920_41;
+      hk_q[21] <= hk_q[20];
+      ha_q[18] <= nxh_s81718_27;
+      hy_q[18] <= hd_s17_3639;
+      for (int s = 19; s <= 29; s++) ha_q[s] <= ha_q[s-1];
       for (int s = 19; s <= 29; s++) hy_q[s] <= hy_q[s-1];
       nu_q[21]  <= dvnc_s22147;
       nuy_q[21] <= nunh1_s2034;
@@ -364,11 +365,13 @@ module shade_unit
       end
       nla_q[22] <= nla_s2122;
       for (int s = 23; s <= 34; s++) nla_q[s] <= nla_q[s-1];
-      dxy_q[26] <= dd_s2536_3839;
-      for (int s = 27; s <= 35; s++) dxy_q[s] <= dxy_q[s-1];
+      nly_q[23] <= hunh1_s2233;
+      nly_q[24] <= nly_q[23];
+      dxy_q[28] <= nxh_s81718_27;
+      for (int s = 29; s <= 35; s++) dxy_q[s] <= dxy_q[s-1];
       nhz_q[35] <= nunh1_s2034;
       nhz_q[36] <= nhz_q[35];
-      m_q <= max_np(dd_s2536_3839, SHADE_ZERO);
+      m_q <= max_np(hd_s17_3639, SHADE_ZERO);
       a_q <= nua_s35_4450;
       sp_q[46] <= sp_s45;
       sp_q[47] <= sp_q[46];
@@ -396,19 +399,18 @@ module shade_unit
   f24_t oprs_q;                        // u_rvnh
   f24_t opyh_a_q, opyh_b_q;            // u_ny2h
   f24_t opva_a_q, opva_b_q;            // u_va
-  f24_t opxy_a_q, opxy_b_q;            // u_nxyh1
-  f24_t opha_a_q;                      // u_ha (b: u_va's result, direct)
+  f24_t opxh_a_q, opxh_b_q;            // u_nxh
+  f24_t ophd_a_q, ophd_b_q;            // u_hd
   f24_t ophk_a_q, ophk_b_q;            // u_hkd
   f24_t opnh_a_q, opnh_b_q;            // u_nunh1
   f24_t opnl_b_q;                      // u_nla (a: u_dvnc's result, direct)
   f24_t ophh_a_q, ophh_b_q;            // u_hunh1
-  f24_t opdd_a_q, opdd_b_q;            // u_dd
   f24_t opca_a_q, opca_b_q;            // u_caa
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       // u_uv2hy2: du^2 @1 / h_y^2 @18
-      opuh_q   <= at(ps_q[PS_UV2HY2], 0) ? in_du : nxyh1_s817;
+      opuh_q   <= at(ps_q[PS_UV2HY2], 0) ? in_du : hd_s17_3639;
       // u_dvnc: dv^2 @1 / n_x rn @19 / n_z rn @20 (rn held) / C_y a @46
       opdv_a_q <= at(ps_q[PS_DVNC], 0) ? in_dv
                 : (at(ps_q[PS_DVNC], 18) || at(ps_q[PS_DVNC], 19)) ? na_q[18] : col1_q[45];
@@ -424,11 +426,11 @@ module shade_unit
       opnu_a_q <= at(ps_q[PS_NUA], 0) ? dbl(in_nrm[1]) : at(ps_q[PS_NUA], 2) ? uv2hy2_s219
                 : at(ps_q[PS_NUA], 41) ? cfg_i.ambient : dvnc_s22147;
       opnu_b_q <= at(ps_q[PS_NUA], 0) ? NEG_ONE : at(ps_q[PS_NUA], 2) ? dvnc_s22147
-                : at(ps_q[PS_NUA], 41) ? hkd_s1841 : sp_q[47];
+                : at(ps_q[PS_NUA], 41) ? hkd_s1920_41 : sp_q[47];
       // u_nv: vv = (du^2 + dv^2) + D2 @6 / nn = (nx2 + ny2) + nz2 @9 / hx2 + hy2 @20 /
       // hh = (hx2 + hy2) + hz2 @23
-      opnv_a_q <= at(ps_q[PS_NV], 5) ? nua_s35_4450 : at(ps_q[PS_NV], 8) ? nxyh1_s817
-                : at(ps_q[PS_NV], 19) ? hk_q[19] : nv_s81122_25;
+      opnv_a_q <= at(ps_q[PS_NV], 5) ? nua_s35_4450 : at(ps_q[PS_NV], 8) ? nxh_s81718_27
+                : at(ps_q[PS_NV], 19) ? hkd_s1920_41 : nv_s81122_25;
       opnv_b_q <= at(ps_q[PS_NV], 5) ? cfg_i.d2 : at(ps_q[PS_NV], 8) ? nsq_q[7]
                 : at(ps_q[PS_NV], 19) ? uv2hy2_s219 : hk_q[21];
       // u_rvnh: rv @9 / rn @15 / rh @26
@@ -441,14 +443,20 @@ module shade_unit
       // u_va: v_x = -du rv @13 / v_z = D rv @14 (rv held)
       opva_a_q <= at(ps_q[PS_VA], 12) ? {~du_q[12][23], du_q[12][22:0]} : cfg_i.d;
       opva_b_q <= at(ps_q[PS_VA], 12) ? rvnh_s121829 : opva_b_q;
-      // u_nxyh1: nx2 + ny2 @6 / h_y = l_y + v_y @15
-      opxy_a_q <= at(ps_q[PS_NXYH1], 5) ? nsq_q[5] : light[1];
-      opxy_b_q <= ny2h_s514_3132;
-      // u_ha: h_x = l_x + v_x @14 / h_z = l_z + v_z @15
-      opha_a_q <= at(ps_q[PS_HA], 13) ? light[0] : light[2];
-      // u_hkd: h_x^2 @17 / h_z^2 @18 / KD ndl @40
-      ophk_a_q <= at(ps_q[PS_HKD], 39) ? cfg_i.kd : ha_s1617;
-      ophk_b_q <= at(ps_q[PS_HKD], 39) ? m_q : ha_s1617;
+      // u_nxh: nx2 + ny2 @6 / h_x = l_x + v_x @15 / h_z = l_z + v_z @16 / nlx + nly @25
+      opxh_a_q <= at(ps_q[PS_NXH], 5) ? nsq_q[5] : at(ps_q[PS_NXH], 24) ? nla_q[24]
+                : at(ps_q[PS_NXH], 14) ? light[0] : light[2];
+      opxh_b_q <= at(ps_q[PS_NXH], 5) ? ny2h_s514_3132 : at(ps_q[PS_NXH], 24) ? nly_q[24]
+                : va_s1415;
+      // u_hd: h_y = l_y + v_y @15 / nhx + nhy @34 / dot(n, l) = (nlx + nly) + nlz @36 /
+      // dot(n, h) = (nhx + nhy) + nhz @37
+      ophd_a_q <= at(ps_q[PS_HD], 14) ? light[1] : at(ps_q[PS_HD], 33) ? nunh1_s2034
+                : at(ps_q[PS_HD], 35) ? dxy_q[35] : hd_s17_3639;
+      ophd_b_q <= at(ps_q[PS_HD], 14) ? ny2h_s514_3132 : at(ps_q[PS_HD], 33) ? hunh1_s2233
+                : at(ps_q[PS_HD], 35) ? nla_q[34] : nhz_q[36];
+      // u_hkd: h_x^2 @18 / h_z^2 @19 / KD ndl @40
+      ophk_a_q <= at(ps_q[PS_HKD], 39) ? cfg_i.kd : nxh_s81718_27;
+      ophk_b_q <= at(ps_q[PS_HKD], 39) ? m_q : nxh_s81718_27;
       // u_nunh1: n_y rn @19 / n_x h_x @32 / n_z h_z @33
       opnh_a_q <= at(ps_q[PS_NUNH1], 18) ? n1_q[18] : nu_q[31];
       opnh_b_q <= at(ps_q[PS_NUNH1], 18) ? rvnh_s121829 : ny2h_s514_3132;
@@ -459,12 +467,6 @@ module shade_unit
                 : at(ps_q[PS_HUNH1], 29) ? hy_q[29] : nuy_q[31];
       ophh_b_q <= at(ps_q[PS_HUNH1], 20) ? light[1]
                 : at(ps_q[PS_HUNH1], 29) ? rvnh_s121829 : hunh1_s2233;
-      // u_dd: nlx + nly @23 / nhx + nhy @34 / dot(n, l) = (nlx + nly) + nlz @36 /
-      // dot(n, h) = (nhx + nhy) + nhz @37
-      opdd_a_q <= at(ps_q[PS_DD], 22) ? nla_q[22] : at(ps_q[PS_DD], 33) ? nunh1_s2034
-                : at(ps_q[PS_DD], 35) ? dxy_q[35] : dd_s2536_3839;
-      opdd_b_q <= (at(ps_q[PS_DD], 22) || at(ps_q[PS_DD], 33)) ? hunh1_s2233
-                : at(ps_q[PS_DD], 35) ? nla_q[34] : nhz_q[36];
       // u_caa: C_x a @45 / C_z a @46 (a held)
       opca_a_q <= cola_q[44];
       opca_b_q <= at(ps_q[PS_CAA], 44) ? nua_s35_4450 : opca_b_q;
@@ -481,13 +483,12 @@ module shade_unit
   f24_mul u_nsqa   (.clk_i, .en_i, .a_i(nc_s34_4950), .b_i(nc_s34_4950), .y_o(nsqa_s45));
   f24_mul u_ny2h   (.clk_i, .en_i, .a_i(opyh_a_q), .b_i(opyh_b_q), .y_o(ny2h_s514_3132));
   f24_mul u_va     (.clk_i, .en_i, .a_i(opva_a_q), .b_i(opva_b_q), .y_o(va_s1415));
-  f24_add u_nxyh1  (.clk_i, .en_i, .a_i(opxy_a_q), .b_i(opxy_b_q), .y_o(nxyh1_s817));
-  f24_add u_ha     (.clk_i, .en_i, .a_i(opha_a_q), .b_i(va_s1415), .y_o(ha_s1617));
-  f24_mul u_hkd    (.clk_i, .en_i, .a_i(ophk_a_q), .b_i(ophk_b_q), .y_o(hkd_s1841));
+  f24_add u_nxh    (.clk_i, .en_i, .a_i(opxh_a_q), .b_i(opxh_b_q), .y_o(nxh_s81718_27));
+  f24_add u_hd     (.clk_i, .en_i, .a_i(ophd_a_q), .b_i(ophd_b_q), .y_o(hd_s17_3639));
+  f24_mul u_hkd    (.clk_i, .en_i, .a_i(ophk_a_q), .b_i(ophk_b_q), .y_o(hkd_s1920_41));
   f24_mul u_nunh1  (.clk_i, .en_i, .a_i(opnh_a_q), .b_i(opnh_b_q), .y_o(nunh1_s2034));
   f24_mul u_nla    (.clk_i, .en_i, .a_i(dvnc_s22147), .b_i(opnl_b_q), .y_o(nla_s2122));
   f24_mul u_hunh1  (.clk_i, .en_i, .a_i(ophh_a_q), .b_i(ophh_b_q), .y_o(hunh1_s2233));
-  f24_add u_dd     (.clk_i, .en_i, .a_i(opdd_a_q), .b_i(opdd_b_q), .y_o(dd_s2536_3839));
   // s = ndh; four times s = mul(s, s); sp = mul(KS, s): one unit per operation, each fed by the
   // previous one's result register (ndh: m_q in S40)
   f24_mul u_s2     (.clk_i, .en_i, .a_i(m_q), .b_i(m_q), .y_o(s2_s41));

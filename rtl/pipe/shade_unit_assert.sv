@@ -16,7 +16,7 @@
 module shade_unit_assert
   import shade_pkg::*;
 #(
-  parameter int unsigned NPS = 17   // shade_unit's NPS: operand selects with a phase replica
+  parameter int unsigned NPS = 16   // shade_unit's NPS: operand selects with a phase replica
 ) (
   input logic                  clk_i,
   input logic                  rst_ni,
@@ -47,14 +47,14 @@ module shade_unit_assert
   endfunction
 
   // Every float unit with more than one operation: the stages it takes its operands in.
-  localparam int NSH = 20;
+  localparam int NSH = 19;
   logic [CS:1] shared [NSH];
   assign shared = '{
     ops(1, 18, 0, 0),   ops(1, 19, 20, 46),  ops(3, 4, 0, 0),     ops(4, 13, 30, 31), // mul
-    ops(13, 14, 0, 0),  ops(17, 18, 40, 0),  ops(19, 32, 33, 0),  ops(20, 21, 0, 0),
+    ops(13, 14, 0, 0),  ops(18, 19, 40, 0),  ops(19, 32, 33, 0),  ops(20, 21, 0, 0),
     ops(21, 30, 32, 0), ops(45, 46, 0, 0),   ops(50, 51, 52, 0),
-    ops(1, 2, 47, 48),  ops(1, 3, 42, 48),   ops(6, 9, 20, 23),   ops(6, 15, 0, 0),   // add
-    ops(14, 15, 0, 0),  ops(23, 34, 36, 37), ops(51, 52, 53, 0),
+    ops(1, 2, 47, 48),  ops(1, 3, 42, 48),   ops(6, 9, 20, 23),   ops(6, 15, 16, 25), // add
+    ops(15, 34, 36, 37), ops(51, 52, 53, 0),
     ops(9, 15, 26, 0),  ops(53, 54, 55, 0)};                                          // rsqrt, idx
 
   always_ff @(posedge clk_i) begin
