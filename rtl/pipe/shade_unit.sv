@@ -64,44 +64,41 @@
 //   S0   2M_c (exact doubling, see below; 2M_z waits a clock in m2z_q for lane 0), selected
 //        into u_nc's and u_nua's operand registers
 //        du, dv delayed S0 -> S12; C_x, C_z as a stream S0 -> S44, C_y S0 -> S45
-//   S1   du^2 @1 / h_y^2 @18                                           f24_mul      -> S2 / S19
-//        dv^2 @1 / n_x rn @19 / n_z rn @20 / C_y a @46                 f24_mul      -> S2 / .. S47
-//        n_x - 1 @1 / n_z - 1 @2 (lane 0, n = 2M - 1) / c_R = C_x a + sp @47 / c_B = C_z a + sp
-//        @48 (lane 0, sp held)                                         f24_add      -> S3 .. S50
-//        n_y - 1 @1 / du^2 + dv^2 @3 / a = AMBIENT + KD ndl @42 /
+//   S1   u_uv2hy2: du^2 @1 / h_y^2 @18                                 f24_mul      -> S2 / S19
+//        u_dvnc: dv^2 @1 / n_x rn @19 / n_z rn @20 / C_y a @46         f24_mul      -> S2 .. S47
+//        u_nc: n_x - 1 @1 / n_z - 1 @2 (lane 0, n = 2M - 1) / c_R = C_x a + sp @47 /
+//        c_B = C_z a + sp @48 (lane 0, sp held)                        f24_add      -> S3 .. S50
+//        u_nua: n_y - 1 @1 / du^2 + dv^2 @3 / a = AMBIENT + KD ndl @42 /
 //        c_G = C_y a + sp @48                                          f24_add      -> S3 .. S50
-//   S3   n_x^2 @3 / n_z^2 @4 (direct from n_x - 1)                     f24_mul      -> S4 / S5
-//   S4   n_y^2 @4 / v_y = -dv rv @13 / h_x rh @30 / h_z rh @31 (rh held)
+//   S3   u_nsqa: n_x^2 @3 / n_z^2 @4 (direct from u_nc)                f24_mul      -> S4 / S5
+//   S4   u_ny2h: n_y^2 @4 / v_y = -dv rv @13 / h_x rh @30 / h_z rh @31 (rh held)
 //                                                                      f24_mul      -> S5 .. S32
-//   S6   vv = (du^2 + dv^2) + D2 @6 / nn = (nx2 + ny2) + nz2 @9 / hx2 + hy2 @20 /
+//   S6   u_nv: vv = (du^2 + dv^2) + D2 @6 / nn = (nx2 + ny2) + nz2 @9 / hx2 + hy2 @20 /
 //        hh = (hx2 + hy2) + hz2 @23                                    f24_add      -> S8 .. S25
-//        nx2 + ny2 @6 / h_x = l_x + v_x @15 / h_z = l_z + v_z @16 / nlx + nly @25
+//        u_nxh: nx2 + ny2 @6 / h_x = l_x + v_x @15 / h_z = l_z + v_z @16 / nlx + nly @25
 //        (n_y l_y delayed S22 -> S24)                                  f24_add      -> S8 .. S27
-//        h_y = l_y + v_y @15 / nhx + nhy @34 / dot(n, l) = (nlx + nly) + nlz @36 /
+//   S9   u_rvnh: rv = rsqrt(vv) @9 / rn = rsqrt(nn) @15 / rh = rsqrt(hh) @26
+//                                                                      f24_rsqrt    -> S12 .. S29
+//   S11  max(nn, EPS), held S12 -> S14                                 reg          S11 -> S12
+//   S13  u_va: v_x = -du rv @13 / v_z = D rv @14 (rv held)             f24_mul      -> S14 / S15
+//   S15  u_hd: h_y = l_y + v_y @15 / nhx + nhy @34 / dot(n, l) = (nlx + nly) + nlz @36 /
 //        dot(n, h) = (nhx + nhy) + nhz @37 (nlx + nly delayed S27 -> S35, nlz S22 -> S35,
 //        nhz S34 -> S36)                                               f24_add      -> S17 .. S39
-//   S9   rv = rsqrt(vv) @9 / rn = rsqrt(nn) @15 / rh = rsqrt(hh) @26   f24_rsqrt    -> S12 / .. S29
-//   S11  max(nn, EPS), held S12 -> S14                                 reg          S11 -> S12
-//   S13  v_x = -du rv @13 / v_z = D rv @14 (rv held)                   f24_mul      -> S14 / S15
-//   S15  h_x, h_z, h_y (above): h delayed S17 -> S29 (lane 0), h_y S17 -> S29
-//   S18  h_x^2 @18 / h_z^2 @19 / KD ndl @40                            f24_mul      -> S19 / .. S41
-//        (h_z^2 delayed S20 -> S22)
-//   S19  (n_x rn, n_z rn: above) n_y rn @19 / n_x h_x @32 / n_z h_z @33
-//                                                                      f24_mul      -> S20 / .. S34
-//   S20  n_x l_x @20 / n_z l_z @21 (direct from the unit normal)       f24_mul      -> S21 / S22
+//        h delayed S17 -> S29 (lane 0), h_y S17 -> S29
+//   S18  u_hkd: h_x^2 @18 / h_z^2 @19 / KD ndl @40 (h_z^2 delayed S20 -> S22)
+//                                                                      f24_mul      -> S19 .. S41
+//   S19  u_nunh1: n_y rn @19 / n_x h_x @32 / n_z h_z @33               f24_mul      -> S20 .. S34
+//   S20  u_nla: n_x l_x @20 / n_z l_z @21 (direct from the unit normal)  f24_mul    -> S21 / S22
 //        unit normal delayed S20 -> S31 (lanes)
-//   S21  n_y l_y @21 / h_y rh @30 / n_y h_y @32                        f24_mul      -> S22 / .. S33
-//   S25  nlx + nly @25 and the dot products @36, @37 (above)
+//   S21  u_hunh1: n_y l_y @21 / h_y rh @30 / n_y h_y @32               f24_mul      -> S22 .. S33
 //   S38  ndl = max(dot(n, l), 0) -> S39, ndh = max(dot(n, h), 0) -> S40   reg (one)
-//   S40  s = ndh^2 @40, s^4 @41, s^8 @42, s^16 @43, sp = KS s^16 @44: five f24_mul, each fed
-//        directly by the one before (no select)                        f24_mul      -> S41 .. S45
-//   S42  a = AMBIENT + KD ndl @42 (u_nua, above)                                    -> S44
-//   S45  C_x a @45 / C_z a @46 (a held)                                f24_mul      -> S46 / S47
-//   S47  c_c = C_c a + sp: R @47, B @48 (u_nc), G @48 (u_nua), above          -> S49 / S50
+//   S40  u_s2 .. u_sp: s = ndh^2 @40, s^4 @41, s^8 @42, s^16 @43, sp = KS s^16 @44: five
+//        f24_mul, each fed directly by the one before (no select)     f24_mul      -> S41 .. S45
+//   S45  u_caa: C_x a @45 / C_z a @46 (a held)                         f24_mul      -> S46 / S47
 //   S49  min(max(c_c, 0), 1): R (S49), G (S50), B (S50, held)          reg          -> S50 .. S52
-//   S50  c_c * 255: R @50 / G @51 / B @52                              f24_mul      -> S51 .. S53
-//   S51  + 0.5: R @51 / G @52 / B @53                                  f24_add      -> S53 .. S55
-//   S53  floor -> unorm8: R @53 / G @54 / B @55                        f24_to_index -> S54 .. S56
+//   S50  u_k: c_c * 255: R @50 / G @51 / B @52 (direct)                f24_mul      -> S51 .. S53
+//   S51  u_kh: + 0.5: R @51 / G @52 / B @53 (direct)                   f24_add      -> S53 .. S55
+//   S53  u_idx: floor -> unorm8: R @53 / G @54 / B @55                 f24_to_index -> S54 .. S56
 //   S54  R held (S55, S56), G held (S56); with B the result is complete in S56
 //   Output: a pixel that waited 3 clocks shows its result from core S56 directly, the others
 //   from res_q (loaded in S56); valid and tag delayed S0 -> S59 (pipe_valid_tag).
@@ -111,11 +108,12 @@
 //
 // Float units: 16 f24_mul (11 shared: u_dvnc and u_ny2h with four operations, u_hkd, u_nunh1,
 // u_hunh1 and u_k with three, 5 with two; the five of the s^16 chain unshared), 6 f24_add (all
-// shared: u_nc, u_nua, u_nv, u_nxh and u_hd with four, u_kh with three; 23 additions, one unit
-// per phase of each: the h_x / h_z pair a clock after v, nlx + nly two clocks after its
-// operands, both into slack), 1 f24_rsqrt (three operations), 1 f24_to_index #(9) (three); no f24_cmp (34, 21, 3 and 2 before
-// sharing).  Exact logic (no rounding involved, each into one register): 3 doublers,
-// max(nn, EPS), one max(., 0) for ndl then ndh, and 1 clamp.
+// shared: u_nc, u_nua, u_nv, u_nxh and u_hd with four, u_kh with three: the 23 additions fill
+// 23 of the 24 slots, 6 units x 4 phases; h_x / h_z wait a clock for their operand registers
+// and nlx + nly two clocks, both in slack), 1 f24_rsqrt (three operations), 1 f24_to_index #(9)
+// (three); no f24_cmp (34, 21, 3 and 2 before sharing).  Exact logic (no rounding involved,
+// each into one register): 3 doublers, max(nn, EPS), one max(., 0) for ndl then ndh, and 1
+// clamp.
 //
 // Exact parts, bit-identical to the model:
 // - mul(M_c, 2) is an exponent increment: e = 126 overflows to Inf, zeros and subnormal patterns
