@@ -148,8 +148,8 @@ module shade_unit
   output logic [2:0][7:0]  rgb_o     // unorm8 codes (R, G, B at 0, 1, 2)
 );
 
-  localparam int unsigned NS = SHADE_LAT;  // stages S1 .. S44
-  localparam int unsigned CS = NS - 3;     // core stages S1 .. S41
+  localparam int unsigned NS = SHADE_LAT;  // stages S1 .. S59
+  localparam int unsigned CS = NS - 3;     // core stages S1 .. S56
 
   // The f24_rsqrt: the schedule (header) is written for 3 clocks (rv S9 -> S12, rn S15 -> S18,
   // rh S26 -> S29); another latency needs the stages below renumbered.
@@ -200,7 +200,7 @@ module shade_unit
   f24_t [2:0] light;
   assign light = {cfg_i.light_z, cfg_i.light_y, cfg_i.light_x};
 
-  // ---- valid and tag: S1 .. S41 (stage_v[k]: a pixel entered k enabled clocks ago) ---------
+  // ---- valid and tag: S1 .. S59 (stage_v[k]: a pixel entered k enabled clocks ago) ---------
   /* verilator lint_off UNUSEDSIGNAL */  // the assertion reads stage 1
   logic [NS:1] stage_v;
   /* verilator lint_on UNUSEDSIGNAL */

@@ -29,7 +29,7 @@ module shade_unit_assert
   input logic [3:0]            ps_i [NPS]  // ps_q: the phase replicas
 );
 
-  localparam int unsigned CS = SHADE_LAT - 3;   // core stages S1 .. S41
+  localparam int unsigned CS = SHADE_LAT - 3;   // core stages S1 .. S56
 
   // The core stages k with k mod 4 = r.
   function automatic logic [CS:1] stage_phase(input logic [1:0] r);
