@@ -15,7 +15,7 @@ package shade_pkg;
 
   // Critical path (a shared unit's operation starts a clock after the result it takes, which
   // its operand register holds): view vector (mul 1, add 1 + 2, add 1 + 2, rsqrt 1 + 3,
-  // mul 1 + 1), half vector (add 2, mul 1 + 1, add 1 + 2, add 1 + 2, rsqrt 1 + 3, mul 1 + 1),
+  // mul 1 + 1), half vector (add 1 + 2, mul 1 + 1, add 1 + 2, add 1 + 2, rsqrt 1 + 3, mul 1 + 1),
   // n.h (mul 1 + 1, add 1 + 2, the wait for dot(n, l) 1, add 1 + 2), max 1, four squarings 4,
   // KS mul 1, the wait for a 1, colour add 1 + 2, clamp 1, x255 mul 1, +0.5 add 2, floor 1, two
   // clocks more for G and B, which follow R on one lane a clock apart each, and three for the

@@ -61,42 +61,44 @@
 // Core stage schedule (S0 = the input ports or the hold registers; "@a": the unit works on the
 // operands in Sa (for a shared unit: selected into its operand registers in Sa-1), "-> b": its
 // result in Sb; "reg" = exact logic into one register):
-//   S0   2M_c (exact doubling, see below; 2M_z waits a clock for lane 0) reg          S0 -> S1
+//   S0   2M_c (exact doubling, see below; 2M_z waits a clock in m2z_q for lane 0), selected
+//        into u_nc's and u_nua's operand registers
 //        du, dv delayed S0 -> S12; C_x, C_z as a stream S0 -> S44, C_y S0 -> S45
-//   S1   du^2 @1 / h_y^2 @18                                           f24_mul      -> S2 / S19
-//        dv^2 @1 / n_x rn @19 / n_z rn @20 / C_y a @46                 f24_mul      -> S2 / .. S47
-//        n_x - 1 @1 / n_z - 1 @2 (lane 0, n = 2M - 1, direct)          f24_add      -> S3 / S4
-//        n_y - 1 @1 / du^2 + dv^2 @3                                   f24_add      -> S3 / S5
-//   S3   n_x^2 @3 / n_z^2 @4 (direct from n_x - 1)                     f24_mul      -> S4 / S5
-//   S4   n_y^2 @4 / v_y = -dv rv @13                                   f24_mul      -> S5 / S14
-//   S6   vv = (du^2 + dv^2) + D2 @6 / hh = (hx2 + hy2) + hz2 @23       f24_add      -> S8 / S25
-//        nx2 + ny2 @6 / h_y = l_y + v_y @15                            f24_add      -> S8 / S17
-//   S9   rv = rsqrt(vv) @9 / rn = rsqrt(nn) @15 / rh = rsqrt(hh) @26   f24_rsqrt    -> S12 / .. S29
-//        nn = (nx2 + ny2) + nz2 @9 / hx2 + hy2 @20                     f24_add      -> S11 / S22
+//   S1   u_uv2hy2: du^2 @1 / h_y^2 @18                                 f24_mul      -> S2 / S19
+//        u_dvnc: dv^2 @1 / n_x rn @19 / n_z rn @20 / C_y a @46         f24_mul      -> S2 .. S47
+//        u_nc: n_x - 1 @1 / n_z - 1 @2 (lane 0, n = 2M - 1) / c_R = C_x a + sp @47 /
+//        c_B = C_z a + sp @48 (lane 0, sp held)                        f24_add      -> S3 .. S50
+//        u_nua: n_y - 1 @1 / du^2 + dv^2 @3 / a = AMBIENT + KD ndl @42 /
+//        c_G = C_y a + sp @48                                          f24_add      -> S3 .. S50
+//   S3   u_nsqa: n_x^2 @3 / n_z^2 @4 (direct from u_nc)                f24_mul      -> S4 / S5
+//   S4   u_ny2h: n_y^2 @4 / v_y = -dv rv @13 / h_x rh @30 / h_z rh @31 (rh held)
+//                                                                      f24_mul      -> S5 .. S32
+//   S6   u_nv: vv = (du^2 + dv^2) + D2 @6 / nn = (nx2 + ny2) + nz2 @9 / hx2 + hy2 @20 /
+//        hh = (hx2 + hy2) + hz2 @23                                    f24_add      -> S8 .. S25
+//        u_nxh: nx2 + ny2 @6 / h_x = l_x + v_x @15 / h_z = l_z + v_z @16 / nlx + nly @25
+//        (n_y l_y delayed S22 -> S24)                                  f24_add      -> S8 .. S27
+//   S9   u_rvnh: rv = rsqrt(vv) @9 / rn = rsqrt(nn) @15 / rh = rsqrt(hh) @26
+//                                                                      f24_rsqrt    -> S12 .. S29
 //   S11  max(nn, EPS), held S12 -> S14                                 reg          S11 -> S12
-//   S13  v_x = -du rv @13 / v_z = D rv @14 (rv held)                   f24_mul      -> S14 / S15
-//   S14  h_x = l_x + v_x @14 / h_z = l_z + v_z @15 (direct from v)     f24_add      -> S16 / S17
-//        h delayed S16 -> S29 (lane 0), h_y S17 -> S29
-//   S17  h_x^2 @17 / h_z^2 @18 / KD ndl @40                            f24_mul      -> S18 / .. S41
-//   S19  (n_x rn, n_z rn: above) n_y rn @19 / n_x h_x @32 / n_z h_z @33
-//                                                                      f24_mul      -> S20 / .. S34
-//   S20  n_x l_x @20 / n_z l_z @21 (direct from the unit normal)       f24_mul      -> S21 / S22
+//   S13  u_va: v_x = -du rv @13 / v_z = D rv @14 (rv held)             f24_mul      -> S14 / S15
+//   S15  u_hd: h_y = l_y + v_y @15 / nhx + nhy @34 / dot(n, l) = (nlx + nly) + nlz @36 /
+//        dot(n, h) = (nhx + nhy) + nhz @37 (nlx + nly delayed S27 -> S35, nlz S22 -> S35,
+//        nhz S34 -> S36)                                               f24_add      -> S17 .. S39
+//        h delayed S17 -> S29 (lane 0), h_y S17 -> S29
+//   S18  u_hkd: h_x^2 @18 / h_z^2 @19 / KD ndl @40 (h_z^2 delayed S20 -> S22)
+//                                                                      f24_mul      -> S19 .. S41
+//   S19  u_nunh1: n_y rn @19 / n_x h_x @32 / n_z h_z @33               f24_mul      -> S20 .. S34
+//   S20  u_nla: n_x l_x @20 / n_z l_z @21 (direct from the unit normal)  f24_mul    -> S21 / S22
 //        unit normal delayed S20 -> S31 (lanes)
-//   S21  n_y l_y @21 / h_y rh @30 / n_y h_y @32                        f24_mul      -> S22 / .. S33
-//   S23  nlx + nly @23 / nhx + nhy @34                                 f24_add      -> S25 / S36
-//   S30  h_x rh @30 / h_z rh @31 (rh held)                             f24_mul      -> S31 / S32
-//   S36  dot(n, l) = (nlx + nly) + nlz @36 / dot(n, h) @37             f24_add      -> S38 / S39
-//        (nlx + nly delayed S25 -> S35, nlz S22 -> S35, nhz S34 -> S36)
+//   S21  u_hunh1: n_y l_y @21 / h_y rh @30 / n_y h_y @32               f24_mul      -> S22 .. S33
 //   S38  ndl = max(dot(n, l), 0) -> S39, ndh = max(dot(n, h), 0) -> S40   reg (one)
-//   S40  s = ndh^2 @40, s^4 @41, s^8 @42, s^16 @43, sp = KS s^16 @44: five f24_mul, each fed
-//        directly by the one before (no select)                        f24_mul      -> S41 .. S45
-//   S42  a = AMBIENT + KD ndl @42 / c_G = C_y a + sp @48               f24_add      -> S44 / S50
-//   S45  C_x a @45 / C_z a @46 (a held)                                f24_mul      -> S46 / S47
-//   S47  c_c = C_c a + sp (lane 0: R @47, B @48, sp held)              f24_add      -> S49 / S50
+//   S40  u_s2 .. u_sp: s = ndh^2 @40, s^4 @41, s^8 @42, s^16 @43, sp = KS s^16 @44: five
+//        f24_mul, each fed directly by the one before (no select)     f24_mul      -> S41 .. S45
+//   S45  u_caa: C_x a @45 / C_z a @46 (a held)                         f24_mul      -> S46 / S47
 //   S49  min(max(c_c, 0), 1): R (S49), G (S50), B (S50, held)          reg          -> S50 .. S52
-//   S50  c_c * 255: R @50 / G @51 / B @52                              f24_mul      -> S51 .. S53
-//   S51  + 0.5: R @51 / G @52 / B @53                                  f24_add      -> S53 .. S55
-//   S53  floor -> unorm8: R @53 / G @54 / B @55                        f24_to_index -> S54 .. S56
+//   S50  u_k: c_c * 255: R @50 / G @51 / B @52 (direct)                f24_mul      -> S51 .. S53
+//   S51  u_kh: + 0.5: R @51 / G @52 / B @53 (direct)                   f24_add      -> S53 .. S55
+//   S53  u_idx: floor -> unorm8: R @53 / G @54 / B @55                 f24_to_index -> S54 .. S56
 //   S54  R held (S55, S56), G held (S56); with B the result is complete in S56
 //   Output: a pixel that waited 3 clocks shows its result from core S56 directly, the others
 //   from res_q (loaded in S56); valid and tag delayed S0 -> S59 (pipe_valid_tag).
@@ -104,11 +106,14 @@
 // over 120 MHz; at 2 clocks it limits the unit to below 60 MHz), with the same results;
 // the schedule above is written for that latency (checked at elaboration).
 //
-// Float units: 17 f24_mul (12 shared: u_dvnc with four operations, u_hkd, u_nunh1, u_hunh1 and
-// u_k with three, 7 with two; the five of the s^16 chain unshared), 11 f24_add
-// (all shared: u_kh with three), 1 f24_rsqrt (three operations), 1 f24_to_index #(9) (three); no
-// f24_cmp (34, 21, 3 and 2 before sharing).  Exact logic (no rounding involved, each into one
-// register): 3 doublers, max(nn, EPS), one max(., 0) for ndl then ndh, and 1 clamp.
+// Float units: 16 f24_mul (11 shared: u_dvnc and u_ny2h with four operations, u_hkd, u_nunh1,
+// u_hunh1 and u_k with three, 5 with two; the five of the s^16 chain unshared), 6 f24_add (all
+// shared: u_nc, u_nua, u_nv, u_nxh and u_hd with four, u_kh with three: the 23 additions fill
+// 23 of the 24 slots, 6 units x 4 phases; h_x / h_z wait a clock for their operand registers
+// and nlx + nly two clocks, both in slack), 1 f24_rsqrt (three operations), 1 f24_to_index #(9)
+// (three); no f24_cmp (34, 21, 3 and 2 before sharing).  Exact logic (no rounding involved,
+// each into one register): 3 doublers, max(nn, EPS), one max(., 0) for ndl then ndh, and 1
+// clamp.
 //
 // Exact parts, bit-identical to the model:
 // - mul(M_c, 2) is an exponent increment: e = 126 overflows to Inf, zeros and subnormal patterns
@@ -143,8 +148,8 @@ module shade_unit
   output logic [2:0][7:0]  rgb_o     // unorm8 codes (R, G, B at 0, 1, 2)
 );
 
-  localparam int unsigned NS = SHADE_LAT;  // stages S1 .. S44
-  localparam int unsigned CS = NS - 3;     // core stages S1 .. S41
+  localparam int unsigned NS = SHADE_LAT;  // stages S1 .. S59
+  localparam int unsigned CS = NS - 3;     // core stages S1 .. S56
 
   // The f24_rsqrt: the schedule (header) is written for 3 clocks (rv S9 -> S12, rn S15 -> S18,
   // rh S26 -> S29); another latency needs the stages below renumbered.
@@ -195,7 +200,7 @@ module shade_unit
   f24_t [2:0] light;
   assign light = {cfg_i.light_z, cfg_i.light_y, cfg_i.light_x};
 
-  // ---- valid and tag: S1 .. S41 (stage_v[k]: a pixel entered k enabled clocks ago) ---------
+  // ---- valid and tag: S1 .. S59 (stage_v[k]: a pixel entered k enabled clocks ago) ---------
   /* verilator lint_off UNUSEDSIGNAL */  // the assertion reads stage 1
   logic [NS:1] stage_v;
   /* verilator lint_on UNUSEDSIGNAL */
@@ -239,13 +244,11 @@ module shade_unit
   // which the placer keeps next to it: a select driven by cv_q[1], shared by five units, was
   // 2.5 ns of routing into an adder's stage 1 (77 MHz out of context).  The copies are not
   // merged by synthesis: each register's next value is its own rotation.
-  localparam int unsigned NPS = 21;  // operand selects (units and the clamp's)
-  localparam int unsigned PS_UV2HY2 = 0,  PS_DVNC = 1,   PS_N1UV = 2,   PS_VVHH = 3,
-                          PS_NSQ1V1 = 4,  PS_VA = 5,     PS_NXYH1 = 6,  PS_HA = 7,
-                          PS_HKD = 8,     PS_NNHXY = 9,  PS_RVNH = 10,  PS_NUNH1 = 11,
-                          PS_NLA = 12,    PS_HUA = 13,   PS_HUNH1 = 14, PS_DXY = 15,
-                          PS_ACC1 = 16,   PS_DOT = 17,   PS_CAA = 18,   PS_CC0 = 19,
-                          PS_CL = 20;
+  localparam int unsigned NPS = 16;  // operand selects (units and the clamp's)
+  localparam int unsigned PS_UV2HY2 = 0,  PS_DVNC = 1,   PS_NUA = 2,    PS_NV = 3,
+                          PS_NY2H = 4,    PS_VA = 5,     PS_NXH = 6,    PS_HD = 7,
+                          PS_HKD = 8,     PS_RVNH = 9,   PS_NUNH1 = 10, PS_NLA = 11,
+                          PS_HUNH1 = 12,  PS_CAA = 13,   PS_NC = 14,    PS_CL = 15;
   logic [3:0] ps_q [NPS];
 
   for (genvar u = 0; u < NPS; u++) begin : g_ps
@@ -277,32 +280,25 @@ module shade_unit
   // ---- float-unit outputs (named by their results and the stages they appear in) -------------
   f24_t uv2hy2_s219;                // du^2 (S2), h_y^2 (S19)
   f24_t dvnc_s22147;                // dv^2 (S2), unit normal x (S20), z (S21), C_y a (S47)
-  f24_t na_s34;                     // n_x (S3), n_z (S4)
-  f24_t n1uv_s35;                   // n_y (S3), du^2 + dv^2 (S5)
-  f24_t vvhh_s825;                  // vv (S8), hh (S25)
+  f24_t nc_s34_4950;                // n_x (S3), n_z (S4), C_c a + sp, lane 0: R (S49), B (S50)
+  f24_t nua_s35_4450;               // n_y (S3), du^2 + dv^2 (S5), a (S44), C_y a + sp (S50)
+  f24_t nv_s81122_25;               // vv (S8), nn (S11), hx2 + hy2 (S22), hh (S25)
   f24_t nsqa_s45;                   // n_x^2 (S4), n_z^2 (S5)
-  f24_t nsq1v1_s514;                // n_y^2 (S5), v_y (S14)
+  f24_t ny2h_s514_3132;             // n_y^2 (S5), v_y (S14), unit half vector x (S31), z (S32)
   f24_t va_s1415;                   // v_x (S14), v_z (S15)
-  f24_t nxyh1_s817;                 // nx2 + ny2 (S8), h_y (S17)
-  f24_t ha_s1617;                   // h_x (S16), h_z (S17)
-  f24_t hkd_s1841;                  // h_x^2 (S18), h_z^2 (S19), KD ndl (S41)
-  f24_t nnhxy_s1122;                // nn (S11), hx2 + hy2 (S22)
+  f24_t nxh_s81718_27;              // nx2 + ny2 (S8), h_x (S17), h_z (S18), nlx + nly (S27)
+  f24_t hkd_s1920_41;               // h_x^2 (S19), h_z^2 (S20), KD ndl (S41)
   f24_t rvnh_s121829;               // rv (S12), rn (S18), rh (S29)
   f24_t nunh1_s2034;                // unit normal y (S20), n_x h_x (S33), n_z h_z (S34)
   f24_t nla_s2122;                  // n_x l_x (S21), n_z l_z (S22)
-  f24_t hua_s3132;                  // unit half vector x (S31), z (S32)
   f24_t hunh1_s2233;                // n_y l_y (S22), unit half vector y (S31), n_y h_y (S33)
-  f24_t dxy_s2536;                  // nlx + nly (S25), nhx + nhy (S36)
-  f24_t dot_s3839;                  // dot(n, l) (S38), dot(n, h) (S39)
-  f24_t acc1_s4450;                 // a (S44), C_y a + sp (S50)
+  f24_t hd_s17_3639;                // h_y (S17), nhx + nhy (S36), dot(n, l) (S38), dot(n, h) (S39)
   f24_t s2_s41, s4_s42, s8_s43, s16_s44, sp_s45;  // ndh^2, ^4, ^8, ^16; sp = KS s^16
   f24_t caa_s4647;                  // C_x a (S46), C_z a (S47)
-  f24_t cc0_s4950;                  // C_c a + sp, lane 0: R (S49), B (S50)
   f24_t k_s51, kh_s53;              // c 255, c 255 + 0.5 (R, then G and B a clock apart each)
 
   // ---- stage registers of the data path (no reset; "stream": lane 0, x in stage k and z in k+1
   // of the register named [k]) ----------------------------------------------------------------
-  f24_t       m2a_q;                // S1 / S2 stream: 2M_x, 2M_z
   f24_t       m2z_q;                // S1: 2M_z, waiting a clock
   f24_t       du_q   [1:12];        // S1 .. S12
   f24_t       dv_q   [1:12];
@@ -313,13 +309,14 @@ module shade_unit
   f24_t       n1_q   [4:18];        // n_y
   f24_t       nsq_q  [5:7];         // stream n_x^2, n_z^2
   f24_t       nnm_q  [12:14];       // max(nn, EPS)
-  f24_t       hk_q   [19:21];       // stream h_x^2, h_z^2
-  f24_t       ha_q   [17:29];       // stream h_x, h_z
+  f24_t       hk_q   [20:21];       // stream h_x^2, h_z^2
+  f24_t       ha_q   [18:29];       // stream h_x, h_z
   f24_t       hy_q   [18:29];       // h_y
   f24_t       nu_q   [21:31];       // stream unit normal x, z
   f24_t       nuy_q  [21:31];       // unit normal y
   f24_t       nla_q  [22:34];       // stream n_x l_x, n_z l_z
-  f24_t       dxy_q  [26:35];       // nlx + nly
+  f24_t       nly_q  [23:24];       // n_y l_y
+  f24_t       dxy_q  [28:35];       // nlx + nly
   f24_t       nhz_q  [35:36];       // n_z h_z
   f24_t       m_q;                  // ndl = max(dot(n, l), 0) (S39), then ndh (S40)
   f24_t       a_q;                  // S45: a
@@ -331,7 +328,6 @@ module shade_unit
     if (en_i) begin
       // the lane-0 streams of the inputs: x when the pixel enters S1, z (held a clock) in S2
       m2z_q <= dbl(in_nrm[2]);
-      m2a_q <= cv_q[1] ? m2z_q : dbl(in_nrm[0]);
       colz_q    <= in_col[2];
       cola_q[1] <= cv_q[1] ? colz_q : in_col[0];
       col1_q[1] <= in_col[1];
@@ -343,21 +339,21 @@ module shade_unit
         du_q[s] <= du_q[s-1];
         dv_q[s] <= dv_q[s-1];
       end
-      na_q[4] <= na_s34;
-      n1_q[4] <= n1uv_s35;
+      na_q[4] <= nc_s34_4950;
+      n1_q[4] <= nua_s35_4450;
       for (int s = 5; s <= 18; s++) begin
         na_q[s] <= na_q[s-1];
         n1_q[s] <= n1_q[s-1];
       end
       nsq_q[5] <= nsqa_s45;
       for (int s = 6; s <= 7; s++) nsq_q[s] <= nsq_q[s-1];
-      nnm_q[12] <= max_np(nnhxy_s1122, SHADE_EPS);
+      nnm_q[12] <= max_np(nv_s81122_25, SHADE_EPS);
       for (int s = 13; s <= 14; s++) nnm_q[s] <= nnm_q[s-1];
-      hk_q[19] <= hkd_s1841;
-      for (int s = 20; s <= 21; s++) hk_q[s] <= hk_q[s-1];
-      ha_q[17] <= ha_s1617;
-      hy_q[18] <= nxyh1_s817;
-      for (int s = 18; s <= 29; s++) ha_q[s] <= ha_q[s-1];
+      hk_q[20] <= hkd_s1920_41;
+      hk_q[21] <= hk_q[20];
+      ha_q[18] <= nxh_s81718_27;
+      hy_q[18] <= hd_s17_3639;
+      for (int s = 19; s <= 29; s++) ha_q[s] <= ha_q[s-1];
       for (int s = 19; s <= 29; s++) hy_q[s] <= hy_q[s-1];
       nu_q[21]  <= dvnc_s22147;
       nuy_q[21] <= nunh1_s2034;
@@ -367,18 +363,20 @@ module shade_unit
       end
       nla_q[22] <= nla_s2122;
       for (int s = 23; s <= 34; s++) nla_q[s] <= nla_q[s-1];
-      dxy_q[26] <= dxy_s2536;
-      for (int s = 27; s <= 35; s++) dxy_q[s] <= dxy_q[s-1];
+      nly_q[23] <= hunh1_s2233;
+      nly_q[24] <= nly_q[23];
+      dxy_q[28] <= nxh_s81718_27;
+      for (int s = 29; s <= 35; s++) dxy_q[s] <= dxy_q[s-1];
       nhz_q[35] <= nunh1_s2034;
       nhz_q[36] <= nhz_q[35];
-      m_q <= max_np(dot_s3839, SHADE_ZERO);
-      a_q <= acc1_s4450;
+      m_q <= max_np(hd_s17_3639, SHADE_ZERO);
+      a_q <= nua_s35_4450;
       sp_q[46] <= sp_s45;
       sp_q[47] <= sp_q[46];
       // the tail's stream: R (lane 0, S49), G (lane 1, S50), B (lane 0, S50, held a clock)
-      bh_q <= cc0_s4950;
-      cl_q <= min_np(max_np(at(ps_q[PS_CL], 49) ? cc0_s4950
-                            : at(ps_q[PS_CL], 50) ? acc1_s4450 : bh_q, SHADE_ZERO), SHADE_ONE);
+      bh_q <= nc_s34_4950;
+      cl_q <= min_np(max_np(at(ps_q[PS_CL], 49) ? nc_s34_4950
+                            : at(ps_q[PS_CL], 50) ? nua_s35_4450 : bh_q, SHADE_ZERO), SHADE_ONE);
       // the floors come R (S54), G (S55), B (S56); the result is complete in core S56
       r_q[55] <= idx[7:0];
       r_q[56] <= r_q[55];
@@ -393,111 +391,102 @@ module shade_unit
   // -du, -dv: the sign bit flipped.
   f24_t opuh_q;                        // u_uv2hy2 (squares: one operand)
   f24_t opdv_a_q, opdv_b_q;            // u_dvnc
-  f24_t opnu_a_q, opnu_b_q;            // u_n1uv
-  f24_t opvh_a_q, opvh_b_q;            // u_vvhh
+  f24_t opnc_a_q, opnc_b_q;            // u_nc
+  f24_t opnu_a_q, opnu_b_q;            // u_nua
+  f24_t opnv_a_q, opnv_b_q;            // u_nv
   f24_t oprs_q;                        // u_rvnh
-  f24_t opn1_a_q, opn1_b_q;            // u_nsq1v1
+  f24_t opyh_a_q, opyh_b_q;            // u_ny2h
   f24_t opva_a_q, opva_b_q;            // u_va
-  f24_t opxy_a_q, opxy_b_q;            // u_nxyh1
-  f24_t opha_a_q;                      // u_ha (b: u_va's result, direct)
+  f24_t opxh_a_q, opxh_b_q;            // u_nxh
+  f24_t ophd_a_q, ophd_b_q;            // u_hd
   f24_t ophk_a_q, ophk_b_q;            // u_hkd
-  f24_t opnn_a_q, opnn_b_q;            // u_nnhxy
   f24_t opnh_a_q, opnh_b_q;            // u_nunh1
   f24_t opnl_b_q;                      // u_nla (a: u_dvnc's result, direct)
-  f24_t ophu_a_q, ophu_b_q;            // u_hua
   f24_t ophh_a_q, ophh_b_q;            // u_hunh1
-  f24_t opdx_a_q, opdx_b_q;            // u_dxy
-  f24_t opdt_a_q, opdt_b_q;            // u_dot
-  f24_t opac_a_q, opac_b_q;            // u_acc1
   f24_t opca_a_q, opca_b_q;            // u_caa
-  f24_t opcc_a_q, opcc_b_q;            // u_cc0
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       // u_uv2hy2: du^2 @1 / h_y^2 @18
-      opuh_q   <= at(ps_q[PS_UV2HY2], 0) ? in_du : nxyh1_s817;
+      opuh_q   <= at(ps_q[PS_UV2HY2], 0) ? in_du : hd_s17_3639;
       // u_dvnc: dv^2 @1 / n_x rn @19 / n_z rn @20 (rn held) / C_y a @46
       opdv_a_q <= at(ps_q[PS_DVNC], 0) ? in_dv
                 : (at(ps_q[PS_DVNC], 18) || at(ps_q[PS_DVNC], 19)) ? na_q[18] : col1_q[45];
       opdv_b_q <= at(ps_q[PS_DVNC], 0) ? in_dv
                 : at(ps_q[PS_DVNC], 18) ? rvnh_s121829
                 : at(ps_q[PS_DVNC], 19) ? opdv_b_q : a_q;
-      // u_n1uv: n_y - 1 @1 / du^2 + dv^2 @3
-      opnu_a_q <= at(ps_q[PS_N1UV], 0) ? dbl(in_nrm[1]) : uv2hy2_s219;
-      opnu_b_q <= at(ps_q[PS_N1UV], 0) ? NEG_ONE : dvnc_s22147;
-      // u_vvhh: vv @6 / hh @23
-      opvh_a_q <= at(ps_q[PS_VVHH], 5) ? n1uv_s35 : nnhxy_s1122;
-      opvh_b_q <= at(ps_q[PS_VVHH], 5) ? cfg_i.d2 : hk_q[21];
+      // u_nc: n_x - 1 @1 / n_z - 1 @2 (n = 2M - 1; 2M_z waited a clock in m2z_q) / c_R = C_x a + sp
+      // @47 / c_B = C_z a + sp @48 (sp held)
+      opnc_a_q <= at(ps_q[PS_NC], 0) ? dbl(in_nrm[0]) : at(ps_q[PS_NC], 1) ? m2z_q : caa_s4647;
+      opnc_b_q <= (at(ps_q[PS_NC], 0) || at(ps_q[PS_NC], 1)) ? NEG_ONE
+                : at(ps_q[PS_NC], 46) ? sp_q[46] : opnc_b_q;
+      // u_nua: n_y - 1 @1 / du^2 + dv^2 @3 / a = AMBIENT + KD ndl @42 / c_G = C_y a + sp @48
+      opnu_a_q <= at(ps_q[PS_NUA], 0) ? dbl(in_nrm[1]) : at(ps_q[PS_NUA], 2) ? uv2hy2_s219
+                : at(ps_q[PS_NUA], 41) ? cfg_i.ambient : dvnc_s22147;
+      opnu_b_q <= at(ps_q[PS_NUA], 0) ? NEG_ONE : at(ps_q[PS_NUA], 2) ? dvnc_s22147
+                : at(ps_q[PS_NUA], 41) ? hkd_s1920_41 : sp_q[47];
+      // u_nv: vv = (du^2 + dv^2) + D2 @6 / nn = (nx2 + ny2) + nz2 @9 / hx2 + hy2 @20 /
+      // hh = (hx2 + hy2) + hz2 @23
+      opnv_a_q <= at(ps_q[PS_NV], 5) ? nua_s35_4450 : at(ps_q[PS_NV], 8) ? nxh_s81718_27
+                : at(ps_q[PS_NV], 19) ? hkd_s1920_41 : nv_s81122_25;
+      opnv_b_q <= at(ps_q[PS_NV], 5) ? cfg_i.d2 : at(ps_q[PS_NV], 8) ? nsq_q[7]
+                : at(ps_q[PS_NV], 19) ? uv2hy2_s219 : hk_q[21];
       // u_rvnh: rv @9 / rn @15 / rh @26
-      oprs_q   <= at(ps_q[PS_RVNH], 14) ? nnm_q[14] : vvhh_s825;
-      // u_nsq1v1: n_y^2 @4 / v_y = -dv rv @13
-      opn1_a_q <= at(ps_q[PS_NSQ1V1], 3) ? n1uv_s35 : {~dv_q[12][23], dv_q[12][22:0]};
-      opn1_b_q <= at(ps_q[PS_NSQ1V1], 3) ? n1uv_s35 : rvnh_s121829;
+      oprs_q   <= at(ps_q[PS_RVNH], 14) ? nnm_q[14] : nv_s81122_25;
+      // u_ny2h: n_y^2 @4 / v_y = -dv rv @13 / h_x rh @30 / h_z rh @31 (rh held)
+      opyh_a_q <= at(ps_q[PS_NY2H], 3) ? nua_s35_4450
+                : at(ps_q[PS_NY2H], 12) ? {~dv_q[12][23], dv_q[12][22:0]} : ha_q[29];
+      opyh_b_q <= at(ps_q[PS_NY2H], 3) ? nua_s35_4450
+                : (at(ps_q[PS_NY2H], 12) || at(ps_q[PS_NY2H], 29)) ? rvnh_s121829 : opyh_b_q;
       // u_va: v_x = -du rv @13 / v_z = D rv @14 (rv held)
       opva_a_q <= at(ps_q[PS_VA], 12) ? {~du_q[12][23], du_q[12][22:0]} : cfg_i.d;
       opva_b_q <= at(ps_q[PS_VA], 12) ? rvnh_s121829 : opva_b_q;
-      // u_nxyh1: nx2 + ny2 @6 / h_y = l_y + v_y @15
-      opxy_a_q <= at(ps_q[PS_NXYH1], 5) ? nsq_q[5] : light[1];
-      opxy_b_q <= nsq1v1_s514;
-      // u_ha: h_x = l_x + v_x @14 / h_z = l_z + v_z @15
-      opha_a_q <= at(ps_q[PS_HA], 13) ? light[0] : light[2];
-      // u_hkd: h_x^2 @17 / h_z^2 @18 / KD ndl @40
-      ophk_a_q <= at(ps_q[PS_HKD], 39) ? cfg_i.kd : ha_s1617;
-      ophk_b_q <= at(ps_q[PS_HKD], 39) ? m_q : ha_s1617;
-      // u_nnhxy: nn = nxy + nz2 @9 / hx2 + hy2 @20
-      opnn_a_q <= at(ps_q[PS_NNHXY], 8) ? nxyh1_s817 : hk_q[19];
-      opnn_b_q <= at(ps_q[PS_NNHXY], 8) ? nsq_q[7] : uv2hy2_s219;
+      // u_nxh: nx2 + ny2 @6 / h_x = l_x + v_x @15 / h_z = l_z + v_z @16 / nlx + nly @25
+      opxh_a_q <= at(ps_q[PS_NXH], 5) ? nsq_q[5] : at(ps_q[PS_NXH], 24) ? nla_q[24]
+                : at(ps_q[PS_NXH], 14) ? light[0] : light[2];
+      opxh_b_q <= at(ps_q[PS_NXH], 5) ? ny2h_s514_3132 : at(ps_q[PS_NXH], 24) ? nly_q[24]
+                : va_s1415;
+      // u_hd: h_y = l_y + v_y @15 / nhx + nhy @34 / dot(n, l) = (nlx + nly) + nlz @36 /
+      // dot(n, h) = (nhx + nhy) + nhz @37
+      ophd_a_q <= at(ps_q[PS_HD], 14) ? light[1] : at(ps_q[PS_HD], 33) ? nunh1_s2034
+                : at(ps_q[PS_HD], 35) ? dxy_q[35] : hd_s17_3639;
+      ophd_b_q <= at(ps_q[PS_HD], 14) ? ny2h_s514_3132 : at(ps_q[PS_HD], 33) ? hunh1_s2233
+                : at(ps_q[PS_HD], 35) ? nla_q[34] : nhz_q[36];
+      // u_hkd: h_x^2 @18 / h_z^2 @19 / KD ndl @40
+      ophk_a_q <= at(ps_q[PS_HKD], 39) ? cfg_i.kd : nxh_s81718_27;
+      ophk_b_q <= at(ps_q[PS_HKD], 39) ? m_q : nxh_s81718_27;
       // u_nunh1: n_y rn @19 / n_x h_x @32 / n_z h_z @33
       opnh_a_q <= at(ps_q[PS_NUNH1], 18) ? n1_q[18] : nu_q[31];
-      opnh_b_q <= at(ps_q[PS_NUNH1], 18) ? rvnh_s121829 : hua_s3132;
+      opnh_b_q <= at(ps_q[PS_NUNH1], 18) ? rvnh_s121829 : ny2h_s514_3132;
       // u_nla: n_x l_x @20 / n_z l_z @21
       opnl_b_q <= at(ps_q[PS_NLA], 19) ? light[0] : light[2];
-      // u_hua: h_x rh @30 / h_z rh @31 (rh held)
-      ophu_a_q <= ha_q[29];
-      ophu_b_q <= at(ps_q[PS_HUA], 29) ? rvnh_s121829 : ophu_b_q;
       // u_hunh1: n_y l_y @21 / h_y rh @30 / n_y h_y @32
       ophh_a_q <= at(ps_q[PS_HUNH1], 20) ? nunh1_s2034
                 : at(ps_q[PS_HUNH1], 29) ? hy_q[29] : nuy_q[31];
       ophh_b_q <= at(ps_q[PS_HUNH1], 20) ? light[1]
                 : at(ps_q[PS_HUNH1], 29) ? rvnh_s121829 : hunh1_s2233;
-      // u_dxy: nlx + nly @23 / nhx + nhy @34
-      opdx_a_q <= at(ps_q[PS_DXY], 22) ? nla_q[22] : nunh1_s2034;
-      opdx_b_q <= hunh1_s2233;
-      // u_dot: dot(n, l) @36 / dot(n, h) @37
-      opdt_a_q <= at(ps_q[PS_DOT], 35) ? dxy_q[35] : dxy_s2536;
-      opdt_b_q <= at(ps_q[PS_DOT], 35) ? nla_q[34] : nhz_q[36];
-      // u_acc1: a = AMBIENT + KD ndl @42 / c_G = C_y a + sp @48
-      opac_a_q <= at(ps_q[PS_ACC1], 41) ? cfg_i.ambient : dvnc_s22147;
-      opac_b_q <= at(ps_q[PS_ACC1], 41) ? hkd_s1841 : sp_q[47];
       // u_caa: C_x a @45 / C_z a @46 (a held)
       opca_a_q <= cola_q[44];
-      opca_b_q <= at(ps_q[PS_CAA], 44) ? acc1_s4450 : opca_b_q;
-      // u_cc0: c_R = C_x a + sp @47 / c_B = C_z a + sp @48 (sp held)
-      opcc_a_q <= caa_s4647;
-      opcc_b_q <= at(ps_q[PS_CC0], 46) ? sp_q[46] : opcc_b_q;
+      opca_b_q <= at(ps_q[PS_CAA], 44) ? nua_s35_4450 : opca_b_q;
     end
   end
 
   // ---- float units ----------------------------------------------------------------------------
   f24_mul u_uv2hy2 (.clk_i, .en_i, .a_i(opuh_q), .b_i(opuh_q), .y_o(uv2hy2_s219));
   f24_mul u_dvnc   (.clk_i, .en_i, .a_i(opdv_a_q), .b_i(opdv_b_q), .y_o(dvnc_s22147));
-  f24_add u_na     (.clk_i, .en_i, .a_i(m2a_q), .b_i(NEG_ONE), .y_o(na_s34));
-  f24_add u_n1uv   (.clk_i, .en_i, .a_i(opnu_a_q), .b_i(opnu_b_q), .y_o(n1uv_s35));
-  f24_add u_vvhh   (.clk_i, .en_i, .a_i(opvh_a_q), .b_i(opvh_b_q), .y_o(vvhh_s825));
+  f24_add u_nc     (.clk_i, .en_i, .a_i(opnc_a_q), .b_i(opnc_b_q), .y_o(nc_s34_4950));
+  f24_add u_nua    (.clk_i, .en_i, .a_i(opnu_a_q), .b_i(opnu_b_q), .y_o(nua_s35_4450));
+  f24_add u_nv     (.clk_i, .en_i, .a_i(opnv_a_q), .b_i(opnv_b_q), .y_o(nv_s81122_25));
   f24_rsqrt #(.LAT(RSQRT_LAT)) u_rvnh (.clk_i, .en_i, .a_i(oprs_q), .y_o(rvnh_s121829));
-  f24_mul u_nsqa   (.clk_i, .en_i, .a_i(na_s34), .b_i(na_s34), .y_o(nsqa_s45));
-  f24_mul u_nsq1v1 (.clk_i, .en_i, .a_i(opn1_a_q), .b_i(opn1_b_q), .y_o(nsq1v1_s514));
+  f24_mul u_nsqa   (.clk_i, .en_i, .a_i(nc_s34_4950), .b_i(nc_s34_4950), .y_o(nsqa_s45));
+  f24_mul u_ny2h   (.clk_i, .en_i, .a_i(opyh_a_q), .b_i(opyh_b_q), .y_o(ny2h_s514_3132));
   f24_mul u_va     (.clk_i, .en_i, .a_i(opva_a_q), .b_i(opva_b_q), .y_o(va_s1415));
-  f24_add u_nxyh1  (.clk_i, .en_i, .a_i(opxy_a_q), .b_i(opxy_b_q), .y_o(nxyh1_s817));
-  f24_add u_ha     (.clk_i, .en_i, .a_i(opha_a_q), .b_i(va_s1415), .y_o(ha_s1617));
-  f24_mul u_hkd    (.clk_i, .en_i, .a_i(ophk_a_q), .b_i(ophk_b_q), .y_o(hkd_s1841));
-  f24_add u_nnhxy  (.clk_i, .en_i, .a_i(opnn_a_q), .b_i(opnn_b_q), .y_o(nnhxy_s1122));
+  f24_add u_nxh    (.clk_i, .en_i, .a_i(opxh_a_q), .b_i(opxh_b_q), .y_o(nxh_s81718_27));
+  f24_add u_hd     (.clk_i, .en_i, .a_i(ophd_a_q), .b_i(ophd_b_q), .y_o(hd_s17_3639));
+  f24_mul u_hkd    (.clk_i, .en_i, .a_i(ophk_a_q), .b_i(ophk_b_q), .y_o(hkd_s1920_41));
   f24_mul u_nunh1  (.clk_i, .en_i, .a_i(opnh_a_q), .b_i(opnh_b_q), .y_o(nunh1_s2034));
   f24_mul u_nla    (.clk_i, .en_i, .a_i(dvnc_s22147), .b_i(opnl_b_q), .y_o(nla_s2122));
-  f24_mul u_hua    (.clk_i, .en_i, .a_i(ophu_a_q), .b_i(ophu_b_q), .y_o(hua_s3132));
   f24_mul u_hunh1  (.clk_i, .en_i, .a_i(ophh_a_q), .b_i(ophh_b_q), .y_o(hunh1_s2233));
-  f24_add u_dxy    (.clk_i, .en_i, .a_i(opdx_a_q), .b_i(opdx_b_q), .y_o(dxy_s2536));
-  f24_add u_dot    (.clk_i, .en_i, .a_i(opdt_a_q), .b_i(opdt_b_q), .y_o(dot_s3839));
   // s = ndh; four times s = mul(s, s); sp = mul(KS, s): one unit per operation, each fed by the
   // previous one's result register (ndh: m_q in S40)
   f24_mul u_s2     (.clk_i, .en_i, .a_i(m_q), .b_i(m_q), .y_o(s2_s41));
@@ -505,9 +494,7 @@ module shade_unit
   f24_mul u_s8     (.clk_i, .en_i, .a_i(s4_s42), .b_i(s4_s42), .y_o(s8_s43));
   f24_mul u_s16    (.clk_i, .en_i, .a_i(s8_s43), .b_i(s8_s43), .y_o(s16_s44));
   f24_mul u_sp     (.clk_i, .en_i, .a_i(cfg_i.ks), .b_i(s16_s44), .y_o(sp_s45));
-  f24_add u_acc1   (.clk_i, .en_i, .a_i(opac_a_q), .b_i(opac_b_q), .y_o(acc1_s4450));
   f24_mul u_caa    (.clk_i, .en_i, .a_i(opca_a_q), .b_i(opca_b_q), .y_o(caa_s4647));
-  f24_add u_cc0    (.clk_i, .en_i, .a_i(opcc_a_q), .b_i(opcc_b_q), .y_o(cc0_s4950));
   // the tail: one lane for the three channels, R, G and B a clock apart (c 255 @50 .. @52,
   // + 0.5 @51 .. @53, floor @53 .. @55)
   f24_mul u_k  (.clk_i, .en_i, .a_i(cl_q), .b_i(SHADE_255), .y_o(k_s51));

@@ -16,7 +16,7 @@
 module shade_unit_assert
   import shade_pkg::*;
 #(
-  parameter int unsigned NPS = 21   // shade_unit's NPS: operand selects with a phase replica
+  parameter int unsigned NPS = 16   // shade_unit's NPS: operand selects with a phase replica
 ) (
   input logic                  clk_i,
   input logic                  rst_ni,
@@ -29,7 +29,7 @@ module shade_unit_assert
   input logic [3:0]            ps_i [NPS]  // ps_q: the phase replicas
 );
 
-  localparam int unsigned CS = SHADE_LAT - 3;   // core stages S1 .. S41
+  localparam int unsigned CS = SHADE_LAT - 3;   // core stages S1 .. S56
 
   // The core stages k with k mod 4 = r.
   function automatic logic [CS:1] stage_phase(input logic [1:0] r);
@@ -47,15 +47,14 @@ module shade_unit_assert
   endfunction
 
   // Every float unit with more than one operation: the stages it takes its operands in.
-  localparam int NSH = 25;
+  localparam int NSH = 19;
   logic [CS:1] shared [NSH];
   assign shared = '{
-    ops(1, 18, 0, 0),   ops(1, 19, 20, 46),  ops(3, 4, 0, 0),     ops(4, 13, 0, 0),   // mul
-    ops(13, 14, 0, 0),  ops(17, 18, 40, 0),  ops(19, 32, 33, 0),  ops(20, 21, 0, 0),
-    ops(30, 31, 0, 0),  ops(21, 30, 32, 0),  ops(45, 46, 0, 0),   ops(50, 51, 52, 0),
-    ops(1, 2, 0, 0),    ops(1, 3, 0, 0),     ops(6, 23, 0, 0),    ops(6, 15, 0, 0),   // add
-    ops(14, 15, 0, 0),  ops(9, 20, 0, 0),    ops(23, 34, 0, 0),   ops(36, 37, 0, 0),
-    ops(42, 48, 0, 0),  ops(47, 48, 0, 0),   ops(51, 52, 53, 0),
+    ops(1, 18, 0, 0),   ops(1, 19, 20, 46),  ops(3, 4, 0, 0),     ops(4, 13, 30, 31), // mul
+    ops(13, 14, 0, 0),  ops(18, 19, 40, 0),  ops(19, 32, 33, 0),  ops(20, 21, 0, 0),
+    ops(21, 30, 32, 0), ops(45, 46, 0, 0),   ops(50, 51, 52, 0),
+    ops(1, 2, 47, 48),  ops(1, 3, 42, 48),   ops(6, 9, 20, 23),   ops(6, 15, 16, 25), // add
+    ops(15, 34, 36, 37), ops(51, 52, 53, 0),
     ops(9, 15, 26, 0),  ops(53, 54, 55, 0)};                                          // rsqrt, idx
 
   always_ff @(posedge clk_i) begin
