@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
-"""scripts/flow/formal.py's scheduling and timing: the longest tasks start first (by the previous
-run's process times, else by an estimate from the files read and the depth), and each task's
-process time and timeout come from run_counted."""
+"""scripts/flow/formal.py's scheduling and timing: the longest tasks start first (by the process
+times of the last run of each task, else by an estimate from the files read and the depth), and
+each task's process time and timeout come from run_counted."""
 from __future__ import annotations
 
 import importlib.util
@@ -43,6 +43,11 @@ def test_previous_times_order(tmp_path: Path):
     est = [formal.estimate(tmp_path, t, before) for t in tasks]
     assert est[0] == 3.0 and est[1] == 50.0
     assert est[2] > est[3] > 0                                   # more to read, longer
+    # task_times.json keeps the tasks a run (--only) did not run, with this run's times
+    r = formal.Result("t", "cover", "cover", "PASS", 4.0, 2.5, 0, 1, 1, "w")
+    formal.save_times(tmp_path / "task_times.json", before, [r])
+    assert formal.previous_times(tmp_path / "task_times.json") == {
+        ("s", "prove"): 3.0, ("s", "bmc"): 50.0, ("t", "cover"): 2.5}
     assert formal.previous_times(tmp_path / "missing.json") == {}
     (tmp_path / "bad.json").write_text("{")
     assert formal.previous_times(tmp_path / "bad.json") == {}

@@ -11,8 +11,9 @@ which simulation checks too; docs/formal.md lists them.
 The tasks run in parallel (--jobs, default the number of CPUs), each in its own directory
 build/formal/<name>_<task>/ (SymbiYosys's work directory: logfile.txt, model/, engine_0/ with
 the traces), the longest first (so that the workers finish together): a task's length is its
-process time in the previous run's summary.json, or, for a task not in it, an estimate from the
-size of the files it reads and its depth.  A task fails when SymbiYosys reports anything but PASS (a failed assertion, an
+process time in the last run that ran it (build/formal/task_times.json, kept across --only
+runs), or, for a task never run, an estimate from the size of the files it reads and its
+depth.  A task fails when SymbiYosys reports anything but PASS (a failed assertion, an
 induction that does not close, an unreached cover, an error), and when a named property of the
 files it reads did not come through the front end: Yosys read_slang can drop a statement
 silently (a whole always_comb, when a constant-false branch names a missing generate scope), so
@@ -192,12 +193,21 @@ def estimate(root: Path, t: Task, before: dict[tuple[str, str], float]) -> float
 
 
 def previous_times(summary: Path) -> dict[tuple[str, str], float]:
-    """The process time of each task of a previous run's summary.json (empty if none)."""
+    """The process time of each task of a previous run's summary.json or task_times.json (the
+    same list of tasks; empty if none)."""
     try:
         tasks = json.loads(summary.read_text())["tasks"]
-        return {(x["sby"], x["task"]): float(x.get("cpu_seconds", x["seconds"])) for x in tasks}
+        return {(x["sby"], x["task"]): float(x["cpu_seconds"] if "cpu_seconds" in x
+                                              else x["seconds"]) for x in tasks}
     except (OSError, ValueError, KeyError, TypeError):
         return {}
+
+
+def save_times(path: Path, before: dict[tuple[str, str], float], results: list[Result]) -> None:
+    """task_times.json: the process time of every task from the last run that ran it."""
+    times = dict(before) | {(r.sby, r.task): round(r.cpu_seconds, 2) for r in results}
+    path.write_text(json.dumps({"tasks": [{"sby": k[0], "task": k[1], "cpu_seconds": v}
+                                          for k, v in sorted(times.items())]}, indent=1) + "\n")
 
 
 def run_task(root: Path, out: Path, t: Task, env: dict[str, str]) -> Result:
@@ -306,7 +316,7 @@ def main(argv: list[str] | None = None) -> int:
         if shutil.which(name, path=env["PATH"]) is None:
             fail(PROG, f"{name} not found (run `make setup`: requirements.txt pins it)")
     out.mkdir(parents=True, exist_ok=True)
-    before = previous_times(out / "summary.json")
+    before = previous_times(out / "task_times.json") or previous_times(out / "summary.json")
     order = sorted(range(len(tasks)), key=lambda i: -estimate(root, tasks[i], before))
     t0 = time.time()
     with ThreadPoolExecutor(max_workers=args.jobs) as ex:
@@ -334,6 +344,7 @@ def main(argv: list[str] | None = None) -> int:
                "tasks": [asdict(r) | {"seconds": round(r.seconds, 2),
                           "cpu_seconds": round(r.cpu_seconds, 2)} for r in results]}
     (out / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
+    save_times(out / "task_times.json", before, results)
     print(f"formal: {len(results)} tasks in {wall:.0f} s ({args.jobs} at once; process time "
           f"{cpu:.0f} s), "
           f"summary {os.path.relpath(out / 'summary.json', root)}")
