@@ -24,7 +24,9 @@ lost: take_one or an id check); view_calc's tag pipeline does not take a fragmen
 enters four clocks after another (its tag is dropped: vtag_inside); tex_cache reads the
 response's tag from the tag queue's entry behind the head (inv_tq_read, or rsp_tag_order);
 dm_pipeline pops the miss FIFO while the output register takes a shaded pixel (the miss is
-lost: merge_count, inv_place or merge_leave_once).  A
+lost: merge_count, inv_place or merge_leave_once), and sends a normal-map request to the
+texture cache with the slot of the colour FIFO's head instead of its pixel's (the pair's
+normal map goes to another pixel: inv_pairs, or tf_pairs).  A
 further case removes one property from what the front end sees and shows the driver refuses the
 run (the guard against properties dropped silently).
 
@@ -129,6 +131,11 @@ MUTANTS = {
         "assign miss_rd = o_load && out_empty && !miss_empty;",
         "assign miss_rd = o_load && !miss_empty;",
         "dm_pipeline:bmc_merge", "(?:merge_count|inv_place|merge_leave_once)"),
+    "pair_slot_from_colour_fifo": (
+        "rtl/pipe/dm_pipeline.sv",
+        "assign rq_slot      = rq_sel_q ? pair_slot_q : rq_c_head[SLOT_W+REQ_W-1 -: SLOT_W];",
+        "assign rq_slot      = rq_c_head[SLOT_W+REQ_W-1 -: SLOT_W];",
+        "dm_pipeline_pairs:bmc_pairs", "(?:inv_pairs|tf_pairs)"),
 }
 
 

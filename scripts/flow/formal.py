@@ -10,7 +10,10 @@ which simulation checks too; docs/formal.md lists them.
 
 The tasks run in parallel (--jobs, default the number of CPUs), each in its own directory
 build/formal/<name>_<task>/ (SymbiYosys's work directory: logfile.txt, model/, engine_0/ with
-the traces).  A task fails when SymbiYosys reports anything but PASS (a failed assertion, an
+the traces), the longest first (so that the workers finish together): a task's length is its
+process time in the last run that ran it (build/formal/task_times.json, kept across --only
+runs), or, for a task never run, an estimate from the size of the files it reads and its
+depth.  A task fails when SymbiYosys reports anything but PASS (a failed assertion, an
 induction that does not close, an unreached cover, an error), and when a named property of the
 files it reads did not come through the front end: Yosys read_slang can drop a statement
 silently (a whole always_comb, when a constant-false branch names a missing generate scope), so
@@ -18,7 +21,8 @@ every `assert` / `cover` in those files must carry a label (`name: assert (...)`
 lists the $check cells right after read_slang (FRONT_END_LIST), and every label must be among
 them.  (Later optimisation may still remove an assertion that is constant true.)  A failing task's counterexample (VCD) is printed.
 
-Prints one line per task and the closing line
+Prints one line per task (its wall time and its process time: user + system of SymbiYosys and
+the tools it waited for) and the closing line
   formal: N properties proven, M covers reached, F failed
 (N: the assertions of the passing prove tasks, each parameter set counted; M: the covers of the
 passing cover tasks; F: the tasks that failed), and writes build/formal/summary.json.  Exit
@@ -33,6 +37,8 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
+import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import asdict, dataclass, field
@@ -64,7 +70,8 @@ class Result:
     task: str
     mode: str
     status: str              # PASS, FAIL, UNKNOWN, ERROR, TIMEOUT, LOST (properties dropped)
-    seconds: float
+    seconds: float           # wall time
+    cpu_seconds: float       # process time (user + system, the task's processes)
     asserts: int             # assertions in the model handed to the solver
     covers: int              # cover statements in it
     reached: int             # covers reached (cover tasks)
@@ -149,26 +156,78 @@ def model_properties(smt2: Path) -> dict[str, list[str]]:
     return got
 
 
+def run_counted(cmd: list[str], cwd: Path, env: dict[str, str],
+                timeout: float) -> tuple[str, int, float, bool]:
+    """Run cmd; its output (stdout and stderr), exit status, process time (user + system of the
+    process and of the descendants it waited for, from wait4) and whether it was killed at the
+    timeout."""
+    with tempfile.TemporaryFile(mode="w+") as out:
+        p = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT,
+                             text=True, start_new_session=True)
+        killed = threading.Event()
+
+        def kill() -> None:
+            killed.set()
+            try:
+                os.killpg(p.pid, 9)
+            except ProcessLookupError:
+                pass
+        timer = threading.Timer(timeout, kill)
+        timer.start()
+        try:
+            _, wstatus, usage = os.wait4(p.pid, 0)
+        finally:
+            timer.cancel()
+        p.returncode = os.waitstatus_to_exitcode(wstatus)
+        out.seek(0)
+        return out.read(), p.returncode, usage.ru_utime + usage.ru_stime, killed.is_set()
+
+
+def estimate(root: Path, t: Task, before: dict[tuple[str, str], float]) -> float:
+    """A task's expected length, to start the longest first: its process time in the previous
+    run, else the size of the files it reads (kB) scaled by its depth (a rough guess)."""
+    if (t.sby, t.name) in before:
+        return before[(t.sby, t.name)]
+    size = sum((root / f).stat().st_size for f in t.files if (root / f).is_file())
+    return size / 1000 * (1 + t.depth / 10) / 4
+
+
+def previous_times(summary: Path) -> dict[tuple[str, str], float]:
+    """The process time of each task of a previous run's summary.json or task_times.json (the
+    same list of tasks; empty if none)."""
+    try:
+        tasks = json.loads(summary.read_text())["tasks"]
+        return {(x["sby"], x["task"]): float(x["cpu_seconds"] if "cpu_seconds" in x
+                                              else x["seconds"]) for x in tasks}
+    except (OSError, ValueError, KeyError, TypeError):
+        return {}
+
+
+def save_times(path: Path, before: dict[tuple[str, str], float], results: list[Result]) -> None:
+    """task_times.json: the process time of every task from the last run that ran it."""
+    times = dict(before) | {(r.sby, r.task): round(r.cpu_seconds, 2) for r in results}
+    path.write_text(json.dumps({"tasks": [{"sby": k[0], "task": k[1], "cpu_seconds": v}
+                                          for k, v in sorted(times.items())]}, indent=1) + "\n")
+
+
 def run_task(root: Path, out: Path, t: Task, env: dict[str, str]) -> Result:
     workdir = out / f"{t.sby}_{t.name}"
     rel = os.path.relpath(workdir, root)
     sby = shutil.which("yowasp-sby", path=env["PATH"]) or "yowasp-sby"
     cmd = [sby, "-f", f"formal/{t.sby}.sby", *([t.name] if t.name else []), "-d", rel]
     t0 = time.time()
-    try:
-        p = subprocess.run(cmd, cwd=root, env=env, capture_output=True, text=True,
-                           timeout=TIMEOUT_S)
-        log = p.stdout + p.stderr
+    log, rc, cpu, timed_out = run_counted(cmd, root, env, TIMEOUT_S)
+    secs = time.time() - t0
+    if timed_out:
+        log, status = log + f"\ntimed out after {TIMEOUT_S} s", "TIMEOUT"
+    else:
         status_file = workdir / "status"
         status = (status_file.read_text().split() or ["ERROR"])[0] if status_file.is_file() \
             else "ERROR"
-        if p.returncode != 0 and status == "PASS":
+        if rc != 0 and status == "PASS":
             status = "ERROR"
-    except subprocess.TimeoutExpired:
-        log, status = f"timed out after {TIMEOUT_S} s", "TIMEOUT"
-    secs = time.time() - t0
     got = model_properties(workdir / "model" / "design_smt2.smt2")
-    r = Result(t.sby, t.name, t.mode, status, secs, len(got["assert"]), len(got["cover"]),
+    r = Result(t.sby, t.name, t.mode, status, secs, cpu, len(got["assert"]), len(got["cover"]),
                len(set(re.findall(r"Reached cover statement .* at \S+: (\S+)", log))), rel)
     if status == "PASS" and t.mode == "cover":
         r.reached = r.covers
@@ -257,14 +316,19 @@ def main(argv: list[str] | None = None) -> int:
         if shutil.which(name, path=env["PATH"]) is None:
             fail(PROG, f"{name} not found (run `make setup`: requirements.txt pins it)")
     out.mkdir(parents=True, exist_ok=True)
+    before = previous_times(out / "task_times.json") or previous_times(out / "summary.json")
+    order = sorted(range(len(tasks)), key=lambda i: -estimate(root, tasks[i], before))
     t0 = time.time()
     with ThreadPoolExecutor(max_workers=args.jobs) as ex:
-        results = list(ex.map(lambda t: run_task(root, out, t, env), tasks))
+        futures = {i: ex.submit(run_task, root, out, tasks[i], env) for i in order}
+        results = [futures[i].result() for i in range(len(tasks))]
     wall = time.time() - t0
+    cpu = sum(r.cpu_seconds for r in results)
     for r in results:
         what = (f"{r.asserts} asserts" if r.mode != "cover"
                 else f"{r.reached}/{r.covers} covers reached")
-        print(f"formal: {r.sby}:{r.task} ({r.mode}) {r.status}, {what}, {r.seconds:.1f} s")
+        print(f"formal: {r.sby}:{r.task} ({r.mode}) {r.status}, {what}, {r.seconds:.1f} s "
+              f"(process {r.cpu_seconds:.1f} s)")
         if r.status != "PASS":
             for ln in r.problems:
                 print(f"  {ln}")
@@ -274,11 +338,15 @@ def main(argv: list[str] | None = None) -> int:
     failed = [r for r in results if r.status != "PASS"]
     proven = sum(r.asserts for r in results if r.mode == "prove" and r.status == "PASS")
     reached = sum(r.reached for r in results if r.mode == "cover" and r.status == "PASS")
-    summary = {"wall_seconds": round(wall, 1), "jobs": args.jobs, "proven": proven,
+    summary = {"wall_seconds": round(wall, 1), "cpu_seconds": round(cpu, 1), "jobs": args.jobs,
+               "proven": proven,
                "covers_reached": reached, "failed": len(failed),
-               "tasks": [asdict(r) | {"seconds": round(r.seconds, 2)} for r in results]}
+               "tasks": [asdict(r) | {"seconds": round(r.seconds, 2),
+                          "cpu_seconds": round(r.cpu_seconds, 2)} for r in results]}
     (out / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
-    print(f"formal: {len(results)} tasks in {wall:.0f} s ({args.jobs} at once), "
+    save_times(out / "task_times.json", before, results)
+    print(f"formal: {len(results)} tasks in {wall:.0f} s ({args.jobs} at once; process time "
+          f"{cpu:.0f} s), "
           f"summary {os.path.relpath(out / 'summary.json', root)}")
     print(f"formal: {proven} properties proven, {reached} covers reached, {len(failed)} failed")
     return 1 if failed else 0
