@@ -16,8 +16,9 @@
 // the commit clock and answers (cpuif_rd_ack) one clock later; a write is never committed in
 // the clock after a read (the generated front end stalls it one clock, so that the write's
 // answer, given in its commit clock, does not meet the read's).  The wrapper proves:
-//   protocol  every AW+W pair and every AR is committed once, with its address, data and
-//             strobes (wr_commit_*, rd_commit_*), in the clock it is ready unless three
+//   protocol  every AW+W pair and every AR is committed once, with its address and data, as a
+//             whole-word write whatever its strobes (the block ignores WSTRB, scripts/flow/regs.py)
+//             (wr_commit_*, rd_commit_*), in the clock it is ready unless three
 //             responses are owed or, for a write, the clock before committed a read
 //             (commit_when_room); a waiting write commits within three clocks with room, a
 //             waiting read within three (wr_no_starve, rd_no_starve); a read is answered the
@@ -27,23 +28,25 @@
 //             with stable payload until READY (b_stable, r_stable); every response OKAY (bresp_okay, rresp_okay: the block has no error
 //             response; writes to read-only or unmapped addresses are ignored, answered OKAY).
 //   writes    a reference copy ("shadow") of a representative set of registers (tracked below:
-//             full-width and multi-field RW registers with reserved bits, f24 words, array
-//             elements of each array, TT_WRITE, INTR_ENABLE, the W1C registers ERROR and
-//             INTR_STATE, the singlepulse registers CTRL and INTR_TEST) updated from the committed
-//             AXI writes by the RDL rules: RW takes (old & ~strobes) | (data & strobes) on the
+//             full-width and multi-field RW registers with reserved bits, f24 words, elements of
+//             the write-only tables HEIGHT.LEVEL_OFF and TEX[1].LEVEL_SIZE, TT_WRITE,
+//             INTR_ENABLE, the W1C registers ERROR and INTR_STATE, the singlepulse registers CTRL
+//             and INTR_TEST) updated from the committed AXI writes by the RDL rules, every write
+//             a whole-word write (the strobes ignored): RW and write-only take the data on the
 //             defined bits; W1C clears the written 1s and sets the hardware-set bits, a set
 //             winning over a clear in the same clock (the RDL's precedence = hw: no event is
 //             lost); singlepulse holds a
 //             written bit one clock, then 0.  Every clock each tracked register's field values
 //             (hwif_out, or the block's storage where the field has no hardware output) equal
 //             their shadow (field_match): writes to the other addresses leave them alone.
-//   reads     a read of a tracked register returns its shadow (reserved bits 0), of ID / VERSION
+//   reads     a read of a tracked readable register returns its shadow (reserved bits 0), of
+//             any word of the write-only tables (HEIGHT / TEX[x] / PYR LEVEL_OFF, TEX[x].
+//             LEVEL_SIZE) 0, of ID / VERSION
 //             / HWCFG / STATUS / PROGRESS / a STATS word its value, of an unmapped word 0, all
 //             as they were in the commit clock (the expected value is captured then; rd_value
 //             checks it when the block answers, one clock later; rdata_match when R carries
 //             it).
-//   others    TT_WRITE's swmod strobe exactly in the clock of a write with a data strobe
-//             (tt_swmod); the interrupt line is OR(INTR_STATE & INTR_ENABLE) (intr_line); an
+//   others    TT_WRITE's swmod strobe exactly in the clock of a write to it (tt_swmod); the interrupt line is OR(INTR_STATE & INTR_ENABLE) (intr_line); an
 //             INTR_TEST pulse sets INTR_STATE unless software writes INTR_STATE in that clock
 //             (test_sets_state).  Lemmas for the induction tie the wrapper's copies to the
 //             block's AXI front end (front_*).
@@ -192,7 +195,7 @@ module pidm_regs_formal (
       12'h508, 12'h5BC, 12'h100, 12'h024, 12'h018, 12'h020, 12'h010, 12'h028,
       12'h608, 12'h604,                                                           // tracked
       12'h000, 12'h004, 12'h008, 12'h014, 12'h01C, 12'h080, 12'h0D4, 12'h600,     // read-only
-      12'h208,                                                                    // untracked
+      12'h208, 12'h440, 12'h67C,                                 // untracked (write-only: 0)
       12'h00C, 12'h02C, 12'h064, 12'h0D8, 12'h104, 12'h214, 12'h308, 12'h340,
       12'h4C0, 12'h60C, 12'h680, 12'hFFC:                                         // unmapped
         return 1'b1;
@@ -230,8 +233,8 @@ module pidm_regs_formal (
   logic [11:0] aw_addr, ar_addr;
   logic [31:0] w_data;
   logic [3:0]  w_strb;
-  logic [31:0] w_biten;                   // the strobes as a bit mask
-  always_comb for (int b = 0; b < 4; b++) w_biten[8*b +: 8] = {8{w_strb[b]}};
+  logic [31:0] w_biten;                   // the bits a write writes: all (WSTRB is ignored)
+  assign w_biten = '1;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -322,14 +325,14 @@ module pidm_regs_formal (
       1:  return 12'h060;   // FRAME.FB_LAYOUT       RW xbits[4:0], status_en[8]
       2:  return 12'h200;   // HEIGHT.MODE           RW method[3:0] (reset 7), root_level, bits16
       3:  return 12'h204;   // HEIGHT.SIZE           RW width[15:0], height[31:16]
-      4:  return 12'h240;   // HEIGHT.LEVEL_OFF[0]   RW 32 bits
+      4:  return 12'h240;   // HEIGHT.LEVEL_OFF[0]   W 32 bits (write-only: reads 0)
       5:  return 12'h27C;   // HEIGHT.LEVEL_OFF[15]
       6:  return 12'h300;   // SHADE.MIP             RW mip_en[0], levels_colour[13:8], levels_normal[21:16]
       7:  return 12'h304;   // SHADE.MISS_RGB        RW red, green, blue [23:0]
       8:  return 12'h33C;   // SHADE.D2              RW f24 [23:0]
       9:  return 12'h400;   // TEX[0].SU             RW f24
       10: return 12'h508;   // TEX[1].BASE           RW 32 bits
-      11: return 12'h5BC;   // TEX[1].LEVEL_SIZE[15] RW width, height
+      11: return 12'h5BC;   // TEX[1].LEVEL_SIZE[15] W width, height (write-only)
       12: return 12'h100;   // TT_WRITE              RW data[23:0], addr[31:24] (swmod)
       13: return 12'h024;   // INTR_ENABLE           RW [2:0] (no hardware output)
       14: return 12'h018;   // ERROR                 W1C [8:0], hardware set
@@ -450,12 +453,18 @@ module pidm_regs_formal (
     return 1'b0;
   endfunction
 
+  // The write-only tables: HEIGHT.LEVEL_OFF, TEX[x].LEVEL_OFF and LEVEL_SIZE, PYR.LEVEL_OFF.
+  function automatic logic write_only(logic [11:0] a);
+    return (a[11:8] == 4'h2 || a[11:8] == 4'h6) ? a[7:6] == 2'b01
+         : (a[11:8] == 4'h4 || a[11:8] == 4'h5) && (a[7:6] == 2'b01 || a[7:6] == 2'b10);
+  endfunction
+
   always_comb begin
     rq_push_chk = 1'b1;
-    rq_push_exp = '0;                                        // unmapped: 0
+    rq_push_exp = '0;                                        // unmapped, write-only: 0
     case ({ar_addr[11:2], 2'b00})
       12'h000: rq_push_exp = 32'h5049_444D;                  // ID
-      12'h004: rq_push_exp = 32'h0001_0001;                  // VERSION 1.1
+      12'h004: rq_push_exp = 32'h0001_0002;                  // VERSION 1.2
       12'h008: rq_push_exp = hwcfg_i;                        // HWCFG
       12'h014: rq_push_exp = {24'b0, pyr_err_i, pyr_done_i, pyr_busy_i, idle_i, busy_i}; // STATUS
       12'h600: rq_push_exp = {24'b0, pyr_max_lg_i, 3'b0, pyr_present_i};  // PYR.INFO
@@ -463,9 +472,9 @@ module pidm_regs_formal (
       12'h080: rq_push_exp = stats_i[0][31:0];               // STATS.cycles.LO
       12'h0D4: rq_push_exp = {16'b0, stats_i[10][47:32]};    // STATS.t_bytes.HI
       default: begin
-        rq_push_chk = !mapped(ar_addr);
+        rq_push_chk = !mapped(ar_addr) || write_only(ar_addr);
         for (int unsigned i = 0; i < NT; i++)
-          if (ar_addr[11:2] == t_addr(i)[11:2]) begin
+          if (ar_addr[11:2] == t_addr(i)[11:2] && !write_only(ar_addr)) begin
             rq_push_chk = 1'b1;
             rq_push_exp = shadow[i];
           end
@@ -568,8 +577,7 @@ module pidm_regs_formal (
       rdata_match:   assert (!rvalid || !rq_chk[rq_rp] || rdata == rq_exp[rq_rp]);
       // --- the front end's state is the wrapper's copy (induction lemmas) ---
       front_aw:      assert (u_dut.axil_awvalid == aw_p && (!aw_p || u_dut.axil_awaddr == aw_addr));
-      front_w:       assert (u_dut.axil_wvalid == w_p
-                             && (!w_p || (u_dut.axil_wdata == w_data && u_dut.axil_wstrb == w_strb)));
+      front_w:       assert (u_dut.axil_wvalid == w_p && (!w_p || u_dut.axil_wdata == w_data));
       front_ar:      assert (u_dut.axil_arvalid == ar_p && (!ar_p || u_dut.axil_araddr == ar_addr));
       front_count:   assert (3'(u_dut.axil_n_in_flight) == rq_cnt && dut_pending == rq_ans
                              && u_dut.axil_resp_rptr[1:0] == rq_rp && rq_rp != 2'd3
@@ -579,7 +587,7 @@ module pidm_regs_formal (
                              && (!rd_commit_q || (rq_cnt != 3'd0 && !rq_wr[rq_new])));
       front_entries: assert (entries_match);
       // --- registers ---
-      tt_swmod:      assert (hwif_out.TT_WRITE.data.swmod == (wr_sel[T_TT] && |w_strb[2:0]));
+      tt_swmod:      assert (hwif_out.TT_WRITE.data.swmod == wr_sel[T_TT]);
       intr_line:     assert (hwif_out.INTR_STATE.intr
                              == |(shadow[T_STATE][2:0] & shadow[T_ENABLE][2:0]));
       test_sets_state: assert ((view[T_STATE][2:0] & test_q) == test_q);
@@ -594,8 +602,8 @@ module pidm_regs_formal (
       c_pulse:         cover (hwif_out.CTRL.start.value);
       c_intr_test:     cover (|test_q);
       c_interrupt:     cover (hwif_out.INTR_STATE.intr && !intr_q);
-      c_hw_wins:       cover (wr_sel[T_ERROR] && error_set_i[0] && shadow[T_ERROR][0]
-                              && w_strb[0] && w_data[0]);
+      c_hw_wins:       cover (wr_sel[T_ERROR] && error_set_i[0] && shadow[T_ERROR][0] && w_data[0]);
+      c_wo_read:       cover (rd_commit && write_only(ar_addr));
     end
   end
 

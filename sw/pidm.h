@@ -23,7 +23,9 @@
 // Every register access goes through pidm_rd / pidm_wr: a volatile 32-bit load or store at
 // base + offset, unless pidm_set_mmio installed other accessors (a bus bridge, a simulator, the
 // unit test's register model).  The driver keeps no hidden state besides the last interrupt
-// causes seen by pidm_irq_handler.
+// causes seen by pidm_irq_handler.  The core ignores AXI4-Lite write strobes (every write writes
+// the whole 32-bit register: only 32-bit stores) and its per-level tables (LEVEL_OFF,
+// LEVEL_SIZE) are write-only (they read 0): the driver never reads them back.
 #ifndef PIDM_H
 #define PIDM_H
 

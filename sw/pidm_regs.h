@@ -22,7 +22,7 @@ extern "C" {
 #define PIDM_REGS__VERSION__MINOR_bm 0xffff
 #define PIDM_REGS__VERSION__MINOR_bp 0
 #define PIDM_REGS__VERSION__MINOR_bw 16
-#define PIDM_REGS__VERSION__MINOR_reset 0x1
+#define PIDM_REGS__VERSION__MINOR_reset 0x2
 #define PIDM_REGS__VERSION__MAJOR_bm 0xffff0000
 #define PIDM_REGS__VERSION__MAJOR_bp 16
 #define PIDM_REGS__VERSION__MAJOR_bw 16

@@ -78,7 +78,7 @@ static void sim_wr(struct pidm_dev *dev, uint32_t off, uint32_t v) {
 static void sim_reset(struct sim *s) {
     memset(s, 0, sizeof *s);
     s->reg[0x000 / 4] = 0x5049444Du;
-    s->reg[0x004 / 4] = 0x00010001u;
+    s->reg[0x004 / 4] = 0x00010002u;
     s->reg[0x008 / 4] = 20u | (16u << 8) | (32u << 16) | (8u << 24);  // PIX_W, TRIS, ADDR_W, bytes
     s->reg[0x600 / 4] = 1u | (10u << 4);                               // PYR.INFO: present, 1024
     s->busy_reads = -1;

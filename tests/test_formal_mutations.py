@@ -266,6 +266,12 @@ REGS_MUTANTS = {
         "next_c = field_storage.ERROR.t_axi.value & ~(decoded_wr_data[1:1] & decoded_wr_biten[1:1]);",
         "next_c = 1'b0;",
         r"\\?g_t\[14\]\.field_match"),
+    # the byte strobes honoured again (the generated line scripts/flow/regs.py changes): a write
+    # with a strobe off keeps that byte
+    "regs_strobes_honoured": (
+        "cpuif_wr_biten[i*8 +: 8] = '1;  // WSTRB ignored: whole-word writes (scripts/flow/regs.py)",
+        "cpuif_wr_biten[i*8 +: 8] = {8{axil_wstrb[i]}};",
+        r"(?:wr_commit_fields|\\?g_t\[\d+\]\.field_match)"),
     # HEIGHT.MODE.bits16 read back in reserved bit 9 instead of bit 8
     "regs_read_wrong_bit": (
         "readback_data_var[ad_hi(12'h200)][8] = field_storage.HEIGHT.MODE.bits16.value;",

@@ -121,7 +121,7 @@ module pidm_regs (
     always_comb begin
         cpuif_wr_data = axil_wdata;
         for(int i=0; i<4; i++) begin
-            cpuif_wr_biten[i*8 +: 8] = {8{axil_wstrb[i]}};
+            cpuif_wr_biten[i*8 +: 8] = '1;  // WSTRB ignored: whole-word writes (scripts/flow/regs.py)
         end
         cpuif_req = '0;
         cpuif_req_is_wr = '0;
@@ -431,7 +431,7 @@ module pidm_regs (
         decoded_reg_strb.HEIGHT.ROOT = cpuif_req_masked & (cpuif_addr == 12'h20c);
         decoded_reg_strb.HEIGHT.DEPTH = cpuif_req_masked & (cpuif_addr == 12'h210);
         for(int i0=0; i0<16; i0++) begin
-            decoded_reg_strb.HEIGHT.LEVEL_OFF[i0] = cpuif_req_masked & (cpuif_addr == 12'h240 + (12)'(i0) * 12'h4);
+            decoded_reg_strb.HEIGHT.LEVEL_OFF[i0] = cpuif_req_masked & (cpuif_addr == 12'h240 + (12)'(i0) * 12'h4) & cpuif_req_is_wr;
         end
         decoded_reg_strb.SHADE.MIP = cpuif_req_masked & (cpuif_addr == 12'h300);
         decoded_reg_strb.SHADE.MISS_RGB = cpuif_req_masked & (cpuif_addr == 12'h304);
@@ -448,10 +448,10 @@ module pidm_regs (
             decoded_reg_strb.TEX[i0].SV = cpuif_req_masked & (cpuif_addr == 12'h404 + (12)'(i0) * 12'h100);
             decoded_reg_strb.TEX[i0].BASE = cpuif_req_masked & (cpuif_addr == 12'h408 + (12)'(i0) * 12'h100);
             for(int i1=0; i1<16; i1++) begin
-                decoded_reg_strb.TEX[i0].LEVEL_OFF[i1] = cpuif_req_masked & (cpuif_addr == 12'h440 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4);
+                decoded_reg_strb.TEX[i0].LEVEL_OFF[i1] = cpuif_req_masked & (cpuif_addr == 12'h440 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4) & cpuif_req_is_wr;
             end
             for(int i1=0; i1<16; i1++) begin
-                decoded_reg_strb.TEX[i0].LEVEL_SIZE[i1] = cpuif_req_masked & (cpuif_addr == 12'h480 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4);
+                decoded_reg_strb.TEX[i0].LEVEL_SIZE[i1] = cpuif_req_masked & (cpuif_addr == 12'h480 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4) & cpuif_req_is_wr;
             end
         end
         decoded_reg_strb.PYR.INFO = cpuif_req_masked & (cpuif_addr == 12'h600) & !cpuif_req_is_wr;
@@ -464,7 +464,7 @@ module pidm_regs (
         decoded_reg_strb.PYR.DIRTY0 = cpuif_req_masked & (cpuif_addr == 12'h620);
         decoded_reg_strb.PYR.DIRTY1 = cpuif_req_masked & (cpuif_addr == 12'h624);
         for(int i0=0; i0<16; i0++) begin
-            decoded_reg_strb.PYR.LEVEL_OFF[i0] = cpuif_req_masked & (cpuif_addr == 12'h640 + (12)'(i0) * 12'h4);
+            decoded_reg_strb.PYR.LEVEL_OFF[i0] = cpuif_req_masked & (cpuif_addr == 12'h640 + (12)'(i0) * 12'h4) & cpuif_req_is_wr;
         end
         decoded_err = '0;
     end
@@ -3087,7 +3087,7 @@ module pidm_regs (
             readback_data_var[ad_hi(12'h0)][31:0] = 32'h5049444d;
         end
         if(ad_low(rd_mux_addr) == ad_low(12'h4)) begin
-            readback_data_var[ad_hi(12'h4)][15:0] = 16'h1;
+            readback_data_var[ad_hi(12'h4)][15:0] = 16'h2;
             readback_data_var[ad_hi(12'h4)][31:16] = 16'h1;
         end
         if(ad_low(rd_mux_addr) == ad_low(12'h8)) begin
@@ -3255,11 +3255,6 @@ module pidm_regs (
         if(ad_low(rd_mux_addr) == ad_low(12'h210)) begin
             readback_data_var[ad_hi(12'h210)][23:0] = field_storage.HEIGHT.DEPTH.val.value;
         end
-        for(int i0=0; i0<16; i0++) begin
-            if(ad_low(rd_mux_addr) == ad_low(12'h240 + (12)'(i0) * 12'h4)) begin
-                readback_data_var[ad_hi(12'h240 + (12)'(i0) * 12'h4)][31:0] = field_storage.HEIGHT.LEVEL_OFF[i0].val.value;
-            end
-        end
         if(ad_low(rd_mux_addr) == ad_low(12'h300)) begin
             readback_data_var[ad_hi(12'h300)][0] = field_storage.SHADE.MIP.mip_en.value;
             readback_data_var[ad_hi(12'h300)][13:8] = field_storage.SHADE.MIP.levels_colour.value;
@@ -3304,17 +3299,6 @@ module pidm_regs (
             if(ad_low(rd_mux_addr) == ad_low(12'h408 + (12)'(i0) * 12'h100)) begin
                 readback_data_var[ad_hi(12'h408 + (12)'(i0) * 12'h100)][31:0] = field_storage.TEX[i0].BASE.val.value;
             end
-            for(int i1=0; i1<16; i1++) begin
-                if(ad_low(rd_mux_addr) == ad_low(12'h440 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4)) begin
-                    readback_data_var[ad_hi(12'h440 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4)][31:0] = field_storage.TEX[i0].LEVEL_OFF[i1].val.value;
-                end
-            end
-            for(int i1=0; i1<16; i1++) begin
-                if(ad_low(rd_mux_addr) == ad_low(12'h480 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4)) begin
-                    readback_data_var[ad_hi(12'h480 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4)][15:0] = field_storage.TEX[i0].LEVEL_SIZE[i1].width.value;
-                    readback_data_var[ad_hi(12'h480 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4)][31:16] = field_storage.TEX[i0].LEVEL_SIZE[i1].height.value;
-                end
-            end
         end
         if(ad_low(rd_mux_addr) == ad_low(12'h600)) begin
             readback_data_var[ad_hi(12'h600)][0] = hwif_in.PYR.INFO.present.next;
@@ -3346,11 +3330,6 @@ module pidm_regs (
         if(ad_low(rd_mux_addr) == ad_low(12'h624)) begin
             readback_data_var[ad_hi(12'h624)][15:0] = field_storage.PYR.DIRTY1.x1.value;
             readback_data_var[ad_hi(12'h624)][31:16] = field_storage.PYR.DIRTY1.y1.value;
-        end
-        for(int i0=0; i0<16; i0++) begin
-            if(ad_low(rd_mux_addr) == ad_low(12'h640 + (12)'(i0) * 12'h4)) begin
-                readback_data_var[ad_hi(12'h640 + (12)'(i0) * 12'h4)][31:0] = field_storage.PYR.LEVEL_OFF[i0].val.value;
-            end
         end
         readback_data_rt_c = readback_data_var;
     end

@@ -12,8 +12,12 @@ the readback multiplexer into 32 groups with a register between them (a read ans
 later): without it the readback is one chain of a multiplexer per register, several hundred
 cells deep, which YoWASP's Yosys cannot map (its XAIGER2 pass walks such a chain recursively and
 runs out of WebAssembly stack: ``wasm trap: call stack exhausted``).  Each generated source file gets the SPDX line and a "generated, do not edit"
-line on top; nothing else is changed.  Exit status 2 (one line) when PeakRDL is missing or
-rejects the .rdl file.
+line on top.  One line of the register block is changed (``WHOLE_WORD``): its AXI4-Lite front
+end ignores WSTRB, every write writes the whole 32-bit register (AXI4-Lite allows a slave to
+ignore the write strobes).  Honouring the strobes costs a multiplexer per stored bit, about
+4,000 of the block's LUT4s on the ECP5 (docs/system_top.md); software writes whole words.
+Nothing else is changed.  Exit status 2 (one line) when PeakRDL is missing, rejects the .rdl
+file, or its output no longer holds the line to change.
 """
 from __future__ import annotations
 
@@ -40,6 +44,13 @@ class Output:
     path: Path
     leader: str | None
 
+
+#: The register block's one changed line: the byte strobes as the bit enables, replaced by all
+#: ones (WSTRB ignored: whole-word writes).
+WHOLE_WORD = (Path("rtl/top/pidm_regs.sv"),
+              "cpuif_wr_biten[i*8 +: 8] = {8{axil_wstrb[i]}};",
+              "cpuif_wr_biten[i*8 +: 8] = '1;  // WSTRB ignored: whole-word writes "
+              "(scripts/flow/regs.py)")
 
 #: Every generated file, as committed.
 OUTPUTS = (
@@ -82,6 +93,11 @@ def generate(out: Path) -> None:
     run([tool, "c-header", rdl, "-o", str(out / "sw/pidm_regs.h"), "--std", "gnu11",
          "--type-style", "hier"])
     run([tool, "markdown", rdl, "-o", str(out / "docs/registers.md")])
+    path, was, now = WHOLE_WORD
+    text = (out / path).read_text()
+    if text.count(was) != 1:
+        fail(PROG, f"{path}: peakrdl-regblock's output has no line '{was}' to change")
+    (out / path).write_text(text.replace(was, now))
     for o in OUTPUTS:
         path = out / o.path
         if o.leader is not None:

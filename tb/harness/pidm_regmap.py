@@ -40,11 +40,13 @@ class Field:
 
 @dataclass(frozen=True)
 class Register:
-    """A 32-bit register: its path, byte address and fields (name -> :class:`Field`)."""
+    """A 32-bit register: its path, byte address, fields (name -> :class:`Field`) and whether
+    software can read it (False: a write-only register, which reads 0)."""
 
     path: str
     addr: int
     fields: dict[str, Field]
+    readable: bool = True
 
     def value(self, **values: int) -> int:
         """The register word with the named fields set (unnamed fields 0)."""
@@ -86,7 +88,8 @@ def registers(rdl: Path = RDL) -> dict[str, Register]:
             path = path[len(prefix):] if path.startswith(prefix) else path
             out[path] = Register(path, int(node.absolute_address),
                                  {f.inst_name: Field(int(f.lsb), int(f.width))
-                                  for f in node.fields()})
+                                  for f in node.fields()},
+                                 any(f.is_sw_readable for f in node.fields()))
     return out
 
 

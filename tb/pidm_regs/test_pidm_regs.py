@@ -6,12 +6,14 @@ behind it, driven over AXI4-Lite by cocotbext-axi's master as the driver (sw/pid
   register, in random order, with random gaps: every cfg_* port of pidm_cfg equals the port value
   the pipeline harness would drive (tb/harness/pipeline_words.config), the table writes come out
   on tt_we_o / tt_waddr_o / tt_wdata_o one per TT_WRITE write in order, and every register reads
-  back what was written; the frame descriptor reaches its ports;
+  back what was written (the write-only tables LEVEL_OFF and LEVEL_SIZE read 0); the frame
+  descriptor reaches its ports;
 - control_status_interrupts: CTRL bits are one-clock pulses and read 0; ERROR flags are set by
   the hardware, kept, and cleared by writing 1 (only the bits written); INTR_STATE is set by the
   hardware events and by INTR_TEST, the interrupt line follows INTR_STATE & INTR_ENABLE, writing 1
   clears; ID, VERSION, HWCFG, STATUS, PROGRESS and the 48-bit statistics read what the hardware
-  gives (random values, seed printed); an unmapped address reads 0 with OKAY.
+  gives (random values, seed printed); a one-byte write writes the whole word (WSTRB is
+  ignored); an unmapped address reads 0 with OKAY.
 """
 from __future__ import annotations
 
@@ -110,16 +112,23 @@ async def frame_config(dut):
                        ("status_en_o", d["status_en"])):
         if int(getattr(dut, port).value) != want:
             bad.append(f"{port}: {int(getattr(dut, port).value):#x} != {want:#x}")
-    # read back every register written (the last value of TT_WRITE)
+    # read back every register written (the last value of TT_WRITE); the write-only tables
+    # (LEVEL_OFF, LEVEL_SIZE) read 0
     last = dict(regs + tri[-1:] + packed.frame_writes)
+    n_wo = 0
     for a, v in last.items():
         got = await read(axil, a)
+        if not pidm_regmap.by_address()[a].readable:
+            n_wo += 1
+            v = 0
         if got != v:
             bad.append(f"read {pidm_regmap.by_address()[a].path} ({a:#x}): {got:#x} != {v:#x}")
     n = len(dm_pipeline.CFG_PORTS) + len(cfg.tri_writes) + len(last)
     report.record(dut._name, "configuration ports, table writes, read-back", n, len(bad))
     dut._log.info("VECTORS pidm_regs frame_config: %d register writes, %d table writes, %d "
-                  "checks, %d mismatches", len(regs), len(tri), n, len(bad))
+                  "checks (%d write-only reads), %d mismatches", len(regs), len(tri), n, n_wo,
+                  len(bad))
+    assert n_wo > 0, "the frame wrote no write-only register"
     assert not bad, "\n".join(bad[:20])
 
 
@@ -155,7 +164,7 @@ async def control_status_interrupts(dut):
         assert cond, msg
 
     check(await read(axil, R("ID").addr) == 0x5049444D, "ID")
-    check(await read(axil, R("VERSION").addr) == 0x00010001, "VERSION")
+    check(await read(axil, R("VERSION").addr) == 0x00010002, "VERSION")
     hw = int(rng.integers(0, 1 << 32))
     dut.hwcfg_i.value = hw
     check(await read(axil, R("HWCFG").addr) == hw, "HWCFG")
@@ -261,6 +270,15 @@ async def control_status_interrupts(dut):
     check(await read(axil, st) == 0b100 and int(dut.intr_o.value) == 1, "INTR_TEST sets pyr_done")
     await write(axil, st, 0b111)
     await write(axil, en, 0)
+    # WSTRB is ignored: a one-byte write (strobe 0b0010, the other byte lanes 0) writes the whole
+    # word, the bytes without a strobe too
+    size = R("HEIGHT.SIZE")
+    await write(axil, size.addr, 0xFFFFFFFF)
+    resp = await axil.write(size.addr + 1, bytes([0xAB]))
+    check(int(resp.resp) == 0, "one-byte write answered OKAY")
+    check(await read(axil, size.addr) == 0x0000AB00, "a one-byte write writes the whole word")
+    check(int(dut.cfg_width_o.value) == 0xAB00 and int(dut.cfg_height_o.value) == 0,
+          "the whole word reaches cfg_width_o / cfg_height_o")
     # An unmapped address reads 0 with OKAY, a write there changes nothing
     for a in (0x00C, 0x02C, 0x0F0, 0x104, 0x280, 0x3FC, 0x4C0, 0x5C0, 0x628, 0x6C0, 0xFFC):
         await write(axil, a, 0xFFFFFFFF)

@@ -481,7 +481,7 @@ async def pidm_top_pyramid(dut):
     log = dut._log
     info = await s.rd_fields("PYR.INFO")
     assert info == {"present": 1, "max_lg": 10}, f"PYR.INFO {info}"
-    assert R("VERSION").fields_of(await s.rd("VERSION")) == {"minor": 1, "major": 1}
+    assert R("VERSION").fields_of(await s.rd("VERSION")) == {"minor": 2, "major": 1}
     sc = Scene(CLEAN)
     pyr = sc.frame.pyr
     hreg = sc.packed.region("heights")
