@@ -103,8 +103,8 @@ BLOCKS = [
           what="max-mipmap pyramid builder, maps up to 1024x1024"),
     Block("dm_pipeline", "dm_pipeline", pnr=False, what="the whole unit (ports: ~4,000 bits)"),
     # Five AXI ports (~620 pins, more than the package has): counts by default; --system-pnr
-    # places and routes it out of context (it fills 91% of the LFE5U-85F without the pyramid
-    # builder and did not route in an hour: docs/synthesis.md "The system top").
+    # places and routes it out of context (docs/synthesis.md "The system top": 82% of the
+    # LFE5U-85F's LUT4s with the pyramid builder; not routed on the current RTL).
     Block("pidm_top", "pidm_top", pnr=False,
           what="the system top: register block, pyramid builder, fragment and framebuffer DMA, "
                "the pipeline"),
@@ -113,8 +113,8 @@ BLOCKS = [
           what="the P&R top with two traverse rings (N_RINGS 2)"),
 ]
 BLOCK_NAMES = [b.name for b in BLOCKS]
-#: Blocks run only when --blocks names them.  pidm_top: its Yosys run alone takes about an hour on
-#: a 2-core machine, and with the pyramid builder it does not fit the LFE5U-85F yet
+#: Blocks run only when --blocks names them.  pidm_top: the largest design (82% of the LFE5U-85F's
+#: LUT4s with the pyramid builder, Yosys counts), placed and routed only with --system-pnr
 #: (docs/synthesis.md "The system top").
 OPT_IN = {SYSTEM_TOP}
 
@@ -971,7 +971,7 @@ def main() -> int:
                     help="skip the out-of-context place and route of the blocks")
     ap.add_argument("--system-pnr", action="store_true",
                     help=f"place and route the system top ({SYSTEM_TOP}) out of context too "
-                         "(off by default: it does not route on the LFE5U-85F today, see "
+                         "(off by default: at 82%% of the LFE5U-85F's LUT4s it takes hours; see "
                          "docs/synthesis.md 'The system top')")
     ap.add_argument("--device", default="85k", choices=sorted(DEVICE))
     ap.add_argument("--package", default="CABGA756")
