@@ -169,6 +169,20 @@ def test_bench_rtl_rejects_bad_arguments() -> None:
         assert p.returncode == 2 and msg in p.stderr and len(p.stderr.strip().splitlines()) == 1
 
 
+def test_harness_spec_params() -> None:
+    """traverse_system.spec: no params -> the default builds unchanged; params -> a build of its own
+    whose directory names the settings away from the defaults, with the parameters passed on."""
+    assert traverse_system.spec() is traverse_system.TRAVERSE
+    assert traverse_system.spec(park=True) is traverse_system.TRAVERSE_PARK
+    s = traverse_system.spec(park=True, params={"MSHRS": 16, "AXI_ID_W": 6, "PARK_WAIT": 32})
+    assert s.params == {**traverse_system.PARK_PARAMS, "MSHRS": 16, "AXI_ID_W": 6, "PARK_WAIT": 32}
+    assert s.build_dir.name == "traverse_axi_id_w6_mshrs16_park1_park_wait32"
+    assert s.build_dir not in (traverse_system.TRAVERSE.build_dir,
+                               traverse_system.TRAVERSE_PARK.build_dir)
+    s8 = traverse_system.spec(params={"MSHRS": 8})
+    assert "PARK" not in s8.params and s8.build_dir.name == "traverse_mshrs8"
+
+
 def test_harness_waves_fst(tmp_path, rng: np.random.Generator) -> None:
     """trace_rtl(..., waves=FILE) writes an FST that a reader decodes (pywellen): the clock
     toggles every half period, the ray and AXI handshakes are visible, and the results are

@@ -59,6 +59,8 @@ module dm_pipeline
   parameter int unsigned N_RINGS    = 1,    // traverse rings, each with its own height cache
   parameter bit          PARK       = 1'b0, // 1: each ring parks missed rays (traverse_loop)
   parameter int unsigned PARK_DEPTH = 12,   // park queue entries per ring (traverse_loop)
+  parameter int unsigned PARK_WAIT  = 16,   // clocks before a parked ray beats new rays (traverse_loop)
+  parameter int unsigned PARK_MAX   = 4 * traverse_pkg::LOOP_DEPTH, // bound on a parked ray's wait
   parameter int unsigned TRIS       = 16,   // triangle table entries
   parameter int unsigned F0_DEPTH   = 16,   // FIFO #0 (power of two)
   parameter int unsigned REQ_DEPTH  = 16,   // texture-request FIFOs, pixels (power of two)
@@ -74,6 +76,8 @@ module dm_pipeline
   parameter int unsigned H_LINE_BYTES = 32, // height_cache line (one AXI burst per fill)
   parameter int unsigned H_SETS     = 512,  // height_cache sets per ring (power of two)
   parameter int unsigned H_WAYS     = 4,    // height_cache ways: 512 x 4 x 32 B = 64 KiB
+  parameter int unsigned H_MSHRS    = 4,    // height_cache line fills in flight per ring (H_ID_W >
+                                            // log2(N_RINGS) + log2(H_MSHRS))
   parameter int unsigned AXI_DATA_W = 64,   // AXI data width (both ports; <= 256: tex_cache window)
   parameter int unsigned TRI_W      = (TRIS > 1) ? $clog2(TRIS) : 1  // triangle id width
 ) (
@@ -288,6 +292,7 @@ module dm_pipeline
   assign f0_rd = !f0_empty && ray_ready;
 
   traverse_rings #(.N_RINGS(N_RINGS), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH),
+                   .PARK_WAIT(PARK_WAIT), .PARK_MAX(PARK_MAX), .MSHRS(H_MSHRS),
                    .RAY_ID_W(SLOT_W), .AXI_ID_W(H_ID_W),
                    .AXI_DATA_W(AXI_DATA_W), .LINE_BYTES(H_LINE_BYTES), .SETS(H_SETS),
                    .WAYS(H_WAYS)) u_trav (

@@ -26,6 +26,8 @@ module traverse_rings
   parameter int unsigned UNIT_CNT_W       = 48,  // width of the units' statistics counters
   parameter bit          PARK             = 1'b0, // 1: park queue for missed rays (traverse_loop)
   parameter int unsigned PARK_DEPTH       = 12,  // park queue entries (traverse_loop)
+  parameter int unsigned PARK_WAIT        = 16,  // clocks before a parked ray beats new rays (traverse_loop)
+  parameter int unsigned PARK_MAX         = 4 * traverse_pkg::LOOP_DEPTH, // bound on a parked ray's wait
   parameter int unsigned LINE_BYTES       = 32,  // height-cache line (one AXI burst per fill)
   parameter int unsigned SETS             = 256, // height-cache sets per ring (power of two)
   parameter int unsigned WAYS             = 4,   // height-cache ways (power of two)
@@ -130,6 +132,7 @@ module traverse_rings
     traverse_system #(
       .RAY_ID_W(RAY_ID_W), .SETUP_FIFO_DEPTH(SETUP_FIFO_DEPTH), .RES_FIFO_DEPTH(RES_FIFO_DEPTH),
       .UNIT_CNT_W(UNIT_CNT_W), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH),
+      .PARK_WAIT(PARK_WAIT), .PARK_MAX(PARK_MAX),
       .LINE_BYTES(LINE_BYTES), .SETS(SETS), .WAYS(WAYS), .MSHRS(MSHRS),
       .AXI_ID_W(RID_W), .AXI_DATA_W(AXI_DATA_W)
     ) u_sys (

@@ -28,6 +28,8 @@ module traverse_system
   parameter int unsigned UNIT_CNT_W       = 48,  // width of the unit's statistics counters
   parameter bit          PARK             = 1'b0, // 1: park queue for missed rays (traverse_loop)
   parameter int unsigned PARK_DEPTH       = 12,  // park queue entries (traverse_loop)
+  parameter int unsigned PARK_WAIT        = 16,  // clocks before a parked ray beats new rays (traverse_loop)
+  parameter int unsigned PARK_MAX         = 4 * LOOP_DEPTH, // bound on a parked ray's wait (traverse_loop)
   // height cache
   parameter int unsigned LINE_BYTES       = 32,  // cache line (one AXI burst per line fill)
   parameter int unsigned SETS             = 256, // sets (power of two); 256 x 4 x 32 B = 32 KiB
@@ -113,7 +115,8 @@ module traverse_system
 
   traverse_unit #(
     .ID_W(RAY_ID_W), .SETUP_FIFO_DEPTH(SETUP_FIFO_DEPTH), .RES_FIFO_DEPTH(RES_FIFO_DEPTH),
-    .CNT_W(UNIT_CNT_W), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH)
+    .CNT_W(UNIT_CNT_W), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH), .PARK_WAIT(PARK_WAIT),
+    .PARK_MAX(PARK_MAX)
   ) u_unit (
     .clk_i, .rst_ni,
     .cfg_method_i, .cfg_width_i, .cfg_height_i, .cfg_root_level_i, .cfg_bits16_i, .cfg_base_i,

@@ -39,7 +39,9 @@ module traverse_unit
   parameter int unsigned CNT_W            = 32,  // statistics counters
   parameter bit          XOR_PATH         = 1'b1, // 0: no XOR descent path (traverse_loop)
   parameter bit          PARK             = 1'b0, // 1: park queue for missed rays (traverse_loop)
-  parameter int unsigned PARK_DEPTH       = 12    // park queue entries (traverse_loop)
+  parameter int unsigned PARK_DEPTH       = 12,   // park queue entries (traverse_loop)
+  parameter int unsigned PARK_WAIT        = 16,   // clocks before a parked ray beats new rays (traverse_loop)
+  parameter int unsigned PARK_MAX         = 4 * LOOP_DEPTH  // bound on a parked ray's wait (traverse_loop)
 ) (
   input  logic                              clk_i,
   input  logic                              rst_ni,
@@ -155,7 +157,8 @@ module traverse_unit
   logic            st_iter, st_down, st_cross, st_up;
   logic [4:0]      lp_busy;
   traverse_loop #(
-    .ID_W(ID_W), .XOR_PATH(XOR_PATH), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH)
+    .ID_W(ID_W), .XOR_PATH(XOR_PATH), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH),
+    .PARK_WAIT(PARK_WAIT), .PARK_MAX(PARK_MAX)
   ) u_loop (
     .clk_i, .rst_ni, .cfg_i(cfg),
     .new_valid_i(!sf_empty), .new_id_i(sf_head[SF_W-1 -: ID_W]),

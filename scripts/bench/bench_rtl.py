@@ -17,7 +17,10 @@ memory with --latency clocks of read latency).  Two runs per case:
 over the ray's whole depth (|du, dv|) uniform in [0, --size / 2] texels, in random order, like the
 secondary rays of a ray tracer (no two neighbours in the stream share a tile or a direction);
 --seed picks them.  --park measures the ring with its park queue (traverse_loop PARK = 1, a
-harness build of its own; off by default).
+harness build of its own; off by default); --park-depth, --park-wait and --park-max set its
+knobs (traverse_loop PARK_DEPTH, PARK_WAIT, PARK_MAX) and --mshrs the height cache's line fills in
+flight (height_cache MSHRS; the AXI ID width grows to log2(MSHRS) + 2 where 4 is too narrow): each
+setting away from the defaults is a harness build of its own (build/traverse_<params>/).
 
 Every RTL result is compared with the f24 engine (t, u, v, hit, invalid, iterations): a
 difference fails the run (exit status 1).  Writes JSON (--out) and a markdown table (--md) and
@@ -65,12 +68,12 @@ def compare(res: Any, ref: Any) -> int:
 
 
 def run_case(pyr: heightmap.Pyramid, rays: Any, method: str, latency: int,
-             park: bool = False) -> dict[str, Any]:
+             park: bool = False, params: dict[str, int] | None = None) -> dict[str, Any]:
     ref = traverse.trace(pyr, rays, method, "f24")
     row: dict[str, Any] = {"rays": len(rays), "iterations": int(ref.iterations.sum())}
     for warm in (False, True):
         res, st = traverse_system.trace_rtl(pyr, rays, method, latency=latency, warm=warm,
-                                             park=park)
+                                             park=park, params=params)
         key = "warm" if warm else "cold"
         row[key] = {k: st[k] for k in ("cycles", "iterations", "lookups", "height_cache_hits",
                                        "height_cache_misses", "mem_lines", "mem_bytes",
@@ -98,6 +101,30 @@ def derived(row: dict[str, Any], key: str) -> dict[str, float]:
             "bytes_per_ray": r["mem_bytes"] / max(row["rays"], 1)}
 
 
+def harness_params(a: Any) -> dict[str, int]:
+    """The traverse_system parameters away from the harness's defaults that the options ask for
+    (exits 2 on a value out of range or a park knob without --park)."""
+    params: dict[str, int] = {}
+    if a.mshrs is not None:
+        if a.mshrs < 1 or a.mshrs > 64 or a.mshrs & (a.mshrs - 1):
+            fail(PROG, f"--mshrs must be a power of two in 1 .. 64, got {a.mshrs}")
+        params["MSHRS"] = a.mshrs
+        params["AXI_ID_W"] = max(traverse_system.PARAMS["AXI_ID_W"],
+                                 (a.mshrs - 1).bit_length() + 2)
+    # traverse_loop's ranges: ring (19 stages) + queue <= 31, an 8-bit park age
+    for opt, name, val, lo, hi in (("--park-depth", "PARK_DEPTH", a.park_depth, 1, 31 - 19),
+                                   ("--park-wait", "PARK_WAIT", a.park_wait, 0, 255),
+                                   ("--park-max", "PARK_MAX", a.park_max, 1, 1 << 16)):
+        if val is None:
+            continue
+        if not a.park:
+            fail(PROG, f"{opt} needs --park")
+        if not lo <= val <= hi:
+            fail(PROG, f"{opt} must be in {lo} .. {hi}, got {val}")
+        params[name] = val
+    return params
+
+
 def main() -> int:
     ap = Parser(prog=PROG, description=__doc__.split("\n\n")[0])
     ap.add_argument("--scenes", default=",".join(scenes.SCENES))
@@ -112,6 +139,17 @@ def main() -> int:
     ap.add_argument("--seed", type=int, default=1, help="random seed of --incoherent's rays")
     ap.add_argument("--park", action="store_true",
                     help="the ring with its park queue (traverse_loop PARK = 1; default off)")
+    ap.add_argument("--mshrs", type=int, default=None, metavar="N",
+                    help="height-cache MSHRs, line fills in flight (height_cache MSHRS; "
+                         "default the harness's, 4)")
+    ap.add_argument("--park-depth", type=int, default=None, metavar="N",
+                    help="park queue entries (traverse_loop PARK_DEPTH, default 12; with --park)")
+    ap.add_argument("--park-wait", type=int, default=None, metavar="N",
+                    help="clocks a parked ray waits before it beats new rays to a free slot "
+                         "(traverse_loop PARK_WAIT, default 16; with --park)")
+    ap.add_argument("--park-max", type=int, default=None, metavar="N",
+                    help="clocks the park queue's head waits before it takes any tail slot "
+                         "(traverse_loop PARK_MAX, default 4 x 19; with --park)")
     ap.add_argument("--out", type=Path, default=ROOT / "out" / "bench" / "rtl.json")
     ap.add_argument("--md", type=Path, default=ROOT / "out" / "bench" / "rtl.md")
     a = ap.parse_args()
@@ -128,8 +166,9 @@ def main() -> int:
                           ("--latency", a.latency, 1), ("--incoherent", a.incoherent, 0)):
         if val < lo:
             fail(PROG, f"{what} must be >= {lo}, got {val}")
+    params = harness_params(a)
     try:
-        traverse_system.build("fast", quiet=False, park=a.park)
+        traverse_system.build("fast", quiet=False, park=a.park, params=params)
     except traverse_system.RtlEngineError as e:
         fail(PROG, str(e).splitlines()[0])
     rows: list[dict[str, Any]] = []
@@ -147,7 +186,7 @@ def main() -> int:
                 rays = cam.tiled_rays(a.tile).rays
             for method in methods:
                 row = {"scene": name, "angle": angle, "method": method,
-                       **run_case(pyr, rays, method, a.latency, a.park)}
+                       **run_case(pyr, rays, method, a.latency, a.park, params)}
                 row.update({f"{k}_{key}": v for key in ("cold", "warm")
                             for k, v in derived(row, key).items()})
                 rows.append(row)
@@ -209,8 +248,7 @@ def main() -> int:
     a.out.write_text(json.dumps({
         "settings": {"size": a.size, "image": a.image, "tile": a.tile, "latency": a.latency,
                      "incoherent": a.incoherent, "seed": a.seed,
-                     "params": traverse_system.PARK_PARAMS if a.park
-                     else traverse_system.PARAMS},
+                     "params": traverse_system.spec(a.park, params).params},
         "rows": rows, "summary": summary, "mismatches": mism, "sim_clocks": sim_clocks,
         "sim_wall_seconds": sim_wall,
         "paper": {"mhz": PAPER_MHZ, "units": PAPER_UNITS, "mpixels_per_s": PAPER_MPIX,

@@ -26,7 +26,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -148,17 +148,35 @@ TRAVERSE_PARK = HarnessSpec(name="traverse_park", top=TOP, rtl_dirs=RTL_DIRS,
                             required=(CACHE_SV,))
 
 
-def is_built(variant: str = "fast", *, park: bool = False) -> bool:
+def spec(park: bool = False, params: Mapping[str, int] | None = None) -> HarnessSpec:
+    """The harness spec: :data:`TRAVERSE`, :data:`TRAVERSE_PARK` with ``park``, or with further
+    traverse_system ``params`` (e.g. ``{"MSHRS": 8, "PARK_WAIT": 8}``) a build of its own in
+    ``build/traverse_<name><value>...`` (for sweeps; the defaults' builds are unchanged)."""
+    base = TRAVERSE_PARK if park else TRAVERSE
+    if not params:
+        return base
+    full = {**base.params, **{k: int(v) for k, v in params.items()}}
+    tag = "_".join(f"{k.lower()}{v}" for k, v in sorted(full.items()) if k not in PARAMS
+                   or full[k] != PARAMS[k])
+    return HarnessSpec(name=f"traverse_{tag}", top=TOP, rtl_dirs=RTL_DIRS,
+                       sources=HARNESS_SOURCES, binary=BINARY, params=full,
+                       build_dir=BUILD / f"traverse_{tag}", training=_training_input,
+                       required=(CACHE_SV,))
+
+
+def is_built(variant: str = "fast", *, park: bool = False,
+             params: Mapping[str, int] | None = None) -> bool:
     """True when the variant's binary is current (:func:`build` would not rebuild it)."""
-    return _build.is_built(TRAVERSE_PARK if park else TRAVERSE, variant)
+    return _build.is_built(spec(park, params), variant)
 
 
 def build(variant: str = "fast", *, force: bool = False, quiet: bool = True,
-          park: bool = False) -> Path:
+          park: bool = False, params: Mapping[str, int] | None = None) -> Path:
     """Build the traverse harness variant when its inputs changed; returns the binary's path
     (:func:`tb.harness.build.build` with :data:`TRAVERSE`, or :data:`TRAVERSE_PARK` with
-    ``park``: the ring with its park queue)."""
-    return _build.build(TRAVERSE_PARK if park else TRAVERSE, variant, force=force, quiet=quiet)
+    ``park``: the ring with its park queue; ``params``: further traverse_system parameters,
+    :func:`spec`)."""
+    return _build.build(spec(park, params), variant, force=force, quiet=quiet)
 
 
 # ---- run -----------------------------------------------------------------------------------------
@@ -177,18 +195,21 @@ def run_batch(pyr: Pyramid, rays: Rays, method: str, *,
               rvalid_gap: float = 0.0, err_ranges: Sequence[tuple[int, int]] = (),
               base: int = DEFAULT_BASE, warm: bool = False, timeout: int | None = None,
               waves: str | Path | None = None, checked: bool | None = None,
-              park: bool = False) -> tuple[npt.NDArray[Any], dict[str, Any]]:
+              park: bool = False, params: Mapping[str, int] | None = None
+              ) -> tuple[npt.NDArray[Any], dict[str, Any]]:
     """Run one batch through the harness; returns the raw records (OUT_RECORD) and the stats.
 
     Every knob is a harness option (``traverse_harness --help``).  ``checked``: run the variant
     with the RTL's assertions on (default: the environment's ``RTL_ENGINE_CHECKED=1``; waves
-    always have them).  ``park``: the build with the ring's park queue.  Raises RtlEngineError with the
+    always have them).  ``park``: the build with the ring's park queue; ``params``: further
+    traverse_system parameters (:func:`spec`, a build of their own).  Raises RtlEngineError with the
     harness's message when the run fails (timeout, a ray lost or returned twice, AXI violation).
     """
     lo, hi = _latency(latency)
     if checked is None:
         checked = os.environ.get("RTL_ENGINE_CHECKED", "") == "1"
-    binary = build("waves" if waves else "checked" if checked else "fast", park=park)
+    binary = build("waves" if waves else "checked" if checked else "fast", park=park,
+                   params=params)
     n = len(rays)
     with tempfile.TemporaryDirectory(prefix="traverse_system_") as tmp:
         tdir = Path(tmp)
@@ -227,7 +248,7 @@ def trace_rtl(pyr: Pyramid, rays: Rays, method: str, *,
     per-clock probability of a gap in the ray stream, of res_ready low and of an rvalid bubble
     (0: none).  waves: write an FST waveform there (builds the ``waves`` variant).  Further
     ``options`` go to :func:`run_batch` (ray_gap, res_stall, ar_stall, rvalid_gap override the
-    backpressure defaults; err_ranges, base, warm, timeout, park).
+    backpressure defaults; err_ranges, base, warm, timeout, park, params).
     Returns (TraceResult, stats); per-ray capped / err flags are counted in stats.
     """
     bp = float(backpressure)
