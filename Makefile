@@ -68,7 +68,7 @@ test: $(STAMP)
 	@start=$$(date +%s); rm -rf build/vectors; \
 	$(ENV) $(PY) scripts/flow/lint.py && $(PY) scripts/flow/synth_check.py && \
 	$(PY) scripts/flow/formal.py --jobs $(JOBS) && \
-	$(PY) -m pytest -n $(JOBS) --dist loadgroup -q -p no:cacheprovider --durations=12 tests tb; rc=$$?; \
+	$(PY) -m pytest -n $(JOBS) --dist loadgroup -q -p no:cacheprovider --durations=25 tests tb; rc=$$?; \
 	$(PY) scripts/bench/vector_summary.py --json build/vectors.json || rc=1; \
 	echo "make test: wall time $$(( $$(date +%s) - start )) s"; exit $$rc
 
