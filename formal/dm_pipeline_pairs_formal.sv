@@ -47,27 +47,27 @@ module dm_pipeline_pairs_formal #(
     logic [SLOT_W-1:0] slot;   // its slot
     logic              nmap;
     logic [SLOT_W-1:0] s;
+    logic              valid;
     logic [TF_W-1:0]   ft;
     logic [TC_W-1:0]   ct;
     pend = dm_pipeline.u_assert.tf_col_pend_q;
     slot = dm_pipeline.u_assert.tf_col_slot_q;
     ok   = 1'b1;
-    for (int k = TF_LAT; k >= 1; k--) begin
-      if (dm_pipeline.u_filter.u_valid_tag.v_q[k]) begin
-        ft   = dm_pipeline.u_filter.u_valid_tag.tag_q[k];
-        nmap = ft[1];
-        s    = ft[TF_W-1 -: SLOT_W];
-        if (pend) ok = ok && nmap && s == slot;
-        else      ok = ok && !nmap;
-        pend = !nmap;
-        slot = s;
+    // the lookups from the oldest on: the filter's stages (S_TF_LAT down to S1), then the
+    // abstract cache's queue from its head; each must continue the alternation
+    for (int j = 0; j < TF_LAT + TC_CAP; j++) begin
+      if (j < TF_LAT) begin
+        valid = dm_pipeline.u_filter.u_valid_tag.v_q[TF_LAT - j];
+        ft    = dm_pipeline.u_filter.u_valid_tag.tag_q[TF_LAT - j];
+        nmap  = ft[1];
+        s     = ft[TF_W-1 -: SLOT_W];
+      end else begin
+        valid = j - TF_LAT < int'(dm_pipeline.u_tc.cnt_q);
+        ct    = dm_pipeline.u_tc.q_tag_q[(int'(dm_pipeline.u_tc.rp_q) + j - TF_LAT) % TC_CAP];
+        nmap  = ct[48];
+        s     = ct[TC_W-1 -: SLOT_W];
       end
-    end
-    for (int i = 0; i < TC_CAP; i++) begin
-      if (i < int'(dm_pipeline.u_tc.cnt_q)) begin
-        ct   = dm_pipeline.u_tc.q_tag_q[(int'(dm_pipeline.u_tc.rp_q) + i) % TC_CAP];
-        nmap = ct[48];
-        s    = ct[TC_W-1 -: SLOT_W];
+      if (valid) begin
         if (pend) ok = ok && nmap && s == slot;
         else      ok = ok && !nmap;
         pend = !nmap;
