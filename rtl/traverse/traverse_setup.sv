@@ -5,12 +5,13 @@
 // running phase; asserted: ray_phase, bound from traverse_setup_assert.sv; traverse_unit ANDs it
 // into ray_ready_o), so any two rays in the pipeline are a multiple of 4 clocks apart.  The u (x)
 // and v (y) axes share the float units, u in one clock and v in the next (as view_calc computes x
-// and y), and most units serve two operations of an axis, 6 stages apart: the first in the two
-// clocks of the 4 that are its phases, the second in the other two (as shade_unit schedules over
-// 4 clocks).
+// and y), and most units serve two operations of an axis, KB stages apart (KB = 2 mod 4): the
+// first in the two clocks of the 4 that are its phases, the second in the other two (as
+// shade_unit schedules over 4 clocks).
 //
-// In: the ray's four numbers as f24 words (the model's ar.r() of the float64 ray).  Out, SETUP_LAT
-// clocks later (traverse_pkg: F24_DIV_LAT + 13 = 21): the ray record (traverse_pkg::ray_t) with
+// In: the ray's four numbers as f24 words (the model's ar.r() of the float64 ray).  Out,
+// NS = traverse_pkg::setup_lat(ADD_LAT, MUL_LAT) clocks later (21 at (ADD_LAT, MUL_LAT) = (2, 1),
+// 26 at (3, 2); SETUP_LAT at the package defaults): the ray record (traverse_pkg::ray_t) with
 // the per-ray constants, the start time t0, the start level and the start cell, or done = 1 for
 // an invalid ray or one that never enters the map (the model's "gone": no iteration).  Of an
 // invalid ray's record only u0, v0, t, done and invalid are defined (traverse_loop passes such a
@@ -25,84 +26,105 @@
 // clock later (the v inputs are held a clock).  Item stage Is holds the u item of the ray in
 // stage Ts or the v item of the ray in T(s+1); an operation of Is runs on its unit for u in one
 // clock and for v in the next.  Where the two axes meet, the u item's value is held a clock in a
-// register and combined with the v item's: invalid (T10), t_map and t_end (T11), the start cell
-// and the end point's cell (T18, into the start level).
+// register and combined with the v item's: invalid, t_map and t_end, the start cell and the end
+// point's cell (into the start level).
 //
-// Shared units.  A unit that serves two operations of item stages Ia and Ia+6 is busy in the
+// Shared units.  A unit that serves two operations of item stages Ia and Ia+KB is busy in the
 // clocks of phase a, a+1 (mod 4) for the first and a+2, a+3 for the second: never both, as rays
 // are a multiple of 4 clocks apart.  Every float unit takes its operands from registers: a
 // unit's result (the same unit's for both operations: the boundary adders are fed by the same
 // conversions at both stages, the position adder by the same multiplier, the crossing-time
 // multipliers by the same boundary adders, the floor by the same position adder), or an operand
 // register that a select loads one clock before the unit reads it (kf_q, kg_q, pu_q, md_q, mt_q,
-// pa_q, mi_q, mvx_q / p0x_q), never a select in front of a unit.  The boundary adders [M], [E]
-// take 3 clocks (f24_add LAT 3, for the clock), their conversions a clock earlier.
+// the last of pa_c_q, mi_q, mvx_q / p0x_q), never a select in front of a unit.  The boundary
+// adders [M], [E] take ADD_LAT + 1 clocks (one more than [P], for the clock), their conversions
+// a clock earlier.
 //
-// Stage schedule (T0 = the clock after in_valid_i; per-axis rows give the u item's stages, the v
-// item's are one later; "a -> b": a unit takes operands at Ia, result at Ib; [X] names the unit).
-// The reciprocal starts at I0 and takes F24_DIV_LAT = 8 clocks (f24_pkg: the pipelined divider);
-// the rest of the first mode starts C = F24_DIV_LAT - 2 = 6 clocks later, at I6, so that 1/du is
-// in a register at I9 where the crossing time needs it.  Nothing before I8 depends on 1/du.
-//   I0  1/du (1/dv)                                             f24_div I0 -> I8
-//   I4  operand registers: the exit boundary of the map kb = du > 0 ? W : 0 [F] and W [G]
-//       (H, H for v)
-//   I5  kb, W as floats                                         [F], [G] f24_from_int I5 -> I6
-//       operand registers: du and t0 [B], u0
-//   I6  checks: NaN / Inf field, negative start
-//       kb - u0, W - u0                                         [M], [E] f24_add LAT 3 I6 -> I9
-//       du * t0                                                 [B] f24_mul I6 -> I7
-//   I7  u0 + du t0                                              [P] f24_add I7 -> I9
-//   I8  sx = sign(du) if du != 0 and 1/du finite
-//   I9  u: the checks | u0 >= W (W - u0 <= 0) held; T10 (v): invalid = u's | v's
-//       (kb - u0) * (1/du)                                      [A] f24_mul I9 -> I10
-//       floor(position at t0) (u0 if sx = 0)                    [X] f24_to_index I9 -> I10
-//   I10 tmx (inf if sx = 0) held; locate estimate c = clip(floor, -1, N), its entry / exit
-//       boundary integers (operand registers of [F], [G])
-//   T11 (v item in I10): t_map = min(tmx, ty); t_end = clip ? min(1, t_map) : 1
-//   I11 entry, exit boundary as floats                         [F], [G] f24_from_int I11 -> I12
-//       operand registers: du and t_end [B], u0
-//   T12 gone = t_map <= t0
-//   I12 entry - u0, exit - u0                                   [M], [E] f24_add LAT 3 I12 -> I15
-//       du * t_end                                              [B] f24_mul I12 -> I13
-//   I13 u0 + du t_end                                           [P] f24_add I13 -> I15
-//   I15 (boundary - u0) * (1/du): crossing times                [A], [C] f24_mul I15 -> I16
-//       floor(position at t_end) (u0 if sx = 0)                 [X] f24_to_index I15 -> I16
-//       locate's three candidates (the estimate, one cell back, one on; clipped to [-1, N])
-//   I16 locate correction: the candidate the crossing times choose (c0x, c0y registers), the
-//       floor of the end point (ex, ey registers)
-//   T18 start cell and end cell clipped to the map, outside, XOR     traverse_start_level
-//   T19 start level k by bit length (leading-zero count)             T18 -> T20
-//   T20 gone |= start cell outside the map; cell >> k: out
+// Stage schedule, from the units' latencies (localparams of the same names; T0 = the clock after
+// in_valid_i; per-axis rows give the u item's stages, the v item's are one later; "a -> b": a
+// unit takes operands at Ia, result at Ib; [X] names the unit).  The reciprocal starts at I0 and
+// takes F24_DIV_LAT = 8 clocks (f24_pkg: the pipelined divider); the rest of the first mode
+// starts C = F24_DIV_LAT - ADD_LAT clocks later, at I(C), so that 1/du is there (I(C+ADD_LAT))
+// one stage before the crossing time [A] needs it.  Stages relative to I(C), then absolute at
+// (ADD_LAT, MUL_LAT) = (2, 1) / (3, 2):
+//   KA = ADD_LAT + 1          [A]'s first operation                        3 / 4
+//   KX = ADD_LAT + MUL_LAT    [X]'s first operation (after [B] and [P])    3 / 5
+//   KR = KX + 1               the first results of [A] and [X]             4 / 6
+//   KB = setup_gap(ADD_LAT, MUL_LAT): the second operations, KR + 2 rounded up to 2 mod 4
+//                                                                          6 / 10
+//   KH = KB - 2               the first results, PAD = KH - KR clocks later 4 / 8 (PAD 0 / 2)
+//   KE = KR + KB              the second results                           10 / 16
+//                                                                          (2, 1)      (3, 2)
+//   I0        1/du (1/dv)                     f24_div                     I0 -> I8    I0 -> I8
+//   I(C-2)    operand registers: the exit boundary of the map kb = du > 0 ? W : 0 [F] and W [G]
+//             (H, H for v)                                                I4          I3
+//   I(C-1)    kb, W as floats [F], [G] f24_from_int                       I5 -> I6    I4 -> I5
+//             operand registers: du and t0 [B], u0
+//   I(C)      checks: NaN / Inf field, negative start                     I6          I5
+//             kb - u0, W - u0 [M], [E] f24_add LAT ADD_LAT + 1            I6 -> I9    I5 -> I9
+//             du * t0 [B] f24_mul LAT MUL_LAT                             I6 -> I7    I5 -> I7
+//   I(C+MUL_LAT)  u0 + du t0 [P] f24_add LAT ADD_LAT (u0 passed on in pa_c_q)
+//                                                                         I7 -> I9    I7 -> I10
+//   I(C+ADD_LAT)  sx = sign(du) if du != 0 and 1/du finite                I8          I8
+//   I(C+ADD_LAT+1): the checks | u0 >= W (W - u0 <= 0), held; the v item's a stage later:
+//             invalid = u's | v's                                         I9, T10     I9, T10
+//   I(C+KA)   (kb - u0) * (1/du) [A] f24_mul                              I9 -> I10   I9 -> I11
+//   I(C+KX)   floor(position at t0) (u0 if sx = 0) [X] f24_to_index       I9 -> I10   I10 -> I11
+//   I(C+KR)   tmx (inf if sx = 0); locate estimate c = clip(floor, -1, N) I10         I11
+//   I(C+KH)   both PAD clocks later: tmx held a clock; c's entry / exit boundary integers
+//             (operand registers of [F], [G])                             I10         I13
+//   T(C+KH+1) (v item in I(C+KH)): t_map = min(tmx, ty); t_end = clip ? min(1, t_map) : 1
+//                                                                         T11         T14
+//   I(C+KB-1) entry, exit boundary as floats [F], [G]                     I11 -> I12  I14 -> I15
+//             operand registers: du and t_end [B], u0
+//   T(C+KB)   gone = t_map <= t0                                          T12         T15
+//   I(C+KB)   entry - u0, exit - u0 [M], [E]                              I12 -> I15  I15 -> I19
+//             du * t_end [B]                                              I12 -> I13  I15 -> I17
+//   I(C+KB+MUL_LAT)  u0 + du t_end [P]                                    I13 -> I15  I17 -> I20
+//   I(C+KA+KB) (boundary - u0) * (1/du): crossing times [A], [C]          I15 -> I16  I19 -> I21
+//   I(C+KX+KB) floor(position at t_end) (u0 if sx = 0) [X]                I15 -> I16  I20 -> I21
+//   I(C+KE-1) locate's three candidates (the estimate, one cell back, one on; clipped to
+//             [-1, N])                                                    I15         I20
+//   I(C+KE)   locate correction: the candidate the crossing times choose (c0x, c0y registers),
+//             the floor of the end point (ex, ey registers)               I16         I21
+//   T(C+KE+2) start cell and end cell clipped to the map, outside, XOR  (traverse_start_level,
+//   T(C+KE+3) start level k by bit length (leading-zero count)           T18 -> T20  T23 -> T25)
+//   T(C+KE+4) = T(NS-1): gone |= start cell outside the map; cell >> k: out
 // Units: [A] [B] [C] f24_mul, [M] [E] [P] f24_add, [F] [G] f24_from_int, [X] f24_to_index; all
-// but [C] serve two operations 6 stages apart ([P] and [B] the start time while idle).
-// In the code, item stage I(C+k) is iv[C+k] / ss[k], and a name ending in the digit k (bad2_q,
-// dir3_q, ...) is a value of item stage I(C+k); a ray stage Ts is v_q[s] / sl[s].
+// but [C] serve two operations KB stages apart ([P] and [B] the start time while idle).
+// In the code, item stage I(C+k) is iv[C+k] / ss[k]; a ray stage Ts is v_q[s] / sl[s].
 //
 // Tables.  A ray's values do not move from stage to stage.  A phase counter ph_q steps every
-// clock; the item or ray that entered stage 0 at phase e owns entry e of the tables of NT = 16
-// entries (16-deep LUT RAM), so the entry of the ray in Ts, and of the item in Is, is
-// (ph_q - s) mod NT: a ray's u item has the ray's entry, its v item the next one (free, since no
-// ray enters the clock after one).  Per-axis values (u0 / v0, du / dv, 1/du / 1/dv, the
-// directions, locate's estimate) are in item tables, one value wide: one read port at (ph_q - s)
-// gives the u item's value in one clock and the v item's in the next.  The id, invalid, t_map
-// and gone are in ray tables.  An entry is written by the stage that computes the value and read
-// by the later stages that need it, at the latest in stage 15 (T15 / I15), the clock at whose
-// edge the entry is reused; a value a float unit takes as an operand is read one clock early
-// into a register (or passed on in registers from such a read).  Only the valid bits move, one
-// stage per clock (v_q).
+// clock; the item or ray that entered stage 0 at phase e owns entry e of the tables of NT
+// entries (the multiple of 4 from C + KE: 16 at (2, 1), 24 at (3, 2); LUT RAM), so the entry of
+// the ray in Ts, and of the item in Is, is (ph_q - s) mod NT: a ray's u item has the ray's
+// entry, its v item the next one (free, since no ray enters the clock after one).  Per-axis
+// values (u0 / v0, du / dv, 1/du / 1/dv, the directions, locate's estimate) are in item tables,
+// one value wide: one read port at (ph_q - s) gives the u item's value in one clock and the v
+// item's in the next.  The id, invalid, t_map and gone are in ray tables.  An entry is written
+// by the stage that computes the value and read by the later stages that need it, at the latest
+// in stage NT-1 (T(NT-1) / I(NT-1)), the clock at whose edge the entry is reused; a value a
+// float unit takes as an operand is read one clock early into a register (or passed on in
+// registers from such a read).  Only the valid bits move, one stage per clock (v_q).
 //
 // Clock enables: a float unit advances only while an item is in it, and holds its registers
 // otherwise (less switching, and less work for a simulator); likewise a stage computes what it
 // writes into a table only while it holds an item.
 //
 // The start time t0 (0, or max(0, 1 - H_root) for the clip policy) is the same for every ray; it
-// is derived from the configuration on [P] and [B] (ready 4 clocks after a change) while the
-// unit is idle (idle_i), the only time the configuration may change, and held otherwise.
+// is derived from the configuration on [P] and [B] (ready 1 + MUL_LAT + ADD_LAT clocks after a
+// change: 4 at (2, 1), 6 at (3, 2)) while the unit is idle (idle_i), the only time the
+// configuration may change, and held otherwise.
 module traverse_setup
   import f24_pkg::*;
   import traverse_pkg::*;
 #(
-  parameter int unsigned ID_W = 8
+  parameter int unsigned ID_W    = 8,
+  // Latencies of the float units (f24_add / f24_mul LAT): [P] runs at ADD_LAT (2 .. 3) and the
+  // boundary adders [M], [E] at ADD_LAT + 1; [A], [B], [C] at MUL_LAT (1 .. 3).  The stage
+  // schedule follows from them (the header); SETUP_LAT = setup_lat(ADD_LAT, MUL_LAT) clocks.
+  parameter int unsigned ADD_LAT = pipe_pkg::F24_ADD_LAT,
+  parameter int unsigned MUL_LAT = pipe_pkg::F24_MUL_LAT
 ) (
   input  logic            clk_i,
   input  logic            rst_ni,
@@ -124,24 +146,37 @@ module traverse_setup
   output logic [SETUP_BUSY_W-1:0] busy_o  // rays in the pipeline (for slot accounting)
 );
 
-  localparam int unsigned NS = SETUP_LAT;           // stages T0 .. T(NS-1)
-  localparam int unsigned NT = 16;                  // table entries (stages 0 .. 15 own one)
-  localparam int unsigned SW = $clog2(NT);          // table index width
-  localparam int unsigned C  = F24_DIV_LAT - 2;     // start of the paper's schedule (its T0)
-  localparam int unsigned NO = NS - NT;             // output registers (T16 .. T(NS-1))
-  if (NS != C + 15 || NT % 4 != 0 || C + 9 != NT - 1 || F24_DIV_LAT < 3) begin : g_check_lat
-    $error("traverse_setup: stage schedule does not add up to SETUP_LAT");
+  // The schedule (the header's stage table): item stage I(C+k) is "k" below.
+  localparam int unsigned NS  = setup_lat(ADD_LAT, MUL_LAT);  // stages T0 .. T(NS-1)
+  localparam int unsigned LE  = ADD_LAT + 1;                  // [M] [E]: f24_add LAT
+  localparam int unsigned C   = F24_DIV_LAT - ADD_LAT;        // start of the paper's schedule
+  localparam int unsigned KA  = ADD_LAT + 1;                  // [A] first operation (= LE)
+  localparam int unsigned KX  = ADD_LAT + MUL_LAT;            // [X] first operation ([P] done)
+  localparam int unsigned KR  = KX + 1;                       // results of [A] and [X]
+  localparam int unsigned KB  = setup_gap(ADD_LAT, MUL_LAT);  // second operations (2 mod 4)
+  localparam int unsigned KH  = KB - 2;                       // first results, delayed PAD
+  localparam int unsigned PAD = KH - KR;                      // delay to keep KB = 2 mod 4
+  localparam int unsigned KE  = KR + KB;                      // results of the second operations
+  localparam int unsigned NT  = (C + KE + 3) / 4 * 4;         // table entries (stages 0 .. NT-1)
+  localparam int unsigned SW  = $clog2(NT);                   // table index width
+  localparam int unsigned NO  = NS - NT;                      // output registers (T(NT) ..)
+  if (ADD_LAT < 2 || ADD_LAT > 3 || MUL_LAT < 1 || MUL_LAT > 3 || F24_DIV_LAT < ADD_LAT + 2
+      || KB % 4 != 2 || KH < KR || NS != C + KE + 5 || NO < 2 || (NS + 3) / 4 >= 2 ** SETUP_BUSY_W
+      || (ADD_LAT == pipe_pkg::F24_ADD_LAT && MUL_LAT == pipe_pkg::F24_MUL_LAT
+          && NS != SETUP_LAT)) begin : g_check_lat
+    $error("traverse_setup: stage schedule does not add up to setup_lat(ADD_LAT, MUL_LAT)");
   end
 
   typedef logic [SW-1:0] slot_idx_t;
 
   // Ray tables (see the header); the stage that writes each field is in brackets.
   logic [ID_W-1:0] id_q      [NT];  // [in]
-  logic            invalid_q [NT];  // [T(C+4)] NaN / Inf field, negative start, start >= W / H
-  f24_t            t_map_q   [NT];  // [T(C+6)] time of leaving the map's extent
-  logic            gone_q    [NT];  // [T(C+6)] t_map <= t0: never enters
+  logic            invalid_q [NT];  // [T(C+LE+1)] NaN / Inf field, negative start, start >= W / H
+  f24_t            t_map_q   [NT];  // [T(C+KB)] time of leaving the map's extent
+  logic            gone_q    [NT];  // [T(C+KB)] t_map <= t0: never enters
   // Item tables: u0 / v0, du / dv [in: u item with the ray, v item the clock after];
-  // 1 / du, 1 / dv and the directions [I(C+2)]; locate's estimate of the start cell [I(C+4)].
+  // 1 / du, 1 / dv and the directions [I(C+ADD_LAT)]; locate's estimate of the start cell
+  // [I(C+KR)].
   f24_t            p0_q      [NT];
   f24_t            d_q       [NT];
   f24_t            inv_q     [NT];
@@ -150,25 +185,25 @@ module traverse_setup
   // The v item's inputs, held from the ray's clock to its own.
   f24_t            v0_h_q, dv_h_q;
   // Values that live one clock or are held for the v item.
-  logic            bad_q;           // I(C+0) -> I(C+1): NaN / Inf field, negative, >= 2^16
-  logic            bad_u_q;         // T(C+3) -> T(C+4): the u item's checks
-  f24_t            tmx_q;           // T(C+4) -> T(C+5): the u item's time of leaving the map
-  f24_t            t_map6_q;        // T(C+5) -> T(C+6): t_map, for the table and gone
-  sidx_t           c0x_q, c0y_q;    // T(C+10) / T(C+11) -> T(C+12): the corrected start cell
-  logic signed [IDX_W-1:0] ipe_x_q, ipe_y_q;  // T(C+10) / T(C+11) -> T(C+12): floor of the
+  logic            bad_c_q [LE];    // bad_c_q[j]: I(C+j+1): NaN / Inf field, negative, >= 2^16
+  logic            bad_u_q;         // T(C+LE) -> T(C+LE+1): the u item's checks
+  f24_t            tmx_q;           // T(C+KH) -> T(C+KH+1): the u item's time of leaving the map
+  f24_t            t_map_b_q;       // T(C+KB-1) -> T(C+KB): t_map, for the table and gone
+  sidx_t           c0x_q, c0y_q;    // T(C+KE) / T(C+KE+1) -> T(C+KE+2): the corrected start cell
+  logic signed [IDX_W-1:0] ipe_x_q, ipe_y_q;  // T(C+KE) / T(C+KE+1) -> T(C+KE+2): floor of the
                                               // end point
 
   logic [NS-1:0]   v_q;             // v_q[s]: stage Ts holds a ray
   logic [NT-1:C-2] iv;              // iv[s]: item stage Is holds an item (u of Ts, v of T(s+1))
   slot_idx_t       ph_q;            // phase: stage s holds the entry (ph_q - s) mod NT
   slot_idx_t       sl [NT];         // sl[s] = (ph_q - s) mod NT, s = 0 .. NT-1
-  slot_idx_t       ss [10];         // ss[k] = sl[C+k] (I(C+0) .. I(C+9))
+  slot_idx_t       ss [KE];         // ss[k] = sl[C+k] (I(C+0) .. I(C+KE-1))
 
   always_comb begin
     for (int s = 0; s < NT; s++) begin
       sl[s] = (ph_q >= SW'(s)) ? ph_q - SW'(s) : ph_q + SW'(NT - s);
     end
-    for (int k = 0; k < 10; k++) ss[k] = sl[C+k];
+    for (int k = 0; k < KE; k++) ss[k] = sl[C+k];
     for (int s = C - 2; s < NT; s++) iv[s] = v_q[s] || v_q[s+1];
   end
 
@@ -209,105 +244,152 @@ module traverse_setup
   // ---- operand registers and registered table reads -----------------------------------------
   // A float unit takes its operands from registers, never through a table read or a select (a
   // 16:1 read multiplexer in front of a unit's clock would cost its fmax): a value a stage
-  // I(C+k) needs is read from the table one clock earlier, in I(C+k-1), into a register (name
-  // ending in k, _q), passed on from such a register, or forwarded from the value the earlier
-  // stage writes.  Each loads while the stage before the reader holds an item: the u item's
-  // value, then the v item's the clock after.  The operand registers of the shared units load
-  // for their first operation (I(C+k-1)) or their second (I(C+k+5)): never in one clock, as
-  // rays are a multiple of 4 clocks apart.
+  // I(C+k) needs is read from the table one clock earlier, in I(C+k-1), into a register, passed
+  // on from such a register, or forwarded from the value the earlier stage writes.  Each loads
+  // while the stage before the reader holds an item: the u item's value, then the v item's the
+  // clock after.  The operand registers of the shared units load for their first operation
+  // (I(C+k-1)) or their second (I(C+KB+k-1)): never in one clock, as rays are a multiple of 4
+  // clocks apart and KB = 2 mod 4.
   f24_t      div_b_q;                       // I0: du, then dv (from the input)
-  f24_t      pu_q;                          // [M] [E] I(C+0), I(C+6): u0 (and the checks)
-  logic [IDX_W-1:0] kf_q;                   // [F] I(C-1): kb; I(C+5): the entry boundary
-  logic [IDX_W-1:0] kg_q;                   // [G] I(C-1): W / H; I(C+5): the exit boundary
-  f24_t      md_q;                          // [B] I(C+0), I(C+6): du (1 while idle)
-  f24_t      mt_q;                          // [B] I(C+0): t0; I(C+6), I(C+7): t_end (1 idle)
-  f24_t      pa_q;                          // [P] I(C+1), I(C+7): u0 (-H_root while idle)
-  logic      bad2_q, bad3_q;                // I(C+2), I(C+3): bad_q passed on
-  f24_t      mi_q;                          // [A] [C] I(C+3), I(C+9): 1/du
-  logic      mvx_q;                         // [X] I(C+3), I(C+9): the axis moves
-  f24_t      p0x_q;                         // [X] I(C+3), I(C+9): u0
-  dir_t      dir3_q, dir4_q;                // I(C+3), I(C+4)
+  f24_t      pu_q;                          // [M] [E] I(C+0), I(C+KB): u0 (and the checks)
+  logic [IDX_W-1:0] kf_q;                   // [F] I(C-1): kb; I(C+KB-1): the entry boundary
+  logic [IDX_W-1:0] kg_q;                   // [G] I(C-1): W / H; I(C+KB-1): the exit boundary
+  f24_t      md_q;                          // [B] I(C+0), I(C+KB): du (1 while idle)
+  f24_t      mt_q;                          // [B] I(C+0): t0; I(C+KB), I(C+KB+1): t_end (1 idle)
+  f24_t      pa_c_q [MUL_LAT];              // pa_c_q[j]: I(C+j+1), I(C+KB+j+1): u0, passed on
+                                            // to [P] (pa_c_q[MUL_LAT-1]; -H_root while idle)
+  f24_t      mi_q;                          // [A] [C] I(C+KA), I(C+KA+KB): 1/du
+  logic      mvx_q;                         // [X] I(C+KX), I(C+KX+KB): the axis moves
+  f24_t      p0x_q;                         // [X] I(C+KX), I(C+KX+KB): u0
+  dir_t      dir_c_q [KH-ADD_LAT];          // dir_c_q[j]: the direction in I(C+ADD_LAT+1+j)
+  dir_t      dir_k [ADD_LAT:KH];            // dir_k[k]: the direction of the item in I(C+k)
   // locate's candidates: one cell back, the estimate, one cell on (each clipped to [-1, N]).
   typedef struct packed {
     sidx_t back, est, fwd;
   } cand_t;
-  cand_t     loc10_q;                       // I(C+10): computed in I(C+9)
+  cand_t     loc_q;                         // I(C+KE): computed in I(C+KE-1)
   f24_t      d_r;                           // the table read for I(C+0)
   f24_t      d_r2;                          // the table read for I(C-1)
 
   // ---- float units ---------------------------------------------------------------------------
+  // Clock enables: OR of the item stages in which an operation of the unit is under way.
+  logic en_fg, en_me, en_b, en_p, en_a, en_c, en_x;
+  always_comb begin
+    en_fg = iv[C-1] || iv[C+KB-1];
+    en_x  = iv[C+KX] || iv[C+KX+KB];
+    en_me = 1'b0;
+    en_b  = idle_i;
+    en_p  = idle_i;
+    en_a  = 1'b0;
+    en_c  = 1'b0;
+    for (int j = 0; j < LE; j++)      en_me = en_me || iv[C+j] || iv[C+KB+j];
+    for (int j = 0; j < MUL_LAT; j++) begin
+      en_b = en_b || iv[C+j] || iv[C+KB+j];
+      en_a = en_a || iv[C+KA+j] || iv[C+KA+KB+j];
+      en_c = en_c || iv[C+KA+KB+j];
+    end
+    for (int j = 0; j < ADD_LAT; j++) en_p = en_p || iv[C+MUL_LAT+j] || iv[C+KB+MUL_LAT+j];
+  end
+
   // I0: the reciprocal; the divider advances while an item is in it (I0 .. I(F24_DIV_LAT-1),
   // rays in T0 .. T(F24_DIV_LAT)).
   f24_t      inv;
   f24_div #(.LAT(F24_DIV_LAT)) u_inv (.clk_i, .en_i(|v_q[F24_DIV_LAT:0]), .a_i(F24_ONE),
                                       .b_i(div_b_q), .y_o(inv));
 
-  // [F] kb, the entry boundary; [G] W (H), the exit boundary (I(C-1), I(C+5)) as floats
+  // [F] kb, the entry boundary; [G] W (H), the exit boundary (I(C-1), I(C+KB-1)) as floats
   f24_t      kf_f, kg_f;
-  f24_from_int #(.W(IDX_W)) u_kf (.clk_i, .en_i(iv[C-1] || iv[C+5]), .k_i(kf_q), .y_o(kf_f));
-  f24_from_int #(.W(IDX_W)) u_kg (.clk_i, .en_i(iv[C-1] || iv[C+5]), .k_i(kg_q), .y_o(kg_f));
-  // [B] du * t0 (I(C+0)), du * t_end (I(C+6)); 1 * 1 while idle
+  f24_from_int #(.W(IDX_W)) u_kf (.clk_i, .en_i(en_fg), .k_i(kf_q), .y_o(kf_f));
+  f24_from_int #(.W(IDX_W)) u_kg (.clk_i, .en_i(en_fg), .k_i(kg_q), .y_o(kg_f));
+  // [B] du * t0 (I(C+0)), du * t_end (I(C+KB)); 1 * 1 while idle
   f24_t      mb;
-  f24_mul u_mb (.clk_i, .en_i(iv[C] || iv[C+6] || idle_i), .a_i(md_q), .b_i(mt_q), .y_o(mb));
+  f24_mul #(.LAT(MUL_LAT)) u_mb (.clk_i, .en_i(en_b), .a_i(md_q), .b_i(mt_q), .y_o(mb));
 
-  // [P] u0 + du t0 (I(C+1)), u0 + du t_end (I(C+7)); -H_root + 1 while idle
+  // [P] u0 + du t0 (I(C+MUL_LAT)), u0 + du t_end (I(C+KB+MUL_LAT)); -H_root + 1 while idle
   f24_t      ap;
   logic      bad0;                    // this item's NaN / Inf and negative checks
   logic      bad1;                    // all of its checks: bad0, start >= W / H
-  f24_add u_ap (.clk_i, .en_i(iv[C+1] || iv[C+2] || iv[C+7] || iv[C+8] || idle_i), .a_i(pa_q),
-                .b_i(mb), .y_o(ap));
-  // [M] kb - u0 (I(C+0)), entry - u0 (I(C+6)); [E] W - u0 (H - v0) (I(C+0)), exit - u0
-  // (I(C+6)); 3 clocks (f24_add LAT 3: the alignment's sticky bits and the sum in two stages)
+  f24_add #(.LAT(ADD_LAT)) u_ap (.clk_i, .en_i(en_p), .a_i(pa_c_q[MUL_LAT-1]), .b_i(mb),
+                                 .y_o(ap));
+  // [M] kb - u0 (I(C+0)), entry - u0 (I(C+KB)); [E] W - u0 (H - v0) (I(C+0)), exit - u0
+  // (I(C+KB)); ADD_LAT + 1 clocks (one more than [P], for the clock: the alignment's sticky
+  // bits and the sum in two stages at ADD_LAT 2)
   f24_t      am, ae;
-  f24_add #(.LAT(3)) u_am (.clk_i,
-    .en_i(iv[C] || iv[C+1] || iv[C+2] || iv[C+6] || iv[C+7] || iv[C+8]), .a_i(kf_f),
-    .b_i(f24_neg(pu_q)), .y_o(am));
-  f24_add #(.LAT(3)) u_ae (.clk_i,
-    .en_i(iv[C] || iv[C+1] || iv[C+2] || iv[C+6] || iv[C+7] || iv[C+8]), .a_i(kg_f),
-    .b_i(f24_neg(pu_q)), .y_o(ae));
+  f24_add #(.LAT(LE)) u_am (.clk_i, .en_i(en_me), .a_i(kf_f), .b_i(f24_neg(pu_q)), .y_o(am));
+  f24_add #(.LAT(LE)) u_ae (.clk_i, .en_i(en_me), .a_i(kg_f), .b_i(f24_neg(pu_q)), .y_o(ae));
   assign t0_d = cfg_i.policy.clip ? f24_max(F24_POS_ZERO, ap) : F24_POS_ZERO;
   assign bad0 = !f24_is_finite(pu_q) || !f24_is_finite(md_q) || (pu_q[23] && !f24_is_zero(pu_q));
-  // I(C+3): start >= W (H) when W - u0 (H - v0) is negative or +0 (correctly rounded: a
+  // I(C+LE): start >= W (H) when W - u0 (H - v0) is negative or +0 (correctly rounded: a
   // difference of a finite u0 and an integer is never rounded to zero)
-  assign bad1 = bad3_q || ae[23] || (ae[22:0] == '0);
+  assign bad1 = bad_c_q[LE-1] || ae[23] || (ae[22:0] == '0);
 
-  // I(C+2): the direction (written to the table and forwarded to I(C+3))
+  // I(C+ADD_LAT) = I(F24_DIV_LAT): the direction (written to the table and passed on in
+  // dir_c_q)
   f24_t      d2;
   dir_t      dir2;
-  assign d2   = d_q[ss[2]];
+  assign d2   = d_q[ss[ADD_LAT]];
   assign dir2 = '{mv: !f24_is_zero(d2) && f24_is_finite(inv), neg: d2[23]};
+  always_comb begin
+    dir_k[ADD_LAT] = dir2;
+    for (int j = 0; j < KH - ADD_LAT; j++) dir_k[ADD_LAT+1+j] = dir_c_q[j];
+  end
 
-  // [A] (kb - u0) / du (I(C+3)), (entry - u0) / du (I(C+9)); [C] (exit - u0) / du (I(C+9));
-  // [X] floor of the position at t0 (I(C+3)), at t_end (I(C+9)) (u0 if the axis does not move)
+  // [A] (kb - u0) / du (I(C+KA)), (entry - u0) / du (I(C+KA+KB)); [C] (exit - u0) / du
+  // (I(C+KA+KB)); [X] floor of the position at t0 (I(C+KX)), at t_end (I(C+KX+KB)) (u0 if the
+  // axis does not move)
   f24_t      ma, mc;
   logic signed [IDX_W-1:0] ix;
   logic unused_sat_x;
-  f24_mul u_ma (.clk_i, .en_i(iv[C+3] || iv[C+9]), .a_i(am), .b_i(mi_q), .y_o(ma));
-  f24_mul u_mc (.clk_i, .en_i(iv[C+9]), .a_i(ae), .b_i(mi_q), .y_o(mc));
-  f24_to_index #(.W(IDX_W)) u_ix (.clk_i, .en_i(iv[C+3] || iv[C+9]),
-    .a_i(mvx_q ? ap : p0x_q), .idx_o(ix), .sat_o(unused_sat_x));
+  f24_mul #(.LAT(MUL_LAT)) u_ma (.clk_i, .en_i(en_a), .a_i(am), .b_i(mi_q), .y_o(ma));
+  f24_mul #(.LAT(MUL_LAT)) u_mc (.clk_i, .en_i(en_c), .a_i(ae), .b_i(mi_q), .y_o(mc));
+  f24_to_index #(.W(IDX_W)) u_ix (.clk_i, .en_i(en_x), .a_i(mvx_q ? ap : p0x_q), .idx_o(ix),
+                                  .sat_o(unused_sat_x));
 
-  // I(C+4): the item's time of leaving the map (inf on an axis that does not move), the
-  // estimated start cell (level 0) and the integers of its entry / exit boundaries (converted
-  // in I(C+6)); T(C+5), with the v item here and the u item's time held in tmx_q: t_map and
-  // t_end.
-  sidx_t    est4;
-  f24_t     tm4;
-  assign est4 = clip_idx(sidx_t'(ix), -sidx_t'(1), size_s);
-  assign tm4  = dir4_q.mv ? ma : F24_POS_INF;
+  // I(C+KR): the item's time of leaving the map (inf on an axis that does not move) and the
+  // estimated start cell (level 0); I(C+KH), PAD clocks later: its entry / exit boundary
+  // integers (converted in I(C+KB-1)); T(C+KH+1), with the v item there and the u item's time
+  // held in tmx_q: t_map and t_end.
+  sidx_t    est_r, est_h;
+  f24_t     tm_r, tm_h;
+  assign est_r = clip_idx(sidx_t'(ix), -sidx_t'(1), size_s);
+  assign tm_r  = dir_k[KR].mv ? ma : F24_POS_INF;
+  if (PAD > 0) begin : g_pad
+    // KB = 2 mod 4 (the shared units' second operations in the other two clocks of the four):
+    // the first results wait PAD clocks
+    f24_t  tm_d_q  [PAD];
+    sidx_t est_d_q [PAD];
+    always_ff @(posedge clk_i) begin
+      for (int j = 0; j < PAD; j++) begin
+        if (iv[C+KR+j]) begin
+          if (j == 0) begin
+            tm_d_q[j]  <= tm_r;
+            est_d_q[j] <= est_r;
+          end else begin
+            tm_d_q[j]  <= tm_d_q[j-1];
+            est_d_q[j] <= est_d_q[j-1];
+          end
+        end
+      end
+    end
+    assign tm_h  = tm_d_q[PAD-1];
+    assign est_h = est_d_q[PAD-1];
+  end else begin : g_no_pad
+    assign tm_h  = tm_r;
+    assign est_h = est_r;
+  end
   // t_map = min(tx, ty); t_end = t_map unless 1 < t_map.  Whether 1 < t_map is taken from
   // 1 < tx and 1 < ty beside the comparison of tx and ty (the three comparisons side by side,
   // not two in series).
-  f24_ord_t otmx5, otmy5;
-  logic     x_first5;                 // t_map is tx
-  f24_t     t_map5, t_end5;
-  assign otmx5    = f24_ord(tmx_q);
-  assign otmy5    = f24_ord(tm4);
-  assign x_first5 = ord_min_first(otmx5, otmy5);
-  assign t_map5   = x_first5 ? tmx_q : tm4;
-  assign t_end5   = (cfg_i.policy.clip && !(x_first5 ? ord_lt(f24_ord(F24_ONE), otmx5)
-                                                     : ord_lt(f24_ord(F24_ONE), otmy5)))
-                  ? t_map5 : F24_ONE;
+  f24_ord_t otmx, otmy;
+  logic     x_first;                  // t_map is tx
+  f24_t     t_map_c, t_end_c;
+  assign otmx    = f24_ord(tmx_q);
+  assign otmy    = f24_ord(tm_h);
+  assign x_first = ord_min_first(otmx, otmy);
+  assign t_map_c = x_first ? tmx_q : tm_h;
+  assign t_end_c = (cfg_i.policy.clip && !(x_first ? ord_lt(f24_ord(F24_ONE), otmx)
+                                                   : ord_lt(f24_ord(F24_ONE), otmy)))
+                 ? t_map_c : F24_ONE;
 
   // locate's correction: the cell whose crossing times bracket t (cells are half-open in t),
   // from the estimate c: c - s if t is before the estimate's entry, c + s if at or after its
@@ -321,8 +403,8 @@ module traverse_setup
                                     input f24_ord_t t_exit, input f24_ord_t t);
     return ord_lt(t, t_entry) ? c.back : ord_le(t_exit, t) ? c.fwd : c.est;
   endfunction
-  sidx_t c0_10;
-  assign c0_10 = correct(loc10_q, f24_ord(ma), f24_ord(mc), ot0);
+  sidx_t c0_e;
+  assign c0_e = correct(loc_q, f24_ord(ma), f24_ord(mc), ot0);
 
   // The registered reads, the operand registers and the per-item registers.
   assign d_r  = d_q[sl[C-1]];
@@ -333,59 +415,62 @@ module traverse_setup
       dv_h_q <= in_dv_i;
     end
     if (in_valid_i || v_q[0]) div_b_q <= in_valid_i ? in_du_i : dv_h_q;
-    // I(C-1) (first operations) / I(C+5) (second operations); constants for t0 while idle
-    if (iv[C+5]) begin
-      pu_q <= p0_q[ss[5]];
-      md_q <= d_q[ss[5]];
+    // I(C-1) (first operations) / I(C+KB-1) (second operations); constants for t0 while idle
+    if (iv[C+KB-1]) begin
+      pu_q <= p0_q[ss[KB-1]];
+      md_q <= d_q[ss[KB-1]];
     end else if (iv[C-1]) begin
       pu_q <= p0_q[sl[C-1]];
       md_q <= d_r;
     end else if (idle_i) begin
       md_q <= F24_ONE;
     end
-    // I(C-2) / I(C+4): the boundaries for [F] and [G] (the estimate's entry and exit from the
-    // floor this clock)
-    if (iv[C+4]) begin
-      kf_q <= IDX_W'(est4 + sidx_t'(dir4_q.mv && dir4_q.neg));
-      kg_q <= IDX_W'(est4 + sidx_t'(dir4_q.mv && !dir4_q.neg));
+    // I(C-2) / I(C+KH): the boundaries for [F] and [G] (the estimate's entry and exit)
+    if (iv[C+KH]) begin
+      kf_q <= IDX_W'(est_h + sidx_t'(dir_k[KH].mv && dir_k[KH].neg));
+      kg_q <= IDX_W'(est_h + sidx_t'(dir_k[KH].mv && !dir_k[KH].neg));
     end else if (iv[C-2]) begin
       kf_q <= (!d_r2[23] && !f24_is_zero(d_r2)) ? IDX_W'(v_q[C-1] ? cfg_i.height : cfg_i.width)
                                                  : '0;
       kg_q <= IDX_W'(v_q[C-1] ? cfg_i.height : cfg_i.width);
     end
-    // t0 for I(C+0) (loaded in the clocks of I(C-1)), t_end for both items of I(C+6) (loaded
-    // in T(C+5), where the v item's time arrives)
-    if (v_q[C+5])     mt_q <= t_end5;
+    // t0 for I(C+0) (loaded in the clocks of I(C-1)), t_end for both items of I(C+KB) (loaded
+    // in T(C+KB-1), where the v item's time arrives)
+    if (v_q[C+KB-1])  mt_q <= t_end_c;
     else if (iv[C-1]) mt_q <= t0_q;
     else if (idle_i)  mt_q <= F24_ONE;
-    // I(C+0) / I(C+6)
-    if (iv[C] || iv[C+6]) pa_q <= pu_q;
-    else if (idle_i)      pa_q <= f24_neg(h_root);
-    if (iv[C])   bad_q  <= bad0;
-    if (iv[C+1]) bad2_q <= bad_q;
-    if (iv[C+2]) bad3_q <= bad2_q;
-    if (v_q[C+3]) bad_u_q <= bad1;
-    // I(C+2) / I(C+8)
-    if (iv[C+8]) begin
-      mi_q  <= inv_q[ss[8]];
-      mvx_q <= dir_q[ss[8]].mv;
-      p0x_q <= p0_q[ss[8]];
-    end else if (iv[C+2]) begin
-      mi_q  <= inv;
-      mvx_q <= dir2.mv;
-      p0x_q <= p0_q[ss[2]];
+    // I(C+0) .. I(C+MUL_LAT-1) / I(C+KB) .. : u0 passed on to [P]
+    for (int j = 0; j < MUL_LAT; j++) begin
+      if (iv[C+j] || iv[C+KB+j]) pa_c_q[j] <= (j == 0) ? pu_q : pa_c_q[(j == 0) ? 0 : j-1];
+      else if (idle_i && j == MUL_LAT - 1) pa_c_q[j] <= f24_neg(h_root);
     end
-    if (iv[C+2]) dir3_q <= dir2;
-    if (iv[C+3]) dir4_q <= dir3_q;
-    if (v_q[C+4]) tmx_q <= tm4;
-    if (v_q[C+5]) t_map6_q <= t_map5;
-    if (iv[C+9]) loc10_q <= candidates(est_q[ss[9]], dir_q[ss[9]], -sidx_t'(1), size_s);
-    if (v_q[C+10]) begin
-      c0x_q   <= c0_10;
+    for (int j = 0; j < LE; j++) begin
+      if (iv[C+j]) bad_c_q[j] <= (j == 0) ? bad0 : bad_c_q[(j == 0) ? 0 : j-1];
+    end
+    if (v_q[C+LE]) bad_u_q <= bad1;
+    // I(C+KA-1) / I(C+KA+KB-1): 1/du for [A] and [C] (from the divider the first time)
+    if (iv[C+KA+KB-1])  mi_q <= inv_q[ss[KA+KB-1]];
+    else if (iv[C+KA-1]) mi_q <= inv;
+    // I(C+KX-1) / I(C+KX+KB-1): the operands of [X]
+    if (iv[C+KX+KB-1]) begin
+      mvx_q <= dir_q[ss[KX+KB-1]].mv;
+      p0x_q <= p0_q[ss[KX+KB-1]];
+    end else if (iv[C+KX-1]) begin
+      mvx_q <= dir_k[KX-1].mv;
+      p0x_q <= p0_q[ss[KX-1]];
+    end
+    for (int j = 0; j < KH - ADD_LAT; j++) begin
+      if (iv[C+ADD_LAT+j]) dir_c_q[j] <= dir_k[ADD_LAT+j];
+    end
+    if (v_q[C+KH]) tmx_q <= tm_h;
+    if (v_q[C+KB-1]) t_map_b_q <= t_map_c;
+    if (iv[C+KE-1]) loc_q <= candidates(est_q[ss[KE-1]], dir_q[ss[KE-1]], -sidx_t'(1), size_s);
+    if (v_q[C+KE]) begin
+      c0x_q   <= c0_e;
       ipe_x_q <= ix;
     end
-    if (v_q[C+11]) begin
-      c0y_q   <= c0_10;
+    if (v_q[C+KE+1]) begin
+      c0y_q   <= c0_e;
       ipe_y_q <= ix;
     end
   end
@@ -411,23 +496,23 @@ module traverse_setup
       d_q[sl[NT-1]]  <= in_valid_i ? in_du_i : dv_h_q;
     end
     // A stage computes and writes only while it holds an item.
-    // T(C+4): invalid = the u item's checks or the v item's (the v item in I(C+3))
-    if (v_q[C+4]) invalid_q[sl[C+4]] <= bad_u_q || bad1;
-    // I(C+2) -> I(C+3): reciprocal and direction
-    if (iv[C+2]) begin
-      inv_q[ss[2]] <= inv;
-      dir_q[ss[2]] <= dir2;
+    // T(C+LE+1): invalid = the u item's checks or the v item's (the v item in I(C+LE))
+    if (v_q[C+LE+1]) invalid_q[sl[C+LE+1]] <= bad_u_q || bad1;
+    // I(C+ADD_LAT) -> I(C+ADD_LAT+1): reciprocal and direction
+    if (iv[C+ADD_LAT]) begin
+      inv_q[ss[ADD_LAT]] <= inv;
+      dir_q[ss[ADD_LAT]] <= dir2;
     end
-    // I(C+4) -> I(C+5): the start cell's estimate
-    if (iv[C+4]) est_q[ss[4]] <= est4;
-    // T(C+6): time of leaving the map; never enters
-    if (v_q[C+6]) begin
-      t_map_q[sl[C+6]] <= t_map6_q;
-      gone_q[sl[C+6]]  <= ord_le(f24_ord(t_map6_q), ot0);
+    // I(C+KR) -> I(C+KR+1): the start cell's estimate
+    if (iv[C+KR]) est_q[ss[KR]] <= est_r;
+    // T(C+KB): time of leaving the map; never enters
+    if (v_q[C+KB]) begin
+      t_map_q[sl[C+KB]] <= t_map_b_q;
+      gone_q[sl[C+KB]]  <= ord_le(f24_ord(t_map_b_q), ot0);
     end
   end
 
-  // ---- T(C+12) .. T(C+14) = T(NS-1): start level (2 clocks), start cell, out -----------------
+  // ---- T(C+KE+2) .. T(C+KE+4) = T(NS-1): start level (2 clocks), start cell, out -------------
   logic              outside;
   logic [LVL_W-1:0]  k;
   logic [CELL_W-1:0] cx, cy;
@@ -448,35 +533,41 @@ module traverse_setup
     .cy_o         (cy)
   );
 
-  // The ray's table fields for the output: the ray's and its u item's read in T(NT-1) = T15
-  // (the last stage that owns an entry), its v item's in I15 (T16), and carried to T(NS-1) in
-  // registers.
+  // The ray's table fields for the output: the ray's and its u item's read in T(NT-1) (the last
+  // stage that owns an entry), its v item's in I(NT-1) (T(NT)), and carried to T(NS-1) in
+  // registers (the id in out_id_q beside them).
   typedef struct packed {
     f24_t p0, d, inv;
     dir_t dir;
   } item_fields_t;
   typedef struct packed {
-    logic [ID_W-1:0] id;
     item_fields_t    u, v;
     f24_t            t_map;
     logic            invalid, gone;
   } out_fields_t;
-  item_fields_t it_r;       // the item in I15
-  out_fields_t  out_q [NO]; // the fields of the ray in T16 (v item not yet) .. T(NS-1)
+  item_fields_t    it_r;            // the item in I(NT-1)
+  out_fields_t     out_q    [NO];   // the fields of the ray in T(NT) (v item not yet) .. T(NS-1)
+  logic [ID_W-1:0] out_id_q [NO];   // its id
   assign it_r = '{p0: p0_q[sl[NT-1]], d: d_q[sl[NT-1]], inv: inv_q[sl[NT-1]],
                   dir: dir_q[sl[NT-1]]};
   always_ff @(posedge clk_i) begin
     if (v_q[NT-1]) begin
-      out_q[0].id      <= id_q[sl[NT-1]];
+      out_id_q[0]      <= id_q[sl[NT-1]];
       out_q[0].u       <= it_r;
       out_q[0].t_map   <= t_map_q[sl[NT-1]];
       out_q[0].invalid <= invalid_q[sl[NT-1]];
       out_q[0].gone    <= gone_q[sl[NT-1]];
     end
-    if (v_q[NT]) out_q[1] <= '{id: out_q[0].id, u: out_q[0].u, v: it_r, t_map: out_q[0].t_map,
-                               invalid: out_q[0].invalid, gone: out_q[0].gone};
+    if (v_q[NT]) begin
+      out_id_q[1] <= out_id_q[0];
+      out_q[1]    <= '{u: out_q[0].u, v: it_r, t_map: out_q[0].t_map,
+                       invalid: out_q[0].invalid, gone: out_q[0].gone};
+    end
     for (int o = 2; o < NO; o++) begin
-      if (v_q[NT+o-1]) out_q[o] <= out_q[o-1];
+      if (v_q[NT+o-1]) begin
+        out_id_q[o] <= out_id_q[o-1];
+        out_q[o]    <= out_q[o-1];
+      end
     end
   end
 
@@ -489,7 +580,7 @@ module traverse_setup
                        hit: 1'b0, invalid: out_q[NO-1].invalid, capped: 1'b0, err: 1'b0};
 
   assign out_valid_o = v_q[NS-1];
-  assign out_id_o    = out_q[NO-1].id;
+  assign out_id_o    = out_id_q[NO-1];
   assign busy_o      = SETUP_BUSY_W'($countones(v_q));
 
   // The simulation checks are in traverse_setup_assert.sv (bound into every instance).

@@ -11,31 +11,41 @@
 //   ray_phase_of_stage  a ray in stage Ts only at phase s mod 4 (the induction invariant of
 //                   ray_spacing);
 //   setup_id_order  a tracked ray (formal: any ray, picked freely; simulation: every ray that
-//                   enters while none is tracked) comes out SETUP_LAT clocks after it entered,
+//                   enters while none is tracked) comes out NS clocks after it entered (NS =
+//                   setup_lat(ADD_LAT, MUL_LAT), traverse_setup's latency),
 //                   with its id: the pipeline neither loses, duplicates nor swaps ids;
 //   trk_in_setup    while inside, the tracked ray's stage holds a ray and its id (the table
-//                   entry of stages T0 - T15, the output registers of T16 - T20): the invariant
-//                   that makes the induction step hold.
+//                   entry of stages T0 - T(NT-1), the output registers of T(NT) - T(NS-1)): the
+//                   invariant that makes the induction step hold.
 // Data check (simulation; formal/traverse_setup.sby cuts the float datapath and removes it):
 //   t0_same_as_units  the start time (1 - H_root on the shared adder and multiplier, H_root by
 //                   a function) is the word of f24_from_unorm and f24_add(1, -H_root) beside
-//                   it, whenever a ray is inside after 4 idle clocks.
+//                   it (an f24_add of ADD_LAT, as the shared one), whenever a ray is inside after
+//                   1 + MUL_LAT + ADD_LAT idle clocks (the operand registers, [B], [P]).
 `ifndef SYNTHESIS
 module traverse_setup_assert
   import f24_pkg::*;
   import traverse_pkg::*;
 #(
-  parameter int unsigned ID_W = 16   // traverse_setup's ID_W
+  parameter int unsigned ID_W    = 16,  // traverse_setup's ID_W
+  parameter int unsigned ADD_LAT = 2,   // traverse_setup's ADD_LAT, MUL_LAT
+  parameter int unsigned MUL_LAT = 1,
+  parameter int unsigned NS      = 21,  // its stages (setup_lat(ADD_LAT, MUL_LAT))
+  parameter int unsigned NT      = 16,  // its table entries (stages T0 .. T(NT-1))
+  parameter int unsigned NO      = 5,   // its output registers (stages T(NT) .. T(NS-1))
+  localparam int unsigned SW     = $clog2(NT)
 ) (
   input logic                clk_i,
   input logic                rst_ni,
   input logic                in_ready_i,       // traverse_setup's in_ready_o
   input logic                in_valid_i,
   input logic [ID_W-1:0]     in_id_i,
-  input logic [SETUP_LAT-1:0] v_i,        // traverse_setup's v_q: stage Ts holds a ray
+  input logic [NS-1:0]       v_i,          // traverse_setup's v_q: stage Ts holds a ray
   input logic                out_valid_i,
   input logic [ID_W-1:0]     out_id_i,
-  input logic [ID_W-1:0]     stage_id_i [SETUP_LAT], // the id each stage holds (see the bind)
+  input logic [ID_W-1:0]     id_tab_i [NT],  // its id table (id_q)
+  input logic [SW-1:0]       sl_i [NT],      // the table entry of stage Ts (sl)
+  input logic [ID_W-1:0]     out_id_reg_i [NO],  // the ids of T(NT) .. T(NS-1) (out_id_q)
   input logic [1:0]          ph_i,         // traverse_setup's phase (ph_q mod 4)
   input logic                idle_i,
   input logic [CODE_W-1:0]   root_code_i,  // cfg_i.root_code, .bits16, .policy.clip
@@ -44,8 +54,17 @@ module traverse_setup_assert
   input f24_t                t0_i          // t0_q
 );
 
-  localparam int unsigned NS = SETUP_LAT;
   localparam int unsigned AW = $clog2(NS);
+  localparam int unsigned T0_IDLE = 1 + MUL_LAT + ADD_LAT;  // idle clocks that make t0
+  localparam int unsigned IW = $clog2(T0_IDLE + 1);
+
+  // The id each stage holds: T0 - T(NT-1) their entry of the id table, the rest the output
+  // registers.
+  logic [ID_W-1:0] stage_id [NS];
+  always_comb begin
+    for (int s = 0; s < NT; s++) stage_id[s] = id_tab_i[sl_i[s]];
+    for (int o = 0; o < NO; o++) stage_id[NT+o] = out_id_reg_i[o];
+  end
 
   // pick: which ray to track.  Formal leaves it undriven (a free input: every ray may be the
   // tracked one); simulation tracks whenever it can.
@@ -93,7 +112,7 @@ module traverse_setup_assert
         else $error("traverse_setup: ray id %0d due out, out_valid %0d id %0d", trk_id_q,
                     out_valid_i, out_id_i);
       trk_in_setup: assert (!trk_q || (32'(trk_s_q) < NS && v_i[trk_s_q]
-                                       && stage_id_i[trk_s_q] == trk_id_q))
+                                       && stage_id[trk_s_q] == trk_id_q))
         else $error("traverse_setup: the tracked ray (id %0d) is not at its stage %0d", trk_id_q,
                     trk_s_q);
     end
@@ -101,20 +120,20 @@ module traverse_setup_assert
 
   // The reference start time: the units the first mode used before sharing.
   f24_t h8, h16, ref_t0;
-  logic [2:0] idle_n_q;   // idle clocks in a row, up to 4
-  logic       t0_chk_q;   // the unit was idle 4 clocks before the ray now inside
+  logic [IW-1:0] idle_n_q;   // idle clocks in a row, up to T0_IDLE
+  logic          t0_chk_q;   // the unit was idle T0_IDLE clocks before the ray now inside
   f24_from_unorm #(.W(8))  u_ref_h8  (.clk_i, .en_i(idle_i), .k_i(root_code_i[7:0]), .y_o(h8));
   f24_from_unorm #(.W(16)) u_ref_h16 (.clk_i, .en_i(idle_i), .k_i(root_code_i), .y_o(h16));
-  f24_add u_ref_plane (.clk_i, .en_i(idle_i), .a_i(F24_ONE), .b_i(f24_neg(bits16_i ? h16 : h8)),
-                       .y_o(ref_t0));
+  f24_add #(.LAT(ADD_LAT)) u_ref_plane (.clk_i, .en_i(idle_i), .a_i(F24_ONE),
+                                        .b_i(f24_neg(bits16_i ? h16 : h8)), .y_o(ref_t0));
   f24_t ref_t0_q;
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       idle_n_q <= '0;
       t0_chk_q <= 1'b0;
     end else begin
-      idle_n_q <= !idle_i ? '0 : (idle_n_q == 3'd4) ? idle_n_q : idle_n_q + 3'd1;
-      if (idle_i) t0_chk_q <= (idle_n_q == 3'd4);
+      idle_n_q <= !idle_i ? '0 : (idle_n_q == IW'(T0_IDLE)) ? idle_n_q : idle_n_q + IW'(1);
+      if (idle_i) t0_chk_q <= (idle_n_q == IW'(T0_IDLE));
     end
     if (idle_i) ref_t0_q <= clip_i ? f24_max(F24_POS_ZERO, ref_t0) : F24_POS_ZERO;
   end
@@ -129,15 +148,12 @@ module traverse_setup_assert
 
 endmodule
 
-// stage_id_i: stages T0 - T15 read their entry of the id table (sl[s]: the stage's entry),
-// T16 - T20 the output registers out_q[0] - out_q[4].
-bind traverse_setup traverse_setup_assert #(.ID_W(ID_W)) u_assert (
+// The parameters and the id path of the instance (its localparams NS, NT, NO: the schedule).
+bind traverse_setup traverse_setup_assert #(.ID_W(ID_W), .ADD_LAT(ADD_LAT), .MUL_LAT(MUL_LAT),
+                                            .NS(NS), .NT(NT), .NO(NO)) u_assert (
   .clk_i, .rst_ni, .ph_i(ph_q[1:0]), .in_ready_i(in_ready_o), .in_valid_i, .in_id_i, .v_i(v_q),
-  .out_valid_i(out_valid_o), .out_id_i(out_id_o),
-  .stage_id_i('{id_q[sl[0]], id_q[sl[1]], id_q[sl[2]], id_q[sl[3]], id_q[sl[4]], id_q[sl[5]],
-                id_q[sl[6]], id_q[sl[7]], id_q[sl[8]], id_q[sl[9]], id_q[sl[10]], id_q[sl[11]],
-                id_q[sl[12]], id_q[sl[13]], id_q[sl[14]], id_q[sl[15]], out_q[0].id,
-                out_q[1].id, out_q[2].id, out_q[3].id, out_q[4].id}),
+  .out_valid_i(out_valid_o), .out_id_i(out_id_o), .id_tab_i(id_q), .sl_i(sl),
+  .out_id_reg_i(out_id_q),
   .idle_i, .root_code_i(cfg_i.root_code), .bits16_i(cfg_i.bits16), .clip_i(cfg_i.policy.clip),
   .t0_i(t0_q));
 `endif
