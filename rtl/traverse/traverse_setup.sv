@@ -92,16 +92,16 @@
 //   T(C+KE+4) = T(NS-1): gone |= start cell outside the map; cell >> k: out
 // Units: [A] [B] [C] f24_mul, [M] [E] [P] f24_add, [F] [G] f24_from_int, [X] f24_to_index; all
 // but [C] serve two operations KB stages apart ([P] and [B] the start time while idle).
-// In the code, item stage I(C+k) is iv[C+k] / ss[k]; a ray stage Ts is v_q[s] / sl[s].
+// In the code, item stage I(C+k) is iv[C+k] / ss[k]; a ray stage Ts is v_q[s] / sl_q[s].
 //
 // Tables.  A ray's values do not move from stage to stage.  A phase counter ph_q steps every
-// clock; the item or ray that entered stage 0 at phase e owns entry e of the tables of NT
-// entries (the multiple of 4 from C + KE: 16 at (2, 1), 24 at (3, 2); LUT RAM), so the entry of
-// the ray in Ts, and of the item in Is, is (ph_q - s) mod NT: a ray's u item has the ray's
-// entry, its v item the next one (free, since no ray enters the clock after one).  Per-axis
-// values (u0 / v0, du / dv, 1/du / 1/dv, the directions, locate's estimate) are in item tables,
-// one value wide: one read port at (ph_q - s) gives the u item's value in one clock and the v
-// item's in the next.  The id, invalid, t_map and gone are in ray tables.  An entry is written
+// clock (mod NT; the entry of each stage below is a counter of its own, sl_q); the item or ray
+// that entered stage 0 at phase e owns entry e of the tables of NT entries (the multiple of 4
+// from C + KE: 16 at (2, 1), 24 at (3, 2); LUT RAM), so the entry of the ray in Ts, and of the
+// item in Is, is (ph_q - s) mod NT: a ray's u item has the ray's entry, its v item the next one
+// (free, since no ray enters the clock after one).  Per-axis values (u0 / v0, du / dv,
+// 1/du / 1/dv, the directions, locate's estimate) are in item tables, one value wide: one read
+// port at (ph_q - s) gives the u item's value in one clock and the v item's in the next.  The id, invalid, t_map and gone are in ray tables.  An entry is written
 // by the stage that computes the value and read by the later stages that need it, at the latest
 // in stage NT-1 (T(NT-1) / I(NT-1)), the clock at whose edge the entry is reused; a value a
 // float unit takes as an operand is read one clock early into a register (or passed on in
@@ -196,14 +196,13 @@ module traverse_setup
   logic [NS-1:0]   v_q;             // v_q[s]: stage Ts holds a ray
   logic [NT-1:C-2] iv;              // iv[s]: item stage Is holds an item (u of Ts, v of T(s+1))
   slot_idx_t       ph_q;            // phase: stage s holds the entry (ph_q - s) mod NT
-  slot_idx_t       sl [NT];         // sl[s] = (ph_q - s) mod NT, s = 0 .. NT-1
-  slot_idx_t       ss [KE];         // ss[k] = sl[C+k] (I(C+0) .. I(C+KE-1))
+  slot_idx_t       sl_q [NT];       // sl_q[s] = (ph_q - s) mod NT, s = 0 .. NT-1: counters of
+                                    // their own (sl_q[0] = ph_q), so that a table's read address
+                                    // is a register, not a subtraction mod NT
+  slot_idx_t       ss [KE];         // ss[k] = sl_q[C+k] (I(C+0) .. I(C+KE-1))
 
   always_comb begin
-    for (int s = 0; s < NT; s++) begin
-      sl[s] = (ph_q >= SW'(s)) ? ph_q - SW'(s) : ph_q + SW'(NT - s);
-    end
-    for (int k = 0; k < KE; k++) ss[k] = sl[C+k];
+    for (int k = 0; k < KE; k++) ss[k] = sl_q[C+k];
     for (int s = C - 2; s < NT; s++) iv[s] = v_q[s] || v_q[s+1];
   end
 
@@ -407,8 +406,8 @@ module traverse_setup
   assign c0_e = correct(loc_q, f24_ord(ma), f24_ord(mc), ot0);
 
   // The registered reads, the operand registers and the per-item registers.
-  assign d_r  = d_q[sl[C-1]];
-  assign d_r2 = d_q[sl[C-2]];
+  assign d_r  = d_q[sl_q[C-1]];
+  assign d_r2 = d_q[sl_q[C-2]];
   always_ff @(posedge clk_i) begin
     if (in_valid_i) begin
       v0_h_q <= in_v0_i;
@@ -420,7 +419,7 @@ module traverse_setup
       pu_q <= p0_q[ss[KB-1]];
       md_q <= d_q[ss[KB-1]];
     end else if (iv[C-1]) begin
-      pu_q <= p0_q[sl[C-1]];
+      pu_q <= p0_q[sl_q[C-1]];
       md_q <= d_r;
     end else if (idle_i) begin
       md_q <= F24_ONE;
@@ -478,26 +477,27 @@ module traverse_setup
   // ---- pipeline and tables -------------------------------------------------------------------
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      v_q  <= '0;
-      ph_q <= '0;
+      v_q <= '0;
+      for (int s = 0; s < NT; s++) sl_q[s] <= SW'((NT - s) % NT);   // ph_q = 0
     end else begin
-      v_q  <= {v_q[NS-2:0], in_valid_i};
-      ph_q <= (ph_q == SW'(NT - 1)) ? '0 : ph_q + SW'(1);
+      v_q <= {v_q[NS-2:0], in_valid_i};
+      for (int s = 0; s < NT; s++) sl_q[s] <= (sl_q[s] == SW'(NT - 1)) ? '0 : sl_q[s] + SW'(1);
     end
   end
+  assign ph_q = sl_q[0];
 
   always_ff @(posedge clk_i) begin
     // in: the ray and its u item take the entry of stage NT-1, whose last reads are at this
     // clock's edge (that entry is stage 0's next clock); the v item the next entry, the clock
     // after, from the held inputs
-    if (in_valid_i) id_q[sl[NT-1]] <= in_id_i;
+    if (in_valid_i) id_q[sl_q[NT-1]] <= in_id_i;
     if (in_valid_i || v_q[0]) begin
-      p0_q[sl[NT-1]] <= in_valid_i ? in_u0_i : v0_h_q;
-      d_q[sl[NT-1]]  <= in_valid_i ? in_du_i : dv_h_q;
+      p0_q[sl_q[NT-1]] <= in_valid_i ? in_u0_i : v0_h_q;
+      d_q[sl_q[NT-1]]  <= in_valid_i ? in_du_i : dv_h_q;
     end
     // A stage computes and writes only while it holds an item.
     // T(C+LE+1): invalid = the u item's checks or the v item's (the v item in I(C+LE))
-    if (v_q[C+LE+1]) invalid_q[sl[C+LE+1]] <= bad_u_q || bad1;
+    if (v_q[C+LE+1]) invalid_q[sl_q[C+LE+1]] <= bad_u_q || bad1;
     // I(C+ADD_LAT) -> I(C+ADD_LAT+1): reciprocal and direction
     if (iv[C+ADD_LAT]) begin
       inv_q[ss[ADD_LAT]] <= inv;
@@ -507,8 +507,8 @@ module traverse_setup
     if (iv[C+KR]) est_q[ss[KR]] <= est_r;
     // T(C+KB): time of leaving the map; never enters
     if (v_q[C+KB]) begin
-      t_map_q[sl[C+KB]] <= t_map_b_q;
-      gone_q[sl[C+KB]]  <= ord_le(f24_ord(t_map_b_q), ot0);
+      t_map_q[sl_q[C+KB]] <= t_map_b_q;
+      gone_q[sl_q[C+KB]]  <= ord_le(f24_ord(t_map_b_q), ot0);
     end
   end
 
@@ -548,15 +548,15 @@ module traverse_setup
   item_fields_t    it_r;            // the item in I(NT-1)
   out_fields_t     out_q    [NO];   // the fields of the ray in T(NT) (v item not yet) .. T(NS-1)
   logic [ID_W-1:0] out_id_q [NO];   // its id
-  assign it_r = '{p0: p0_q[sl[NT-1]], d: d_q[sl[NT-1]], inv: inv_q[sl[NT-1]],
-                  dir: dir_q[sl[NT-1]]};
+  assign it_r = '{p0: p0_q[sl_q[NT-1]], d: d_q[sl_q[NT-1]], inv: inv_q[sl_q[NT-1]],
+                  dir: dir_q[sl_q[NT-1]]};
   always_ff @(posedge clk_i) begin
     if (v_q[NT-1]) begin
-      out_id_q[0]      <= id_q[sl[NT-1]];
+      out_id_q[0]      <= id_q[sl_q[NT-1]];
       out_q[0].u       <= it_r;
-      out_q[0].t_map   <= t_map_q[sl[NT-1]];
-      out_q[0].invalid <= invalid_q[sl[NT-1]];
-      out_q[0].gone    <= gone_q[sl[NT-1]];
+      out_q[0].t_map   <= t_map_q[sl_q[NT-1]];
+      out_q[0].invalid <= invalid_q[sl_q[NT-1]];
+      out_q[0].gone    <= gone_q[sl_q[NT-1]];
     end
     if (v_q[NT]) begin
       out_id_q[1] <= out_id_q[0];

@@ -12,6 +12,7 @@
 //                   ray_spacing);
 //   phase_in_range  the phase counter stays below NT (the table entries; NT is not a power of
 //                   two at every depth: 24 at (3, 2)), an induction invariant of trk_in_setup;
+//   stage_entries   each stage's table entry (a counter of its own) is (phase - s) mod NT;
 //   setup_id_order  a tracked ray (formal: any ray, picked freely; simulation: every ray that
 //                   enters while none is tracked) comes out NS clocks after it entered (NS =
 //                   setup_lat(ADD_LAT, MUL_LAT), traverse_setup's latency),
@@ -46,10 +47,10 @@ module traverse_setup_assert
   input logic                out_valid_i,
   input logic [ID_W-1:0]     out_id_i,
   input logic [ID_W-1:0]     id_tab_i [NT],  // its id table (id_q)
-  input logic [SW-1:0]       sl_i [NT],      // the table entry of stage Ts (sl)
+  input logic [SW-1:0]       sl_i [NT],      // the table entry of stage Ts (sl_q)
   input logic [ID_W-1:0]     out_id_reg_i [NO],  // the ids of T(NT) .. T(NS-1) (out_id_q)
   input logic [1:0]          ph_i,         // traverse_setup's phase (ph_q mod 4)
-  input logic [SW-1:0]       ph_full_i,    // ph_q (0 .. NT-1)
+  input logic [SW-1:0]       ph_full_i,    // ph_q (0 .. NT-1; = sl_q[0])
   input logic                idle_i,
   input logic [CODE_W-1:0]   root_code_i,  // cfg_i.root_code, .bits16, .policy.clip
   input logic                bits16_i,
@@ -94,6 +95,15 @@ module traverse_setup_assert
     end
   end
 
+  // Stage s's table entry (a counter of its own) is (phase - s) mod NT.
+  logic sl_ok;
+  always_comb begin
+    sl_ok = 1'b1;
+    for (int s = 0; s < NT; s++) begin
+      if (32'(sl_i[s]) != (32'(ph_full_i) + NT - s) % NT) sl_ok = 1'b0;
+    end
+  end
+
   // A ray in stage Ts: the phase is s mod 4 (the invariant that makes ray_spacing inductive).
   logic phase_ok;
   always_comb begin
@@ -113,6 +123,8 @@ module traverse_setup_assert
         else $error("traverse_setup: a ray in a stage off the phase");
       phase_in_range: assert (32'(ph_full_i) < NT)
         else $error("traverse_setup: phase %0d outside the %0d table entries", ph_full_i, NT);
+      stage_entries: assert (sl_ok)
+        else $error("traverse_setup: a stage's table entry is not (phase - stage) mod NT");
       setup_id_order: assert (!trk_out || (out_valid_i && out_id_i == trk_id_q))
         else $error("traverse_setup: ray id %0d due out, out_valid %0d id %0d", trk_id_q,
                     out_valid_i, out_id_i);
@@ -158,7 +170,7 @@ bind traverse_setup traverse_setup_assert #(.ID_W(ID_W), .ADD_LAT(ADD_LAT), .MUL
                                             .NS(NS), .NT(NT), .NO(NO)) u_assert (
   .clk_i, .rst_ni, .ph_i(ph_q[1:0]), .ph_full_i(ph_q), .in_ready_i(in_ready_o), .in_valid_i,
   .in_id_i, .v_i(v_q),
-  .out_valid_i(out_valid_o), .out_id_i(out_id_o), .id_tab_i(id_q), .sl_i(sl),
+  .out_valid_i(out_valid_o), .out_id_i(out_id_o), .id_tab_i(id_q), .sl_i(sl_q),
   .out_id_reg_i(out_id_q),
   .idle_i, .root_code_i(cfg_i.root_code), .bits16_i(cfg_i.bits16), .clip_i(cfg_i.policy.clip),
   .t0_i(t0_q));
