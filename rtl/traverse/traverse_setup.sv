@@ -38,7 +38,7 @@
 // register that a select loads one clock before the unit reads it (kf_q, kg_q, pu_q, md_q, mt_q,
 // the last of pa_c_q, mi_q, mvx_q / p0x_q), never a select in front of a unit.  The boundary
 // adders [M], [E] take ADD_LAT + 1 clocks (one more than [P], for the clock), their conversions
-// a clock earlier.
+// CL clocks (f24_from_int LAT 2 where the schedule has a spare clock) before them.
 //
 // Stage schedule, from the units' latencies (localparams of the same names; T0 = the clock after
 // in_valid_i; per-axis rows give the u item's stages, the v item's are one later; "a -> b": a
@@ -53,13 +53,15 @@
 //   KB = setup_gap(ADD_LAT, MUL_LAT): the second operations, KR + 2 rounded up to 2 mod 4
 //                                                                          6 / 10
 //   KH = KB - 2               the first results, PAD = KH - KR clocks later 4 / 8 (PAD 0 / 2)
+//   CL = PAD > 0 ? 2 : 1      [F], [G]: f24_from_int LAT (a spare clock)   1 / 2
+//   KF = KB - 1 - CL          the estimate, PAD_E = KF - KR clocks later    4 / 7 (PAD_E 0 / 1)
 //   KE = KR + KB              the second results                           10 / 16
 //                                                                          (2, 1)      (3, 2)
 //   I0        1/du (1/dv)                     f24_div                     I0 -> I8    I0 -> I8
-//   I(C-2)    operand registers: the exit boundary of the map kb = du > 0 ? W : 0 [F] and W [G]
-//             (H, H for v)                                                I4          I3
-//   I(C-1)    kb, W as floats [F], [G] f24_from_int                       I5 -> I6    I4 -> I5
-//             operand registers: du and t0 [B], u0
+//   I(C-1-CL) operand registers: the exit boundary of the map kb = du > 0 ? W : 0 [F] and W [G]
+//             (H, H for v)                                                I4          I2
+//   I(C-CL)   kb, W as floats [F], [G] f24_from_int LAT CL                I5 -> I6    I3 -> I5
+//   I(C-1)    operand registers: du and t0 [B], u0                        I5          I4
 //   I(C)      checks: NaN / Inf field, negative start                     I6          I5
 //             kb - u0, W - u0 [M], [E] f24_add LAT ADD_LAT + 1            I6 -> I9    I5 -> I9
 //             du * t0 [B] f24_mul LAT MUL_LAT                             I6 -> I7    I5 -> I7
@@ -71,12 +73,13 @@
 //   I(C+KA)   (kb - u0) * (1/du) [A] f24_mul                              I9 -> I10   I9 -> I11
 //   I(C+KX)   floor(position at t0) (u0 if sx = 0) [X] f24_to_index       I9 -> I10   I10 -> I11
 //   I(C+KR)   tmx (inf if sx = 0); locate estimate c = clip(floor, -1, N) I10         I11
-//   I(C+KH)   both PAD clocks later: tmx held a clock; c's entry / exit boundary integers
-//             (operand registers of [F], [G])                             I10         I13
+//   I(C+KF)   c, PAD_E clocks later: its entry / exit boundary integers (operand registers of
+//             [F], [G])                                                   I10         I12
+//   I(C+KH)   tmx, PAD clocks later, held a clock                         I10         I13
 //   T(C+KH+1) (v item in I(C+KH)): t_map = min(tmx, ty); t_end = clip ? min(1, t_map) : 1
 //                                                                         T11         T14
-//   I(C+KB-1) entry, exit boundary as floats [F], [G]                     I11 -> I12  I14 -> I15
-//             operand registers: du and t_end [B], u0
+//   I(C+KB-CL) entry, exit boundary as floats [F], [G]                    I11 -> I12  I13 -> I15
+//   I(C+KB-1) operand registers: du and t_end [B], u0                     I11         I14
 //   T(C+KB)   gone = t_map <= t0                                          T12         T15
 //   I(C+KB)   entry - u0, exit - u0 [M], [E]                              I12 -> I15  I15 -> I19
 //             du * t_end [B]                                              I12 -> I13  I15 -> I17
@@ -101,11 +104,12 @@
 // item in Is, is (ph_q - s) mod NT: a ray's u item has the ray's entry, its v item the next one
 // (free, since no ray enters the clock after one).  Per-axis values (u0 / v0, du / dv,
 // 1/du / 1/dv, the directions, locate's estimate) are in item tables, one value wide: one read
-// port at (ph_q - s) gives the u item's value in one clock and the v item's in the next.  The id, invalid, t_map and gone are in ray tables.  An entry is written
-// by the stage that computes the value and read by the later stages that need it, at the latest
-// in stage NT-1 (T(NT-1) / I(NT-1)), the clock at whose edge the entry is reused; a value a
-// float unit takes as an operand is read one clock early into a register (or passed on in
-// registers from such a read).  Only the valid bits move, one stage per clock (v_q).
+// port at (ph_q - s) gives the u item's value in one clock and the v item's in the next.  The
+// id, invalid, t_map and gone are in ray tables.  An entry is written by the stage that computes
+// the value and read by the later stages that need it, at the latest in stage NT-1 (T(NT-1) /
+// I(NT-1)), the clock at whose edge the entry is reused; a value a float unit takes as an
+// operand is read one clock early into a register (or passed on in registers from such a read).
+// Only the valid bits move, one stage per clock (v_q).
 //
 // Clock enables: a float unit advances only while an item is in it, and holds its registers
 // otherwise (less switching, and less work for a simulator); likewise a stage computes what it
@@ -156,6 +160,9 @@ module traverse_setup
   localparam int unsigned KB  = setup_gap(ADD_LAT, MUL_LAT);  // second operations (2 mod 4)
   localparam int unsigned KH  = KB - 2;                       // first results, delayed PAD
   localparam int unsigned PAD = KH - KR;                      // delay to keep KB = 2 mod 4
+  localparam int unsigned CL  = (PAD > 0) ? 2 : 1;            // [F] [G]: f24_from_int LAT
+  localparam int unsigned KF  = KB - 1 - CL;                  // [F] [G]'s second operands
+  localparam int unsigned PAD_E = KF - KR;                    // the estimate's delay to KF
   localparam int unsigned KE  = KR + KB;                      // results of the second operations
   localparam int unsigned NT  = (C + KE + 3) / 4 * 4;         // table entries (stages 0 .. NT-1)
   localparam int unsigned SW  = $clog2(NT);                   // table index width
@@ -194,7 +201,7 @@ module traverse_setup
                                               // end point
 
   logic [NS-1:0]   v_q;             // v_q[s]: stage Ts holds a ray
-  logic [NT-1:C-2] iv;              // iv[s]: item stage Is holds an item (u of Ts, v of T(s+1))
+  logic [NT-1:C-1-CL] iv;           // iv[s]: item stage Is holds an item (u of Ts, v of T(s+1))
   slot_idx_t       ph_q;            // phase: stage s holds the entry (ph_q - s) mod NT
   slot_idx_t       sl_q [NT];       // sl_q[s] = (ph_q - s) mod NT, s = 0 .. NT-1: counters of
                                     // their own (sl_q[0] = ph_q), so that a table's read address
@@ -203,7 +210,7 @@ module traverse_setup
 
   always_comb begin
     for (int k = 0; k < KE; k++) ss[k] = sl_q[C+k];
-    for (int s = C - 2; s < NT; s++) iv[s] = v_q[s] || v_q[s+1];
+    for (int s = C - 1 - CL; s < NT; s++) iv[s] = v_q[s] || v_q[s+1];
   end
 
   // A ray enters at phase 3 (mod 4), so that it is in T0 at phase 0 and owns an entry that is a
@@ -251,8 +258,8 @@ module traverse_setup
   // clocks apart and KB = 2 mod 4.
   f24_t      div_b_q;                       // I0: du, then dv (from the input)
   f24_t      pu_q;                          // [M] [E] I(C+0), I(C+KB): u0 (and the checks)
-  logic [IDX_W-1:0] kf_q;                   // [F] I(C-1): kb; I(C+KB-1): the entry boundary
-  logic [IDX_W-1:0] kg_q;                   // [G] I(C-1): W / H; I(C+KB-1): the exit boundary
+  logic [IDX_W-1:0] kf_q;                   // [F] I(C-CL): kb; I(C+KB-CL): the entry boundary
+  logic [IDX_W-1:0] kg_q;                   // [G] I(C-CL): W / H; I(C+KB-CL): the exit boundary
   f24_t      md_q;                          // [B] I(C+0), I(C+KB): du (1 while idle)
   f24_t      mt_q;                          // [B] I(C+0): t0; I(C+KB), I(C+KB+1): t_end (1 idle)
   f24_t      pa_c_q [MUL_LAT];              // pa_c_q[j]: I(C+j+1), I(C+KB+j+1): u0, passed on
@@ -268,13 +275,14 @@ module traverse_setup
   } cand_t;
   cand_t     loc_q;                         // I(C+KE): computed in I(C+KE-1)
   f24_t      d_r;                           // the table read for I(C+0)
-  f24_t      d_r2;                          // the table read for I(C-1)
+  f24_t      d_r2;                          // the table read for I(C-CL)
 
   // ---- float units ---------------------------------------------------------------------------
   // Clock enables: OR of the item stages in which an operation of the unit is under way.
   logic en_fg, en_me, en_b, en_p, en_a, en_c, en_x;
   always_comb begin
-    en_fg = iv[C-1] || iv[C+KB-1];
+    en_fg = 1'b0;
+    for (int j = 0; j < CL; j++)      en_fg = en_fg || iv[C-CL+j] || iv[C+KB-CL+j];
     en_x  = iv[C+KX] || iv[C+KX+KB];
     en_me = 1'b0;
     en_b  = idle_i;
@@ -296,10 +304,11 @@ module traverse_setup
   f24_div #(.LAT(F24_DIV_LAT)) u_inv (.clk_i, .en_i(|v_q[F24_DIV_LAT:0]), .a_i(F24_ONE),
                                       .b_i(div_b_q), .y_o(inv));
 
-  // [F] kb, the entry boundary; [G] W (H), the exit boundary (I(C-1), I(C+KB-1)) as floats
+  // [F] kb, the entry boundary; [G] W (H), the exit boundary (I(C-CL), I(C+KB-CL)) as floats;
+  // CL = 2 clocks where the schedule has a spare one (PAD > 0), else 1
   f24_t      kf_f, kg_f;
-  f24_from_int #(.W(IDX_W)) u_kf (.clk_i, .en_i(en_fg), .k_i(kf_q), .y_o(kf_f));
-  f24_from_int #(.W(IDX_W)) u_kg (.clk_i, .en_i(en_fg), .k_i(kg_q), .y_o(kg_f));
+  f24_from_int #(.W(IDX_W), .LAT(CL)) u_kf (.clk_i, .en_i(en_fg), .k_i(kf_q), .y_o(kf_f));
+  f24_from_int #(.W(IDX_W), .LAT(CL)) u_kg (.clk_i, .en_i(en_fg), .k_i(kg_q), .y_o(kg_f));
   // [B] du * t0 (I(C+0)), du * t_end (I(C+KB)); 1 * 1 while idle
   f24_t      mb;
   f24_mul #(.LAT(MUL_LAT)) u_mb (.clk_i, .en_i(en_b), .a_i(md_q), .b_i(mt_q), .y_o(mb));
@@ -345,35 +354,35 @@ module traverse_setup
                                   .sat_o(unused_sat_x));
 
   // I(C+KR): the item's time of leaving the map (inf on an axis that does not move) and the
-  // estimated start cell (level 0); I(C+KH), PAD clocks later: its entry / exit boundary
-  // integers (converted in I(C+KB-1)); T(C+KH+1), with the v item there and the u item's time
-  // held in tmx_q: t_map and t_end.
+  // estimated start cell (level 0); I(C+KF), PAD_E clocks later: its entry / exit boundary
+  // integers (converted in I(C+KB-CL) .. I(C+KB-1)); I(C+KH), PAD clocks later, and T(C+KH+1),
+  // with the v item there and the u item's time held in tmx_q: t_map and t_end.
   sidx_t    est_r, est_h;
   f24_t     tm_r, tm_h;
   assign est_r = clip_idx(sidx_t'(ix), -sidx_t'(1), size_s);
   assign tm_r  = dir_k[KR].mv ? ma : F24_POS_INF;
+  // KB = 2 mod 4 (the shared units' second operations in the other two clocks of the four):
+  // the first results wait PAD clocks (the estimate PAD_E: [F] [G] take one of them)
   if (PAD > 0) begin : g_pad
-    // KB = 2 mod 4 (the shared units' second operations in the other two clocks of the four):
-    // the first results wait PAD clocks
     f24_t  tm_d_q  [PAD];
-    sidx_t est_d_q [PAD];
     always_ff @(posedge clk_i) begin
       for (int j = 0; j < PAD; j++) begin
-        if (iv[C+KR+j]) begin
-          if (j == 0) begin
-            tm_d_q[j]  <= tm_r;
-            est_d_q[j] <= est_r;
-          end else begin
-            tm_d_q[j]  <= tm_d_q[j-1];
-            est_d_q[j] <= est_d_q[j-1];
-          end
-        end
+        if (iv[C+KR+j]) tm_d_q[j] <= (j == 0) ? tm_r : tm_d_q[(j == 0) ? 0 : j-1];
       end
     end
-    assign tm_h  = tm_d_q[PAD-1];
-    assign est_h = est_d_q[PAD-1];
+    assign tm_h = tm_d_q[PAD-1];
   end else begin : g_no_pad
-    assign tm_h  = tm_r;
+    assign tm_h = tm_r;
+  end
+  if (PAD_E > 0) begin : g_pad_e
+    sidx_t est_d_q [PAD_E];
+    always_ff @(posedge clk_i) begin
+      for (int j = 0; j < PAD_E; j++) begin
+        if (iv[C+KR+j]) est_d_q[j] <= (j == 0) ? est_r : est_d_q[(j == 0) ? 0 : j-1];
+      end
+    end
+    assign est_h = est_d_q[PAD_E-1];
+  end else begin : g_no_pad_e
     assign est_h = est_r;
   end
   // t_map = min(tx, ty); t_end = t_map unless 1 < t_map.  Whether 1 < t_map is taken from
@@ -407,7 +416,7 @@ module traverse_setup
 
   // The registered reads, the operand registers and the per-item registers.
   assign d_r  = d_q[sl_q[C-1]];
-  assign d_r2 = d_q[sl_q[C-2]];
+  assign d_r2 = d_q[sl_q[C-1-CL]];
   always_ff @(posedge clk_i) begin
     if (in_valid_i) begin
       v0_h_q <= in_v0_i;
@@ -424,14 +433,14 @@ module traverse_setup
     end else if (idle_i) begin
       md_q <= F24_ONE;
     end
-    // I(C-2) / I(C+KH): the boundaries for [F] and [G] (the estimate's entry and exit)
-    if (iv[C+KH]) begin
-      kf_q <= IDX_W'(est_h + sidx_t'(dir_k[KH].mv && dir_k[KH].neg));
-      kg_q <= IDX_W'(est_h + sidx_t'(dir_k[KH].mv && !dir_k[KH].neg));
-    end else if (iv[C-2]) begin
-      kf_q <= (!d_r2[23] && !f24_is_zero(d_r2)) ? IDX_W'(v_q[C-1] ? cfg_i.height : cfg_i.width)
+    // I(C-1-CL) / I(C+KF): the boundaries for [F] and [G] (the estimate's entry and exit)
+    if (iv[C+KF]) begin
+      kf_q <= IDX_W'(est_h + sidx_t'(dir_k[KF].mv && dir_k[KF].neg));
+      kg_q <= IDX_W'(est_h + sidx_t'(dir_k[KF].mv && !dir_k[KF].neg));
+    end else if (iv[C-1-CL]) begin
+      kf_q <= (!d_r2[23] && !f24_is_zero(d_r2)) ? IDX_W'(v_q[C-CL] ? cfg_i.height : cfg_i.width)
                                                  : '0;
-      kg_q <= IDX_W'(v_q[C-1] ? cfg_i.height : cfg_i.width);
+      kg_q <= IDX_W'(v_q[C-CL] ? cfg_i.height : cfg_i.width);
     end
     // t0 for I(C+0) (loaded in the clocks of I(C-1)), t_end for both items of I(C+KB) (loaded
     // in T(C+KB-1), where the v item's time arrives)
