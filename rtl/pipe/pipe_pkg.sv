@@ -29,9 +29,12 @@ package pipe_pkg;
   // z = dot(N, V): the products' operand register, mul, add, add; then div(D, -z); the NaN
   // select of k into the scale's operand register; mul(x, k); mul(y, k) a clock later (one
   // multiplier for both), du held a clock.  A fragment every 4th clock at most (z, x and y on
-  // the same units in consecutive clocks).
-  localparam int unsigned VIEW_CALC_LAT = 1 + F24_MUL_LAT + 2 * F24_ADD_LAT
-                                        + f24_pkg::F24_DIV_LAT + 1 + F24_MUL_LAT + 1;  // 17
+  // the same units in consecutive clocks).  view_calc_lat: at view_calc's ADD_LAT / MUL_LAT
+  // (the f24_add / f24_mul LATs it instantiates): 17 at (2, 1), 21 at (3, 2).
+  function automatic int unsigned view_calc_lat(int unsigned add_lat, int unsigned mul_lat);
+    return 1 + mul_lat + 2 * add_lat + f24_pkg::F24_DIV_LAT + 1 + mul_lat + 1;
+  endfunction
+  localparam int unsigned VIEW_CALC_LAT = view_calc_lat(F24_ADD_LAT, F24_MUL_LAT);  // 17
 
   // ---- tri_table / mip_level (model/texture.py "MIP level", model/mip.py) -------------------------
   localparam int unsigned TRI_TABLE_LAT = 1;   // registered read
