@@ -54,9 +54,9 @@
 // y sharing; 11, 6, 1 at one per clock): three multipliers for the nine products, one for the
 // two scale multiplies.  Three multipliers would need the fragments aligned to a phase (hold
 // registers for the words and the results, as in shade_unit), since the scale multiplies come
-// 12 to 15 stages after the products (15 to 18 at (3, 2)).  Applying the NaN of an unusable view by forcing the
-// multiplier's operand k to NaN gives exactly the model's NaN (every NaN a unit produces is
-// 0x7F8000) and keeps the outputs free of logic after the registers.
+// 12 to 15 stages after the products (15 to 18 at (3, 2)).  Applying the NaN of an unusable
+// view by forcing the multiplier's operand k to NaN gives exactly the model's NaN (every NaN a
+// unit produces is 0x7F8000) and keeps the outputs free of logic after the registers.
 module view_calc
   import f24_pkg::*;
   import pipe_pkg::*;

@@ -16,8 +16,8 @@
 //                    whose tag has that key: the tags inside are exactly those that entered and
 //                    did not leave (the invariant that makes the induction step hold).
 // With pipe_valid_tag_assert's tag_order (bound into u_valid_tag: every tag comes out
-// view_calc_lat(ADD_LAT, MUL_LAT) enabled clocks after it entered, unchanged) every tag that enters leaves exactly
-// once, unchanged.
+// view_calc_lat(ADD_LAT, MUL_LAT) enabled clocks after it entered, unchanged) every tag that
+// enters leaves exactly once, unchanged.
 `ifndef SYNTHESIS
 module view_calc_assert
   import pipe_pkg::*;
@@ -92,6 +92,7 @@ module view_calc_assert
 
 endmodule
 
-bind view_calc view_calc_assert #(.TAG_W(TAG_W), .ADD_LAT(ADD_LAT), .MUL_LAT(MUL_LAT)) u_assert (.clk_i, .rst_ni, .en_i, .valid_i,
-  .tag_i, .valid_o_i(valid_o), .tag_o_i(tag_o), .stage_v_i(stage_v[3:1]));
+bind view_calc view_calc_assert #(.TAG_W(TAG_W), .ADD_LAT(ADD_LAT), .MUL_LAT(MUL_LAT)) u_assert (
+  .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o_i(valid_o), .tag_o_i(tag_o),
+  .stage_v_i(stage_v[3:1]));
 `endif
