@@ -52,9 +52,10 @@ def test_expressions_of_the_packages() -> None:
                                            "F24_LOG2_LAT", "F24_TO_INDEX_LAT")
     assert sv_params.value("pipe_pkg", "MIP_LAT") == mul + add + log2 + 1 + 2 * add + idx + 1
     assert sv_params.value("pipe_pkg", "VIEW_CALC_LAT") == 1 + mul + 2 * add + f24_div + 1 + mul + 1
-    for a, m in ((2, 1), (3, 2)):  # view_calc at its ADD_LAT / MUL_LAT
+    for a, m in ((2, 1), (3, 2)):  # view_calc and mip_level at their ADD_LAT / MUL_LAT
         assert sv_params.call("pipe_pkg", "view_calc_lat", a, m) == \
             1 + m + 2 * a + f24_div + 1 + m + 1
+        assert sv_params.call("pipe_pkg", "mip_lat", a, m) == m + a + log2 + 1 + 2 * a + idx + 1
 
 
 def test_the_drivers_use_the_package_values() -> None:
