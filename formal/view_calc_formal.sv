@@ -9,7 +9,9 @@
 module view_calc_formal
   import f24_pkg::*;
 #(
-  parameter int unsigned TAG_W = 4  // tag bits (the shadow keys on all of them)
+  parameter int unsigned TAG_W   = 4,                      // tag bits (the shadow keys on all)
+  parameter int unsigned ADD_LAT = pipe_pkg::F24_ADD_LAT,  // view_calc's ADD_LAT
+  parameter int unsigned MUL_LAT = pipe_pkg::F24_MUL_LAT   // view_calc's MUL_LAT
 ) (
   input logic             clk_i,
   input logic             rst_ni,
@@ -24,7 +26,7 @@ module view_calc_formal
   logic [TAG_W-1:0] tag;
   f24_t             du, dv, seg;
 
-  view_calc #(.TAG_W(TAG_W)) u_dut (
+  view_calc #(.TAG_W(TAG_W), .ADD_LAT(ADD_LAT), .MUL_LAT(MUL_LAT)) u_dut (
     .clk_i, .rst_ni, .en_i, .cfg_depth_i, .valid_i, .tag_i,
     .tx_i(w_i[0]), .ty_i(w_i[1]), .tz_i(w_i[2]), .bx_i(w_i[3]), .by_i(w_i[4]), .bz_i(w_i[5]),
     .nx_i(w_i[6]), .ny_i(w_i[7]), .nz_i(w_i[8]), .vx_i(w_i[9]), .vy_i(w_i[10]), .vz_i(w_i[11]),

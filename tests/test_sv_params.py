@@ -55,6 +55,10 @@ def test_expressions_of_the_packages() -> None:
                                            "F24_LOG2_LAT", "F24_TO_INDEX_LAT")
     assert sv_params.value("pipe_pkg", "MIP_LAT") == mul + add + log2 + 1 + 2 * add + idx + 1
     assert sv_params.value("pipe_pkg", "VIEW_CALC_LAT") == 1 + mul + 2 * add + f24_div + 1 + mul + 1
+    for a, m in ((2, 1), (3, 2)):  # view_calc and mip_level at their ADD_LAT / MUL_LAT
+        assert sv_params.call("pipe_pkg", "view_calc_lat", a, m) == \
+            1 + m + 2 * a + f24_div + 1 + m + 1
+        assert sv_params.call("pipe_pkg", "mip_lat", a, m) == m + a + log2 + 1 + 2 * a + idx + 1
 
 
 def test_the_drivers_use_the_package_values() -> None:
@@ -79,12 +83,18 @@ package a_pkg;
   localparam logic [7:0] NOT_INT = 8'hff;
   localparam int SELF = SELF + 1;
   localparam int BAD = W ? 1 : 2;
+  function automatic int unsigned lat(int unsigned add_lat, int unsigned mul_lat);
+    return 1 + 2 * add_lat + mul_lat + W;
+  endfunction
+  localparam int unsigned L = lat(2, N - 11);  // 1 + 4 + 1 + 8
 endpackage
 
 package b_pkg;
   import a_pkg::*;
   localparam int unsigned M = W + a_pkg::N + 24'h00_0001;
   localparam int UNKNOWN_REF = Q + 1;
+  localparam int unsigned L2 = lat(3, 2) + a_pkg::lat(W, 0);  // 17 + 25
+  localparam int NO_FUNC = nofunc(1);
 endpackage
 """
 
@@ -103,6 +113,11 @@ def test_synthetic_expressions(rtl: Path) -> None:
     assert sv_params.value("a_pkg", "C", rtl) == 4
     assert sv_params.value("b_pkg", "M", rtl) == 8 + 12 + 1
     assert sv_params.values("a_pkg", "W", "N", rtl=rtl) == (8, 12)
+    assert sv_params.value("a_pkg", "L", rtl) == 14
+    assert sv_params.value("b_pkg", "L2", rtl) == 17 + 25
+    assert sv_params.call("a_pkg", "lat", 3, 2, rtl=rtl) == 17
+    with pytest.raises(sv_params.SvParamError, match=r"a_pkg::lat\(\): 2 arguments, called with 1"):
+        sv_params.call("a_pkg", "lat", 3, rtl=rtl)
 
 
 @pytest.mark.parametrize("pkg,name,words", [
@@ -113,6 +128,7 @@ def test_synthetic_expressions(rtl: Path) -> None:
     ("a_pkg", "SELF", ["a_pkg::SELF", "itself"]),
     ("a_pkg", "BAD", ["a_pkg::BAD", "not an integer expression"]),
     ("b_pkg", "UNKNOWN_REF", ["b_pkg::UNKNOWN_REF", "Q is not an int constant"]),
+    ("b_pkg", "NO_FUNC", ["b_pkg::NO_FUNC", "nofunc is not a function"]),
 ])
 def test_missing_or_bad_names_fail_clearly(rtl: Path, pkg: str, name: str,
                                            words: list[str]) -> None:

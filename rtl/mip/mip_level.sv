@@ -14,8 +14,10 @@
 //
 // Fully pipelined, fixed latency, one hit every other enabled clock at most: the two textures
 // share one lod datapath.  A hit taken on an enabled edge with valid_i = 1 gives two results,
-// each a valid_o clock with the hit's tag: the colour texture's level (tex_o = 0) MIP_LAT = 13
-// enabled edges later (pipe_pkg) and the normal map's (tex_o = 1) on the next enabled edge.
+// each a valid_o clock with the hit's tag: the colour texture's level (tex_o = 0)
+// pipe_pkg::mip_lat(ADD_LAT, MUL_LAT) enabled edges later (13 at the float units' paper depths
+// (ADD_LAT, MUL_LAT) = (2, 1), pipe_pkg::MIP_LAT; 17 at (3, 2)) and the normal map's
+// (tex_o = 1) on the next enabled edge.
 // valid_i must not be 1 on two consecutive enabled clocks (asserted; dm_pipeline admits a hit
 // at most every 4th clock).  tag_o holds the hit's tag from its colour result until the next
 // hit's colour result (the job register's tag holds the normal map's between jobs): dm_pipeline
@@ -25,19 +27,25 @@
 // registers have no reset, results hold while en_i is 0.  Configuration (cfg_*, the table
 // contents) must be static while busy; the table's write port works whatever en_i is.
 //
-// Stage schedule (S0 = the input ports; "a -> b": a unit takes operands in Sa, result in Sb):
-//   S0   t seg                                                     f24_mul      S0 -> S1
-//        Pl0 delayed S0 -> S1; tri delayed S0 -> S5
-//   S1   Pl = Pl0 + t seg                                          f24_add      S1 -> S3
-//   S3   log2(Pl)                                                  f24_log2     S3 -> S6
-//   S5   triangle table read (both textures)                       tri_table    S5 -> S6
-//   S6   the job register: the colour job {log2(Pl), log2Pb colour} now, the normal map's
-//        {log2(Pl), log2Pb normal} held and taken the next enabled clock   register  S6 -> S7
-//   S7   lod = log2(Pl) - log2Pb                                   f24_add      S7 -> S9
-//   S9   lod + 0.5                                                 f24_add      S9 -> S11
-//   S11  floor                                                     f24_to_index S11 -> S12
-//   S12  clamp to [0, levels[tex] - 1], mip_en                     register     S12 -> S13
-//   S13  outputs (straight from registers); the normal map's a clock after the colour's
+// Stage schedule (S0 = the input ports; "a -> b": a unit takes operands in Sa, result in Sb;
+// A = ADD_LAT, M = MUL_LAT; the stage numbers "x / y": x at (A, M) = (2, 1), y at (3, 2)):
+//   S0              t seg                                        f24_mul      S0 -> S_PL
+//                   Pl0 delayed S0 -> S_PL; tri delayed S0 -> S_TT
+//   S_PL = M        Pl = Pl0 + t seg (1 / 2)                     f24_add      -> S_LOG
+//   S_LOG = S_PL+A  log2(Pl) (3 / 5)                             f24_log2     -> S_JOB
+//   S_TT = S_JOB-1  triangle table read (both textures; 5 / 7)   tri_table    -> S_JOB
+//   S_JOB = S_LOG+3 the job register (6 / 8): the colour job {log2(Pl), log2Pb colour} now,
+//                   the normal map's {log2(Pl), log2Pb normal} held and taken the next
+//                   enabled clock                                register     -> S_LOD
+//   S_LOD = S_JOB+1 lod = log2(Pl) - log2Pb (7 / 9)              f24_add      -> S_HALF
+//   S_HALF = S_LOD+A  lod + 0.5 (9 / 12)                         f24_add      -> S_IDX
+//   S_IDX = S_HALF+A  floor (11 / 15)                            f24_to_index -> S_CLMP
+//   S_CLMP = S_IDX+1  clamp to [0, levels[tex] - 1], mip_en (12 / 16)  register -> S_OUT
+//   S_OUT = S_CLMP+1  outputs (13 / 17; straight from registers); the normal map's a clock
+//                     after the colour's
+// No unit takes an operand through a select but the lod adder, whose operands are the job
+// register's (loaded by the colour / normal-map select); the two jobs of a hit are a clock apart
+// and hits two clocks apart at least, in every unit at any unit latency.
 // log2 runs at LAT = F24_LOG2_LAT = 3 (table / product + sum / normalise + round: over 100 MHz;
 // at its 2 clocks it limits the unit to about 50 MHz); the result is the same at either LAT.
 // Float units: 1 f24_mul, 3 f24_add, 1 f24_log2, 1 f24_to_index; a 2 x TRIS-word tri_table.
@@ -50,7 +58,11 @@ module mip_level
   parameter int unsigned TAG_W = 8,   // side-band bits (fragment id, pixel, hit data, ...) carried
                                       // unchanged from tag_i to tag_o alongside the hit
   parameter int unsigned TRIS  = 16,  // triangle table entries
-  parameter int unsigned TRI_W = (TRIS > 1) ? $clog2(TRIS) : 1  // triangle id width
+  parameter int unsigned TRI_W = (TRIS > 1) ? $clog2(TRIS) : 1,  // triangle id width
+  // Latencies of the float units instantiated (their LAT parameters); the stage schedule and the
+  // latency, pipe_pkg::mip_lat(ADD_LAT, MUL_LAT), follow them; the levels do not change.
+  parameter int unsigned ADD_LAT = F24_ADD_LAT,  // f24_add, 2 .. 4
+  parameter int unsigned MUL_LAT = F24_MUL_LAT   // f24_mul, 1 .. 3
 ) (
   input  logic                   clk_i,
   input  logic                   rst_ni,               // synchronous, active low: valid bits
@@ -77,51 +89,52 @@ module mip_level
   output logic [MIP_LEVEL_W-1:0] level_o
 );
 
-  // Stage numbers (pipe_pkg latencies); S_OUT = MIP_LAT (the colour result).
-  localparam int unsigned S_PL   = F24_MUL_LAT;              // 1
-  localparam int unsigned S_LOG  = S_PL + F24_ADD_LAT;       // 3
-  localparam int unsigned S_JOB  = S_LOG + F24_LOG2_LAT;     // 6
-  localparam int unsigned S_TT   = S_JOB - TRI_TABLE_LAT;    // 5
-  localparam int unsigned S_LOD  = S_JOB + 1;                // 7
-  localparam int unsigned S_HALF = S_LOD + F24_ADD_LAT;      // 9
-  localparam int unsigned S_IDX  = S_HALF + F24_ADD_LAT;     // 11
-  localparam int unsigned S_CLMP = S_IDX + F24_TO_INDEX_LAT; // 12
-  localparam int unsigned S_OUT  = S_CLMP + 1;               // 13
-  if (S_OUT != MIP_LAT) begin : g_check_lat
-    $error("mip_level: stage schedule does not add up to MIP_LAT");
+  // Stage numbers ("x / y": at (ADD_LAT, MUL_LAT) = (2, 1) / (3, 2)); S_OUT = the latency (the
+  // colour result).
+  localparam int unsigned S_PL   = MUL_LAT;                  // 1 / 2
+  localparam int unsigned S_LOG  = S_PL + ADD_LAT;           // 3 / 5
+  localparam int unsigned S_JOB  = S_LOG + F24_LOG2_LAT;     // 6 / 8
+  localparam int unsigned S_TT   = S_JOB - TRI_TABLE_LAT;    // 5 / 7
+  localparam int unsigned S_LOD  = S_JOB + 1;                // 7 / 9
+  localparam int unsigned S_HALF = S_LOD + ADD_LAT;          // 9 / 12
+  localparam int unsigned S_IDX  = S_HALF + ADD_LAT;         // 11 / 15
+  localparam int unsigned S_CLMP = S_IDX + F24_TO_INDEX_LAT; // 12 / 16
+  localparam int unsigned S_OUT  = S_CLMP + 1;               // 13 / 17
+  if (S_OUT != mip_lat(ADD_LAT, MUL_LAT)) begin : g_check_lat
+    $error("mip_level: stage schedule does not add up to pipe_pkg::mip_lat");
   end
 
   localparam f24_t F24_HALF = 24'h3e0000;  // 0.5
 
-  // ---- S0: t seg; S1: Pl ---------------------------------------------------------------------
+  // ---- S0: t seg; S_PL: Pl --------------------------------------------------------------------
   f24_t ts, pl, l2;
   f24_t pl0_q [1:S_PL];                 // Pl0 in stages S1 .. S_PL
-  f24_mul u_ts (.clk_i, .en_i, .a_i(t_i), .b_i(seg_i), .y_o(ts));
-  f24_add u_pl (.clk_i, .en_i, .a_i(pl0_q[S_PL]), .b_i(ts), .y_o(pl));
-  // ---- S3: log2(Pl)
+  f24_mul #(.LAT(MUL_LAT)) u_ts (.clk_i, .en_i, .a_i(t_i), .b_i(seg_i), .y_o(ts));
+  f24_add #(.LAT(ADD_LAT)) u_pl (.clk_i, .en_i, .a_i(pl0_q[S_PL]), .b_i(ts), .y_o(pl));
+  // ---- S_LOG: log2(Pl)
   f24_log2 #(.LAT(F24_LOG2_LAT)) u_l2 (.clk_i, .en_i, .a_i(pl), .y_o(l2));
 
-  // ---- S5: the triangle table ------------------------------------------------------------------
-  logic [TRI_W-1:0] tri_q [1:S_TT];     // the triangle id in stages S1 .. S5
-  f24_t pb [2];                         // S6: log2 Pb of the colour texture, the normal map
+  // ---- S_TT: the triangle table ----------------------------------------------------------------
+  logic [TRI_W-1:0] tri_q [1:S_TT];     // the triangle id in stages S1 .. S_TT
+  f24_t pb [2];                         // S_JOB: log2 Pb of the colour texture, the normal map
   tri_table #(.TRIS(TRIS), .TRI_W(TRI_W)) u_table (
     .clk_i, .we_i(tt_we_i), .waddr_i(tt_waddr_i), .wdata_i(tt_wdata_i),
     .re_i(en_i), .raddr_i(tri_q[S_TT]), .rdata_colour_o(pb[0]), .rdata_normal_o(pb[1]));
 
-  // ---- S6: the job register --------------------------------------------------------------
-  // The hit's valid and tag reach S6 through u_hit; its colour job goes into the job register
+  // ---- S_JOB: the job register -----------------------------------------------------------
+  // The hit's valid and tag reach S_JOB through u_hit; its colour job goes into the job register
   // at once, its normal-map job (held in nrm_*) the enabled clock after.
-  logic             v6;                 // a hit in S6
+  logic             v6;                 // a hit in S_JOB
   logic [TAG_W-1:0] tag6;
   logic             nrm_pend_q;         // the held normal-map job waits
   logic [TAG_W-1:0] nrm_tag_q;
   f24_t             nrm_l2_q, nrm_pb_q;
   logic             job_valid_q, job_tex_q;
   logic [TAG_W-1:0] job_tag_q;
-  f24_t             job_l2_q, job_pb_q;  // S7: the adder's operands
+  f24_t             job_l2_q, job_pb_q;  // S_LOD: the adder's operands
 
   /* verilator lint_off UNUSEDSIGNAL */  // only hit_v[1] is read (the spacing check)
-  logic [S_JOB:1]   hit_v;              // a hit in S1 .. S6
+  logic [S_JOB:1]   hit_v;              // a hit in S1 .. S_JOB
   /* verilator lint_on UNUSEDSIGNAL */
   pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(S_JOB)) u_hit (
     .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o(v6), .tag_o(tag6), .stage_valid_o(hit_v));
@@ -149,23 +162,23 @@ module mip_level
     end
   end
 
-  // ---- S7 .. S13: the job's texture ---------------------------------------------------------
+  // ---- S_LOD .. S_OUT: the job's texture ----------------------------------------------------
   f24_t lod, lodh;
   logic signed [MIP_IDX_W-1:0] idx;
   logic                        unused_sat;
-  logic                        tex_q [S_LOD+1:S_CLMP];  // the job's texture in stages S8 .. S12
+  logic                        tex_q [S_LOD+1:S_CLMP];  // the job's texture, S_LOD+1 .. S_CLMP
   logic [MIP_LEVEL_W:0]        levels;
   logic [MIP_LEVEL_W-1:0]      top;    // levels - 1 (0 for a count of 0)
   logic [MIP_LEVEL_W-1:0]      lvl, lvl_q;
-  // S7: lod = log2(Pl) - log2Pb (subtract: flip the sign bit)
-  f24_add u_lod (.clk_i, .en_i, .a_i(job_l2_q), .b_i({~job_pb_q[23], job_pb_q[22:0]}),
-                 .y_o(lod));
-  // S9: lod + 0.5
-  f24_add u_half (.clk_i, .en_i, .a_i(lod), .b_i(F24_HALF), .y_o(lodh));
-  // S11: floor
+  // S_LOD: lod = log2(Pl) - log2Pb (subtract: flip the sign bit)
+  f24_add #(.LAT(ADD_LAT)) u_lod (.clk_i, .en_i, .a_i(job_l2_q),
+                                  .b_i({~job_pb_q[23], job_pb_q[22:0]}), .y_o(lod));
+  // S_HALF: lod + 0.5
+  f24_add #(.LAT(ADD_LAT)) u_half (.clk_i, .en_i, .a_i(lod), .b_i(F24_HALF), .y_o(lodh));
+  // S_IDX: floor
   f24_to_index #(.W(MIP_IDX_W)) u_idx (.clk_i, .en_i, .a_i(lodh), .idx_o(idx),
                                        .sat_o(unused_sat));
-  // S12: clamp(idx, 0, levels - 1); level 0 with MIP mapping off
+  // S_CLMP: clamp(idx, 0, levels - 1); level 0 with MIP mapping off
   // (a count of 0 acts as 1, one above 2^MIP_LEVEL_W as 2^MIP_LEVEL_W)
   assign levels = tex_q[S_CLMP] ? cfg_levels_normal_i : cfg_levels_colour_i;
   assign top = (levels == '0)         ? '0
@@ -183,7 +196,7 @@ module mip_level
   end
   assign level_o = lvl_q;
 
-  // ---- delay lines: Pl0 to S1, tri to S5 -------------------------------------------------------
+  // ---- delay lines: Pl0 to S_PL, tri to S_TT ---------------------------------------------------
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       pl0_q[1] <= pl0_i;
@@ -193,7 +206,7 @@ module mip_level
     end
   end
 
-  // ---- valid, texture and tag of the job, S7 -> S13 ---------------------------------------
+  // ---- valid, texture and tag of the job, S_LOD -> S_OUT ----------------------------------
   pipe_valid_tag #(.TAG_W(TAG_W + 1), .DEPTH(S_OUT - S_LOD)) u_valid_tag (
     .clk_i, .rst_ni, .en_i, .valid_i(job_valid_q), .tag_i({job_tex_q, job_tag_q}), .valid_o,
     .tag_o({tex_o, tag_o}), .stage_valid_o());

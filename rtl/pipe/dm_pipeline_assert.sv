@@ -136,6 +136,14 @@ module dm_pipeline_assert #(
     mip_tag_q <= mip_tag_i;
   end
 
+  // The number of slots set in a slot mask.
+  function automatic logic [SLOT_W:0] ones(input logic [SLOTS-1:0] m);
+    logic [SLOT_W:0] n;
+    n = '0;
+    for (int i = 0; i < SLOTS; i++) n = n + (SLOT_W+1)'(m[i]);
+    return n;
+  endfunction
+
   // The slots in use and in the traversal.
   logic [SLOTS-1:0] use_q, trav_q;
   logic             px_done;
@@ -154,10 +162,7 @@ module dm_pipeline_assert #(
       end
     end
   end
-  always_comb begin
-    n_use = '0;
-    for (int i = 0; i < SLOTS; i++) n_use = n_use + (SLOT_W+1)'(use_q[i]);
-  end
+  assign n_use = ones(use_q);
 
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
@@ -191,10 +196,7 @@ module dm_pipeline_assert #(
       if (sh_valid_i) mg_q[sh_slot_i] <= 1'b1;
     end
   end
-  always_comb begin
-    n_mg = '0;
-    for (int i = 0; i < SLOTS; i++) n_mg = n_mg + (SLOT_W+1)'(mg_q[i]);
-  end
+  assign n_mg = ones(mg_q);
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
       merge_enter_free: assert ((!miss_wr_i || !mg_q[res_id_i]) && (!sh_valid_i || !mg_q[sh_slot_i])

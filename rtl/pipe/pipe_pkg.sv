@@ -29,9 +29,12 @@ package pipe_pkg;
   // z = dot(N, V): the products' operand register, mul, add, add; then div(D, -z); the NaN
   // select of k into the scale's operand register; mul(x, k); mul(y, k) a clock later (one
   // multiplier for both), du held a clock.  A fragment every 4th clock at most (z, x and y on
-  // the same units in consecutive clocks).
-  localparam int unsigned VIEW_CALC_LAT = 1 + F24_MUL_LAT + 2 * F24_ADD_LAT
-                                        + f24_pkg::F24_DIV_LAT + 1 + F24_MUL_LAT + 1;  // 17
+  // the same units in consecutive clocks).  view_calc_lat: at view_calc's ADD_LAT / MUL_LAT
+  // (the f24_add / f24_mul LATs it instantiates): 17 at (2, 1), 21 at (3, 2).
+  function automatic int unsigned view_calc_lat(int unsigned add_lat, int unsigned mul_lat);
+    return 1 + mul_lat + 2 * add_lat + f24_pkg::F24_DIV_LAT + 1 + mul_lat + 1;
+  endfunction
+  localparam int unsigned VIEW_CALC_LAT = view_calc_lat(F24_ADD_LAT, F24_MUL_LAT);  // 17
 
   // ---- tri_table / mip_level (model/texture.py "MIP level", model/mip.py) -------------------------
   localparam int unsigned TRI_TABLE_LAT = 1;   // registered read
@@ -40,9 +43,12 @@ package pipe_pkg;
   // Pl = Pl0 + t seg (mul, add); log2; the texture's job register (colour, then the normal map
   // a clock later); lod = - log2Pb (add); + 0.5 (add); floor (to_index); clamp to the level
   // range and the mip_en select (one register).  The colour level's latency; the normal map's
-  // is MIP_LAT + 1.
-  localparam int unsigned MIP_LAT = F24_MUL_LAT + F24_ADD_LAT + F24_LOG2_LAT + 1
-                                  + 2 * F24_ADD_LAT + F24_TO_INDEX_LAT + 1;  // 13
+  // is one more.  mip_lat: at mip_level's ADD_LAT / MUL_LAT (the f24_add / f24_mul LATs it
+  // instantiates): 13 at (2, 1), 17 at (3, 2).
+  function automatic int unsigned mip_lat(int unsigned add_lat, int unsigned mul_lat);
+    return mul_lat + add_lat + F24_LOG2_LAT + 1 + 2 * add_lat + F24_TO_INDEX_LAT + 1;
+  endfunction
+  localparam int unsigned MIP_LAT = mip_lat(F24_ADD_LAT, F24_MUL_LAT);  // 13
 
   // ---- tex_addr / tex_filter (model/texture.py lookup_addresses, filter_texels) --------------
   localparam int unsigned TEX_LEVELS  = 16;  // levels a texture configuration holds: textures up

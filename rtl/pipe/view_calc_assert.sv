@@ -16,13 +16,15 @@
 //                    whose tag has that key: the tags inside are exactly those that entered and
 //                    did not leave (the invariant that makes the induction step hold).
 // With pipe_valid_tag_assert's tag_order (bound into u_valid_tag: every tag comes out
-// VIEW_CALC_LAT enabled clocks after it entered, unchanged) every tag that enters leaves exactly
-// once, unchanged.
+// view_calc_lat(ADD_LAT, MUL_LAT) enabled clocks after it entered, unchanged) every tag that
+// enters leaves exactly once, unchanged.
 `ifndef SYNTHESIS
 module view_calc_assert
   import pipe_pkg::*;
 #(
-  parameter int unsigned TAG_W      = 8,  // view_calc's TAG_W
+  parameter int unsigned TAG_W      = 8,            // view_calc's TAG_W
+  parameter int unsigned ADD_LAT    = F24_ADD_LAT,  // view_calc's ADD_LAT
+  parameter int unsigned MUL_LAT    = F24_MUL_LAT,  // view_calc's MUL_LAT
   parameter int unsigned ID_TRACK_W = 6   // the shadow's key: the top min(TAG_W, this) tag bits
 ) (
   input logic             clk_i,
@@ -35,7 +37,7 @@ module view_calc_assert
   input logic [3:1]       stage_v_i    // view_calc's stage_v[3:1]: a fragment in S1 .. S3
 );
 
-  localparam int unsigned NS = VIEW_CALC_LAT;
+  localparam int unsigned NS = view_calc_lat(ADD_LAT, MUL_LAT);  // view_calc's latency
   localparam int unsigned KW = (TAG_W < ID_TRACK_W) ? TAG_W : ID_TRACK_W;
   localparam int unsigned NK = 1 << KW;
   // A count per key, wide enough for 0..NS with a bit to spare (no constant comparison).
@@ -90,6 +92,7 @@ module view_calc_assert
 
 endmodule
 
-bind view_calc view_calc_assert #(.TAG_W(TAG_W)) u_assert (.clk_i, .rst_ni, .en_i, .valid_i,
-  .tag_i, .valid_o_i(valid_o), .tag_o_i(tag_o), .stage_v_i(stage_v[3:1]));
+bind view_calc view_calc_assert #(.TAG_W(TAG_W), .ADD_LAT(ADD_LAT), .MUL_LAT(MUL_LAT)) u_assert (
+  .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o_i(valid_o), .tag_o_i(tag_o),
+  .stage_v_i(stage_v[3:1]));
 `endif

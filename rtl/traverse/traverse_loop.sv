@@ -756,12 +756,22 @@ module traverse_loop
     end
   end
 
+  // The stage flags are reset: they enable the stages' registers and the checks, and a reset
+  // shorter than the ring must not leave a power-up value in them.
   always_ff @(posedge clk_i) begin
-    ok_q  <= {ok_q[16:5], ok4};
-    err_q <= {err_q[16:5], err4};
-    in_q  <= {in_q[12:8], ok_q[7] && inside7};
-    dn_q  <= {dn_q[17:8], ok_q[7] && act7.down};
-    lv_q  <= {lv_q[3:1], live0_q};
+    if (!rst_ni) begin
+      ok_q  <= '0;
+      err_q <= '0;
+      in_q  <= '0;
+      dn_q  <= '0;
+      lv_q  <= '0;
+    end else begin
+      ok_q  <= {ok_q[16:5], ok4};
+      err_q <= {err_q[16:5], err4};
+      in_q  <= {in_q[12:8], ok_q[7] && inside7};
+      dn_q  <= {dn_q[17:8], ok_q[7] && act7.down};
+      lv_q  <= {lv_q[3:1], live0_q};
+    end
   end
 
   // The registered reads and the pipelines; each loads while the stage before its reader holds a

@@ -297,12 +297,14 @@ def run_pixels(fi: FrameImage, frags: npt.NDArray[np.uint32], *,
                t_err: Sequence[tuple[int, int]] = (), timeout: int | None = None,
                stall: int | None = None, checked: bool | None = None,
                waves: str | Path | None = None, progress: ProgressFn | None = None,
-               binary: Path | None = None, rings: int = 1) -> tuple[RtlPixels, dict[str, Any]]:
+               binary: Path | None = None, rings: int = 1,
+               reset: int = 10) -> tuple[RtlPixels, dict[str, Any]]:
     """Run one frame's fragments ((N, 16) words, :func:`fragment_words`) through the harness.
 
     Every knob is a harness option (``pipeline_harness --help``): AXI latency of both ports (or
     per port), random gaps and stalls, SLVERR ranges, the clock watchdogs ``timeout`` (whole
-    frame) and ``stall`` (between two pixels).  ``progress(done, total)`` is called about twice a
+    frame) and ``stall`` (between two pixels), the clocks of reset at the start (``reset``, the
+    registers starting from the seed's random values).  ``progress(done, total)`` is called about twice a
     second.  ``rings``: the harness with that many traverse rings (:data:`RINGS`).  Raises
     :class:`tb.harness.build.RtlEngineError` with the harness's message when the run fails (a
     watchdog, a pixel lost or returned twice, an AXI protocol violation).
@@ -320,7 +322,7 @@ def run_pixels(fi: FrameImage, frags: npt.NDArray[np.uint32], *,
                "--t-latency", _latency(t_latency) if t_latency is not None else lat,
                "--seed", str(int(seed)), "--frag-gap", repr(float(frag_gap)),
                "--px-stall", repr(float(px_stall)), "--ar-stall", repr(float(ar_stall)),
-               "--rvalid-gap", repr(float(rvalid_gap)), "--quiet"]
+               "--rvalid-gap", repr(float(rvalid_gap)), "--reset", str(int(reset)), "--quiet"]
         for opt, ranges in (("--h-err", h_err), ("--t-err", t_err)):
             for a, b in ranges:
                 cmd += [opt, f"{int(a)}:{int(b)}"]

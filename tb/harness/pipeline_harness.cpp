@@ -99,6 +99,9 @@ cache -> filter -> shading -> pixels) on a frame, with two AXI4 memory models (h
   --px-stall P        probability that px_ready is low in a clock (default 0)
   --ar-stall P        probability that arready is low in a clock, both ports (default 0)
   --rvalid-gap P      probability of a bubble before a read beat, both ports (default 0)
+  --reset N           clocks rst_ni is held low at the start, N >= 1 (default 10); the registers
+                      start from the seed's random values, so a short reset shows any state
+                      that a reset leaves to chance
   --h-err LO:HI, --t-err LO:HI   byte addresses [LO, HI) of that port answer SLVERR; repeatable
   --timeout N         fail (exit 2) when the frame takes more than N clocks
                       (default 2000000 + 2000 per fragment)
@@ -120,6 +123,7 @@ struct Options {
   uint64_t seed = 0;
   double frag_gap = 0, px_stall = 0;
   uint64_t timeout = 0, stall = 0;
+  uint64_t reset = 10;
   bool progress = false, quiet = false;
 };
 
@@ -166,6 +170,9 @@ Options parse_args(int argc, char** argv) {
       o.hmem.err.push_back(harness::parse_range(val("--h-err"), "--h-err"));
     } else if (a == "--t-err") {
       o.tmem.err.push_back(harness::parse_range(val("--t-err"), "--t-err"));
+    } else if (a == "--reset") {
+      o.reset = parse_u64(val("--reset"), "reset");
+      if (o.reset < 1) fail(1, "--reset wants at least 1 clock");
     } else if (a == "--timeout") {
       o.timeout = parse_u64(val("--timeout"), "timeout");
     } else if (a == "--stall") {
@@ -371,7 +378,7 @@ class Sim {
     t->m_axi_h_rvalid = 0;
     t->m_axi_t_rvalid = 0;
     t->rst_ni = 0;
-    for (int i = 0; i < 10; ++i) clock();
+    for (uint64_t i = 0; i < o_.reset; ++i) clock();
     t->rst_ni = 1;
     for (const auto& w : in_.tri) {
       t->tt_we_i = 1;

@@ -17,13 +17,20 @@ tex_o = 1, on the next one); the levels must equal the model's bit for bit:
   mip off      mip_en = 0: level 0 whatever the hit
   counts       level counts 0 and 40 in the configuration (read as 1 and 32)
 and a reset of a full pipeline while stalled.
+
+Run at the float units' depths (ADD_LAT, MUL_LAT) = (2, 1) (the package defaults, built with no
+parameter, so the run also checks the defaults) and (3, 2) with the same stimulus: the colour
+level must come exactly pipe_pkg::mip_lat(ADD_LAT, MUL_LAT) enabled edges after valid_i (13 and
+17), the normal map's on the next one, with the same levels.
 """
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 from cocotb.triggers import FallingEdge, RisingEdge
 
 from model import f24, f24_vectors as vec, texture
@@ -32,8 +39,11 @@ from tb.common import fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 from tb.harness import sv_params
 
-#: pipe_pkg::MIP_LAT (f24_log2 at pipe_pkg::F24_LOG2_LAT): the colour level
-LATENCY = sv_params.value("pipe_pkg", "MIP_LAT")
+#: The package defaults (ADD_LAT, MUL_LAT) and the depths the test runs at.
+DEFAULT_LATS = sv_params.values("pipe_pkg", "F24_ADD_LAT", "F24_MUL_LAT")
+LATS = [(2, 1), (3, 2)]
+#: Environment variable carrying "ADD_LAT,MUL_LAT" of the build into the cocotb test.
+LATS_ENV = "MIP_LEVEL_LATS"
 INS = ["t_i", "seg_i", "pl0_i", "tri_i"]
 OUTS = ["tex_o", "level_o"]  # two results per hit: colour (tex_o 0), then the normal map (1)
 AR = ENGINES["f24"]
@@ -151,7 +161,11 @@ async def mip_level_random_and_directed(dut):
     rng = np.random.default_rng(fp_unit.seed())
     tris = 1 << len(dut.tri_i)  # the test runs power-of-two TRIS (tb/tri_table: the others)
     nvec = fp_unit.vectors()
-    pipe = ValidPipe(dut, LATENCY, INS, OUTS, "RTL vs model.texture.mip_level (f24)", jobs=2,
+    add_lat, mul_lat = (int(x) for x in os.environ[LATS_ENV].split(","))
+    # pipe_pkg::mip_lat (f24_log2 at pipe_pkg::F24_LOG2_LAT): the colour level's latency
+    latency = sv_params.call("pipe_pkg", "mip_lat", add_lat, mul_lat)
+    dut._log.info("mip_level ADD_LAT=%d MUL_LAT=%d: latency %d", add_lat, mul_lat, latency)
+    pipe = ValidPipe(dut, latency, INS, OUTS, "RTL vs model.texture.mip_level (f24)", jobs=2,
                      spacing=2)
     dut.tt_we_i.value = 0
     await pipe.reset()
@@ -203,10 +217,30 @@ async def mip_level_random_and_directed(dut):
                   len(phases))
 
 
-def test_mip_level():
-    runner.run("mip_level", "test_mip_level", Path(__file__).parent)
+def run_lats(lats: tuple[int, int], parameters: dict[str, int] | None = None,
+             extra_env: dict[str, str] | None = None) -> None:
+    """Build mip_level at (ADD_LAT, MUL_LAT) = ``lats`` (the defaults with no parameter) and run
+    the test."""
+    params = dict(parameters or {})
+    if lats != DEFAULT_LATS:
+        params.update(ADD_LAT=lats[0], MUL_LAT=lats[1])
+    runner.run("mip_level", "test_mip_level", Path(__file__).parent, parameters=params,
+               extra_env={**(extra_env or {}), LATS_ENV: f"{lats[0]},{lats[1]}"})
+
+
+def test_default_latency() -> None:
+    """pipe_pkg::MIP_LAT (dm_pipeline's) is mip_lat at the package defaults; the function gives
+    the header's figures (13 at (2, 1), 17 at (3, 2))."""
+    assert sv_params.value("pipe_pkg", "MIP_LAT") == \
+        sv_params.call("pipe_pkg", "mip_lat", *DEFAULT_LATS)
+    assert sv_params.call("pipe_pkg", "mip_lat", 2, 1) == 13
+    assert sv_params.call("pipe_pkg", "mip_lat", 3, 2) == 17
+
+
+@pytest.mark.parametrize("lats", LATS, ids=[f"add{a}-mul{m}" for a, m in LATS])
+def test_mip_level(lats: tuple[int, int]):
+    run_lats(lats)
 
 
 def test_mip_level_two_triangles():
-    runner.run("mip_level", "test_mip_level", Path(__file__).parent,
-               parameters={"TRIS": 2, "TAG_W": 3}, extra_env={"VECTORS": "5000"})
+    run_lats(DEFAULT_LATS, parameters={"TRIS": 2, "TAG_W": 3}, extra_env={"VECTORS": "5000"})

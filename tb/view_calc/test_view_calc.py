@@ -10,20 +10,32 @@ Stimulus (every word an f24 pattern; the model gets the patterns' values):
   negative, NaN), with random en_i gaps and valid bubbles, a fragment every 4th enabled clock at
   most (tb/common/valid_pipe.py, spacing 4: z, x and y share their float units), and a reset of
   a full pipeline while stalled.
+
+Run at the float units' depths (ADD_LAT, MUL_LAT) = (2, 1) (the package defaults, built with no
+parameter, so the run also checks the defaults) and (3, 2) with the same stimulus: valid_o must
+come exactly pipe_pkg::view_calc_lat(ADD_LAT, MUL_LAT) enabled edges after valid_i (17 and 21),
+with the same words.
 """
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 
 from model import f24, f24_vectors as vec, view
 from model.arith import ENGINES
 from tb.common import fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
+from tb.harness import sv_params
 
-LATENCY = 17  # pipe_pkg::VIEW_CALC_LAT (the divider: f24_pkg::F24_DIV_LAT = 8)
+#: The package defaults (ADD_LAT, MUL_LAT) and the depths the test runs at.
+DEFAULT_LATS = sv_params.values("pipe_pkg", "F24_ADD_LAT", "F24_MUL_LAT")
+LATS = [(2, 1), (3, 2)]
+#: Environment variable carrying "ADD_LAT,MUL_LAT" of the build into the cocotb test.
+LATS_ENV = "VIEW_CALC_LATS"
 SPACING = 4   # enabled clocks from one fragment to the next, at least (view_calc's spacing)
 WORDS = ["tx_i", "ty_i", "tz_i", "bx_i", "by_i", "bz_i", "nx_i", "ny_i", "nz_i",
          "vx_i", "vy_i", "vz_i"]
@@ -131,8 +143,12 @@ DEPTHS = {"20.48": int(f24.from_float(20.48)), "1": f24.ONE, "max finite": f24.M
 @cocotb.test()
 async def view_calc_random_and_directed(dut):
     rng = np.random.default_rng(fp_unit.seed())
+    add_lat, mul_lat = (int(x) for x in os.environ[LATS_ENV].split(","))
+    # pipe_pkg::view_calc_lat (the divider: f24_pkg::F24_DIV_LAT = 8): 17 at (2, 1), 21 at (3, 2)
+    latency = sv_params.call("pipe_pkg", "view_calc_lat", add_lat, mul_lat)
+    dut._log.info("view_calc ADD_LAT=%d MUL_LAT=%d: latency %d", add_lat, mul_lat, latency)
     # z, x and y share their float units: a fragment every 4th enabled clock at most
-    pipe = ValidPipe(dut, LATENCY, WORDS, OUTS, "RTL vs model.view.view_calc (f24)",
+    pipe = ValidPipe(dut, latency, WORDS, OUTS, "RTL vs model.view.view_calc (f24)",
                      spacing=SPACING)
     await pipe.reset()
     total, classes = 0, {}
@@ -159,10 +175,30 @@ async def view_calc_random_and_directed(dut):
                   total, len(DEPTHS), ", ".join(f"{k} {v}" for k, v in classes.items()))
 
 
-def test_view_calc():
-    runner.run("view_calc", "test_view_calc", Path(__file__).parent)
+def run_lats(lats: tuple[int, int], parameters: dict[str, int] | None = None,
+             extra_env: dict[str, str] | None = None) -> None:
+    """Build view_calc at (ADD_LAT, MUL_LAT) = ``lats`` (the defaults with no parameter) and run
+    the test."""
+    params = dict(parameters or {})
+    if lats != DEFAULT_LATS:
+        params.update(ADD_LAT=lats[0], MUL_LAT=lats[1])
+    runner.run("view_calc", "test_view_calc", Path(__file__).parent, parameters=params,
+               extra_env={**(extra_env or {}), LATS_ENV: f"{lats[0]},{lats[1]}"})
+
+
+def test_default_latency() -> None:
+    """pipe_pkg::VIEW_CALC_LAT (dm_pipeline's) is view_calc_lat at the package defaults; the
+    function gives the header's figures (17 at (2, 1), 21 at (3, 2))."""
+    assert sv_params.value("pipe_pkg", "VIEW_CALC_LAT") == \
+        sv_params.call("pipe_pkg", "view_calc_lat", *DEFAULT_LATS)
+    assert sv_params.call("pipe_pkg", "view_calc_lat", 2, 1) == 17
+    assert sv_params.call("pipe_pkg", "view_calc_lat", 3, 2) == 21
+
+
+@pytest.mark.parametrize("lats", LATS, ids=[f"add{a}-mul{m}" for a, m in LATS])
+def test_view_calc(lats: tuple[int, int]):
+    run_lats(lats)
 
 
 def test_view_calc_tag1():
-    runner.run("view_calc", "test_view_calc", Path(__file__).parent, parameters={"TAG_W": 1},
-               extra_env={"VECTORS": "2000"})
+    run_lats(DEFAULT_LATS, parameters={"TAG_W": 1}, extra_env={"VECTORS": "2000"})
