@@ -59,6 +59,11 @@ def test_expressions_of_the_packages() -> None:
         assert sv_params.call("pipe_pkg", "view_calc_lat", a, m) == \
             1 + m + 2 * a + f24_div + 1 + m + 1
         assert sv_params.call("pipe_pkg", "mip_lat", a, m) == m + a + log2 + 1 + 2 * a + idx + 1
+        # traverse_setup at its ADD_LAT / MUL_LAT: 21 at (2, 1), 26 at (3, 2)
+        gap_am = a + m + 3 + (6 - (a + m + 3) % 4) % 4
+        assert sv_params.call("traverse_pkg", "setup_gap", a, m) == gap_am
+        assert sv_params.call("traverse_pkg", "setup_lat", a, m) == f24_div + m + 6 + gap_am
+    assert sv_params.call("traverse_pkg", "setup_lat", 2, 1) == f24_div + 13
 
 
 def test_the_drivers_use_the_package_values() -> None:

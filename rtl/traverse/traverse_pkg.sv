@@ -26,19 +26,6 @@ package traverse_pkg;
   // Stages of traverse_loop's ring (one ray slot each): one pass = one iteration = LOOP_DEPTH
   // clocks.
   localparam int unsigned LOOP_DEPTH = 19;
-  // traverse_setup: the reciprocals (f24_div, F24_DIV_LAT clocks), then the rest of the first
-  // mode (its header); busy_o counts the rays in it.  SETUP_LAT = setup_lat(F24_ADD_LAT,
-  // F24_MUL_LAT) at pipe_pkg's defaults, written out so that tb/harness/sv_params.py can read
-  // it: F24_DIV_LAT + 13 = 21 at (2, 1), 26 at (3, 2) (setup_lat below).
-  localparam int unsigned SETUP_LAT    = F24_DIV_LAT + pipe_pkg::F24_MUL_LAT + 6
-      + pipe_pkg::F24_ADD_LAT + pipe_pkg::F24_MUL_LAT + 3
-      + (6 - (pipe_pkg::F24_ADD_LAT + pipe_pkg::F24_MUL_LAT + 3) % 4) % 4;  // 21
-  localparam int unsigned SETUP_BUSY_W = $clog2(SETUP_LAT + 1);
-
-  localparam f24_t F24_POS_ZERO = 24'h000000;
-  localparam f24_t F24_SIGN     = 24'h800000;
-  /* verilator lint_on UNUSEDPARAM */
-
   // traverse_setup's schedule at f24_add LAT add_lat and f24_mul LAT mul_lat (its ADD_LAT /
   // MUL_LAT; its header has the stage table).  setup_gap: the item stages from a shared unit's
   // first operation to its second, add_lat + mul_lat + 3 rounded up to 2 mod 4 (the second
@@ -50,6 +37,16 @@ package traverse_pkg;
   function automatic int unsigned setup_lat(int unsigned add_lat, int unsigned mul_lat);
     return F24_DIV_LAT + mul_lat + 6 + setup_gap(add_lat, mul_lat);
   endfunction
+  // traverse_setup: the reciprocals (f24_div, F24_DIV_LAT clocks), then the rest of the first
+  // mode (its header); busy_o counts the rays in it.  SETUP_LAT: setup_lat (above) at
+  // pipe_pkg's F24_ADD_LAT / F24_MUL_LAT: F24_DIV_LAT + 13 = 21 at (2, 1), 26 at (3, 2).
+  localparam int unsigned SETUP_LAT    = setup_lat(pipe_pkg::F24_ADD_LAT,
+                                                   pipe_pkg::F24_MUL_LAT);  // 21
+  localparam int unsigned SETUP_BUSY_W = $clog2(SETUP_LAT + 1);
+
+  localparam f24_t F24_POS_ZERO = 24'h000000;
+  localparam f24_t F24_SIGN     = 24'h800000;
+  /* verilator lint_on UNUSEDPARAM */
 
   // ---- methods (model.traverse.METHOD_CODES) ------------------------------------------------
   typedef enum logic [3:0] {

@@ -252,9 +252,12 @@ async def setup_bit_exact(dut):
 
 
 def test_setup_lat_mirror() -> None:
-    """The Python mirror of traverse_pkg::setup_lat at the package defaults is SETUP_LAT."""
+    """The Python mirror of traverse_pkg::setup_lat: the package's function at both depths, and
+    SETUP_LAT at the package defaults."""
     add, mul = sv_params.values("pipe_pkg", "F24_ADD_LAT", "F24_MUL_LAT")
     assert setup_lat(add, mul) == sv_params.value("traverse_pkg", "SETUP_LAT")
+    for a, m in DEPTHS:
+        assert setup_lat(a, m) == sv_params.call("traverse_pkg", "setup_lat", a, m)
     assert setup_lat(2, 1) == sv_params.value("f24_pkg", "F24_DIV_LAT") + 13
 
 
