@@ -22,7 +22,7 @@ module traverse_loop_formal
   import f24_pkg::*;
   import traverse_pkg::*;
 #(
-  parameter int unsigned ID_W       = 5,  // 32 ids for the ring's 19 slots
+  parameter int unsigned ID_W       = 5,  // 32 ids for the ring's LOOP_DEPTH (19 or 22) slots
   // park queue entries: 2 (the queue's logic is the same for any depth; the default 12 makes
   // the induction step take the solver more than 10 minutes)
   parameter int unsigned PARK_DEPTH = 2

@@ -76,7 +76,8 @@ def main() -> int:
             dut.write_text(src.replace(ROUNDING, MUTANT_ROUNDING))
     except OSError as e:
         fail(PROG, f"cannot write the miter in {work}: {e.strerror or e}")
-    files = [ROOT / "rtl" / "fp" / "f24_pkg.sv", ROOT / "rtl" / "traverse" / "traverse_pkg.sv",
+    files = [ROOT / "rtl" / "fp" / "f24_pkg.sv", ROOT / "rtl" / "pipe" / "pipe_pkg.sv",
+             ROOT / "rtl" / "traverse" / "traverse_pkg.sv",
              ROOT / "rtl" / "fp" / "f24_from_int.sv", ROOT / "rtl" / "fp" / "f24_add.sv", dut,
              work / "miter_bdiff.sv"]
     # YoWASP's Yosys sees the file system through WASI: paths relative to its cwd.
