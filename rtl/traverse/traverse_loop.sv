@@ -14,16 +14,19 @@
 // f24_to_index, f24_from_unorm and f24_one_minus at their fixed latencies.  Three multipliers lie
 // on the pass's dependent chain (tx, du * time, the child's crossing times), so each clock of
 // MUL_LAT above 1 adds three stages.  Stage names: S0 .. S18 below, and the numbers in signal
-// names (ok_q[7] ... done18_q), are the stages at MUL_LAT 1; the code indexes stages by
-// localparams computed from MUL_LAT (S_RS, S_EXIT, ... S_TL), which give at MUL_LAT 1 / 2:
-//   S0 - S4 (lookup; S_RS = 4: response, tx operands)            0 - 4   / 0 - 4
-//   S5  S_EXIT  tx, ty arrive; t_exit; 1 - H (H held MUL_LAT - 1)  5      / 6
-//   S6  S_TNEW, S7 S_DEC (du * that time operands)                 6, 7   / 7, 8
-//   S8  S_POS   positions (f24_add, 3 clocks)                      8      / 10
-//   S11 S_FLR, S12 S_XPRE, S13 S_XUP, S14 S_CB, S15 S_LOC          11 - 15 / 13 - 17
-//   S17 S_TEN   (boundary - u0) * (1/du) operands                   17     / 19
-//   S17 S_NS    next state (S_TEN + MUL_LAT - 1)                    17     / 20
-//   S18 S_TL    the tail (S_TEN + MUL_LAT = D - 1)                  18     / 21
+// names (t6_q ... done18_q), are the stages at MUL_LAT 1; the code indexes stages by localparams
+// computed from MUL_LAT (S_RS, S_EXIT, ... S_TL), which are, at MUL_LAT 1 / MUL_LAT 2:
+//   S0 - S4  lookup; S_RS = 4: the response, tx's operands          0 - 4    / 0 - 4
+//   S5       S_EXIT: tx, ty arrive; t_exit; 1 - H (H held MUL_LAT - 1 clocks)
+//                                                                    5        / 6
+//   S6, S7   S_TNEW, S_DEC (du * that time: its operands)            6, 7     / 7, 8
+//   S8       S_POS: u0 + du * that time (f24_add, 3 clocks)          8        / 10
+//   S11-S15  S_FLR, S_XPRE, S_XUP, S_CB, S_LOC                       11 - 15  / 13 - 17
+//   S17      S_TEN: (boundary - u0) * (1/du), its operands
+//            (1/du read in S_TEN - 2)                                17       / 19
+//   S17      S_NS = S_TEN + MUL_LAT - 1: the next state (its copies
+//            made in S_NS - 1)                                       17       / 20
+//   S18      S_TL = S_TEN + MUL_LAT = D - 1: the tail                18       / 21
 // At MUL_LAT 1 the ring is clock for clock the 19-stage ring.  A multiplier's clock enable is
 // the OR of the activity of the MUL_LAT stages its operations occupy (its registers advance while
 // any of them holds a pass that uses it).
@@ -121,9 +124,9 @@
 // clip, level, boundaries, two crossing times, correction) follows the plane's arrival as a
 // dependent chain of 12 clocks (S6 - S18, at MUL_LAT 1; 15 at MUL_LAT 2).  The position adders
 // run at three clocks (their two-clock first stage, alignment shift and carry chain together,
-// was the ring's slowest path) in the same ring: the boundary integers, which had a register of their own before
-// traverse_bdiff's first stage (a register of the same integers, shifted by wiring), now go
-// straight into that stage.  (Computing the positions at t and at the plane both,
+// was the ring's slowest path) in the same ring: the boundary integers, which had a register of
+// their own before traverse_bdiff's first stage (a register of the same integers, shifted by
+// wiring), now go straight into that stage.  (Computing the positions at t and at the plane both,
 // and picking one in parallel, took a ring of 18 and two f24_mul, two f24_add more per axis pair.)
 //
 // Lookup misses: the ray keeps its state and goes round again; the iteration is not counted

@@ -375,8 +375,8 @@ async def traverse_throughput(dut):
 
 @cocotb.test()
 async def traverse_ring_length(dut):
-    """One ray alone in the unit, every lookup a hit: its lookups come one pass = loop_depth(MUL_LAT)
-    clocks apart (the ring's length)."""
+    """One ray alone in the unit, every lookup a hit: its lookups come one pass =
+    loop_depth(MUL_LAT) clocks apart (the ring's length)."""
     rng = np.random.default_rng(seed())
     h = Harness(dut)
     await h.reset()
