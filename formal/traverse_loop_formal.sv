@@ -7,9 +7,10 @@
 // park_old_leaves, park_old_flag, park_wait_bound, rays_conserved), with PARK = 1 (the ring's
 // default is 0) and a park queue of PARK_DEPTH = 2.
 //
-// The float datapath is cut: the .sby script replaces the register done18_q (the ray in S18 has
-// finished: the only way the datapath reaches the ring's control) by a free value each clock, so
-// the proof holds for every finishing decision of every ray, whatever the arithmetic computes;
+// The float datapath is cut: the .sby script replaces the register done18_q (the ray at the tail,
+// S18 at MUL_LAT 1, has finished: the only way the datapath reaches the ring's control) by a free
+// value each clock, so the proof holds for every finishing decision of every ray, whatever the
+// arithmetic computes;
 // the datapath's own checks (plane_operand_in_range, live_ray_has_no_result,
 // descent_not_admitted, bdiff_operand_in_range) and the slot counters' slot_counter are removed
 // from this model (they are about the arithmetic and the tables; simulation checks them).  Everything else is free: the new rays (id, fields,
@@ -22,7 +23,7 @@ module traverse_loop_formal
   import f24_pkg::*;
   import traverse_pkg::*;
 #(
-  parameter int unsigned ID_W       = 5,  // 32 ids for the ring's 19 slots
+  parameter int unsigned ID_W       = 5,  // 32 ids for the ring's LOOP_DEPTH (19 or 22) slots
   // park queue entries: 2 (the queue's logic is the same for any depth; the default 12 makes
   // the induction step take the solver more than 10 minutes)
   parameter int unsigned PARK_DEPTH = 2

@@ -2,11 +2,34 @@
 // traverse_loop: the second mode of the traverse unit, the iterative search of model/traverse.py
 // (the body of _trace's `while act.size` loop, for one ray per pass).
 //
-// A ring of LOOP_DEPTH = 19 stages (traverse_pkg); every stage holds one ray slot and every slot
-// advances one stage per clock (the loop never stalls).  One pass round the ring = one iteration
-// = one height lookup.  At the ring's tail (S18) a finished ray leaves for the result FIFO; a slot
-// that is then empty takes a new ray from setup (re-circulating rays have priority: new rays only
-// fill bubbles).
+// A ring of D = traverse_pkg::loop_depth(MUL_LAT) = 16 + 3 * MUL_LAT stages (19 at MUL_LAT 1,
+// 22 at MUL_LAT 2); every stage holds one ray slot and every slot advances one stage per clock
+// (the loop never stalls).  One pass round the ring = one iteration = one height lookup.  At the
+// ring's tail (S18) a finished ray leaves for the result FIFO; a slot that is then empty takes a
+// new ray from setup (re-circulating rays have priority: new rays only fill bubbles).
+//
+// Float latencies: every f24_mul runs at MUL_LAT (a parameter, default pipe_pkg::F24_MUL_LAT;
+// the same word at every LAT); the position adders at a fixed POS_ADD_LAT = 3 (not
+// pipe_pkg::F24_ADD_LAT: the schedule is written for 3, checked by an $error); traverse_bdiff,
+// f24_to_index, f24_from_unorm and f24_one_minus at their fixed latencies.  Three multipliers lie
+// on the pass's dependent chain (tx, du * time, the child's crossing times), so each clock of
+// MUL_LAT above 1 adds three stages.  Stage names: S0 .. S18 below, and the numbers in signal
+// names (t6_q ... done18_q), are the stages at MUL_LAT 1; the code indexes stages by localparams
+// computed from MUL_LAT (S_RS, S_EXIT, ... S_TL), which are, at MUL_LAT 1 / MUL_LAT 2:
+//   S0 - S4  lookup; S_RS = 4: the response, tx's operands          0 - 4    / 0 - 4
+//   S5       S_EXIT: tx, ty arrive; t_exit; 1 - H (H held MUL_LAT - 1 clocks)
+//                                                                    5        / 6
+//   S6, S7   S_TNEW, S_DEC (du * that time: its operands)            6, 7     / 7, 8
+//   S8       S_POS: u0 + du * that time (f24_add, 3 clocks)          8        / 10
+//   S11-S15  S_FLR, S_XPRE, S_XUP, S_CB, S_LOC                       11 - 15  / 13 - 17
+//   S17      S_TEN: (boundary - u0) * (1/du), its operands
+//            (1/du read in S_TEN - 2)                                17       / 19
+//   S17      S_NS = S_TEN + MUL_LAT - 1: the next state (its copies
+//            made in S_NS - 1)                                       17       / 20
+//   S18      S_TL = S_TEN + MUL_LAT = D - 1: the tail                18       / 21
+// At MUL_LAT 1 the ring is clock for clock the 19-stage ring.  A multiplier's clock enable is
+// the OR of the activity of the MUL_LAT stages its operations occupy (its registers advance while
+// any of them holds a pass that uses it).
 //
 // Ring registers: a ray's fields move with it, one register per field and stage (f_q[s] is the
 // field of the ray in stage s; S18 hands on to S0).  A stage reads the fields it needs straight
@@ -99,11 +122,11 @@
 // (selective's P1 for a crossing; a pass needs never both).  Picking that time first (S6) costs the
 // ring a stage: 19 deep (the paper's is 15), because the descent's locate (time, position, floor,
 // clip, level, boundaries, two crossing times, correction) follows the plane's arrival as a
-// dependent chain of 12 clocks (S6 - S18).  The position adders run at three clocks (their
-// two-clock first stage, alignment shift and carry chain together, was the ring's slowest path)
-// in the same ring: the boundary integers, which had a register of their own before
-// traverse_bdiff's first stage (a register of the same integers, shifted by wiring), now go
-// straight into that stage.  (Computing the positions at t and at the plane both,
+// dependent chain of 12 clocks (S6 - S18, at MUL_LAT 1; 15 at MUL_LAT 2).  The position adders
+// run at three clocks (their two-clock first stage, alignment shift and carry chain together,
+// was the ring's slowest path) in the same ring: the boundary integers, which had a register of
+// their own before traverse_bdiff's first stage (a register of the same integers, shifted by
+// wiring), now go straight into that stage.  (Computing the positions at t and at the plane both,
 // and picking one in parallel, took a ring of 18 and two f24_mul, two f24_add more per axis pair.)
 //
 // Lookup misses: the ray keeps its state and goes round again; the iteration is not counted
@@ -134,6 +157,10 @@ module traverse_loop
   import traverse_pkg::*;
 #(
   parameter int unsigned ID_W     = 8,
+  // f24_mul latency (1 .. 3; f24_mul's LAT, the same word at every LAT): the ring is
+  // loop_depth(MUL_LAT) = 16 + 3 * MUL_LAT stages (header, "Stage schedule").  The f24_add (the
+  // positions) run at a fixed POS_ADD_LAT = 3 whatever pipe_pkg::F24_ADD_LAT is.
+  parameter int unsigned MUL_LAT  = pipe_pkg::F24_MUL_LAT,
   // 1: every method.  0: no XOR descent: the positions at t_end and their floors (2 f24_mul,
   // 2 f24_add, 2 f24_to_index) are left out, and a configuration with the XOR descent (park-xor)
   // descends as the multi-level descent instead (DESC_XOR runs as DESC_MULTI with the same
@@ -145,14 +172,15 @@ module traverse_loop
   // clock; no park register, no queue, no extra table read port).  Off by default: the park
   // decision costs the ring about 10 MHz out of context (docs/traverse.md, "Parking").
   parameter bit          PARK       = 1'b0,
-  // park queue entries (LUT RAM); LOOP_DEPTH + PARK_DEPTH <= 31 (busy_o counts ring and queue)
-  parameter int unsigned PARK_DEPTH = 12,
+  // park queue entries (LUT RAM); loop_depth(MUL_LAT) + PARK_DEPTH <= 31 (busy_o counts ring
+  // and queue): 12 at MUL_LAT 1, 9 at MUL_LAT 2
+  parameter int unsigned PARK_DEPTH = 31 - loop_depth(MUL_LAT),
   // clocks a parked ray waits (for its line to arrive) before it takes a free slot ahead of new
   // rays (with no new ray waiting it takes one at once)
   parameter int unsigned PARK_WAIT  = 16,
   // clocks the park queue's head waits before it takes the slot of any ray at the tail that is
   // not done (that ray is parked in its place): the bound on waiting
-  parameter int unsigned PARK_MAX   = 4 * LOOP_DEPTH
+  parameter int unsigned PARK_MAX   = 4 * loop_depth(MUL_LAT)
 ) (
   input  logic              clk_i,
   input  logic              rst_ni,
@@ -185,14 +213,37 @@ module traverse_loop
   output logic [4:0]        busy_o       // rays in the ring and the park queue
 );
 
-  localparam int unsigned D  = LOOP_DEPTH;  // traverse_pkg: stages S0 .. S18
-  localparam int unsigned SW = $clog2(D);   // block RAM table index width
   // The position adders (u0 + du t, S8): three clocks (f24_add's LAT 3, the same word), so that
   // no stage holds the adder's alignment shift and its carry chain together (at two clocks the
   // adder's first stage was the ring's slowest path); the schedule (header) is written for 3.
   localparam int unsigned POS_ADD_LAT = 3;
   if (POS_ADD_LAT != 3) begin : g_check_pos_lat
     $error("traverse_loop: the stage schedule is written for POS_ADD_LAT = 3");
+  end
+  if (MUL_LAT < 1 || MUL_LAT > 3) begin : g_check_mul_lat
+    $error("traverse_loop: MUL_LAT must be in 1 .. 3 (f24_mul's LAT)");
+  end
+  localparam int unsigned BD_LAT = 3;  // traverse_bdiff: boundary - u0 in 3 clocks
+  // The stage schedule (header): a stage's index at MUL_LAT; the value at MUL_LAT 1 is the name
+  // the header and the signals use (S5 ... S18), the one at MUL_LAT 2 follows.  S0 - S4 do not
+  // depend on it (the lookup's LOOKUP_LAT).
+  localparam int unsigned S_RS   = 4;                      // 4  4: response; tx, ty operands
+  localparam int unsigned S_EXIT = S_RS + MUL_LAT;         // 5  6: tx, ty; t_exit; 1 - H
+  localparam int unsigned S_TNEW = S_EXIT + 1;             // 6  7: t_new, the time to position
+  localparam int unsigned S_DEC  = S_EXIT + 2;             // 7  8: decisions; du * that time
+  localparam int unsigned S_POS  = S_DEC + MUL_LAT;        // 8  10: u0 + du * that time
+  localparam int unsigned S_FLR  = S_POS + POS_ADD_LAT;    // 11 13: floors
+  localparam int unsigned S_XPRE = S_FLR + 1;              // 12 14: crossing part 1, clips
+  localparam int unsigned S_XUP  = S_FLR + 2;              // 13 15: level-up; new level
+  localparam int unsigned S_CB   = S_FLR + 3;              // 14 16: child's boundaries - u0
+  localparam int unsigned S_LOC  = S_CB + 1;               // 15 17: locate's candidates
+  localparam int unsigned S_TEN  = S_CB + BD_LAT;          // 17 19: (boundary - u0) * (1/du)
+  localparam int unsigned S_NS   = S_TEN + MUL_LAT - 1;    // 17 20: next state
+  localparam int unsigned S_TL   = S_TEN + MUL_LAT;        // 18 21: the tail
+  localparam int unsigned D  = S_TL + 1;    // stages S0 .. S_TL: traverse_pkg::loop_depth(MUL_LAT)
+  localparam int unsigned SW = $clog2(D);   // block RAM table index width
+  if (D != loop_depth(MUL_LAT)) begin : g_check_depth
+    $error("traverse_loop: %0d stages, traverse_pkg::loop_depth says %0d", D, loop_depth(MUL_LAT));
   end
 
   typedef logic [SW-1:0] slot_idx_t;
@@ -258,12 +309,12 @@ module traverse_loop
   // Per pass: [the stage that computes it, on the passes named] the stage that reads it; the
   // registers run from the stage after the first to the second.  "ok": the height read returned
   // data; "inside": the pass hits or descends.
-  f24_t             t_new_q  [17:7];   // [S6 ok]              S17: max(t, plane)
-  act_t             act_q    [16:8];   // [S7 ok]              S16
-  f24_pair_t        pos_q    [17:12];  // [S11 inside]          S17: position at t_new
-  f24_t             xt_q     [17:13];  // [S12 ok, not inside] S17: the crossing's time
-                                       // max(t, t_exit)
-  cross_node_t      cross_q  [17:14];  // [S13 ok, not inside] S17: the crossing's new node, up
+  f24_t        t_new_q [S_NS:S_DEC];     // [S6 ok]              S17: max(t, plane)
+  act_t        act_q   [S_NS-1:S_DEC+1]; // [S7 ok]              S16
+  f24_pair_t   pos_q   [S_NS:S_XPRE];    // [S11 inside]          S17: position at t_new
+  f24_t        xt_q    [S_NS:S_XUP];     // [S12 ok, not inside] S17: the crossing's time
+                                         // max(t, t_exit)
+  cross_node_t cross_q [S_NS:S_CB];      // [S13 ok, not inside] S17: the crossing's new node, up
   // Per ray, in block RAM: du, dv and 1/du, 1/dv, one entry per slot (see the header), written
   // when the ray enters the ring.  They are read only into registers, so synthesis can put them
   // in block RAM (ram_style; a 16x4 LUT RAM costs 6 LUT4s).  Their reads are made a stage early
@@ -276,10 +327,10 @@ module traverse_loop
   // ---- ring position, pass activity (see the header) ----------------------------------------
   logic [D-1:0] v_q;               // v_q[s]: the slot in stage s holds a ray
   logic         ok4, err4;         // the height read of the ray in S4 returned data / an error
-  logic [17:5]  ok_q, err_q;       // ok4, err4 of the ray in stage s (meaningful with v_q[s])
-  logic [13:8]  in_q;              // in_q[s]: ok, and the pass hits or descends (inside its node)
-  logic [18:8]  dn_q;              // dn_q[s]: ok, and the pass descends
-  logic [4:1]   lv_q;              // lv_q[s]: the slot in stage s holds a live ray (not done)
+  logic [S_NS:5]       ok_q, err_q;  // ok4, err4 of the ray in stage s (meaningful with v_q[s])
+  logic [S_XUP:S_DEC+1] in_q;  // in_q[s]: ok, and the pass hits or descends (inside its node)
+  logic [S_TL:S_DEC+1]  dn_q;  // dn_q[s]: ok, and the pass descends
+  logic [S_EXIT-1:1]   lv_q;   // lv_q[s]: the slot in stage s holds a live ray (not done)
   logic         xor_desc, sel_up;  // the method uses the XOR descent / the selective level-up
   descent_e     desc;              // the descent policy run (DESC_XOR as DESC_MULTI without
                                    // XOR_PATH)
@@ -309,7 +360,7 @@ module traverse_loop
   f24_pair_t  inv3_q, inv4_q;      // S3 (block RAM read register), S4
   dirs_t      d5_q;                // S5
   tval_t      tmap5_q;             // S5: t_map
-  exit_t      ex_q [12:6];         // S6 - S12: t_exit (computed in S5)
+  exit_t      ex_q [S_XPRE:S_TNEW];  // S6 - S12: t_exit (computed in S5)
   tval_t      tmap6_q;             // S6: t_map
   tval_t      t6_q;                // S6
   f24_pair_t  duv5_q, duv6_q, duv7_q;  // S5 (block RAM read register), S6, S7
@@ -331,7 +382,7 @@ module traverse_loop
   logic [LVL_W-1:0] nk14_q, nk15_q;  // S14, S15: the descent's new level (computed in S13)
   logic [IDX_W-1:0] kben_x14, kbex_x14, kben_y14, kbex_y14;  // S14: the child's boundaries
   sidx_pair_t c15_q, lo15_q, hi15_q;  // S15: child estimate, the child's range at level k'
-  desc_t      dsc_q [18:16];       // S16 - S18: new level, locate's candidates (from S15)
+  desc_t      dsc_q [S_TL:S_LOC+1];  // S16 - S18: new level, locate's candidates (from S15)
   f24_pair_t  inv16_q, inv17_q;    // S16 (block RAM read register), S17
   status_t    st17_q;              // S17
   logic [ITER_W-1:0] it17_q;       // S17: iterations + 1
@@ -386,12 +437,31 @@ module traverse_loop
   assign err4 = rs_valid_i && rs_err_i;
   f24_from_unorm #(.W(16)) u_h (.clk_i, .en_i(ok4),
     .k_i(cfg_i.bits16 ? rs_data_i : {rs_data_i[7:0], rs_data_i[7:0]}), .y_o(h));
-  // (tx, ty for every live ray: whether its read returned data is known only in this stage)
-  f24_mul u_tx (.clk_i, .en_i(lv_q[4]), .a_i(dx_f[0]), .b_i(inv4_q.u), .y_o(tx_raw));
-  f24_mul u_ty (.clk_i, .en_i(lv_q[4]), .a_i(dy_f[0]), .b_i(inv4_q.v), .y_o(ty_raw));
+  // (tx, ty for every live ray: whether its read returned data is known only in this stage;
+  // the units advance while S4 .. S_EXIT - 1 hold a live ray)
+  logic tx_en;
+  assign tx_en = |lv_q[S_EXIT-1:S_RS];
+  f24_mul #(.LAT(MUL_LAT)) u_tx (.clk_i, .en_i(tx_en), .a_i(dx_f[0]), .b_i(inv4_q.u),
+                                 .y_o(tx_raw));
+  f24_mul #(.LAT(MUL_LAT)) u_ty (.clk_i, .en_i(tx_en), .a_i(dy_f[0]), .b_i(inv4_q.v),
+                                 .y_o(ty_raw));
 
   // ---- S5: plane = 1 - H (f24_one_minus: f24_add(1, -H) for H in [0, 1], in one clock) --------
-  f24_one_minus u_plane (.clk_i, .en_i(ok_q[5]), .a_i(h), .y_o(plane));
+  // H (S5) waits for tx, ty: MUL_LAT - 1 registers, to S_EXIT.
+  f24_t h_x;  // H in S_EXIT
+  if (MUL_LAT > 1) begin : g_h_delay
+    f24_t hd_q [MUL_LAT-1];  // hd_q[i]: H in S6 + i
+    always_ff @(posedge clk_i) begin
+      if (ok_q[5]) hd_q[0] <= h;
+      for (int i = 1; i < MUL_LAT - 1; i++) begin
+        if (ok_q[5+i]) hd_q[i] <= hd_q[i-1];
+      end
+    end
+    assign h_x = hd_q[MUL_LAT-2];
+  end else begin : g_h_now
+    assign h_x = h;
+  end
+  f24_one_minus u_plane (.clk_i, .en_i(ok_q[S_EXIT]), .a_i(h_x), .y_o(plane));
 
   function automatic tval_t tval(input f24_t t);
     return '{t: t, ord: f24_ord(t)};
@@ -436,8 +506,9 @@ module traverse_loop
   logic     t_first6, inside6;
   assign t_first6 = ord_max_first(t6_q.ord, f24_ord(plane));
   assign t_new6   = t_first6 ? t6_q.ord : f24_ord(plane);
-  assign tmin6    = '{tmin: ord_min_first(ex_q[6].te.ord, tmap6_q.ord) ? ex_q[6].te : tmap6_q,
-                      miss_pre: ord_le(tmap6_q.ord, ex_q[6].te.ord)};
+  assign tmin6    = '{tmin: ord_min_first(ex_q[S_TNEW].te.ord, tmap6_q.ord) ? ex_q[S_TNEW].te
+                                                                         : tmap6_q,
+                      miss_pre: ord_le(tmap6_q.ord, ex_q[S_TNEW].te.ord)};
   assign inside6  = ord_lt(t_new6, tmin6.tmin.ord);
 
   // ---- S7: decisions; du * that time ------------------------------------------------------------
@@ -447,13 +518,17 @@ module traverse_loop
   assign act7    = '{is_hit: inside7 && leaf7_q, down: inside7 && !leaf7_q,
                      miss: !inside7 && tmin7_q.miss_pre};
   f24_t dtp_x, dtp_y;
-  f24_mul u_dtp_x (.clk_i, .en_i(ok_q[7]), .a_i(duv7_q.u), .b_i(tp7_q), .y_o(dtp_x));
-  f24_mul u_dtp_y (.clk_i, .en_i(ok_q[7]), .a_i(duv7_q.v), .b_i(tp7_q), .y_o(dtp_y));
+  logic dtp_en;  // S7 .. S_POS - 1 hold a pass whose height read returned data
+  assign dtp_en = |ok_q[S_POS-1:S_DEC];
+  f24_mul #(.LAT(MUL_LAT)) u_dtp_x (.clk_i, .en_i(dtp_en), .a_i(duv7_q.u), .b_i(tp7_q),
+                                    .y_o(dtp_x));
+  f24_mul #(.LAT(MUL_LAT)) u_dtp_y (.clk_i, .en_i(dtp_en), .a_i(duv7_q.v), .b_i(tp7_q),
+                                    .y_o(dtp_y));
 
   // ---- S8: u0 + du * that time, u0 + du t_end (f24_add at POS_ADD_LAT = 3) -------------------
   f24_t pos_x, pos_y;
   logic pos_en;  // S8 - S10 hold a pass whose height read returned data
-  assign pos_en  = ok_q[8] || ok_q[9] || ok_q[10];
+  assign pos_en  = |ok_q[S_FLR-1:S_POS];
   f24_add #(.LAT(POS_ADD_LAT)) u_pos_x (.clk_i, .en_i(pos_en), .a_i(uv8_q.u), .b_i(dtp_x),
                                         .y_o(pos_x));
   f24_add #(.LAT(POS_ADD_LAT)) u_pos_y (.clk_i, .en_i(pos_en), .a_i(uv8_q.v), .b_i(dtp_y),
@@ -465,7 +540,7 @@ module traverse_loop
   logic signed [IDX_W-1:0] ia_x, ia_y, ie_x, ie_y;
   logic unused_sat_ax, unused_sat_ay;
   logic ia_en;
-  assign ia_en = dn_q[11] || (sel_up && ok_q[11] && !in_q[11]);
+  assign ia_en = dn_q[S_FLR] || (sel_up && ok_q[S_FLR] && !in_q[S_FLR]);
   f24_to_index #(.W(IDX_W)) u_ia_x (.clk_i, .en_i(ia_en),
     .a_i(d11_q.sx.mv ? pos_x : uv11_q.u), .idx_o(ia_x), .sat_o(unused_sat_ax));
   f24_to_index #(.W(IDX_W)) u_ia_y (.clk_i, .en_i(ia_en),
@@ -479,25 +554,25 @@ module traverse_loop
     tval_t tm1_5_q;  // S5: min(t_map, 1)
     f24_t  tend6_q, tend7_q;  // S6, S7: t_end (computed in S5)
     always_ff @(posedge clk_i) begin
-      if (lv_q[4]) begin
-        tm1_5_q <= ord_min_first(f24_ord(tmap_q[4]), f24_ord(F24_ONE)) ? tval(tmap_q[4])
-                                                                          : tval(F24_ONE);
+      if (lv_q[S_EXIT-1]) begin
+        tm1_5_q <= ord_min_first(f24_ord(tmap_q[S_EXIT-1]), f24_ord(F24_ONE))
+                   ? tval(tmap_q[S_EXIT-1]) : tval(F24_ONE);
       end
-      if (ok_q[5]) tend6_q <= min3(tx5, ty5, tm1_5_q);
-      if (ok_q[6]) tend7_q <= tend6_q;
+      if (ok_q[S_EXIT]) tend6_q <= min3(tx5, ty5, tm1_5_q);
+      if (ok_q[S_TNEW]) tend7_q <= tend6_q;
     end
     assign pose_en = xor_desc && pos_en;
-    f24_mul u_due_x (.clk_i, .en_i(xor_desc && ok_q[7]), .a_i(duv7_q.u), .b_i(tend7_q),
-                     .y_o(due_x));
-    f24_mul u_due_y (.clk_i, .en_i(xor_desc && ok_q[7]), .a_i(duv7_q.v), .b_i(tend7_q),
-                     .y_o(due_y));
+    f24_mul #(.LAT(MUL_LAT)) u_due_x (.clk_i, .en_i(xor_desc && dtp_en), .a_i(duv7_q.u),
+                                      .b_i(tend7_q), .y_o(due_x));
+    f24_mul #(.LAT(MUL_LAT)) u_due_y (.clk_i, .en_i(xor_desc && dtp_en), .a_i(duv7_q.v),
+                                      .b_i(tend7_q), .y_o(due_y));
     f24_add #(.LAT(POS_ADD_LAT)) u_pose_x (.clk_i, .en_i(pose_en), .a_i(uv8_q.u), .b_i(due_x),
                                            .y_o(pose_x));
     f24_add #(.LAT(POS_ADD_LAT)) u_pose_y (.clk_i, .en_i(pose_en), .a_i(uv8_q.v), .b_i(due_y),
                                            .y_o(pose_y));
-    f24_to_index #(.W(IDX_W)) u_ie_x (.clk_i, .en_i(xor_desc && dn_q[11]),
+    f24_to_index #(.W(IDX_W)) u_ie_x (.clk_i, .en_i(xor_desc && dn_q[S_FLR]),
       .a_i(d11_q.sx.mv ? pose_x : uv11_q.u), .idx_o(ie_x), .sat_o(unused_sat_ex));
-    f24_to_index #(.W(IDX_W)) u_ie_y (.clk_i, .en_i(xor_desc && dn_q[11]),
+    f24_to_index #(.W(IDX_W)) u_ie_y (.clk_i, .en_i(xor_desc && dn_q[S_FLR]),
       .a_i(d11_q.sy.mv ? pose_y : uv11_q.v), .idx_o(ie_y), .sat_o(unused_sat_ey));
   end else begin : g_no_xor
     // (descend_pick reads the ends' floors for DESC_XOR only, which is never run here)
@@ -531,19 +606,25 @@ module traverse_loop
   f24_t dbx [2], dby [2];  // {entry, exit} - u0
   f24_t den_x, dex_x, den_y, dex_y, ten_x, tex_x, ten_y, tex_y;
   logic bd_en;  // S14 - S16 hold a descent
-  assign bd_en = dn_q[14] || dn_q[15] || dn_q[16];
+  assign bd_en = |dn_q[S_TEN-1:S_CB];
   traverse_bdiff #(.W(IDX_W), .NB(2)) u_dbx (.clk_i, .en_i(bd_en), .b_i('{kben_x14, kbex_x14}),
-                                             .u_i(uv_q[14].u), .y_o(dbx));
+                                             .u_i(uv_q[S_CB].u), .y_o(dbx));
   traverse_bdiff #(.W(IDX_W), .NB(2)) u_dby (.clk_i, .en_i(bd_en), .b_i('{kben_y14, kbex_y14}),
-                                             .u_i(uv_q[14].v), .y_o(dby));
+                                             .u_i(uv_q[S_CB].v), .y_o(dby));
   assign den_x = dbx[0];
   assign dex_x = dbx[1];
   assign den_y = dby[0];
   assign dex_y = dby[1];
-  f24_mul u_ten_x (.clk_i, .en_i(dn_q[17]), .a_i(den_x), .b_i(inv17_q.u), .y_o(ten_x));
-  f24_mul u_tex_x (.clk_i, .en_i(dn_q[17]), .a_i(dex_x), .b_i(inv17_q.u), .y_o(tex_x));
-  f24_mul u_ten_y (.clk_i, .en_i(dn_q[17]), .a_i(den_y), .b_i(inv17_q.v), .y_o(ten_y));
-  f24_mul u_tex_y (.clk_i, .en_i(dn_q[17]), .a_i(dex_y), .b_i(inv17_q.v), .y_o(tex_y));
+  logic ten_en;  // S17 .. S_TL - 1 hold a descent
+  assign ten_en = |dn_q[S_TL-1:S_TEN];
+  f24_mul #(.LAT(MUL_LAT)) u_ten_x (.clk_i, .en_i(ten_en), .a_i(den_x), .b_i(inv17_q.u),
+                                    .y_o(ten_x));
+  f24_mul #(.LAT(MUL_LAT)) u_tex_x (.clk_i, .en_i(ten_en), .a_i(dex_x), .b_i(inv17_q.u),
+                                    .y_o(tex_x));
+  f24_mul #(.LAT(MUL_LAT)) u_ten_y (.clk_i, .en_i(ten_en), .a_i(den_y), .b_i(inv17_q.v),
+                                    .y_o(ten_y));
+  f24_mul #(.LAT(MUL_LAT)) u_tex_y (.clk_i, .en_i(ten_en), .a_i(dex_y), .b_i(inv17_q.v),
+                                    .y_o(tex_y));
 
   // ---- S17: next state -----------------------------------------------------------------------
   /* verilator lint_off UNUSEDSIGNAL */  // a live ray has no final flag (hit, ...) set: not read
@@ -553,12 +634,12 @@ module traverse_loop
   cross_node_t x17;
   logic live17, err17, iter17, hit17, miss17, down17, cross17, cap17;
   assign st17    = st17_q;
-  assign x17     = cross_q[17];
+  assign x17     = cross_q[S_NS];
   // A ray finished earlier (waiting for room in the result FIFO) is left untouched, and so is
   // one whose lookup missed in the cache (same state, round again).
-  assign live17  = v_q[17] && !st17.done;
-  assign err17   = live17 && err_q[17];
-  assign iter17  = live17 && !err_q[17] && ok_q[17];
+  assign live17  = v_q[S_NS] && !st17.done;
+  assign err17   = live17 && err_q[S_NS];
+  assign iter17  = live17 && !err_q[S_NS] && ok_q[S_NS];
   assign hit17   = iter17 && act17_q.is_hit;
   assign miss17  = iter17 && !act17_q.is_hit && act17_q.miss;
   assign down17  = iter17 && !act17_q.is_hit && !act17_q.miss && act17_q.down;
@@ -587,9 +668,9 @@ module traverse_loop
   endfunction
 
   node_t ndn18, n_new;
-  assign ndn18 = '{k:  dsc_q[18].nk,
-                   cx: correct(dsc_q[18].x, f24_ord(ten_x), f24_ord(tex_x), t_new18_q),
-                   cy: correct(dsc_q[18].y, f24_ord(ten_y), f24_ord(tex_y), t_new18_q)};
+  assign ndn18 = '{k:  dsc_q[S_TL].nk,
+                   cx: correct(dsc_q[S_TL].x, f24_ord(ten_x), f24_ord(tex_x), t_new18_q),
+                   cy: correct(dsc_q[S_TL].y, f24_ord(ten_y), f24_ord(tex_y), t_new18_q)};
   assign n_new = '{k: new_ray_i.k, cx: new_ray_i.cx, cy: new_ray_i.cy};
 
   /* verilator lint_off UNUSEDSIGNAL */  // the tail reads the result flags only
@@ -627,10 +708,10 @@ module traverse_loop
   localparam int unsigned PAW  = (PQ > 1) ? $clog2(PQ) : 1;
   localparam int unsigned PCW  = $clog2(PQ + 1);
   localparam int unsigned PHW  = $clog2(PARK_MAX + 1);
-  if (PARK && (PARK_DEPTH < 1 || LOOP_DEPTH + PARK_DEPTH > 31 || PARK_WAIT > 255
+  if (PARK && (PARK_DEPTH < 1 || D + PARK_DEPTH > 31 || PARK_WAIT > 255
                || PARK_MAX < 1)) begin : g_check_park
     $error("traverse_loop: PARK_DEPTH 1 .. %0d, PARK_WAIT <= 255, PARK_MAX >= 1",
-           31 - LOOP_DEPTH);
+           31 - D);
   end
   park_t          pk_head;         // the queue's head
   logic [PCW-1:0] pk_cnt;          // rays parked
@@ -703,10 +784,10 @@ module traverse_loop
       // (not live17: a ray that is not done in S18 was live in S17, and the status's done flag
       // would bring the float datapath into the park decision, which the formal model cuts at
       // done18_q)
-      miss18_q <= !ok_q[17] && !err_q[17];
-      if (v_q[17]) begin
-        pduv18_q <= duv_q[sl_q[17]];
-        pinv18_q <= inv_q[sl_q[17]];
+      miss18_q <= !ok_q[S_NS] && !err_q[S_NS];
+      if (v_q[S_NS]) begin
+        pduv18_q <= duv_q[sl_q[S_NS]];
+        pinv18_q <= inv_q[sl_q[S_NS]];
       end
       if (park) begin
         pk_q[wr] <= '{id: id_q[D-1], uv: uv_q[D-1], duv: pduv18_q, inv: pinv18_q,
@@ -766,11 +847,11 @@ module traverse_loop
       dn_q  <= '0;
       lv_q  <= '0;
     end else begin
-      ok_q  <= {ok_q[16:5], ok4};
-      err_q <= {err_q[16:5], err4};
-      in_q  <= {in_q[12:8], ok_q[7] && inside7};
-      dn_q  <= {dn_q[17:8], ok_q[7] && act7.down};
-      lv_q  <= {lv_q[3:1], live0_q};
+      ok_q  <= {ok_q[S_NS-1:5], ok4};
+      err_q <= {err_q[S_NS-1:5], err4};
+      in_q  <= {in_q[S_XUP-1:S_DEC+1], ok_q[S_DEC] && inside7};
+      dn_q  <= {dn_q[S_TL-1:S_DEC+1], ok_q[S_DEC] && act7.down};
+      lv_q  <= {lv_q[S_EXIT-2:1], live0_q};
     end
   end
 
@@ -781,49 +862,49 @@ module traverse_loop
     // new ray
     if (lv_q[2]) inv3_q <= inv_q[sl_q[2]];
     if (lv_q[3]) inv4_q <= inv3_q;
-    if (lv_q[4]) begin
-      duv5_q  <= duv_q[sl_q[4]];
-      d5_q    <= dir_q[4];
-      tmap5_q <= tval(tmap_q[4]);
+    if (lv_q[S_EXIT-1]) begin
+      duv5_q  <= duv_q[sl_q[S_EXIT-1]];
+      d5_q    <= dir_q[S_EXIT-1];
+      tmap5_q <= tval(tmap_q[S_EXIT-1]);
     end
-    if (ok_q[5]) begin
-      ex_q[6] <= exit_of(tx5, ty5);
+    if (ok_q[S_EXIT]) begin
+      ex_q[S_TNEW] <= exit_of(tx5, ty5);
       tmap6_q <= tmap5_q;
-      t6_q    <= tval(t_q[5]);
+      t6_q    <= tval(t_q[S_EXIT]);
       duv6_q  <= duv5_q;
     end
-    if (ok_q[6]) begin
+    if (ok_q[S_TNEW]) begin
       t_new7_q <= t_new6;
       tmin7_q  <= tmin6;
-      leaf7_q  <= (node_q[6].k == '0);
+      leaf7_q  <= (node_q[S_TNEW].k == '0);
       tp7_q    <= (inside6 && t_first6) ? t6_q.t : plane;
       duv7_q   <= duv6_q;
     end
-    for (int s = 6; s < 12; s++) begin
+    for (int s = S_TNEW; s < S_XPRE; s++) begin
       if (ok_q[s]) ex_q[s+1] <= ex_q[s];
     end
-    if (ok_q[7]) uv8_q <= uv_q[7];
-    if (ok_q[10]) begin
-      uv11_q <= uv_q[10];
-      d11_q  <= dir_q[10];
-      n11_q  <= node_q[10];
+    if (ok_q[S_POS-1]) uv8_q <= uv_q[S_POS-1];
+    if (ok_q[S_FLR-1]) begin
+      uv11_q <= uv_q[S_FLR-1];
+      d11_q  <= dir_q[S_FLR-1];
+      n11_q  <= node_q[S_FLR-1];
     end
-    if (ok_q[11]) begin
+    if (ok_q[S_FLR]) begin
       d12_q       <= d11_q;
       n12_q       <= n11_q;
       lo12_q      <= '{x: node_lo(n11_q.k, n11_q.cx), y: node_lo(n11_q.k, n11_q.cy)};
       hi12_q      <= '{x: node_hi(n11_q.k, n11_q.cx), y: node_hi(n11_q.k, n11_q.cy)};
-      crossed12_q <= stat_q[11].crossed;
-      prev12_q    <= stat_q[11].prev_cross;
-      t12_q       <= tval(t_q[11]);
+      crossed12_q <= stat_q[S_FLR].crossed;
+      prev12_q    <= stat_q[S_FLR].prev_cross;
+      t12_q       <= tval(t_q[S_FLR]);
     end
     // S12 -> S13: the crossing's first part, the descent's clipped positions
-    if (ok_q[12] && !in_q[12]) begin
-      xpre13_q <= cross_pre(n12_q.k, n12_q.cx, n12_q.cy, ex_q[12].eqx, ex_q[12].eqy, d12_q.sx,
-                            d12_q.sy, ia_x, ia_y);
+    if (ok_q[S_XPRE] && !in_q[S_XPRE]) begin
+      xpre13_q <= cross_pre(n12_q.k, n12_q.cx, n12_q.cy, ex_q[S_XPRE].eqx, ex_q[S_XPRE].eqy,
+                            d12_q.sx, d12_q.sy, ia_x, ia_y);
       prev13_q <= prev12_q;
     end
-    if (dn_q[12]) begin
+    if (dn_q[S_XPRE]) begin
       a13_q   <= '{x: clip_idx(sidx_t'(ia_x), lo12_q.x, hi12_q.x),
                    y: clip_idx(sidx_t'(ia_y), lo12_q.y, hi12_q.y)};
       b13_q   <= '{x: clip_idx(sidx_t'(ie_x), lo12_q.x, hi12_q.x),
@@ -833,14 +914,14 @@ module traverse_loop
       d13_q   <= d12_q;
     end
     // S13 -> S14: the new level
-    if (dn_q[13]) begin
+    if (dn_q[S_XUP]) begin
       nk14_q <= descend_pick(desc, n13_q.k, nkm13_q, a13_q.x, b13.x, a13_q.y, b13.y);
       a14_q  <= a13_q;
       n14_q  <= n13_q;
       d14_q  <= d13_q;
     end
     // S14 -> S15: the child's estimate and range (its boundary integers: S14, above)
-    if (dn_q[14]) begin
+    if (dn_q[S_CB]) begin
       c15_q      <= '{x: a14_q.x >>> nk14_q, y: a14_q.y >>> nk14_q};
       lo15_q     <= '{x: node_lo(dd14, n14_q.cx), y: node_lo(dd14, n14_q.cy)};
       hi15_q     <= '{x: node_hi(dd14, n14_q.cx), y: node_hi(dd14, n14_q.cy)};
@@ -848,8 +929,8 @@ module traverse_loop
       d15_q      <= d14_q;
     end
     // S15 -> S16: locate's three candidates
-    if (dn_q[15]) begin
-      dsc_q[16] <= '{nk: nk15_q,
+    if (dn_q[S_LOC]) begin
+      dsc_q[S_LOC+1] <= '{nk: nk15_q,
         x: '{back: CELL_W'(clip_idx(c15_q.x - dir_val(d15_q.sx), lo15_q.x, hi15_q.x)),
              est:  CELL_W'(c15_q.x),
              fwd:  CELL_W'(clip_idx(c15_q.x + dir_val(d15_q.sx), lo15_q.x, hi15_q.x))},
@@ -857,18 +938,18 @@ module traverse_loop
              est:  CELL_W'(c15_q.y),
              fwd:  CELL_W'(clip_idx(c15_q.y + dir_val(d15_q.sy), lo15_q.y, hi15_q.y))}};
     end
-    for (int s = 16; s < 18; s++) begin
+    for (int s = S_LOC + 1; s < S_TL; s++) begin
       if (dn_q[s]) dsc_q[s+1] <= dsc_q[s];
     end
-    if (dn_q[15]) inv16_q <= inv_q[sl_q[15]];
-    if (dn_q[16]) inv17_q <= inv16_q;
-    if (v_q[16]) begin
-      st17_q  <= stat_q[16];
-      it17_q  <= stat_q[16].iters + ITER_W'(1);
-      act17_q <= act_q[16];
+    if (dn_q[S_TEN-2]) inv16_q <= inv_q[sl_q[S_TEN-2]];
+    if (dn_q[S_TEN-1]) inv17_q <= inv16_q;
+    if (v_q[S_NS-1]) begin
+      st17_q  <= stat_q[S_NS-1];
+      it17_q  <= stat_q[S_NS-1].iters + ITER_W'(1);
+      act17_q <= act_q[S_NS-1];
     end
     // S17 -> S18
-    if (dn_q[17]) t_new18_q <= f24_ord(t_new_q[17]);
+    if (dn_q[S_NS]) t_new18_q <= f24_ord(t_new_q[S_NS]);
     down18_q <= down17 && !cap17;  // (a capped ray is done: its node is never read again)
     done18_q <= (err17 || iter17) ? nst17.done : st17.done;
   end
@@ -902,28 +983,29 @@ module traverse_loop
                : unpark ? pk_head.stat : stat_q[D-1];
     // S17 -> S18: the next state (only a live ray whose lookup answered changes); a hit's u, v
     // take the place of u0, v0 (no stage reads those again)
-    if (err17 || iter17) stat_q[18] <= nst17;
-    if (hit17 || down17) t_q[18] <= t_new_q[17];
+    if (err17 || iter17) stat_q[S_TL] <= nst17;
+    if (hit17 || down17) t_q[S_TL] <= t_new_q[S_NS];
     if (cross17) begin
-      t_q[18]    <= xt_q[17];
-      node_q[18] <= '{k: x17.k, cx: x17.cx, cy: x17.cy};
+      t_q[S_TL]    <= xt_q[S_NS];
+      node_q[S_TL] <= '{k: x17.k, cx: x17.cx, cy: x17.cy};
     end
-    if (hit17) uv_q[18] <= pos_q[17];
+    if (hit17) uv_q[S_TL] <= pos_q[S_NS];
     // What this pass computes for its later stages (only for the passes that read it: the height
     // read returned data; hits and descents; crossings).
-    for (int s = 8; s < 18; s++) t_new_q[s] <= t_new_q[s-1];
-    for (int s = 9; s < 17; s++) act_q[s] <= act_q[s-1];
-    for (int s = 13; s < 18; s++) pos_q[s] <= pos_q[s-1];
-    for (int s = 14; s < 18; s++) xt_q[s] <= xt_q[s-1];
-    for (int s = 15; s < 18; s++) cross_q[s] <= cross_q[s-1];
-    if (ok_q[6]) t_new_q[7] <= t_first6 ? t6_q.t : plane;
-    if (ok_q[7]) act_q[8]   <= act7;
-    if (in_q[11]) pos_q[12] <= '{u: pos_x, v: pos_y};
-    if (ok_q[12] && !in_q[12]) begin
-      xt_q[13] <= ord_max_first(t12_q.ord, ex_q[12].te.ord) ? t12_q.t : ex_q[12].te.t;
+    for (int s = S_DEC + 1; s <= S_NS; s++) t_new_q[s] <= t_new_q[s-1];
+    for (int s = S_DEC + 2; s < S_NS; s++) act_q[s] <= act_q[s-1];
+    for (int s = S_XPRE + 1; s <= S_NS; s++) pos_q[s] <= pos_q[s-1];
+    for (int s = S_XUP + 1; s <= S_NS; s++) xt_q[s] <= xt_q[s-1];
+    for (int s = S_CB + 1; s <= S_NS; s++) cross_q[s] <= cross_q[s-1];
+    if (ok_q[S_TNEW]) t_new_q[S_DEC] <= t_first6 ? t6_q.t : plane;
+    if (ok_q[S_DEC]) act_q[S_DEC+1] <= act7;
+    if (in_q[S_FLR]) pos_q[S_XPRE] <= '{u: pos_x, v: pos_y};
+    if (ok_q[S_XPRE] && !in_q[S_XPRE]) begin
+      xt_q[S_XUP] <= ord_max_first(t12_q.ord, ex_q[S_XPRE].te.ord) ? t12_q.t
+                                                                   : ex_q[S_XPRE].te.t;
     end
-    if (ok_q[13] && !in_q[13]) begin
-      cross_q[14] <= cross_up(cfg_i.policy.level_up, cfg_i.n, xpre13_q, prev13_q);
+    if (ok_q[S_XUP] && !in_q[S_XUP]) begin
+      cross_q[S_CB] <= cross_up(cfg_i.policy.level_up, cfg_i.n, xpre13_q, prev13_q);
     end
   end
 

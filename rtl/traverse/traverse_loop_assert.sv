@@ -50,17 +50,18 @@ module traverse_loop_assert
   import traverse_pkg::*;
 #(
   parameter int unsigned ID_W       = 8,   // traverse_loop's ID_W
+  parameter int unsigned D          = LOOP_DEPTH,  // traverse_loop's D: the ring's stages
   parameter int unsigned ID_TRACK_W = 10,  // the shadow of ids in the ring up to this ID_W
   parameter int unsigned PQ         = 1,   // park queue entries (traverse_loop's PQ)
   parameter int unsigned PARK_MAX   = 1    // traverse_loop's PARK_MAX
 ) (
   input logic                          clk_i,
   input logic                          rst_ni,
-  input logic [$clog2(LOOP_DEPTH)-1:0] sl_i [LOOP_DEPTH],  // sl_q: the stages' slot counters
+  input logic [$clog2(D)-1:0]          sl_i [D],           // sl_q: the stages' slot counters
   input logic                          lk_valid_i,         // lk_valid_o
   input logic                          rs_valid_i,
-  input logic                          ok5_i,              // ok_q[5]: H enters f24_one_minus
-  input f24_t                          h_i,                // h
+  input logic                          ok5_i,              // ok_q[S_EXIT]: H enters f24_one_minus
+  input f24_t                          h_i,                // h_x (H in S_EXIT)
   input logic                          admit_i,            // admit: a new ray enters
   input logic                          v_last_i,           // v_q[D-1]
   input logic                          retire_i,
@@ -70,11 +71,11 @@ module traverse_loop_assert
   input logic                          lv1_i,              // lv_q[1]: a live ray in S1
   input logic [IDX_W-1:0]              kb1_i [2],          // kbx1_q, kby1_q
   input f24_t                          uv1_i [2],          // uv_q[1]
-  input logic                          dn14_i,             // dn_q[14]: a descent in S14
+  input logic                          dn14_i,             // dn_q[S_CB]: a descent in S14
   input logic [IDX_W-1:0]              kb14_i [4],         // kben_x14, kbex_x14, kben_y14, kbex_y14
-  input f24_t                          uv14_i [2],         // uv_q[14]
-  input logic [LOOP_DEPTH-1:0]         v_i,                // v_q: the slots holding a ray
-  input logic [ID_W-1:0]               id_i [LOOP_DEPTH],  // id_q: their ids
+  input f24_t                          uv14_i [2],         // uv_q[S_CB]
+  input logic [D-1:0]                  v_i,                // v_q: the slots holding a ray
+  input logic [ID_W-1:0]               id_i [D],           // id_q: their ids
   input logic                          bypass_i,           // bypass: a new ray straight out
   input logic [ID_W-1:0]               new_id_i,
   input logic                          done18_i,           // done18_q
@@ -88,8 +89,6 @@ module traverse_loop_assert
   input logic                          pk_old_i,           // pk_old
   input logic [$clog2(PARK_MAX+1)-1:0] pk_hw_i             // pk_hw
 );
-
-  localparam int unsigned D = LOOP_DEPTH;
 
   // A boundary in [0, 2^15], a position u0 in [+-0, 2^15) (cells and u0 inside the pyramid).
   function automatic logic bound_ok(input logic [IDX_W-1:0] b);
@@ -247,13 +246,14 @@ module traverse_loop_assert
 
 endmodule
 
-bind traverse_loop traverse_loop_assert #(.ID_W(ID_W), .PQ(PQ), .PARK_MAX(PARK_MAX)) u_assert (
-  .clk_i, .rst_ni, .sl_i(sl_q), .lk_valid_i(lk_valid_o), .rs_valid_i, .ok5_i(ok_q[5]), .h_i(h),
-  .admit_i(admit), .v_last_i(v_q[LOOP_DEPTH-1]), .retire_i(retire), .live17_i(live17),
+bind traverse_loop traverse_loop_assert #(.ID_W(ID_W), .D(D), .PQ(PQ), .PARK_MAX(PARK_MAX))
+u_assert (
+  .clk_i, .rst_ni, .sl_i(sl_q), .lk_valid_i(lk_valid_o), .rs_valid_i, .ok5_i(ok_q[S_EXIT]),
+  .h_i(h_x), .admit_i(admit), .v_last_i(v_q[D-1]), .retire_i(retire), .live17_i(live17),
   .st17_final_i(st17.hit || st17.invalid || st17.capped || st17.err), .down18_i(down18_q),
-  .lv1_i(lv_q[1]), .kb1_i('{kbx1_q, kby1_q}), .uv1_i('{uv_q[1].u, uv_q[1].v}), .dn14_i(dn_q[14]),
-  .kb14_i('{kben_x14, kbex_x14, kben_y14, kbex_y14}),
-  .uv14_i('{uv_q[14].u, uv_q[14].v}), .v_i(v_q), .id_i(id_q), .bypass_i(bypass),
+  .lv1_i(lv_q[1]), .kb1_i('{kbx1_q, kby1_q}), .uv1_i('{uv_q[1].u, uv_q[1].v}),
+  .dn14_i(dn_q[S_CB]), .kb14_i('{kben_x14, kbex_x14, kben_y14, kbex_y14}),
+  .uv14_i('{uv_q[S_CB].u, uv_q[S_CB].v}), .v_i(v_q), .id_i(id_q), .bypass_i(bypass),
   .new_id_i, .done18_i(done18_q), .res_full_i, .park_i(park), .unpark_i(unpark),
   .pk_cnt_i(pk_cnt), .pk_rd_i(pk_rd), .pk_v_i(pk_v), .pk_id_i(pk_id), .pk_old_i(pk_old),
   .pk_hw_i(pk_hw));

@@ -24,8 +24,10 @@ package traverse_pkg;
   localparam int unsigned CODE_W     = 16;  // a height code (unorm8 in the low byte, or unorm16)
   localparam int unsigned LOOKUP_LAT = 3;   // clocks from lk_valid_o to rs_valid_i
   // Stages of traverse_loop's ring (one ray slot each): one pass = one iteration = LOOP_DEPTH
-  // clocks.
-  localparam int unsigned LOOP_DEPTH = 19;
+  // clocks.  16 + 3 * MUL_LAT: three f24_mul on the pass's dependent chain (tx, du * t, the
+  // child's crossing times; traverse_loop's header), each MUL_LAT stages; 19 at the package
+  // default pipe_pkg::F24_MUL_LAT = 1, 22 at MUL_LAT 2.  (Its f24_add run at a fixed 3 clocks.)
+  localparam int unsigned LOOP_DEPTH = 16 + 3 * pipe_pkg::F24_MUL_LAT;  // loop_depth(F24_MUL_LAT)
   // traverse_setup's schedule at f24_add LAT add_lat and f24_mul LAT mul_lat (its ADD_LAT /
   // MUL_LAT; its header has the stage table).  setup_gap: the item stages from a shared unit's
   // first operation to its second, add_lat + mul_lat + 3 rounded up to 2 mod 4 (the second
@@ -47,6 +49,12 @@ package traverse_pkg;
   localparam f24_t F24_POS_ZERO = 24'h000000;
   localparam f24_t F24_SIGN     = 24'h800000;
   /* verilator lint_on UNUSEDPARAM */
+
+  // traverse_loop's ring length for an f24_mul latency of mul_lat clocks (LOOP_DEPTH above is its
+  // value at pipe_pkg::F24_MUL_LAT, written out so that tb/harness/sv_params.py can read it).
+  function automatic int unsigned loop_depth(input int unsigned mul_lat);
+    return 16 + 3 * mul_lat;
+  endfunction
 
   // ---- methods (model.traverse.METHOD_CODES) ------------------------------------------------
   typedef enum logic [3:0] {

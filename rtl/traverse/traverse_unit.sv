@@ -3,7 +3,8 @@
 // model.traverse.trace(pyr, rays, method, "f24") (hit, t, u, v, invalid, iterations).
 //
 //   ray stream -> traverse_setup (first mode, SETUP_LAT = 21 stages) -> setup FIFO
-//              -> traverse_loop (second mode, 19-slot ring, one height lookup per pass)
+//              -> traverse_loop (second mode, ring of loop_depth(MUL_LAT) = 19 slots at
+//                 MUL_LAT 1, one height lookup per pass)
 //              -> result FIFO -> result stream (rays leave in completion order, not input order)
 //
 // Flow control (valid never depends on ready):
@@ -11,7 +12,7 @@
 //     the setup pipeline never stalls and its FIFO never overflows.  It is also 0 in three
 //     clocks of every four (traverse_setup's in_ready_o, a free-running phase): traverse_setup
 //     shares its float units over 4 clocks, so it takes a ray every 4th clock at most (above
-//     what the loop finishes: a ray takes several passes of the 19-slot ring, and the back end
+//     what the loop finishes: a ray takes several passes of the ring, and the back end
 //     takes a hit every 4th clock at most).
 //   - The loop takes a new ray only into an empty slot at its entry (re-circulating rays first).
 //   - Result back-pressure never loses a ray: a finished ray leaves the ring only when the result
@@ -38,10 +39,11 @@ module traverse_unit
   parameter int unsigned RES_FIFO_DEPTH   = 16,  // power of two
   parameter int unsigned CNT_W            = 32,  // statistics counters
   parameter bit          XOR_PATH         = 1'b1, // 0: no XOR descent path (traverse_loop)
+  parameter int unsigned MUL_LAT          = pipe_pkg::F24_MUL_LAT, // f24_mul latency (traverse_loop)
   parameter bit          PARK             = 1'b0, // 1: park queue for missed rays (traverse_loop)
-  parameter int unsigned PARK_DEPTH       = 12,   // park queue entries (traverse_loop)
+  parameter int unsigned PARK_DEPTH       = 31 - loop_depth(MUL_LAT), // park queue entries (traverse_loop; 12 for 19 stages)
   parameter int unsigned PARK_WAIT        = 16,   // clocks before a parked ray beats new rays (traverse_loop)
-  parameter int unsigned PARK_MAX         = 4 * LOOP_DEPTH  // bound on a parked ray's wait (traverse_loop)
+  parameter int unsigned PARK_MAX         = 4 * loop_depth(MUL_LAT) // bound on a parked ray's wait (traverse_loop)
 ) (
   input  logic                              clk_i,
   input  logic                              rst_ni,
@@ -157,7 +159,7 @@ module traverse_unit
   logic            st_iter, st_down, st_cross, st_up;
   logic [4:0]      lp_busy;
   traverse_loop #(
-    .ID_W(ID_W), .XOR_PATH(XOR_PATH), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH),
+    .ID_W(ID_W), .MUL_LAT(MUL_LAT), .XOR_PATH(XOR_PATH), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH),
     .PARK_WAIT(PARK_WAIT), .PARK_MAX(PARK_MAX)
   ) u_loop (
     .clk_i, .rst_ni, .cfg_i(cfg),

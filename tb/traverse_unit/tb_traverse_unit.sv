@@ -6,7 +6,8 @@ module tb_traverse_unit
 #(
   parameter int unsigned ID_W = 16,
   parameter int unsigned AW   = 18,
-  parameter bit          XOR_PATH = 1'b1  // traverse_loop's XOR descent path
+  parameter bit          XOR_PATH = 1'b1,  // traverse_loop's XOR descent path
+  parameter int unsigned MUL_LAT  = pipe_pkg::F24_MUL_LAT  // traverse_loop's f24_mul latency
 ) (
   input  logic                              clk_i,
   input  logic                              rst_ni,
@@ -58,7 +59,7 @@ module tb_traverse_unit
   logic [31:0] lk_addr;
   logic [15:0] rs_data;
 
-  traverse_unit #(.ID_W(ID_W), .XOR_PATH(XOR_PATH)) u_dut (
+  traverse_unit #(.ID_W(ID_W), .XOR_PATH(XOR_PATH), .MUL_LAT(MUL_LAT)) u_dut (
     .clk_i, .rst_ni,
     .cfg_method_i, .cfg_width_i, .cfg_height_i, .cfg_root_level_i, .cfg_bits16_i, .cfg_base_i,
     .cfg_level_off_i, .cfg_root_code_i, .cfg_iter_cap_i,

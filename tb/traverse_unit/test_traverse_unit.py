@@ -9,13 +9,16 @@ must come back exactly once with the model's hit, invalid, iterations and (for h
 The statistics counters are checked against the model's per-action counts.  A last run measures
 clocks per iteration with an always-hit memory and no back-pressure.
 
-The unit is built twice: with traverse_loop's XOR descent path (XOR_PATH=1, every method as the
-model) and without it (XOR_PATH=0), where the ring runs the XOR descent as the multi-level descent:
-park-xor's code is then checked against the model's method with park-xor's fields and
-descent="multi" (same `descent_levels`), and every other method as before.
+The unit is built three times: with traverse_loop's XOR descent path (XOR_PATH=1, every method as
+the model) and without it (XOR_PATH=0), where the ring runs the XOR descent as the multi-level
+descent: park-xor's code is then checked against the model's method with park-xor's fields and
+descent="multi" (same `descent_levels`), and every other method as before; and with the XOR path
+and two-clock multipliers (MUL_LAT=2: a ring of loop_depth(2) = 22 stages instead of 19), whose
+results must be the same words.  traverse_ring_length measures the ring's length (clocks between
+one lone ray's lookups) against the Python mirror of traverse_pkg::loop_depth.
 
-Environment: SEED, TRAVERSE_RAYS (rays per map and method, default 200), WAVES=1; XOR_PATH is set
-by the pytest function for the build it runs.
+Environment: SEED, TRAVERSE_RAYS (rays per map and method, default 200), WAVES=1; XOR_PATH and
+MUL_LAT are set by the pytest function for the build it runs.
 """
 from __future__ import annotations
 
@@ -47,6 +50,13 @@ MAPS = [(1, 1, 8, 0), (2, 2, 8, 0), (7, 5, 16, 0), (16, 16, 8, 2), (37, 61, 8, 0
 
 #: traverse_loop's XOR_PATH of the build under test (set by test_traverse_unit).
 XOR_PATH = int(os.environ.get("XOR_PATH", "1"))
+#: traverse_loop's MUL_LAT of the build under test (set by test_traverse_unit; 1 = the default).
+MUL_LAT = int(os.environ.get("MUL_LAT", "1"))
+
+
+def loop_depth(mul_lat: int) -> int:
+    """traverse_pkg::loop_depth: the ring's stages for f24_mul latency ``mul_lat``."""
+    return 16 + 3 * mul_lat
 
 
 def model_method(method: str) -> traverse.Method:
@@ -363,12 +373,74 @@ async def traverse_throughput(dut):
         assert busy / iters <= 1.15, "loop under-used"
 
 
-@pytest.mark.parametrize("xor_path", [1, 0])
-def test_traverse_unit(xor_path: int):
+@cocotb.test()
+async def traverse_ring_length(dut):
+    """One ray alone in the unit, every lookup a hit: its lookups come one pass =
+    loop_depth(MUL_LAT) clocks apart (the ring's length)."""
+    rng = np.random.default_rng(seed())
+    h = Harness(dut)
+    await h.reset()
+    pyr = heightmap.build(height_field(rng, 64, 64, 0), 8)
+    await h.load(pyr)
+    await h.configure(traverse_words.config(pyr, "oh", base=ROM_BASE))
+    dut.miss_thresh_i.value = 0
+    rays = adversarial_rays(rng, 64, 64, 400)
+    res = traverse.trace(pyr, rays, "oh", "f24")
+    i = int(np.argmax(res.iterations))
+    assert res.iterations[i] >= 3, "no ray with three iterations"
+    one = traverse_words.ray_words(rays)
+    s = h.s
+    s["ray_id_i"].value = 0
+    for name, w in zip(("ray_u0_i", "ray_v0_i", "ray_du_i", "ray_dv_i"), one):
+        s[name].value = int(w[i])
+    s["ray_valid_i"].value = 1
+    while not int(s["ray_ready_o"].value):
+        await RisingEdge(h.clk)
+        await FallingEdge(h.clk)
+    await RisingEdge(h.clk)
+    await FallingEdge(h.clk)
+    s["ray_valid_i"].value = 0
+    s["res_ready_i"].value = 1
+    when: list[int] = []
+    last = int(dut.stat_lookups_o.value)
+    for cyc in range(100000):
+        if int(s["res_valid_o"].value):
+            break
+        await RisingEdge(h.clk)
+        await FallingEdge(h.clk)
+        now = int(dut.stat_lookups_o.value)
+        if now != last:
+            assert now == last + 1
+            when.append(cyc)
+        last = now
+    else:
+        raise AssertionError("the ray did not come back")
+    await RisingEdge(h.clk)
+    await FallingEdge(h.clk)
+    s["res_ready_i"].value = 0
+    gaps = sorted(set(b - a for a, b in zip(when, when[1:])))
+    want = loop_depth(MUL_LAT)
+    dut._log.info("RING MUL_LAT %d: %d lookups, clocks between them %s (loop_depth %d)",
+                  MUL_LAT, len(when), gaps, want)
+    report.record("traverse_unit", f"ring length, MUL_LAT {MUL_LAT}", 1, int(gaps != [want]))
+    assert len(when) == int(res.iterations[i]), "lookups != the model's iterations"
+    assert gaps == [want], f"lookups {gaps} clocks apart, loop_depth({MUL_LAT}) = {want}"
+
+
+def test_loop_depth_mirror():
+    """The Python mirror of traverse_pkg::loop_depth gives the package's LOOP_DEPTH at
+    pipe_pkg::F24_MUL_LAT."""
+    from tb.harness import sv_params
+    assert loop_depth(sv_params.value("pipe_pkg", "F24_MUL_LAT")) == traverse_words.LOOP_DEPTH
+
+
+@pytest.mark.parametrize("xor_path,mul_lat", [(1, 1), (0, 1), (1, 2)])
+def test_traverse_unit(xor_path: int, mul_lat: int):
     diff = traverse_words.method_differences()
     assert not diff, "rtl/traverse/traverse_pkg.sv decode_method is out of date: " + "; ".join(diff)
-    # (the default build keeps its name: no parameter given for XOR_PATH=1)
+    # (the default build keeps its name: no parameter given for XOR_PATH=1, MUL_LAT=1)
+    params = ({} if xor_path else {"XOR_PATH": 0}) | ({} if mul_lat == 1 else {"MUL_LAT": mul_lat})
     runner.run("tb_traverse_unit", "test_traverse_unit", HERE, rtl_top="traverse_unit",
-               parameters={} if xor_path else {"XOR_PATH": 0},
-               extra_env={"XOR_PATH": str(xor_path)},
+               parameters=params,
+               extra_env={"XOR_PATH": str(xor_path), "MUL_LAT": str(mul_lat)},
                extra_sources=[str(HERE / "tb_traverse_unit.sv")])
