@@ -63,10 +63,13 @@ package pipe_pkg;
   localparam int unsigned TEX_ADDR_LAT = tex_addr_lat(F24_ADD_LAT, F24_MUL_LAT);  // 10
   // from_unorm; per row sub, mul, add (top, then bot a clock later on the same units); then sub,
   // mul, add (between the rows), the last adder's two operations from operand registers and an
-  // odd number of clocks apart (m delayed a clock).
-  localparam int unsigned TEX_FILTER_LAT = F24_FROM_UNORM_LAT + 1
-                                         + 2 * (F24_ADD_LAT + F24_MUL_LAT + F24_ADD_LAT)
-                                         + 3;  // 15
+  // odd number of clocks apart (m delayed (add_lat + mul_lat) % 2 clocks: a clock at (2, 1) and
+  // at (3, 2)).  tex_filter's latency at its ADD_LAT, MUL_LAT: 15 at (2, 1), 21 at (3, 2).
+  function automatic int unsigned tex_filter_lat(input int unsigned add_lat,
+                                                 input int unsigned mul_lat);
+    return F24_FROM_UNORM_LAT + 1 + 2 * (add_lat + mul_lat + add_lat) + 2 + (add_lat + mul_lat) % 2;
+  endfunction
+  localparam int unsigned TEX_FILTER_LAT = tex_filter_lat(F24_ADD_LAT, F24_MUL_LAT);  // 15
 
   /* verilator lint_on UNUSEDPARAM */
 
