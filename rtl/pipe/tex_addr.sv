@@ -202,47 +202,47 @@ module tex_addr
   lvl_t lvlh_q;
   sel_t texh_q;
   // The item register: the multiplier's operands, and the item's axis (1: v), level, texture in
-  // item stages I1 .. I7.  A clock without a lookup loads the v item (or a bubble's junk).
+  // item stages I1 .. I_MEET.  A clock without a lookup loads the v item (or a bubble's junk).
   f24_t a1_q, b1_q;
   logic ax_q  [I_MUL:I_MEET];
   lvl_t lvl_q [I_MUL:I_MEET];
   sel_t tex_q [I_MUL:I_MEET];
-  f24_t t;                                     // I2: u su (v sv)
+  f24_t t;                                     // I_P2: u su (v sv)
   f24_mul #(.LAT(MUL_LAT)) u_t (.clk_i, .en_i, .a_i(a1_q), .b_i(b1_q), .y_o(t));
 
-  // ---- I2: 2^-L; I3: - 0.5 ---------------------------------------------------------------------
-  f24_t tl_q;                                  // I3: t 2^-L
-  f24_t x;                                     // I5: x (y)
+  // ---- I_P2: 2^-L; I_X: - 0.5 -----------------------------------------------------------------
+  f24_t tl_q;                                  // I_X: t 2^-L
+  f24_t x;                                     // I_IDX: x (y)
   f24_add #(.LAT(ADD_LAT)) u_x (.clk_i, .en_i, .a_i(tl_q), .b_i(F24_NEG_HALF), .y_o(x));
 
-  // ---- I5: floor; the level's size -----------------------------------------------------------
-  idx_t k0;                                    // I6: j0 (i0)
+  // ---- I_IDX: floor; the level's size --------------------------------------------------------
+  idx_t k0;                                    // I_CLP: j0 (i0)
   logic unused_sat;                            // saturation flag: the clamp covers it
   f24_to_index #(.W(TEX_IDX_W)) u_k0 (.clk_i, .en_i, .a_i(x), .idx_o(k0), .sat_o(unused_sat));
-  f24_t x_q [I_IDX+1:I_FX];                    // x in item stages I6 .. I7
-  dim_t n_q [I_CLP:I_MEET-1];                  // W_L (H_L) in item stages I6 .. I_MEET - 1
+  f24_t x_q [I_IDX+1:I_FX];                    // x in item stages I_IDX + 1 .. I_FX
+  dim_t n_q [I_CLP:I_MEET-1];                  // W_L (H_L) in item stages I_CLP .. I_MEET - 1
 
-  // ---- I6: from_int; clamp -------------------------------------------------------------------
-  f24_t fk;                                    // I7: from_int(j0) (i0)
+  // ---- I_CLP: from_int; clamp ----------------------------------------------------------------
+  f24_t fk;                                    // I_FX: from_int(j0) (i0)
   f24_from_int #(.W(TEX_IDX_W)) u_fk (.clk_i, .en_i, .k_i(k0), .y_o(fk));
-  logic [TEX_DIM_W:0] cl_q [I_FX:I_MEET];      // {dj, j0c} ({di, i0c}) in I7 .. I_MEET
+  logic [TEX_DIM_W:0] cl_q [I_FX:I_MEET];      // {dj, j0c} ({di, i0c}) in I_FX .. I_MEET
   logic [TEX_DIM_W:0] cu_q;                    // the u item's {dj, j0c}, a clock later
   dim_t               w_q;                     // W_L of the last u item in I_MEET - 1
 
-  // ---- I7: fx, fy; the axes meet: the row product ----------------------------------------------
-  f24_t f;                                     // I9: fx (fy)
+  // ---- I_FX: fx, fy; I_MEET: the axes meet, the row product ------------------------------------
+  f24_t f;                                     // I_OUT: fx (fy)
   f24_t fx_q;                                  // fx, a clock later
   f24_add #(.LAT(ADD_LAT)) u_f (.clk_i, .en_i, .a_i(x_q[I_FX]), .b_i({~fk[23], fk[22:0]}), .y_o(f));
-  logic [ROW_W-1:0]  r_q;                      // I8: i0c W_L + j0c
-  dim_t              rs_q;                     // I8: i1c - i0c = 1 ? W_L : 0
-  logic              dj_q;                     // I8: j1c - j0c
-  logic [ADDR_W-1:0] lb_q;                     // I8: base + level_off[L]
+  logic [ROW_W-1:0]  r_q;                      // I_SUM: i0c W_L + j0c
+  dim_t              rs_q;                     // I_SUM: i1c - i0c = 1 ? W_L : 0
+  logic              dj_q;                     // I_SUM: j1c - j0c
+  logic [ADDR_W-1:0] lb_q;                     // I_SUM: base + level_off[L]
   assign fx_o = fx_q;
   assign fy_o = f;
 
-  // ---- I8: the four addresses ------------------------------------------------------------------
+  // ---- I_SUM: the four addresses ---------------------------------------------------------------
   logic [ADDR_W-1:0] a00, rs4, dj4;
-  logic [ADDR_W-1:0] addr_q [4];               // I9
+  logic [ADDR_W-1:0] addr_q [4];               // I_OUT
   assign a00 = lb_q + (ADDR_W'(r_q) << 2);
   assign rs4 = ADDR_W'(rs_q) << 2;
   assign dj4 = ADDR_W'(dj_q) << 2;
@@ -268,16 +268,16 @@ module tex_addr
         lvl_q[s] <= lvl_q[s-1];
         tex_q[s] <= tex_q[s-1];
       end
-      // I2 -> I3
+      // I_P2 -> I_X
       tl_q <= f24_pow2_down(t, lvl_q[I_P2]);
-      // I5 -> I6
+      // I_IDX -> I_CLP
       x_q[I_IDX+1] <= x;
       for (int s = I_IDX + 2; s <= I_FX; s++) x_q[s] <= x_q[s-1];
       n_q[I_CLP] <= ax_q[I_IDX] ? cfg_height_i[tex_q[I_IDX]][lvl_q[I_IDX]]
                                 : cfg_width_i[tex_q[I_IDX]][lvl_q[I_IDX]];
-      // I6 -> I7
+      // I_CLP -> I_FX
       cl_q[I_FX] <= clamp_pair(k0, n_q[I_CLP]);
-      // I6 -> I_MEET: the clamp and the level's size wait for fx's adder (none at ADD_LAT 2)
+      // -> I_MEET: the clamp and the level's size wait for fx's adder (no clock at ADD_LAT 2)
       for (int s = I_CLP + 1; s <= I_MEET - 1; s++) n_q[s] <= n_q[s-1];
       for (int s = I_FX + 1; s <= I_MEET; s++) cl_q[s] <= cl_q[s-1];
       if (!ax_q[I_MEET-1]) w_q <= n_q[I_MEET-1];  // held while the v item passes I_MEET - 1
