@@ -24,7 +24,8 @@ reset of a full pipeline while stalled.  ALPHA = 1 checks all four channels; the
 checks R, G, B and that a_o is 0.
 
 Every run is built at one pair of float-unit depths (ADD_LAT, MUL_LAT): the package defaults
-(built with no parameter, so the defaults are checked too) and the deeper (3, 2); the latency
+(built with no parameter, so the defaults are checked too) or the deeper (3, 2) (test_tex_filter
+at both; the R, G, B build at (3, 2) only under ``make test-long``, TB_LONG=1); the latency
 the driver expects is pipe_pkg::tex_filter_lat(ADD_LAT, MUL_LAT), which must equal this file's
 mirror of the schedule (and TEX_FILTER_LAT at the defaults); the stimulus and the bit-exact
 checks are the same at every depth.
@@ -459,6 +460,13 @@ def test_tex_filter(add: int, mul: int) -> None:
     run_at(add, mul, {"ALPHA": 1})
 
 
-@pytest.mark.parametrize("add,mul", DEPTHS, ids=[f"add{a}-mul{m}" for a, m in DEPTHS])
+@pytest.mark.parametrize("add,mul", [
+    pytest.param(a, m, id=f"add{a}-mul{m}",
+                 marks=[] if (a, m) == DEFAULT_DEPTHS else pytest.mark.skipif(
+                     not runner.long_stimulus(),
+                     reason="the schedule does not depend on ALPHA, TAG_W: TB_LONG=1"))
+    for a, m in DEPTHS])
 def test_tex_filter_rgb_tag1(add: int, mul: int) -> None:
+    """dm_pipeline's build (R, G, B) with a 1-bit tag; at depths other than the package's only
+    under ``make test-long`` (test_tex_filter covers the schedule at both depths)."""
     run_at(add, mul, {"ALPHA": 0, "TAG_W": 1}, {"VECTORS": "4000"})
