@@ -25,7 +25,8 @@ checks R, G, B and that a_o is 0.
 
 Every run is built at one pair of float-unit depths (ADD_LAT, MUL_LAT): the package defaults
 (built with no parameter, so the defaults are checked too) or the deeper (3, 2) (test_tex_filter
-at both; the R, G, B build at (3, 2) only under ``make test-long``, TB_LONG=1); the latency
+at both; the R, G, B build at (3, 2), and (2, 2), the depths without m's parity delay, only
+under ``make test-long``, TB_LONG=1); the latency
 the driver expects is pipe_pkg::tex_filter_lat(ADD_LAT, MUL_LAT), which must equal this file's
 mirror of the schedule (and TEX_FILTER_LAT at the defaults); the stimulus and the bit-exact
 checks are the same at every depth.
@@ -455,8 +456,14 @@ def run_at(add: int, mul: int, parameters: dict[str, object],
                extra_env=env)
 
 
-@pytest.mark.parametrize("add,mul", DEPTHS, ids=[f"add{a}-mul{m}" for a, m in DEPTHS])
+@pytest.mark.parametrize("add,mul", [
+    *DEPTHS,
+    pytest.param(2, 2, id="add2-mul2", marks=pytest.mark.skipif(
+        not runner.long_stimulus(), reason="m without its parity delay (M_DLY 0): TB_LONG=1"))],
+    ids=[f"add{a}-mul{m}" for a, m in DEPTHS] + ["add2-mul2"])
 def test_tex_filter(add: int, mul: int) -> None:
+    """All four channels; under ``make test-long`` also at (2, 2), where ADD_LAT + MUL_LAT is
+    even and m goes to the last adder's operand register without a delay."""
     run_at(add, mul, {"ALPHA": 1})
 
 
