@@ -24,7 +24,9 @@
 module dm_pipeline_pairs_formal #(
   parameter int unsigned SLOTS  = 4,    // dm_pipeline's SLOTS
   parameter int unsigned TC_CAP = 3,    // the abstract cache's CAP
-  parameter int unsigned TF_LAT = 15    // tex_filter's latency (TEX_FILTER_LAT)
+  parameter int unsigned TF_LAT = 15    // tex_filter's stages: u_filter's latency at the depths
+                                        // dm_pipeline builds it at (the package's: TEX_FILTER_LAT;
+                                        // a TF_LAT one short fails the induction)
 ) (
   input logic clk_i,
   input logic rst_ni

@@ -60,15 +60,22 @@ package pipe_pkg;
   localparam int unsigned TEXEL_W     = 32;  // an RGBA unorm8 texel: R in bits 7:0 .. A in 31:24
   // the item register (u, then v a clock later on the same units); scale (mul); 2^-L (exponent
   // arithmetic, one register); - 0.5 (add); floor (to_index); from_int; fx = x - j0 (add); fy a
-  // clock after fx.  The addresses are ready in the same stage.
-  localparam int unsigned TEX_ADDR_LAT = 1 + F24_MUL_LAT + 1 + F24_ADD_LAT + F24_TO_INDEX_LAT
-                                       + F24_FROM_INT_LAT + F24_ADD_LAT + 1;  // 10
+  // clock after fx.  The addresses are ready in the same stage.  tex_addr's latency at its
+  // ADD_LAT, MUL_LAT (the f24_add, f24_mul depths): 10 at (2, 1), 13 at (3, 2).
+  function automatic int unsigned tex_addr_lat(input int unsigned add_lat,
+                                               input int unsigned mul_lat);
+    return 1 + mul_lat + 1 + add_lat + F24_TO_INDEX_LAT + F24_FROM_INT_LAT + add_lat + 1;
+  endfunction
+  localparam int unsigned TEX_ADDR_LAT = tex_addr_lat(F24_ADD_LAT, F24_MUL_LAT);  // 10
   // from_unorm; per row sub, mul, add (top, then bot a clock later on the same units); then sub,
   // mul, add (between the rows), the last adder's two operations from operand registers and an
-  // odd number of clocks apart (m delayed a clock).
-  localparam int unsigned TEX_FILTER_LAT = F24_FROM_UNORM_LAT + 1
-                                         + 2 * (F24_ADD_LAT + F24_MUL_LAT + F24_ADD_LAT)
-                                         + 3;  // 15
+  // odd number of clocks apart (m delayed (add_lat + mul_lat) % 2 clocks: a clock at (2, 1) and
+  // at (3, 2)).  tex_filter's latency at its ADD_LAT, MUL_LAT: 15 at (2, 1), 21 at (3, 2).
+  function automatic int unsigned tex_filter_lat(input int unsigned add_lat,
+                                                 input int unsigned mul_lat);
+    return F24_FROM_UNORM_LAT + 1 + 2 * (add_lat + mul_lat + add_lat) + 2 + (add_lat + mul_lat) % 2;
+  endfunction
+  localparam int unsigned TEX_FILTER_LAT = tex_filter_lat(F24_ADD_LAT, F24_MUL_LAT);  // 15
 
   /* verilator lint_on UNUSEDPARAM */
 

@@ -21,13 +21,15 @@
 // (the product is exact unless it falls below 2^-62, where f24_mul flushes to a signed zero;
 // Inf stays Inf, NaN gives F24_NAN, zeros and subnormal patterns give a signed zero).
 //
-// Fixed latency TEX_ADDR_LAT = 10 enabled clocks (pipe_pkg) whatever NTEX, one lookup every
-// other enabled clock at most: valid_i must not be 1 on two consecutive enabled clocks (asserted:
-// lookup_spacing; dm_pipeline admits a hit every 4th clock at most, its two lookups 2 clocks
-// apart).  The conventions of view_calc otherwise: every register advances only while en_i is 1
-// (the enclosing pipeline's stall), valid is reset by rst_ni (synchronous, active low), data
+// Fixed latency LAT = pipe_pkg::tex_addr_lat(ADD_LAT, MUL_LAT) enabled clocks whatever NTEX:
+// 10 at the f24_add / f24_mul depths (ADD_LAT, MUL_LAT) = (2, 1) (pipe_pkg's TEX_ADDR_LAT at
+// the package defaults), 13 at (3, 2).  One lookup every other enabled clock at most, at every
+// depth: valid_i must not be 1 on two consecutive enabled clocks (asserted: lookup_spacing;
+// dm_pipeline admits a hit every 4th clock at most, its two lookups 2 clocks apart).  The
+// conventions of view_calc otherwise: every register advances only while en_i is 1 (the
+// enclosing pipeline's stall), valid is reset by rst_ni (synchronous, active low), data
 // registers have no reset; a lookup taken on an enabled edge with valid_i = 1 shows at the
-// outputs after 10 enabled edges and holds while en_i is 0.  Configuration (cfg_*) must be
+// outputs after LAT enabled edges and holds while en_i is 0.  Configuration (cfg_*) must be
 // static while busy.
 //
 // Configuration of each of NTEX textures (model.texture.Texture; index t of every cfg_* array is
@@ -39,7 +41,8 @@
 //
 // Textures sharing the unit (NTEX > 1): each lookup names its texture with tex_i, which travels
 // down the pipeline with the level; each stage reads the configuration of its own lookup's
-// texture (su or sv in front of the item register, W_L or H_L in I5, base and level_off in I7),
+// texture (su or sv in front of the item register, W_L or H_L in I_IDX, base and level_off in
+// I_MEET),
 // so lookups of different textures may follow each other.  dm_pipeline uses one unit for the
 // colour texture (0) and the normal map (1).  A tex_i of NTEX or more reads texture NTEX - 1;
 // with NTEX = 1 tex_i is ignored.
@@ -52,36 +55,48 @@
 // clocks.  Item stage Ik holds the u item of the lookup taken k enabled clocks ago or the v item
 // of the one taken k + 1 ago; the item's axis, level and texture travel with it (ax_q, lvl_q,
 // tex_q).  Where the axes meet (the row product, the address sums) the u item's clamp and W_L
-// are held a clock (cu_q, w_q) and met by the v item's in I7; fx, the u item's weight, is held a
-// clock (fx_q) to come out with fy.  The item register (one clock) is where the u / v select and
-// the texture's scale select sit, not in front of the multiplier (the scale select there cost
-// the unit its clock, 92.9 MHz out of context).
+// are held a clock (cu_q, w_q) and met by the v item's in I_MEET; fx, the u item's weight, is
+// held a clock (fx_q) to come out with fy.  I_MEET = I_OUT - 2 puts the addresses in the
+// clock of fy: with ADD_LAT above 2 the clamps and W_L wait I_MEET - I_FX = ADD_LAT - 2 clocks
+// in delay registers (cl_q, n_q: 17 + 16 bits a clock, fewer than the 128 of the addresses).
+// The item register (one clock) is where the u / v select and the texture's scale select sit,
+// not in front of the multiplier (the scale select there cost the unit its clock, 92.9 MHz out
+// of context).
 //
 // Stage schedule (S0 = the input ports; Ik: item stages, the u item's clock k, the v item's
-// k + 1; "a -> b": a unit takes operands in Ia, result in Ib):
-//   S0  the u item: u, su of texture tex_i; the v item (next clock): v, sv held  register  -> I1
-//       L saturated to 0 .. 15, the texture and the axis travel I1 -> I7
-//   I1  t = mul(u, su) (mul(v, sv))                                  f24_mul      I1 -> I2
-//   I2  t 2^-L (exponent arithmetic, in a register of its own: in front of the adder it cost
-//       the adder's clock)                                           register     I2 -> I3
-//   I3  x = add(t 2^-L, -0.5) (y)                                    f24_add      I3 -> I5
-//   I5  j0 = floor(x) (i0)                                           f24_to_index I5 -> I6
-//       x delayed I5 -> I7; W_L (H_L for the v item) read            register     I5 -> I6
-//   I6  from_int(j0) (i0)                                            f24_from_int I6 -> I7
-//       clamp: {dj, j0c} ({di, i0c}); W_L held for the v item (w_q)  register     I6 -> I7
-//   I7  fx = add(x, -from_int(j0)) (fy)                              f24_add      I7 -> I9
-//       u item: {dj, j0c} held a clock (cu_q)
-//       v item: r = i0c W_L + j0c; rs = di ? W_L : 0; base + level_off[L]  register  -> I8
-//   I8  (v item) addr = base + off + 4 (r + {0, dj, rs, rs + dj})    register     I8 -> I9
-//   I9  u item: fx held a clock (fx_q); v item: the outputs (straight from registers), the
-//       lookup's clock 10
-// Float units: 1 f24_mul, 2 f24_add, 1 f24_to_index, 1 f24_from_int (before the axes shared
-// them: 2, 4, 2, 2, latency 8, 9 with NTEX > 1); one 16 x 16 multiplier (the second row's
-// address is the first's plus 4 W_L: i1c - i0c is 0 or 1).
+// k + 1; "a -> b": a unit takes operands in Ia, result in Ib; the stage numbers at (ADD_LAT,
+// MUL_LAT) = (2, 1), then (3, 2)):
+//   S0      the u item: u, su of texture tex_i; the v item (next clock): v, sv held
+//           L saturated to 0 .. 15, the texture and the axis travel I1 -> I_MEET
+//                                                                 register     -> I1
+//   I_MUL   t = mul(u, su) (mul(v, sv))                           f24_mul      I1 -> I_P2
+//   I_P2    = 1 + MUL_LAT (2, 3): t 2^-L (exponent arithmetic, in a register of its own: in
+//           front of the adder it cost the adder's clock)         register     -> I_X
+//   I_X     = I_P2 + 1 (3, 4): x = add(t 2^-L, -0.5) (y)          f24_add      -> I_IDX
+//   I_IDX   = I_X + ADD_LAT (5, 7): j0 = floor(x) (i0)            f24_to_index -> I_CLP
+//           x delayed I_IDX -> I_FX; W_L (H_L for the v item) read
+//                                                                 register     -> I_CLP
+//   I_CLP   = I_IDX + 1 (6, 8): from_int(j0) (i0)                 f24_from_int -> I_FX
+//           clamp: {dj, j0c} ({di, i0c})                          register     -> I_FX
+//           W_L delayed I_CLP -> I_MEET - 1, held there for the v item (w_q)
+//   I_FX    = I_CLP + 1 (7, 9): fx = add(x, -from_int(j0)) (fy)   f24_add      -> I_OUT
+//           the clamp delayed I_FX -> I_MEET
+//   I_MEET  = I_OUT - 2 (7, 10): u item: {dj, j0c} held a clock (cu_q)
+//           v item: r = i0c W_L + j0c; rs = di ? W_L : 0; base + level_off[L]
+//                                                                 register     -> I_SUM
+//   I_SUM   = I_MEET + 1 (8, 11): (v item) addr = base + off + 4 (r + {0, dj, rs, rs + dj})
+//                                                                 register     -> I_OUT
+//   I_OUT   = I_FX + ADD_LAT (9, 12): u item: fx held a clock (fx_q); v item: the outputs
+//           (straight from registers), the lookup's clock LAT = I_OUT + 1 (10, 13)
+// Float units: 1 f24_mul #(.LAT(MUL_LAT)), 2 f24_add #(.LAT(ADD_LAT)), 1 f24_to_index,
+// 1 f24_from_int (before the axes shared them: 2, 4, 2, 2); one 16 x 16 multiplier (the second
+// row's address is the first's plus 4 W_L: i1c - i0c is 0 or 1).
 module tex_addr
   import f24_pkg::*;
   import pipe_pkg::*;
 #(
+  parameter int unsigned ADD_LAT = F24_ADD_LAT, // f24_add latency (2 .. 4: the two adders)
+  parameter int unsigned MUL_LAT = F24_MUL_LAT, // f24_mul latency (1 .. 3: the multiplier)
   parameter int unsigned TAG_W  = 8,          // side-band bits carried from tag_i to tag_o
   parameter int unsigned ADDR_W = TEX_ADDR_W, // byte address width (addresses wrap modulo 2^ADDR_W)
   parameter int unsigned NTEX   = 1,          // textures sharing the unit (lookups pick by tex_i)
@@ -114,17 +129,24 @@ module tex_addr
   output f24_t                                 fy_o              // weight along v (i0 -> i1)
 );
 
-  // Item stage numbers (pipe_pkg latencies); the outputs at the lookup's clock TEX_ADDR_LAT.
+  // Item stage numbers (from ADD_LAT, MUL_LAT); the outputs at the lookup's clock LAT.
   localparam int unsigned I_MUL = 1;                         // 1: the item register, mul
-  localparam int unsigned I_P2  = I_MUL + F24_MUL_LAT;       // 2: 2^-L
-  localparam int unsigned I_X   = I_P2 + 1;                  // 3: - 0.5
-  localparam int unsigned I_IDX = I_X + F24_ADD_LAT;         // 5: floor; W_L / H_L read
-  localparam int unsigned I_CLP = I_IDX + F24_TO_INDEX_LAT;  // 6: from_int; clamp
-  localparam int unsigned I_FX  = I_CLP + F24_FROM_INT_LAT;  // 7: fx; the axes meet
-  localparam int unsigned I_SUM = I_FX + 1;                  // 8: address sums (v item)
-  localparam int unsigned I_OUT = I_FX + F24_ADD_LAT;        // 9: the v item's clock 10
-  if (I_OUT + 1 != TEX_ADDR_LAT || I_SUM + 1 != I_OUT) begin : g_check_lat
-    $error("tex_addr: stage schedule does not add up to TEX_ADDR_LAT");
+  localparam int unsigned I_P2  = I_MUL + MUL_LAT;           // 2 (3): 2^-L
+  localparam int unsigned I_X   = I_P2 + 1;                  // 3 (4): - 0.5
+  localparam int unsigned I_IDX = I_X + ADD_LAT;             // 5 (7): floor; W_L / H_L read
+  localparam int unsigned I_CLP = I_IDX + F24_TO_INDEX_LAT;  // 6 (8): from_int; clamp
+  localparam int unsigned I_FX  = I_CLP + F24_FROM_INT_LAT;  // 7 (9): fx
+  localparam int unsigned I_OUT = I_FX + ADD_LAT;            // 9 (12): the v item's clock LAT
+  localparam int unsigned I_MEET = I_OUT - 2;                // 7 (10): the axes meet (the v
+                                                             //   item's clamp delayed from I_FX)
+  localparam int unsigned I_SUM = I_MEET + 1;                // 8 (11): address sums (v item)
+  localparam int unsigned LAT   = I_OUT + 1;                 // 10 (13)
+  if (ADD_LAT < 2 || MUL_LAT < 1) begin : g_check_units
+    $error("tex_addr: ADD_LAT must be at least 2 and MUL_LAT at least 1");
+  end
+  if (LAT != tex_addr_lat(ADD_LAT, MUL_LAT) || I_MEET < I_FX
+      || I_SUM + 1 != I_OUT) begin : g_check_lat
+    $error("tex_addr: stage schedule does not add up to pipe_pkg::tex_addr_lat");
   end
   if (TEX_IDX_W <= TEX_DIM_W) begin : g_check_w
     $error("tex_addr: the index width must exceed the dimension width");
@@ -180,47 +202,47 @@ module tex_addr
   lvl_t lvlh_q;
   sel_t texh_q;
   // The item register: the multiplier's operands, and the item's axis (1: v), level, texture in
-  // item stages I1 .. I7.  A clock without a lookup loads the v item (or a bubble's junk).
+  // item stages I1 .. I_MEET.  A clock without a lookup loads the v item (or a bubble's junk).
   f24_t a1_q, b1_q;
-  logic ax_q  [I_MUL:I_FX];
-  lvl_t lvl_q [I_MUL:I_FX];
-  sel_t tex_q [I_MUL:I_FX];
-  f24_t t;                                     // I2: u su (v sv)
-  f24_mul u_t (.clk_i, .en_i, .a_i(a1_q), .b_i(b1_q), .y_o(t));
+  logic ax_q  [I_MUL:I_MEET];
+  lvl_t lvl_q [I_MUL:I_MEET];
+  sel_t tex_q [I_MUL:I_MEET];
+  f24_t t;                                     // I_P2: u su (v sv)
+  f24_mul #(.LAT(MUL_LAT)) u_t (.clk_i, .en_i, .a_i(a1_q), .b_i(b1_q), .y_o(t));
 
-  // ---- I2: 2^-L; I3: - 0.5 ---------------------------------------------------------------------
-  f24_t tl_q;                                  // I3: t 2^-L
-  f24_t x;                                     // I5: x (y)
-  f24_add u_x (.clk_i, .en_i, .a_i(tl_q), .b_i(F24_NEG_HALF), .y_o(x));
+  // ---- I_P2: 2^-L; I_X: - 0.5 -----------------------------------------------------------------
+  f24_t tl_q;                                  // I_X: t 2^-L
+  f24_t x;                                     // I_IDX: x (y)
+  f24_add #(.LAT(ADD_LAT)) u_x (.clk_i, .en_i, .a_i(tl_q), .b_i(F24_NEG_HALF), .y_o(x));
 
-  // ---- I5: floor; the level's size -----------------------------------------------------------
-  idx_t k0;                                    // I6: j0 (i0)
+  // ---- I_IDX: floor; the level's size --------------------------------------------------------
+  idx_t k0;                                    // I_CLP: j0 (i0)
   logic unused_sat;                            // saturation flag: the clamp covers it
   f24_to_index #(.W(TEX_IDX_W)) u_k0 (.clk_i, .en_i, .a_i(x), .idx_o(k0), .sat_o(unused_sat));
-  f24_t x_q [I_IDX+1:I_FX];                    // x in item stages I6 .. I7
-  dim_t n_q;                                   // I6: W_L (H_L)
+  f24_t x_q [I_IDX+1:I_FX];                    // x in item stages I_IDX + 1 .. I_FX
+  dim_t n_q [I_CLP:I_MEET-1];                  // W_L (H_L) in item stages I_CLP .. I_MEET - 1
 
-  // ---- I6: from_int; clamp -------------------------------------------------------------------
-  f24_t fk;                                    // I7: from_int(j0) (i0)
+  // ---- I_CLP: from_int; clamp ----------------------------------------------------------------
+  f24_t fk;                                    // I_FX: from_int(j0) (i0)
   f24_from_int #(.W(TEX_IDX_W)) u_fk (.clk_i, .en_i, .k_i(k0), .y_o(fk));
-  logic [TEX_DIM_W:0] cl_q;                    // I7: {dj, j0c} ({di, i0c})
+  logic [TEX_DIM_W:0] cl_q [I_FX:I_MEET];      // {dj, j0c} ({di, i0c}) in I_FX .. I_MEET
   logic [TEX_DIM_W:0] cu_q;                    // the u item's {dj, j0c}, a clock later
-  dim_t               w_q;                     // W_L of the last u item in I6
+  dim_t               w_q;                     // W_L of the last u item in I_MEET - 1
 
-  // ---- I7: fx, fy; the axes meet: the row product ----------------------------------------------
-  f24_t f;                                     // I9: fx (fy)
+  // ---- I_FX: fx, fy; I_MEET: the axes meet, the row product ------------------------------------
+  f24_t f;                                     // I_OUT: fx (fy)
   f24_t fx_q;                                  // fx, a clock later
-  f24_add u_f (.clk_i, .en_i, .a_i(x_q[I_FX]), .b_i({~fk[23], fk[22:0]}), .y_o(f));
-  logic [ROW_W-1:0]  r_q;                      // I8: i0c W_L + j0c
-  dim_t              rs_q;                     // I8: i1c - i0c = 1 ? W_L : 0
-  logic              dj_q;                     // I8: j1c - j0c
-  logic [ADDR_W-1:0] lb_q;                     // I8: base + level_off[L]
+  f24_add #(.LAT(ADD_LAT)) u_f (.clk_i, .en_i, .a_i(x_q[I_FX]), .b_i({~fk[23], fk[22:0]}), .y_o(f));
+  logic [ROW_W-1:0]  r_q;                      // I_SUM: i0c W_L + j0c
+  dim_t              rs_q;                     // I_SUM: i1c - i0c = 1 ? W_L : 0
+  logic              dj_q;                     // I_SUM: j1c - j0c
+  logic [ADDR_W-1:0] lb_q;                     // I_SUM: base + level_off[L]
   assign fx_o = fx_q;
   assign fy_o = f;
 
-  // ---- I8: the four addresses ------------------------------------------------------------------
+  // ---- I_SUM: the four addresses ---------------------------------------------------------------
   logic [ADDR_W-1:0] a00, rs4, dj4;
-  logic [ADDR_W-1:0] addr_q [4];               // I9
+  logic [ADDR_W-1:0] addr_q [4];               // I_OUT
   assign a00 = lb_q + (ADDR_W'(r_q) << 2);
   assign rs4 = ADDR_W'(rs_q) << 2;
   assign dj4 = ADDR_W'(dj_q) << 2;
@@ -241,42 +263,46 @@ module tex_addr
       ax_q[I_MUL]  <= !valid_i;
       lvl_q[I_MUL] <= valid_i ? lvl_in : lvlh_q;
       tex_q[I_MUL] <= valid_i ? tex_in : texh_q;
-      for (int s = I_MUL + 1; s <= I_FX; s++) begin
+      for (int s = I_MUL + 1; s <= I_MEET; s++) begin
         ax_q[s]  <= ax_q[s-1];
         lvl_q[s] <= lvl_q[s-1];
         tex_q[s] <= tex_q[s-1];
       end
-      // I2 -> I3
+      // I_P2 -> I_X
       tl_q <= f24_pow2_down(t, lvl_q[I_P2]);
-      // I5 -> I6
+      // I_IDX -> I_CLP
       x_q[I_IDX+1] <= x;
       for (int s = I_IDX + 2; s <= I_FX; s++) x_q[s] <= x_q[s-1];
-      n_q <= ax_q[I_IDX] ? cfg_height_i[tex_q[I_IDX]][lvl_q[I_IDX]]
-                         : cfg_width_i[tex_q[I_IDX]][lvl_q[I_IDX]];
-      // I6 -> I7
-      cl_q <= clamp_pair(k0, n_q);
-      if (!ax_q[I_CLP]) w_q <= n_q;            // held while the v item passes I6
-      // I7 -> I8 (the v item in I7 meets the u item's clamp in cu_q and its W_L in w_q)
-      cu_q <= cl_q;
-      r_q  <= ROW_W'(cl_q[TEX_DIM_W-1:0]) * ROW_W'(w_q) + ROW_W'(cu_q[TEX_DIM_W-1:0]);
-      rs_q <= cl_q[TEX_DIM_W] ? w_q : '0;
+      n_q[I_CLP] <= ax_q[I_IDX] ? cfg_height_i[tex_q[I_IDX]][lvl_q[I_IDX]]
+                                : cfg_width_i[tex_q[I_IDX]][lvl_q[I_IDX]];
+      // I_CLP -> I_FX
+      cl_q[I_FX] <= clamp_pair(k0, n_q[I_CLP]);
+      // -> I_MEET: the clamp and the level's size wait for fx's adder (no clock at ADD_LAT 2)
+      for (int s = I_CLP + 1; s <= I_MEET - 1; s++) n_q[s] <= n_q[s-1];
+      for (int s = I_FX + 1; s <= I_MEET; s++) cl_q[s] <= cl_q[s-1];
+      if (!ax_q[I_MEET-1]) w_q <= n_q[I_MEET-1];  // held while the v item passes I_MEET - 1
+      // I_MEET -> I_SUM (the v item in I_MEET meets the u item's clamp in cu_q and its W_L in
+      // w_q)
+      cu_q <= cl_q[I_MEET];
+      r_q  <= ROW_W'(cl_q[I_MEET][TEX_DIM_W-1:0]) * ROW_W'(w_q) + ROW_W'(cu_q[TEX_DIM_W-1:0]);
+      rs_q <= cl_q[I_MEET][TEX_DIM_W] ? w_q : '0;
       dj_q <= cu_q[TEX_DIM_W];
-      lb_q <= cfg_base_i[tex_q[I_FX]] + cfg_level_off_i[tex_q[I_FX]][lvl_q[I_FX]];
-      // I8 -> I9
+      lb_q <= cfg_base_i[tex_q[I_MEET]] + cfg_level_off_i[tex_q[I_MEET]][lvl_q[I_MEET]];
+      // I_SUM -> I_OUT
       addr_q[0] <= a00;
       addr_q[1] <= a00 + dj4;
       addr_q[2] <= a00 + rs4;
       addr_q[3] <= a00 + rs4 + dj4;
-      // I9: fx waits for fy
+      // I_OUT: fx waits for fy
       fx_q <= f;
     end
   end
 
   // ---- valid and tag ---------------------------------------------------------------------------
   /* verilator lint_off UNUSEDSIGNAL */  // only stage_v[1] is read (the spacing check)
-  logic [TEX_ADDR_LAT:1] stage_v;  // stage_v[1]: the last enabled clock took a lookup
+  logic [LAT:1] stage_v;  // stage_v[1]: the last enabled clock took a lookup
   /* verilator lint_on UNUSEDSIGNAL */
-  pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(TEX_ADDR_LAT)) u_valid_tag (
+  pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(LAT)) u_valid_tag (
     .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o, .tag_o, .stage_valid_o(stage_v));
 
   // The simulation checks are in tex_addr_assert.sv (bound into every instance).

@@ -22,15 +22,25 @@ and directed: a lookup offered while ready_o is 0 (in the clock after a take, an
 a stall) is held and taken at the next ready, exactly once, its result at the fixed latency; a
 reset of a full pipeline while stalled.  ALPHA = 1 checks all four channels; the ALPHA = 0 build
 checks R, G, B and that a_o is 0.
+
+Every run is built at one pair of float-unit depths (ADD_LAT, MUL_LAT): the package defaults
+(built with no parameter, so the defaults are checked too) or the deeper (3, 2) (test_tex_filter
+at both; the R, G, B build at (3, 2), and (2, 2), the depths without m's parity delay, only
+under ``make test-long``, TB_LONG=1); the latency
+the driver expects is pipe_pkg::tex_filter_lat(ADD_LAT, MUL_LAT), which must equal this file's
+mirror of the schedule (and TEX_FILTER_LAT at the defaults); the stimulus and the bit-exact
+checks are the same at every depth.
 """
 from __future__ import annotations
 
 import collections
+import os
 from pathlib import Path
 from typing import Callable, Mapping
 
 import cocotb
 import numpy as np
+import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
@@ -38,8 +48,47 @@ from model import f24, f24_vectors as vec, texture
 from model.arith import ENGINES
 from tb.common import fp_unit, report, runner
 from tb.common.valid_pipe import ValidPipe
+from tb.harness import sv_params
 
-LATENCY = 15  # pipe_pkg::TEX_FILTER_LAT
+#: (ADD_LAT, MUL_LAT) pairs every depth-parametrized run is built at: the paper's depths and the
+#: deeper float units (f24_add LAT 3, f24_mul LAT 2).
+DEPTHS = [(2, 1), (3, 2)]
+DEPTH_ENV = "TEX_FILTER_DEPTHS"  # "ADD_LAT,MUL_LAT" of the build under test (unset: defaults)
+DEFAULT_DEPTHS = sv_params.values("pipe_pkg", "F24_ADD_LAT", "F24_MUL_LAT")
+
+
+def depths() -> tuple[int, int]:
+    """The (ADD_LAT, MUL_LAT) the unit under test was built at."""
+    env = os.environ.get(DEPTH_ENV)
+    if not env:
+        return DEFAULT_DEPTHS
+    add, mul = (int(x) for x in env.split(","))
+    return add, mul
+
+
+def tex_filter_lat(add_lat: int, mul_lat: int) -> int:
+    """The schedule's latency (the module header's stage table): from_unorm, the rows (sub, mul,
+    add; the bottom row a clock later), the last adder's operand register, sub, mul, m's parity
+    delay (the last adder's two operations an odd number of clocks apart), the register, add."""
+    unorm = sv_params.value("pipe_pkg", "F24_FROM_UNORM_LAT")
+    rows = add_lat + mul_lat + add_lat + 1
+    apart = add_lat + mul_lat + 1          # bot - top to top + m through the operand registers
+    apart += 1 - apart % 2                 # made odd
+    return unorm + rows + 1 + apart + add_lat
+
+
+def latency() -> int:
+    """The latency under test: the package function at the build's depths, checked against the
+    mirror (and TEX_FILTER_LAT at the defaults)."""
+    add, mul = depths()
+    lat = sv_params.call("pipe_pkg", "tex_filter_lat", add, mul)
+    assert lat == tex_filter_lat(add, mul), (add, mul, lat)
+    if (add, mul) == DEFAULT_DEPTHS:
+        assert lat == sv_params.value("pipe_pkg", "TEX_FILTER_LAT")
+    return lat
+
+
+LATENCY = latency()  # of the build under test (in the simulator's process)
 TEXELS = ["t00_i", "t01_i", "t10_i", "t11_i"]
 INS = TEXELS + ["fx_i", "fy_i"]
 OUTS = ["r_o", "g_o", "b_o", "a_o"]
@@ -350,8 +399,9 @@ async def tex_filter_random_and_directed(dut):
                                 describe=describe)
         if k == 0:
             await pipe.flush_check(rng, {n: int(v[0]) for n, v in ins.items()})
-    dut._log.info("VECTORS tex_filter: %d lookups (%s), 0 mismatches", total,
-                  ", ".join(f"{k} {v}" for k, v in counts.items()))
+    dut._log.info("VECTORS tex_filter: %d lookups (%s; ADD_LAT, MUL_LAT = %s, latency %d), "
+                  "0 mismatches", total, ", ".join(f"{k} {v}" for k, v in counts.items()),
+                  depths(), LATENCY)
 
 
 @cocotb.test()
@@ -394,10 +444,36 @@ async def tex_filter_held_while_not_ready(dut):
     dut._log.info("held while not ready: takes %s, 4 results at latency %d", takes, LATENCY)
 
 
-def test_tex_filter():
-    runner.run("tex_filter", "test_tex_filter", Path(__file__).parent, parameters={"ALPHA": 1})
+def run_at(add: int, mul: int, parameters: dict[str, object],
+           extra_env: dict[str, str] | None = None) -> None:
+    """Build tex_filter at f24_add LAT ``add``, f24_mul LAT ``mul`` (the package defaults with no
+    depth parameter) and run the tests."""
+    params = dict(parameters)
+    if (add, mul) != DEFAULT_DEPTHS:
+        params.update(ADD_LAT=add, MUL_LAT=mul)
+    env = {**(extra_env or {}), DEPTH_ENV: f"{add},{mul}"}
+    runner.run("tex_filter", "test_tex_filter", Path(__file__).parent, parameters=params,
+               extra_env=env)
 
 
-def test_tex_filter_rgb_tag1():
-    runner.run("tex_filter", "test_tex_filter", Path(__file__).parent,
-               parameters={"ALPHA": 0, "TAG_W": 1}, extra_env={"VECTORS": "4000"})
+@pytest.mark.parametrize("add,mul", [
+    *DEPTHS,
+    pytest.param(2, 2, id="add2-mul2", marks=pytest.mark.skipif(
+        not runner.long_stimulus(), reason="m without its parity delay (M_DLY 0): TB_LONG=1"))],
+    ids=[f"add{a}-mul{m}" for a, m in DEPTHS] + ["add2-mul2"])
+def test_tex_filter(add: int, mul: int) -> None:
+    """All four channels; under ``make test-long`` also at (2, 2), where ADD_LAT + MUL_LAT is
+    even and m goes to the last adder's operand register without a delay."""
+    run_at(add, mul, {"ALPHA": 1})
+
+
+@pytest.mark.parametrize("add,mul", [
+    pytest.param(a, m, id=f"add{a}-mul{m}",
+                 marks=[] if (a, m) == DEFAULT_DEPTHS else pytest.mark.skipif(
+                     not runner.long_stimulus(),
+                     reason="the schedule does not depend on ALPHA, TAG_W: TB_LONG=1"))
+    for a, m in DEPTHS])
+def test_tex_filter_rgb_tag1(add: int, mul: int) -> None:
+    """dm_pipeline's build (R, G, B) with a 1-bit tag; at depths other than the package's only
+    under ``make test-long`` (test_tex_filter covers the schedule at both depths)."""
+    run_at(add, mul, {"ALPHA": 0, "TAG_W": 1}, {"VECTORS": "4000"})
