@@ -14,8 +14,12 @@ package pipe_pkg;
   /* verilator lint_off UNUSEDPARAM */
 
   // ---- float units (rtl/fp/, README "Units") ----------------------------------------------------
-  localparam int unsigned F24_ADD_LAT      = 2;  // f24_add (and subtract)
-  localparam int unsigned F24_MUL_LAT      = 1;  // f24_mul
+  // The depths the blocks build their adders and multipliers at (each block's ADD_LAT / MUL_LAT
+  // defaults to these; the blocks also take the paper's (2, 1)).  One clock more than the paper's
+  // for each: a third adder stage, a register after the multiplier's DSP (the same result words),
+  // the depths that take the units past 100 MHz on an ECP5 (docs/synthesis.md).
+  localparam int unsigned F24_ADD_LAT      = 3;  // f24_add (and subtract)
+  localparam int unsigned F24_MUL_LAT      = 2;  // f24_mul
   localparam int unsigned F24_LOG2_LAT     = 3;  // f24_log2 #(.LAT(3)): table / product + sum /
                                                  // normalise + round (LAT 2 stays near 50 MHz)
   localparam int unsigned F24_RSQRT_LAT    = 3;  // f24_rsqrt #(.LAT(3)) (shade_unit): table /

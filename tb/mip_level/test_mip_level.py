@@ -18,14 +18,14 @@ tex_o = 1, on the next one); the levels must equal the model's bit for bit:
   counts       level counts 0 and 40 in the configuration (read as 1 and 32)
 and a reset of a full pipeline while stalled.
 
-Run at the float units' depths (ADD_LAT, MUL_LAT) = (2, 1) (the package defaults, built with no
-parameter, so the run also checks the defaults) and (3, 2) with the same stimulus: the colour
-level must come exactly pipe_pkg::mip_lat(ADD_LAT, MUL_LAT) enabled edges after valid_i (13 and
-17), the normal map's on the next one, with the same levels.
+Run at the float units' depths (ADD_LAT, MUL_LAT) of tb/common/depths.py with the same
+stimulus: (3, 2), the package defaults (built with no parameter, so the run also checks the
+defaults), and under make test-long the paper's (2, 1).  The colour level must come exactly
+pipe_pkg::mip_lat(ADD_LAT, MUL_LAT) enabled edges after valid_i (17 at (3, 2), 13 at (2, 1)),
+the normal map's on the next one, with the same levels.
 """
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import cocotb
@@ -35,15 +35,12 @@ from cocotb.triggers import FallingEdge, RisingEdge
 
 from model import f24, f24_vectors as vec, texture
 from model.arith import ENGINES
-from tb.common import fp_unit, runner
+from tb.common import depths, fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 from tb.harness import sv_params
 
-#: The package defaults (ADD_LAT, MUL_LAT) and the depths the test runs at.
-DEFAULT_LATS = sv_params.values("pipe_pkg", "F24_ADD_LAT", "F24_MUL_LAT")
-LATS = [(2, 1), (3, 2)]
-#: Environment variable carrying "ADD_LAT,MUL_LAT" of the build into the cocotb test.
-LATS_ENV = "MIP_LEVEL_LATS"
+#: The package defaults (ADD_LAT, MUL_LAT).
+DEFAULT_LATS = depths.DEFAULT
 INS = ["t_i", "seg_i", "pl0_i", "tri_i"]
 OUTS = ["tex_o", "level_o"]  # two results per hit: colour (tex_o 0), then the normal map (1)
 AR = ENGINES["f24"]
@@ -161,7 +158,7 @@ async def mip_level_random_and_directed(dut):
     rng = np.random.default_rng(fp_unit.seed())
     tris = 1 << len(dut.tri_i)  # the test runs power-of-two TRIS (tb/tri_table: the others)
     nvec = fp_unit.vectors()
-    add_lat, mul_lat = (int(x) for x in os.environ[LATS_ENV].split(","))
+    add_lat, mul_lat = depths.current()
     # pipe_pkg::mip_lat (f24_log2 at pipe_pkg::F24_LOG2_LAT): the colour level's latency
     latency = sv_params.call("pipe_pkg", "mip_lat", add_lat, mul_lat)
     dut._log.info("mip_level ADD_LAT=%d MUL_LAT=%d: latency %d", add_lat, mul_lat, latency)
@@ -221,11 +218,9 @@ def run_lats(lats: tuple[int, int], parameters: dict[str, int] | None = None,
              extra_env: dict[str, str] | None = None) -> None:
     """Build mip_level at (ADD_LAT, MUL_LAT) = ``lats`` (the defaults with no parameter) and run
     the test."""
-    params = dict(parameters or {})
-    if lats != DEFAULT_LATS:
-        params.update(ADD_LAT=lats[0], MUL_LAT=lats[1])
+    params = {**(parameters or {}), **depths.parameters(*lats)}
     runner.run("mip_level", "test_mip_level", Path(__file__).parent, parameters=params,
-               extra_env={**(extra_env or {}), LATS_ENV: f"{lats[0]},{lats[1]}"})
+               extra_env={**(extra_env or {}), **depths.env(*lats)})
 
 
 def test_default_latency() -> None:
@@ -237,9 +232,9 @@ def test_default_latency() -> None:
     assert sv_params.call("pipe_pkg", "mip_lat", 3, 2) == 17
 
 
-@pytest.mark.parametrize("lats", LATS, ids=[f"add{a}-mul{m}" for a, m in LATS])
-def test_mip_level(lats: tuple[int, int]):
-    run_lats(lats)
+@pytest.mark.parametrize("add,mul", depths.cases())
+def test_mip_level(add: int, mul: int):
+    run_lats((add, mul))
 
 
 def test_mip_level_two_triangles():

@@ -32,15 +32,15 @@ Lookups per texture (every level):
   patterns     u, v random 24-bit patterns
 and a reset of a full pipeline while stalled.
 
-Every run is built at one pair of float-unit depths (ADD_LAT, MUL_LAT): the package defaults
-(built with no parameter, so the defaults are checked too) and the deeper (3, 2); the latency
+Every run is built at one pair of float-unit depths (ADD_LAT, MUL_LAT) of tb/common/depths.py:
+the package defaults (3, 2) (built with no parameter, so the defaults are checked too), and under
+``make test-long`` (TB_LONG=1) the paper's (2, 1); the latency
 the run expects is pipe_pkg::tex_addr_lat(ADD_LAT, MUL_LAT), which must equal this file's
 mirror of the schedule (and TEX_ADDR_LAT at the defaults); the stimulus and the bit-exact
 checks are the same at every depth.
 """
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import cocotb
@@ -49,24 +49,12 @@ import pytest
 
 from model import f24, f24_vectors as vec, texture
 from model.arith import ENGINES
-from tb.common import fp_unit, runner
+from tb.common import depths, fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 from tb.harness import sv_params
 
-#: (ADD_LAT, MUL_LAT) pairs every depth-parametrized run is built at: the paper's depths and the
-#: deeper float units (f24_add LAT 3, f24_mul LAT 2).
-DEPTHS = [(2, 1), (3, 2)]
-DEPTH_ENV = "TEX_ADDR_DEPTHS"  # "ADD_LAT,MUL_LAT" of the build under test (unset: the defaults)
-DEFAULT_DEPTHS = sv_params.values("pipe_pkg", "F24_ADD_LAT", "F24_MUL_LAT")
+DEFAULT_DEPTHS = depths.DEFAULT  # the package defaults (ADD_LAT, MUL_LAT)
 
-
-def depths() -> tuple[int, int]:
-    """The (ADD_LAT, MUL_LAT) the unit under test was built at."""
-    env = os.environ.get(DEPTH_ENV)
-    if not env:
-        return DEFAULT_DEPTHS
-    add, mul = (int(x) for x in env.split(","))
-    return add, mul
 
 
 def tex_addr_lat(add_lat: int, mul_lat: int) -> int:
@@ -79,7 +67,7 @@ def tex_addr_lat(add_lat: int, mul_lat: int) -> int:
 def latency() -> int:
     """The latency under test: the package function at the build's depths, checked against the
     mirror (and TEX_ADDR_LAT at the defaults)."""
-    add, mul = depths()
+    add, mul = depths.current()
     lat = sv_params.call("pipe_pkg", "tex_addr_lat", add, mul)
     assert lat == tex_addr_lat(add, mul), (add, mul, lat)
     if (add, mul) == DEFAULT_DEPTHS:
@@ -251,7 +239,7 @@ async def tex_addr_random_and_directed(dut):
     ntex = len(dut.cfg_su_i) // 24
     sel_codes = 1 << len(dut.tex_i)
     lat = latency()
-    dut._log.info("ADD_LAT, MUL_LAT = %s: latency %d", depths(), lat)
+    dut._log.info("ADD_LAT, MUL_LAT = %s: latency %d", depths.current(), lat)
     pipe = ValidPipe(dut, lat, INS, OUTS, "RTL vs model.texture.lookup_addresses (f24)",
                      spacing=SPACING)
     await pipe.reset()
@@ -309,22 +297,20 @@ async def tex_addr_random_and_directed(dut):
     for ln in lines:
         dut._log.info("  %s", ln)
     dut._log.info("VECTORS tex_addr: %d lookups over %d textures (NTEX %d, ADD_LAT %d, MUL_LAT "
-                  "%d), 0 mismatches", total, len(lines), ntex, *depths())
+                  "%d), 0 mismatches", total, len(lines), ntex, *depths.current())
 
 
 def run_at(add: int, mul: int, parameters: dict[str, object] | None = None,
            extra_env: dict[str, str] | None = None) -> None:
     """Build tex_addr at f24_add LAT ``add``, f24_mul LAT ``mul`` (the package defaults with no
     depth parameter) and run the test."""
-    params = dict(parameters or {})
-    if (add, mul) != DEFAULT_DEPTHS:
-        params.update(ADD_LAT=add, MUL_LAT=mul)
-    env = {**(extra_env or {}), DEPTH_ENV: f"{add},{mul}"}
+    params = {**(parameters or {}), **depths.parameters(add, mul)}
+    env = {**(extra_env or {}), **depths.env(add, mul)}
     runner.run("tex_addr", "test_tex_addr", Path(__file__).parent, parameters=params,
                extra_env=env)
 
 
-@pytest.mark.parametrize("add,mul", DEPTHS, ids=[f"add{a}-mul{m}" for a, m in DEPTHS])
+@pytest.mark.parametrize("add,mul", depths.cases())
 def test_tex_addr(add: int, mul: int) -> None:
     run_at(add, mul)
 
@@ -334,7 +320,7 @@ def test_tex_addr_tag1_addr40():
                parameters={"TAG_W": 1, "ADDR_W": 40}, extra_env={"VECTORS": "3000"})
 
 
-@pytest.mark.parametrize("add,mul", DEPTHS, ids=[f"add{a}-mul{m}" for a, m in DEPTHS])
+@pytest.mark.parametrize("add,mul", depths.cases())
 def test_tex_addr_ntex2(add: int, mul: int) -> None:
     """Two textures sharing the unit, as in dm_pipeline (colour and normal map)."""
     run_at(add, mul, {"TAG_W": 9, "NTEX": 2}, {"VECTORS": "6000"})

@@ -23,10 +23,10 @@ a stall) is held and taken at the next ready, exactly once, its result at the fi
 reset of a full pipeline while stalled.  ALPHA = 1 checks all four channels; the ALPHA = 0 build
 checks R, G, B and that a_o is 0.
 
-Every run is built at one pair of float-unit depths (ADD_LAT, MUL_LAT): the package defaults
-(built with no parameter, so the defaults are checked too) or the deeper (3, 2) (test_tex_filter
-at both; the R, G, B build at (3, 2), and (2, 2), the depths without m's parity delay, only
-under ``make test-long``, TB_LONG=1); the latency
+Every run is built at one pair of float-unit depths (ADD_LAT, MUL_LAT) of tb/common/depths.py:
+the package defaults (3, 2) (built with no parameter, so the defaults are checked too), and under
+``make test-long`` (TB_LONG=1) the paper's (2, 1) and, for test_tex_filter, (2, 2), the depths
+without m's parity delay; the latency
 the driver expects is pipe_pkg::tex_filter_lat(ADD_LAT, MUL_LAT), which must equal this file's
 mirror of the schedule (and TEX_FILTER_LAT at the defaults); the stimulus and the bit-exact
 checks are the same at every depth.
@@ -34,7 +34,6 @@ checks are the same at every depth.
 from __future__ import annotations
 
 import collections
-import os
 from pathlib import Path
 from typing import Callable, Mapping
 
@@ -46,24 +45,12 @@ from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
 from model import f24, f24_vectors as vec, texture
 from model.arith import ENGINES
-from tb.common import fp_unit, report, runner
+from tb.common import depths, fp_unit, report, runner
 from tb.common.valid_pipe import ValidPipe
 from tb.harness import sv_params
 
-#: (ADD_LAT, MUL_LAT) pairs every depth-parametrized run is built at: the paper's depths and the
-#: deeper float units (f24_add LAT 3, f24_mul LAT 2).
-DEPTHS = [(2, 1), (3, 2)]
-DEPTH_ENV = "TEX_FILTER_DEPTHS"  # "ADD_LAT,MUL_LAT" of the build under test (unset: defaults)
-DEFAULT_DEPTHS = sv_params.values("pipe_pkg", "F24_ADD_LAT", "F24_MUL_LAT")
+DEFAULT_DEPTHS = depths.DEFAULT  # the package defaults (ADD_LAT, MUL_LAT)
 
-
-def depths() -> tuple[int, int]:
-    """The (ADD_LAT, MUL_LAT) the unit under test was built at."""
-    env = os.environ.get(DEPTH_ENV)
-    if not env:
-        return DEFAULT_DEPTHS
-    add, mul = (int(x) for x in env.split(","))
-    return add, mul
 
 
 def tex_filter_lat(add_lat: int, mul_lat: int) -> int:
@@ -80,7 +67,7 @@ def tex_filter_lat(add_lat: int, mul_lat: int) -> int:
 def latency() -> int:
     """The latency under test: the package function at the build's depths, checked against the
     mirror (and TEX_FILTER_LAT at the defaults)."""
-    add, mul = depths()
+    add, mul = depths.current()
     lat = sv_params.call("pipe_pkg", "tex_filter_lat", add, mul)
     assert lat == tex_filter_lat(add, mul), (add, mul, lat)
     if (add, mul) == DEFAULT_DEPTHS:
@@ -401,7 +388,7 @@ async def tex_filter_random_and_directed(dut):
             await pipe.flush_check(rng, {n: int(v[0]) for n, v in ins.items()})
     dut._log.info("VECTORS tex_filter: %d lookups (%s; ADD_LAT, MUL_LAT = %s, latency %d), "
                   "0 mismatches", total, ", ".join(f"{k} {v}" for k, v in counts.items()),
-                  depths(), LATENCY)
+                  depths.current(), LATENCY)
 
 
 @cocotb.test()
@@ -448,32 +435,21 @@ def run_at(add: int, mul: int, parameters: dict[str, object],
            extra_env: dict[str, str] | None = None) -> None:
     """Build tex_filter at f24_add LAT ``add``, f24_mul LAT ``mul`` (the package defaults with no
     depth parameter) and run the tests."""
-    params = dict(parameters)
-    if (add, mul) != DEFAULT_DEPTHS:
-        params.update(ADD_LAT=add, MUL_LAT=mul)
-    env = {**(extra_env or {}), DEPTH_ENV: f"{add},{mul}"}
+    params = {**parameters, **depths.parameters(add, mul)}
+    env = {**(extra_env or {}), **depths.env(add, mul)}
     runner.run("tex_filter", "test_tex_filter", Path(__file__).parent, parameters=params,
                extra_env=env)
 
 
-@pytest.mark.parametrize("add,mul", [
-    *DEPTHS,
-    pytest.param(2, 2, id="add2-mul2", marks=pytest.mark.skipif(
-        not runner.long_stimulus(), reason="m without its parity delay (M_DLY 0): TB_LONG=1"))],
-    ids=[f"add{a}-mul{m}" for a, m in DEPTHS] + ["add2-mul2"])
+@pytest.mark.parametrize("add,mul", depths.cases(depths.PAIRS + ((2, 2),)))
 def test_tex_filter(add: int, mul: int) -> None:
-    """All four channels; under ``make test-long`` also at (2, 2), where ADD_LAT + MUL_LAT is
-    even and m goes to the last adder's operand register without a delay."""
+    """All four channels; under ``make test-long`` also at (2, 1) and (2, 2), where ADD_LAT +
+    MUL_LAT is even and m goes to the last adder's operand register without a delay."""
     run_at(add, mul, {"ALPHA": 1})
 
 
-@pytest.mark.parametrize("add,mul", [
-    pytest.param(a, m, id=f"add{a}-mul{m}",
-                 marks=[] if (a, m) == DEFAULT_DEPTHS else pytest.mark.skipif(
-                     not runner.long_stimulus(),
-                     reason="the schedule does not depend on ALPHA, TAG_W: TB_LONG=1"))
-    for a, m in DEPTHS])
+@pytest.mark.parametrize("add,mul", depths.cases())
 def test_tex_filter_rgb_tag1(add: int, mul: int) -> None:
     """dm_pipeline's build (R, G, B) with a 1-bit tag; at depths other than the package's only
-    under ``make test-long`` (test_tex_filter covers the schedule at both depths)."""
+    under ``make test-long``."""
     run_at(add, mul, {"ALPHA": 0, "TAG_W": 1}, {"VECTORS": "4000"})

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """traverse_setup against the first mode of model.traverse._trace (setup, t0, locate, start_node),
-bit for bit, at the float units' depths (ADD_LAT, MUL_LAT) = (2, 1) and (3, 2).
+bit for bit, at the float units' depths (ADD_LAT, MUL_LAT) of tb/common/depths.py: the package
+defaults (3, 2), and under make test-long the paper's (2, 1).
 
 Harness (tb_traverse_setup.sv): traverse_setup alone, its configuration from a method code and a
 map's size, root level and root code.  For every map (1x1 .. 100x128, unorm8 and unorm16, rough /
@@ -33,7 +34,7 @@ from cocotb.triggers import ClockCycles, FallingEdge, RisingEdge
 from model import f24, heightmap, traverse
 from model.arith import ENGINES
 from model.rays import Rays
-from tb.common import report, runner
+from tb.common import depths, report, runner
 from tb.common.traverse_stimulus import adversarial_rays, height_field
 from tb.harness import sv_params, traverse_words
 
@@ -44,8 +45,6 @@ MAPS = [(1, 1, 8, 0), (2, 2, 8, 1), (7, 5, 16, 0), (16, 16, 8, 2), (37, 61, 8, 0
         (17, 64, 16, 1), (64, 64, 16, 1), (100, 128, 16, 2)]
 #: Methods that cover the first mode's policies: neither, start level, start level + clip.
 METHODS = ("oh", "park", "park-xor")
-#: (f24_add LAT, f24_mul LAT) pairs the block is built at.
-DEPTHS = [(2, 1), (3, 2)]
 FIELDS = ("u0", "v0", "du", "dv", "inv_du", "inv_dv", "sx", "sy", "t_map", "k", "cx", "cy", "t",
           "done", "invalid", "rest")
 
@@ -214,7 +213,7 @@ class Harness:
 
 @cocotb.test()
 async def setup_bit_exact(dut):
-    add_lat, mul_lat = int(os.environ["ADD_LAT"]), int(os.environ["MUL_LAT"])
+    add_lat, mul_lat = depths.current()
     lat = setup_lat(add_lat, mul_lat)
     dut._log.info("ADD_LAT=%d MUL_LAT=%d: SETUP latency %d", add_lat, mul_lat, lat)
     rng = np.random.default_rng(seed())
@@ -256,14 +255,14 @@ def test_setup_lat_mirror() -> None:
     SETUP_LAT at the package defaults."""
     add, mul = sv_params.values("pipe_pkg", "F24_ADD_LAT", "F24_MUL_LAT")
     assert setup_lat(add, mul) == sv_params.value("traverse_pkg", "SETUP_LAT")
-    for a, m in DEPTHS:
+    for a, m in depths.PAIRS:
         assert setup_lat(a, m) == sv_params.call("traverse_pkg", "setup_lat", a, m)
     assert setup_lat(2, 1) == sv_params.value("f24_pkg", "F24_DIV_LAT") + 13
 
 
-@pytest.mark.parametrize("add_lat,mul_lat", DEPTHS, ids=[f"add{a}-mul{m}" for a, m in DEPTHS])
+@pytest.mark.parametrize("add_lat,mul_lat", depths.cases())
 def test_traverse_setup(add_lat: int, mul_lat: int) -> None:
     runner.run("tb_traverse_setup", "test_traverse_setup", HERE,
-               parameters={"ADD_LAT": add_lat, "MUL_LAT": mul_lat},
-               extra_env={"ADD_LAT": str(add_lat), "MUL_LAT": str(mul_lat)},
+               parameters=depths.parameters(add_lat, mul_lat),
+               extra_env=depths.env(add_lat, mul_lat),
                extra_sources=[str(HERE / "tb_traverse_setup.sv")], rtl_top="traverse_setup")

@@ -9,12 +9,13 @@ must come back exactly once with the model's hit, invalid, iterations and (for h
 The statistics counters are checked against the model's per-action counts.  A last run measures
 clocks per iteration with an always-hit memory and no back-pressure.
 
-The unit is built three times: with traverse_loop's XOR descent path (XOR_PATH=1, every method as
-the model) and without it (XOR_PATH=0), where the ring runs the XOR descent as the multi-level
-descent: park-xor's code is then checked against the model's method with park-xor's fields and
-descent="multi" (same `descent_levels`), and every other method as before; and with the XOR path
-and two-clock multipliers (MUL_LAT=2: a ring of loop_depth(2) = 22 stages instead of 19), whose
-results must be the same words.  traverse_ring_length measures the ring's length (clocks between
+The unit is built with traverse_loop's XOR descent path (XOR_PATH=1, every method as the model)
+and without it (XOR_PATH=0), where the ring runs the XOR descent as the multi-level descent:
+park-xor's code is then checked against the model's method with park-xor's fields and
+descent="multi" (same `descent_levels`), and every other method as before; both at the
+package's multipliers (pipe_pkg::F24_MUL_LAT = 2: a ring of loop_depth(2) = 22 stages), and
+under make test-long with the XOR path at the paper's one-clock multipliers (MUL_LAT=1: 19
+stages), whose results must be the same words.  traverse_ring_length measures the ring's length (clocks between
 one lone ray's lookups) against the Python mirror of traverse_pkg::loop_depth.
 
 Environment: SEED, TRAVERSE_RAYS (rays per map and method, default 200), WAVES=1; XOR_PATH and
@@ -35,7 +36,7 @@ from cocotb.triggers import ClockCycles, FallingEdge, RisingEdge
 
 from model import heightmap, traverse
 from model.traverse import EXACT_METHODS
-from tb.common import report, runner
+from tb.common import depths, report, runner
 from tb.common.traverse_stimulus import adversarial_rays, height_field
 from tb.harness import traverse_words
 
@@ -50,8 +51,8 @@ MAPS = [(1, 1, 8, 0), (2, 2, 8, 0), (7, 5, 16, 0), (16, 16, 8, 2), (37, 61, 8, 0
 
 #: traverse_loop's XOR_PATH of the build under test (set by test_traverse_unit).
 XOR_PATH = int(os.environ.get("XOR_PATH", "1"))
-#: traverse_loop's MUL_LAT of the build under test (set by test_traverse_unit; 1 = the default).
-MUL_LAT = int(os.environ.get("MUL_LAT", "1"))
+#: traverse_loop's MUL_LAT of the build under test (set by test_traverse_unit; unset: the default).
+MUL_LAT = int(os.environ.get("MUL_LAT", str(depths.DEFAULT[1])))
 
 
 def loop_depth(mul_lat: int) -> int:
@@ -434,12 +435,17 @@ def test_loop_depth_mirror():
     assert loop_depth(sv_params.value("pipe_pkg", "F24_MUL_LAT")) == traverse_words.LOOP_DEPTH
 
 
-@pytest.mark.parametrize("xor_path,mul_lat", [(1, 1), (0, 1), (1, 2)])
+@pytest.mark.parametrize("xor_path,mul_lat", [
+    (1, depths.DEFAULT[1]), (0, depths.DEFAULT[1]),
+    *[pytest.param(1, m, marks=pytest.mark.skipif(
+        not runner.long_stimulus(), reason="not the design's depths: make test-long (TB_LONG=1)"))
+      for m in sorted({m for _, m in depths.PAIRS} - {depths.DEFAULT[1]})]])
 def test_traverse_unit(xor_path: int, mul_lat: int):
     diff = traverse_words.method_differences()
     assert not diff, "rtl/traverse/traverse_pkg.sv decode_method is out of date: " + "; ".join(diff)
-    # (the default build keeps its name: no parameter given for XOR_PATH=1, MUL_LAT=1)
-    params = ({} if xor_path else {"XOR_PATH": 0}) | ({} if mul_lat == 1 else {"MUL_LAT": mul_lat})
+    # (the default build keeps its name: no parameter given for XOR_PATH=1 at the default MUL_LAT)
+    params = (({} if xor_path else {"XOR_PATH": 0})
+              | ({} if mul_lat == depths.DEFAULT[1] else {"MUL_LAT": mul_lat}))
     runner.run("tb_traverse_unit", "test_traverse_unit", HERE, rtl_top="traverse_unit",
                parameters=params,
                extra_env={"XOR_PATH": str(xor_path), "MUL_LAT": str(mul_lat)},

@@ -11,14 +11,14 @@ Stimulus (every word an f24 pattern; the model gets the patterns' values):
   most (tb/common/valid_pipe.py, spacing 4: z, x and y share their float units), and a reset of
   a full pipeline while stalled.
 
-Run at the float units' depths (ADD_LAT, MUL_LAT) = (2, 1) (the package defaults, built with no
-parameter, so the run also checks the defaults) and (3, 2) with the same stimulus: valid_o must
-come exactly pipe_pkg::view_calc_lat(ADD_LAT, MUL_LAT) enabled edges after valid_i (17 and 21),
-with the same words.
+Run at the float units' depths (ADD_LAT, MUL_LAT) of tb/common/depths.py with the same
+stimulus: (3, 2), the package defaults (built with no parameter, so the run also checks the
+defaults), and under make test-long the paper's (2, 1).  valid_o must come exactly
+pipe_pkg::view_calc_lat(ADD_LAT, MUL_LAT) enabled edges after valid_i (21 at (3, 2), 17 at
+(2, 1)), with the same words.
 """
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import cocotb
@@ -27,15 +27,12 @@ import pytest
 
 from model import f24, f24_vectors as vec, view
 from model.arith import ENGINES
-from tb.common import fp_unit, runner
+from tb.common import depths, fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 from tb.harness import sv_params
 
-#: The package defaults (ADD_LAT, MUL_LAT) and the depths the test runs at.
-DEFAULT_LATS = sv_params.values("pipe_pkg", "F24_ADD_LAT", "F24_MUL_LAT")
-LATS = [(2, 1), (3, 2)]
-#: Environment variable carrying "ADD_LAT,MUL_LAT" of the build into the cocotb test.
-LATS_ENV = "VIEW_CALC_LATS"
+#: The package defaults (ADD_LAT, MUL_LAT).
+DEFAULT_LATS = depths.DEFAULT
 SPACING = 4   # enabled clocks from one fragment to the next, at least (view_calc's spacing)
 WORDS = ["tx_i", "ty_i", "tz_i", "bx_i", "by_i", "bz_i", "nx_i", "ny_i", "nz_i",
          "vx_i", "vy_i", "vz_i"]
@@ -143,7 +140,7 @@ DEPTHS = {"20.48": int(f24.from_float(20.48)), "1": f24.ONE, "max finite": f24.M
 @cocotb.test()
 async def view_calc_random_and_directed(dut):
     rng = np.random.default_rng(fp_unit.seed())
-    add_lat, mul_lat = (int(x) for x in os.environ[LATS_ENV].split(","))
+    add_lat, mul_lat = depths.current()
     # pipe_pkg::view_calc_lat (the divider: f24_pkg::F24_DIV_LAT = 8): 17 at (2, 1), 21 at (3, 2)
     latency = sv_params.call("pipe_pkg", "view_calc_lat", add_lat, mul_lat)
     dut._log.info("view_calc ADD_LAT=%d MUL_LAT=%d: latency %d", add_lat, mul_lat, latency)
@@ -179,11 +176,9 @@ def run_lats(lats: tuple[int, int], parameters: dict[str, int] | None = None,
              extra_env: dict[str, str] | None = None) -> None:
     """Build view_calc at (ADD_LAT, MUL_LAT) = ``lats`` (the defaults with no parameter) and run
     the test."""
-    params = dict(parameters or {})
-    if lats != DEFAULT_LATS:
-        params.update(ADD_LAT=lats[0], MUL_LAT=lats[1])
+    params = {**(parameters or {}), **depths.parameters(*lats)}
     runner.run("view_calc", "test_view_calc", Path(__file__).parent, parameters=params,
-               extra_env={**(extra_env or {}), LATS_ENV: f"{lats[0]},{lats[1]}"})
+               extra_env={**(extra_env or {}), **depths.env(*lats)})
 
 
 def test_default_latency() -> None:
@@ -195,9 +190,9 @@ def test_default_latency() -> None:
     assert sv_params.call("pipe_pkg", "view_calc_lat", 3, 2) == 21
 
 
-@pytest.mark.parametrize("lats", LATS, ids=[f"add{a}-mul{m}" for a, m in LATS])
-def test_view_calc(lats: tuple[int, int]):
-    run_lats(lats)
+@pytest.mark.parametrize("add,mul", depths.cases())
+def test_view_calc(add: int, mul: int):
+    run_lats((add, mul))
 
 
 def test_view_calc_tag1():
