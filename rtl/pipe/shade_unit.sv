@@ -26,10 +26,11 @@
 // light vector l (three components), AMBIENT, KD, KS, D and D2 = mul(D, D).  Hard-wired
 // (shade_pkg): EPS = 2^-40, 1, 0, 255 and 0.5; the constant 2 only appears as mul(M_c, 2).
 //
-// Fully pipelined, fixed latency SHADE_LAT = 59 enabled clocks (shade_pkg), one pixel every 4th
-// enabled clock at most (valid_i must not be 1 within 3 enabled clocks after a pixel; asserted:
-// pixel_spacing).  In dm_pipeline a pixel needs two filtered quads, which come one per two
-// clocks at most.
+// Fully pipelined, fixed latency SHADE_LAT = shade_pkg::shade_lat(ADD_LAT, MUL_LAT) enabled
+// clocks (59 at the paper's depths (ADD_LAT, MUL_LAT) = (2, 1), 86 at (3, 2)), one pixel every
+// 4th enabled clock at most at every depth (valid_i must not be 1 within 3 enabled clocks after a
+// pixel; asserted: pixel_spacing).  In dm_pipeline a pixel needs two filtered quads, which come
+// one per two clocks at most.
 // Every register (valid, tag, data, the float units) advances only while en_i is 1, so the
 // enclosing pipeline stalls the whole unit with en_i = 0.  A pixel is taken on an enabled edge with
 // valid_i = 1; its result shows at valid_o / tag_o / rgb_o after SHADE_LAT enabled edges and holds
@@ -38,12 +39,12 @@
 //
 // Alignment: ph_q counts enabled clocks modulo 4.  A pixel that comes with ph_q = 0 enters core
 // stage S1 at once, one that comes with ph_q = 1, 2 or 3 waits 3, 2 or 1 clocks in hold registers
-// and enters with the next ph_q = 0.  The result is complete in core S56; a pixel that waited w
-// clocks is at the output in core S59 - w (res_q holds the result from S56 to S59), so the
-// latency is fixed.  Every two pixels in the core are thus a multiple of 4 clocks apart, and a
-// float unit serves up to four operations of a pixel whose stages differ pairwise by amounts not
-// divisible by 4: pixel p at Sa, Sb, ..., any later pixel at Sa + 4j, Sb + 4j, ..., never in the
-// same clock (asserted: core_aligned, and unit_once per shared unit).
+// and enters with the next ph_q = 0.  The result is complete in core stage CS = SHADE_LAT - 3; a
+// pixel that waited w clocks is at the output in core S(CS + 3 - w) (res_q holds the result from
+// CS to CS + 3), so the latency is fixed.  Every two pixels in the core are thus a multiple of 4
+// clocks apart, and a float unit serves up to four operations of a pixel whose stages differ
+// pairwise by amounts not divisible by 4: pixel p at Sa, Sb, ..., any later pixel at Sa + 4j,
+// Sb + 4j, ..., never in the same clock (asserted: core_aligned, and unit_once per shared unit).
 //
 // Operand registers: no float unit takes an operand through a select.  A shared unit's operands
 // are registers of its own (op<unit>_a_q, _b_q), loaded in the clock before each operation by a
@@ -51,69 +52,58 @@
 // phase register, a select and the unit's DSP or first adder stage are never in one clock (the
 // routed top's slowest path was a unit's result through the next one's 4:1 select into its DSP).
 // An operation whose operand is another unit's result therefore starts a clock after that result
-// (its "R" stage below: operands selected in Sa-1, the unit in Sa); an operand that is a delay
-// register or a constant is selected from the register before it, at no cost.  A unit fed by one
-// source only (a register or another unit's result register) takes it directly.  Holding an
-// operand for the second operation of a stream is a load enable of its register.
+// (operands selected in Sa-1, the unit in Sa); an operand made earlier is read from a tap of its
+// source's delay chain (tp[src][k - b] in stage k for a value made in Sb), at no cost.  A unit fed
+// by one source only (a register or another unit's result register) takes it directly.  A scalar
+// operand of a stream's second operation is read a tap deeper (the same value).
 // Three-component values run as two lanes: lane 0 carries x in stage s and z in s+1 through the
 // same registers ("stream"), lane 1 carries y in s; the tail runs R, G, B on one lane.
 //
-// Core stage schedule (S0 = the input ports or the hold registers; "@a": the unit works on the
-// operands in Sa (for a shared unit: selected into its operand registers in Sa-1), "-> b": its
-// result in Sb; "reg" = exact logic into one register):
-//   S0   2M_c (exact doubling, see below; 2M_z waits a clock in m2z_q for lane 0), selected
-//        into u_nc's and u_nua's operand registers
-//        du, dv delayed S0 -> S12; C_x, C_z as a stream S0 -> S44, C_y S0 -> S45
-//   S1   u_uv2hy2: du^2 @1 / h_y^2 @18                                 f24_mul      -> S2 / S19
-//        u_dvnc: dv^2 @1 / n_x rn @19 / n_z rn @20 / C_y a @46         f24_mul      -> S2 .. S47
-//        u_nc: n_x - 1 @1 / n_z - 1 @2 (lane 0, n = 2M - 1) / c_R = C_x a + sp @47 /
-//        c_B = C_z a + sp @48 (lane 0, sp held)                        f24_add      -> S3 .. S50
-//        u_nua: n_y - 1 @1 / du^2 + dv^2 @3 / a = AMBIENT + KD ndl @42 /
-//        c_G = C_y a + sp @48                                          f24_add      -> S3 .. S50
-//   S3   u_nsqa: n_x^2 @3 / n_z^2 @4 (direct from u_nc)                f24_mul      -> S4 / S5
-//   S4   u_ny2h: n_y^2 @4 / v_y = -dv rv @13 / h_x rh @30 / h_z rh @31 (rh held)
-//                                                                      f24_mul      -> S5 .. S32
-//   S6   u_nv: vv = (du^2 + dv^2) + D2 @6 / nn = (nx2 + ny2) + nz2 @9 / hx2 + hy2 @20 /
-//        hh = (hx2 + hy2) + hz2 @23                                    f24_add      -> S8 .. S25
-//        u_nxh: nx2 + ny2 @6 / h_x = l_x + v_x @15 / h_z = l_z + v_z @16 / nlx + nly @25
-//        (n_y l_y delayed S22 -> S24)                                  f24_add      -> S8 .. S27
-//   S9   u_rvnh: rv = rsqrt(vv) @9 / rn = rsqrt(nn) @15 / rh = rsqrt(hh) @26
-//                                                                      f24_rsqrt    -> S12 .. S29
-//   S11  max(nn, EPS), held S12 -> S14                                 reg          S11 -> S12
-//   S13  u_va: v_x = -du rv @13 / v_z = D rv @14 (rv held)             f24_mul      -> S14 / S15
-//   S15  u_hd: h_y = l_y + v_y @15 / nhx + nhy @34 / dot(n, l) = (nlx + nly) + nlz @36 /
-//        dot(n, h) = (nhx + nhy) + nhz @37 (nlx + nly delayed S27 -> S35, nlz S22 -> S35,
-//        nhz S34 -> S36)                                               f24_add      -> S17 .. S39
-//        h delayed S17 -> S29 (lane 0), h_y S17 -> S29
-//   S18  u_hkd: h_x^2 @18 / h_z^2 @19 / KD ndl @40 (h_z^2 delayed S20 -> S22)
-//                                                                      f24_mul      -> S19 .. S41
-//   S19  u_nunh1: n_y rn @19 / n_x h_x @32 / n_z h_z @33               f24_mul      -> S20 .. S34
-//   S20  u_nla: n_x l_x @20 / n_z l_z @21 (direct from the unit normal)  f24_mul    -> S21 / S22
-//        unit normal delayed S20 -> S31 (lanes)
-//   S21  u_hunh1: n_y l_y @21 / h_y rh @30 / n_y h_y @32               f24_mul      -> S22 .. S33
-//   S38  ndl = max(dot(n, l), 0) -> S39, ndh = max(dot(n, h), 0) -> S40   reg (one)
-//   S40  u_s2 .. u_sp: s = ndh^2 @40, s^4 @41, s^8 @42, s^16 @43, sp = KS s^16 @44: five
-//        f24_mul, each fed directly by the one before (no select)     f24_mul      -> S41 .. S45
-//   S45  u_caa: C_x a @45 / C_z a @46 (a held)                         f24_mul      -> S46 / S47
-//   S49  min(max(c_c, 0), 1): R (S49), G (S50), B (S50, held)          reg          -> S50 .. S52
-//   S50  u_k: c_c * 255: R @50 / G @51 / B @52 (direct)                f24_mul      -> S51 .. S53
-//   S51  u_kh: + 0.5: R @51 / G @52 / B @53 (direct)                   f24_add      -> S53 .. S55
-//   S53  u_idx: floor -> unorm8: R @53 / G @54 / B @55                 f24_to_index -> S54 .. S56
-//   S54  R held (S55, S56), G held (S56); with B the result is complete in S56
-//   Output: a pixel that waited 3 clocks shows its result from core S56 directly, the others
-//   from res_q (loaded in S56); valid and tag delayed S0 -> S59 (pipe_valid_tag).
-// The f24_rsqrt runs at LAT = pipe_pkg::F24_RSQRT_LAT = 3 (table / product + sum / round:
-// over 120 MHz; at 2 clocks it limits the unit to below 60 MHz), with the same results;
-// the schedule above is written for that latency (checked at elaboration).
+// Core stage schedule.  Latencies: f24_add ADD_LAT, f24_mul MUL_LAT, f24_rsqrt 3
+// (pipe_pkg::F24_RSQRT_LAT: table / product + sum / round, over 120 MHz; at 2 clocks it limits
+// the unit to below 60 MHz), f24_to_index 1.  Every stage is a localparam computed from ADD_LAT
+// and MUL_LAT by shade_pkg::shade_op_stage: the 36 shared-unit operations, in a fixed priority
+// order (the critical path first), each take the first stage a after their operands' results
+// (a >= b + 1 for a result in Sb; the inputs are in S0) whose phase a mod 4 (and a + 1 for a
+// stream) their unit has free.  "@a/a'": the unit works on the operands in Sa at (2, 1), Sa' at
+// (3, 2) (a stream: x in Sa, z in Sa + 1):
+//   u_uv2hy2 (f24_mul): du^2 @1/1 / h_y^2 @18/23
+//   u_dvnc (f24_mul):   dv^2 @1/1 / n_x rn, n_z rn @19/22 / C_y a @46/68
+//   u_nc (f24_add):     n_x - 1, n_z - 1 @1/1 (n = 2M - 1, 2M_z waits a clock in m2z_q) /
+//                       c_R, c_B = C_x a + sp, C_z a + sp @47/71
+//   u_nua (f24_add):    n_y - 1 @1/1 / du^2 + dv^2 @3/4 / a = AMBIENT + KD ndl @42/62 /
+//                       c_G = C_y a + sp @48/71
+//   u_nv (f24_add):     vv = (du^2 + dv^2) + D2 @6/8 / nn = (nx2 + ny2) + nz2 @9/13 /
+//                       hx2 + hy2 @20/26 / hh = (hx2 + hy2) + hz2 @23/31
+//   u_rvnh (f24_rsqrt): rv = rsqrt(vv) @9/12 / rn = rsqrt(max(nn, EPS)) @15/18 /
+//                       rh = rsqrt(hh) @26/35
+//   u_ny2h (f24_mul):   n_y^2 @4/5 / v_y = -dv rv @13/16 / h_x rh, h_z rh @30/42
+//   u_va (f24_mul):     v_x = -du rv, v_z = D rv @13/16
+//   u_nxh (f24_add):    nx2 + ny2 @6/9 / h_x = l_x + v_x, h_z = l_z + v_z @15/19 /
+//                       nlx + nly @25/34
+//   u_hd (f24_add):     h_y = l_y + v_y @15/19 / nhx + nhy @34/48 /
+//                       dot(n, l) = (nlx + nly) + nlz, dot(n, h) = (nhx + nhy) + nhz @36/53
+//   u_hkd (f24_mul):    h_x^2, h_z^2 @18/23 / KD ndl @40/58
+//   u_nunh1 (f24_mul):  n_y rn @19/23 / n_x h_x, n_z h_z @32/45
+//   u_hunh1 (f24_mul):  n_y l_y @21/28 / h_y rh @30/39 / n_y h_y @32/42
+//   u_caa (f24_mul):    C_x a, C_z a @45/66
+// Fed directly (no select): u_nsqa n_x^2, n_z^2 from u_nc's result (@3/4); u_nla n_x l_x, n_z l_z
+// from u_dvnc's (@20/24, l_x / l_z by a select); ndl = max(dot(n, l), 0) and then ndh in one
+// register (m_q); u_s2 .. u_sp: s = ndh^2, s^4, s^8, s^16, sp = KS s^16, five f24_mul each fed by
+// the one before (@40/58 .. -> sp in 45/68); max(nn, EPS) in nnm_q.
+// The tail: the clamp min(max(c, 0), 1) takes c_R in C0 = shade_clamp_stage (49/74; c_G a stage
+// later, c_B two), then one lane for the three channels a stage apart: c 255 (u_k, from C0 + 1),
+// + 0.5 (u_kh, from C0 + 1 + MUL_LAT), floor -> unorm8 (u_idx, from C0 + 1 + MUL_LAT + ADD_LAT);
+// R and G held, the result complete in CS = C0 + MUL_LAT + ADD_LAT + 4 (56/83).  Output: a pixel
+// that waited 3 clocks shows its result from core CS directly, the others from res_q (loaded in
+// CS); valid and tag delayed S0 -> S(SHADE_LAT) (pipe_valid_tag).
 //
 // Float units: 16 f24_mul (11 shared: u_dvnc and u_ny2h with four operations, u_hkd, u_nunh1,
 // u_hunh1 and u_k with three, 5 with two; the five of the s^16 chain unshared), 6 f24_add (all
 // shared: u_nc, u_nua, u_nv, u_nxh and u_hd with four, u_kh with three: the 23 additions fill
-// 23 of the 24 slots, 6 units x 4 phases; h_x / h_z wait a clock for their operand registers
-// and nlx + nly two clocks, both in slack), 1 f24_rsqrt (three operations), 1 f24_to_index #(9)
-// (three); no f24_cmp (34, 21, 3 and 2 before sharing).  Exact logic (no rounding involved,
-// each into one register): 3 doublers, max(nn, EPS), one max(., 0) for ndl then ndh, and 1
-// clamp.
+// 23 of the 24 slots, 6 units x 4 phases), 1 f24_rsqrt (three operations), 1 f24_to_index #(9)
+// (three); no f24_cmp.  Exact logic (no rounding involved, each into one register): 3 doublers,
+// max(nn, EPS), one max(., 0) for ndl then ndh, and 1 clamp.
 //
 // Exact parts, bit-identical to the model:
 // - mul(M_c, 2) is an exponent increment: e = 126 overflows to Inf, zeros and subnormal patterns
