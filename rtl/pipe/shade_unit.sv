@@ -54,8 +54,8 @@
 // An operation whose operand is another unit's result therefore starts a clock after that result
 // (operands selected in Sa-1, the unit in Sa); an operand made earlier is read from a tap of its
 // source's delay chain (tp[src][k - b] in stage k for a value made in Sb), at no cost.  A unit fed
-// by one source only (a register or another unit's result register) takes it directly.  A scalar
-// operand of a stream's second operation is read a tap deeper (the same value).
+// by one source only (a register or another unit's result register) takes it directly.  Holding
+// an operand for the second operation of a stream is a load enable of its register.
 // Three-component values run as two lanes: lane 0 carries x in stage s and z in s+1 through the
 // same registers ("stream"), lane 1 carries y in s; the tail runs R, G, B on one lane.
 //
@@ -265,7 +265,7 @@ module shade_unit
   f24_t [2:0] light;
   assign light = {cfg_i.light_z, cfg_i.light_y, cfg_i.light_x};
 
-  // ---- valid and tag: S1 .. S59 (stage_v[k]: a pixel entered k enabled clocks ago) ---------
+  // ---- valid and tag: S1 .. SNS (stage_v[k]: a pixel entered k enabled clocks ago) ---------
   /* verilator lint_off UNUSEDSIGNAL */  // the assertion reads stage 1
   logic [NS:1] stage_v;
   /* verilator lint_on UNUSEDSIGNAL */
@@ -434,8 +434,9 @@ module shade_unit
 
   // ---- operand registers of the shared units ---------------------------------------------------
   // Operation @a (in S_<op>): its operands selected in a - 1, at(ps_q[PS_<unit>], a - 1); a
-  // stream's z in a, and a scalar operand of a stream read a tap deeper for z (the same value).
-  // The last operand of a select chain is the remaining operation's.  -du, -dv: the sign flipped.
+  // stream's z in a.
+  // The last operand of a select chain is the remaining operation's.  A scalar operand of a
+  // stream is held for its z (a load enable: the flip-flop's clock enable, no select input).
   f24_t opuh_q;                        // u_uv2hy2 (squares: one operand)
   f24_t opdv_a_q, opdv_b_q;            // u_dvnc
   f24_t opnc_a_q, opnc_b_q;            // u_nc
@@ -468,14 +469,13 @@ module shade_unit
                   ? tp[T_NC][S_NUXZ - 1 - R_NXZ] : tp[T_COL1][S_CYA - 1];
       opdv_b_q <= at(ps_q[PS_DVNC], S_DV2 - 1) ? tp[T_DV][S_DV2 - 1]
                 : at(ps_q[PS_DVNC], S_NUXZ - 1) ? tp[T_RVNH][S_NUXZ - 1 - R_RN]
-                : at(ps_q[PS_DVNC], S_NUXZ) ? tp[T_RVNH][S_NUXZ - R_RN]
+                : at(ps_q[PS_DVNC], S_NUXZ) ? opdv_b_q
                 : tp[T_NUA][S_CYA - 1 - R_A];
       // u_nc: n_x - 1, n_z - 1 (n = 2M - 1; 2M_z waited a clock in m2z_q) / c_R, c_B = C a + sp
       opnc_a_q <= at(ps_q[PS_NC], S_NXZ - 1) ? dbl(in_nrm[0]) : at(ps_q[PS_NC], S_NXZ) ? m2z_q
                 : tp[T_CAA][S_CRB - 1 - R_CAXZ];
       opnc_b_q <= (at(ps_q[PS_NC], S_NXZ - 1) || at(ps_q[PS_NC], S_NXZ)) ? NEG_ONE
-                : at(ps_q[PS_NC], S_CRB - 1) ? tp[T_SP][S_CRB - 1 - B_SP]
-                : tp[T_SP][S_CRB - B_SP];
+                : at(ps_q[PS_NC], S_CRB - 1) ? tp[T_SP][S_CRB - 1 - B_SP] : opnc_b_q;
       // u_nua: n_y - 1 / du^2 + dv^2 / a = AMBIENT + KD ndl / c_G = C_y a + sp
       opnu_a_q <= at(ps_q[PS_NUA], S_NY - 1) ? dbl(in_nrm[1])
                 : at(ps_q[PS_NUA], S_UV - 1) ? tp[T_UV2HY2][S_UV - 1 - R_DU2]
@@ -503,12 +503,10 @@ module shade_unit
                 : tp[T_NXH][S_HUXZ - 1 - R_HXZ];
       opyh_b_q <= at(ps_q[PS_NY2H], S_NY2 - 1) ? tp[T_NUA][S_NY2 - 1 - R_NY]
                 : at(ps_q[PS_NY2H], S_VY - 1) ? tp[T_RVNH][S_VY - 1 - R_RV]
-                : at(ps_q[PS_NY2H], S_HUXZ - 1) ? tp[T_RVNH][S_HUXZ - 1 - R_RH]
-                : tp[T_RVNH][S_HUXZ - R_RH];
+                : at(ps_q[PS_NY2H], S_HUXZ - 1) ? tp[T_RVNH][S_HUXZ - 1 - R_RH] : opyh_b_q;
       // u_va: v_x = -du rv, v_z = D rv
       opva_a_q <= at(ps_q[PS_VA], S_VXZ - 1) ? neg(tp[T_DU][S_VXZ - 1]) : cfg_i.d;
-      opva_b_q <= at(ps_q[PS_VA], S_VXZ - 1) ? tp[T_RVNH][S_VXZ - 1 - R_RV]
-                : tp[T_RVNH][S_VXZ - R_RV];
+      opva_b_q <= at(ps_q[PS_VA], S_VXZ - 1) ? tp[T_RVNH][S_VXZ - 1 - R_RV] : opva_b_q;
       // u_nxh: nx2 + ny2 / h_x = l_x + v_x, h_z = l_z + v_z / nlx + nly
       opxh_a_q <= at(ps_q[PS_NXH], S_NXY2 - 1) ? tp[T_NSQA][S_NXY2 - 1 - R_NSQ]
                 : at(ps_q[PS_NXH], S_NLXY - 1) ? tp[T_NLA][S_NLXY - 1 - R_NL]
@@ -546,8 +544,7 @@ module shade_unit
                 : tp[T_HUNH1][S_NHY - 1 - R_HUY];
       // u_caa: C_x a, C_z a
       opca_a_q <= tp[T_COL0][S_CAXZ - 1];
-      opca_b_q <= at(ps_q[PS_CAA], S_CAXZ - 1) ? tp[T_NUA][S_CAXZ - 1 - R_A]
-                : tp[T_NUA][S_CAXZ - R_A];
+      opca_b_q <= at(ps_q[PS_CAA], S_CAXZ - 1) ? tp[T_NUA][S_CAXZ - 1 - R_A] : opca_b_q;
     end
   end
 

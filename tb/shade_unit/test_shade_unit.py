@@ -23,7 +23,14 @@ pipeline is drained between configurations (the configuration is static while bu
 with pixels in flight (en_i = 0 during the reset) must clear valid.  The hard-wired constants of
 rtl/pipe/shade_pkg.sv are checked against the model's.
 
-Environment: SEED, VECTORS (random pixels, default 20,000; 50,000 with TB_LONG=1), WAVES=1.
+Built and run at both depth pairs (ADD_LAT, MUL_LAT) = (2, 1) (the paper's) and (3, 2), passed as
+parameters; SHADE_LAT is the Python mirror of shade_pkg's schedule (shade_op_stage / shade_lat) at
+that pair, so a unit whose latency differs from the mirror fails every pixel check.
+test_shade_latency checks the mirror itself: 59 at (2, 1), and no unit given two operations of
+one phase.
+
+Environment: SEED, VECTORS (random pixels, default 20,000; 50,000 with TB_LONG=1), WAVES=1;
+SHADE_ADD_LAT, SHADE_MUL_LAT (the depth pair, set by test_shade_unit).
 """
 from __future__ import annotations
 
