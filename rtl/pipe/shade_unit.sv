@@ -26,10 +26,11 @@
 // light vector l (three components), AMBIENT, KD, KS, D and D2 = mul(D, D).  Hard-wired
 // (shade_pkg): EPS = 2^-40, 1, 0, 255 and 0.5; the constant 2 only appears as mul(M_c, 2).
 //
-// Fully pipelined, fixed latency SHADE_LAT = 59 enabled clocks (shade_pkg), one pixel every 4th
-// enabled clock at most (valid_i must not be 1 within 3 enabled clocks after a pixel; asserted:
-// pixel_spacing).  In dm_pipeline a pixel needs two filtered quads, which come one per two
-// clocks at most.
+// Fully pipelined, fixed latency SHADE_LAT = shade_pkg::shade_lat(ADD_LAT, MUL_LAT) enabled
+// clocks (59 at the paper's depths (ADD_LAT, MUL_LAT) = (2, 1), 86 at (3, 2)), one pixel every
+// 4th enabled clock at most at every depth (valid_i must not be 1 within 3 enabled clocks after a
+// pixel; asserted: pixel_spacing).  In dm_pipeline a pixel needs two filtered quads, which come
+// one per two clocks at most.
 // Every register (valid, tag, data, the float units) advances only while en_i is 1, so the
 // enclosing pipeline stalls the whole unit with en_i = 0.  A pixel is taken on an enabled edge with
 // valid_i = 1; its result shows at valid_o / tag_o / rgb_o after SHADE_LAT enabled edges and holds
@@ -38,12 +39,12 @@
 //
 // Alignment: ph_q counts enabled clocks modulo 4.  A pixel that comes with ph_q = 0 enters core
 // stage S1 at once, one that comes with ph_q = 1, 2 or 3 waits 3, 2 or 1 clocks in hold registers
-// and enters with the next ph_q = 0.  The result is complete in core S56; a pixel that waited w
-// clocks is at the output in core S59 - w (res_q holds the result from S56 to S59), so the
-// latency is fixed.  Every two pixels in the core are thus a multiple of 4 clocks apart, and a
-// float unit serves up to four operations of a pixel whose stages differ pairwise by amounts not
-// divisible by 4: pixel p at Sa, Sb, ..., any later pixel at Sa + 4j, Sb + 4j, ..., never in the
-// same clock (asserted: core_aligned, and unit_once per shared unit).
+// and enters with the next ph_q = 0.  The result is complete in core stage CS = SHADE_LAT - 3; a
+// pixel that waited w clocks is at the output in core S(CS + 3 - w) (res_q holds the result from
+// CS to CS + 3), so the latency is fixed.  Every two pixels in the core are thus a multiple of 4
+// clocks apart, and a float unit serves up to four operations of a pixel whose stages differ
+// pairwise by amounts not divisible by 4: pixel p at Sa, Sb, ..., any later pixel at Sa + 4j,
+// Sb + 4j, ..., never in the same clock (asserted: core_aligned, and unit_once per shared unit).
 //
 // Operand registers: no float unit takes an operand through a select.  A shared unit's operands
 // are registers of its own (op<unit>_a_q, _b_q), loaded in the clock before each operation by a
@@ -51,69 +52,58 @@
 // phase register, a select and the unit's DSP or first adder stage are never in one clock (the
 // routed top's slowest path was a unit's result through the next one's 4:1 select into its DSP).
 // An operation whose operand is another unit's result therefore starts a clock after that result
-// (its "R" stage below: operands selected in Sa-1, the unit in Sa); an operand that is a delay
-// register or a constant is selected from the register before it, at no cost.  A unit fed by one
-// source only (a register or another unit's result register) takes it directly.  Holding an
-// operand for the second operation of a stream is a load enable of its register.
+// (operands selected in Sa-1, the unit in Sa); an operand made earlier is read from a tap of its
+// source's delay chain (tp[src][k - b] in stage k for a value made in Sb), at no cost.  A unit fed
+// by one source only (a register or another unit's result register) takes it directly.  Holding
+// an operand for the second operation of a stream is a load enable of its register.
 // Three-component values run as two lanes: lane 0 carries x in stage s and z in s+1 through the
 // same registers ("stream"), lane 1 carries y in s; the tail runs R, G, B on one lane.
 //
-// Core stage schedule (S0 = the input ports or the hold registers; "@a": the unit works on the
-// operands in Sa (for a shared unit: selected into its operand registers in Sa-1), "-> b": its
-// result in Sb; "reg" = exact logic into one register):
-//   S0   2M_c (exact doubling, see below; 2M_z waits a clock in m2z_q for lane 0), selected
-//        into u_nc's and u_nua's operand registers
-//        du, dv delayed S0 -> S12; C_x, C_z as a stream S0 -> S44, C_y S0 -> S45
-//   S1   u_uv2hy2: du^2 @1 / h_y^2 @18                                 f24_mul      -> S2 / S19
-//        u_dvnc: dv^2 @1 / n_x rn @19 / n_z rn @20 / C_y a @46         f24_mul      -> S2 .. S47
-//        u_nc: n_x - 1 @1 / n_z - 1 @2 (lane 0, n = 2M - 1) / c_R = C_x a + sp @47 /
-//        c_B = C_z a + sp @48 (lane 0, sp held)                        f24_add      -> S3 .. S50
-//        u_nua: n_y - 1 @1 / du^2 + dv^2 @3 / a = AMBIENT + KD ndl @42 /
-//        c_G = C_y a + sp @48                                          f24_add      -> S3 .. S50
-//   S3   u_nsqa: n_x^2 @3 / n_z^2 @4 (direct from u_nc)                f24_mul      -> S4 / S5
-//   S4   u_ny2h: n_y^2 @4 / v_y = -dv rv @13 / h_x rh @30 / h_z rh @31 (rh held)
-//                                                                      f24_mul      -> S5 .. S32
-//   S6   u_nv: vv = (du^2 + dv^2) + D2 @6 / nn = (nx2 + ny2) + nz2 @9 / hx2 + hy2 @20 /
-//        hh = (hx2 + hy2) + hz2 @23                                    f24_add      -> S8 .. S25
-//        u_nxh: nx2 + ny2 @6 / h_x = l_x + v_x @15 / h_z = l_z + v_z @16 / nlx + nly @25
-//        (n_y l_y delayed S22 -> S24)                                  f24_add      -> S8 .. S27
-//   S9   u_rvnh: rv = rsqrt(vv) @9 / rn = rsqrt(nn) @15 / rh = rsqrt(hh) @26
-//                                                                      f24_rsqrt    -> S12 .. S29
-//   S11  max(nn, EPS), held S12 -> S14                                 reg          S11 -> S12
-//   S13  u_va: v_x = -du rv @13 / v_z = D rv @14 (rv held)             f24_mul      -> S14 / S15
-//   S15  u_hd: h_y = l_y + v_y @15 / nhx + nhy @34 / dot(n, l) = (nlx + nly) + nlz @36 /
-//        dot(n, h) = (nhx + nhy) + nhz @37 (nlx + nly delayed S27 -> S35, nlz S22 -> S35,
-//        nhz S34 -> S36)                                               f24_add      -> S17 .. S39
-//        h delayed S17 -> S29 (lane 0), h_y S17 -> S29
-//   S18  u_hkd: h_x^2 @18 / h_z^2 @19 / KD ndl @40 (h_z^2 delayed S20 -> S22)
-//                                                                      f24_mul      -> S19 .. S41
-//   S19  u_nunh1: n_y rn @19 / n_x h_x @32 / n_z h_z @33               f24_mul      -> S20 .. S34
-//   S20  u_nla: n_x l_x @20 / n_z l_z @21 (direct from the unit normal)  f24_mul    -> S21 / S22
-//        unit normal delayed S20 -> S31 (lanes)
-//   S21  u_hunh1: n_y l_y @21 / h_y rh @30 / n_y h_y @32               f24_mul      -> S22 .. S33
-//   S38  ndl = max(dot(n, l), 0) -> S39, ndh = max(dot(n, h), 0) -> S40   reg (one)
-//   S40  u_s2 .. u_sp: s = ndh^2 @40, s^4 @41, s^8 @42, s^16 @43, sp = KS s^16 @44: five
-//        f24_mul, each fed directly by the one before (no select)     f24_mul      -> S41 .. S45
-//   S45  u_caa: C_x a @45 / C_z a @46 (a held)                         f24_mul      -> S46 / S47
-//   S49  min(max(c_c, 0), 1): R (S49), G (S50), B (S50, held)          reg          -> S50 .. S52
-//   S50  u_k: c_c * 255: R @50 / G @51 / B @52 (direct)                f24_mul      -> S51 .. S53
-//   S51  u_kh: + 0.5: R @51 / G @52 / B @53 (direct)                   f24_add      -> S53 .. S55
-//   S53  u_idx: floor -> unorm8: R @53 / G @54 / B @55                 f24_to_index -> S54 .. S56
-//   S54  R held (S55, S56), G held (S56); with B the result is complete in S56
-//   Output: a pixel that waited 3 clocks shows its result from core S56 directly, the others
-//   from res_q (loaded in S56); valid and tag delayed S0 -> S59 (pipe_valid_tag).
-// The f24_rsqrt runs at LAT = pipe_pkg::F24_RSQRT_LAT = 3 (table / product + sum / round:
-// over 120 MHz; at 2 clocks it limits the unit to below 60 MHz), with the same results;
-// the schedule above is written for that latency (checked at elaboration).
+// Core stage schedule.  Latencies: f24_add ADD_LAT, f24_mul MUL_LAT, f24_rsqrt 3
+// (pipe_pkg::F24_RSQRT_LAT: table / product + sum / round, over 120 MHz; at 2 clocks it limits
+// the unit to below 60 MHz), f24_to_index 1.  Every stage is a localparam computed from ADD_LAT
+// and MUL_LAT by shade_pkg::shade_op_stage: the 36 shared-unit operations, in a fixed priority
+// order (the critical path first), each take the first stage a after their operands' results
+// (a >= b + 1 for a result in Sb; the inputs are in S0) whose phase a mod 4 (and a + 1 for a
+// stream) their unit has free.  "@a/a'": the unit works on the operands in Sa at (2, 1), Sa' at
+// (3, 2) (a stream: x in Sa, z in Sa + 1):
+//   u_uv2hy2 (f24_mul): du^2 @1/1 / h_y^2 @18/23
+//   u_dvnc (f24_mul):   dv^2 @1/1 / n_x rn, n_z rn @19/22 / C_y a @46/68
+//   u_nc (f24_add):     n_x - 1, n_z - 1 @1/1 (n = 2M - 1, 2M_z waits a clock in m2z_q) /
+//                       c_R, c_B = C_x a + sp, C_z a + sp @47/71
+//   u_nua (f24_add):    n_y - 1 @1/1 / du^2 + dv^2 @3/4 / a = AMBIENT + KD ndl @42/62 /
+//                       c_G = C_y a + sp @48/71
+//   u_nv (f24_add):     vv = (du^2 + dv^2) + D2 @6/8 / nn = (nx2 + ny2) + nz2 @9/13 /
+//                       hx2 + hy2 @20/26 / hh = (hx2 + hy2) + hz2 @23/31
+//   u_rvnh (f24_rsqrt): rv = rsqrt(vv) @9/12 / rn = rsqrt(max(nn, EPS)) @15/18 /
+//                       rh = rsqrt(hh) @26/35
+//   u_ny2h (f24_mul):   n_y^2 @4/5 / v_y = -dv rv @13/16 / h_x rh, h_z rh @30/42
+//   u_va (f24_mul):     v_x = -du rv, v_z = D rv @13/16
+//   u_nxh (f24_add):    nx2 + ny2 @6/9 / h_x = l_x + v_x, h_z = l_z + v_z @15/19 /
+//                       nlx + nly @25/34
+//   u_hd (f24_add):     h_y = l_y + v_y @15/19 / nhx + nhy @34/48 /
+//                       dot(n, l) = (nlx + nly) + nlz, dot(n, h) = (nhx + nhy) + nhz @36/53
+//   u_hkd (f24_mul):    h_x^2, h_z^2 @18/23 / KD ndl @40/58
+//   u_nunh1 (f24_mul):  n_y rn @19/23 / n_x h_x, n_z h_z @32/45
+//   u_hunh1 (f24_mul):  n_y l_y @21/28 / h_y rh @30/39 / n_y h_y @32/42
+//   u_caa (f24_mul):    C_x a, C_z a @45/66
+// Fed directly (no select): u_nsqa n_x^2, n_z^2 from u_nc's result (@3/4); u_nla n_x l_x, n_z l_z
+// from u_dvnc's (@20/24, l_x / l_z by a select); ndl = max(dot(n, l), 0) and then ndh in one
+// register (m_q); u_s2 .. u_sp: s = ndh^2, s^4, s^8, s^16, sp = KS s^16, five f24_mul each fed by
+// the one before (@40/58 .. -> sp in 45/68); max(nn, EPS) in nnm_q.
+// The tail: the clamp min(max(c, 0), 1) takes c_R in C0 = shade_clamp_stage (49/74; c_G a stage
+// later, c_B two), then one lane for the three channels a stage apart: c 255 (u_k, from C0 + 1),
+// + 0.5 (u_kh, from C0 + 1 + MUL_LAT), floor -> unorm8 (u_idx, from C0 + 1 + MUL_LAT + ADD_LAT);
+// R and G held, the result complete in CS = C0 + MUL_LAT + ADD_LAT + 4 (56/83).  Output: a pixel
+// that waited 3 clocks shows its result from core CS directly, the others from res_q (loaded in
+// CS); valid and tag delayed S0 -> S(SHADE_LAT) (pipe_valid_tag).
 //
 // Float units: 16 f24_mul (11 shared: u_dvnc and u_ny2h with four operations, u_hkd, u_nunh1,
 // u_hunh1 and u_k with three, 5 with two; the five of the s^16 chain unshared), 6 f24_add (all
 // shared: u_nc, u_nua, u_nv, u_nxh and u_hd with four, u_kh with three: the 23 additions fill
-// 23 of the 24 slots, 6 units x 4 phases; h_x / h_z wait a clock for their operand registers
-// and nlx + nly two clocks, both in slack), 1 f24_rsqrt (three operations), 1 f24_to_index #(9)
-// (three); no f24_cmp (34, 21, 3 and 2 before sharing).  Exact logic (no rounding involved,
-// each into one register): 3 doublers, max(nn, EPS), one max(., 0) for ndl then ndh, and 1
-// clamp.
+// 23 of the 24 slots, 6 units x 4 phases), 1 f24_rsqrt (three operations), 1 f24_to_index #(9)
+// (three); no f24_cmp.  Exact logic (no rounding involved, each into one register): 3 doublers,
+// max(nn, EPS), one max(., 0) for ndl then ndh, and 1 clamp.
 //
 // Exact parts, bit-identical to the model:
 // - mul(M_c, 2) is an exponent increment: e = 126 overflows to Inf, zeros and subnormal patterns
@@ -130,8 +120,11 @@ module shade_unit
   import f24_pkg::*;
   import shade_pkg::*;
 #(
-  parameter int unsigned TAG_W = 8  // side-band bits (pixel address, fragment id, ...) carried
-                                    // unchanged from tag_i to tag_o alongside the pixel
+  parameter int unsigned TAG_W   = 8,  // side-band bits (pixel address, fragment id, ...) carried
+                                       // unchanged from tag_i to tag_o alongside the pixel
+  parameter int unsigned ADD_LAT = pipe_pkg::F24_ADD_LAT,  // every f24_add's LAT (2 .. 4); the
+                                       // schedule and SHADE_LAT follow (shade_pkg::shade_lat)
+  parameter int unsigned MUL_LAT = pipe_pkg::F24_MUL_LAT   // every f24_mul's LAT (1 .. 3)
 ) (
   input  logic             clk_i,
   input  logic             rst_ni,   // synchronous, active low: clears the valid bits
@@ -148,14 +141,86 @@ module shade_unit
   output logic [2:0][7:0]  rgb_o     // unorm8 codes (R, G, B at 0, 1, 2)
 );
 
-  localparam int unsigned NS = SHADE_LAT;  // stages S1 .. S59
-  localparam int unsigned CS = NS - 3;     // core stages S1 .. S56
-
-  // The f24_rsqrt: the schedule (header) is written for 3 clocks (rv S9 -> S12, rn S15 -> S18,
-  // rh S26 -> S29); another latency needs the stages below renumbered.
   localparam int unsigned RSQRT_LAT = pipe_pkg::F24_RSQRT_LAT;
-  if (RSQRT_LAT != 3 || NS != 59) begin : g_check_lat
-    $error("shade_unit: the stage schedule is written for F24_RSQRT_LAT = 3, SHADE_LAT = 59");
+  localparam int unsigned IDX_LAT   = pipe_pkg::F24_TO_INDEX_LAT;
+  localparam int unsigned NS = shade_lat(ADD_LAT, MUL_LAT);  // stages S1 .. SNS
+  localparam int unsigned CS = NS - 3;                        // core stages S1 .. SCS
+
+  // ---- the schedule (shade_pkg::shade_op_stage): S_<op> the stage an operation's unit works on
+  // its operands in, R_<op> its result's stage (x of a stream; z a stage later) ---------------
+  localparam int unsigned S_DU2  = shade_op_stage(OP_DU2,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_NY   = shade_op_stage(OP_NY,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_NY2  = shade_op_stage(OP_NY2,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_DV2  = shade_op_stage(OP_DV2,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_UV   = shade_op_stage(OP_UV,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_VV   = shade_op_stage(OP_VV,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_RV   = shade_op_stage(OP_RV,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_VY   = shade_op_stage(OP_VY,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_VXZ  = shade_op_stage(OP_VXZ,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_HXZ  = shade_op_stage(OP_HXZ,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_HXZ2 = shade_op_stage(OP_HXZ2, ADD_LAT, MUL_LAT);
+  localparam int unsigned S_HY   = shade_op_stage(OP_HY,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_HY2  = shade_op_stage(OP_HY2,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_HXY2 = shade_op_stage(OP_HXY2, ADD_LAT, MUL_LAT);
+  localparam int unsigned S_HH   = shade_op_stage(OP_HH,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_RH   = shade_op_stage(OP_RH,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_HUY  = shade_op_stage(OP_HUY,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_HUXZ = shade_op_stage(OP_HUXZ, ADD_LAT, MUL_LAT);
+  localparam int unsigned S_NXZ  = shade_op_stage(OP_NXZ,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_NXY2 = shade_op_stage(OP_NXY2, ADD_LAT, MUL_LAT);
+  localparam int unsigned S_NN   = shade_op_stage(OP_NN,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_RN   = shade_op_stage(OP_RN,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_NUXZ = shade_op_stage(OP_NUXZ, ADD_LAT, MUL_LAT);
+  localparam int unsigned S_NHXZ = shade_op_stage(OP_NHXZ, ADD_LAT, MUL_LAT);
+  localparam int unsigned S_NUY  = shade_op_stage(OP_NUY,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_NHY  = shade_op_stage(OP_NHY,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_NHXY = shade_op_stage(OP_NHXY, ADD_LAT, MUL_LAT);
+  localparam int unsigned S_NLY  = shade_op_stage(OP_NLY,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_NLXY = shade_op_stage(OP_NLXY, ADD_LAT, MUL_LAT);
+  localparam int unsigned S_DOTS = shade_op_stage(OP_DOTS, ADD_LAT, MUL_LAT);
+  localparam int unsigned S_KDN  = shade_op_stage(OP_KDN,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_A    = shade_op_stage(OP_A,    ADD_LAT, MUL_LAT);
+  localparam int unsigned S_CYA  = shade_op_stage(OP_CYA,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_CG   = shade_op_stage(OP_CG,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_CAXZ = shade_op_stage(OP_CAXZ, ADD_LAT, MUL_LAT);
+  localparam int unsigned S_CRB  = shade_op_stage(OP_CRB,  ADD_LAT, MUL_LAT);
+
+  localparam int unsigned R_DU2  = S_DU2 + MUL_LAT,   R_NY   = S_NY + ADD_LAT,
+                          R_NY2  = S_NY2 + MUL_LAT,   R_DV2  = S_DV2 + MUL_LAT,
+                          R_UV   = S_UV + ADD_LAT,    R_VV   = S_VV + ADD_LAT,
+                          R_RV   = S_RV + RSQRT_LAT,  R_VY   = S_VY + MUL_LAT,
+                          R_VXZ  = S_VXZ + MUL_LAT,   R_HXZ  = S_HXZ + ADD_LAT,
+                          R_HXZ2 = S_HXZ2 + MUL_LAT,  R_HY   = S_HY + ADD_LAT,
+                          R_HY2  = S_HY2 + MUL_LAT,   R_HXY2 = S_HXY2 + ADD_LAT,
+                          R_HH   = S_HH + ADD_LAT,    R_RH   = S_RH + RSQRT_LAT,
+                          R_HUY  = S_HUY + MUL_LAT,   R_HUXZ = S_HUXZ + MUL_LAT,
+                          R_NXZ  = S_NXZ + ADD_LAT,   R_NXY2 = S_NXY2 + ADD_LAT,
+                          R_NN   = S_NN + ADD_LAT,    R_RN   = S_RN + RSQRT_LAT,
+                          R_NUXZ = S_NUXZ + MUL_LAT,  R_NHXZ = S_NHXZ + MUL_LAT,
+                          R_NUY  = S_NUY + MUL_LAT,   R_NHY  = S_NHY + MUL_LAT,
+                          R_NHXY = S_NHXY + ADD_LAT,  R_NLY  = S_NLY + MUL_LAT,
+                          R_NLXY = S_NLXY + ADD_LAT,  R_DOTS = S_DOTS + ADD_LAT,
+                          R_KDN  = S_KDN + MUL_LAT,   R_A    = S_A + ADD_LAT,
+                          R_CYA  = S_CYA + MUL_LAT,   R_CG   = S_CG + ADD_LAT,
+                          R_CAXZ = S_CAXZ + MUL_LAT,  R_CRB  = S_CRB + ADD_LAT;
+  // the units fed directly (no select) and the exact registers
+  localparam int unsigned S_NSQ = R_NXZ;                  // u_nsqa: n_x^2, n_z^2 (from u_nc)
+  localparam int unsigned R_NSQ = S_NSQ + MUL_LAT;
+  localparam int unsigned S_NL  = R_NUXZ;                 // u_nla: n_x l_x, n_z l_z (from u_dvnc)
+  localparam int unsigned R_NL  = S_NL + MUL_LAT;
+  localparam int unsigned B_NNM = R_NN + 1;               // max(nn, EPS) in nnm_q
+  localparam int unsigned B_M   = R_DOTS + 1;             // ndl in m_q (ndh a stage later)
+  localparam int unsigned S_S2  = B_M + 1;                // s = ndh^2 .. sp = KS s^16
+  localparam int unsigned B_SP  = S_S2 + 5 * MUL_LAT;     // sp
+  localparam int unsigned C0    = shade_clamp_stage(ADD_LAT, MUL_LAT);  // the clamp takes c_R
+  localparam int unsigned F_R   = C0 + 1 + MUL_LAT + ADD_LAT + IDX_LAT;  // R's floor (G, B after)
+
+  // Elaboration checks: the inputs are only in S0 (their operations are the first of their
+  // units, so in S1 at any depth), the clamp's sources are there when it takes them, the stream
+  // ops got their two phases (each unit's operations distinct mod 4: the assertion unit_once).
+  if (S_DU2 != 1 || S_DV2 != 1 || S_NY != 1 || S_NXZ != 1 || R_CRB > C0 || R_CG > C0 + 1
+      || F_R + 2 != CS || NS != shade_pkg::shade_lat(ADD_LAT, MUL_LAT)) begin : g_check_sched
+    $error("shade_unit: the schedule does not fit its assumptions");
   end
 
   localparam f24_t NEG_ONE = SHADE_ONE ^ 24'h800000;  // sub(x, 1) = add(x, -1)
@@ -200,7 +265,7 @@ module shade_unit
   f24_t [2:0] light;
   assign light = {cfg_i.light_z, cfg_i.light_y, cfg_i.light_x};
 
-  // ---- valid and tag: S1 .. S59 (stage_v[k]: a pixel entered k enabled clocks ago) ---------
+  // ---- valid and tag: S1 .. SNS (stage_v[k]: a pixel entered k enabled clocks ago) ---------
   /* verilator lint_off UNUSEDSIGNAL */  // the assertion reads stage 1
   logic [NS:1] stage_v;
   /* verilator lint_on UNUSEDSIGNAL */
@@ -272,123 +337,106 @@ module shade_unit
     end
   end
 
-  logic [7:0]      g_q;             // core S56: G (its floor held a clock)
-  logic [7:0]      r_q [55:56];     // core S55, S56: R (its floor held two clocks)
-  logic [2:0][7:0] res_q;           // the result held from core S56 to the output (S57 .. S59)
-  logic signed [8:0] idx;           // floor(c 255 + 0.5): R (S54), G (S55), B (S56); 0 .. 255
+  // ---- float-unit outputs -----------------------------------------------------------------
+  f24_t uv2hy2_y;   // du^2, h_y^2
+  f24_t dvnc_y;     // dv^2, unit normal x, z (stream), C_y a
+  f24_t nc_y;       // n_x, n_z (stream); c_R, c_B = C a + sp (stream)
+  f24_t nua_y;      // n_y, du^2 + dv^2, a, c_G
+  f24_t nv_y;       // vv, nn, hx2 + hy2, hh
+  f24_t nsqa_y;     // n_x^2, n_z^2 (stream)
+  f24_t ny2h_y;     // n_y^2, v_y, unit half vector x, z (stream)
+  f24_t va_y;       // v_x, v_z (stream)
+  f24_t nxh_y;      // nx2 + ny2, h_x, h_z (stream), nlx + nly
+  f24_t hd_y;       // h_y, nhx + nhy, dot(n, l), dot(n, h) (a stage later)
+  f24_t hkd_y;      // h_x^2, h_z^2 (stream), KD ndl
+  f24_t rvnh_y;     // rv, rn, rh
+  f24_t nunh1_y;    // unit normal y, n_x h_x, n_z h_z (stream)
+  f24_t nla_y;      // n_x l_x, n_z l_z (stream)
+  f24_t hunh1_y;    // n_y l_y, unit half vector y, n_y h_y
+  f24_t s2_y, s4_y, s8_y, s16_y, sp_y;  // ndh^2, ^4, ^8, ^16; sp = KS s^16
+  f24_t caa_y;      // C_x a, C_z a (stream)
+  f24_t k_y, kh_y;  // c 255, c 255 + 0.5 (R, then G and B a stage apart each)
+  logic signed [8:0] idx;  // floor(c 255 + 0.5): R (F_R), G, B (CS); 0 .. 255
 
-  // ---- float-unit outputs (named by their results and the stages they appear in) -------------
-  f24_t uv2hy2_s219;                // du^2 (S2), h_y^2 (S19)
-  f24_t dvnc_s22147;                // dv^2 (S2), unit normal x (S20), z (S21), C_y a (S47)
-  f24_t nc_s34_4950;                // n_x (S3), n_z (S4), C_c a + sp, lane 0: R (S49), B (S50)
-  f24_t nua_s35_4450;               // n_y (S3), du^2 + dv^2 (S5), a (S44), C_y a + sp (S50)
-  f24_t nv_s81122_25;               // vv (S8), nn (S11), hx2 + hy2 (S22), hh (S25)
-  f24_t nsqa_s45;                   // n_x^2 (S4), n_z^2 (S5)
-  f24_t ny2h_s514_3132;             // n_y^2 (S5), v_y (S14), unit half vector x (S31), z (S32)
-  f24_t va_s1415;                   // v_x (S14), v_z (S15)
-  f24_t nxh_s81718_27;              // nx2 + ny2 (S8), h_x (S17), h_z (S18), nlx + nly (S27)
-  f24_t hkd_s1920_41;               // h_x^2 (S19), h_z^2 (S20), KD ndl (S41)
-  f24_t rvnh_s121829;               // rv (S12), rn (S18), rh (S29)
-  f24_t nunh1_s2034;                // unit normal y (S20), n_x h_x (S33), n_z h_z (S34)
-  f24_t nla_s2122;                  // n_x l_x (S21), n_z l_z (S22)
-  f24_t hunh1_s2233;                // n_y l_y (S22), unit half vector y (S31), n_y h_y (S33)
-  f24_t hd_s17_3639;                // h_y (S17), nhx + nhy (S36), dot(n, l) (S38), dot(n, h) (S39)
-  f24_t s2_s41, s4_s42, s8_s43, s16_s44, sp_s45;  // ndh^2, ^4, ^8, ^16; sp = KS s^16
-  f24_t caa_s4647;                  // C_x a (S46), C_z a (S47)
-  f24_t k_s51, kh_s53;              // c 255, c 255 + 0.5 (R, then G and B a clock apart each)
+  f24_t m2z_q;      // S1: 2M_z, waiting a clock (lane 0 of u_nc)
+  f24_t colz_q;     // S1: C_z, waiting a clock (lane 0 of the colour)
+  f24_t nnm_q;      // max(nn, EPS) (B_NNM)
+  f24_t m_q;        // ndl = max(dot(n, l), 0) (B_M), then ndh
+  f24_t cl_q;       // the clamped colour: R (C0 + 1), G, B
 
-  // ---- stage registers of the data path (no reset; "stream": lane 0, x in stage k and z in k+1
-  // of the register named [k]) ----------------------------------------------------------------
-  f24_t       m2z_q;                // S1: 2M_z, waiting a clock
-  f24_t       du_q   [1:12];        // S1 .. S12
-  f24_t       dv_q   [1:12];
-  f24_t       cola_q [1:44];        // stream C_x, C_z: S1 .. S44
-  f24_t       colz_q;               // S1: C_z, waiting a clock
-  f24_t       col1_q [1:45];        // C_y: S1 .. S45
-  f24_t       na_q   [4:18];        // stream n_x, n_z
-  f24_t       n1_q   [4:18];        // n_y
-  f24_t       nsq_q  [5:7];         // stream n_x^2, n_z^2
-  f24_t       nnm_q  [12:14];       // max(nn, EPS)
-  f24_t       hk_q   [20:21];       // stream h_x^2, h_z^2
-  f24_t       ha_q   [18:29];       // stream h_x, h_z
-  f24_t       hy_q   [18:29];       // h_y
-  f24_t       nu_q   [21:31];       // stream unit normal x, z
-  f24_t       nuy_q  [21:31];       // unit normal y
-  f24_t       nla_q  [22:34];       // stream n_x l_x, n_z l_z
-  f24_t       nly_q  [23:24];       // n_y l_y
-  f24_t       dxy_q  [28:35];       // nlx + nly
-  f24_t       nhz_q  [35:36];       // n_z h_z
-  f24_t       m_q;                  // ndl = max(dot(n, l), 0) (S39), then ndh (S40)
-  f24_t       a_q;                  // S45: a
-  f24_t       sp_q   [46:47];       // sp
-  f24_t       bh_q;                 // S51: c_B, held a clock
-  f24_t       cl_q;                 // stream of the clamped colour: R (S50), G (S51), B (S52)
+  // ---- taps: every value a later operation reads, delayed from the stage it is made in ------
+  // tp[src][j] is source src delayed j enabled clocks: a value made in stage b (src's output in
+  // Sb) is tp[src][k - b] in stage k.  A select of stage k reads tp[src][k - b]; only the taps
+  // read are kept by synthesis (a chain per source, as long as its longest wait).
+  localparam int unsigned TD = CS;  // tap depth (bound)
+  localparam int unsigned T_DU = 0, T_DV = 1, T_COL0 = 2, T_COL1 = 3, T_UV2HY2 = 4, T_DVNC = 5,
+                          T_NC = 6, T_NUA = 7, T_NV = 8, T_NSQA = 9, T_NY2H = 10, T_VA = 11,
+                          T_NXH = 12, T_HD = 13, T_HKD = 14, T_RVNH = 15, T_NUNH1 = 16,
+                          T_NLA = 17, T_HUNH1 = 18, T_NNM = 19, T_M = 20, T_SP = 21, T_CAA = 22;
+  localparam int unsigned NT = 23;
+  f24_t src [NT];
+  /* verilator lint_off UNUSEDSIGNAL */  // the taps no operation reads (removed by synthesis)
+  f24_t [TD:0] tp [NT];
+  /* verilator lint_on UNUSEDSIGNAL */
+  f24_t [TD:1] tp_q [NT];
+  // the colour's lane 0: C_x in S0, C_z (waited a clock) in S1
+  assign src[T_DU]     = in_du;
+  assign src[T_DV]     = in_dv;
+  assign src[T_COL0]   = cv_q[1] ? colz_q : in_col[0];
+  assign src[T_COL1]   = in_col[1];
+  assign src[T_UV2HY2] = uv2hy2_y;
+  assign src[T_DVNC]   = dvnc_y;
+  assign src[T_NC]     = nc_y;
+  assign src[T_NUA]    = nua_y;
+  assign src[T_NV]     = nv_y;
+  assign src[T_NSQA]   = nsqa_y;
+  assign src[T_NY2H]   = ny2h_y;
+  assign src[T_VA]     = va_y;
+  assign src[T_NXH]    = nxh_y;
+  assign src[T_HD]     = hd_y;
+  assign src[T_HKD]    = hkd_y;
+  assign src[T_RVNH]   = rvnh_y;
+  assign src[T_NUNH1]  = nunh1_y;
+  assign src[T_NLA]    = nla_y;
+  assign src[T_HUNH1]  = hunh1_y;
+  assign src[T_NNM]    = nnm_q;
+  assign src[T_M]      = m_q;
+  assign src[T_SP]     = sp_y;
+  assign src[T_CAA]    = caa_y;
+  for (genvar t = 0; t < NT; t++) begin : g_tap
+    assign tp[t] = {tp_q[t], src[t]};
+    always_ff @(posedge clk_i) begin
+      if (en_i) tp_q[t] <= tp[t][TD-1:0];
+    end
+  end
+
+  logic [7:0]      g_q;             // CS: G (its floor held a clock)
+  logic [7:0]      r_q [1:2];       // CS - 1, CS: R (its floor held two clocks)
+  logic [2:0][7:0] res_q;           // the result held from core CS to the output (NS)
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
-      // the lane-0 streams of the inputs: x when the pixel enters S1, z (held a clock) in S2
-      m2z_q <= dbl(in_nrm[2]);
-      colz_q    <= in_col[2];
-      cola_q[1] <= cv_q[1] ? colz_q : in_col[0];
-      col1_q[1] <= in_col[1];
-      for (int s = 2; s <= 44; s++) cola_q[s] <= cola_q[s-1];
-      for (int s = 2; s <= 45; s++) col1_q[s] <= col1_q[s-1];
-      du_q[1] <= in_du;
-      dv_q[1] <= in_dv;
-      for (int s = 2; s <= 12; s++) begin
-        du_q[s] <= du_q[s-1];
-        dv_q[s] <= dv_q[s-1];
-      end
-      na_q[4] <= nc_s34_4950;
-      n1_q[4] <= nua_s35_4450;
-      for (int s = 5; s <= 18; s++) begin
-        na_q[s] <= na_q[s-1];
-        n1_q[s] <= n1_q[s-1];
-      end
-      nsq_q[5] <= nsqa_s45;
-      for (int s = 6; s <= 7; s++) nsq_q[s] <= nsq_q[s-1];
-      nnm_q[12] <= max_np(nv_s81122_25, SHADE_EPS);
-      for (int s = 13; s <= 14; s++) nnm_q[s] <= nnm_q[s-1];
-      hk_q[20] <= hkd_s1920_41;
-      hk_q[21] <= hk_q[20];
-      ha_q[18] <= nxh_s81718_27;
-      hy_q[18] <= hd_s17_3639;
-      for (int s = 19; s <= 29; s++) ha_q[s] <= ha_q[s-1];
-      for (int s = 19; s <= 29; s++) hy_q[s] <= hy_q[s-1];
-      nu_q[21]  <= dvnc_s22147;
-      nuy_q[21] <= nunh1_s2034;
-      for (int s = 22; s <= 31; s++) begin
-        nu_q[s]  <= nu_q[s-1];
-        nuy_q[s] <= nuy_q[s-1];
-      end
-      nla_q[22] <= nla_s2122;
-      for (int s = 23; s <= 34; s++) nla_q[s] <= nla_q[s-1];
-      nly_q[23] <= hunh1_s2233;
-      nly_q[24] <= nly_q[23];
-      dxy_q[28] <= nxh_s81718_27;
-      for (int s = 29; s <= 35; s++) dxy_q[s] <= dxy_q[s-1];
-      nhz_q[35] <= nunh1_s2034;
-      nhz_q[36] <= nhz_q[35];
-      m_q <= max_np(hd_s17_3639, SHADE_ZERO);
-      a_q <= nua_s35_4450;
-      sp_q[46] <= sp_s45;
-      sp_q[47] <= sp_q[46];
-      // the tail's stream: R (lane 0, S49), G (lane 1, S50), B (lane 0, S50, held a clock)
-      bh_q <= nc_s34_4950;
-      cl_q <= min_np(max_np(at(ps_q[PS_CL], 49) ? nc_s34_4950
-                            : at(ps_q[PS_CL], 50) ? nua_s35_4450 : bh_q, SHADE_ZERO), SHADE_ONE);
-      // the floors come R (S54), G (S55), B (S56); the result is complete in core S56
-      r_q[55] <= idx[7:0];
-      r_q[56] <= r_q[55];
-      g_q     <= idx[7:0];
-      if (cv_q[56]) res_q <= {idx[7:0], g_q, r_q[56]};
+      m2z_q  <= dbl(in_nrm[2]);
+      colz_q <= in_col[2];
+      nnm_q  <= max_np(nv_y, SHADE_EPS);
+      m_q    <= max_np(hd_y, SHADE_ZERO);
+      // R (u_nc, C0), G (u_nua, C0 + 1), B (u_nc's z, C0 + 2)
+      cl_q <= min_np(max_np(at(ps_q[PS_CL], C0) ? tp[T_NC][C0 - R_CRB]
+                            : at(ps_q[PS_CL], C0 + 1) ? tp[T_NUA][C0 + 1 - R_CG]
+                            : tp[T_NC][C0 + 1 - R_CRB], SHADE_ZERO), SHADE_ONE);
+      // the floors come R (F_R), G, B (CS); the result is complete in core CS
+      r_q[1] <= idx[7:0];
+      r_q[2] <= r_q[1];
+      g_q    <= idx[7:0];
+      if (cv_q[CS]) res_q <= {idx[7:0], g_q, r_q[2]};
     end
   end
 
   // ---- operand registers of the shared units ---------------------------------------------------
-  // at(ps_q[PS_<unit>], a) = 1: the clock before the unit's operation @a+1 (its operands are
-  // selected in stage a; the last operand of a select chain is the remaining operation's).
-  // -du, -dv: the sign bit flipped.
+  // Operation @a (in S_<op>): its operands selected in a - 1, at(ps_q[PS_<unit>], a - 1); a
+  // stream's z in a.
+  // The last operand of a select chain is the remaining operation's.  A scalar operand of a
+  // stream is held for its z (a load enable: the flip-flop's clock enable, no select input).
   f24_t opuh_q;                        // u_uv2hy2 (squares: one operand)
   f24_t opdv_a_q, opdv_b_q;            // u_dvnc
   f24_t opnc_a_q, opnc_b_q;            // u_nc
@@ -405,106 +453,137 @@ module shade_unit
   f24_t ophh_a_q, ophh_b_q;            // u_hunh1
   f24_t opca_a_q, opca_b_q;            // u_caa
 
+  // -x: the sign bit flipped
+  function automatic f24_t neg(input f24_t x);
+    return {~x[23], x[22:0]};
+  endfunction
+
   always_ff @(posedge clk_i) begin
     if (en_i) begin
-      // u_uv2hy2: du^2 @1 / h_y^2 @18
-      opuh_q   <= at(ps_q[PS_UV2HY2], 0) ? in_du : hd_s17_3639;
-      // u_dvnc: dv^2 @1 / n_x rn @19 / n_z rn @20 (rn held) / C_y a @46
-      opdv_a_q <= at(ps_q[PS_DVNC], 0) ? in_dv
-                : (at(ps_q[PS_DVNC], 18) || at(ps_q[PS_DVNC], 19)) ? na_q[18] : col1_q[45];
-      opdv_b_q <= at(ps_q[PS_DVNC], 0) ? in_dv
-                : at(ps_q[PS_DVNC], 18) ? rvnh_s121829
-                : at(ps_q[PS_DVNC], 19) ? opdv_b_q : a_q;
-      // u_nc: n_x - 1 @1 / n_z - 1 @2 (n = 2M - 1; 2M_z waited a clock in m2z_q) / c_R = C_x a + sp
-      // @47 / c_B = C_z a + sp @48 (sp held)
-      opnc_a_q <= at(ps_q[PS_NC], 0) ? dbl(in_nrm[0]) : at(ps_q[PS_NC], 1) ? m2z_q : caa_s4647;
-      opnc_b_q <= (at(ps_q[PS_NC], 0) || at(ps_q[PS_NC], 1)) ? NEG_ONE
-                : at(ps_q[PS_NC], 46) ? sp_q[46] : opnc_b_q;
-      // u_nua: n_y - 1 @1 / du^2 + dv^2 @3 / a = AMBIENT + KD ndl @42 / c_G = C_y a + sp @48
-      opnu_a_q <= at(ps_q[PS_NUA], 0) ? dbl(in_nrm[1]) : at(ps_q[PS_NUA], 2) ? uv2hy2_s219
-                : at(ps_q[PS_NUA], 41) ? cfg_i.ambient : dvnc_s22147;
-      opnu_b_q <= at(ps_q[PS_NUA], 0) ? NEG_ONE : at(ps_q[PS_NUA], 2) ? dvnc_s22147
-                : at(ps_q[PS_NUA], 41) ? hkd_s1920_41 : sp_q[47];
-      // u_nv: vv = (du^2 + dv^2) + D2 @6 / nn = (nx2 + ny2) + nz2 @9 / hx2 + hy2 @20 /
-      // hh = (hx2 + hy2) + hz2 @23
-      opnv_a_q <= at(ps_q[PS_NV], 5) ? nua_s35_4450 : at(ps_q[PS_NV], 8) ? nxh_s81718_27
-                : at(ps_q[PS_NV], 19) ? hkd_s1920_41 : nv_s81122_25;
-      opnv_b_q <= at(ps_q[PS_NV], 5) ? cfg_i.d2 : at(ps_q[PS_NV], 8) ? nsq_q[7]
-                : at(ps_q[PS_NV], 19) ? uv2hy2_s219 : hk_q[21];
-      // u_rvnh: rv @9 / rn @15 / rh @26
-      oprs_q   <= at(ps_q[PS_RVNH], 14) ? nnm_q[14] : nv_s81122_25;
-      // u_ny2h: n_y^2 @4 / v_y = -dv rv @13 / h_x rh @30 / h_z rh @31 (rh held)
-      opyh_a_q <= at(ps_q[PS_NY2H], 3) ? nua_s35_4450
-                : at(ps_q[PS_NY2H], 12) ? {~dv_q[12][23], dv_q[12][22:0]} : ha_q[29];
-      opyh_b_q <= at(ps_q[PS_NY2H], 3) ? nua_s35_4450
-                : (at(ps_q[PS_NY2H], 12) || at(ps_q[PS_NY2H], 29)) ? rvnh_s121829 : opyh_b_q;
-      // u_va: v_x = -du rv @13 / v_z = D rv @14 (rv held)
-      opva_a_q <= at(ps_q[PS_VA], 12) ? {~du_q[12][23], du_q[12][22:0]} : cfg_i.d;
-      opva_b_q <= at(ps_q[PS_VA], 12) ? rvnh_s121829 : opva_b_q;
-      // u_nxh: nx2 + ny2 @6 / h_x = l_x + v_x @15 / h_z = l_z + v_z @16 / nlx + nly @25
-      opxh_a_q <= at(ps_q[PS_NXH], 5) ? nsq_q[5] : at(ps_q[PS_NXH], 24) ? nla_q[24]
-                : at(ps_q[PS_NXH], 14) ? light[0] : light[2];
-      opxh_b_q <= at(ps_q[PS_NXH], 5) ? ny2h_s514_3132 : at(ps_q[PS_NXH], 24) ? nly_q[24]
-                : va_s1415;
-      // u_hd: h_y = l_y + v_y @15 / nhx + nhy @34 / dot(n, l) = (nlx + nly) + nlz @36 /
-      // dot(n, h) = (nhx + nhy) + nhz @37
-      ophd_a_q <= at(ps_q[PS_HD], 14) ? light[1] : at(ps_q[PS_HD], 33) ? nunh1_s2034
-                : at(ps_q[PS_HD], 35) ? dxy_q[35] : hd_s17_3639;
-      ophd_b_q <= at(ps_q[PS_HD], 14) ? ny2h_s514_3132 : at(ps_q[PS_HD], 33) ? hunh1_s2233
-                : at(ps_q[PS_HD], 35) ? nla_q[34] : nhz_q[36];
-      // u_hkd: h_x^2 @18 / h_z^2 @19 / KD ndl @40
-      ophk_a_q <= at(ps_q[PS_HKD], 39) ? cfg_i.kd : nxh_s81718_27;
-      ophk_b_q <= at(ps_q[PS_HKD], 39) ? m_q : nxh_s81718_27;
-      // u_nunh1: n_y rn @19 / n_x h_x @32 / n_z h_z @33
-      opnh_a_q <= at(ps_q[PS_NUNH1], 18) ? n1_q[18] : nu_q[31];
-      opnh_b_q <= at(ps_q[PS_NUNH1], 18) ? rvnh_s121829 : ny2h_s514_3132;
-      // u_nla: n_x l_x @20 / n_z l_z @21
-      opnl_b_q <= at(ps_q[PS_NLA], 19) ? light[0] : light[2];
-      // u_hunh1: n_y l_y @21 / h_y rh @30 / n_y h_y @32
-      ophh_a_q <= at(ps_q[PS_HUNH1], 20) ? nunh1_s2034
-                : at(ps_q[PS_HUNH1], 29) ? hy_q[29] : nuy_q[31];
-      ophh_b_q <= at(ps_q[PS_HUNH1], 20) ? light[1]
-                : at(ps_q[PS_HUNH1], 29) ? rvnh_s121829 : hunh1_s2233;
-      // u_caa: C_x a @45 / C_z a @46 (a held)
-      opca_a_q <= cola_q[44];
-      opca_b_q <= at(ps_q[PS_CAA], 44) ? nua_s35_4450 : opca_b_q;
+      // u_uv2hy2: du^2 / h_y^2
+      opuh_q   <= at(ps_q[PS_UV2HY2], S_DU2 - 1) ? tp[T_DU][S_DU2 - 1]
+                : tp[T_HD][S_HY2 - 1 - R_HY];
+      // u_dvnc: dv^2 / n_x rn, n_z rn / C_y a
+      opdv_a_q <= at(ps_q[PS_DVNC], S_DV2 - 1) ? tp[T_DV][S_DV2 - 1]
+                : (at(ps_q[PS_DVNC], S_NUXZ - 1) || at(ps_q[PS_DVNC], S_NUXZ))
+                  ? tp[T_NC][S_NUXZ - 1 - R_NXZ] : tp[T_COL1][S_CYA - 1];
+      opdv_b_q <= at(ps_q[PS_DVNC], S_DV2 - 1) ? tp[T_DV][S_DV2 - 1]
+                : at(ps_q[PS_DVNC], S_NUXZ - 1) ? tp[T_RVNH][S_NUXZ - 1 - R_RN]
+                : at(ps_q[PS_DVNC], S_NUXZ) ? opdv_b_q
+                : tp[T_NUA][S_CYA - 1 - R_A];
+      // u_nc: n_x - 1, n_z - 1 (n = 2M - 1; 2M_z waited a clock in m2z_q) / c_R, c_B = C a + sp
+      opnc_a_q <= at(ps_q[PS_NC], S_NXZ - 1) ? dbl(in_nrm[0]) : at(ps_q[PS_NC], S_NXZ) ? m2z_q
+                : tp[T_CAA][S_CRB - 1 - R_CAXZ];
+      opnc_b_q <= (at(ps_q[PS_NC], S_NXZ - 1) || at(ps_q[PS_NC], S_NXZ)) ? NEG_ONE
+                : at(ps_q[PS_NC], S_CRB - 1) ? tp[T_SP][S_CRB - 1 - B_SP] : opnc_b_q;
+      // u_nua: n_y - 1 / du^2 + dv^2 / a = AMBIENT + KD ndl / c_G = C_y a + sp
+      opnu_a_q <= at(ps_q[PS_NUA], S_NY - 1) ? dbl(in_nrm[1])
+                : at(ps_q[PS_NUA], S_UV - 1) ? tp[T_UV2HY2][S_UV - 1 - R_DU2]
+                : at(ps_q[PS_NUA], S_A - 1) ? cfg_i.ambient : tp[T_DVNC][S_CG - 1 - R_CYA];
+      opnu_b_q <= at(ps_q[PS_NUA], S_NY - 1) ? NEG_ONE
+                : at(ps_q[PS_NUA], S_UV - 1) ? tp[T_DVNC][S_UV - 1 - R_DV2]
+                : at(ps_q[PS_NUA], S_A - 1) ? tp[T_HKD][S_A - 1 - R_KDN]
+                : tp[T_SP][S_CG - 1 - B_SP];
+      // u_nv: vv = (du^2 + dv^2) + D2 / nn = (nx2 + ny2) + nz2 / hx2 + hy2 / hh = (..) + hz2
+      opnv_a_q <= at(ps_q[PS_NV], S_VV - 1) ? tp[T_NUA][S_VV - 1 - R_UV]
+                : at(ps_q[PS_NV], S_NN - 1) ? tp[T_NXH][S_NN - 1 - R_NXY2]
+                : at(ps_q[PS_NV], S_HXY2 - 1) ? tp[T_HKD][S_HXY2 - 1 - R_HXZ2]
+                : tp[T_NV][S_HH - 1 - R_HXY2];
+      opnv_b_q <= at(ps_q[PS_NV], S_VV - 1) ? cfg_i.d2
+                : at(ps_q[PS_NV], S_NN - 1) ? tp[T_NSQA][S_NN - 1 - (R_NSQ + 1)]
+                : at(ps_q[PS_NV], S_HXY2 - 1) ? tp[T_UV2HY2][S_HXY2 - 1 - R_HY2]
+                : tp[T_HKD][S_HH - 1 - (R_HXZ2 + 1)];
+      // u_rvnh: rv / rn / rh
+      oprs_q   <= at(ps_q[PS_RVNH], S_RV - 1) ? tp[T_NV][S_RV - 1 - R_VV]
+                : at(ps_q[PS_RVNH], S_RN - 1) ? tp[T_NNM][S_RN - 1 - B_NNM]
+                : tp[T_NV][S_RH - 1 - R_HH];
+      // u_ny2h: n_y^2 / v_y = -dv rv / h_x rh, h_z rh
+      opyh_a_q <= at(ps_q[PS_NY2H], S_NY2 - 1) ? tp[T_NUA][S_NY2 - 1 - R_NY]
+                : at(ps_q[PS_NY2H], S_VY - 1) ? neg(tp[T_DV][S_VY - 1])
+                : tp[T_NXH][S_HUXZ - 1 - R_HXZ];
+      opyh_b_q <= at(ps_q[PS_NY2H], S_NY2 - 1) ? tp[T_NUA][S_NY2 - 1 - R_NY]
+                : at(ps_q[PS_NY2H], S_VY - 1) ? tp[T_RVNH][S_VY - 1 - R_RV]
+                : at(ps_q[PS_NY2H], S_HUXZ - 1) ? tp[T_RVNH][S_HUXZ - 1 - R_RH] : opyh_b_q;
+      // u_va: v_x = -du rv, v_z = D rv
+      opva_a_q <= at(ps_q[PS_VA], S_VXZ - 1) ? neg(tp[T_DU][S_VXZ - 1]) : cfg_i.d;
+      opva_b_q <= at(ps_q[PS_VA], S_VXZ - 1) ? tp[T_RVNH][S_VXZ - 1 - R_RV] : opva_b_q;
+      // u_nxh: nx2 + ny2 / h_x = l_x + v_x, h_z = l_z + v_z / nlx + nly
+      opxh_a_q <= at(ps_q[PS_NXH], S_NXY2 - 1) ? tp[T_NSQA][S_NXY2 - 1 - R_NSQ]
+                : at(ps_q[PS_NXH], S_NLXY - 1) ? tp[T_NLA][S_NLXY - 1 - R_NL]
+                : at(ps_q[PS_NXH], S_HXZ - 1) ? light[0] : light[2];
+      opxh_b_q <= at(ps_q[PS_NXH], S_NXY2 - 1) ? tp[T_NY2H][S_NXY2 - 1 - R_NY2]
+                : at(ps_q[PS_NXH], S_NLXY - 1) ? tp[T_HUNH1][S_NLXY - 1 - R_NLY]
+                : tp[T_VA][S_HXZ - 1 - R_VXZ];
+      // u_hd: h_y = l_y + v_y / nhx + nhy / dot(n, l) = (nlx + nly) + nlz, then
+      // dot(n, h) = (nhx + nhy) + nhz
+      ophd_a_q <= at(ps_q[PS_HD], S_HY - 1) ? light[1]
+                : at(ps_q[PS_HD], S_NHXY - 1) ? tp[T_NUNH1][S_NHXY - 1 - R_NHXZ]
+                : at(ps_q[PS_HD], S_DOTS - 1) ? tp[T_NXH][S_DOTS - 1 - R_NLXY]
+                : tp[T_HD][S_DOTS - R_NHXY];
+      ophd_b_q <= at(ps_q[PS_HD], S_HY - 1) ? tp[T_NY2H][S_HY - 1 - R_VY]
+                : at(ps_q[PS_HD], S_NHXY - 1) ? tp[T_HUNH1][S_NHXY - 1 - R_NHY]
+                : at(ps_q[PS_HD], S_DOTS - 1) ? tp[T_NLA][S_DOTS - 1 - (R_NL + 1)]
+                : tp[T_NUNH1][S_DOTS - (R_NHXZ + 1)];
+      // u_hkd: h_x^2, h_z^2 / KD ndl
+      ophk_a_q <= at(ps_q[PS_HKD], S_KDN - 1) ? cfg_i.kd : tp[T_NXH][S_HXZ2 - 1 - R_HXZ];
+      ophk_b_q <= at(ps_q[PS_HKD], S_KDN - 1) ? tp[T_M][S_KDN - 1 - B_M]
+                : tp[T_NXH][S_HXZ2 - 1 - R_HXZ];
+      // u_nunh1: n_y rn / n_x h_x, n_z h_z
+      opnh_a_q <= at(ps_q[PS_NUNH1], S_NUY - 1) ? tp[T_NUA][S_NUY - 1 - R_NY]
+                : tp[T_DVNC][S_NHXZ - 1 - R_NUXZ];
+      opnh_b_q <= at(ps_q[PS_NUNH1], S_NUY - 1) ? tp[T_RVNH][S_NUY - 1 - R_RN]
+                : tp[T_NY2H][S_NHXZ - 1 - R_HUXZ];
+      // u_nla: n_x l_x, n_z l_z
+      opnl_b_q <= at(ps_q[PS_NLA], S_NL - 1) ? light[0] : light[2];
+      // u_hunh1: n_y l_y / h_y rh / n_y h_y
+      ophh_a_q <= at(ps_q[PS_HUNH1], S_NLY - 1) ? tp[T_NUNH1][S_NLY - 1 - R_NUY]
+                : at(ps_q[PS_HUNH1], S_HUY - 1) ? tp[T_HD][S_HUY - 1 - R_HY]
+                : tp[T_NUNH1][S_NHY - 1 - R_NUY];
+      ophh_b_q <= at(ps_q[PS_HUNH1], S_NLY - 1) ? light[1]
+                : at(ps_q[PS_HUNH1], S_HUY - 1) ? tp[T_RVNH][S_HUY - 1 - R_RH]
+                : tp[T_HUNH1][S_NHY - 1 - R_HUY];
+      // u_caa: C_x a, C_z a
+      opca_a_q <= tp[T_COL0][S_CAXZ - 1];
+      opca_b_q <= at(ps_q[PS_CAA], S_CAXZ - 1) ? tp[T_NUA][S_CAXZ - 1 - R_A] : opca_b_q;
     end
   end
 
   // ---- float units ----------------------------------------------------------------------------
-  f24_mul u_uv2hy2 (.clk_i, .en_i, .a_i(opuh_q), .b_i(opuh_q), .y_o(uv2hy2_s219));
-  f24_mul u_dvnc   (.clk_i, .en_i, .a_i(opdv_a_q), .b_i(opdv_b_q), .y_o(dvnc_s22147));
-  f24_add u_nc     (.clk_i, .en_i, .a_i(opnc_a_q), .b_i(opnc_b_q), .y_o(nc_s34_4950));
-  f24_add u_nua    (.clk_i, .en_i, .a_i(opnu_a_q), .b_i(opnu_b_q), .y_o(nua_s35_4450));
-  f24_add u_nv     (.clk_i, .en_i, .a_i(opnv_a_q), .b_i(opnv_b_q), .y_o(nv_s81122_25));
-  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rvnh (.clk_i, .en_i, .a_i(oprs_q), .y_o(rvnh_s121829));
-  f24_mul u_nsqa   (.clk_i, .en_i, .a_i(nc_s34_4950), .b_i(nc_s34_4950), .y_o(nsqa_s45));
-  f24_mul u_ny2h   (.clk_i, .en_i, .a_i(opyh_a_q), .b_i(opyh_b_q), .y_o(ny2h_s514_3132));
-  f24_mul u_va     (.clk_i, .en_i, .a_i(opva_a_q), .b_i(opva_b_q), .y_o(va_s1415));
-  f24_add u_nxh    (.clk_i, .en_i, .a_i(opxh_a_q), .b_i(opxh_b_q), .y_o(nxh_s81718_27));
-  f24_add u_hd     (.clk_i, .en_i, .a_i(ophd_a_q), .b_i(ophd_b_q), .y_o(hd_s17_3639));
-  f24_mul u_hkd    (.clk_i, .en_i, .a_i(ophk_a_q), .b_i(ophk_b_q), .y_o(hkd_s1920_41));
-  f24_mul u_nunh1  (.clk_i, .en_i, .a_i(opnh_a_q), .b_i(opnh_b_q), .y_o(nunh1_s2034));
-  f24_mul u_nla    (.clk_i, .en_i, .a_i(dvnc_s22147), .b_i(opnl_b_q), .y_o(nla_s2122));
-  f24_mul u_hunh1  (.clk_i, .en_i, .a_i(ophh_a_q), .b_i(ophh_b_q), .y_o(hunh1_s2233));
+  f24_mul #(.LAT(MUL_LAT)) u_uv2hy2 (.clk_i, .en_i, .a_i(opuh_q), .b_i(opuh_q), .y_o(uv2hy2_y));
+  f24_mul #(.LAT(MUL_LAT)) u_dvnc (.clk_i, .en_i, .a_i(opdv_a_q), .b_i(opdv_b_q), .y_o(dvnc_y));
+  f24_add #(.LAT(ADD_LAT)) u_nc   (.clk_i, .en_i, .a_i(opnc_a_q), .b_i(opnc_b_q), .y_o(nc_y));
+  f24_add #(.LAT(ADD_LAT)) u_nua  (.clk_i, .en_i, .a_i(opnu_a_q), .b_i(opnu_b_q), .y_o(nua_y));
+  f24_add #(.LAT(ADD_LAT)) u_nv   (.clk_i, .en_i, .a_i(opnv_a_q), .b_i(opnv_b_q), .y_o(nv_y));
+  f24_rsqrt #(.LAT(RSQRT_LAT)) u_rvnh (.clk_i, .en_i, .a_i(oprs_q), .y_o(rvnh_y));
+  f24_mul #(.LAT(MUL_LAT)) u_nsqa (.clk_i, .en_i, .a_i(nc_y), .b_i(nc_y), .y_o(nsqa_y));
+  f24_mul #(.LAT(MUL_LAT)) u_ny2h (.clk_i, .en_i, .a_i(opyh_a_q), .b_i(opyh_b_q), .y_o(ny2h_y));
+  f24_mul #(.LAT(MUL_LAT)) u_va   (.clk_i, .en_i, .a_i(opva_a_q), .b_i(opva_b_q), .y_o(va_y));
+  f24_add #(.LAT(ADD_LAT)) u_nxh  (.clk_i, .en_i, .a_i(opxh_a_q), .b_i(opxh_b_q), .y_o(nxh_y));
+  f24_add #(.LAT(ADD_LAT)) u_hd   (.clk_i, .en_i, .a_i(ophd_a_q), .b_i(ophd_b_q), .y_o(hd_y));
+  f24_mul #(.LAT(MUL_LAT)) u_hkd  (.clk_i, .en_i, .a_i(ophk_a_q), .b_i(ophk_b_q), .y_o(hkd_y));
+  f24_mul #(.LAT(MUL_LAT)) u_nunh1 (.clk_i, .en_i, .a_i(opnh_a_q), .b_i(opnh_b_q),
+                                    .y_o(nunh1_y));
+  f24_mul #(.LAT(MUL_LAT)) u_nla  (.clk_i, .en_i, .a_i(dvnc_y), .b_i(opnl_b_q), .y_o(nla_y));
+  f24_mul #(.LAT(MUL_LAT)) u_hunh1 (.clk_i, .en_i, .a_i(ophh_a_q), .b_i(ophh_b_q),
+                                    .y_o(hunh1_y));
   // s = ndh; four times s = mul(s, s); sp = mul(KS, s): one unit per operation, each fed by the
-  // previous one's result register (ndh: m_q in S40)
-  f24_mul u_s2     (.clk_i, .en_i, .a_i(m_q), .b_i(m_q), .y_o(s2_s41));
-  f24_mul u_s4     (.clk_i, .en_i, .a_i(s2_s41), .b_i(s2_s41), .y_o(s4_s42));
-  f24_mul u_s8     (.clk_i, .en_i, .a_i(s4_s42), .b_i(s4_s42), .y_o(s8_s43));
-  f24_mul u_s16    (.clk_i, .en_i, .a_i(s8_s43), .b_i(s8_s43), .y_o(s16_s44));
-  f24_mul u_sp     (.clk_i, .en_i, .a_i(cfg_i.ks), .b_i(s16_s44), .y_o(sp_s45));
-  f24_mul u_caa    (.clk_i, .en_i, .a_i(opca_a_q), .b_i(opca_b_q), .y_o(caa_s4647));
-  // the tail: one lane for the three channels, R, G and B a clock apart (c 255 @50 .. @52,
-  // + 0.5 @51 .. @53, floor @53 .. @55)
-  f24_mul u_k  (.clk_i, .en_i, .a_i(cl_q), .b_i(SHADE_255), .y_o(k_s51));
-  f24_add u_kh (.clk_i, .en_i, .a_i(k_s51), .b_i(SHADE_HALF), .y_o(kh_s53));
+  // previous one's result register (ndh: m_q in S_S2)
+  f24_mul #(.LAT(MUL_LAT)) u_s2  (.clk_i, .en_i, .a_i(m_q), .b_i(m_q), .y_o(s2_y));
+  f24_mul #(.LAT(MUL_LAT)) u_s4  (.clk_i, .en_i, .a_i(s2_y), .b_i(s2_y), .y_o(s4_y));
+  f24_mul #(.LAT(MUL_LAT)) u_s8  (.clk_i, .en_i, .a_i(s4_y), .b_i(s4_y), .y_o(s8_y));
+  f24_mul #(.LAT(MUL_LAT)) u_s16 (.clk_i, .en_i, .a_i(s8_y), .b_i(s8_y), .y_o(s16_y));
+  f24_mul #(.LAT(MUL_LAT)) u_sp  (.clk_i, .en_i, .a_i(cfg_i.ks), .b_i(s16_y), .y_o(sp_y));
+  f24_mul #(.LAT(MUL_LAT)) u_caa (.clk_i, .en_i, .a_i(opca_a_q), .b_i(opca_b_q), .y_o(caa_y));
+  // the tail: one lane for the three channels, R, G and B a stage apart (c 255 from C0 + 1,
+  // + 0.5 from C0 + 1 + MUL_LAT, floor from C0 + 1 + MUL_LAT + ADD_LAT)
+  f24_mul #(.LAT(MUL_LAT)) u_k  (.clk_i, .en_i, .a_i(cl_q), .b_i(SHADE_255), .y_o(k_y));
+  f24_add #(.LAT(ADD_LAT)) u_kh (.clk_i, .en_i, .a_i(k_y), .b_i(SHADE_HALF), .y_o(kh_y));
   // sat_o is not needed: the operand is in [0.5, 255.5] or NaN
-  f24_to_index #(.W(9)) u_idx (.clk_i, .en_i, .a_i(kh_s53), .idx_o(idx), .sat_o());
+  f24_to_index #(.W(9)) u_idx (.clk_i, .en_i, .a_i(kh_y), .idx_o(idx), .sat_o());
   logic unused_idx;                 // bit 8: the index is in 0 .. 255 (see the header)
   assign unused_idx = idx[8];
-  // a pixel that waited 3 clocks is at the output in core S56, the others in S57 .. S59
-  assign rgb_o = cv_q[56] ? {idx[7:0], g_q, r_q[56]} : res_q;
+  // a pixel that waited 3 clocks is at the output in core CS, the others in CS + 1 .. CS + 3
+  assign rgb_o = cv_q[CS] ? {idx[7:0], g_q, r_q[2]} : res_q;
 
   // The simulation checks are in shade_unit_assert.sv (bound into every instance).
 

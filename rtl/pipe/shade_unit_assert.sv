@@ -11,25 +11,26 @@
 //                  never gets two in one clock;
 //   phase_replica  every phase replica (ps_q) is ph_q, one-hot;
 //   unit_once      every float unit with more than one operation gets one pixel per clock at
-//                  most (the stages it works on its operands in: the table below).
+//                  most (the stages it works on its operands in: from shade_pkg's schedule).
 `ifndef SYNTHESIS
 module shade_unit_assert
   import shade_pkg::*;
 #(
-  parameter int unsigned NPS = 16   // shade_unit's NPS: operand selects with a phase replica
+  parameter int unsigned NPS     = 16,  // shade_unit's NPS: operand selects with a phase replica
+  parameter int unsigned ADD_LAT = 2,   // shade_unit's ADD_LAT, MUL_LAT: the schedule
+  parameter int unsigned MUL_LAT = 1,
+  localparam int unsigned CS = shade_lat(ADD_LAT, MUL_LAT) - 3  // core stages S1 .. SCS
 ) (
-  input logic                  clk_i,
-  input logic                  rst_ni,
-  input logic                  en_i,
-  input logic                  valid_i,
-  input logic [3:1]            stage_v_i,  // shade_unit's stage_v[3:1]
-  input logic                  hv_i,       // hv_q: a pixel waits in the hold registers
-  input logic [SHADE_LAT-3:1]  cv_i,       // cv_q: core stage valid bits
-  input logic [1:0]            ph_i,       // ph_q: enabled clocks modulo 4
-  input logic [3:0]            ps_i [NPS]  // ps_q: the phase replicas
+  input logic           clk_i,
+  input logic           rst_ni,
+  input logic           en_i,
+  input logic           valid_i,
+  input logic [3:1]     stage_v_i,  // shade_unit's stage_v[3:1]
+  input logic           hv_i,       // hv_q: a pixel waits in the hold registers
+  input logic [CS:1]    cv_i,       // cv_q: core stage valid bits
+  input logic [1:0]     ph_i,       // ph_q: enabled clocks modulo 4
+  input logic [3:0]     ps_i [NPS]  // ps_q: the phase replicas
 );
-
-  localparam int unsigned CS = SHADE_LAT - 3;   // core stages S1 .. S56
 
   // The core stages k with k mod 4 = r.
   function automatic logic [CS:1] stage_phase(input logic [1:0] r);
@@ -38,24 +39,39 @@ module shade_unit_assert
     return m;
   endfunction
 
-  // A shared unit's operation stages (0: none), as a mask of core stages.
-  function automatic logic [CS:1] ops(input int a, input int b, input int c, input int d);
+  // Stages a, a + 1, .., a + n - 1 as a mask of core stages.
+  function automatic logic [CS:1] run(input int unsigned a, input int unsigned n);
     logic [CS:1] m;
     m = '0;
-    for (int k = 1; k <= CS; k++) m[k] = (k == a) || (k == b) || (k == c) || (k == d);
+    for (int unsigned k = 1; k <= CS; k++) m[k] = (k >= a) && (k < a + n);
     return m;
   endfunction
 
-  // Every float unit with more than one operation: the stages it takes its operands in.
-  localparam int NSH = 19;
+  // The stages shared unit u (shade_pkg::U_*) works on its operands in (the schedule).
+  function automatic logic [CS:1] unit_ops(input int unsigned u);
+    logic [CS:1] m;
+    m = '0;
+    for (int unsigned op = 0; op < SHADE_NOPS; op++) begin
+      if (shade_op_unit(op) == u) begin
+        m = m | run(shade_op_stage(op, ADD_LAT, MUL_LAT), shade_op_stream(op) ? 2 : 1);
+      end
+    end
+    return m;
+  endfunction
+
+  localparam int unsigned C0 = shade_clamp_stage(ADD_LAT, MUL_LAT);  // the tail's first stage
+  // Every float unit with more than one operation: the shared units (with u_va and u_caa, one
+  // stream each), u_nsqa and u_nla (streams fed directly), the tail's c 255, + 0.5 and floor.
+  localparam int NSH = SHADE_NUNITS + 5;
   logic [CS:1] shared [NSH];
-  assign shared = '{
-    ops(1, 18, 0, 0),   ops(1, 19, 20, 46),  ops(3, 4, 0, 0),     ops(4, 13, 30, 31), // mul
-    ops(13, 14, 0, 0),  ops(18, 19, 40, 0),  ops(19, 32, 33, 0),  ops(20, 21, 0, 0),
-    ops(21, 30, 32, 0), ops(45, 46, 0, 0),   ops(50, 51, 52, 0),
-    ops(1, 2, 47, 48),  ops(1, 3, 42, 48),   ops(6, 9, 20, 23),   ops(6, 15, 16, 25), // add
-    ops(15, 34, 36, 37), ops(51, 52, 53, 0),
-    ops(9, 15, 26, 0),  ops(53, 54, 55, 0)};                                          // rsqrt, idx
+  for (genvar u = 0; u < SHADE_NUNITS; u++) begin : g_unit
+    assign shared[u] = unit_ops(u);
+  end
+  assign shared[SHADE_NUNITS]     = run(shade_op_stage(OP_NXZ, ADD_LAT, MUL_LAT) + ADD_LAT, 2);
+  assign shared[SHADE_NUNITS + 1] = run(shade_op_stage(OP_NUXZ, ADD_LAT, MUL_LAT) + MUL_LAT, 2);
+  assign shared[SHADE_NUNITS + 2] = run(C0 + 1, 3);
+  assign shared[SHADE_NUNITS + 3] = run(C0 + 1 + MUL_LAT, 3);
+  assign shared[SHADE_NUNITS + 4] = run(C0 + 1 + MUL_LAT + ADD_LAT, 3);
 
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
@@ -86,7 +102,9 @@ module shade_unit_assert
 
 endmodule
 
-bind shade_unit shade_unit_assert #(.NPS(NPS)) u_assert (
+bind shade_unit shade_unit_assert #(
+  .NPS(NPS), .ADD_LAT(ADD_LAT), .MUL_LAT(MUL_LAT)
+) u_assert (
   .clk_i, .rst_ni, .en_i, .valid_i, .stage_v_i(stage_v[3:1]), .hv_i(hv_q), .cv_i(cv_q),
   .ph_i(ph_q), .ps_i(ps_q));
 `endif

@@ -23,15 +23,24 @@ pipeline is drained between configurations (the configuration is static while bu
 with pixels in flight (en_i = 0 during the reset) must clear valid.  The hard-wired constants of
 rtl/pipe/shade_pkg.sv are checked against the model's.
 
-Environment: SEED, VECTORS (random pixels, default 20,000; 50,000 with TB_LONG=1), WAVES=1.
+Built and run at both depth pairs (ADD_LAT, MUL_LAT) = (2, 1) (the paper's) and (3, 2), passed as
+parameters; SHADE_LAT is the Python mirror of shade_pkg's schedule (shade_op_stage / shade_lat) at
+that pair, so a unit whose latency differs from the mirror fails every pixel check.
+test_shade_latency checks the mirror itself: 59 at (2, 1), and no unit given two operations of
+one phase.
+
+Environment: SEED, VECTORS (random pixels, default 20,000; 50,000 with TB_LONG=1), WAVES=1;
+SHADE_ADD_LAT, SHADE_MUL_LAT (the depth pair, set by test_shade_unit).
 """
 from __future__ import annotations
 
+import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
 
 import cocotb
+import pytest
 import numpy as np
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
@@ -39,6 +48,7 @@ from cocotb.triggers import FallingEdge, RisingEdge
 from model import f24, f24_vectors as vec, shade
 from model.arith import ENGINES
 from tb.common import fp_unit, report, runner
+from tb.harness import sv_params
 
 HERE = Path(__file__).resolve().parent
 PKG = runner.RTL / "pipe" / "shade_pkg.sv"
@@ -55,7 +65,85 @@ def pkg_value(name: str) -> int:
     return int(m.group(1).replace("_", ""), 16) if m.group(1) else int(m.group(2))
 
 
-SHADE_LAT = pkg_value("SHADE_LAT")
+#: The depth pairs (ADD_LAT, MUL_LAT) the unit is tested at: the paper's and the deeper one.
+DEPTHS = ((2, 1), (3, 2))
+ADD_ENV, MUL_ENV = "SHADE_ADD_LAT", "SHADE_MUL_LAT"
+
+# --------------------------------------------------------------------------------------------
+# schedule: a mirror of shade_pkg's shade_op_stage / shade_lat (the greedy phase assignment)
+
+#: The shared-unit operations in shade_pkg's priority order: (name, unit, stream).
+OPS = [("du2", "uv2hy2", False), ("ny", "nua", False), ("ny2", "ny2h", False),
+       ("dv2", "dvnc", False), ("uv", "nua", False), ("vv", "nv", False), ("rv", "rvnh", False),
+       ("vy", "ny2h", False), ("vxz", "va", True), ("hxz", "nxh", True), ("hxz2", "hkd", True),
+       ("hy", "hd", False), ("hy2", "uv2hy2", False), ("hxy2", "nv", False), ("hh", "nv", False),
+       ("rh", "rvnh", False), ("huy", "hunh1", False), ("huxz", "ny2h", True),
+       ("nxz", "nc", True), ("nxy2", "nxh", False), ("nn", "nv", False), ("rn", "rvnh", False),
+       ("nuxz", "dvnc", True), ("nhxz", "nunh1", True), ("nuy", "nunh1", False),
+       ("nhy", "hunh1", False), ("nhxy", "hd", False), ("nly", "hunh1", False),
+       ("nlxy", "nxh", False), ("dots", "hd", True), ("kdn", "hkd", False), ("a", "nua", False),
+       ("cya", "dvnc", False), ("cg", "nua", False), ("caxz", "caa", True), ("crb", "nc", True)]
+ADDERS = {"nc", "nua", "nv", "nxh", "hd"}
+
+
+def schedule(add_lat: int, mul_lat: int, rsqrt_lat: int) -> dict[str, int]:
+    """The core stage of every shared-unit operation (shade_pkg.shade_op_stage)."""
+    m = mul_lat
+    st: dict[str, int] = {}
+    rs: dict[str, int] = {}
+    used: dict[str, set[int]] = {}
+
+    def ready(op: str) -> int:
+        """The stage the operation's last operand is ready in (x of a stream)."""
+        r = rs.get
+        table = {
+            "ny2": lambda: r("ny"), "uv": lambda: max(r("du2"), r("dv2")), "vv": lambda: r("uv"),
+            "rv": lambda: r("vv"), "vy": lambda: r("rv"), "vxz": lambda: r("rv"),
+            "hxz": lambda: r("vxz"), "hxz2": lambda: r("hxz"), "hy": lambda: r("vy"),
+            "hy2": lambda: r("hy"), "hxy2": lambda: max(r("hxz2"), r("hy2")),
+            "hh": lambda: max(r("hxy2"), r("hxz2") + 1), "rh": lambda: r("hh"),
+            "huy": lambda: max(r("rh"), r("hy")), "huxz": lambda: max(r("rh"), r("hxz")),
+            "nxy2": lambda: max(r("nxz") + m, r("ny2")),
+            "nn": lambda: max(r("nxy2"), r("nxz") + m + 1), "rn": lambda: r("nn") + 1,
+            "nuxz": lambda: max(r("rn"), r("nxz")), "nhxz": lambda: max(r("nuxz"), r("huxz")),
+            "nuy": lambda: max(r("rn"), r("ny")), "nhy": lambda: max(r("nuy"), r("huy")),
+            "nhxy": lambda: max(r("nhxz"), r("nhy")), "nly": lambda: r("nuy"),
+            "nlxy": lambda: max(r("nuxz") + m, r("nly")),
+            "dots": lambda: max(r("nlxy"), r("nuxz") + m + 1, r("nhxy") - 1, r("nhxz")),
+            "kdn": lambda: r("dots") + 1, "a": lambda: r("kdn"), "cya": lambda: r("a"),
+            "caxz": lambda: r("a"), "cg": lambda: max(r("cya"), r("dots") + 2 + 5 * m),
+            "crb": lambda: max(r("caxz"), r("dots") + 2 + 5 * m)}
+        return table[op]() if op in table else 0
+
+    for op, unit, stream in OPS:
+        e = ready(op)
+        ph = used.setdefault(unit, set())
+        a = e + 1
+        while (a % 4 in ph or (stream and (a + 1) % 4 in ph)) and a < e + 9:
+            a += 1
+        ph.add(a % 4)
+        if stream:
+            ph.add((a + 1) % 4)
+        st[op] = a
+        lat = add_lat if unit in ADDERS else rsqrt_lat if unit == "rvnh" else mul_lat
+        rs[op] = a + lat
+    return st
+
+
+def shade_lat(add_lat: int, mul_lat: int) -> int:
+    """shade_pkg.shade_lat: the clamp's stage, + 1 + MUL + ADD + floor + 2 (G, B) + 3 (alignment)."""
+    rsqrt_lat, idx_lat = sv_params.values("pipe_pkg", "F24_RSQRT_LAT", "F24_TO_INDEX_LAT")
+    st = schedule(add_lat, mul_lat, rsqrt_lat)
+    c0 = max(st["crb"] + add_lat, st["cg"] + add_lat - 1)
+    return c0 + 1 + mul_lat + add_lat + idx_lat + 2 + 3
+
+
+def depth() -> tuple[int, int]:
+    """The (ADD_LAT, MUL_LAT) under test (set by test_shade_unit)."""
+    return int(os.environ.get(ADD_ENV, "2")), int(os.environ.get(MUL_ENV, "1"))
+
+
+SHADE_LAT = shade_lat(*depth())
 
 
 # --------------------------------------------------------------------------------------------
@@ -375,5 +463,23 @@ async def shade_random_and_directed(dut):
         raise AssertionError("\n".join(bench.bad + [f"{bench.nbad} mismatching pixels of {total}"]))
 
 
-def test_shade_unit():
-    runner.run("shade_unit", "test_shade_unit", HERE, parameters={"TAG_W": TAG_W})
+@pytest.mark.parametrize("add_lat,mul_lat", DEPTHS, ids=[f"add{a}-mul{m}" for a, m in DEPTHS])
+def test_shade_unit(add_lat: int, mul_lat: int) -> None:
+    runner.run("shade_unit", "test_shade_unit", HERE,
+               parameters={"TAG_W": TAG_W, "ADD_LAT": add_lat, "MUL_LAT": mul_lat},
+               extra_env={ADD_ENV: str(add_lat), MUL_ENV: str(mul_lat)})
+
+
+def test_shade_latency() -> None:
+    """The Python mirror of the schedule: at the paper's depths (2, 1) the unit keeps its
+    latency of 59 clocks (the hand schedule before the depths were parameters), and every shared
+    unit's operations are in distinct phases mod 4 at each tested depth pair."""
+    rsqrt_lat = sv_params.value("pipe_pkg", "F24_RSQRT_LAT")
+    assert shade_lat(2, 1) == 59
+    units = {op: unit for op, unit, _ in OPS}
+    for add_lat, mul_lat in DEPTHS:
+        st = schedule(add_lat, mul_lat, rsqrt_lat)
+        for unit in set(units.values()):
+            phases = [(st[op] + k) % 4 for op, u, stream in OPS if u == unit
+                      for k in ((0, 1) if stream else (0,))]
+            assert len(phases) == len(set(phases)), f"{unit} at {add_lat, mul_lat}: {phases}"
