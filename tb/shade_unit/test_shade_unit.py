@@ -23,8 +23,8 @@ pipeline is drained between configurations (the configuration is static while bu
 with pixels in flight (en_i = 0 during the reset) must clear valid.  The hard-wired constants of
 rtl/pipe/shade_pkg.sv are checked against the model's.
 
-Built and run at both depth pairs (ADD_LAT, MUL_LAT) = (2, 1) (the paper's) and (3, 2), passed as
-parameters; SHADE_LAT is the Python mirror of shade_pkg's schedule (shade_op_stage / shade_lat) at
+Built and run at the depth pairs (ADD_LAT, MUL_LAT) of tb/common/depths.py: the package defaults
+(3, 2), and under make test-long the paper's (2, 1); SHADE_LAT is the Python mirror of shade_pkg's schedule (shade_op_stage / shade_lat) at
 that pair, so a unit whose latency differs from the mirror fails every pixel check.
 test_shade_latency checks the mirror itself: 59 at (2, 1), and no unit given two operations of
 one phase.
@@ -34,7 +34,6 @@ SHADE_ADD_LAT, SHADE_MUL_LAT (the depth pair, set by test_shade_unit).
 """
 from __future__ import annotations
 
-import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -47,7 +46,7 @@ from cocotb.triggers import FallingEdge, RisingEdge
 
 from model import f24, f24_vectors as vec, shade
 from model.arith import ENGINES
-from tb.common import fp_unit, report, runner
+from tb.common import depths, fp_unit, report, runner
 from tb.harness import sv_params
 
 HERE = Path(__file__).resolve().parent
@@ -65,9 +64,6 @@ def pkg_value(name: str) -> int:
     return int(m.group(1).replace("_", ""), 16) if m.group(1) else int(m.group(2))
 
 
-#: The depth pairs (ADD_LAT, MUL_LAT) the unit is tested at: the paper's and the deeper one.
-DEPTHS = ((2, 1), (3, 2))
-ADD_ENV, MUL_ENV = "SHADE_ADD_LAT", "SHADE_MUL_LAT"
 
 # --------------------------------------------------------------------------------------------
 # schedule: a mirror of shade_pkg's shade_op_stage / shade_lat (the greedy phase assignment)
@@ -138,12 +134,7 @@ def shade_lat(add_lat: int, mul_lat: int) -> int:
     return c0 + 1 + mul_lat + add_lat + idx_lat + 2 + 3
 
 
-def depth() -> tuple[int, int]:
-    """The (ADD_LAT, MUL_LAT) under test (set by test_shade_unit)."""
-    return int(os.environ.get(ADD_ENV, "2")), int(os.environ.get(MUL_ENV, "1"))
-
-
-SHADE_LAT = shade_lat(*depth())
+SHADE_LAT = shade_lat(*depths.current())
 
 
 # --------------------------------------------------------------------------------------------
@@ -463,11 +454,11 @@ async def shade_random_and_directed(dut):
         raise AssertionError("\n".join(bench.bad + [f"{bench.nbad} mismatching pixels of {total}"]))
 
 
-@pytest.mark.parametrize("add_lat,mul_lat", DEPTHS, ids=[f"add{a}-mul{m}" for a, m in DEPTHS])
+@pytest.mark.parametrize("add_lat,mul_lat", depths.cases())
 def test_shade_unit(add_lat: int, mul_lat: int) -> None:
     runner.run("shade_unit", "test_shade_unit", HERE,
-               parameters={"TAG_W": TAG_W, "ADD_LAT": add_lat, "MUL_LAT": mul_lat},
-               extra_env={ADD_ENV: str(add_lat), MUL_ENV: str(mul_lat)})
+               parameters={"TAG_W": TAG_W, **depths.parameters(add_lat, mul_lat)},
+               extra_env=depths.env(add_lat, mul_lat))
 
 
 def test_shade_latency() -> None:
@@ -477,7 +468,7 @@ def test_shade_latency() -> None:
     rsqrt_lat = sv_params.value("pipe_pkg", "F24_RSQRT_LAT")
     assert shade_lat(2, 1) == 59
     units = {op: unit for op, unit, _ in OPS}
-    for add_lat, mul_lat in DEPTHS:
+    for add_lat, mul_lat in depths.PAIRS:
         st = schedule(add_lat, mul_lat, rsqrt_lat)
         for unit in set(units.values()):
             phases = [(st[op] + k) % 4 for op, u, stream in OPS if u == unit
