@@ -95,7 +95,8 @@ class HarnessSpec:
     ``params``: top-level parameters, passed as ``-G<name>`` and as ``-DHARNESS_<name>``.
     ``build_dir``: variants go to ``build_dir/<variant>/``.  ``training``: writes a fixed input
     for the profile-guided build of the ``fast`` variant (None: no profile-guided build).
-    ``required``: RTL files that must exist before the harness can be built.
+    ``required``: RTL files that must exist before the harness can be built.  ``rtl_files``:
+    single RTL files from other directories (a package the build's packages read).
     """
 
     name: str
@@ -107,12 +108,13 @@ class HarnessSpec:
     build_dir: Path
     training: Callable[[Path], None] | None = None
     required: tuple[Path, ...] = ()
+    rtl_files: tuple[Path, ...] = ()
 
 
 def sources(spec: HarnessSpec) -> list[Path]:
     """The RTL files of the build: packages first, then the modules (plus RTL_ENGINE_EXTRA_SV)."""
     dirs = spec.rtl_dirs
-    files = sorted(p for d in dirs for p in (ROOT / "rtl" / d).glob("*.sv"))
+    files = sorted({*(p for d in dirs for p in (ROOT / "rtl" / d).glob("*.sv")), *spec.rtl_files})
     extra = [Path(p) for p in os.environ.get("RTL_ENGINE_EXTRA_SV", "").split(os.pathsep) if p]
     for p in extra:
         if not p.is_file():

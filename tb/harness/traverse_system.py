@@ -44,6 +44,8 @@ from .traverse_words import MAX_LEVELS, config, ray_words
 HARNESS_SOURCES = (HARNESS_DIR / "traverse_harness.cpp", HARNESS_DIR / "traverse_harness.h",
                    *COMMON_SOURCES)
 RTL_DIRS = ("common", "fp", "traverse", "cache")
+#: traverse_pkg reads the float units' depths from pipe_pkg.
+RTL_FILES = (ROOT / "rtl" / "pipe" / "pipe_pkg.sv",)
 TOP = "traverse_system"
 CACHE_SV = ROOT / "rtl" / "cache" / "height_cache.sv"
 BINARY = "traverse_harness"
@@ -139,13 +141,13 @@ def _training_input(path: Path) -> None:
 #: The traverse-unit harness (traverse_system).
 TRAVERSE = HarnessSpec(name="traverse", top=TOP, rtl_dirs=RTL_DIRS, sources=HARNESS_SOURCES,
                        binary=BINARY, params=PARAMS, build_dir=BUILD, training=_training_input,
-                       required=(CACHE_SV,))
+                       required=(CACHE_SV,), rtl_files=RTL_FILES)
 #: The same harness with the ring's park queue (traverse_loop PARK = 1), in its own build dir.
 PARK_PARAMS: dict[str, int] = {**PARAMS, "PARK": 1}
 TRAVERSE_PARK = HarnessSpec(name="traverse_park", top=TOP, rtl_dirs=RTL_DIRS,
                             sources=HARNESS_SOURCES, binary=BINARY, params=PARK_PARAMS,
                             build_dir=BUILD / "traverse_park", training=_training_input,
-                            required=(CACHE_SV,))
+                            required=(CACHE_SV,), rtl_files=RTL_FILES)
 
 
 def spec(park: bool = False, params: Mapping[str, int] | None = None) -> HarnessSpec:
@@ -161,7 +163,7 @@ def spec(park: bool = False, params: Mapping[str, int] | None = None) -> Harness
     return HarnessSpec(name=f"traverse_{tag}", top=TOP, rtl_dirs=RTL_DIRS,
                        sources=HARNESS_SOURCES, binary=BINARY, params=full,
                        build_dir=BUILD / f"traverse_{tag}", training=_training_input,
-                       required=(CACHE_SV,))
+                       required=(CACHE_SV,), rtl_files=RTL_FILES)
 
 
 def is_built(variant: str = "fast", *, park: bool = False,
