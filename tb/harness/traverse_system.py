@@ -43,7 +43,7 @@ from .traverse_words import MAX_LEVELS, config, ray_words
 
 HARNESS_SOURCES = (HARNESS_DIR / "traverse_harness.cpp", HARNESS_DIR / "traverse_harness.h",
                    *COMMON_SOURCES)
-RTL_DIRS = ("common", "fp", "traverse", "cache")
+RTL_DIRS = ("common", "fp", "pipe", "traverse", "cache")  # pipe: pipe_pkg (traverse_pkg reads it)
 TOP = "traverse_system"
 CACHE_SV = ROOT / "rtl" / "cache" / "height_cache.sv"
 BINARY = "traverse_harness"
