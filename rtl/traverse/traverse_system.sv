@@ -12,7 +12,7 @@
 //
 // Configuration: cfg_* go through one register stage in traverse_unit (they fan out to the whole
 // unit; this also keeps them out of every simulator's input-evaluation path), which loads while
-// idle_o = 1: they must be static while idle_o = 0 and stable 5 clocks before the next ray enters.
+// idle_o = 1: they must be static while idle_o = 0 and stable 7 clocks before the next ray enters.
 //
 // Statistics: the unit's counters (since reset, wrapping at UNIT_CNT_W bits) and the cache's
 // (48 bits, cleared by clr_stats_i).  tb/harness/traverse_harness.cpp runs this module on whole

@@ -2,9 +2,9 @@
 // traverse_unit: ray / height-field intersection through the max-mipmap pyramid, bit-exact with
 // model.traverse.trace(pyr, rays, method, "f24") (hit, t, u, v, invalid, iterations).
 //
-//   ray stream -> traverse_setup (first mode, SETUP_LAT = 21 stages) -> setup FIFO
-//              -> traverse_loop (second mode, ring of loop_depth(MUL_LAT) = 19 slots at
-//                 MUL_LAT 1, one height lookup per pass)
+//   ray stream -> traverse_setup (first mode, SETUP_LAT = 26 stages) -> setup FIFO
+//              -> traverse_loop (second mode, ring of loop_depth(MUL_LAT) = 22 slots at
+//                 MUL_LAT 2, 19 at MUL_LAT 1; one height lookup per pass)
 //              -> result FIFO -> result stream (rays leave in completion order, not input order)
 //
 // Flow control (valid never depends on ready):
@@ -27,21 +27,22 @@
 // does not count as an iteration.  rs_err_i = 1: the ray finishes with res_err_o = 1.
 //
 // Configuration (cfg_*): static while the unit holds rays (idle_o = 1 to change it) and stable at
-// least 5 clocks before the next ray enters (one register stage, which loads while idle_o = 1,
-// then the clip start time is derived from it in 4 more).
+// least 7 clocks before the next ray enters (one register stage, which loads while idle_o = 1,
+// then traverse_setup derives the clip start time from it in 1 + MUL_LAT + ADD_LAT = 6 more at
+// its package-default float depths (3, 2)).
 // tb/harness/traverse_words.py packs it from a Pyramid and a method name.
 module traverse_unit
   import f24_pkg::*;
   import traverse_pkg::*;
 #(
   parameter int unsigned ID_W             = 16,
-  parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > SETUP_LAT (21)
+  parameter int unsigned SETUP_FIFO_DEPTH = 32,  // power of two, > SETUP_LAT (26)
   parameter int unsigned RES_FIFO_DEPTH   = 16,  // power of two
   parameter int unsigned CNT_W            = 32,  // statistics counters
   parameter bit          XOR_PATH         = 1'b1, // 0: no XOR descent path (traverse_loop)
   parameter int unsigned MUL_LAT          = pipe_pkg::F24_MUL_LAT, // f24_mul latency (traverse_loop)
   parameter bit          PARK             = 1'b0, // 1: park queue for missed rays (traverse_loop)
-  parameter int unsigned PARK_DEPTH       = 31 - loop_depth(MUL_LAT), // park queue entries (traverse_loop; 12 for 19 stages)
+  parameter int unsigned PARK_DEPTH       = 31 - loop_depth(MUL_LAT), // park queue entries (traverse_loop; 9 for 22 stages)
   parameter int unsigned PARK_WAIT        = 16,   // clocks before a parked ray beats new rays (traverse_loop)
   parameter int unsigned PARK_MAX         = 4 * loop_depth(MUL_LAT) // bound on a parked ray's wait (traverse_loop)
 ) (

@@ -135,8 +135,9 @@ async def pipe_credit_random(dut):
         raise AssertionError("\n".join(msgs))
 
 
-# (DEPTH, LAT): dm_pipeline's FIFO #0 behind view_calc (pipe_pkg::VIEW_CALC_LAT = 14); a FIFO
-# shallower than the latency (the credit throttles); the smallest case.
+# (DEPTH, LAT): dm_pipeline's FIFO #0 depth (F0_DEPTH = 16) behind a shorter latency; a FIFO
+# shallower than the latency (the credit throttles, as for FIFO #0 behind view_calc,
+# pipe_pkg::VIEW_CALC_LAT = 21); the smallest case.
 @pytest.mark.parametrize("depth,lat", [(16, 14), (4, 11), (2, 1)])
 def test_pipe_credit(depth: int, lat: int):
     runner.run("pipe_credit_tb", "test_pipe_credit", Path(__file__).parent,

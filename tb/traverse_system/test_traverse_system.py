@@ -191,7 +191,7 @@ class Harness:
         self.dut.clr_stats_i.value = 1      # cache statistics per case
         await FallingEdge(self.clk)
         self.dut.clr_stats_i.value = 0
-        await ClockCycles(self.clk, 7)      # the unit's 5 clocks (register stage, clip start time)
+        await ClockCycles(self.clk, 7)      # the unit's 7 clocks (register stage, clip start time)
         await FallingEdge(self.clk)
 
     async def run(self, words, valid_p: float, ready_p: float, max_cycles: int,

@@ -119,7 +119,7 @@ class Harness:
         assert int(self.s["idle_o"].value) == 1, "configuration change while rays are in the unit"
         for name, val in cfg.ports().items():
             getattr(self.dut, name).value = val
-        await ClockCycles(self.clk, 6)   # register stage + the clip start time: 5 clocks
+        await ClockCycles(self.clk, 7)   # register stage + the clip start time: 7 clocks
         await FallingEdge(self.clk)
 
     def stats(self) -> dict[str, int]:
