@@ -38,7 +38,7 @@ package pipe_pkg;
   function automatic int unsigned view_calc_lat(int unsigned add_lat, int unsigned mul_lat);
     return 1 + mul_lat + 2 * add_lat + f24_pkg::F24_DIV_LAT + 1 + mul_lat + 1;
   endfunction
-  localparam int unsigned VIEW_CALC_LAT = view_calc_lat(F24_ADD_LAT, F24_MUL_LAT);  // 17
+  localparam int unsigned VIEW_CALC_LAT = view_calc_lat(F24_ADD_LAT, F24_MUL_LAT);  // 21
 
   // ---- tri_table / mip_level (model/texture.py "MIP level", model/mip.py) -------------------------
   localparam int unsigned TRI_TABLE_LAT = 1;   // registered read
@@ -52,7 +52,7 @@ package pipe_pkg;
   function automatic int unsigned mip_lat(int unsigned add_lat, int unsigned mul_lat);
     return mul_lat + add_lat + F24_LOG2_LAT + 1 + 2 * add_lat + F24_TO_INDEX_LAT + 1;
   endfunction
-  localparam int unsigned MIP_LAT = mip_lat(F24_ADD_LAT, F24_MUL_LAT);  // 13
+  localparam int unsigned MIP_LAT = mip_lat(F24_ADD_LAT, F24_MUL_LAT);  // 17
 
   // ---- tex_addr / tex_filter (model/texture.py lookup_addresses, filter_texels) --------------
   localparam int unsigned TEX_LEVELS  = 16;  // levels a texture configuration holds: textures up
@@ -70,7 +70,7 @@ package pipe_pkg;
                                                input int unsigned mul_lat);
     return 1 + mul_lat + 1 + add_lat + F24_TO_INDEX_LAT + F24_FROM_INT_LAT + add_lat + 1;
   endfunction
-  localparam int unsigned TEX_ADDR_LAT = tex_addr_lat(F24_ADD_LAT, F24_MUL_LAT);  // 10
+  localparam int unsigned TEX_ADDR_LAT = tex_addr_lat(F24_ADD_LAT, F24_MUL_LAT);  // 13
   // from_unorm; per row sub, mul, add (top, then bot a clock later on the same units); then sub,
   // mul, add (between the rows), the last adder's two operations from operand registers and an
   // odd number of clocks apart (m delayed (add_lat + mul_lat) % 2 clocks: a clock at (2, 1) and
@@ -79,7 +79,7 @@ package pipe_pkg;
                                                  input int unsigned mul_lat);
     return F24_FROM_UNORM_LAT + 1 + 2 * (add_lat + mul_lat + add_lat) + 2 + (add_lat + mul_lat) % 2;
   endfunction
-  localparam int unsigned TEX_FILTER_LAT = tex_filter_lat(F24_ADD_LAT, F24_MUL_LAT);  // 15
+  localparam int unsigned TEX_FILTER_LAT = tex_filter_lat(F24_ADD_LAT, F24_MUL_LAT);  // 21
 
   /* verilator lint_on UNUSEDPARAM */
 

@@ -25,8 +25,8 @@ package traverse_pkg;
   localparam int unsigned LOOKUP_LAT = 3;   // clocks from lk_valid_o to rs_valid_i
   // Stages of traverse_loop's ring (one ray slot each): one pass = one iteration = LOOP_DEPTH
   // clocks.  16 + 3 * MUL_LAT: three f24_mul on the pass's dependent chain (tx, du * t, the
-  // child's crossing times; traverse_loop's header), each MUL_LAT stages; 19 at the package
-  // default pipe_pkg::F24_MUL_LAT = 1, 22 at MUL_LAT 2.  (Its f24_add run at a fixed 3 clocks.)
+  // child's crossing times; traverse_loop's header), each MUL_LAT stages; 22 at the package
+  // default pipe_pkg::F24_MUL_LAT = 2, 19 at the paper's MUL_LAT 1.  (Its f24_add run at a fixed 3 clocks.)
   localparam int unsigned LOOP_DEPTH = 16 + 3 * pipe_pkg::F24_MUL_LAT;  // loop_depth(F24_MUL_LAT)
   // traverse_setup's schedule at f24_add LAT add_lat and f24_mul LAT mul_lat (its ADD_LAT /
   // MUL_LAT; its header has the stage table).  setup_gap: the item stages from a shared unit's
@@ -43,7 +43,7 @@ package traverse_pkg;
   // mode (its header); busy_o counts the rays in it.  SETUP_LAT: setup_lat (above) at
   // pipe_pkg's F24_ADD_LAT / F24_MUL_LAT: F24_DIV_LAT + 13 = 21 at (2, 1), 26 at (3, 2).
   localparam int unsigned SETUP_LAT    = setup_lat(pipe_pkg::F24_ADD_LAT,
-                                                   pipe_pkg::F24_MUL_LAT);  // 21
+                                                   pipe_pkg::F24_MUL_LAT);  // 26
   localparam int unsigned SETUP_BUSY_W = $clog2(SETUP_LAT + 1);
 
   localparam f24_t F24_POS_ZERO = 24'h000000;
