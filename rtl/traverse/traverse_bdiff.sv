@@ -27,9 +27,14 @@
 // (scripts/flow/bdiff_miter.py).
 //
 // Stage 1: U and its sticky bit (u's 17-bit significand shifted by its exponent; the sticky bit
-//          from the trailing-zero count compared with the shift), b * 2^19.
-// Stage 2: b * 2^19 - U and U - b * 2^19 side by side (two carry chains), the magnitude M of the
-//          one that is not negative, its leading-zero count.
+//          from the trailing-zero count compared with the shift), split at bit 19: b * 2^19 has
+//          19 zero low bits, so the low parts of both differences (U's low part, and its negation
+//          mod 2^19), their leading-zero counts and the borrow into the high part (low part
+//          non-zero) depend on u alone and are registered here, beside b.
+// Stage 2: only the 16-bit high parts are left: b - U_hi - borrow and U_hi - b side by side (two
+//          17-bit carry chains), the magnitude M of the one that is not negative (its low part
+//          selected from stage 1's two), its leading-zero count (of the high part, or 16 plus
+//          the selected low part's count when the high part is zero).
 // Stage 3: M normalised (leading one at bit 34), rounded to 17 bits at bit 18, packed; exponent
 //          63 + (34 - lz) - 19.
 module traverse_bdiff
@@ -57,13 +62,22 @@ module traverse_bdiff
   // U = {1, f} * 2^(e - 79 + 19): the significand placed at bit 18 (e = 60: u in [2^-3, 2^-2))
   // and shifted right by 78 - e (left by up to 18 for e up to 78, u < 2^16).
   typedef struct packed {
-    logic [MW-1:0] bs;   // b * 2^19
+    logic [IB-1:0] bs;   // b (b * 2^19 has 19 zero low bits)
   } s1b_t;
   typedef struct packed {
-    logic [MW-1:0] ux;   // U (sticky in bit 0)
+    logic [IB-1:0] uh;   // U's high part, U >> 19 (the integer part of u)
+    logic [FB-1:0] ul;   // U's low part (sticky in bit 0): the low part of U - b * 2^19
+    logic [FB-1:0] nl;   // -U mod 2^19: the low part of b * 2^19 - U
+    logic          bor;  // ul != 0: the borrow of b * 2^19 - U into its high part
+    logic [4:0]    lzu;  // leading zeros of ul (19 for ul = 0)
+    logic [4:0]    lzn;  // leading zeros of nl (19 for nl = 0)
     logic          st;   // U's sticky bit stands for lost bits (then u is not zero)
     logic [22:0]   mag;  // u's exponent and fraction (the result -u of b = 0)
   } s1u_t;
+
+  function automatic logic [4:0] clz19(input logic [FB-1:0] v);  // 19 for v = 0
+    return f24_clz32({v, 1'b1, 12'd0});
+  endfunction
 
   function automatic s1u_t fixed_of(input logic [22:0] u);  // (the sign is 0 or u is 0)
     logic [6:0]    e;
@@ -72,6 +86,7 @@ module traverse_bdiff
     logic [4:0]    tz;     // trailing zeros of m (16 for m = 2^16)
     logic          st;     // a one of m is shifted out below bit 0
     logic [MW-1:0] v;
+    logic [FB-1:0] nl;
     e  = u[22:16];
     m  = {1'b1, u[15:0]};
     sa = 7'd78 - e;
@@ -81,7 +96,10 @@ module traverse_bdiff
     end
     v  = MW'({m, 18'd0} >> sa);
     st = (e != 7'd0) && ({2'd0, sa} > 9'd18 + {4'd0, tz});
-    return '{ux: (e == 7'd0) ? '0 : (v | MW'(st)), st: st, mag: u[22:0]};
+    v  = (e == 7'd0) ? '0 : (v | MW'(st));
+    nl = FB'(0) - v[FB-1:0];
+    return '{uh: v[MW-1:FB], ul: v[FB-1:0], nl: nl, bor: (v[FB-1:0] != '0),
+             lzu: clz19(v[FB-1:0]), lzn: clz19(nl), st: st, mag: u[22:0]};
   endfunction
 
   s1b_t s1b_q [NB];
@@ -97,18 +115,25 @@ module traverse_bdiff
     logic [22:0]   mag;   // u's exponent and fraction
   } s2_t;
 
+  // D = b * 2^19 - U = (b - uh - bor) * 2^19 + nl, and -D = U - b * 2^19 = (uh - b) * 2^19 + ul
+  // (no borrow): only the IB-bit high parts are left to subtract here.
   function automatic s2_t diff(input s1b_t b, input s1u_t u);
-    logic [MW:0]   p;  // b * 2^19 - U (its top bit: negative)
-    logic [MW-1:0] q;  // U - b * 2^19 (read when p is negative: then it is positive)
-    logic [MW-1:0] m;
-    p = {1'b0, b.bs} - {1'b0, u.ux};
-    q = u.ux - b.bs;
-    m = p[MW] ? q[MW-1:0] : p[MW-1:0];
-    return '{neg:  p[MW],
-             zero: (m == '0),
+    logic [IB:0]   p;   // b - uh - bor (its top bit: D negative)
+    logic [IB-1:0] q;   // uh - b (read when D is negative: then it is the high part of -D)
+    logic [IB-1:0] h;   // the high part of M = |D|
+    logic [5:0]    lp, lq;  // leading zeros of the high part of M in either case
+    logic [5:0]    ll;      // leading zeros of M when its high part is zero
+    p  = {1'b0, b.bs} - {1'b0, u.uh} - (IB+1)'(u.bor);
+    q  = u.uh - b.bs;
+    lp = {1'b0, f24_clz32({p[IB-1:0], 16'd0})};
+    lq = {1'b0, f24_clz32({q, 16'd0})};
+    h  = p[IB] ? q : p[IB-1:0];
+    ll = 6'(IB) + (p[IB] ? {1'b0, u.lzu} : {1'b0, u.lzn});
+    return '{neg:  p[IB],
+             zero: (h == '0) && !u.bor,
              spec: (b.bs == '0) && u.st,
-             m:    m,
-             lz:   f24_clz64({m, (64 - MW)'(0)}),
+             m:    {h, p[IB] ? u.ul : u.nl},
+             lz:   (h != '0) ? (p[IB] ? lq : lp) : ll,
              mag:  u.mag};
   endfunction
 
@@ -133,7 +158,7 @@ module traverse_bdiff
     if (en_i) begin
       s1u_q <= fixed_of(u_i[22:0]);
       for (int i = 0; i < NB; i++) begin
-        s1b_q[i] <= '{bs: MW'(b_i[i][IB-1:0]) << FB};
+        s1b_q[i] <= '{bs: b_i[i][IB-1:0]};
         s2_q[i]  <= diff(s1b_q[i], s1u_q);
         y_q[i]   <= pack(s2_q[i]);
       end
