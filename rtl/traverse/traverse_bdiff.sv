@@ -27,14 +27,14 @@
 // (scripts/flow/bdiff_miter.py).
 //
 // Stage 1: U and its sticky bit (u's 17-bit significand shifted by its exponent; the sticky bit
-//          from the trailing-zero count compared with the shift), split at bit 19: b * 2^19 has
-//          19 zero low bits, so the low parts of both differences (U's low part, and its negation
-//          mod 2^19), their leading-zero counts and the borrow into the high part (low part
-//          non-zero) depend on u alone and are registered here, beside b.
-// Stage 2: only the 16-bit high parts are left: b - U_hi - borrow and U_hi - b side by side (two
-//          17-bit carry chains), the magnitude M of the one that is not negative (its low part
-//          selected from stage 1's two), its leading-zero count (of the high part, or 16 plus
-//          the selected low part's count when the high part is zero).
+//          from one addition, exponent + trailing-zero count, compared with a constant), split
+//          at bit 19: b * 2^19 has 19 zero low bits, so U's low part, its leading-zero count and
+//          the borrow into the high part of b * 2^19 - U (low part non-zero) depend on u alone
+//          and are registered here, beside b.
+// Stage 2: the 16-bit high parts b - U_hi - borrow and U_hi - b side by side (two 17-bit carry
+//          chains) and beside them the 19-bit low part of b * 2^19 - U (-U mod 2^19), the
+//          magnitude M of the difference that is not negative, its leading-zero count (of the
+//          high part, or 16 plus the low part's count when the high part is zero).
 // Stage 3: M normalised (leading one at bit 34), rounded to 17 bits at bit 18, packed; exponent
 //          63 + (34 - lz) - 19.
 module traverse_bdiff
@@ -67,15 +67,13 @@ module traverse_bdiff
   typedef struct packed {
     logic [IB-1:0] uh;   // U's high part, U >> 19 (the integer part of u)
     logic [FB-1:0] ul;   // U's low part (sticky in bit 0): the low part of U - b * 2^19
-    logic [FB-1:0] nl;   // -U mod 2^19: the low part of b * 2^19 - U
     logic          bor;  // ul != 0: the borrow of b * 2^19 - U into its high part
-    logic [4:0]    lzu;  // leading zeros of ul (19 for ul = 0)
-    logic [4:0]    lzn;  // leading zeros of nl (19 for nl = 0)
+    logic [4:0]    lzu;  // leading zeros of ul (read only when ul != 0)
     logic          st;   // U's sticky bit stands for lost bits (then u is not zero)
     logic [22:0]   mag;  // u's exponent and fraction (the result -u of b = 0)
   } s1u_t;
 
-  function automatic logic [4:0] clz19(input logic [FB-1:0] v);  // 19 for v = 0
+  function automatic logic [4:0] clz19(input logic [FB-1:0] v);  // leading zeros; 19 for 0
     return f24_clz32({v, 1'b1, 12'd0});
   endfunction
 
@@ -85,8 +83,7 @@ module traverse_bdiff
     logic [6:0]    sa;     // right shift of m * 2^18: 78 - e
     logic [4:0]    tz;     // trailing zeros of m (16 for m = 2^16)
     logic          st;     // a one of m is shifted out below bit 0
-    logic [MW-1:0] v;
-    logic [FB-1:0] nl;
+    logic [MW-1:0] v;      // m * 2^18 >> sa, without the sticky bit (0 for e = 0: sa = 78)
     e  = u[22:16];
     m  = {1'b1, u[15:0]};
     sa = 7'd78 - e;
@@ -95,11 +92,16 @@ module traverse_bdiff
       if (m[i]) tz = 5'(i);
     end
     v  = MW'({m, 18'd0} >> sa);
-    st = (e != 7'd0) && ({2'd0, sa} > 9'd18 + {4'd0, tz});
-    v  = (e == 7'd0) ? '0 : (v | MW'(st));
-    nl = FB'(0) - v[FB-1:0];
-    return '{uh: v[MW-1:FB], ul: v[FB-1:0], nl: nl, bor: (v[FB-1:0] != '0),
-             lzu: clz19(v[FB-1:0]), lzn: clz19(nl), st: st, mag: u[22:0]};
+    // sa > 18 + tz, i.e. 78 - e > 18 + tz: one addition compared with a constant
+    st = (e != 7'd0) && (({1'b0, e} + {3'd0, tz}) < 8'd60);
+    // The leading-zero count of ul ignores the sticky bit: it differs only for ul = 1, and then
+    // the count of {v[18:1], 1} is the right one (18).
+    return '{uh:  v[MW-1:FB],
+             ul:  {v[FB-1:1], v[0] | st},
+             bor: (v[FB-1:0] != '0) || st,
+             lzu: clz19({v[FB-1:1], 1'b1}),
+             st:  st,
+             mag: u[22:0]};
   endfunction
 
   s1b_t s1b_q [NB];
@@ -115,24 +117,27 @@ module traverse_bdiff
     logic [22:0]   mag;   // u's exponent and fraction
   } s2_t;
 
-  // D = b * 2^19 - U = (b - uh - bor) * 2^19 + nl, and -D = U - b * 2^19 = (uh - b) * 2^19 + ul
-  // (no borrow): only the IB-bit high parts are left to subtract here.
+  // D = b * 2^19 - U = (b - uh - bor) * 2^19 + nl with nl = -ul mod 2^19, and
+  // -D = U - b * 2^19 = (uh - b) * 2^19 + ul (no borrow): the IB-bit high parts are subtracted
+  // here, beside the 19-bit negation of ul (which depends on u alone).
   function automatic s2_t diff(input s1b_t b, input s1u_t u);
     logic [IB:0]   p;   // b - uh - bor (its top bit: D negative)
     logic [IB-1:0] q;   // uh - b (read when D is negative: then it is the high part of -D)
     logic [IB-1:0] h;   // the high part of M = |D|
     logic [5:0]    lp, lq;  // leading zeros of the high part of M in either case
     logic [5:0]    ll;      // leading zeros of M when its high part is zero
+    logic [FB-1:0] nl;      // -ul mod 2^19: the low part of D
     p  = {1'b0, b.bs} - {1'b0, u.uh} - (IB+1)'(u.bor);
     q  = u.uh - b.bs;
     lp = {1'b0, f24_clz32({p[IB-1:0], 16'd0})};
     lq = {1'b0, f24_clz32({q, 16'd0})};
+    nl = FB'(0) - u.ul;
     h  = p[IB] ? q : p[IB-1:0];
-    ll = 6'(IB) + (p[IB] ? {1'b0, u.lzu} : {1'b0, u.lzn});
+    ll = 6'(IB) + (p[IB] ? {1'b0, u.lzu} : {1'b0, clz19(nl)});
     return '{neg:  p[IB],
              zero: (h == '0) && !u.bor,
              spec: (b.bs == '0) && u.st,
-             m:    {h, p[IB] ? u.ul : u.nl},
+             m:    {h, p[IB] ? u.ul : nl},
              lz:   (h != '0) ? (p[IB] ? lq : lp) : ll,
              mag:  u.mag};
   endfunction
