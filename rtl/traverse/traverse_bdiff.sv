@@ -73,8 +73,28 @@ module traverse_bdiff
     logic [22:0]   mag;  // u's exponent and fraction (the result -u of b = 0)
   } s1u_t;
 
+  // Leading zeros of a 20-bit word (20 for 0), flat: a zero flag and a 2-bit count per nibble
+  // (one LUT each), then the first non-zero nibble picks {its index, its count} (no chain of
+  // halvings, whose zero tests wait on each other's muxes).
+  function automatic logic [4:0] clz20(input logic [19:0] v);
+    logic [3:0]      nib;
+    logic [4:0]      nz;
+    logic [4:0][1:0] lc;
+    logic [4:0]      n;
+    for (int g = 0; g < 5; g++) begin
+      nib   = v[19 - 4*g -: 4];
+      nz[g] = (nib != 4'd0);
+      lc[g] = nib[3] ? 2'd0 : nib[2] ? 2'd1 : nib[1] ? 2'd2 : 2'd3;
+    end
+    n = 5'd20;
+    for (int g = 4; g >= 0; g--) begin
+      if (nz[g]) n = {3'(g), lc[g]};
+    end
+    return n;
+  endfunction
+
   function automatic logic [4:0] clz19(input logic [FB-1:0] v);  // leading zeros; 19 for 0
-    return f24_clz32({v, 1'b1, 12'd0});
+    return clz20({v, 1'b1});
   endfunction
 
   function automatic s1u_t fixed_of(input logic [22:0] u);  // (the sign is 0 or u is 0)
@@ -129,8 +149,8 @@ module traverse_bdiff
     logic [FB-1:0] nl;      // -ul mod 2^19: the low part of D
     p  = {1'b0, b.bs} - {1'b0, u.uh} - (IB+1)'(u.bor);
     q  = u.uh - b.bs;
-    lp = {1'b0, f24_clz32({p[IB-1:0], 16'd0})};
-    lq = {1'b0, f24_clz32({q, 16'd0})};
+    lp = {1'b0, clz20({p[IB-1:0], 4'hF})};  // (read only when not 0)
+    lq = {1'b0, clz20({q, 4'hF})};
     nl = FB'(0) - u.ul;
     h  = p[IB] ? q : p[IB-1:0];
     ll = 6'(IB) + (p[IB] ? {1'b0, u.lzu} : {1'b0, clz19(nl)});
