@@ -26,15 +26,16 @@
 // operands, every u with a set of b), and a SAT miter against f24_from_int + f24_add
 // (scripts/flow/bdiff_miter.py).
 //
-// Stage 1: U and its sticky bit (u's 17-bit significand shifted by its exponent; the sticky bit
-//          from one addition, exponent + trailing-zero count, compared with a constant), split
-//          at bit 19: b * 2^19 has 19 zero low bits, so U's low part, its leading-zero count and
-//          the borrow into the high part of b * 2^19 - U (low part non-zero) depend on u alone
-//          and are registered here, beside b.
+// Stage 1: U and its sticky bit (u's 17-bit significand shifted by the inverted exponent; the
+//          sticky bit from one addition, exponent + trailing-zero count, compared with a
+//          constant), split at bit 19: b * 2^19 has 19 zero low bits, so U's low part and the
+//          borrow into the high part of b * 2^19 - U (low part non-zero) depend on u alone and
+//          are registered here, beside b.
 // Stage 2: the 16-bit high parts b - U_hi - borrow and U_hi - b side by side (two 17-bit carry
 //          chains) and beside them the 19-bit low part of b * 2^19 - U (-U mod 2^19), the
 //          magnitude M of the difference that is not negative, its leading-zero count (of the
-//          high part, or 16 plus the low part's count when the high part is zero).
+//          high part, or 16 plus the low part's count when the high part is zero; flat
+//          nibble-wise counts of both candidates, the sign picks).
 // Stage 3: M normalised (leading one at bit 34), rounded to 17 bits at bit 18, packed; exponent
 //          63 + (34 - lz) - 19.
 module traverse_bdiff
@@ -68,7 +69,6 @@ module traverse_bdiff
     logic [IB-1:0] uh;   // U's high part, U >> 19 (the integer part of u)
     logic [FB-1:0] ul;   // U's low part (sticky in bit 0): the low part of U - b * 2^19
     logic          bor;  // ul != 0: the borrow of b * 2^19 - U into its high part
-    logic [4:0]    lzu;  // leading zeros of ul (read only when ul != 0)
     logic          st;   // U's sticky bit stands for lost bits (then u is not zero)
     logic [22:0]   mag;  // u's exponent and fraction (the result -u of b = 0)
   } s1u_t;
@@ -100,26 +100,22 @@ module traverse_bdiff
   function automatic s1u_t fixed_of(input logic [22:0] u);  // (the sign is 0 or u is 0)
     logic [6:0]    e;
     logic [16:0]   m;
-    logic [6:0]    sa;     // right shift of m * 2^18: 78 - e
     logic [4:0]    tz;     // trailing zeros of m (16 for m = 2^16)
     logic          st;     // a one of m is shifted out below bit 0
-    logic [MW-1:0] v;      // m * 2^18 >> sa, without the sticky bit (0 for e = 0: sa = 78)
+    logic [MW-1:0] v;      // m * 2^18 >> (78 - e), without the sticky bit (0 for e = 0)
     e  = u[22:16];
     m  = {1'b1, u[15:0]};
-    sa = 7'd78 - e;
     tz = 5'd16;
     for (int i = 15; i >= 0; i--) begin
       if (m[i]) tz = 5'(i);
     end
-    v  = MW'({m, 18'd0} >> sa);
-    // sa > 18 + tz, i.e. 78 - e > 18 + tz: one addition compared with a constant
+    // m * 2^18 >> (78 - e) = m * 2^67 >> (127 - e): a shift by ~e, no subtraction
+    v  = MW'({m, 67'd0} >> ~e);
+    // a one is lost when 78 - e > 18 + tz: one addition compared with a constant
     st = (e != 7'd0) && (({1'b0, e} + {3'd0, tz}) < 8'd60);
-    // The leading-zero count of ul ignores the sticky bit: it differs only for ul = 1, and then
-    // the count of {v[18:1], 1} is the right one (18).
     return '{uh:  v[MW-1:FB],
              ul:  {v[FB-1:1], v[0] | st},
              bor: (v[FB-1:0] != '0) || st,
-             lzu: clz19({v[FB-1:1], 1'b1}),
              st:  st,
              mag: u[22:0]};
   endfunction
@@ -153,7 +149,7 @@ module traverse_bdiff
     lq = {1'b0, clz20({q, 4'hF})};
     nl = FB'(0) - u.ul;
     h  = p[IB] ? q : p[IB-1:0];
-    ll = 6'(IB) + (p[IB] ? {1'b0, u.lzu} : {1'b0, clz19(nl)});
+    ll = 6'(IB) + (p[IB] ? {1'b0, clz19(u.ul)} : {1'b0, clz19(nl)});
     return '{neg:  p[IB],
              zero: (h == '0) && !u.bor,
              spec: (b.bs == '0) && u.st,
