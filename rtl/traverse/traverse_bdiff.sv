@@ -26,10 +26,16 @@
 // operands, every u with a set of b), and a SAT miter against f24_from_int + f24_add
 // (scripts/flow/bdiff_miter.py).
 //
-// Stage 1: U and its sticky bit (u's 17-bit significand shifted by its exponent; the sticky bit
-//          from the trailing-zero count compared with the shift), b * 2^19.
-// Stage 2: b * 2^19 - U and U - b * 2^19 side by side (two carry chains), the magnitude M of the
-//          one that is not negative, its leading-zero count.
+// Stage 1: U and its sticky bit (u's 17-bit significand shifted by the inverted exponent; the
+//          sticky bit from one addition, exponent + trailing-zero count, compared with a
+//          constant), split at bit 19: b * 2^19 has 19 zero low bits, so U's low part and the
+//          borrow into the high part of b * 2^19 - U (low part non-zero) depend on u alone and
+//          are registered here, beside b.
+// Stage 2: the 16-bit high parts b - U_hi - borrow and U_hi - b side by side (two 17-bit carry
+//          chains) and beside them the 19-bit low part of b * 2^19 - U (-U mod 2^19), the
+//          magnitude M of the difference that is not negative, its leading-zero count (of the
+//          high part, or 16 plus the low part's count when the high part is zero; flat
+//          nibble-wise counts of both candidates, the sign picks).
 // Stage 3: M normalised (leading one at bit 34), rounded to 17 bits at bit 18, packed; exponent
 //          63 + (34 - lz) - 19.
 module traverse_bdiff
@@ -57,31 +63,61 @@ module traverse_bdiff
   // U = {1, f} * 2^(e - 79 + 19): the significand placed at bit 18 (e = 60: u in [2^-3, 2^-2))
   // and shifted right by 78 - e (left by up to 18 for e up to 78, u < 2^16).
   typedef struct packed {
-    logic [MW-1:0] bs;   // b * 2^19
+    logic [IB-1:0] bs;   // b (b * 2^19 has 19 zero low bits)
   } s1b_t;
   typedef struct packed {
-    logic [MW-1:0] ux;   // U (sticky in bit 0)
+    logic [IB-1:0] uh;   // U's high part, U >> 19 (the integer part of u)
+    logic [FB-1:0] ul;   // U's low part (sticky in bit 0): the low part of U - b * 2^19
+    logic          bor;  // ul != 0: the borrow of b * 2^19 - U into its high part
     logic          st;   // U's sticky bit stands for lost bits (then u is not zero)
     logic [22:0]   mag;  // u's exponent and fraction (the result -u of b = 0)
   } s1u_t;
 
+  // Leading zeros of a 20-bit word (20 for 0), flat: a zero flag and a 2-bit count per nibble
+  // (one LUT each), then the first non-zero nibble picks {its index, its count} (no chain of
+  // halvings, whose zero tests wait on each other's muxes).
+  function automatic logic [4:0] clz20(input logic [19:0] v);
+    logic [3:0]      nib;
+    logic [4:0]      nz;
+    logic [4:0][1:0] lc;
+    logic [4:0]      n;
+    for (int g = 0; g < 5; g++) begin
+      nib   = v[19 - 4*g -: 4];
+      nz[g] = (nib != 4'd0);
+      lc[g] = nib[3] ? 2'd0 : nib[2] ? 2'd1 : nib[1] ? 2'd2 : 2'd3;
+    end
+    n = 5'd20;
+    for (int g = 4; g >= 0; g--) begin
+      if (nz[g]) n = {3'(g), lc[g]};
+    end
+    return n;
+  endfunction
+
+  function automatic logic [4:0] clz19(input logic [FB-1:0] v);  // leading zeros; 19 for 0
+    return clz20({v, 1'b1});
+  endfunction
+
   function automatic s1u_t fixed_of(input logic [22:0] u);  // (the sign is 0 or u is 0)
     logic [6:0]    e;
     logic [16:0]   m;
-    logic [6:0]    sa;     // right shift of m * 2^18: 78 - e
     logic [4:0]    tz;     // trailing zeros of m (16 for m = 2^16)
     logic          st;     // a one of m is shifted out below bit 0
-    logic [MW-1:0] v;
+    logic [MW-1:0] v;      // m * 2^18 >> (78 - e), without the sticky bit (0 for e = 0)
     e  = u[22:16];
     m  = {1'b1, u[15:0]};
-    sa = 7'd78 - e;
     tz = 5'd16;
     for (int i = 15; i >= 0; i--) begin
       if (m[i]) tz = 5'(i);
     end
-    v  = MW'({m, 18'd0} >> sa);
-    st = (e != 7'd0) && ({2'd0, sa} > 9'd18 + {4'd0, tz});
-    return '{ux: (e == 7'd0) ? '0 : (v | MW'(st)), st: st, mag: u[22:0]};
+    // m * 2^18 >> (78 - e) = m * 2^67 >> (127 - e): a shift by ~e, no subtraction
+    v  = MW'({m, 67'd0} >> ~e);
+    // a one is lost when 78 - e > 18 + tz: one addition compared with a constant
+    st = (e != 7'd0) && (({1'b0, e} + {3'd0, tz}) < 8'd60);
+    return '{uh:  v[MW-1:FB],
+             ul:  {v[FB-1:1], v[0] | st},
+             bor: (v[FB-1:0] != '0) || st,
+             st:  st,
+             mag: u[22:0]};
   endfunction
 
   s1b_t s1b_q [NB];
@@ -97,18 +133,28 @@ module traverse_bdiff
     logic [22:0]   mag;   // u's exponent and fraction
   } s2_t;
 
+  // D = b * 2^19 - U = (b - uh - bor) * 2^19 + nl with nl = -ul mod 2^19, and
+  // -D = U - b * 2^19 = (uh - b) * 2^19 + ul (no borrow): the IB-bit high parts are subtracted
+  // here, beside the 19-bit negation of ul (which depends on u alone).
   function automatic s2_t diff(input s1b_t b, input s1u_t u);
-    logic [MW:0]   p;  // b * 2^19 - U (its top bit: negative)
-    logic [MW-1:0] q;  // U - b * 2^19 (read when p is negative: then it is positive)
-    logic [MW-1:0] m;
-    p = {1'b0, b.bs} - {1'b0, u.ux};
-    q = u.ux - b.bs;
-    m = p[MW] ? q[MW-1:0] : p[MW-1:0];
-    return '{neg:  p[MW],
-             zero: (m == '0),
+    logic [IB:0]   p;   // b - uh - bor (its top bit: D negative)
+    logic [IB-1:0] q;   // uh - b (read when D is negative: then it is the high part of -D)
+    logic [IB-1:0] h;   // the high part of M = |D|
+    logic [5:0]    lp, lq;  // leading zeros of the high part of M in either case
+    logic [5:0]    ll;      // leading zeros of M when its high part is zero
+    logic [FB-1:0] nl;      // -ul mod 2^19: the low part of D
+    p  = {1'b0, b.bs} - {1'b0, u.uh} - (IB+1)'(u.bor);
+    q  = u.uh - b.bs;
+    lp = {1'b0, clz20({p[IB-1:0], 4'hF})};  // (read only when not 0)
+    lq = {1'b0, clz20({q, 4'hF})};
+    nl = FB'(0) - u.ul;
+    h  = p[IB] ? q : p[IB-1:0];
+    ll = 6'(IB) + (p[IB] ? {1'b0, clz19(u.ul)} : {1'b0, clz19(nl)});
+    return '{neg:  p[IB],
+             zero: (h == '0) && !u.bor,
              spec: (b.bs == '0) && u.st,
-             m:    m,
-             lz:   f24_clz64({m, (64 - MW)'(0)}),
+             m:    {h, p[IB] ? u.ul : nl},
+             lz:   (h != '0) ? (p[IB] ? lq : lp) : ll,
              mag:  u.mag};
   endfunction
 
@@ -133,7 +179,7 @@ module traverse_bdiff
     if (en_i) begin
       s1u_q <= fixed_of(u_i[22:0]);
       for (int i = 0; i < NB; i++) begin
-        s1b_q[i] <= '{bs: MW'(b_i[i][IB-1:0]) << FB};
+        s1b_q[i] <= '{bs: b_i[i][IB-1:0]};
         s2_q[i]  <= diff(s1b_q[i], s1u_q);
         y_q[i]   <= pack(s2_q[i]);
       end
