@@ -379,6 +379,16 @@ def test_div_block_is_the_design_divider():
     assert f"({m.group(1)} clocks)" in div.what
 
 
+def test_add_mul_blocks_are_the_design_units():
+    """The f24_add and f24_mul blocks are synthesised at the depths the blocks instantiate
+    (pipe_pkg::F24_ADD_LAT, F24_MUL_LAT)."""
+    from tb.harness import sv_params
+    for name, const in (("f24_add", "F24_ADD_LAT"), ("f24_mul", "F24_MUL_LAT")):
+        lat = sv_params.value("pipe_pkg", const)
+        (b,) = [b for b in synth.BLOCKS if b.name == name]
+        assert b.params == {"LAT": lat} and f"({lat} clocks)" in b.what, (name, b)
+
+
 # ---- constraints ---------------------------------------------------------------------------------
 def test_constraints():
     assert synth.read_target(ROOT / "constraints" / "dm_pipeline.lpf") == 100.0

@@ -68,8 +68,10 @@ class Block:
 # The blocks, smallest first; parameters as they sit inside dm_pipeline (SLOTS = 128: ray ids are
 # 7 bits) so that the parts add up to the whole.
 BLOCKS = [
-    Block("f24_add", "f24_add", what="float add (2 clocks)"),
-    Block("f24_mul", "f24_mul", what="float multiply (1 clock)"),
+    # The adder and multiplier as the blocks instantiate them: LAT = pipe_pkg::F24_ADD_LAT,
+    # pipe_pkg::F24_MUL_LAT (the paper's depths, 2 and 1: --param f24_add:LAT=2).
+    Block("f24_add", "f24_add", {"LAT": 3}, what="float add (3 clocks)"),
+    Block("f24_mul", "f24_mul", {"LAT": 2}, what="float multiply (2 clocks)"),
     # The divider as view_calc and traverse_setup instantiate it: LAT = f24_pkg::F24_DIV_LAT.
     Block("f24_div", "f24_div", {"LAT": 8}, what="float divide (8 clocks)"),
     Block("f24_cmp", "f24_cmp", what="float compare (1 clock)"),
