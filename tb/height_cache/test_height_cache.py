@@ -673,6 +673,7 @@ def test_height_cache():
     _run("default")
 
 
+@pytest.mark.skipif(not runner.long_stimulus(), reason="2 MSHRs, a 32-bit bus, 64-byte lines, not the design's: make test-long (TB_LONG=1)")
 def test_height_cache_alt():
     """WAYS=4, SETS=16, 64-byte lines over a 32-bit bus, 2 MSHRs, 3-bit IDs."""
     _run("alt")

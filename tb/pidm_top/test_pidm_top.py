@@ -205,6 +205,9 @@ class Scene:
 
 
 CLEAN = ("bump", 32, "oblique", 20, "park", True)
+#: The errors test's frames: CLEAN under make test-long, a 12 x 12 image of it in make test (the
+#: error paths and the recovery do not depend on the frame's size).
+ERR_CASE = CLEAN if runner.long_stimulus() else ("bump", 32, "oblique", 12, "park", True)
 OTHER = ("rocks", 32, "grazing", 16, "park-xor", True)
 FRONT = ("four-shapes", 32, "front", 16, "oh", False)
 
@@ -340,7 +343,7 @@ async def pidm_top_errors(dut):
     rng = random.Random(seed() + 1)
     s = Sys(dut, rng)
     await s.reset()
-    sc = Scene(CLEAN)
+    sc = Scene(ERR_CASE)
     log = dut._log
     # soft reset in the middle of frames
     for trial in range(2):

@@ -533,6 +533,7 @@ def test_pyr_build_bus32():
     _run("bus32", "full_sizes,dirty_random,axi_errors,config_errors")
 
 
+@pytest.mark.skipif(not runner.long_stimulus(), reason="the 128-bit bus, not the design's default: make test-long (TB_LONG=1)")
 def test_pyr_build_bus128():
     """128-bit bus, 8-beat bursts, maps up to 512x512."""
     _run("bus128", "full_sizes,dirty_random,reset_mid_build")

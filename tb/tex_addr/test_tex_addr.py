@@ -326,6 +326,7 @@ def test_tex_addr_ntex2(add: int, mul: int) -> None:
     run_at(add, mul, {"TAG_W": 9, "NTEX": 2}, {"VECTORS": "6000"})
 
 
+@pytest.mark.skipif(not runner.long_stimulus(), reason="NTEX 3, not the design's 2: make test-long (TB_LONG=1)")
 def test_tex_addr_ntex3():
     """Three textures: tex_i = 3 must read texture 2."""
     runner.run("tex_addr", "test_tex_addr", Path(__file__).parent,

@@ -868,6 +868,7 @@ def test_tex_cache_small():
     _run("small")
 
 
+@pytest.mark.skipif(not runner.long_stimulus(), reason="WIN_WORDS 8, not the design's 2: make test-long (TB_LONG=1)")
 def test_tex_cache_wide():
     """The default cache with WIN_WORDS = 8 (dm_pipeline uses 2, the module's default)."""
     _run("wide")
