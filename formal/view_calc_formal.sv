@@ -38,6 +38,9 @@ module view_calc_formal
   always_comb begin
     if (!started_q) assume (!rst_ni);   // (a reset may come again at any time)
     assume (!(en_i && valid_i) || u_dut.stage_v[3:1] == '0);
+`ifdef VIEW_CALC_COVER_EN
+    assume (en_i);   // the cover task: every clock enabled (the states it shows need no stall)
+`endif
   end
 
   // Covers: a tag out while the tracked tag is inside; two fragments out with one tag between
