@@ -11,7 +11,7 @@ cocotb process in the environment variable :data:`ENV`.
 from __future__ import annotations
 
 import os
-from typing import Any
+from typing import Any, Callable, Optional
 
 import pytest
 
@@ -52,3 +52,18 @@ def current() -> tuple[int, int]:
         return DEFAULT
     add, mul = (int(x) for x in val.split(","))
     return add, mul
+
+
+def latency(func: str, mirror: Optional[Callable[[int, int], int]] = None,
+            const: Optional[str] = None, pkg: str = "pipe_pkg") -> int:
+    """Inside the cocotb test: the latency of the unit under test, the package function ``func``
+    (for example ``tex_addr_lat``) at the build's pair; checked equal to the test's own
+    ``mirror`` of that function when given, and at the design's pair to the package constant
+    ``const`` (for example ``TEX_ADDR_LAT``) when given."""
+    add, mul = current()
+    lat = int(sv_params.call(pkg, func, add, mul))
+    if mirror is not None:
+        assert lat == mirror(add, mul), (func, add, mul, lat)
+    if const is not None and (add, mul) == DEFAULT:
+        assert lat == sv_params.value(pkg, const), (func, const, lat)
+    return lat

@@ -53,10 +53,6 @@ from tb.common import depths, fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 from tb.harness import sv_params
 
-DEFAULT_DEPTHS = depths.DEFAULT  # the package defaults (ADD_LAT, MUL_LAT)
-
-
-
 def tex_addr_lat(add_lat: int, mul_lat: int) -> int:
     """The schedule's latency (the module header's stage table): the item register, mul, 2^-L,
     - 0.5, floor, from_int, fx, fy a clock after fx."""
@@ -65,14 +61,9 @@ def tex_addr_lat(add_lat: int, mul_lat: int) -> int:
 
 
 def latency() -> int:
-    """The latency under test: the package function at the build's depths, checked against the
-    mirror (and TEX_ADDR_LAT at the defaults)."""
-    add, mul = depths.current()
-    lat = sv_params.call("pipe_pkg", "tex_addr_lat", add, mul)
-    assert lat == tex_addr_lat(add, mul), (add, mul, lat)
-    if (add, mul) == DEFAULT_DEPTHS:
-        assert lat == sv_params.value("pipe_pkg", "TEX_ADDR_LAT")
-    return lat
+    """The latency under test: pipe_pkg::tex_addr_lat at the build's depths, checked against the
+    mirror above (and TEX_ADDR_LAT at the defaults)."""
+    return depths.latency("tex_addr_lat", tex_addr_lat, "TEX_ADDR_LAT")
 
 
 SPACING = 2  # enabled clocks from one lookup to the next, at least (u, then v on the same units)

@@ -49,10 +49,6 @@ from tb.common import depths, fp_unit, report, runner
 from tb.common.valid_pipe import ValidPipe
 from tb.harness import sv_params
 
-DEFAULT_DEPTHS = depths.DEFAULT  # the package defaults (ADD_LAT, MUL_LAT)
-
-
-
 def tex_filter_lat(add_lat: int, mul_lat: int) -> int:
     """The schedule's latency (the module header's stage table): from_unorm, the rows (sub, mul,
     add; the bottom row a clock later), the last adder's operand register, sub, mul, m's parity
@@ -65,14 +61,9 @@ def tex_filter_lat(add_lat: int, mul_lat: int) -> int:
 
 
 def latency() -> int:
-    """The latency under test: the package function at the build's depths, checked against the
-    mirror (and TEX_FILTER_LAT at the defaults)."""
-    add, mul = depths.current()
-    lat = sv_params.call("pipe_pkg", "tex_filter_lat", add, mul)
-    assert lat == tex_filter_lat(add, mul), (add, mul, lat)
-    if (add, mul) == DEFAULT_DEPTHS:
-        assert lat == sv_params.value("pipe_pkg", "TEX_FILTER_LAT")
-    return lat
+    """The latency under test: pipe_pkg::tex_filter_lat at the build's depths, checked against the
+    mirror above (and TEX_FILTER_LAT at the defaults)."""
+    return depths.latency("tex_filter_lat", tex_filter_lat, "TEX_FILTER_LAT")
 
 
 LATENCY = latency()  # of the build under test (in the simulator's process)
