@@ -104,6 +104,12 @@ MUTANTS = {
         "v_q     <= {v_q[D-2:0], (v_q[D-1] && !retire && !park) || admit || unpark};",
         "v_q     <= {v_q[D-2:0], (v_q[D-1] && !park) || admit || unpark};",
         "traverse_loop:bmc_ids", r"(?:g_ids\.(?:id_in_ring|id_leave_once)|ring_ids_distinct)"),
+    "unit_credit_le": (
+        "rtl/traverse/traverse_unit.sv",
+        "assign ray_ready_o = (sf_used_q < (SF_AW+1)'(SETUP_FIFO_DEPTH)) && su_in_ready;",
+        "assign ray_ready_o = (sf_used_q <= (SF_AW+1)'(SETUP_FIFO_DEPTH)) && su_in_ready;",
+        "traverse_unit:bmc_ids",
+        r"(?:setup_fifo_never_overflows|setup_credits|no_overflow|count_model)"),
     "rings_result_dropped": (
         "rtl/traverse/traverse_rings.sv",
         "r_res_ready[gnt] = res_ready_i;",

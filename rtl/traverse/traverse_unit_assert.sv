@@ -8,7 +8,8 @@
 //   slot_conservation           every ray that came in is in exactly one place until it goes
 //                               out (counted one bit wider than inflight_q, so an occupancy
 //                               beyond MAX_INFLIGHT cannot alias);
-//   setup_credits               the credit counter = rays in setup + rays in the setup FIFO;
+//   setup_credits               the credit counter = rays in setup + rays in the setup FIFO
+//                               (summed without wrapping), at most SETUP_FIFO_DEPTH;
 //   setup_fifo_never_overflows  setup never writes the setup FIFO while full;
 //   ray_in_stable / res_out_stable  stream protocol: once valid, the payload stable and valid
 //                               held until the transfer.
@@ -19,7 +20,8 @@
 //   uid_leave_once              a result's id is inside when it is taken (no id leaves twice,
 //                               none made up).
 // formal/traverse_unit.sby proves them, and that every id inside is in exactly one place of the
-// unit (setup, its FIFO, the ring, the result FIFO), with the float datapath cut.
+// unit (setup, its FIFO, the ring, the result FIFO), with setup and the ring abstracted to what
+// their own proofs show (formal/traverse_setup_abs.sv, formal/traverse_loop_abs.sv).
 `ifndef SYNTHESIS
 module traverse_unit_assert
   import f24_pkg::*;
@@ -54,7 +56,6 @@ module traverse_unit_assert
 );
 
   localparam int unsigned IF_W  = $clog2(SETUP_FIFO_DEPTH + 31 + RES_FIFO_DEPTH + 1);
-  localparam int unsigned SF_AW = $clog2(SETUP_FIFO_DEPTH);
   localparam int unsigned RF_W  = ID_W + $bits(result_t);
 
   logic [IF_W:0] occupancy;
@@ -110,7 +111,8 @@ module traverse_unit_assert
       slot_conservation: assert ((IF_W+1)'(inflight_i) == occupancy)
         else $error("traverse_unit: rays in (%0d) != rays out + in flight (%0d)", inflight_i,
                     occupancy);
-      setup_credits: assert (sf_used_i == (SF_AW+1)'(su_busy_i) + sf_count_i)
+      setup_credits: assert (32'(sf_used_i) == 32'(su_busy_i) + 32'(sf_count_i)
+                             && 32'(sf_used_i) <= SETUP_FIFO_DEPTH)
         else $error("traverse_unit: setup credits %0d != rays in setup %0d + setup FIFO %0d",
                     sf_used_i, su_busy_i, sf_count_i);
       setup_fifo_never_overflows: assert (!su_valid_i || !sf_full_i)
