@@ -60,8 +60,8 @@ module traverse_loop_assert
   input logic [$clog2(D)-1:0]          sl_i [D],           // sl_q: the stages' slot counters
   input logic                          lk_valid_i,         // lk_valid_o
   input logic                          rs_valid_i,
-  input logic                          ok5_i,              // ok_q[S_EXIT]: H enters f24_one_minus
-  input f24_t                          h_i,                // h_x (H in S_EXIT)
+  input logic                          ok5_i,              // h_ok: H enters f24_one_minus
+  input f24_t                          h_i,                // h_x (the plane unit's operand)
   input logic                          admit_i,            // admit: a new ray enters
   input logic                          v_last_i,           // v_q[D-1]
   input logic                          retire_i,
@@ -248,7 +248,7 @@ endmodule
 
 bind traverse_loop traverse_loop_assert #(.ID_W(ID_W), .D(D), .PQ(PQ), .PARK_MAX(PARK_MAX))
 u_assert (
-  .clk_i, .rst_ni, .sl_i(sl_q), .lk_valid_i(lk_valid_o), .rs_valid_i, .ok5_i(ok_q[S_EXIT]),
+  .clk_i, .rst_ni, .sl_i(sl_q), .lk_valid_i(lk_valid_o), .rs_valid_i, .ok5_i(h_ok),
   .h_i(h_x), .admit_i(admit), .v_last_i(v_q[D-1]), .retire_i(retire), .live17_i(live17),
   .st17_final_i(st17.hit || st17.invalid || st17.capped || st17.err), .down18_i(down18_q),
   .lv1_i(lv_q[1]), .kb1_i('{kbx1_q, kby1_q}), .uv1_i('{uv_q[1].u, uv_q[1].v}),
