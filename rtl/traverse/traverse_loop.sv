@@ -357,6 +357,7 @@ module traverse_loop
 
   // ---- registered reads and short pipelines (see the header) ---------------------------------
   logic       live0_q;             // S0 holds a live ray: it looks its height up
+  logic [LVL_W-1:0] nk0_q;         // S0: n - node_q[0].k (loaded with node_q[0], for the address)
   logic [IDX_W-1:0] kbx1_q, kby1_q;  // S1: exit boundary integers
   f24_pair_t  inv3_q, inv4_q;      // S3 (block RAM read register), S4
   dirs_t      d5_q;                // S5
@@ -397,9 +398,9 @@ module traverse_loop
   traverse_addr u_addr (
     .base_i     (cfg_i.base),
     .level_off_i(cfg_i.level_off),
-    .n_i        (cfg_i.n),
     .bits16_i   (cfg_i.bits16),
     .k_i        (node_q[0].k),
+    .nk_i       (nk0_q),
     .cx_i       (node_q[0].cx),
     .cy_i       (node_q[0].cy),
     .addr_o     (addr0),
@@ -1010,6 +1011,9 @@ module traverse_loop
                : unpark ? pk_head.dir : dir_q[D-1];
     tmap_q[0] <= admit ? new_ray_i.t_map : unpark ? pk_head.tmap : tmap_q[D-1];
     node_q[0] <= admit ? n_new : unpark ? pk_head.node : down18_q ? ndn18 : node_q[D-1];
+    // (n - k of the same node, each candidate's difference made before the choice)
+    nk0_q     <= admit ? cfg_i.n - new_ray_i.k : unpark ? cfg_i.n - pk_head.node.k
+               : down18_q ? cfg_i.n - ndn18.k : cfg_i.n - node_q[D-1].k;
     t_q[0]    <= admit ? new_ray_i.t : unpark ? pk_head.t : t_q[D-1];
     stat_q[0] <= admit ? status_t'{crossed: new_ray_i.crossed, prev_cross: new_ray_i.prev_cross,
                                    done: new_ray_i.done, hit: new_ray_i.hit,
