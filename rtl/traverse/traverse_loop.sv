@@ -17,7 +17,8 @@
 // names (t6_q ... done18_q), are the stages at MUL_LAT 1; the code indexes stages by localparams
 // computed from MUL_LAT (S_RS, S_EXIT, ... S_TL), which are, at MUL_LAT 1 / MUL_LAT 2:
 //   S0 - S4  lookup; S_RS = 4: the response, tx's operands          0 - 4    / 0 - 4
-//   S5       S_EXIT: tx, ty arrive; t_exit; 1 - H (H held MUL_LAT - 1 clocks)
+//   S5       S_EXIT: tx, ty arrive; t_exit; 1 - H (at MUL_LAT > 1 in S_EXIT - 1,
+//            H held MUL_LAT - 2 clocks; the plane registered for S_TNEW)
 //                                                                    5        / 6
 //   S6, S7   S_TNEW, S_DEC (du * that time: its operands)            6, 7     / 7, 8
 //   S8       S_POS: u0 + du * that time (f24_add, 3 clocks)          8        / 10
@@ -356,6 +357,7 @@ module traverse_loop
 
   // ---- registered reads and short pipelines (see the header) ---------------------------------
   logic       live0_q;             // S0 holds a live ray: it looks its height up
+  logic [LVL_W-1:0] nk0_q;         // S0: n - node_q[0].k (loaded with node_q[0], for the address)
   logic [IDX_W-1:0] kbx1_q, kby1_q;  // S1: exit boundary integers
   f24_pair_t  inv3_q, inv4_q;      // S3 (block RAM read register), S4
   dirs_t      d5_q;                // S5
@@ -396,9 +398,9 @@ module traverse_loop
   traverse_addr u_addr (
     .base_i     (cfg_i.base),
     .level_off_i(cfg_i.level_off),
-    .n_i        (cfg_i.n),
     .bits16_i   (cfg_i.bits16),
     .k_i        (node_q[0].k),
+    .nk_i       (nk0_q),
     .cx_i       (node_q[0].cx),
     .cy_i       (node_q[0].cy),
     .addr_o     (addr0),
@@ -432,7 +434,7 @@ module traverse_loop
   // ---- S4: the height arrives; tx ---------------------------------------------------------------
   // One 16-bit conversion for both widths: code / 255 = (code * 257) / 65535, the same number, so
   // the same rounded f24 (a multiplexer in front of the fast unit, not of the plane's unit).
-  f24_t h, tx_raw, ty_raw, plane;
+  f24_t h, tx_raw, ty_raw;
   assign ok4  = rs_valid_i && rs_hit_i && !rs_err_i;
   assign err4 = rs_valid_i && rs_err_i;
   f24_from_unorm #(.W(16)) u_h (.clk_i, .en_i(ok4),
@@ -447,21 +449,48 @@ module traverse_loop
                                  .y_o(ty_raw));
 
   // ---- S5: plane = 1 - H (f24_one_minus: f24_add(1, -H) for H in [0, 1], in one clock) --------
-  // H (S5) waits for tx, ty: MUL_LAT - 1 registers, to S_EXIT.
-  f24_t h_x;  // H in S_EXIT
-  if (MUL_LAT > 1) begin : g_h_delay
-    f24_t hd_q [MUL_LAT-1];  // hd_q[i]: H in S6 + i
+  // At MUL_LAT 1 the unit takes H in S5 = S_EXIT and the plane goes straight into S6's
+  // comparisons.  At MUL_LAT > 1 H waits MUL_LAT - 2 registers and the unit runs a clock earlier
+  // (S_EXIT - 1 -> S_EXIT); the plane and its comparable form are then registered for S_TNEW
+  // (plane6_q, plane6_o_q): S6's comparisons start at a register instead of behind f24_ord (the
+  // plane through f24_ord and two comparisons in series was the ring's slowest path, 84.7 MHz).
+  f24_t     h_x;       // the plane unit's operand, H
+  logic     h_ok;      // ... belongs to a pass whose height read returned data
+  f24_t     plane6;    // the plane in S_TNEW
+  f24_ord_t plane6_o;  // ... comparable
+  if (MUL_LAT > 1) begin : g_plane_early
+    localparam int unsigned S_PL = S_EXIT - 1;  // the plane unit's stage
+    f24_t     plane6_q;
+    f24_ord_t plane6_o_q;
+    if (MUL_LAT > 2) begin : g_h_delay
+      f24_t hd_q [MUL_LAT-2];  // hd_q[i]: H in S6 + i
+      always_ff @(posedge clk_i) begin
+        if (ok_q[5]) hd_q[0] <= h;
+        for (int i = 1; i < MUL_LAT - 2; i++) begin
+          if (ok_q[5+i]) hd_q[i] <= hd_q[i-1];
+        end
+      end
+      assign h_x = hd_q[MUL_LAT-3];
+    end else begin : g_h_now
+      assign h_x = h;
+    end
+    assign h_ok = ok_q[S_PL];
+    f24_t plane_pl;  // the plane in S_EXIT
+    f24_one_minus u_plane (.clk_i, .en_i(ok_q[S_PL]), .a_i(h_x), .y_o(plane_pl));
     always_ff @(posedge clk_i) begin
-      if (ok_q[5]) hd_q[0] <= h;
-      for (int i = 1; i < MUL_LAT - 1; i++) begin
-        if (ok_q[5+i]) hd_q[i] <= hd_q[i-1];
+      if (ok_q[S_EXIT]) begin
+        plane6_q   <= plane_pl;
+        plane6_o_q <= f24_ord(plane_pl);
       end
     end
-    assign h_x = hd_q[MUL_LAT-2];
-  end else begin : g_h_now
-    assign h_x = h;
+    assign plane6   = plane6_q;
+    assign plane6_o = plane6_o_q;
+  end else begin : g_plane_now
+    assign h_x  = h;
+    assign h_ok = ok_q[S_EXIT];
+    f24_one_minus u_plane (.clk_i, .en_i(ok_q[S_EXIT]), .a_i(h_x), .y_o(plane6));
+    assign plane6_o = f24_ord(plane6);
   end
-  f24_one_minus u_plane (.clk_i, .en_i(ok_q[S_EXIT]), .a_i(h_x), .y_o(plane));
 
   function automatic tval_t tval(input f24_t t);
     return '{t: t, ord: f24_ord(t)};
@@ -504,12 +533,19 @@ module traverse_loop
   f24_ord_t t_new6;
   tmin_t    tmin6;
   logic     t_first6, inside6;
-  assign t_first6 = ord_max_first(t6_q.ord, f24_ord(plane));
-  assign t_new6   = t_first6 ? t6_q.ord : f24_ord(plane);
-  assign tmin6    = '{tmin: ord_min_first(ex_q[S_TNEW].te.ord, tmap6_q.ord) ? ex_q[S_TNEW].te
-                                                                         : tmap6_q,
+  logic     e_first6;  // min(t_exit, t_map) is t_exit
+  assign t_first6 = ord_max_first(t6_q.ord, plane6_o);
+  assign t_new6   = t_first6 ? t6_q.ord : plane6_o;
+  assign e_first6 = ord_min_first(ex_q[S_TNEW].te.ord, tmap6_q.ord);
+  assign tmin6    = '{tmin: e_first6 ? ex_q[S_TNEW].te : tmap6_q,
                       miss_pre: ord_le(tmap6_q.ord, ex_q[S_TNEW].te.ord)};
-  assign inside6  = ord_lt(t_new6, tmin6.tmin.ord);
+  // inside6 = ord_lt(t_new6, tmin6.tmin.ord): the comparison of the chosen operands is the
+  // choice among the four comparisons, which run side by side with t_first6 and e_first6 (not
+  // after them).
+  assign inside6  = t_first6 ? (e_first6 ? ord_lt(t6_q.ord, ex_q[S_TNEW].te.ord)
+                                         : ord_lt(t6_q.ord, tmap6_q.ord))
+                             : (e_first6 ? ord_lt(plane6_o, ex_q[S_TNEW].te.ord)
+                                         : ord_lt(plane6_o, tmap6_q.ord));
 
   // ---- S7: decisions; du * that time ------------------------------------------------------------
   logic inside7;
@@ -877,7 +913,7 @@ module traverse_loop
       t_new7_q <= t_new6;
       tmin7_q  <= tmin6;
       leaf7_q  <= (node_q[S_TNEW].k == '0);
-      tp7_q    <= (inside6 && t_first6) ? t6_q.t : plane;
+      tp7_q    <= (inside6 && t_first6) ? t6_q.t : plane6;
       duv7_q   <= duv6_q;
     end
     for (int s = S_TNEW; s < S_XPRE; s++) begin
@@ -975,6 +1011,9 @@ module traverse_loop
                : unpark ? pk_head.dir : dir_q[D-1];
     tmap_q[0] <= admit ? new_ray_i.t_map : unpark ? pk_head.tmap : tmap_q[D-1];
     node_q[0] <= admit ? n_new : unpark ? pk_head.node : down18_q ? ndn18 : node_q[D-1];
+    // (n - k of the same node, each candidate's difference made before the choice)
+    nk0_q     <= admit ? cfg_i.n - new_ray_i.k : unpark ? cfg_i.n - pk_head.node.k
+               : down18_q ? cfg_i.n - ndn18.k : cfg_i.n - node_q[D-1].k;
     t_q[0]    <= admit ? new_ray_i.t : unpark ? pk_head.t : t_q[D-1];
     stat_q[0] <= admit ? status_t'{crossed: new_ray_i.crossed, prev_cross: new_ray_i.prev_cross,
                                    done: new_ray_i.done, hit: new_ray_i.hit,
@@ -997,7 +1036,7 @@ module traverse_loop
     for (int s = S_XPRE + 1; s <= S_NS; s++) pos_q[s] <= pos_q[s-1];
     for (int s = S_XUP + 1; s <= S_NS; s++) xt_q[s] <= xt_q[s-1];
     for (int s = S_CB + 1; s <= S_NS; s++) cross_q[s] <= cross_q[s-1];
-    if (ok_q[S_TNEW]) t_new_q[S_DEC] <= t_first6 ? t6_q.t : plane;
+    if (ok_q[S_TNEW]) t_new_q[S_DEC] <= t_first6 ? t6_q.t : plane6;
     if (ok_q[S_DEC]) act_q[S_DEC+1] <= act7;
     if (in_q[S_FLR]) pos_q[S_XPRE] <= '{u: pos_x, v: pos_y};
     if (ok_q[S_XPRE] && !in_q[S_XPRE]) begin

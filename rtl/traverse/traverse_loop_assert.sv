@@ -15,6 +15,8 @@
 //                           it);
 //   descent_not_admitted    the descent's node and a new (or parked) ray never take one entry in
 //                           one clock (unless the descending ray parks);
+//   nk0_is_n_minus_k        the address's n - k (nk0_q, made in the tail) is n minus the level
+//                           of the live ray in S0 (cfg_i.n is static while rays run);
 //   bdiff_operand_in_range  traverse_bdiff (boundary - u0) takes boundaries in [0, 2^15] and
 //                           positions u0 in [+-0, 2^15) only, where it gives f24_add's word: the
 //                           exit boundaries of a live ray in S1, the child's boundaries of a
@@ -60,8 +62,11 @@ module traverse_loop_assert
   input logic [$clog2(D)-1:0]          sl_i [D],           // sl_q: the stages' slot counters
   input logic                          lk_valid_i,         // lk_valid_o
   input logic                          rs_valid_i,
-  input logic                          ok5_i,              // ok_q[S_EXIT]: H enters f24_one_minus
-  input f24_t                          h_i,                // h_x (H in S_EXIT)
+  input logic                          ok5_i,              // h_ok: H enters f24_one_minus
+  input f24_t                          h_i,                // h_x (the plane unit's operand)
+  input logic                          live0_i,            // live0_q
+  input logic [LVL_W-1:0]              nk0_i,              // nk0_q
+  input logic [LVL_W-1:0]              nk0_want_i,         // cfg_i.n - node_q[0].k
   input logic                          admit_i,            // admit: a new ray enters
   input logic                          v_last_i,           // v_q[D-1]
   input logic                          retire_i,
@@ -225,6 +230,8 @@ module traverse_loop_assert
         else $error("traverse_loop: height response without a request");
       plane_operand_in_range: assert (!ok5_i || (!h_i[23] && (h_i[22:16] < 7'd63 || h_i == F24_ONE)))
         else $error("traverse_loop: H = %h outside [+0, 1]", h_i);
+      nk0_is_n_minus_k: assert (!live0_i || nk0_i == nk0_want_i)
+        else $error("traverse_loop: S0's n - k %0d, want %0d", nk0_i, nk0_want_i);
       new_ray_only_in_bubble: assert (!(admit_i || unpark_i) || !v_last_i || retire_i || park_i)
         else $error("traverse_loop: a new ray admitted over a ray that stays");
       live_ray_has_no_result: assert (!live17_i || !st17_final_i)
@@ -248,8 +255,9 @@ endmodule
 
 bind traverse_loop traverse_loop_assert #(.ID_W(ID_W), .D(D), .PQ(PQ), .PARK_MAX(PARK_MAX))
 u_assert (
-  .clk_i, .rst_ni, .sl_i(sl_q), .lk_valid_i(lk_valid_o), .rs_valid_i, .ok5_i(ok_q[S_EXIT]),
-  .h_i(h_x), .admit_i(admit), .v_last_i(v_q[D-1]), .retire_i(retire), .live17_i(live17),
+  .clk_i, .rst_ni, .sl_i(sl_q), .lk_valid_i(lk_valid_o), .rs_valid_i, .ok5_i(h_ok),
+  .h_i(h_x), .live0_i(live0_q), .nk0_i(nk0_q), .nk0_want_i(LVL_W'(cfg_i.n - node_q[0].k)),
+  .admit_i(admit), .v_last_i(v_q[D-1]), .retire_i(retire), .live17_i(live17),
   .st17_final_i(st17.hit || st17.invalid || st17.capped || st17.err), .down18_i(down18_q),
   .lv1_i(lv_q[1]), .kb1_i('{kbx1_q, kby1_q}), .uv1_i('{uv_q[1].u, uv_q[1].v}),
   .dn14_i(dn_q[S_CB]), .kb14_i('{kben_x14, kbex_x14, kben_y14, kbex_y14}),

@@ -80,7 +80,7 @@ async def addr_random_and_directed(dut):
     rng = np.random.default_rng(fp_unit.seed())
     per_map = max(1, fp_unit.vectors() // len(MAPS))
     cols: dict[str, list[np.ndarray]] = {k: [] for k in (
-        "base_i", "level_off_i", "n_i", "bits16_i", "k_i", "cx_i", "cy_i")}
+        "base_i", "level_off_i", "bits16_i", "k_i", "nk_i", "cx_i", "cy_i")}
     exp: dict[str, list[np.ndarray]] = {k: [] for k in OUTPUTS}
     image_checked = image_bad = directed = 0
     for h, w, bits, base in MAPS:
@@ -105,9 +105,9 @@ async def addr_random_and_directed(dut):
         m = len(k)
         cols["base_i"].append(np.full(m, cfg.base, dtype=object))
         cols["level_off_i"].append(np.full(m, cfg.level_off, dtype=object))
-        cols["n_i"].append(np.full(m, cfg.root_level))
         cols["bits16_i"].append(np.full(m, cfg.bits16))
         cols["k_i"].append(k)
+        cols["nk_i"].append(cfg.root_level - k)   # n - k: the ring registers it with the node
         cols["cx_i"].append(cx)
         cols["cy_i"].append(cy)
         exp["addr_o"].append(addr)
@@ -121,8 +121,8 @@ async def addr_random_and_directed(dut):
         bad |= got[k] != e[k]
     for i in np.nonzero(bad)[0][:10]:
         dut._log.error("base 0x%08x n %d bits16 %d node (%d, %d, %d): got 0x%08x, model 0x%08x",
-                       v["base_i"][i], v["n_i"][i], v["bits16_i"][i], v["k_i"][i], v["cx_i"][i],
-                       v["cy_i"][i], got["addr_o"][i], e["addr_o"][i])
+                       v["base_i"][i], v["nk_i"][i] + v["k_i"][i], v["bits16_i"][i], v["k_i"][i],
+                       v["cx_i"][i], v["cy_i"][i], got["addr_o"][i], e["addr_o"][i])
     n, nbad = len(bad), int(bad.sum())
     report.record("traverse_addr", "RTL vs model.traverse.texel_offset (heightmap layout)", n, nbad)
     dut._log.info("VECTORS traverse_addr: %d (%d directed), %d mismatches; %d model addresses "
