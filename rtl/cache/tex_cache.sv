@@ -93,7 +93,9 @@
 //             (FIFO_DEPTH passes) happen from the commit register, so no write waits on the
 //             lookup's outcome in its own clock; the next passes' lookups see them forwarded.
 //   clock 5   head: when the lines of the head pass are present (no pending fill), the pass
-//             leaves the FIFO and reads the data RAMs (one window per sub-cache).
+//             leaves the FIFO and reads the data RAMs (one window per sub-cache).  Its slots'
+//             pending and error bits are registers, loaded the clock before for the pass that
+//             is head now (see "head"), so the pop starts from flip-flops.
 //   clock 6   the data RAMs' words are registered (their 4.3 ns clock-to-out on the ECP5).
 //   clock 7   the texels are selected (and merged with earlier passes of the request).
 //   clock 8   rsp_valid_o (a 4-entry output buffer).
