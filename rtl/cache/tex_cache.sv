@@ -93,7 +93,9 @@
 //             (FIFO_DEPTH passes) happen from the commit register, so no write waits on the
 //             lookup's outcome in its own clock; the next passes' lookups see them forwarded.
 //   clock 5   head: when the lines of the head pass are present (no pending fill), the pass
-//             leaves the FIFO and reads the data RAMs (one window per sub-cache).
+//             leaves the FIFO and reads the data RAMs (one window per sub-cache).  Its slots'
+//             pending and error bits are registers, loaded the clock before for the pass that
+//             is head now (see "head"), so the pop starts from flip-flops.
 //   clock 6   the data RAMs' words are registered (their 4.3 ns clock-to-out on the ECP5).
 //   clock 7   the texels are selected (and merged with earlier passes of the request).
 //   clock 8   rsp_valid_o (a 4-entry output buffer).
@@ -281,6 +283,24 @@ module tex_cache
     r    = word;
     r[w] = b;
     return r;
+  endfunction
+
+  // Slot (s, w) of a sub-cache as its state memories (g_dir) hold it after this clock's writes:
+  // {pending, bad} from the words ag, fg, bad read at s now, with the commit's ag word aw (when
+  // aw_v, at set aw_set) and the fill of slot (f_set, f_way) (when f_v: fg = f_ag, bad = f_bad)
+  // applied.
+  function automatic logic [1:0] slot_next(
+      input logic [WAYS-1:0] ag, input logic [WAYS-1:0] fg, input logic [WAYS-1:0] bd,
+      input logic [SET_W-1:0] s, input logic [WAY_W-1:0] w,
+      input logic aw_v, input logic [SET_W-1:0] aw_set, input logic [WAYS-1:0] aw,
+      input logic f_v, input logic [SET_W-1:0] f_set, input logic [WAY_W-1:0] f_way,
+      input logic f_ag, input logic f_bad);
+    logic a, f, b, fl;
+    fl = f_v && f_set == s && f_way == w;
+    a  = (aw_v && aw_set == s) ? aw[w] : ag[w];
+    f  = fl ? f_ag : fg[w];
+    b  = fl ? f_bad : bd[w];
+    return {a != f, b};
   endfunction
 
   // ---------------------------------------------------------------- state
@@ -526,6 +546,13 @@ module tex_cache
   // ---------------------------------------------------------------- head: wait, pop, read
   logic [NSUB-1:0] hd_err;
   logic [NSUB-1:0] hd_pend, hd_bad;  // the head's slot per sub-cache: pending, bad (g_dir)
+  // The pop decides from flip-flops only: hd_pend and hd_bad are registers loaded one clock
+  // ahead with the state of the slots of the pass that is head in the next clock (g_dir reads
+  // it at the sets of the three candidates, hd_q, nx_q and cm_pass_q, with this clock's
+  // directory writes applied), so no LUT RAM read lies between the head register and the
+  // FIFO's pointers.  The next head: nx_q (a pop with two or more entries), cm_pass_q (a pop
+  // with one, or an empty FIFO), else hd_q.
+  logic            hs_nx, hs_cm;     // the next head is nx_q, cm_pass_q (else hd_q)
 
   // The head entry hd_q (= the FIFO's head while it holds a pass) and the one behind it, nx_q
   // (= the entry after the head while it holds two), are registers, so the head's readiness (its
@@ -551,6 +578,9 @@ module tex_cache
     hd_q <= h_pop ? hd_pop_d : hd_hold_d;
     nx_q <= h_pop ? nx_pop_d : nx_hold_d;
   end
+
+  assign hs_nx = h_pop && fifo_cnt >= FC_W'(2);
+  assign hs_cm = h_pop ? fifo_cnt < FC_W'(2) : fifo_cnt == '0;
 
   always_comb begin
     h_ready = (fifo_cnt != '0);
@@ -641,6 +671,7 @@ module tex_cache
     logic [WAYS-1:0]   fg_mem   [SETS];
     logic [WAYS-1:0]   bad_mem  [SETS];
     logic [WAYS-1:0]   fl_ag, fl_fg, fl_bad, hd_ag, hd_fg, hd_bd;
+    logic [1:0]        sn_hd, sn_nx, sn_cm;  // {pending, bad} of the candidates' slots next
 
     assign take = cm_valid_q && cm_pass_q.used[c];  // (cm_valid_q is 0 in reset)
     assign give = h_pop && hd_q.used[c];
@@ -668,8 +699,20 @@ module tex_cache
     assign hd_ag       = ag_mem[hd_q.set[c]];
     assign hd_fg       = fg_mem[hd_q.set[c]];
     assign hd_bd       = bad_mem[hd_q.set[c]];
-    assign hd_pend[c]  = hd_ag[hd_q.way[c]] != hd_fg[hd_q.way[c]];
-    assign hd_bad[c]   = hd_bd[hd_q.way[c]];
+    // the next head's slot (hd_pend, hd_bad: see "head"), read at the candidates' sets
+    assign sn_hd = slot_next(hd_ag, hd_fg, hd_bd, hd_q.set[c], hd_q.way[c], take && cm_alloc_q[c],
+                             cm_pass_q.set[c], cm_ag_q[c], fill, w_set_q, w_way_q,
+                             fl_ag[w_way_q], w_bad_q);
+    assign sn_nx = slot_next(ag_mem[nx_q.set[c]], fg_mem[nx_q.set[c]], bad_mem[nx_q.set[c]],
+                             nx_q.set[c], nx_q.way[c], take && cm_alloc_q[c], cm_pass_q.set[c],
+                             cm_ag_q[c], fill, w_set_q, w_way_q, fl_ag[w_way_q], w_bad_q);
+    assign sn_cm = slot_next(ag_mem[cm_pass_q.set[c]], fg_mem[cm_pass_q.set[c]],
+                             bad_mem[cm_pass_q.set[c]], cm_pass_q.set[c], cm_pass_q.way[c],
+                             take && cm_alloc_q[c], cm_pass_q.set[c], cm_ag_q[c], fill, w_set_q,
+                             w_way_q, fl_ag[w_way_q], w_bad_q);
+    always_ff @(posedge clk_i) begin
+      {hd_pend[c], hd_bad[c]} <= hs_nx ? sn_nx : (hs_cm ? sn_cm : sn_hd);
+    end
 
 `ifndef SYNTHESIS  // the memories' copies for tex_cache_assert (see vw_live)
     assign vw_live[c] = live_mem;

@@ -74,6 +74,8 @@ module tex_cache_assert #(
   input logic [NSUB-1:0][WAYS-1:0]          f_vld,
   input logic [NSUB-1:0][WAYS-1:0]          f_pnd,
   input logic [NSUB-1:0][PLRU_W-1:0]        f_plru,
+  input logic [NSUB-1:0]                    fw_idle,      // the committing pass's slot's count
+                                                          // says idle at the decision
   // commit register
   input logic                               cm_valid_q,
   input logic [NSUB-1:0]                    cm_alloc_q,
@@ -88,6 +90,8 @@ module tex_cache_assert #(
   input logic [FC_W-1:0]                    fifo_cnt_q,
   input logic                               h_pop,
   input logic [NSUB-1:0]                    hd_err,
+  input logic [NSUB-1:0]                    hd_pend,      // the head's slots: pending, bad
+  input logic [NSUB-1:0]                    hd_bad,       // (registers loaded a clock ahead)
   input logic [NSUB-1:0]                    hd_used,      // the head pass's sub-caches
   input logic [NSUB-1:0][SET_W-1:0]         hd_set,       // ... slots
   input logic [NSUB-1:0][WAY_W-1:0]         hd_way,
@@ -169,6 +173,7 @@ module tex_cache_assert #(
   logic [WAY_W-1:0] mshr_way_v [MSHRS];
   logic [NSUB-1:0]  lk_live, hd_live;    // the committing pass's / the head's slot is live
   logic [NSUB-1:0][RC_W-1:0] dir_dec_hd;  // the head's slot's dec
+  logic             hd_state_ok;          // hd_pend, hd_bad equal the head's slots' state bits
 
   always_comb begin
     for (int c = 0; c < NSUB; c++) begin
@@ -192,6 +197,12 @@ module tex_cache_assert #(
       lk_live[c] = valid_v[c][cm_set[c]][cm_way[c]] || err_v[c][cm_set[c]][cm_way[c]];
       hd_live[c] = valid_v[c][hd_set[c]][hd_way[c]] || err_v[c][hd_set[c]][hd_way[c]];
       dir_dec_hd[c] = vw_dec[c][hd_way[c]][hd_set[c]];
+    end
+    hd_state_ok = 1'b1;
+    for (int c = 0; c < NSUB; c++) begin
+      if (hd_used[c]
+          && (hd_pend[c] != (vw_ag[c][hd_set[c]][hd_way[c]] != vw_fg[c][hd_set[c]][hd_way[c]])
+              || hd_bad[c] != vw_bad[c][hd_set[c]][hd_way[c]])) hd_state_ok = 1'b0;
     end
   end
 
@@ -406,6 +417,13 @@ module tex_cache_assert #(
       // The head's slots are live (its pending and error bits are read without the live bit).
       head_live: assert (fifo_cnt_q == '0 || (hd_live | ~hd_used) == '1)
         else $error("tex_cache: the head reads a slot that is not live");
+      // The head's pending and error bits (registers, loaded a clock ahead) are its slots'.
+      // The decision takes the committing pass's slot as referenced without comparing its
+      // counts (tex_cache_lookup's f_idle); the counts agree when the decide stage holds a pass.
+      fw_referenced: assert (!b_valid_q || fw_idle == '0)
+        else $error("tex_cache: the committing pass's slot counts as idle at the decision");
+      head_state: assert (fifo_cnt_q == '0 || hd_state_ok)
+        else $error("tex_cache: the head's pending / error bits differ from its slots'");
       // FIFOs.
       fifo_no_overflow: assert (!cm_valid_q || fifo_cnt_q < FC_W'(FIFO_DEPTH) || h_pop)
         else $error("tex_cache: request FIFO overflow");
@@ -604,7 +622,7 @@ bind tex_cache tex_cache_assert #(
   .pq_wp_q(u_front.pq_wp_q), .pq_ip_q(u_front.pq_ip_q), .pq_rp_q(u_front.pq_rp_q),
   .a_set_q(a_set), .a_pass_set(u_front.a_pass.set), .b_valid_q(b_valid),
   .b_is_oldest(u_front.b_pass_q == u_front.pq_q[u_front.pq_rp_q[1:0]]),
-  .f_vld(u_lookup.f_vld), .f_pnd(u_lookup.f_pnd),
+  .f_vld(u_lookup.f_vld), .f_pnd(u_lookup.f_pnd), .fw_idle(u_lookup.fw_idle),
   .out_push(u_data.out_push), .out_pop(u_data.out_pop), .out_cnt_q(u_data.out_cnt),
   .tq_wp_q(u_data.tq_wp_q), .tq_rp_q(u_data.tq_rp_q),
   .fl_hd_q(u_free.rp_q), .fl_cnt_q(u_free.cnt_q),

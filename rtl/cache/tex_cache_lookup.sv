@@ -183,7 +183,9 @@ module tex_cache_lookup #(
         f_err[c][w]  = !fw_alloc && b_err_q[c][w];
         f_hit[c][w]  = fw_alloc ? b_tageq_q[c] : b_vld_q[c][w] && b_hit_q[c][w];
         f_inc_o[c][w]  = fw_way ? cm_inc_i[c] : b_inc_q[c][w];
-        f_idle[c][w] = fw_way ? cm_inc_i[c] == b_dec_o[c][w] : b_idle_q[c][w];
+        // (the committing pass's slot is referenced by it: never idle; tex_cache_assert checks
+        // that its count says so, fw_idle)
+        f_idle[c][w] = !fw_way && b_idle_q[c][w];
       end
     end
   end
@@ -223,6 +225,19 @@ module tex_cache_lookup #(
       if (lk_alloc_o[c] && !free_ok_i[n_before[1:0]]) mshr_short_o = 1'b1;
     end
   end
+
+`ifndef SYNTHESIS
+  // The committing pass's slot as the forwarded count would judge it: idle (inc == dec), which
+  // its own reference rules out (the decision takes it as referenced without the compare).
+  /* verilator lint_off UNUSEDSIGNAL */  // (read by the bound checks only)
+  logic [NSUB-1:0] fw_idle;
+  /* verilator lint_on UNUSEDSIGNAL */
+  always_comb begin
+    for (int c = 0; c < NSUB; c++) begin
+      fw_idle[c] = b_seteq_q[c] && cm_inc_i[c] == b_dec_o[c][cm_way_i[c]];
+    end
+  end
+`endif
 
   // f_pnd (a slot pending at the decision) is read by the bound checks' coverage only.
   logic unused;

@@ -117,7 +117,21 @@ module circ_queue #(
     logic [WIDTH-1:0] pk_rd_q;   // the storage read there
     logic [WIDTH-1:0] pk_fw_q;   // the data written in that clock
     logic             pk_fwv_q;  // ... at that entry: take pk_fw_q
-    assign pk_addr = ptr_add(ptr_add(rp_q, 32'(pop_n_i)), PEEK);
+    // The candidates rp_q + PEEK + k (k = 0 .. NPOP pops) are registers moving with rp_q, so
+    // pop_n_i, late in the clock, only picks one (no adder between it and the read address).
+    logic [NPOP:0][PTR_W-1:0] pk_c_q;
+    always_ff @(posedge clk_i) begin
+      for (int unsigned k = 0; k <= NPOP; k++) begin
+        if (!rst_ni) pk_c_q[k] <= ptr_add(ptr_add(PTR_W'(0), k), PEEK);
+        else         pk_c_q[k] <= ptr_add(pk_c_q[k], 32'(pop_n_i));
+      end
+    end
+    always_comb begin
+      pk_addr = pk_c_q[0];
+      for (int unsigned k = 1; k <= NPOP; k++) begin
+        if (32'(pop_n_i) == k) pk_addr = pk_c_q[k];
+      end
+    end
     always_ff @(posedge clk_i) begin
       pk_rd_q  <= mem_q[pk_addr];
       pk_fw_q  <= wdata_i[0];

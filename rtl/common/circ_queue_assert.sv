@@ -18,6 +18,8 @@
 //                               rdata_o[k] when k entries are ahead of it (k < NPOP, ASYNC_RD);
 //   peek_order                  with PEEK > 0 peek_o is the tracked entry the clock after one in
 //                               which it became entry PEEK of the queue;
+//   peek_addr                   with PEEK > 0 the peek port's registered read-address
+//                               candidates are the head plus PEEK plus 0 .. NPOP;
 //   trk_inside, trk_in_mem      it stays inside the queue, unchanged at its place in the storage
 //                               (the induction invariants).
 // The tracked entry's value is the one its place holds after its push: the data of the last lane
@@ -53,6 +55,20 @@ module circ_queue_assert #(
 );
 
   localparam int unsigned PUSH_W = $clog2(NPUSH + 1);
+
+  // With PEEK > 0: circ_queue's registered read-address candidates (pk_c_q[k], the peek
+  // port's address after k pops) equal head + PEEK + k.
+  logic pk_c_ok;
+  if (PEEK > 0) begin : g_pk_c
+    always_comb begin
+      pk_c_ok = 1'b1;
+      for (int unsigned k = 0; k <= NPOP; k++) begin
+        if (32'(circ_queue.g_peek.pk_c_q[k]) != (32'(rp_i) + k + PEEK) % DEPTH) pk_c_ok = 1'b0;
+      end
+    end
+  end else begin : g_no_pk_c
+    assign pk_c_ok = 1'b1;
+  end
   localparam int unsigned N_W    = CNT_W + 1;   // one bit wider than count_o: an overflow shows
 
   // ---- lanes: pushes below each lane, the user's obligations -------------------------------
@@ -178,6 +194,8 @@ module circ_queue_assert #(
       ptr_model:    assert (int'(wp_i) < int'(DEPTH) && int'(rp_i) < int'(DEPTH)
                             && int'(wp_i) == tail)
         else $error("circ_queue: head %0d, tail %0d, count %0d", rp_i, wp_i, count_i);
+      peek_addr:    assert (pk_c_ok)
+        else $error("circ_queue: the peek port's read-address candidates left the head");
       trk_inside:   assert (!trk_q || trk_ahead_q < count_i)
         else $error("circ_queue: the tracked entry is lost");
       trk_in_mem:   assert (!trk_q || circ_queue.mem_q[trk_addr] == trk_data_q)
