@@ -30,6 +30,9 @@ normal map goes to another pixel: inv_pairs, or tf_pairs).  A
 further case removes one property from what the front end sees and shows the driver refuses the
 run (the guard against properties dropped silently).
 
+Where a mutant's counterexample is longer than make formal's BMC (one step beyond the induction,
+which proves the properties at every depth), the copy runs that BMC deeper (MUTANT_BMC_DEPTH).
+
 The scratch copies live under build/formal_mutants/ (inside the repository: YoWASP's tools see
 the file system through relative paths).
 """
