@@ -30,6 +30,9 @@ normal map goes to another pixel: inv_pairs, or tf_pairs).  A
 further case removes one property from what the front end sees and shows the driver refuses the
 run (the guard against properties dropped silently).
 
+Where a mutant's counterexample is longer than make formal's BMC (one step beyond the induction,
+which proves the properties at every depth), the copy runs that BMC deeper (MUTANT_BMC_DEPTH).
+
 The scratch copies live under build/formal_mutants/ (inside the repository: YoWASP's tools see
 the file system through relative paths).
 """
@@ -162,6 +165,28 @@ def mutate(root: Path, rel: str, old: str, new: str) -> None:
     path.write_text(text.replace(old, new))
 
 
+# BMC depths the mutants' copies run at where make formal's BMC is shallower (one step deeper
+# than the induction, which proves the properties at every depth): the step at which each
+# mutant's counterexample ends lies beyond it.  file:task -> depth.
+MUTANT_BMC_DEPTH = {
+    "traverse_loop:bmc_ids": 26,   # id_in_ring at step LOOP_DEPTH + 3 = 25 (22 slots)
+    "tex_cache:bmc_tags": 10,      # inv_tq_read at step 5
+    "pidm_regs:bmc": 5,            # the wrong read-back bit: rd_value at step 4
+}
+
+
+def deepen_bmc(root: Path, task: str) -> None:
+    """Set the copy's BMC depth for `task` to MUTANT_BMC_DEPTH's (no change for other tasks)."""
+    depth = MUTANT_BMC_DEPTH.get(task)
+    if depth is None:
+        return
+    sby = root / "formal" / (task.split(":")[0] + ".sby")
+    text = sby.read_text()
+    new, n = re.subn(r"^bmc: depth \d+$", f"bmc: depth {depth}", text, flags=re.M)
+    assert n == 1, f"{sby}: no single 'bmc: depth N' line"
+    sby.write_text(new)
+
+
 def run_formal(root: Path, task: str) -> subprocess.CompletedProcess[str]:
     return subprocess.run([sys.executable, str(ROOT / "scripts" / "flow" / "formal.py"),
                            "--root", str(root), "--only", task, "--jobs", "1"],
@@ -174,6 +199,7 @@ def test_mutant_fails_with_trace(name: str):
     rel, old, new, task, prop = MUTANTS[name]
     root = scratch_tree(name)
     mutate(root, rel, old, new)
+    deepen_bmc(root, task)
     p = run_formal(root, task)
     out = p.stdout + p.stderr
     assert p.returncode == 1, out
@@ -295,6 +321,7 @@ def test_regs_mutant_fails_with_trace(name: str):
     root = scratch_tree(name)
     mutate(root, "rtl/top/pidm_regs.sv", old, new)
     task = "pidm_regs:bmc"
+    deepen_bmc(root, task)
     p = run_formal(root, task)
     out = p.stdout + p.stderr
     assert p.returncode == 1, out
