@@ -71,7 +71,7 @@ MUTANTS = {
         "rtl/common/circ_queue.sv",
         "if (q >= DEPTH) q = q - DEPTH;",
         "if (q > DEPTH) q = q - DEPTH;",
-        "circ_queue:bmc_peek", "ptr_model"),
+        "circ_queue:bmc_peek", "(?:ptr_model|peek_addr)"),
     "queue_lane_place": (
         "rtl/common/circ_queue.sv",
         "pos[k] = ptr_add(wp_q, 32'(n_push));",
