@@ -26,10 +26,12 @@ def fail(prog: str, message: str) -> NoReturn:
 
 
 class Progress:
-    """A progress line on stderr for long work (quiet for short jobs or when not a terminal-ish)."""
+    """A progress line on stderr for long work: only when stderr is a terminal (a log file or a
+    pipe gets no carriage-return lines) and the caller enables it (not for short jobs)."""
 
     def __init__(self, what: str, total: int, enabled: bool = True) -> None:
-        self.what, self.total, self.enabled = what, max(total, 1), enabled
+        self.what, self.total = what, max(total, 1)
+        self.enabled = enabled and sys.stderr.isatty()
         self.t0 = time.time()
         self.last = 0.0
 
