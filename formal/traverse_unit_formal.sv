@@ -65,7 +65,9 @@ module traverse_unit_formal
 
   // The places a ray can be in: pv[p] (it holds a ray), pid[p] (its id).  Setup stages, the
   // setup FIFO's head register and RAM entries (in order from the read pointer), the ring's
-  // slots, the result FIFO's head register and RAM entries.
+  // slots, the result FIFO's head register and RAM entries.  The two FIFOs' places are read
+  // here, each by its own hierarchical names (a module bound into traverse_fifo that lists its
+  // places, read by the RAM's upward reference, gave the same proof at 26 s instead of 8).
   localparam int unsigned P = SETUP_LAT + 1 + SF_DEPTH + CAP + 1 + RF_DEPTH;
   logic [P-1:0]           pv;
   logic [P-1:0][ID_W-1:0] pid;
