@@ -26,7 +26,8 @@ response's tag from the tag queue's entry behind the head (inv_tq_read, or rsp_t
 dm_pipeline pops the miss FIFO while the output register takes a shaded pixel (the miss is
 lost: merge_count, inv_place or merge_leave_once), and sends a normal-map request to the
 texture cache with the slot of the colour FIFO's head instead of its pixel's (the pair's
-normal map goes to another pixel: inv_pairs, or tf_pairs).  A
+normal map goes to another pixel: inv_pairs, or tf_pairs), and does not count a pixel's slot
+out of live_q (the slots in use no longer match it: slot_count, or slots_conserved).  A
 further case removes one property from what the front end sees and shows the driver refuses the
 run (the guard against properties dropped silently).
 
@@ -145,6 +146,11 @@ MUTANTS = {
         "assign rq_slot      = rq_sel_q ? pair_slot_q : rq_c_head[SLOT_W+REQ_W-1 -: SLOT_W];",
         "assign rq_slot      = rq_c_head[SLOT_W+REQ_W-1 -: SLOT_W];",
         "dm_pipeline_pairs:bmc_pairs", "(?:inv_pairs|tf_pairs)"),
+    "live_not_freed": (
+        "rtl/pipe/dm_pipeline.sv",
+        "else         live_q <= live_q + (SLOT_W+1)'(acc) - (SLOT_W+1)'(px_done);",
+        "else         live_q <= live_q + (SLOT_W+1)'(acc);",
+        "dm_pipeline_slots:bmc_slots", "(?:slot_count|slots_conserved)"),
 }
 
 
@@ -172,6 +178,7 @@ MUTANT_BMC_DEPTH = {
     "traverse_loop:bmc_ids": 26,   # id_in_ring at step LOOP_DEPTH + 3 = 25 (22 slots)
     "tex_cache:bmc_tags": 10,      # inv_tq_read at step 5
     "pidm_regs:bmc": 5,            # the wrong read-back bit: rd_value at step 4
+    "dm_pipeline_slots:bmc_slots": 14,  # the first pixel leaves at step 12: slot_count at 13
 }
 
 
