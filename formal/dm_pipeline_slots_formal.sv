@@ -19,8 +19,8 @@
 //
 // Proven (with the bound dm_pipeline_assert's slot_enter_free, slot_trav_once, slot_out_once,
 // slot_count, slots_conserved, merge_enter_free, merge_leave_once, merge_count, out_credit,
-// fifo0_credit, the four FIFOs' and the two credits' bound checks, the abstract units'
-// abs_enter_free): the induction invariants, for every slot s (the shadows use_q, trav_q, mg_q
+// fifo0_credit, frag_spacing, hit_spacing, the four FIFOs' and the two credits' bound checks,
+// the abstract units' abs_enter_free): the induction invariants, for every slot s (the shadows use_q, trav_q, mg_q
 // of dm_pipeline_assert; a place's count is how many entries hold s):
 //   inv_free   while the free list is filled after reset, it holds the slots below init_cnt_q
 //              once each and no slot is in use; after that, s is in the free list (once)
@@ -32,6 +32,9 @@
 //   inv_use    s is in use (use_q) exactly when it is in one of the traversal, the back end and
 //              the merge;
 //   inv_init   the fill counter stays below SLOTS while filling;
+//   inv_spacing  the admission's spacing registers (acc_q, hit_adm_q) agree with the checker's
+//              clocks since the last fragment / hit (frag_spacing, hit_spacing: what view_calc's
+//              and tex_addr's proofs assume of their input);
 //   inv_f0_credit   FIFO #0's credit counts the slots in view_calc;
 //   inv_out_credit  the out credit counts the slots in the back end and in the out FIFO.
 `ifdef FORMAL
@@ -139,6 +142,13 @@ module dm_pipeline_slots_formal #(
     end
   end
 
+  // The admission's spacing registers (acc_q, hit_adm_q: [k] one admitted k + 1 clocks ago)
+  // agree with the checker's counters of clocks since the last one (saturating at 3).
+  function automatic logic age_ok(input logic [2:0] adm_q, input logic [1:0] age_q);
+    return (adm_q == 3'b000 && age_q == 2'd3) || (adm_q == 3'b001 && age_q == 2'd0)
+        || (adm_q == 3'b010 && age_q == 2'd1) || (adm_q == 3'b100 && age_q == 2'd2);
+  endfunction
+
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
       inv_free:  assert (ok_free == '1);
@@ -146,6 +156,8 @@ module dm_pipeline_slots_formal #(
       inv_merge: assert (ok_merge == '1);
       inv_use:   assert (ok_use == '1);
       inv_init:  assert (!dm_pipeline.init_q || 32'(dm_pipeline.init_cnt_q) < SLOTS);
+      inv_spacing: assert (age_ok(dm_pipeline.acc_q, dm_pipeline.u_assert.frag_age_q)
+                           && age_ok(dm_pipeline.hit_adm_q, dm_pipeline.u_assert.hit_age_q));
       inv_f0_credit:  assert (32'(dm_pipeline.vc_cnt) == 32'($countones(vc_held)));
       inv_out_credit: assert (32'(dm_pipeline.hit_cnt)
                               == 32'($countones(be_held)) + 32'(dm_pipeline.out_count));
