@@ -20,8 +20,9 @@
 // Proven (with the bound dm_pipeline_assert's slot_enter_free, slot_trav_once, slot_out_once,
 // slot_count, slots_conserved, merge_enter_free, merge_leave_once, merge_count, out_credit,
 // fifo0_credit, frag_spacing, hit_spacing, the four FIFOs' and the two credits' bound checks,
-// the abstract units' abs_enter_free): the induction invariants, for every slot s (the shadows use_q, trav_q, mg_q
-// of dm_pipeline_assert; a place's count is how many entries hold s):
+// the abstract units' abs_enter_free): the induction invariants, for every slot s (the
+// shadows use_q, trav_q, mg_q of dm_pipeline_assert; a place's count is how many entries hold
+// s):
 //   inv_free   while the free list is filled after reset, it holds the slots below init_cnt_q
 //              once each and no slot is in use; after that, s is in the free list (once)
 //              exactly when not in use;
