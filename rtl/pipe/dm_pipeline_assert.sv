@@ -37,7 +37,9 @@
 // The pieces of this path are proven in formal (docs/formal.md): the free list, FIFO #0's
 // admission and order, traverse_rings' dealing and return, the traverse ring's ids, the merge
 // (formal/dm_pipeline.sby: merge_leave_once, merge_count, px_stable; merge_enter_free and
-// out_credit assumed there).
+// out_credit assumed there); their composition with view_calc, traverse_rings and the back end
+// abstracted (formal/dm_pipeline_slots.sby: slot_*, slots_conserved, merge_*, out_credit,
+// fifo0_credit, frag_spacing, hit_spacing).
 `ifndef SYNTHESIS
 module dm_pipeline_assert #(
   parameter int unsigned PIX_W = 20,   // dm_pipeline's PIX_W
