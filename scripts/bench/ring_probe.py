@@ -35,6 +35,8 @@ from tb.harness import dm_pipeline  # noqa: E402
 PROG = "ring_probe.py"
 PROBE_SV = ROOT / "tb" / "harness" / "probe" / "ring_probe.sv"
 PROBE_FILE = "ring_probe.txt"
+#: ring_probe.sv's WINDOW: clocks before an empty slot in which the input's hold-ups count.
+WINDOW = 64
 
 
 def probe_spec(params: dict[str, int]) -> hbuild.HarnessSpec:
@@ -107,7 +109,7 @@ def report(r: dict[str, Any]) -> str:
         f"empty and rays in setup {p['ring_empty_sf_busy']:,}; setup empty, rays in FIFO #0 "
         f"{p['ring_empty_f0_wait']:,}; rays only in view_calc {p['ring_empty_vc']:,}; "
         f"front end empty {p['ring_empty_front']:,}",
-        f"    empty, the fragment input in the {64} clocks before held back by: free slot ids "
+        f"    empty, the fragment input in the {WINDOW} clocks before held back by: free slot ids "
         f"{p['ring_empty_by_slots']:,}, FIFO #0 credits {p['ring_empty_by_credit']:,}, no "
         f"fragment {p['ring_empty_by_nofrag']:,}; by none (input at 1 per 4 clocks) "
         f"{p['ring_empty_by_rate']:,}",

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // ring_probe: a measurement-only module (never synthesised, not in any RTL directory) bound into
-// dm_pipeline with N_RINGS = 1 by scripts/bench/ring_probe.py (through RTL_ENGINE_EXTRA_SV-style
-// extra sources of the pipeline harness build).  It reads dm_pipeline's and the traverse ring's
+// dm_pipeline with N_RINGS = 1 by scripts/bench/ring_probe.py (an extra source of a pipeline
+// harness build of its own).  It reads dm_pipeline's and the traverse ring's
 // internal signals through the bind's hierarchical port connections and counts, in every clock
 // with a pixel inside the unit (dm_pipeline's !idle_o, the clocks the bench's clock count spans):
 //
