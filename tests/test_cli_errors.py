@@ -283,6 +283,10 @@ TOOL_CASES: dict[str, tuple[str, list[str], dict[str, str]]] = {
     "mutate jobs 0": ("scripts/bench/mutate.py", ["--jobs", "0"], {}),
     "mutate target above 1": ("scripts/bench/mutate.py", ["--target", "2"], {}),
     "mutate missing list": ("scripts/bench/mutate.py", ["--list", "{d}/nope.toml", "--check"], {}),
+    "ring_probe bad frame": ("scripts/bench/ring_probe.py", ["--frames", "bump"], {}),
+    "ring_probe bad param": ("scripts/bench/ring_probe.py", ["--param", "SLOTS"], {}),
+    "ring_queue gap 0": ("scripts/bench/ring_queue.py", ["--gap", "0"], {}),
+    "ring_queue unknown scene": ("scripts/bench/ring_queue.py", ["--frames", "nope:oblique"], {}),
     # python -m tb.harness.traverse_system / tb.harness.dm_pipeline
     "traverse_system size not a number": ("-m tb.harness.traverse_system", ["--size", "x"], {}),
     "traverse_system unknown method": ("-m tb.harness.traverse_system", ["--method", "nope", "--size", "8",

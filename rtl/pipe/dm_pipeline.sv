@@ -63,6 +63,7 @@ module dm_pipeline
   parameter int unsigned PARK_MAX   = 4 * traverse_pkg::LOOP_DEPTH, // bound on a parked ray's wait
   parameter int unsigned TRIS       = 16,   // triangle table entries
   parameter int unsigned F0_DEPTH   = 16,   // FIFO #0 (power of two)
+  parameter int unsigned SETUP_DEPTH = 32,  // setup FIFO per ring (traverse_unit's SETUP_FIFO_DEPTH; power of two, > 26)
   parameter int unsigned REQ_DEPTH  = 16,   // texture-request FIFOs, pixels (power of two)
   parameter int unsigned OUT_DEPTH  = 64,   // shaded-pixel FIFO (power of two): hits in the back end
   parameter int unsigned MISS_DEPTH = 16,   // miss FIFO (power of two)
@@ -291,7 +292,8 @@ module dm_pipeline
 
   assign f0_rd = !f0_empty && ray_ready;
 
-  traverse_rings #(.N_RINGS(N_RINGS), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH),
+  traverse_rings #(.N_RINGS(N_RINGS), .SETUP_FIFO_DEPTH(SETUP_DEPTH), .PARK(PARK),
+                   .PARK_DEPTH(PARK_DEPTH),
                    .PARK_WAIT(PARK_WAIT), .PARK_MAX(PARK_MAX), .MSHRS(H_MSHRS),
                    .RAY_ID_W(SLOT_W), .AXI_ID_W(H_ID_W),
                    .AXI_DATA_W(AXI_DATA_W), .LINE_BYTES(H_LINE_BYTES), .SETS(H_SETS),
