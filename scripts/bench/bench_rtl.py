@@ -36,7 +36,6 @@ from __future__ import annotations
 
 import json
 import sys
-import time
 from pathlib import Path
 from typing import Any
 
@@ -44,7 +43,7 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[2]
 from model import camera, heightmap, scenes, traverse
-from model.cli import Parser, fail
+from model.cli import Parser, Progress, fail
 from tb.harness import traverse_system
 from model.rays import Rays
 
@@ -173,7 +172,7 @@ def main() -> int:
         fail(PROG, str(e).splitlines()[0])
     rows: list[dict[str, Any]] = []
     total = len(names) * len(angles) * len(methods)
-    t0 = time.monotonic()
+    prog = Progress(f"{PROG}: cases", total)
     rng = np.random.default_rng(a.seed)
     for name in names:
         sc = scenes.load_scene(name, a.size)
@@ -190,10 +189,7 @@ def main() -> int:
                 row.update({f"{k}_{key}": v for key in ("cold", "warm")
                             for k, v in derived(row, key).items()})
                 rows.append(row)
-                sys.stderr.write(f"\r{PROG}: {len(rows)}/{total} cases, "
-                                 f"{time.monotonic() - t0:.0f} s")
-                sys.stderr.flush()
-    sys.stderr.write("\n")
+                prog.update(len(rows))
     mism = sum(r[k]["mismatches"] for r in rows for k in ("cold", "warm"))
     sim_clocks = sum(r[k]["sim_clocks"] for r in rows for k in ("cold", "warm"))
     sim_wall = sum(r[k]["wall_seconds"] for r in rows for k in ("cold", "warm"))
