@@ -36,6 +36,15 @@ COVERAGE_DIR = ROOT / "build" / "coverage"
 COVERAGE_ARGS = ("--coverage-line", "--coverage-toggle")
 
 
+#: The C++ optimisation of the largest models (dm_pipeline, pidm_top: one model function of 12
+#: to 20 MB).  GCC takes minutes over such a function at -O1; at -O0 it compiles in about half
+#: -Og's time, but nothing is inlined, so every array index and wide-word access of the model is
+#: a call: a pidm_top frame then takes about 5 times the process time it takes at -Og (perf: 90 %
+#: of the simulation's process time in the model, 30 % of it in those accessors).  -Og inlines
+#: them and adds about 25 s of compile time to such a build.
+LARGE_MODEL_OPT = "-Og"
+
+
 def long_stimulus() -> bool:
     """True under ``make test-long`` (``TB_LONG=1``): the testbenches' longer stimulus."""
     return os.environ.get("TB_LONG") == "1"
@@ -122,8 +131,8 @@ def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, obj
         rtl_top: str | None = None, opt: str = "-O1") -> None:
     """Build ``top`` (with ``parameters``) and run the cocotb tests in ``test_module``.
 
-    ``opt`` is the C++ optimisation of the model: ``-O0`` suits a large design whose tests run
-    few clocks (its one model function then compiles in a fraction of the time).
+    ``opt`` is the C++ optimisation of the model: :data:`LARGE_MODEL_OPT` suits a large design
+    (its one model function compiles in a fraction of -O1's time).
 
     ``extra_sources`` are testbench files (e.g. a wrapper that is ``top``); ``rtl_top`` names the
     RTL module whose sources are needed when ``top`` is such a wrapper.

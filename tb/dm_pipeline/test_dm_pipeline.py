@@ -266,12 +266,12 @@ async def pipeline_reset_mid_frame(dut):
 
 
 def test_dm_pipeline():
-    # -O0: the whole pipeline is one 12 MB model function, which GCC takes about 110 s over at
-    # -O1 and 25 s at -O0; these tests run few clocks.
+    # runner.LARGE_MODEL_OPT: the whole pipeline is one 12 MB model function, which GCC takes
+    # about 110 s over at -O1.
     # OUT_DEPTH below SLOTS: the out FIFO's credit binds under pixel back-pressure (with
     # OUT_DEPTH >= SLOTS it never could, and admitting hits without it went unnoticed).
     runner.run("dm_pipeline", "test_dm_pipeline", HERE, parameters={"SLOTS": 32, "OUT_DEPTH": 16},
-               opt="-O0")
+               opt=runner.LARGE_MODEL_OPT)
 
 
 def test_dm_pipeline_two_rings():
@@ -282,5 +282,6 @@ def test_dm_pipeline_two_rings():
     (test_dm_pipeline runs every frame and the resets with one ring)."""
     runner.run("dm_pipeline", "test_dm_pipeline", HERE,
                parameters={"SLOTS": 32, "OUT_DEPTH": 16, "N_RINGS": 2, "H_SETS": 128},
-               opt="-O0", testcase=None if runner.long_stimulus() else "pipeline_bit_exact",
+               opt=runner.LARGE_MODEL_OPT,
+               testcase=None if runner.long_stimulus() else "pipeline_bit_exact",
                extra_env={"N_RINGS_TB": "2"})

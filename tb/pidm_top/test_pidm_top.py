@@ -643,10 +643,11 @@ async def pidm_top_no_builder(dut):
 
 
 def test_pidm_top() -> None:
-    runner.run("pidm_top", "test_pidm_top", HERE, opt="-O0")
+    runner.run("pidm_top", "test_pidm_top", HERE, opt=runner.LARGE_MODEL_OPT)
 
 
 @pytest.mark.skipif(not runner.long_stimulus(), reason="a second pidm_top build: TB_LONG=1")
 def test_pidm_top_no_builder() -> None:
-    runner.run("pidm_top", "test_pidm_top", HERE, parameters={"PYR_BUILD": 0}, opt="-O0",
+    runner.run("pidm_top", "test_pidm_top", HERE, parameters={"PYR_BUILD": 0},
+               opt=runner.LARGE_MODEL_OPT,
                extra_env={"PIDM_NO_BUILDER": "1"}, testcase="pidm_top_no_builder")
