@@ -157,7 +157,27 @@ module circ_queue #(
     end
   end
 
-  if (ASYNC_RD) begin : g_rd
+  if (ASYNC_RD && NPOP > 1 && DEPTH % NPOP == 0) begin : g_rd_banked
+    // Several pops, NPOP dividing DEPTH: entries head .. head + NPOP - 1 lie in distinct banks
+    // (e mod NPOP), so each bank reads its one entry among them (DEPTH / NPOP candidates) and
+    // the ports take the banks turned by the head's bank: the same words as
+    // mem_q[head + k] per port with narrower multiplexers.
+    localparam int unsigned NROW = DEPTH / NPOP;
+    logic [NPOP-1:0][WIDTH-1:0] bank_rd;
+    always_comb begin
+      int unsigned hb, hr, r;
+      hb = 32'(rp_q) % NPOP;
+      hr = 32'(rp_q) / NPOP;
+      for (int unsigned b = 0; b < NPOP; b++) begin
+        r = (b < hb) ? ((hr + 1) % NROW) : hr;
+        bank_rd[b] = '0;
+        for (int unsigned i = 0; i < NROW; i++) begin
+          if (r == i) bank_rd[b] = mem_q[i * NPOP + b];
+        end
+      end
+      for (int unsigned k = 0; k < NPOP; k++) rdata_o[k] = bank_rd[(hb + k) % NPOP];
+    end
+  end else if (ASYNC_RD) begin : g_rd
     for (genvar k = 0; k < NPOP; k++) begin : g_port
       assign rdata_o[k] = mem_q[ptr_add(rp_q, k)];
     end
