@@ -111,7 +111,8 @@ module circ_queue #(
     // divides DEPTH, entry e is only ever written by the offset j = e - wp_q (mod NPUSH), so
     // the data are first turned to the entries' banks (e mod NPUSH) and each entry has one
     // data source, only its enable looks at the offsets (the 16-entry, 4-lane AR queue of
-    // tex_cache: about a quarter of the LUT4s of the per-lane writes).
+    // tex_cache synthesised as a module of its own: ~290 LUT4 against ~930 for the per-lane
+    // writes; inside the flattened cache the difference is smaller).
     localparam bit BANKED = (DEPTH % NPUSH) == 0;
     logic [NPUSH-1:0]            off_v;  // offset j is written
     logic [NPUSH-1:0][WIDTH-1:0] off_d;  // ... with this data
