@@ -548,9 +548,9 @@ module tex_cache
   logic [NSUB-1:0] hd_pend, hd_bad;  // the head's slot per sub-cache: pending, bad (g_dir)
   // The pop decides from flip-flops only: hd_pend and hd_bad are registers loaded one clock
   // ahead with the state of the slots of the pass that is head in the next clock (g_dir reads
-  // it at the sets of the three candidates, hd_q, nx_q and cm_pass_q, with this clock's
-  // directory writes applied), so no LUT RAM read lies between the head register and the
-  // FIFO's pointers.  The next head: nx_q (a pop with two or more entries), cm_pass_q (a pop
+  // it at the sets of nx_q and cm_pass_q, with this clock's directory writes applied; for hd_q
+  // it applies the fill to the registers themselves), so no LUT RAM read lies between the head
+  // register and the FIFO's pointers.  The next head: nx_q (a pop with two or more entries), cm_pass_q (a pop
   // with one, or an empty FIFO), else hd_q.
   logic            hs_nx, hs_cm;     // the next head is nx_q, cm_pass_q (else hd_q)
 
@@ -670,7 +670,7 @@ module tex_cache
     logic [WAYS-1:0]   ag_mem   [SETS];
     logic [WAYS-1:0]   fg_mem   [SETS];
     logic [WAYS-1:0]   bad_mem  [SETS];
-    logic [WAYS-1:0]   fl_ag, fl_fg, fl_bad, hd_ag, hd_fg, hd_bd;
+    logic [WAYS-1:0]   fl_ag, fl_fg, fl_bad;
     logic [1:0]        sn_hd, sn_nx, sn_cm;  // {pending, bad} of the candidates' slots next
 
     assign take = cm_valid_q && cm_pass_q.used[c];  // (cm_valid_q is 0 in reset)
@@ -696,13 +696,14 @@ module tex_cache
     assign fl_ag       = ag_mem[w_set_q];
     assign fl_fg       = fg_mem[w_set_q];
     assign fl_bad      = bad_mem[w_set_q];
-    assign hd_ag       = ag_mem[hd_q.set[c]];
-    assign hd_fg       = fg_mem[hd_q.set[c]];
-    assign hd_bd       = bad_mem[hd_q.set[c]];
-    // the next head's slot (hd_pend, hd_bad: see "head"), read at the candidates' sets
-    assign sn_hd = slot_next(hd_ag, hd_fg, hd_bd, hd_q.set[c], hd_q.way[c], take && cm_alloc_q[c],
-                             cm_pass_q.set[c], cm_ag_q[c], fill, w_set_q, w_way_q,
-                             fl_ag[w_way_q], w_bad_q);
+    // the next head's slot (hd_pend, hd_bad: see "head").  The head held: its slot is
+    // referenced by its pass, so no allocation takes it and only the slot's own fill changes
+    // it (fg = ag: not pending; bad from the fill), so the registers are updated in place
+    // rather than read again at hd_q's set (three LUT RAM read ports fewer per sub-cache;
+    // tex_cache_assert's hd_state_ok checks them against the memories).  The other
+    // candidates are read at their sets.
+    assign sn_hd = (fill && w_set_q == hd_q.set[c] && w_way_q == hd_q.way[c])
+                   ? {1'b0, w_bad_q} : {hd_pend[c], hd_bad[c]};
     assign sn_nx = slot_next(ag_mem[nx_q.set[c]], fg_mem[nx_q.set[c]], bad_mem[nx_q.set[c]],
                              nx_q.set[c], nx_q.way[c], take && cm_alloc_q[c], cm_pass_q.set[c],
                              cm_ag_q[c], fill, w_set_q, w_way_q, fl_ag[w_way_q], w_bad_q);

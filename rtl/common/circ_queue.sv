@@ -94,17 +94,91 @@ module circ_queue #(
 
   (* ram_style = RAM_STYLE *) logic [WIDTH-1:0] mem_q [DEPTH];
 
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni && INIT_SEQ) begin
-      for (int i = 0; i < DEPTH; i++) mem_q[i] <= WIDTH'(i);
-    end else begin
+  if (NPUSH == 1) begin : g_wr_one
+    always_ff @(posedge clk_i) begin
+      if (!rst_ni && INIT_SEQ) begin
+        for (int i = 0; i < DEPTH; i++) mem_q[i] <= WIDTH'(i);
+      end else begin
+        if (wr_i[0]) mem_q[pos[0]] <= wdata_i[0];
+      end
+    end
+  end else begin : g_wr_multi
+    // Several push lanes.  The lanes' writes are gathered by their offset j from the tail first
+    // (lane k writes entry wp_q + j, j the lanes below it that push; of two lanes at one offset
+    // the higher wins, as in a loop over the lanes), then each entry takes the offset that
+    // lands on it (the tail's one-hot position says which): the same writes as
+    // mem_q[pos[k]] <= wdata_i[k] per lane without a pointer decode per lane.  When NPUSH
+    // divides DEPTH, entry e is only ever written by the offset j = e - wp_q (mod NPUSH), so
+    // the data are first turned to the entries' banks (e mod NPUSH) and each entry has one
+    // data source, only its enable looks at the offsets (the 16-entry, 4-lane AR queue of
+    // tex_cache synthesised as a module of its own: ~290 LUT4 against ~930 for the per-lane
+    // writes; inside the flattened cache the difference is smaller).
+    localparam bit BANKED = (DEPTH % NPUSH) == 0;
+    logic [NPUSH-1:0]            off_v;  // offset j is written
+    logic [NPUSH-1:0][WIDTH-1:0] off_d;  // ... with this data
+    logic [NPUSH-1:0][WIDTH-1:0] bank_d; // the data for the entries e with e mod NPUSH = b
+    logic [DEPTH-1:0]            at_wp;  // entry e is the tail
+    logic                        unused_pos;
+    assign unused_pos = ^pos;  // (pos: the single-lane write and PEEK only)
+    always_comb begin
+      logic [PUSH_W-1:0] n;
+      off_v = '0;
+      off_d = '0;
+      n     = '0;
       for (int k = 0; k < NPUSH; k++) begin
-        if (wr_i[k]) mem_q[pos[k]] <= wdata_i[k];
+        for (int j = 0; j <= k; j++) begin
+          if (wr_i[k] && 32'(n) == j) begin
+            off_v[j] = 1'b1;
+            off_d[j] = wdata_i[k];
+          end
+        end
+        if (push_i[k]) n = n + PUSH_W'(1);
+      end
+      for (int e = 0; e < DEPTH; e++) at_wp[e] = (32'(wp_q) == e);
+      bank_d = '0;
+      for (int b = 0; b < NPUSH; b++) begin
+        for (int j = 0; j < NPUSH; j++) begin
+          if ((32'(wp_q) + j) % NPUSH == b) bank_d[b] = off_d[j];
+        end
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (!rst_ni && INIT_SEQ) begin
+        for (int i = 0; i < DEPTH; i++) mem_q[i] <= WIDTH'(i);
+      end else begin
+        for (int e = 0; e < DEPTH; e++) begin
+          for (int j = 0; j < NPUSH; j++) begin
+            // entry e is offset j from the tail (j < NPUSH <= DEPTH: one j per entry)
+            if (off_v[j] && at_wp[(e + DEPTH - j) % DEPTH]) begin
+              mem_q[e] <= BANKED ? bank_d[e % NPUSH] : off_d[j];
+            end
+          end
+        end
       end
     end
   end
 
-  if (ASYNC_RD) begin : g_rd
+  if (ASYNC_RD && NPOP > 1 && DEPTH % NPOP == 0) begin : g_rd_banked
+    // Several pops, NPOP dividing DEPTH: entries head .. head + NPOP - 1 lie in distinct banks
+    // (e mod NPOP), so each bank reads its one entry among them (DEPTH / NPOP candidates) and
+    // the ports take the banks turned by the head's bank: the same words as
+    // mem_q[head + k] per port with narrower multiplexers.
+    localparam int unsigned NROW = DEPTH / NPOP;
+    logic [NPOP-1:0][WIDTH-1:0] bank_rd;
+    always_comb begin
+      int unsigned hb, hr, r;
+      hb = 32'(rp_q) % NPOP;
+      hr = 32'(rp_q) / NPOP;
+      for (int unsigned b = 0; b < NPOP; b++) begin
+        r = (b < hb) ? ((hr + 1) % NROW) : hr;
+        bank_rd[b] = '0;
+        for (int unsigned i = 0; i < NROW; i++) begin
+          if (r == i) bank_rd[b] = mem_q[i * NPOP + b];
+        end
+      end
+      for (int unsigned k = 0; k < NPOP; k++) rdata_o[k] = bank_rd[(hb + k) % NPOP];
+    end
+  end else if (ASYNC_RD) begin : g_rd
     for (genvar k = 0; k < NPOP; k++) begin : g_port
       assign rdata_o[k] = mem_q[ptr_add(rp_q, k)];
     end
