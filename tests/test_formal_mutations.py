@@ -75,8 +75,8 @@ MUTANTS = {
         "circ_queue:bmc_peek", "(?:ptr_model|peek_addr)"),
     "queue_lane_place": (
         "rtl/common/circ_queue.sv",
-        "pos[k] = ptr_add(wp_q, 32'(n_push));",
-        "pos[k] = ptr_add(wp_q, k);",
+        "if (wr_i[k] && 32'(n) == j) begin",
+        "if (wr_i[k] && k == j) begin",
         "circ_queue:bmc_multi", "(?:data_order|trk_in_mem)"),
     "mshr_free_dropped": (
         "rtl/cache/height_cache.sv",
