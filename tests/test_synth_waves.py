@@ -253,8 +253,8 @@ def test_system_top_record(tmp_path):
     report = {"blocks": {synth.SYSTEM_TOP: counts},
               "pnr": {synth.SYSTEM_TOP: {"fmax_mhz": 55.5, "out_of_context": True}},
               "settings": settings}
-    assert synth.system_top_record(report) == t
-    assert synth.system_top_record({"blocks": {}, "pnr": {}, "settings": settings}) is None
+    assert synth.system_top_records(report) == [t]
+    assert synth.system_top_records({"blocks": {}, "pnr": {}, "settings": settings}) == []
     out, results = tmp_path / "out", tmp_path / "synth-ecp5.json"
     out.mkdir()
     (out / "report.json").write_text(json.dumps(report))
@@ -262,6 +262,27 @@ def test_system_top_record(tmp_path):
     assert synth.record(out / "report.json", results) == [synth.SYSTEM_TOP]
     assert json.loads(results.read_text())["tops"] == [
         {"name": synth.TOP, "rings": 1, "fmax_mhz": 57.3}, t]
+
+
+def test_system_top_variant_record(tmp_path):
+    """A `--param` variant of the system top (e.g. without the pyramid builder) is recorded under
+    its own key with the parameters it overrides, beside the default build's entry."""
+    settings = {"seed": 1, "router": "auto", "device_name": "LFE5U-85F", "rtl": {"commit": "c0ffee1"}}
+    name = f"{synth.SYSTEM_TOP}_PYR_BUILD0"
+    counts = {"lut": 56000, "ff": 40000, "dsp": 44, "bram": 140, "params": {"PYR_BUILD": 0}}
+    report = {"blocks": {name: counts, "tex_cache": {"lut": 1, "ff": 1, "dsp": 0, "bram": 1}},
+              "pnr": {name: {"fmax_mhz": 60.5}, "tex_cache": {"fmax_mhz": 100.0}},
+              "settings": settings}
+    [t] = synth.system_top_records(report)
+    assert t["name"] == name and t["params"] == {"PYR_BUILD": 0} and t["out_of_context"] is True
+    assert t["lut"] == 56000 and t["fmax_mhz"] == 60.5
+    out, results = tmp_path / "out", tmp_path / "synth-ecp5.json"
+    out.mkdir()
+    (out / "report.json").write_text(json.dumps(report))
+    sys_t = {"name": synth.SYSTEM_TOP, "rings": 1, "fmax_mhz": 50.0}
+    results.write_text(json.dumps({"tops": [sys_t]}))
+    assert synth.record(out / "report.json", results) == [name]
+    assert json.loads(results.read_text())["tops"] == [sys_t, t]
 
 
 def test_committed_results_have_top_fields():

@@ -852,8 +852,9 @@ RESULTS = ROOT / "docs" / "results" / "synth-ecp5.json"
 #: The fields of a routed top's entry in report.json's `tops` and in RESULTS.
 TOP_FIELDS = ("name", "rings", "lut", "ff", "dsp", "bram", "fmax_mhz", "seed", "router", "device",
               "rtl_commit")
-#: Fields an entry carries only when they hold: `out_of_context` (true for the system top).
-TOP_OPTIONAL = ("out_of_context",)
+#: Fields an entry carries only when they hold: `out_of_context` (true for the system top),
+#: `params` (the parameters a `--param` variant overrides, e.g. {"PYR_BUILD": 0}).
+TOP_OPTIONAL = ("out_of_context", "params")
 
 
 def rtl_commit(commit: str, changes: list[str]) -> str:
@@ -863,30 +864,36 @@ def rtl_commit(commit: str, changes: list[str]) -> str:
 
 
 def top_record(name: str, counts: dict, fmax_mhz: float, settings: dict,
-               rings: int | None, ooc: bool = False) -> dict:
+               rings: int | None, ooc: bool = False, params: dict | None = None) -> dict:
     """A routed top's entry of report.json's `tops` (TOP_FIELDS): its ECP5 counts, the routed
     fmax, the run's seed, router and device, the RTL's commit, and how many traverse rings
     (traverse_loop instances) it has; `out_of_context: true` when it was routed out of context
-    (`ooc`: the system top)."""
+    (`ooc`: the system top); `params`, when given, the parameters a variant overrides."""
     r = {"name": name, "rings": rings, "lut": counts["lut"], "ff": counts["ff"],
          "dsp": counts["dsp"], "bram": counts["bram"], "fmax_mhz": fmax_mhz,
          "seed": settings["seed"], "router": resolved_router(settings["router"], ooc),
          "device": settings["device_name"], "rtl_commit": settings["rtl"]["commit"]}
     if ooc:
         r["out_of_context"] = True
+    if params:
+        r["params"] = dict(params)
     return r
 
 
-def system_top_record(report: dict) -> dict | None:
-    """The system top's `tops` entry from a report whose blocks include its out-of-context place
-    and route (`blocks` and `pnr` under SYSTEM_TOP); None when the report has none."""
-    b = report.get("blocks", {}).get(SYSTEM_TOP)
-    p = report.get("pnr", {}).get(SYSTEM_TOP)
+def system_top_records(report: dict) -> list[dict]:
+    """The system top's `tops` entries from a report whose blocks include its out-of-context place
+    and route (`blocks` and `pnr` under SYSTEM_TOP, or under a `--param` variant's key such as
+    pidm_top_PYR_BUILD0, recorded under that name with its `params`); [] when the report has none."""
     st = report.get("settings")
-    if not (isinstance(b, dict) and isinstance(p, dict) and isinstance(st, dict)
-            and p.get("fmax_mhz")):
-        return None
-    return top_record(SYSTEM_TOP, b, p["fmax_mhz"], st, 1, ooc=True)
+    out = []
+    for name, b in report.get("blocks", {}).items():
+        p = report.get("pnr", {}).get(name)
+        if not ((name == SYSTEM_TOP or name.startswith(SYSTEM_TOP + "_")) and isinstance(b, dict)
+                and isinstance(p, dict) and isinstance(st, dict) and p.get("fmax_mhz")):
+            continue
+        out.append(top_record(name, b, p["fmax_mhz"], st, 1, ooc=True,
+                              params=b.get("params") or None))
+    return out
 
 
 def merge_tops(old: list, new: list) -> list:
@@ -913,11 +920,9 @@ def record(report_path: Path, results: Path) -> list[str]:
         raise ValueError(f"cannot read {report_path}: {e}") from None
     tops = report.get("tops") if isinstance(report, dict) else None
     tops = list(tops) if isinstance(tops, list) else []
-    if isinstance(report, dict) and not any(isinstance(t, dict) and t.get("name") == SYSTEM_TOP
-                                            for t in tops):
-        sys_top = system_top_record(report)   # a report from before the system top joined `tops`
-        if sys_top is not None:
-            tops.append(sys_top)
+    if isinstance(report, dict):   # a report from before the system top joined `tops`
+        have = {t.get("name") for t in tops if isinstance(t, dict)}
+        tops += [t for t in system_top_records(report) if t["name"] not in have]
     if not tops:
         raise ValueError(f"{report_path} has no routed top (`tops`): nothing to record")
     for t in tops:
@@ -1157,10 +1162,11 @@ def main() -> int:
             p = flow.pnr(b, ooc=True)
             new["pnr"][b.name] = p
             e["fmax_mhz"] = p["fmax_mhz"]
-            if b.name == SYSTEM_TOP and p.get("fmax_mhz"):
+            if b.module == SYSTEM_TOP and p.get("fmax_mhz"):
                 with save_lock:
                     new.setdefault("tops", []).append(
-                        top_record(SYSTEM_TOP, e, p["fmax_mhz"], settings, 1, ooc=True))
+                        top_record(b.name, e, p["fmax_mhz"], settings, 1, ooc=True,
+                                   params=e["params"] or None))
         elif is_top and top_pnr:
             # the one-ring top's result is the report's own (top_pnr, fmax_mhz); the others' go
             # under top_pnr_<key>
