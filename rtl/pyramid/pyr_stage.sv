@@ -75,7 +75,9 @@ module pyr_stage #(
   function automatic logic [DATA_W/8-1:0] lane_sel(input logic [DATA_W-1:0] a,
                                                    input logic [DATA_W-1:0] b, input logic wide);
     logic [DATA_W/8-1:0] s;
+    /* verilator lint_off UNUSEDSIGNAL */  // only the borrows d[8] and d[17] are read
     logic [17:0]         d;
+    /* verilator lint_on UNUSEDSIGNAL */
     for (int t = 0; t < DATA_W / 16; t++) begin
       d = {1'b0, a[16*t+8 +: 8], !wide, a[16*t +: 8]} - {1'b0, b[16*t+8 +: 8], 1'b0, b[16*t +: 8]};
       s[2*t]   = wide ? d[17] : !d[8];
