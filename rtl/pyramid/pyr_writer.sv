@@ -150,8 +150,8 @@ module pyr_writer #(
   logic              m_next_live_q;          // the next row is below live_lim
   logic              m_seg_end_q;            // the burst ends the segment
   logic              m_zseg_q;
-  logic [WW:0]       m_lw_q, m_zw_q, m_rw_q, m_wpos_q;
-  logic [WW-1:0]     m_w0_q;
+  logic [WW:0]       m_lw_q, m_zw_q, m_rw_q;
+  logic [WW-1:0]     m_w0_q, m_wpos_q;   // the slot's w0, its next word (from w0)
   logic [RW:0]       m_live_lim_q;
   logic [RW-1:0]     m_side_mask_q;
   logic [WW:0]       m_wleft_q;
@@ -225,7 +225,7 @@ module pyr_writer #(
           m_lw_q      <= lw_q[sel_q];
           m_zw_q      <= zw_q[sel_q];
           m_rw_q      <= rw_q[sel_q];
-          m_wpos_q    <= (zseg_q[sel_q] ? rw_q[sel_q] : lw_q[sel_q]) - wleft_q[sel_q];
+          m_wpos_q    <= WW'((zseg_q[sel_q] ? rw_q[sel_q] : lw_q[sel_q]) - wleft_q[sel_q]);
           m_w0_q      <= w0_q[sel_q];
           m_live_lim_q <= live_lim_q[sel_q];
           m_side_mask_q <= side_mask_q[sel_q];
