@@ -12,9 +12,9 @@
 // Bursts: INCR, at most BURST beats, never across a 4 KiB boundary nor across a row, awid 0.  A
 // burst of queued words is started only when the queue holds all of its words, so the W channel
 // never waits for data; zero bursts need none.  Slots with a burst ready are served round robin.
-// One burst at a time: pick, then four clocks to its address and length (the slot's fields, the
-// row's offset, the sum, the length), then AW and the W beats together.  At most
-// 2^10 - 1 bursts wait for their B response.
+// One burst at a time: pick, then four clocks to its address and length (the slot's fields and its
+// next word, the row's and the word's offsets, the sum, the length), then AW and the W beats
+// together.  At most 2^10 - 1 bursts wait for their B response.
 // B: bready = 1; a bresp other than OKAY sets err_o (held until clr_i).  idle_o: no slot has a
 // row left, no burst is under way and every B has come back; empty_o: every queue is empty.
 // clr_i (one clock, between rectangles) empties every slot's rectangle; the queues keep their
