@@ -197,6 +197,25 @@ module pyr_build #(
   logic [WW:0]       l_lw, l_zw, l_rw;
   logic [2:0]        ph_q;
 
+  // Shared shifters and offset pick: the reader's values (j = 0) and the slot's come at
+  // different phases, so one shifter per source serves both (amounts picked by the phase).
+  logic [4:0]        sh_h, sh_y, sh_w, sh_x;      // shift amounts of hm1, y0/y1, wm1, x0/x1
+  logic [XY_W-1:0]   hs_h, hs_y0, hs_y1, hs_w, hs_x0, hs_x1;
+  logic [ADDR_W-1:0] off_pick;
+  always_comb begin
+    sh_h = (ph_q == 3'd1) ? s_q : k_q;
+    sh_y = (ph_q == 3'd1) ? s_q + 5'd1 : k_q;
+    sh_w = (ph_q == 3'd0) ? s_q : (ph_q == 3'd1) ? rs_c : lw_sh_q;
+    sh_x = (ph_q == 3'd1) ? rs1_c : lw_sh_q;
+    hs_h  = hm1 >> sh_h;
+    hs_y0 = y0_q >> sh_y;
+    hs_y1 = y1_q >> sh_y;
+    hs_w  = wm1 >> sh_w;
+    hs_x0 = x0_q >> sh_x;
+    hs_x1 = x1_q >> sh_x;
+    off_pick = off_q[(ph_q == 3'd0) ? s_q : k_q];
+  end
+
   always_ff @(posedge clk_i) begin
     if (state_q == C_SETUP) begin
       case (ph_q)
@@ -204,30 +223,32 @@ module pyr_build #(
           k_q   <= s_q + 5'(j_q) + 5'd1;
           rs_c  <= s_q + 5'(lgt);
           rs1_c <= s_q + 5'd1 + 5'(lgt);
+          if (j_q == '0) begin
+            r_off   <= off_pick;
+            ra_live <= LBW'(hs_w);
+          end
         end
         3'd1: begin
           side_lg_q <= n_q - k_q;
           lw_sh_q   <= k_q + 5'(lgt);
-          l_off     <= off_q[k_q];
+          l_off     <= off_pick;
           if (j_q == '0) begin
-            r_off      <= off_q[s_q];
             r_pitch_lg <= n_q - s_q + 5'(b16_q);
-            ra_hl      <= RW'(hm1 >> s_q);
-            ra_y0      <= RW'(y0_q >> (s_q + 5'd1));
-            ra_y1      <= RW'(y1_q >> (s_q + 5'd1));
-            ra_wl      <= WW'(wm1 >> rs_c);
-            ra_x0      <= WW'(x0_q >> rs1_c);
-            ra_x1      <= WW'(x1_q >> rs1_c);
-            ra_live    <= LBW'(wm1 >> s_q);
+            ra_hl      <= RW'(hs_h);
+            ra_y0      <= RW'(hs_y0);
+            ra_y1      <= RW'(hs_y1);
+            ra_wl      <= WW'(hs_w);
+            ra_x0      <= WW'(hs_x0);
+            ra_x1      <= WW'(hs_x1);
           end
         end
         3'd2: begin
-          la_hk       <= (RW+1)'(hm1 >> k_q);
-          la_y0       <= (RW+1)'(y0_q >> k_q);
-          la_y1       <= (RW+1)'(y1_q >> k_q);
-          la_wl       <= (WW+1)'(wm1 >> lw_sh_q);
-          la_x0       <= (WW+1)'(x0_q >> lw_sh_q);
-          la_x1       <= (WW+1)'(x1_q >> lw_sh_q);
+          la_hk       <= (RW+1)'(hs_h);
+          la_y0       <= (RW+1)'(hs_y0);
+          la_y1       <= (RW+1)'(hs_y1);
+          la_wl       <= (WW+1)'(hs_w);
+          la_x0       <= (WW+1)'(hs_x0);
+          la_x1       <= (WW+1)'(hs_x1);
           la_rw       <= (side_lg_q >= 5'(lgt)) ? (WW+1)'(1) << (side_lg_q - 5'(lgt)) : (WW+1)'(1);
           l_side      <= (RW+1)'(1) << side_lg_q;
           l_side_mask <= RW'(((RW+1)'(1) << side_lg_q) - (RW+1)'(1));

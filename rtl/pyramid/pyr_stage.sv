@@ -67,20 +67,23 @@ module pyr_stage #(
     return r;
   endfunction
 
-  // Lane-wise maximum of two words.
-  function automatic logic [DATA_W-1:0] lane_max(input logic [DATA_W-1:0] a,
-                                                 input logic [DATA_W-1:0] b, input logic wide);
-    logic [DATA_W-1:0] r;
-    if (wide) begin
-      for (int t = 0; t < DATA_W / 16; t++) begin
-        r[16*t +: 16] = (a[16*t +: 16] > b[16*t +: 16]) ? a[16*t +: 16] : b[16*t +: 16];
-      end
-    end else begin
-      for (int t = 0; t < DATA_W / 8; t++) begin
-        r[8*t +: 8] = (a[8*t +: 8] > b[8*t +: 8]) ? a[8*t +: 8] : b[8*t +: 8];
-      end
+  // Lane-wise maximum of two words, as byte selects: bit i set where byte i of the maximum is
+  // b's (b's lane greater; equal lanes are equal either way).  One carry chain per 16-bit lane
+  // serves both widths: d = {a_hi, m, a_lo} - {b_hi, 0, b_lo} with m = !wide.  d[8] is
+  // m ^ (a_lo < b_lo); with m = 1 no borrow crosses bit 8, so the top borrow d[17] is
+  // a_hi < b_hi, and with m = 0 it is the 16-bit a < b.
+  function automatic logic [DATA_W/8-1:0] lane_sel(input logic [DATA_W-1:0] a,
+                                                   input logic [DATA_W-1:0] b, input logic wide);
+    logic [DATA_W/8-1:0] s;
+    /* verilator lint_off UNUSEDSIGNAL */  // only the borrows d[8] and d[17] are read
+    logic [17:0]         d;
+    /* verilator lint_on UNUSEDSIGNAL */
+    for (int t = 0; t < DATA_W / 16; t++) begin
+      d = {1'b0, a[16*t+8 +: 8], !wide, a[16*t +: 8]} - {1'b0, b[16*t+8 +: 8], 1'b0, b[16*t +: 8]};
+      s[2*t]   = wide ? d[17] : !d[8];
+      s[2*t+1] = d[17];
     end
-    return r;
+    return s;
   endfunction
 
   logic              adv;          // the pipeline moves
@@ -98,6 +101,7 @@ module pyr_stage #(
   logic              out_v_q, out_eol_q, out_lrow_q;
   logic [DATA_W-1:0] out_word_q;
   logic [DATA_W-1:0] lb_rdata;
+  logic [DATA_W/8-1:0] vsel;       // the vertical maximum's byte selects (1: the line buffer's)
 
   assign adv        = !out_v_q || out_ready_i;
   assign in_ready_o = adv;
@@ -105,6 +109,7 @@ module pyr_stage #(
   assign completes  = wpar_q || in_eol_i;
   assign pm         = pair_max(in_data_i, b16_i);
   assign word_c     = wpar_q ? {pm, acc_q} : {{HW{1'b0}}, pm};
+  assign vsel       = lane_sel(p2_word_q, p2_buf_q, b16_i);
 
   cache_sdp_ram #(.DEPTH(LB_DEPTH), .WIDTH(DATA_W)) u_lb (
     .clk_i,
@@ -151,7 +156,9 @@ module pyr_stage #(
       p2_lb_q    <= p1_lb_q;
       p2_eol_q   <= p1_eol_q;
       p2_lrow_q  <= p1_lrow_q;
-      out_word_q <= p2_lb_q ? lane_max(p2_word_q, p2_buf_q, b16_i) : p2_word_q;
+      for (int i = 0; i < DATA_W / 8; i++) begin
+        out_word_q[8*i +: 8] <= (p2_lb_q && vsel[i]) ? p2_buf_q[8*i +: 8] : p2_word_q[8*i +: 8];
+      end
       out_eol_q  <= p2_eol_q;
       out_lrow_q <= p2_lrow_q;
     end

@@ -12,9 +12,9 @@
 // Bursts: INCR, at most BURST beats, never across a 4 KiB boundary nor across a row, awid 0.  A
 // burst of queued words is started only when the queue holds all of its words, so the W channel
 // never waits for data; zero bursts need none.  Slots with a burst ready are served round robin.
-// One burst at a time: pick, then four clocks to its address and length (the slot's fields, the
-// row's offset, the sum, the length), then AW and the W beats together.  At most
-// 2^10 - 1 bursts wait for their B response.
+// One burst at a time: pick, then four clocks to its address and length (the slot's fields and its
+// next word, the row's and the word's offsets, the sum, the length), then AW and the W beats
+// together.  At most 2^10 - 1 bursts wait for their B response.
 // B: bready = 1; a bresp other than OKAY sets err_o (held until clr_i).  idle_o: no slot has a
 // row left, no burst is under way and every B has come back; empty_o: every queue is empty.
 // clr_i (one clock, between rectangles) empties every slot's rectangle; the queues keep their
@@ -109,7 +109,8 @@ module pyr_writer #(
   logic [RW:0]       rows_left_q [NS];  // rows left, the current one included
   logic              zseg_q      [NS];  // in the zero words of the row
   logic [WW:0]       wleft_q     [NS];  // words left in the current segment
-  logic [WW:0]       wpos_q      [NS];  // next word, from w0
+  // The next word from w0 is not kept: it is (zseg ? rw : lw) - wleft (the live segment starts
+  // at 0, the zero segment ends at rw), worked out for the picked slot only.
 
   logic [NS-1:0][DATA_W-1:0] q_head;
   logic [NS-1:0]             q_pop;
@@ -149,7 +150,8 @@ module pyr_writer #(
   logic              m_next_live_q;          // the next row is below live_lim
   logic              m_seg_end_q;            // the burst ends the segment
   logic              m_zseg_q;
-  logic [WW:0]       m_lw_q, m_zw_q, m_rw_q, m_wpos_q;
+  logic [WW:0]       m_lw_q, m_zw_q, m_rw_q;
+  logic [WW-1:0]     m_w0_q, m_wpos_q;   // the slot's w0, its next word (from w0)
   logic [RW:0]       m_live_lim_q;
   logic [RW-1:0]     m_side_mask_q;
   logic [WW:0]       m_wleft_q;
@@ -223,10 +225,10 @@ module pyr_writer #(
           m_lw_q      <= lw_q[sel_q];
           m_zw_q      <= zw_q[sel_q];
           m_rw_q      <= rw_q[sel_q];
-          m_wpos_q    <= wpos_q[sel_q];
+          m_wpos_q    <= WW'((zseg_q[sel_q] ? rw_q[sel_q] : lw_q[sel_q]) - wleft_q[sel_q]);
+          m_w0_q      <= w0_q[sel_q];
           m_live_lim_q <= live_lim_q[sel_q];
           m_side_mask_q <= side_mask_q[sel_q];
-          m_woff_q    <= ADDR_W'(WW'(w0_q[sel_q]) + WW'(wpos_q[sel_q])) << LGB;
           m_wleft_q   <= wleft_q[sel_q];
           m_partial_q <= pitch_lg_q[sel_q] < 5'(LGB);
           m_mask_q    <= BB'((BB'(1) << (BB'(1) << pitch_lg_q[sel_q])) - BB'(1));
@@ -235,6 +237,7 @@ module pyr_writer #(
         end
         S_SHIFT: begin
           m_rowoff_q   <= ADDR_W'(m_row_q) << m_pitch_lg_q;
+          m_woff_q     <= ADDR_W'(WW'(m_w0_q) + WW'(m_wpos_q)) << LGB;
           m_next_row_q <= (m_row_q + RW'(1)) & m_side_mask_q;
           state_q      <= S_ADD;
         end
@@ -261,15 +264,12 @@ module pyr_writer #(
             state_q <= S_PICK;
             if (!m_seg_end_q) begin
               wleft_q[sel_q] <= m_wleft_q - (WW+1)'(len_q);
-              wpos_q[sel_q]  <= m_wpos_q + (WW+1)'(len_q);
             end else if (!m_zseg_q && m_zw_q != '0) begin
               zseg_q[sel_q]  <= 1'b1;
               wleft_q[sel_q] <= m_zw_q;
-              wpos_q[sel_q]  <= m_wpos_q + (WW+1)'(len_q);
             end else begin
               row_q[sel_q]       <= m_next_row_q;
               rows_left_q[sel_q] <= rows_left_q[sel_q] - (RW+1)'(1);
-              wpos_q[sel_q]      <= '0;
               if (m_next_live_q) begin
                 zseg_q[sel_q]  <= 1'b0;
                 wleft_q[sel_q] <= m_lw_q;
@@ -289,7 +289,6 @@ module pyr_writer #(
       if (ld_i) begin
         rows_left_q[ld_slot_i] <= ld_nrows_i;
         row_q[ld_slot_i]       <= ld_row0_i;
-        wpos_q[ld_slot_i]      <= '0;
         if ((RW+1)'(ld_row0_i) < ld_live_lim_i) begin
           zseg_q[ld_slot_i]  <= 1'b0;
           wleft_q[ld_slot_i] <= ld_lw_i;
