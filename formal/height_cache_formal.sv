@@ -15,8 +15,10 @@
 //   ar_line     the AR carries its MSHR's line address;
 // and the induction invariants: inv_queue (the AR queue holds exactly the pend MSHRs' indices),
 // inv_slave (the slave's reads are the shadow's, beats and errors counted alike), inv_dir (no
-// busy MSHR's line is valid in the directory; the two copies of the valid bits agree once swept) and
-// inv_fill (a fill's valid bits are its set's).
+// busy MSHR's line is valid in the directory), inv_rw (a busy MSHR's copy of its set's
+// replacement word, valid bits and round-robin pointer, is the set's word in the RAM, and so is
+// stage 2's copy for a lookup that may allocate) and inv_fill (a fill's valid bits and pointer
+// are its set's).
 module height_cache_formal #(
   parameter int unsigned ADDR_W     = 5,   // lines: 3 bits (2 sets, tag 2 bits)
   parameter int unsigned DATA_W     = 16,
@@ -156,26 +158,26 @@ module height_cache_formal #(
     end
   end
 
-  logic dir_ok, fill_ok;
-  logic [WAYS-1:0] vb_fill;
+  logic dir_ok, rw_ok, fill_ok;
   always_comb begin
     dir_ok = 1'b1;
-    for (int s = 0; s < SETS; s++) begin
-      if ((!u_dut.sweep || s < int'(u_dut.sweep_set))   // (swept: the reset left them as they were)
-          && u_dut.u_valid_lk.mem_q[s][0] != u_dut.u_valid_fill.mem_q[s][0][WAYS-1:0])
-        dir_ok = 1'b0;
-    end
+    rw_ok  = 1'b1;
     for (int i = 0; i < MSHRS; i++) begin
       if (u_dut.mshr_state_q[i] != MSHR_FREE) begin
         for (int w = 0; w < WAYS; w++) begin
-          if (u_dut.u_valid_lk.mem_q[u_dut.mshr_la_q[i][SET_W-1:0]][0][w]
+          if (u_dut.u_valid.mem_q[u_dut.mshr_la_q[i][SET_W-1:0]][0][w]
               && tags[w][u_dut.mshr_la_q[i][SET_W-1:0]] == u_dut.mshr_la_q[i][LA_W-1:SET_W])
             dir_ok = 1'b0;
         end
+        if (u_dut.mshr_rw_q[i] != u_dut.u_valid.mem_q[u_dut.mshr_la_q[i][SET_W-1:0]][0])
+          rw_ok = 1'b0;
       end
     end
-    vb_fill = u_dut.u_valid_fill.mem_q[u_dut.fill_set][0][WAYS-1:0];
-    fill_ok = !u_dut.fill_q || u_dut.fill_vbits == vb_fill;
+    if (u_dut.s2_valid_q && !u_dut.s2_conflict_q
+        && u_dut.s2_rw_q != u_dut.u_valid.mem_q[u_dut.s2_set][0])
+      rw_ok = 1'b0;
+    fill_ok = !u_dut.fill_q
+              || {u_dut.fill_ptr, u_dut.fill_vbits} == u_dut.u_valid.mem_q[u_dut.fill_set][0];
   end
 
   // the last beat of a line and its error, a clock later
@@ -196,6 +198,7 @@ module height_cache_formal #(
       inv_queue: assert (q_exact);
       inv_slave: assert (s_exact);
       inv_dir:   assert (dir_ok);
+      inv_rw:    assert (rw_ok);
       inv_fill:  assert (fill_ok);
     end
   end

@@ -8,11 +8,12 @@
 //                    read) and the set's valid bits; note whether a line fill writes that set in
 //                    this clock.
 //   stage 1 (c + 1): copy the RAMs' read registers into fabric registers (the texel's 16-bit word
-//                    of each way, its tags and valid bits); note whether a fill writes the
-//                    lookup's line in this clock.  (The block RAMs' 4.3 ns clock-to-out was in series with the
-//                    compare: 81 MHz.)
-//   stage 2 (c + 2): compare tags, select the texel, search the MSHRs; allocate an MSHR on a miss;
-//                    register the answer.
+//                    of each way, its tags and valid bits, and the set's replacement word for a
+//                    fill, corrected for a fill of the set in this clock); note whether a fill
+//                    writes the lookup's line in this clock.  (The block RAMs' 4.3 ns
+//                    clock-to-out was in series with the compare: 81 MHz.)
+//   stage 2 (c + 2): compare tags, select the texel, search the MSHRs; allocate an MSHR on a miss
+//                    (it keeps the set's replacement word for its fill); register the answer.
 //   c + 3:           rs_valid_o, rs_hit_o, rs_err_o, rs_data_o.
 // rs_data_o on a hit: lk_wide_i = 0: {8'h00, byte at lk_addr_i}; lk_wide_i = 1: the little-endian
 // 16-bit code at lk_addr_i (lk_addr_i[0] is ignored; the client keeps 16-bit texels aligned).
@@ -21,15 +22,18 @@
 // Organisation: SETS sets x WAYS ways of LINE_BYTES-byte lines; set index = addr[OFF_W +: SET_W],
 // tag = the bits above.  Per way two simple dual-port RAMs (cache_sdp_ram): the tags, and the
 // lines, written a whole line at a time and read one 16-bit word (the one holding the texel) at a
-// time; the valid bits are a RAM too (a word of WAYS bits per set, two copies for two read
-// ports), and so is the replacement state, beside the valid bits in the fill's copy.
+// time; the valid bits are a RAM too (per set a word of WAYS valid bits and the set's
+// round-robin pointer), read by the lookup's stage 0 like the tags.
 // Replacement: an invalid way first (lowest index), else round robin per set (FIFO order: the
 // way after the one last filled in the set), so only fills write the replacement state and it
 // needs no port for hits.  (A tree pseudo-LRU touched by hits needs two writers a clock, a hit's
 // and a fill's, and three reads: as flip-flops, 512 sets x 3 bits, it was about 5,700 of the
-// pipeline's 91,000 LUT4s.)  Timing only, results unchanged: a fill's set state is read in the
-// last-beat clock, with the pending fill forwarded (see "fill").  The lookup path is plain data
-// flow, nowhere wider than 64 bits: a lookup reads one 16-bit word per way, never a whole line.
+// pipeline's 91,000 LUT4s.)  Timing only, results unchanged: the miss that allocates an MSHR
+// keeps its set's replacement word (valid bits and pointer, as its lookup read them) in the MSHR,
+// and every fill of that set until the MSHR's own fill rewrites the copy, so the fill chooses
+// its victim from registers, not from a RAM read in the clock before (see "fill").  The lookup
+// path is plain data flow, nowhere wider than 64 bits: a lookup reads one 16-bit word per way,
+// never a whole line.
 //
 // Misses (stage 2, rs_hit_o = 0):
 //   - the line is already held by an MSHR (being read, or errored): merged, no new read;
@@ -151,8 +155,8 @@ module height_cache
 
   // ---------------------------------------------------------------- state
   // Cache directory (flops) and RAM read ports.
-  // The valid bits are RAM (u_valid_lk / u_valid_fill: one copy per read port), cleared by a
-  // sweep after reset (see "valid bits"); u_valid_fill also holds each set's round-robin pointer.
+  // The valid bits and each set's round-robin pointer are RAM (u_valid), cleared by a sweep after
+  // reset (see "valid bits").
   logic [TAG_W-1:0]  tag_rd  [WAYS];  // the tag of each way at the looked-up set
   logic [15:0]       word_rd [WAYS];  // the 16-bit word holding the texel, of each way
 
@@ -160,6 +164,7 @@ module height_cache
   mshr_state_e                  mshr_state_q [MSHRS];
   logic [LA_W-1:0]              mshr_la_q    [MSHRS];  // line address
   logic [ERRC_W-1:0]            mshr_errc_q  [MSHRS];  // MSHR_ERR: 0 = no lookup erred yet
+  logic [WAY_W+WAYS-1:0]        mshr_rw_q    [MSHRS];  // its set's {pointer, valid bits} now
   (* ram_style = "block" *)  // (a 16x4 LUT RAM costs 6 LUT4s; EBRs are plentiful here)
   logic [BEATS-1:0][DATA_W-1:0] mshr_buf_q   [MSHRS];  // the line being read
 
@@ -172,11 +177,6 @@ module height_cache
   logic [LA_W-1:0]   fill_la_q;   // its line address, registered with the last beat
   logic [MIDX_W-1:0] r_idx;       // the MSHR an R beat belongs to (R channel, below)
 
-  // The fill of the previous clock (its RAM write may not show in a read of its own clock).
-  logic              pu_fill_q;
-  logic [SET_W-1:0]  pu_fset_q;
-  logic [WAY_W-1:0]  pu_fway_q;
-
   // The valid bits' reset sweep (see "valid bits"; u_axi).
   logic              sweep;            // the sweep is running
   logic [SET_W-1:0]  sweep_set;        // the set it clears in this clock
@@ -184,12 +184,14 @@ module height_cache
   // Pipeline.
   logic              s1_valid_q, s1_wide_q, s1_conflict_q;
   logic [ADDR_W-1:0] s1_addr_q;
-  logic [WAYS-1:0]   s1_vbits;     // the RAM's read register
+  logic [WAYS-1:0]   s1_vbits;     // the RAM's read register: the set's valid bits
+  logic [WAY_W-1:0]  s1_ptr;       // ... and its round-robin pointer
   logic              s2_valid_q, s2_wide_q, s2_conflict_q;
   /* verilator lint_off UNUSEDSIGNAL */  // the word within the line was chosen in stage 0
   logic [ADDR_W-1:0] s2_addr_q;
   /* verilator lint_on UNUSEDSIGNAL */
   logic [WAYS-1:0]   s2_vbits_q;
+  logic [WAY_W+WAYS-1:0] s2_rw_q;  // the set's replacement word, with the fills up to stage 1
   logic [TAG_W-1:0]  s2_tag_q  [WAYS];  // stage 1's copies of the RAMs' reads
   logic [15:0]       s2_word_q [WAYS];
   logic              rs_valid_q, rs_hit_q, rs_err_q;
@@ -204,9 +206,7 @@ module height_cache
   logic [WAY_W-1:0]  fill_way;
   logic [WAYS-1:0]   fill_vbits;
   logic [WAY_W-1:0]  fill_ptr;     // the set's round-robin pointer
-  logic [SET_W-1:0]  pre_set;      // last-beat clock: the set of the line being completed
-  logic [WAYS-1:0]   pre_vbits;    // fill clock: that set's valid bits, read a clock earlier
-  logic [WAY_W-1:0]  pre_ptr;      // ... and its round-robin pointer
+  logic [WAY_W+WAYS-1:0] fill_rw;  // the word the fill writes: {pointer, valid bits} after it
 
   // The way after w in round-robin order.
   function automatic logic [WAY_W-1:0] rr_next(input logic [WAY_W-1:0] w);
@@ -215,22 +215,21 @@ module height_cache
 
   // The fill clock starts from registers.  The line address is loaded in the clock of the last
   // beat (the MSHR's address cannot change from then until this fill frees it), and the set's
-  // valid bits and round-robin pointer are read from RAM in that clock; the fill clock corrects
-  // them for the fill of the last-beat clock itself (pu_*_q), whose write that read may not have
-  // seen.  So the victim is chosen from exactly the state the fills before it left.
-  assign pre_set    = mshr_la_q[r_idx][SET_W-1:0];
+  // valid bits and round-robin pointer are the MSHR's copy (mshr_rw_q: the set's word as its
+  // allocating lookup read it, rewritten by every fill of the set since), so the victim is chosen
+  // from exactly the state the fills before it left, with no RAM output on the way to the RAMs'
+  // write enables.
   assign fill_la    = fill_la_q;
   assign fill_set   = fill_la[SET_W-1:0];
   assign fill_tag   = fill_la[LA_W-1:SET_W];
-  assign fill_vbits = pre_vbits | ((pu_fill_q && pu_fset_q == fill_set)
-                                     ? WAYS'(1) << pu_fway_q : '0);
-  assign fill_ptr   = (pu_fill_q && pu_fset_q == fill_set) ? rr_next(pu_fway_q) : pre_ptr;
+  assign {fill_ptr, fill_vbits} = mshr_rw_q[fill_idx_q];
   always_comb begin
     fill_way = fill_ptr;
     for (int w = WAYS - 1; w >= 0; w--) begin
       if (!fill_vbits[w]) fill_way = WAY_W'(w);  // an invalid way first, the lowest
     end
   end
+  assign fill_rw = {rr_next(fill_way), fill_vbits | (WAYS'(1) << fill_way)};
 
   // ---------------------------------------------------------------- stage 0: RAM read
   logic [SET_W-1:0] lk_set;
@@ -275,7 +274,10 @@ module height_cache
 
   // ---------------------------------------------------------------- stage 1: RAM reads copied
   // The RAMs' read registers into fabric registers beside the compare; a fill of the lookup's own
-  // line in this clock makes it a conflict too (see "Fill").
+  // line in this clock makes it a conflict too (see "Fill").  The set's replacement word for a
+  // fill (s2_rw_q) takes a fill of the set in this clock (its write is after the stage-0 read);
+  // one in the stage-0 clock made the lookup a conflict (it allocates nothing).  The valid bits
+  // of the compare (s2_vbits_q) stay as read, consistent with the tags.
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       s2_valid_q <= 1'b0;
@@ -287,6 +289,8 @@ module height_cache
       s2_wide_q     <= s1_wide_q;
       s2_conflict_q <= s1_conflict_q || (fill_q && (fill_la == s1_addr_q[ADDR_W-1:OFF_W]));
       s2_vbits_q    <= s1_vbits;
+      s2_rw_q       <= (fill_q && fill_set == s1_addr_q[OFF_W +: SET_W]) ? fill_rw
+                     : {s1_ptr, s1_vbits};
       for (int w = 0; w < WAYS; w++) begin
         s2_tag_q[w]  <= tag_rd[w];
         s2_word_q[w] <= word_rd[w];
@@ -369,48 +373,28 @@ module height_cache
   assign rs_err_o   = rs_err_q;
   assign rs_data_o  = rs_data_q;
 
-  // ---------------------------------------------------------------- fill, registered
-  // The fill of this clock, seen by the next clock's victim choice (its RAM write may not show in
-  // the read of its own clock; see "fill").
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      pu_fill_q <= 1'b0;
-    end else begin
-      pu_fill_q <= fill_q;
-    end
-    pu_fset_q <= fill_set;
-    pu_fway_q <= fill_way;
-  end
-
   // ---------------------------------------------------------------- valid bits
-  // Per set a word of WAYS valid bits in two RAM copies with a synchronous read each: u_valid_lk
-  // read by the lookup's stage 0 (like the tags), u_valid_fill by the last-beat clock of a line
-  // (pre_vbits), whose word also holds the set's round-robin pointer (pre_ptr).  A fill writes
-  // the whole word of its set: fill_vbits (the set's bits as they are before this fill) with the
+  // Per set a word of WAYS valid bits and the set's round-robin pointer in one RAM (u_valid) with
+  // a synchronous read, read by the lookup's stage 0 (like the tags).  A fill writes the whole
+  // word of its set (fill_rw): fill_vbits (the set's bits as they are before this fill) with the
   // filled way set, and the pointer to the way after the filled one.  Reset starts a sweep: for
   // the SETS clocks after rst_ni rises, sweep is 1 and one set a clock is written to 0 (valid
-  // bits and pointer); a lookup presented in
-  // those clocks answers a miss and allocates nothing (like a lookup that meets a fill of its
-  // set), and with no MSHR allocated no fill can happen.  A read of the word written in the same
-  // clock is either discarded (a lookup meeting a fill: a miss) or corrected (pre_vbits, by
-  // the pending fill in fill_vbits and fill_ptr), so the RAM may return the old or the new word.
+  // bits and pointer); a lookup presented in those clocks answers a miss and allocates nothing
+  // (like a lookup that meets a fill of its set), and with no MSHR allocated no fill can happen.
+  // A read of the word written in the same clock is discarded (a lookup meeting a fill or the
+  // sweep: a miss, no allocation), so the RAM may return the old or the new word.
   logic             vb_we;
   logic [SET_W-1:0] vb_waddr;
-  logic [WAYS-1:0]  vb_wdata;
-  logic [WAY_W-1:0] rr_wdata;
+  logic [WAY_W+WAYS-1:0] vb_wdata;
 
   // (no fill during the sweep: every MSHR is free from the reset on until the sweep ends)
   assign vb_we    = rst_ni && (sweep || fill_q);
   assign vb_waddr = sweep ? sweep_set : fill_set;
-  assign vb_wdata = sweep ? '0 : (fill_vbits | (WAYS'(1) << fill_way));
-  assign rr_wdata = sweep ? '0 : rr_next(fill_way);
+  assign vb_wdata = sweep ? '0 : fill_rw;
 
-  cache_sdp_ram #(.DEPTH(SETS), .WIDTH(WAYS)) u_valid_lk (
+  cache_sdp_ram #(.DEPTH(SETS), .WIDTH(WAY_W + WAYS)) u_valid (
     .clk_i, .we_i(vb_we), .waddr_i(vb_waddr), .wdata_i(vb_wdata),
-    .re_i(lk_valid_i), .raddr_i(lk_set), .rlane_i('0), .rdata_o(s1_vbits));
-  cache_sdp_ram #(.DEPTH(SETS), .WIDTH(WAY_W + WAYS)) u_valid_fill (
-    .clk_i, .we_i(vb_we), .waddr_i(vb_waddr), .wdata_i({rr_wdata, vb_wdata}),
-    .re_i(1'b1), .raddr_i(pre_set), .rlane_i('0), .rdata_o({pre_ptr, pre_vbits}));
+    .re_i(lk_valid_i), .raddr_i(lk_set), .rlane_i('0), .rdata_o({s1_ptr, s1_vbits}));
 
   // ---------------------------------------------------------------- AXI read (AR queue, R channel)
   // The lowest free MSHR's index is written into the AR queue whenever an MSHR is free (then the
@@ -484,6 +468,21 @@ module height_cache
 
   always_ff @(posedge clk_i) begin
     fill_la_q <= mshr_la_q[r_idx];
+  end
+
+  // Each MSHR's copy of its set's replacement word: loaded with the line address (from the
+  // lookup's stage-1 copy, or the word of a fill of the set in this clock), then rewritten by
+  // every fill of the set (a free MSHR's copy is read by nothing).
+  logic [SET_W-1:0] s2_set;
+  assign s2_set = s2_la[SET_W-1:0];
+  always_ff @(posedge clk_i) begin
+    for (int i = 0; i < MSHRS; i++) begin
+      if (la_we && alloc_idx == MIDX_W'(i)) begin
+        mshr_rw_q[i] <= (fill_q && fill_set == s2_set) ? fill_rw : s2_rw_q;
+      end else if (fill_q && mshr_la_q[i][SET_W-1:0] == fill_set) begin
+        mshr_rw_q[i] <= fill_rw;
+      end
+    end
   end
 
   always_ff @(posedge clk_i) begin
