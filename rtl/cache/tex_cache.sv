@@ -53,12 +53,10 @@
 // ones; odd widths of a few texels are the worst).
 // Each sub-cache: SETS sets x WAYS ways of lines; set = la[1 +: S] ^ la[1 + S +: S] (S = log2 SETS,
 // an XOR fold, so that rows of power-of-two pitch spread over the sets), tag = la >> (1 + S).
-// The live bits (allocated since the reset) are flops; a slot's tag and its reference-taken
-// count (inc) are one word of block RAM, one memory per sub-cache and way, read a clock ahead
-// (see "Directory" at the state); the reference-released counts (dec, per sub-cache and way),
-// the pseudo-LRU bits and the generation and error bits that give each slot's valid, pending
-// and error state (per sub-cache) are LUT RAM; each memory is written from one place; the lines
-// are in block RAM
+// The live bits (allocated since the reset) are flops; the tags and the reference counts are in
+// LUT RAM, one memory per sub-cache and way, the pseudo-LRU bits and the generation and error
+// bits that give each slot's valid, pending and error state one memory per sub-cache, each
+// written from one place (see "Directory" at the state); the lines are in block RAM
 // (cache_sdp_ram), per sub-cache one RAM per DATA_W lane of a window and one for the overlap
 // words, SETS * WAYS * NWIN deep (address {set, way, window}; see "data RAMs" in tex_cache_data).
 //
@@ -82,9 +80,7 @@
 //             one has moved.
 //   clock 2   lookup, read stage: the next pass in the queue reads the directory at its sets in
 //             the four sub-caches (tags, reference counts, pseudo-LRU and state bits) and
-//             compares each way's tag with its own (the tags and inc counts from block RAM,
-//             addressed in clock 1 with the pass the read stage takes next unless the decide
-//             stage replays; tex_cache_lookup forwards the writes that read misses).
+//             compares each way's tag with its own.
 //   clock 3   lookup, decide stage: hit or miss per sub-cache; a miss picks a victim way and an
 //             MSHR.  All or nothing: the pass cannot go while the FIFO is full, while an MSHR is
 //             missing for one of its misses, or while every way of a missed set is referenced;
@@ -135,8 +131,8 @@
 // output, the MSHRs and the AR queue and the statistics; requests not yet answered are dropped;
 // req_ready_o and m_axi_arvalid are 0.  Then a sweep clears the live bits, one set per clock
 // (so no slot is valid, pending or in error): req_ready_o stays 0 for SETS more clocks.  The
-// tags, reference counters, pseudo-LRU, generation and error bits (block and LUT RAM) keep
-// whatever they hold, which the live bits make harmless (see "Directory" at the state): the cache behaves as
+// tags, reference counters, pseudo-LRU, generation and error bits (LUT RAM) keep whatever they
+// hold, which the live bits make harmless (see "Directory" at the state): the cache behaves as
 // if they had been cleared.
 // Reads issued before the reset still return (rready stays 1) and are ignored: the arid's
 // EPOCH_W = ID_W - log2(MSHRS) epoch bits advance at each reset.  Requirement: a read returns before
@@ -308,8 +304,7 @@ module tex_cache
   endfunction
 
   // ---------------------------------------------------------------- state
-  // Directory, in RAM (g_dir below: the tags and inc counts in block RAM, the rest in LUT RAM),
-  // each memory written from one place:
+  // Directory, in LUT RAM (g_dir below), each memory written from one place:
   //  - the live bits (per sub-cache, a word per set with a bit per way): a slot has been
   //    allocated since the reset.  Written by the commit (an allocation sets its slot's bit) and
   //    cleared after a reset by a sweep, one set per clock (SETS clocks, while req_ready_o is 0);
@@ -323,8 +318,7 @@ module tex_cache
   //    live slot is valid or has the error bit, never both.  An allocation takes a slot that is not
   //    pending (it is unreferenced), and a fill comes only for a pending one (stale beats from
   //    before a reset are dropped), so ag and fg never differ by more than the one allocation;
-  //  - the tags (per sub-cache and way, in one block-RAM word with the slot's inc count), which
-  //    count only with the valid bit;
+  //  - the tags (per sub-cache and way), which count only with the valid bit;
   //  - the reference count rc = inc - dec (modulo 2^RC_W) of a slot: the passes in the FIFO that
   //    read it.  inc counts at the commit (per sub-cache and way), dec at the head (likewise).  An
   //    allocation writes inc = dec + 1 (its own reference), so the pair is exact from the slot's
@@ -337,11 +331,7 @@ module tex_cache
   //    way has been allocated, and touched, since the reset; a touch writes every node on the
   //    way's path, so every node of the tree has been written since the reset.
   // (The state bits were flops written by both the commit and the fill, 3 x NSUB x SETS x WAYS
-  // of them read through wide multiplexers; in LUT RAM each memory has one writer.  The tags
-  // and inc counts were LUT RAM read at the read stage's set register; block RAM's synchronous
-  // read takes that register's next value, which waits on the decide stage's replay, so it is
-  // addressed with the choice without a replay and a replayed pass's words come from the
-  // lookup's registers: see tex_cache_lookup.)
+  // of them read through wide multiplexers; in LUT RAM each memory has one writer.)
   logic              swp;          // the live bits are being cleared (after a reset; u_axi)
   logic [SET_W-1:0]  swp_set;      // the set cleared in this clock
 
@@ -402,9 +392,6 @@ module tex_cache
   // (b_valid, lk_*, e_*) take them.
   logic                       a_issue;     // the read stage has a pass
   logic [NSUB-1:0][SET_W-1:0] a_set;       // its sets (registered: the directory's read address)
-  logic [NSUB-1:0][SET_W-1:0] a_set_rd;    // a_set of the next clock unless a replay (the
-                                           // block RAM's read address)
-  logic                       a_replay;    // the read stage's pass was dropped in the clock before
   logic [NSUB-1:0][TAGB-1:0]  a_tag;       // its tags
   logic                       b_valid;     // the decide stage holds a pass
   logic [NSUB-1:0]            lk_v;        // the decide stage's pass, as the lookup uses it
@@ -423,8 +410,7 @@ module tex_cache
   ) u_front (
     .clk_i, .rst_ni, .swp_i(swp),
     .req_valid_i, .req_ready_o, .req_addr_i,
-    .a_issue_o(a_issue), .a_set_o(a_set), .a_tag_o(a_tag), .a_set_rd_o(a_set_rd),
-    .a_replay_o(a_replay),
+    .a_issue_o(a_issue), .a_set_o(a_set), .a_tag_o(a_tag),
     .b_valid_o(b_valid), .lk_v_o(lk_v), .lk_la_o(lk_la), .lk_set_o(lk_set), .lk_tag_o(lk_tag),
     .lk_win_o(lk_win), .e_sel_o(e_sel), .e_psub_o(e_psub), .e_toff_o(e_toff),
     .e_last_o(e_last), .e_fire_i(e_fire));
@@ -434,8 +420,7 @@ module tex_cache
   logic [NSUB-1:0][WAY_W-1:0] lk_way;     // the hit way or the victim
   logic [NSUB-1:0][MIDX_W-1:0] lk_mshr;   // MSHR of a miss
   logic                       mshr_short; // not enough free MSHRs for the pass's misses
-  // the directory read at the read stage's set (g_dir): the tags and inc counts from block RAM
-  // (read at a_set_rd a clock before), the rest from LUT RAM
+  // the directory's LUT RAM read at the read stage's set (g_dir)
   logic [NSUB-1:0][WAYS-1:0][TAGB-1:0] set_tag;
   logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] set_inc, set_dec;
   logic [NSUB-1:0][PLRU_W-1:0]         set_plru;
@@ -467,7 +452,7 @@ module tex_cache
     .WAYS(WAYS), .SET_W(SET_W), .TAGB(TAGB), .RC_W(RC_W), .MIDX_W(MIDX_W)
   ) u_lookup (
     .clk_i,
-    .a_set_i(a_set), .a_tag_i(a_tag), .a_replay_i(a_replay),
+    .a_set_i(a_set), .a_tag_i(a_tag),
     .set_tag_i(set_tag), .set_inc_i(set_inc), .set_dec_i(set_dec), .set_plru_i(set_plru),
     .set_live_i(set_live), .set_ag_i(set_ag), .set_fg_i(set_fg), .set_bad_i(set_bad),
     .b_valid_i(b_valid), .lk_v_i(lk_v), .lk_set_i(lk_set), .lk_tag_i(lk_tag),
@@ -672,9 +657,9 @@ module tex_cache
     .rsp_valid_o, .rsp_ready_i, .rsp_texel_o, .rsp_err_o, .rsp_tag_o);
 
   // ---------------------------------------------------------------- directory updates
-  // (See "Directory" at the state.)  Per sub-cache: the commit touches the looked-up set's
-  // pseudo-LRU bits and takes a reference to the hit or victim way (writing its tag and inc; an
-  // allocation also writes the set's ag bits); the head releases the reference of each slot its
+  // The LUT RAM part (see "Directory" at the state).  Per sub-cache: the commit touches the
+  // looked-up set's pseudo-LRU bits and takes a reference to the hit or victim way (an allocation
+  // also writes the tag and the set's ag bits); the head releases the reference of each slot its
   // pass reads; a line's last beat writes its set's fg and bad bits (fg = ag: not pending).
   for (genvar c = 0; c < NSUB; c++) begin : g_dir
     logic              take;             // the committing pass reads sub-cache c
@@ -738,31 +723,24 @@ module tex_cache
 `endif
 
     for (genvar w = 0; w < WAYS; w++) begin : g_way
-      // The tag and the inc count of a slot, one block-RAM word: the commit writes both (a hit
-      // writes its own tag again, which the slot holds already), read with a synchronous port
-      // at the read stage's next sets (a_set_rd; tex_cache_lookup forwards what that read
-      // misses).  no_rw_check: a read of the word written in the same clock is not used (the
-      // lookup takes the written word from its copy of the commit register).
-      (* ram_style = "block", no_rw_check *) logic [TAGB+RC_W-1:0] ti_mem [SETS];
-      logic [TAGB+RC_W-1:0] ti_rd_q;
-      logic [RC_W-1:0]      dec_mem [SETS];
+      logic [TAGB-1:0] tag_mem [SETS];
+      logic [RC_W-1:0] inc_mem [SETS];
+      logic [RC_W-1:0] dec_mem [SETS];
 
       always_ff @(posedge clk_i) begin
         if (take && cm_pass_q.way[c] == WAY_W'(w)) begin
-          ti_mem[cm_pass_q.set[c]] <= {cm_tag_q[c], cm_inc_q[c]};
+          if (cm_alloc_q[c]) tag_mem[cm_pass_q.set[c]] <= cm_tag_q[c];
+          inc_mem[cm_pass_q.set[c]] <= cm_inc_q[c];
         end
-        ti_rd_q <= ti_mem[a_set_rd[c]];
         if (give && hd_q.way[c] == WAY_W'(w)) dec_mem[hd_q.set[c]] <= hd_q.rc[c];
       end
-      assign set_tag[c][w] = ti_rd_q[RC_W +: TAGB];
-      assign set_inc[c][w] = ti_rd_q[RC_W-1:0];
+      assign set_tag[c][w] = tag_mem[a_set[c]];
+      assign set_inc[c][w] = inc_mem[a_set[c]];
       assign set_dec[c][w] = dec_mem[a_set[c]];
 
 `ifndef SYNTHESIS  // the memories' copies for tex_cache_assert (see vw_live)
-      for (genvar s = 0; s < SETS; s++) begin : g_vw
-        assign vw_tag[c][w][s] = ti_mem[s][RC_W +: TAGB];
-        assign vw_inc[c][w][s] = ti_mem[s][RC_W-1:0];
-      end
+      assign vw_tag[c][w] = tag_mem;
+      assign vw_inc[c][w] = inc_mem;
       assign vw_dec[c][w] = dec_mem;
 `endif
     end

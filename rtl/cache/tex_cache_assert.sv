@@ -52,7 +52,6 @@ module tex_cache_assert #(
   input logic [3:0]                         sl_sel,
   input logic [NSUB-1:0]                    sl_v,
   input logic [NSUB-1:0][LA_W-1:0]          sl_la,
-  input logic [NSUB-1:0][SET_W-1:0]         sl_set,      // ... and sets
   input logic [3:0][LA_W-1:0]               e_la,
   input logic [3:0][1:0]                    e_sub,
   input logic [2:0]                         pq_wp_q,
@@ -61,9 +60,6 @@ module tex_cache_assert #(
   input logic                               a_issue,
   input logic [NSUB-1:0][SET_W-1:0]         a_set_q,
   input logic [NSUB-1:0][SET_W-1:0]         a_pass_set,   // the read stage's pass's sets
-  input logic [NSUB-1:0][TAGB-1:0]          a_tag,        // ... and tags
-  input logic [NSUB-1:0][WAYS-1:0]          a_rhit,       // ... the block RAM's words at its
-  input logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] a_rinc,      // sets as the lookup takes them
   input logic                               b_valid_q,
   input logic                               b_is_oldest,  // the decide stage's pass equals
                                                           // the pass queue's oldest entry
@@ -178,32 +174,6 @@ module tex_cache_assert #(
   logic [NSUB-1:0]  lk_live, hd_live;    // the committing pass's / the head's slot is live
   logic [NSUB-1:0][RC_W-1:0] dir_dec_hd;  // the head's slot's dec
   logic             hd_state_ok;          // hd_pend, hd_bad equal the head's slots' state bits
-
-  // the selected pass's sets against its lines' (pass_sets)
-  logic     lp_pset_ok;
-  always_comb begin
-    lp_pset_ok = 1'b1;
-    for (int c = 0; c < NSUB; c++) begin
-      if (sl_set[c] != (sl_v[c] ? spec_set(sl_la[c]) : SET_W'(0))) lp_pset_ok = 1'b0;
-    end
-  end
-
-  // the read stage's block-RAM words against the directory (read_words)
-  logic     lp_rw_ok;
-  int       lp_rw_at [2];
-  always_comb begin
-    lp_rw_ok = 1'b1;
-    lp_rw_at = '{0, 0};
-    for (int c = 0; c < NSUB; c++) begin
-      for (int w = 0; w < WAYS; w++) begin
-        if (lp_rw_ok && (a_rinc[c][w] != dir_inc[c][a_set_q[c]][w]
-                         || a_rhit[c][w] != (dir_tag[c][a_set_q[c]][w] == a_tag[c]))) begin
-          lp_rw_ok = 1'b0;
-          lp_rw_at = '{c, w};
-        end
-      end
-    end
-  end
 
   always_comb begin
     for (int c = 0; c < NSUB; c++) begin
@@ -472,18 +442,8 @@ module tex_cache_assert #(
         else $error("tex_cache: pass queue pointers inconsistent");
       decide_is_oldest: assert (!b_valid_q || b_is_oldest)
         else $error("tex_cache: the decide stage's pass is not the queue's oldest");
-      // The pass's sets as the selection writes them (picked from the texels' sets) are
-      // those of its lines.
-      pass_sets: assert (!p_load || lp_pset_ok)
-        else $error("tex_cache: the selected pass's set differs from its line's");
       read_set: assert (!a_issue || a_set_q == a_pass_set)
         else $error("tex_cache: the read stage's set register differs from its pass");
-      // The tags and inc counts the read stage takes from block RAM (read a clock before, with
-      // the commit of that clock forwarded, or after a replay from the decide stage's copy)
-      // are the directory's words at its sets now.
-      read_words: assert (!a_issue || lp_rw_ok)
-        else $error("tex_cache: sub-cache %0d way %0d read stage's tag or count is stale",
-                    lp_rw_at[0], lp_rw_at[1]);
       out_no_overflow: assert (!out_push || out_cnt_q < 3'(OUT_DEPTH) || out_pop)
         else $error("tex_cache: output buffer overflow");
       out_no_underflow: assert (!out_pop || out_cnt_q != '0)
@@ -658,10 +618,9 @@ bind tex_cache tex_cache_assert #(
   .*,
   // (the request side and the pass queue: u_front; the decide stage: u_lookup)
   .p_load(u_front.p_load), .s0_todo_q(u_front.s0_todo_q), .sl_sel(u_front.sl_sel),
-  .sl_v(u_front.sl_v), .sl_la(u_front.sl_la), .sl_set(u_front.sl_set), .e_la(u_front.e_la), .e_sub(u_front.e_sub),
+  .sl_v(u_front.sl_v), .sl_la(u_front.sl_la), .e_la(u_front.e_la), .e_sub(u_front.e_sub),
   .pq_wp_q(u_front.pq_wp_q), .pq_ip_q(u_front.pq_ip_q), .pq_rp_q(u_front.pq_rp_q),
   .a_set_q(a_set), .a_pass_set(u_front.a_pass.set), .b_valid_q(b_valid),
-  .a_rhit(u_lookup.a_rhit), .a_rinc(u_lookup.a_rinc),
   .b_is_oldest(u_front.b_pass_q == u_front.pq_q[u_front.pq_rp_q[1:0]]),
   .f_vld(u_lookup.f_vld), .f_pnd(u_lookup.f_pnd), .fw_idle(u_lookup.fw_idle),
   .out_push(u_data.out_push), .out_pop(u_data.out_pop), .out_cnt_q(u_data.out_cnt),

@@ -34,11 +34,6 @@ module tex_cache_front #(
   output logic                            a_issue_o,
   output logic [3:0][SET_W-1:0]           a_set_o,
   output logic [3:0][TAGB-1:0]            a_tag_o,
-  // a_set_o of the next clock unless the decide stage replays in this one (the directory's
-  // block-RAM read address), and whether the read stage's pass is one the decide stage dropped
-  // in the clock before (a replay: then its sets are not the ones a_set_rd_o gave)
-  output logic [3:0][SET_W-1:0]           a_set_rd_o,
-  output logic                            a_replay_o,
   // the lookup's decide stage: its pass (if b_valid_o)
   output logic                            b_valid_o,
   output logic [3:0]                      lk_v_o,       // sub-caches the pass reads
@@ -99,7 +94,6 @@ module tex_cache_front #(
   logic [3:0]             s0_todo_q;   // texels not yet sent in a pass
   logic [3:0]             s0_row_q;    // row bit per texel
   logic [3:0][3:0]        s0_join_q;   // [u][t], u < t: texel t may share texel u's read (below)
-  logic [3:0][SET_W-1:0]  s0_set_q;    // set of each texel's line (set_of, at the input)
 
   // ---------------------------------------------------------------- row bits (at the input)
   // Row-bit position j: among the address bits j = WB + 2 .. ADDR_W - 1 (from the window's
@@ -181,7 +175,6 @@ module tex_cache_front #(
   logic [NSUB-1:0]        sl_v;     // sub-caches the pass reads
   logic [NSUB-1:0][LA_W-1:0]  sl_la;
   logic [NSUB-1:0][WIN_W-1:0] sl_win;
-  logic [NSUB-1:0][SET_W-1:0] sl_set;  // = set_of(sl_la) (0 for a sub-cache the pass skips)
   logic                   sl_last;  // the request's last pass
 
   always_comb begin
@@ -215,15 +208,6 @@ module tex_cache_front #(
       end
     end
     sl_last = (s0_todo_q & ~sl_sel) == '0;
-    // A sub-cache's line in the pass is that of its lowest texel still to do (its leader: no
-    // texel before it in the sub-cache is selected), so its set is picked from the texels' sets
-    // computed at the input, from registers and past the greedy selection: the sets are the
-    // read address of the directory's block RAM when the read stage takes the pass in the next
-    // clock.
-    sl_set = '0;
-    for (int t = 3; t >= 0; t--) begin
-      if (s0_valid_q && s0_todo_q[t]) sl_set[e_sub[t]] = s0_set_q[t];
-    end
   end
 
   // ---------------------------------------------------------------- pass queue
@@ -269,30 +253,24 @@ module tex_cache_front #(
 
   // The read stage's sets (the directory's read addresses) come from a register of their own,
   // a_set_q = a_pass.set while a_issue_o, loaded with the entry the read stage takes next: three
-  // candidates from registers (the oldest entry for a replay; else the one after pq_ip_q, or
-  // pq_ip_q again, set_rd; an entry written in this clock from pq_d), of which the decision picks
-  // one.  The directory's block RAM (tags and reference counts, tex_cache's g_dir) is read at
-  // a_set_rd_o = set_rd, the choice without the replay, so its address does not wait for the
-  // decision; after a replay the lookup takes the dropped pass's words from its own registers
-  // (a_replay_o).  In set_rd the pointers choose between pq_d and the queue first, so the
-  // selected pass's sets (sl_set) come last.
-  logic [NSUB-1:0][SET_W-1:0] a_set_q, set_rp, set_rd;
-  logic                       a_replay_q;
+  // candidates from registers (the oldest entry for a replay, the one after pq_ip_q, or pq_ip_q
+  // again; an entry written in this clock from pq_d), of which the decision picks one.
+  logic [NSUB-1:0][SET_W-1:0] a_set_q, set_rp, set_next, set_hold;
   always_comb begin
     logic [2:0] ip1;
     ip1      = pq_ip_q + 3'd1;
     set_rp   = pq_q[pq_rp_q[1:0]].set;
-    set_rd   = (a_issue_o ? (ip1 == pq_wp_q) : (pq_ip_q == pq_wp_q)) ? pq_d.set
-               : (a_issue_o ? pq_q[ip1[1:0]].set : pq_q[pq_ip_q[1:0]].set);
+    set_next = (ip1 == pq_wp_q) ? pq_d.set : pq_q[ip1[1:0]].set;
+    set_hold = (pq_ip_q == pq_wp_q) ? pq_d.set : pq_q[pq_ip_q[1:0]].set;
   end
   always_ff @(posedge clk_i) begin
-    a_set_q <= replay ? set_rp : set_rd;
+    a_set_q <= replay ? set_rp : (a_issue_o ? set_next : set_hold);
   end
 
   always_comb begin
     pq_d.v    = sl_v;
     for (int c = 0; c < NSUB; c++) begin
-      pq_d.set[c] = sl_set[c];
+      pq_d.set[c] = set_of(sl_la[c]);
       pq_d.tag[c] = sl_la[c][LA_W-1 -: TAGB];
     end
     pq_d.win  = sl_win;
@@ -308,14 +286,12 @@ module tex_cache_front #(
       pq_ip_q   <= '0;
       pq_rp_q   <= '0;
       b_valid_q <= 1'b0;
-      a_replay_q <= 1'b0;
     end else begin
       if (p_load) pq_wp_q <= pq_wp_q + 3'd1;
       if (e_fire_i) pq_rp_q <= pq_rp_q + 3'd1;
       if (replay)       pq_ip_q <= pq_rp_q;  // (pq_rp_q does not move: no e_fire_i)
       else if (a_issue_o) pq_ip_q <= pq_ip_q + 3'd1;
       b_valid_q <= a_issue_o && !replay;
-      a_replay_q <= replay;
     end
     if (p_load) pq_q[pq_wp_q[1:0]] <= pq_d;
     b_pass_q <= a_pass;
@@ -363,14 +339,11 @@ module tex_cache_front #(
       s0_addr_q <= req_addr_i;
       s0_row_q  <= in_row;
       s0_join_q <= in_join;
-      for (int t = 0; t < 4; t++) s0_set_q[t] <= set_of(req_addr_i[t][ADDR_W-1:OFF_W]);
     end
   end
 
 
-  assign a_set_o    = a_set_q;
-  assign a_set_rd_o = set_rd;
-  assign a_replay_o = a_replay_q;
+  assign a_set_o   = a_set_q;
   assign b_valid_o = b_valid_q;
 
   // the texel address bits 1:0 are 0

@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // tex_cache_lookup: the texture cache's two-clock directory lookup (tex_cache.sv, "Pipeline"
 // clocks 2 and 3), per sub-cache: the read stage compares the directory's words at the pass's
-// sets (set_*_i, read at a_set_i; the tags and reference-taken counts from block RAM, see
-// below) with the pass's tags, with the commit register's writes (cm_*_i, not yet done)
-// forwarded; the decide stage, from registers, forwards the commit
+// sets (set_*_i, read at a_set_i) with the pass's tags, with the commit register's writes
+// (cm_*_i, not yet done) forwarded; the decide stage, from registers, forwards the commit
 // register once more and decides hit or miss, the hit way or the victim (an unreferenced
 // invalid way first, else tree pseudo-LRU among the unreferenced ways), and the MSHRs of the
 // misses (the k-th miss of the pass takes free_idx_i[k]).  lk_blocked_o: a miss finds every way
@@ -23,11 +22,7 @@ module tex_cache_lookup #(
   // the read stage's pass: its sets (the directory's read address) and tags
   input  logic [3:0][SET_W-1:0]                a_set_i,
   input  logic [3:0][TAGB-1:0]                 a_tag_i,
-  // the read stage's pass is one the decide stage dropped in the clock before (a replay)
-  input  logic                                 a_replay_i,
-  // the directory at a_set_i: the tags and inc counts from tex_cache's block RAM, read at the
-  // clock's start (so without the write of the commit register of the clock before, and
-  // meaningless after a replay), the rest from its LUT RAM
+  // the directory at a_set_i (tex_cache's LUT RAM)
   input  logic [3:0][WAYS-1:0][TAGB-1:0]       set_tag_i,
   input  logic [3:0][WAYS-1:0][RC_W-1:0]       set_inc_i,
   input  logic [3:0][WAYS-1:0][RC_W-1:0]       set_dec_i,
@@ -112,47 +107,16 @@ module tex_cache_lookup #(
   // it would answer the same) rather than reading it again.
   logic [NSUB-1:0][WAYS-1:0]           a_vld, a_err, a_pnd, a_hit, a_idle;
   logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] a_inc;
-  // the block RAM's words as the directory holds them now (before this clock's commit): each
-  // way's tag compared with the pass's, its inc count (tex_cache_assert's read_words)
-  logic [NSUB-1:0][WAYS-1:0]           a_rhit;
-  logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] a_rinc;
   logic [NSUB-1:0][PLRU_W-1:0]         a_plru;
   logic [NSUB-1:0][WAYS-1:0]           a_ag, a_live;
   logic [NSUB-1:0]                     a_seteq, a_tageq;
 
-  // The block RAM's words (set_tag_i, set_inc_i) are read at the address the read stage's sets
-  // had a clock earlier (tex_cache_front's a_set_rd_o), so they miss two writes: the commit
-  // register's of this clock (forwarded as for every directory word) and that of the clock
-  // before, which the RAM takes in the clock edge it reads at (its word is then undefined: the
-  // RAM need not order the two).  The latter is kept here (cm1_*_q, the RAM's write port one
-  // clock late) and forwarded for the way it wrote: a commit writes the tag of the hit or
-  // victim way with its inc count (on a hit the same tag again).  After a replay the RAM was
-  // read at another pass's sets: the dropped pass's words, as its decide stage saw them with
-  // the commit of its clock applied (r_*_q, below), stand in for them.
-  logic [NSUB-1:0]                     cm1_take_q;
-  logic [NSUB-1:0][SET_W-1:0]          cm1_set_q;
-  logic [NSUB-1:0][WAY_W-1:0]          cm1_way_q;
-  logic [NSUB-1:0][TAGB-1:0]           cm1_tag_q;
-  logic [NSUB-1:0][RC_W-1:0]           cm1_inc_q;
-  logic [NSUB-1:0][WAYS-1:0]           r_hit_q;  // the replayed pass: tag equal, per way
-  logic [NSUB-1:0][WAYS-1:0][RC_W-1:0] r_inc_q;  // ... inc count, per way
-
-  always_ff @(posedge clk_i) begin
-    for (int c = 0; c < NSUB; c++) cm1_take_q[c] <= cm_valid_i && cm_used_i[c];
-    cm1_set_q <= cm_set_i;
-    cm1_way_q <= cm_way_i;
-    cm1_tag_q <= cm_tag_i;
-    cm1_inc_q <= cm_inc_i;
-  end
-
   always_comb begin
-    logic                fw, fw_alloc, fw1, live, done_bad, cm_hit, cm1_hit;
+    logic                fw, fw_alloc, live, done_bad, cm_hit;
     for (int c = 0; c < NSUB; c++) begin
       fw        = cm_valid_i && cm_used_i[c] && cm_set_i[c] == a_set_i[c];
-      // (the forwarded tags compared once per sub-cache, not multiplexed into every way's
-      // compare)
+      // (the forwarded tag compared once per sub-cache, not multiplexed into every way's compare)
       cm_hit    = cm_tag_i[c] == a_tag_i[c];
-      cm1_hit   = cm1_tag_q[c] == a_tag_i[c];
       a_plru[c] = fw ? cm_plru_i[c] : set_plru_i[c];
       a_ag[c]   = (fw && cm_alloc_i[c]) ? cm_ag_i[c] : set_ag_i[c];
       a_live[c] = (fw && cm_alloc_i[c]) ? cm_live_i[c] : set_live_i[c];
@@ -164,12 +128,8 @@ module tex_cache_lookup #(
         a_pnd[c][w]  = fw_alloc || (live && set_ag_i[c][w] != set_fg_i[c][w]);
         a_err[c][w]  = !fw_alloc && live && done_bad;
         // (a hit when valid too: in the decide stage)
-        fw1          = cm1_take_q[c] && cm1_set_q[c] == a_set_i[c] && cm1_way_q[c] == WAY_W'(w);
-        a_rhit[c][w] = a_replay_i ? r_hit_q[c][w]
-                       : (fw1 ? cm1_hit : set_tag_i[c][w] == a_tag_i[c]);
-        a_rinc[c][w] = a_replay_i ? r_inc_q[c][w] : (fw1 ? cm1_inc_q[c] : set_inc_i[c][w]);
-        a_hit[c][w]  = fw_alloc ? cm_hit : a_rhit[c][w];
-        a_inc[c][w]  = (fw && cm_way_i[c] == WAY_W'(w)) ? cm_inc_i[c] : a_rinc[c][w];
+        a_hit[c][w]  = fw_alloc ? cm_hit : set_tag_i[c][w] == a_tag_i[c];
+        a_inc[c][w]  = (fw && cm_way_i[c] == WAY_W'(w)) ? cm_inc_i[c] : set_inc_i[c][w];
         a_idle[c][w] = a_inc[c][w] == set_dec_i[c][w];
       end
       a_seteq[c] = b_valid_i && lk_v_i[c] && lk_set_i[c] == a_set_i[c];
@@ -204,7 +164,7 @@ module tex_cache_lookup #(
   // The directory at the looked-up set as the decision must see it (f_*): a pass in the decide
   // stage was read while the pass now in the commit register was deciding, so that one's writes
   // are forwarded here (the sets and tags compared in the read stage).
-  logic [NSUB-1:0][WAYS-1:0]           f_vld, f_err, f_pnd, f_hit, f_idle, r_hit_d;
+  logic [NSUB-1:0][WAYS-1:0]           f_vld, f_err, f_pnd, f_hit, f_idle;
 
   always_comb begin
     logic fw, fw_way, fw_alloc;
@@ -223,20 +183,11 @@ module tex_cache_lookup #(
         f_err[c][w]  = !fw_alloc && b_err_q[c][w];
         f_hit[c][w]  = fw_alloc ? b_tageq_q[c] : b_vld_q[c][w] && b_hit_q[c][w];
         f_inc_o[c][w]  = fw_way ? cm_inc_i[c] : b_inc_q[c][w];
-        // (for a replay of this pass: its tag compare and inc count after this clock's commit)
-        r_hit_d[c][w]  = fw_alloc ? b_tageq_q[c] : b_hit_q[c][w];
         // (the committing pass's slot is referenced by it: never idle; tex_cache_assert checks
         // that its count says so, fw_idle)
         f_idle[c][w] = !fw_way && b_idle_q[c][w];
       end
     end
-  end
-
-  // the words a replay of the decide stage's pass reads (registered every clock; used in the
-  // read stage after a replay only)
-  always_ff @(posedge clk_i) begin
-    r_hit_q <= r_hit_d;
-    r_inc_q <= f_inc_o;
   end
 
   logic [NSUB-1:0][WAYS-1:0] way_hit, way_free;
