@@ -389,7 +389,6 @@ module shade_unit
   f24_t src [NT];
   /* verilator lint_off UNUSEDSIGNAL */  // the taps no operation reads (removed by synthesis)
   f24_t [TD:0] tp [NT];
-  f24_t [TD:1] tp_q [NT];
   /* verilator lint_on UNUSEDSIGNAL */
   // the colour's lane 0: C_x in S0, C_z (waited a clock) in S1
   assign src[T_DU]     = in_du;
@@ -489,26 +488,33 @@ module shade_unit
     localparam logic [2*GW-1:0] GAP = tap_gap(t);
     localparam int unsigned LO = int'(GAP[2*GW-1:GW]);  // the line's input tap
     localparam int unsigned HI = int'(GAP[GW-1:0]);     // its output tap
-    assign tp[t][0] = src[t];
+    // tv, q_q: this source's taps and registers as plain vectors (one whole-word write of tp[t]:
+    // no array of the sources is read or written element by element)
+    /* verilator lint_off UNUSEDSIGNAL */  // the registers inside the line (removed)
+    f24_t [TD:0] tv;
+    f24_t [TD:1] q_q;
+    /* verilator lint_on UNUSEDSIGNAL */
+    assign tv[0] = src[t];
     if (HI > LO) begin : g_line
       f24_t line_q;
       pipe_delay #(.W(24), .N(HI - LO), .RAM_MIN(DELAY_RAM_MIN)) u_line (
-        .clk_i, .rst_ni, .en_i, .d_i(tp[t][LO]), .q_o(line_q));
+        .clk_i, .rst_ni, .en_i, .d_i(tv[LO]), .q_o(line_q));
       for (genvar j = 1; j <= TD; j++) begin : g_j
         if (j == HI) begin : g_out
-          assign tp[t][j] = line_q;
+          assign tv[j] = line_q;
         end else if (j > LO && j < HI) begin : g_in
-          assign tp[t][j] = '0;  // inside the line: not read
+          assign tv[j] = '0;  // inside the line: not read
         end else begin : g_reg
-          assign tp[t][j] = tp_q[t][j];
+          assign tv[j] = q_q[j];
         end
       end
     end else begin : g_regs
-      assign tp[t][TD:1] = tp_q[t];
+      assign tv[TD:1] = q_q;
     end
     always_ff @(posedge clk_i) begin
-      if (en_i) tp_q[t] <= tp[t][TD-1:0];
+      if (en_i) q_q <= tv[TD-1:0];
     end
+    assign tp[t] = tv;
   end
 
   logic [7:0]      g_q;             // CS: G (its floor held a clock)
