@@ -100,9 +100,10 @@
 //
 // Delay lines: a source's taps are registers, but for its longest wait between two taps that
 // are read (LO to HI, tap_gap): that wait is one pipe_delay of HI - LO enabled clocks, a RAM
-// circular buffer (LUT RAM or EBR, as Yosys maps it) when HI - LO >= DELAY_RAM_MIN: the colour
-// lanes C_x / C_z and C_y from S0 to the products C a (65 and 67 clocks at (3, 2)), the ray's
-// du, dv, and the results that wait 11 to 20 clocks for their last reader.  A RAM line advances
+// circular buffer (LUT RAM or EBR, as Yosys maps it) when HI - LO >= DELAY_RAM_MIN: by default
+// (32) the colour lanes C_x / C_z and C_y from S0 to the products C a (65 and 67 clocks at
+// (3, 2)); from 8 on also the ray's du, dv, and the results that wait 11 to 20 clocks for their
+// last reader.  A RAM line advances
 // only while en_i is 1 (its read register holds its word through a stall), so the taps, the
 // pixels and the latency are the registers' (DELAY_RAM_MIN = 0 builds registers only).
 //
@@ -133,9 +134,11 @@ module shade_unit
   parameter int unsigned ADD_LAT = pipe_pkg::F24_ADD_LAT,  // every f24_add's LAT (2 .. 4); the
                                        // schedule and SHADE_LAT follow (shade_pkg::shade_lat)
   parameter int unsigned MUL_LAT = pipe_pkg::F24_MUL_LAT,  // every f24_mul's LAT (1 .. 3)
-  parameter int unsigned DELAY_RAM_MIN = 8  // a value's wait of this many enabled clocks or more
+  parameter int unsigned DELAY_RAM_MIN = 32 // a value's wait of this many enabled clocks or more
                                        // between two of its taps is a RAM line (pipe_delay;
-                                       // 0: registers only, the same results and latency)
+                                       // 32: the colour lanes only, in EBR; 8: the waits of
+                                       // 11-20 clocks too, in LUT RAM, fewer FF for more LUT4;
+                                       // 0: registers only; the same results and latency)
 ) (
   input  logic             clk_i,
   input  logic             rst_ni,   // synchronous, active low: clears the valid bits
