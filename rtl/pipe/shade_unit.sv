@@ -98,6 +98,15 @@
 // that waited 3 clocks shows its result from core CS directly, the others from res_q (loaded in
 // CS); valid and tag delayed S0 -> S(SHADE_LAT) (pipe_valid_tag).
 //
+// Delay lines: a source's taps are registers, but for its longest wait between two taps that
+// are read (LO to HI, tap_gap): that wait is one pipe_delay of HI - LO enabled clocks, a RAM
+// circular buffer (LUT RAM or EBR, as Yosys maps it) when HI - LO >= DELAY_RAM_MIN: by default
+// (32) the colour lanes C_x / C_z and C_y from S0 to the products C a (65 and 67 clocks at
+// (3, 2)); from 8 on also the ray's du, dv, and the results that wait 11 to 20 clocks for their
+// last reader.  A RAM line advances
+// only while en_i is 1 (its read register holds its word through a stall), so the taps, the
+// pixels and the latency are the registers' (DELAY_RAM_MIN = 0 builds registers only).
+//
 // Float units: 16 f24_mul (11 shared: u_dvnc and u_ny2h with four operations, u_hkd, u_nunh1,
 // u_hunh1 and u_k with three, 5 with two; the five of the s^16 chain unshared), 6 f24_add (all
 // shared: u_nc, u_nua, u_nv, u_nxh and u_hd with four, u_kh with three: the 23 additions fill
@@ -124,7 +133,12 @@ module shade_unit
                                        // unchanged from tag_i to tag_o alongside the pixel
   parameter int unsigned ADD_LAT = pipe_pkg::F24_ADD_LAT,  // every f24_add's LAT (2 .. 4); the
                                        // schedule and SHADE_LAT follow (shade_pkg::shade_lat)
-  parameter int unsigned MUL_LAT = pipe_pkg::F24_MUL_LAT   // every f24_mul's LAT (1 .. 3)
+  parameter int unsigned MUL_LAT = pipe_pkg::F24_MUL_LAT,  // every f24_mul's LAT (1 .. 3)
+  parameter int unsigned DELAY_RAM_MIN = 32 // a value's wait of this many enabled clocks or more
+                                       // between two of its taps is a RAM line (pipe_delay;
+                                       // 32: the colour lanes only, in EBR; 8: the waits of
+                                       // 11-20 clocks too, in LUT RAM, fewer FF for more LUT4;
+                                       // 0: registers only; the same results and latency)
 ) (
   input  logic             clk_i,
   input  logic             rst_ni,   // synchronous, active low: clears the valid bits
@@ -367,7 +381,8 @@ module shade_unit
   // ---- taps: every value a later operation reads, delayed from the stage it is made in ------
   // tp[src][j] is source src delayed j enabled clocks: a value made in stage b (src's output in
   // Sb) is tp[src][k - b] in stage k.  A select of stage k reads tp[src][k - b]; only the taps
-  // read are kept by synthesis (a chain per source, as long as its longest wait).
+  // read are kept by synthesis (a chain per source, as long as its longest wait), and the
+  // longest wait between two read taps of a source is one delay line (g_tap's u_line, below).
   localparam int unsigned TD = CS;  // tap depth (bound)
   localparam int unsigned T_DU = 0, T_DV = 1, T_COL0 = 2, T_COL1 = 3, T_UV2HY2 = 4, T_DVNC = 5,
                           T_NC = 6, T_NUA = 7, T_NV = 8, T_NSQA = 9, T_NY2H = 10, T_VA = 11,
@@ -378,7 +393,6 @@ module shade_unit
   /* verilator lint_off UNUSEDSIGNAL */  // the taps no operation reads (removed by synthesis)
   f24_t [TD:0] tp [NT];
   /* verilator lint_on UNUSEDSIGNAL */
-  f24_t [TD:1] tp_q [NT];
   // the colour's lane 0: C_x in S0, C_z (waited a clock) in S1
   assign src[T_DU]     = in_du;
   assign src[T_DV]     = in_dv;
@@ -403,11 +417,107 @@ module shade_unit
   assign src[T_M]      = m_q;
   assign src[T_SP]     = sp_y;
   assign src[T_CAA]    = caa_y;
-  for (genvar t = 0; t < NT; t++) begin : g_tap
-    assign tp[t] = {tp_q[t], src[t]};
-    always_ff @(posedge clk_i) begin
-      if (en_i) tp_q[t] <= tp[t][TD-1:0];
+
+  // Delay lines: each source's longest wait between two taps that are read, from tap LO (read,
+  // or the source itself) to tap HI (read, none read between), is one pipe_delay of HI - LO
+  // enabled clocks (a RAM line from DELAY_RAM_MIN clocks on: the colour lanes' 60-odd clocks, the
+  // 10 to 20 clocks many results wait for their second reader); the other taps are registers as
+  // before.  tap_gap lists every tap a select reads, per source (tp[src][...] below): a tap read
+  // but missing here could fall inside a line and read 0.
+  localparam int unsigned GW = 16;  // bits of a tap index in the gap search
+  typedef logic [5:0][GW-1:0] tap_list_t;
+
+  /* verilator lint_off UNUSEDSIGNAL */  // a tap index has GW bits
+  function automatic tap_list_t taps(input int unsigned a, input int unsigned b = 0,
+                                     input int unsigned c = 0, input int unsigned d = 0,
+                                     input int unsigned e = 0, input int unsigned f = 0);
+    return {GW'(f), GW'(e), GW'(d), GW'(c), GW'(b), GW'(a)};
+  endfunction
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  // {LO, HI} of the largest gap between consecutive read taps (tap 0, the source, counts as read)
+  function automatic logic [2*GW-1:0] big_gap(input tap_list_t t);
+    logic [GW-1:0] lo, hi, l;
+    lo = '0;
+    hi = '0;
+    for (int i = 0; i < 6; i++) begin
+      l = '0;
+      for (int j = 0; j < 6; j++) if (t[j] < t[i] && t[j] > l) l = t[j];
+      if (t[i] - l > hi - lo) begin
+        lo = l;
+        hi = t[i];
+      end
     end
+    return {lo, hi};
+  endfunction
+
+  function automatic logic [2*GW-1:0] tap_gap(input int unsigned t);
+    case (t)
+      T_DU:     return big_gap(taps(S_DU2 - 1, S_VXZ - 1));
+      T_DV:     return big_gap(taps(S_DV2 - 1, S_VY - 1));
+      T_COL0:   return big_gap(taps(S_CAXZ - 1));
+      T_COL1:   return big_gap(taps(S_CYA - 1));
+      T_UV2HY2: return big_gap(taps(S_UV - 1 - R_DU2, S_HXY2 - 1 - R_HY2));
+      T_DVNC:   return big_gap(taps(S_UV - 1 - R_DV2, S_NHXZ - 1 - R_NUXZ, S_CG - 1 - R_CYA));
+      T_NC:     return big_gap(taps(S_NUXZ - 1 - R_NXZ, C0 - R_CRB, C0 + 1 - R_CRB));
+      T_NUA:    return big_gap(taps(S_NY2 - 1 - R_NY, S_VV - 1 - R_UV, S_NUY - 1 - R_NY,
+                                    S_CYA - 1 - R_A, S_CAXZ - 1 - R_A, C0 + 1 - R_CG));
+      T_NV:     return big_gap(taps(S_RV - 1 - R_VV, S_RH - 1 - R_HH, S_HH - 1 - R_HXY2));
+      T_NSQA:   return big_gap(taps(S_NXY2 - 1 - R_NSQ, S_NN - 1 - (R_NSQ + 1)));
+      T_NY2H:   return big_gap(taps(S_NXY2 - 1 - R_NY2, S_HY - 1 - R_VY,
+                                    S_NHXZ - 1 - R_HUXZ));
+      T_VA:     return big_gap(taps(S_HXZ - 1 - R_VXZ));
+      T_NXH:    return big_gap(taps(S_NN - 1 - R_NXY2, S_HUXZ - 1 - R_HXZ, S_HXZ2 - 1 - R_HXZ,
+                                    S_DOTS - 1 - R_NLXY));
+      T_HD:     return big_gap(taps(S_HY2 - 1 - R_HY, S_HUY - 1 - R_HY, S_DOTS - R_NHXY));
+      T_HKD:    return big_gap(taps(S_HXY2 - 1 - R_HXZ2, S_HH - 1 - (R_HXZ2 + 1),
+                                    S_A - 1 - R_KDN));
+      T_RVNH:   return big_gap(taps(S_VY - 1 - R_RV, S_VXZ - 1 - R_RV, S_NUXZ - 1 - R_RN,
+                                    S_NUY - 1 - R_RN, S_HUXZ - 1 - R_RH, S_HUY - 1 - R_RH));
+      T_NUNH1:  return big_gap(taps(S_NLY - 1 - R_NUY, S_NHY - 1 - R_NUY, S_NHXY - 1 - R_NHXZ,
+                                    S_DOTS - (R_NHXZ + 1)));
+      T_NLA:    return big_gap(taps(S_NLXY - 1 - R_NL, S_DOTS - 1 - (R_NL + 1)));
+      T_HUNH1:  return big_gap(taps(S_NLXY - 1 - R_NLY, S_NHY - 1 - R_HUY,
+                                    S_NHXY - 1 - R_NHY));
+      T_NNM:    return big_gap(taps(S_RN - 1 - B_NNM));
+      T_M:      return big_gap(taps(S_KDN - 1 - B_M));
+      T_SP:     return big_gap(taps(S_CG - 1 - B_SP, S_CRB - 1 - B_SP));
+      T_CAA:    return big_gap(taps(S_CRB - 1 - R_CAXZ));
+      default:  return '0;
+    endcase
+  endfunction
+
+  for (genvar t = 0; t < NT; t++) begin : g_tap
+    localparam logic [2*GW-1:0] GAP = tap_gap(t);
+    localparam int unsigned LO = int'(GAP[2*GW-1:GW]);  // the line's input tap
+    localparam int unsigned HI = int'(GAP[GW-1:0]);     // its output tap
+    // tv, q_q: this source's taps and registers as plain vectors (one whole-word write of tp[t]:
+    // no array of the sources is read or written element by element)
+    /* verilator lint_off UNUSEDSIGNAL */  // the registers inside the line (removed)
+    f24_t [TD:0] tv;
+    f24_t [TD:1] q_q;
+    /* verilator lint_on UNUSEDSIGNAL */
+    assign tv[0] = src[t];
+    if (HI > LO) begin : g_line
+      f24_t line_q;
+      pipe_delay #(.W(24), .N(HI - LO), .RAM_MIN(DELAY_RAM_MIN)) u_line (
+        .clk_i, .rst_ni, .en_i, .d_i(tv[LO]), .q_o(line_q));
+      for (genvar j = 1; j <= TD; j++) begin : g_j
+        if (j == HI) begin : g_out
+          assign tv[j] = line_q;
+        end else if (j > LO && j < HI) begin : g_in
+          assign tv[j] = '0;  // inside the line: not read
+        end else begin : g_reg
+          assign tv[j] = q_q[j];
+        end
+      end
+    end else begin : g_regs
+      assign tv[TD:1] = q_q;
+    end
+    always_ff @(posedge clk_i) begin
+      if (en_i) q_q <= tv[TD-1:0];
+    end
+    assign tp[t] = tv;
   end
 
   logic [7:0]      g_q;             // CS: G (its floor held a clock)
