@@ -19,10 +19,9 @@ from pathlib import Path
 import cocotb
 import numpy as np
 import pytest
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
-from tb.common import fp_unit, report, runner
+from tb.common import clock_reset, fp_unit, report, runner
 
 
 def _lanes(sig, n: int, width: int) -> list[int]:
@@ -36,16 +35,7 @@ async def circ_queue_random(dut):
     width, depth = int(os.environ["WIDTH"]), int(os.environ["DEPTH"])
     npush, npop = int(os.environ["NPUSH"]), int(os.environ["NPOP"])
     init_seq, async_rd, peek = (int(os.environ[k]) for k in ("INIT_SEQ", "ASYNC_RD", "PEEK"))
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    dut.rst_ni.value = 0
-    dut.push_i.value = 0
-    dut.wr_i.value = 0
-    dut.wdata_i.value = 0
-    dut.pop_n_i.value = 0
-    for _ in range(2):
-        await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    dut.rst_ni.value = 1
+    await clock_reset.start_and_reset(dut, ["push_i", "wr_i", "wdata_i", "pop_n_i"])
     q: deque[int] = deque(range(depth) if init_seq else [])
     n = fp_unit.vectors()
     p_push = rng.uniform(0.0, 1.0, n // 32 + 1).repeat(32)[:n]

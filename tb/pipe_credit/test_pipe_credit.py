@@ -20,10 +20,9 @@ from pathlib import Path
 import cocotb
 import numpy as np
 import pytest
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
-from tb.common import fp_unit, report, runner
+from tb.common import clock_reset, fp_unit, report, runner
 
 
 class CreditModel:
@@ -58,15 +57,7 @@ class CreditModel:
 async def pipe_credit_random(dut):
     rng = np.random.default_rng(fp_unit.seed())
     depth, lat = int(os.environ["DEPTH"]), int(os.environ["LAT"])
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    dut.rst_ni.value = 0
-    dut.in_valid_i.value = 0
-    dut.out_ready_i.value = 0
-    dut.in_data_i.value = 0
-    for _ in range(3):
-        await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    dut.rst_ni.value = 1
+    await clock_reset.start_and_reset(dut, ["in_valid_i", "out_ready_i", "in_data_i"], cycles=3)
     model = CreditModel(depth, lat)
     n = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE)
     # phase per clock: 0 random, 1 always valid + ready (throughput), 2 output stalled

@@ -18,10 +18,9 @@ from pathlib import Path
 import cocotb
 import numpy as np
 import pytest
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
-from tb.common import fp_unit, report, runner
+from tb.common import clock_reset, fp_unit, report, runner
 
 W = 16
 
@@ -30,14 +29,7 @@ W = 16
 async def pipe_delay_random(dut):
     rng = np.random.default_rng(fp_unit.seed())
     n_del = int(os.environ["N"])
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    dut.rst_ni.value = 0
-    dut.en_i.value = 0
-    dut.d_i.value = 0
-    for _ in range(2):
-        await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    dut.rst_ni.value = 1
+    await clock_reset.start_and_reset(dut, ["en_i", "d_i"])
     clocks = 20000
     p_en = rng.choice([0.05, 0.3, 0.7, 1.0], clocks // 64 + 1).repeat(64)[:clocks]
     en = rng.random(clocks) < p_en

@@ -17,25 +17,16 @@ from pathlib import Path
 import cocotb
 import numpy as np
 import pytest
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
-from tb.common import fp_unit, report, runner
+from tb.common import clock_reset, fp_unit, report, runner
 
 
 @cocotb.test()
 async def traverse_fifo_random(dut):
     rng = np.random.default_rng(fp_unit.seed())
     depth, width = int(os.environ["DEPTH"]), int(os.environ["W"])
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    dut.rst_ni.value = 0
-    dut.wr_i.value = 0
-    dut.rd_i.value = 0
-    dut.wr_data_i.value = 0
-    for _ in range(2):
-        await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    dut.rst_ni.value = 1
+    await clock_reset.start_and_reset(dut, ["wr_i", "rd_i", "wr_data_i"])
     n = fp_unit.vectors()
     p_wr = rng.uniform(0.0, 1.0, n // 32 + 1).repeat(32)[:n]
     p_rd = rng.uniform(0.0, 1.0, n // 32 + 1).repeat(32)[:n]
