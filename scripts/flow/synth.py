@@ -121,6 +121,12 @@ BLOCK_NAMES = [b.name for b in BLOCKS]
 OPT_IN = {SYSTEM_TOP}
 
 
+def is_top(b: "Block | None") -> bool:
+    """Whether a block is one of the tops that `--top-ecp5-opts` applies to: the P&R tops (one
+    and two rings) and the system top with any `--param` variant of it."""
+    return b is not None and (b.name in TOP_RINGS or b.module == SYSTEM_TOP)
+
+
 def parse_param(text: str) -> tuple[str, str, int]:
     """`--param BLOCK:NAME=VALUE` -> (block, parameter, integer value); ValueError if malformed."""
     m = re.fullmatch(r"\s*(\w+):([A-Za-z_]\w*)=(-?\d+)\s*", text)
@@ -298,11 +304,12 @@ class Flow:
         return (f"{read}; hierarchy -top {top}; proc; flatten; opt_clean; "
                 f"memory_collect; memory_share -nosat; opt_clean; memory_map r:WR_PORTS>2")
 
-    def ecp5_opts(self, name: str = "") -> str:
+    def ecp5_opts(self, b: Block | None = None) -> str:
         """The synth_ecp5 options beyond -top / -json (`--ecp5-opts`, and `--top-ecp5-opts` for
-        the top), with a leading space."""
+        the tops: the P&R tops and the system top, whose packing they were chosen for), with a
+        leading space."""
         o = " ".join(x for x in (self.args.ecp5_opts.strip(),
-                                 self.args.top_ecp5_opts.strip() if name in TOP_RINGS else "") if x)
+                                 self.args.top_ecp5_opts.strip() if is_top(b) else "") if x)
         return f" {o}" if o else ""
 
     def abc9_delay(self) -> str:
@@ -310,9 +317,9 @@ class Flow:
         d = self.args.abc9_delay
         return f"scratchpad -set abc9.D {d}; " if d else ""
 
-    def ecp5_key(self, name: str = "") -> str:
+    def ecp5_key(self, b: Block | None = None) -> str:
         """What an ECP5 netlist was made with (`--reuse` takes only one made the same way)."""
-        return self.ecp5_opts(name).strip() + (f" abc9.D={self.args.abc9_delay}"
+        return self.ecp5_opts(b).strip() + (f" abc9.D={self.args.abc9_delay}"
                                                if self.args.abc9_delay else "")
 
     def yosys(self, step: str, script: str, log: Path) -> float:
@@ -322,7 +329,7 @@ class Flow:
         stat = self.logs / f"ecp5_{b.name}.stat.json"
         js = self.net / f"{b.name}_ecp5.json"
         opts = self.logs / f"ecp5_{b.name}.opts"  # the --ecp5-opts the counts were made with
-        same_opts = (opts.read_text() if opts.is_file() else "") == self.ecp5_key(b.name)
+        same_opts = (opts.read_text() if opts.is_file() else "") == self.ecp5_key(b)
         if self.args.reuse and same_opts and stat.is_file() and (js.is_file() or not want_json):
             newest = max(p.stat().st_mtime for p in (ROOT / "rtl").rglob("*.sv"))
             if stat.stat().st_mtime > newest and (not want_json or js.stat().st_mtime > newest):
@@ -332,11 +339,11 @@ class Flow:
                          f"{r['ff']} FF, {r['dsp']} DSP, {r['bram']} EBR")
                 return r
         script = (f"{self.prepare(b)}; {self.abc9_delay()}synth_ecp5 -top {b.module}"
-                  f"{self.ecp5_opts(b.name)}"
+                  f"{self.ecp5_opts(b)}"
                   + (f" -json {rel(js)}" if want_json else "")
                   + f"; tee -q -o {rel(stat)} stat -json")
         dt = self.yosys(f"synth_ecp5 {b.name}", script, self.logs / f"ecp5_{b.name}.log")
-        opts.write_text(self.ecp5_key(b.name))
+        opts.write_text(self.ecp5_key(b))
         r = ecp5_counts(json.loads(stat.read_text()))
         r["seconds"] = round(dt, 1)
         self.say(f"    {b.name} ECP5: {r['lut']} LUT4, {r['ff']} FF, {r['dsp']} DSP, "
@@ -378,7 +385,7 @@ class Flow:
         top = f"ooc_{b.name}"
         read = self.read_cmd(b, top=top, extra=(rel(wrapper),))
         script = (f"{self.prepare_top(read, top)}; {self.abc9_delay()}synth_ecp5 -top {top}"
-                  f"{self.ecp5_opts()} "
+                  f"{self.ecp5_opts(b)} "
                   f"-json {rel(js)}")
         self.yosys(f"synth_ecp5 {top}", script, self.logs / f"ecp5_{top}.log")
 
@@ -965,7 +972,8 @@ def main() -> int:
                     help="extra synth_ecp5 options, e.g. --ecp5-opts=-nowidelut (LUT4s only: "
                          "fewer LUTs, see README 'Synthesis'); recorded in the report")
     ap.add_argument("--top-ecp5-opts", default="-nowidelut",
-                    help=f"synth_ecp5 options for the top ({TOP}) only, after --ecp5-opts; "
+                    help=f"synth_ecp5 options for the tops ({TOP}, {TOP2}, {SYSTEM_TOP}) only, "
+                         "after --ecp5-opts; "
                          "default -nowidelut (LUT4s only: 5%% fewer LUTs, 83%% of the device "
                          "packed instead of 87%%, see README 'Synthesis'); '' for Yosys's "
                          "default mapping; recorded in the report")
