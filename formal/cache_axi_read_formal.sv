@@ -92,8 +92,8 @@ module cache_axi_read_formal #(
     .m_axi_arburst(), .m_axi_arvalid(arvalid), .m_axi_arready,
     .m_axi_rid, .m_axi_rresp, .m_axi_rlast, .m_axi_rvalid, .m_axi_rready(rready));
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   // ---- the cache ---------------------------------------------------------------------------
   always_ff @(posedge clk_i) begin
@@ -190,11 +190,9 @@ module cache_axi_read_formal #(
   end
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);
     // RESETS: a reset may start when no read of the epoch before is out (a read returns before
     // 2^EPOCH_W - 1 = 1 further reset: cache_axi_read's requirement)
-    else if (!RESETS) assume (rst_ni);
-    else if (p_rst_q && st_out_q != '0) assume (rst_ni);
+    if (started_q && (!RESETS || (p_rst_q && st_out_q != '0))) assume (rst_ni);
     assume (alloc_ok);
     if (EARLY_WR && NPUSH == 1) begin
       assume (!alloc_i[0] || alloc_wr[0]);

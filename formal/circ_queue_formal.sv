@@ -42,8 +42,8 @@ module circ_queue_formal #(
     .clk_i, .rst_ni, .push_i, .wr_i(wr), .wdata_i, .pop_n_i, .rdata_o(rdata), .peek_o(peek),
     .count_o(count));
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   // ---- the user's promises -----------------------------------------------------------------
   int n_push, left;
@@ -103,7 +103,6 @@ module circ_queue_formal #(
   end
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);
     assume (left >= 0 && int'(pop_n_i) <= int'(NPOP));
     assume (left + n_push <= int'(DEPTH));
     assume (wr_ok);

@@ -34,12 +34,8 @@ module dm_pipeline_formal #(
   localparam int unsigned OW     = $clog2(OUT_DEPTH);
   localparam int unsigned OUT_W  = SLOT_W + 1 + 24;   // the out FIFO's word {slot, err, rgb}
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
-  always_comb begin
-    if (!started_q) assume (!rst_ni);
-  end
-
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
   // Each slot's places.
   logic [SLOTS-1:0] place_ok;
   always_comb begin

@@ -37,12 +37,8 @@ module dm_pipeline_pairs_formal #(
   localparam int unsigned TF_W   = SLOT_W + 2;        // the filter tag {slot, normal?, err}
   localparam int unsigned PW     = $clog2(TC_CAP);
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
-  always_comb begin
-    if (!started_q) assume (!rst_ni);
-  end
-
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
   logic ok;
   always_comb begin
     logic              pend;   // a colour entry waits for its normal map

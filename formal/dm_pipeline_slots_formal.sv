@@ -56,8 +56,8 @@ module dm_pipeline_slots_formal #(
   localparam int unsigned MW     = $clog2(MISS_DEPTH);
   localparam int unsigned OW     = $clog2(OUT_DEPTH);
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   // ---- the abstract units ----------------------------------------------------------------------
   logic              vc_v, tr_v, be_v;
@@ -78,7 +78,6 @@ module dm_pipeline_slots_formal #(
 
   // The cut units' id outputs are the abstract units'.
   always_comb begin
-    if (!started_q) assume (!rst_ni);
     assume (dm_pipeline.vc_valid == vc_v);
     assume (!vc_v || dm_pipeline.vc_slot == vc_s);
     assume (dm_pipeline.res_valid == tr_v);

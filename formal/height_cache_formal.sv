@@ -74,8 +74,8 @@ module height_cache_formal #(
     .m_axi_rready(rready),
     .clr_stats_i, .stat_hits_o(), .stat_misses_o(), .stat_bytes_o(), .stat_lines_o());
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   // ---- the slave ---------------------------------------------------------------------------
   logic [MSHRS-1:0]              sl_out_q, sl_err_q;
@@ -103,8 +103,7 @@ module height_cache_formal #(
   end
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);
-    else            assume (rst_ni);
+    if (started_q) assume (rst_ni);
     assume (!(lk_valid_i && lk_wide_i && lk_addr_i[0]));
     if (m_axi_rvalid) begin
       assume (32'(rid_idx) < MSHRS && sl_out_q[rid_idx]);

@@ -164,8 +164,8 @@ module pidm_regs_formal (
   // ---------------------------------------------------------------------------------------
   // The master: AXI4-Lite rules (assumed)
   // ---------------------------------------------------------------------------------------
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   logic        rst_q;        // rst_ni one clock earlier
   logic        aw_wait_q, w_wait_q, ar_wait_q;
@@ -204,7 +204,6 @@ module pidm_regs_formal (
   endfunction
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);
 `ifdef PIDM_REGS_ADDR_SET
     assume (in_set(awaddr_i) && in_set(araddr_i));
 `endif

@@ -22,11 +22,10 @@ module pipe_credit_formal #(
   pipe_credit #(.LIMIT(LIMIT), .CW(CW)) u_dut (
     .clk_i, .rst_ni, .take_i, .give_i, .held_i('0), .room_o(room), .count_o(count));
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);
     assume (!(take_i && !room));
     assume (!(give_i && count == '0));
   end

@@ -16,12 +16,8 @@ module pipe_delay_formal #(
 
   pipe_delay #(.W(W), .N(N), .RAM_MIN(2)) u_dut (.clk_i, .rst_ni, .en_i, .d_i, .q_o(q));
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
-
-  always_comb begin
-    if (!started_q) assume (!rst_ni);
-  end
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   logic unused;
   assign unused = ^q;

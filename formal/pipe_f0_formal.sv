@@ -58,8 +58,8 @@ module pipe_f0_formal
     .clk_i, .rst_ni, .wr_i(f0_wr), .wr_data_i(vc_tag), .rd_i(f0_rd), .rd_data_o(f0_head),
     .full_o(f0_full), .empty_o(f0_empty), .count_o(f0_count));
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   // The lemma: the credit counts exactly the fragments inside view_calc.
   logic [F0_CW-1:0] n_view;
@@ -68,9 +68,6 @@ module pipe_f0_formal
     for (int s = 1; s <= LAT; s++) n_view = n_view + F0_CW'(vc_stage[s]);
   end
 
-  always_comb begin
-    if (!started_q) assume (!rst_ni);
-  end
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
       credit_in_flight: assert (vc_cnt == n_view);

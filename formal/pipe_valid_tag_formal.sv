@@ -21,12 +21,8 @@ module pipe_valid_tag_formal #(
     .clk_i, .rst_ni, .en_i, .valid_i, .tag_i, .valid_o(valid), .tag_o(tag),
     .stage_valid_o(stage_valid));
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
-
-  always_comb begin
-    if (!started_q) assume (!rst_ni);
-  end
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   logic unused;
   assign unused = ^{valid, tag, stage_valid};

@@ -81,12 +81,8 @@ module tex_cache_formal #(
     .stat_requests_o(st_req), .stat_quad_hits_o(st_qhit), .stat_lookups_o(st_lk),
     .stat_line_misses_o(st_miss), .stat_texel_hits_o(st_thit), .stat_bytes_o(st_bytes));
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
-  always_comb begin
-    if (!started_q) assume (!rst_ni);   // (a reset may come again at any time)
-  end
-
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
   // ---- the stages, oldest first: requests counted by their last passes ---------------------
   // (a pass in the FIFO is a pass_t word: its last bit is bit 0)
   localparam int unsigned TQ_W = $clog2(1 + PQ_DEPTH + FIFO_DEPTH + OUT_DEPTH);  // tex_cache's

@@ -31,8 +31,8 @@ module traverse_fifo_formal #(
     .clk_i, .rst_ni, .wr_i, .wr_data_i, .rd_i, .rd_data_o(rd_data), .full_o(full),
     .empty_o(empty), .count_o(count));
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   // ---- the free list: the ids the user holds ----------------------------------------------
   localparam int unsigned AW = $clog2(DEPTH);
@@ -72,7 +72,6 @@ module traverse_fifo_formal #(
   end
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);
     assume (!(wr_i && full));
     assume (!(rd_i && empty));
     if (FREE_LIST) begin

@@ -56,13 +56,13 @@ module traverse_loop_formal
     .st_iter_o(st_iter), .st_down_o(st_down), .st_cross_o(st_cross), .st_up_o(st_up),
     .busy_o(busy));
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);   // (a reset may come again at any time ...)
+    // (formal_reset: a reset may come again at any time ...)
 `ifdef TRAVERSE_LOOP_ONE_RESET
-    else            assume (rst_ni);    // (... but in the BMC task: 24 steps with free resets
+    if (started_q) assume (rst_ni);    // (... but in the BMC task: 24 steps with free resets
                                         // took minutes)
 `endif
     assume (!rs_valid_i || u_dut.u_assert.lk_d_q[LOOKUP_LAT-1]);  // the checker's history

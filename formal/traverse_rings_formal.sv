@@ -52,8 +52,8 @@ module traverse_rings_formal
     .idle_o());
   /* verilator lint_on PINCONNECTEMPTY */
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   // Each ring's held rays, through hierarchy: copies[r][x] = how often ring r holds id x.
   logic [N_RINGS-1:0][NID-1:0][1:0] copies;
@@ -91,7 +91,6 @@ module traverse_rings_formal
   end
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);   // (a reset may come again at any time)
     assume (!ray_valid_i || !u_dut.u_assert.g_ids.in_q[ray_id_i]);
   end
 

@@ -41,8 +41,8 @@ module traverse_setup_formal
     .in_dv_i, .in_ready_o(in_ready), .out_valid_o(out_valid), .out_id_o(out_id),
     .out_ray_o(out_ray), .busy_o(busy));
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   // the rays in of the last NS clocks
   logic [NS-1:0] in_q;
@@ -52,7 +52,6 @@ module traverse_setup_formal
   end
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);   // (a reset may come again at any time)
     assume (!in_valid_i || in_ready);
   end
 

@@ -60,8 +60,8 @@ module traverse_unit_formal
     .stat_crossings_o(), .stat_level_ups_o(), .stat_descents_o(), .idle_o());
   /* verilator lint_on PINCONNECTEMPTY */
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   // The places a ray can be in: pv[p] (it holds a ray), pid[p] (its id).  Setup stages, the
   // setup FIFO's head register and RAM entries (in order from the read pointer), the ring's
@@ -118,7 +118,6 @@ module traverse_unit_formal
   end
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);   // (a reset may come again at any time)
     assume (!ray_valid_i || !u_dut.u_assert.g_ids.in_unit_q[ray_id_i]);
     assume (!u_dut.u_assert.ray_wait_q
             || (ray_valid_i && ray_id_i == u_dut.u_assert.ray_q[ID_W+4*24-1 -: ID_W]));

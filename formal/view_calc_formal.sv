@@ -32,11 +32,10 @@ module view_calc_formal
     .nx_i(w_i[6]), .ny_i(w_i[7]), .nz_i(w_i[8]), .vx_i(w_i[9]), .vy_i(w_i[10]), .vz_i(w_i[11]),
     .valid_o(valid), .tag_o(tag), .du_o(du), .dv_o(dv), .seg_o(seg));
 
-  logic started_q = 1'b0;   // 0 in the first clock only
-  always_ff @(posedge clk_i) started_q <= 1'b1;
+  logic started_q;   // 0 in the first clock only, rst_ni low in it (formal_reset)
+  formal_reset u_reset (.clk_i, .rst_ni, .started_o(started_q));
 
   always_comb begin
-    if (!started_q) assume (!rst_ni);   // (a reset may come again at any time)
     assume (!(en_i && valid_i) || u_dut.stage_v[3:1] == '0);
 `ifdef VIEW_CALC_COVER_EN
     assume (en_i);   // the cover task: every clock enabled (the states it shows need no stall)
