@@ -2,8 +2,8 @@
 // pix_dma: writes dm_pipeline's finished pixels into the framebuffer (RGBA8) and, when enabled,
 // their status words into a status buffer, over an AXI4 write master (pidm_pkg: the layouts).
 //
-//   px_* -> pixel FIFO (IN_DEPTH) -> job register (pixel (x, y) from the id: offset
-//   y * pitch + x * 4) -> colour write at fb_base + offset, then (st_en) status write at
+//   px_* -> pixel FIFO (IN_DEPTH) -> split register (pixel (x, y) from the id) -> job register
+//   (offset y * pitch + x * 4) -> colour write at fb_base + offset, then (st_en) status write at
 //   st_base + offset -> AW + W (single-beat INCR writes of 4 bytes, WSTRB on the word's lanes)
 //   -> B (counted)
 //
@@ -112,11 +112,22 @@ module pix_dma
     .rd_i(in_rd), .rd_data_o(in_head), .full_o(in_full), .empty_o(in_empty),
     .count_o(in_count));
 
+  localparam int unsigned REST_W = PX_W - PIX_W;   // a pixel's fields after its id
   logic [PIX_W-1:0]  h_id;
-  logic [23:0]       h_rgb;
-  logic              h_hit, h_inv, h_err;
-  logic [ITER_W-1:0] h_iters;
-  assign {h_id, h_rgb, h_hit, h_inv, h_err, h_iters} = in_head;
+  logic [REST_W-1:0] h_rest;
+  assign {h_id, h_rest} = in_head;
+
+  // ---- split: the head pixel's (x, y) from its id, registered before the offset's multiply
+  // (the FIFO's LUT-RAM read, the shift by xbits and the multiply in one clock were the
+  // system top's slowest path) -----------------------------------------------------------
+  logic              sp_q, sp_take;        // a pixel held; it moves on to the job register
+  logic [PIX_W-1:0]  sp_y_q, sp_x_q;
+  logic [REST_W-1:0] sp_rest_q;
+
+  logic [23:0]       p_rgb;
+  logic              p_hit, p_inv, p_err;
+  logic [ITER_W-1:0] p_iters;
+  assign {p_rgb, p_hit, p_inv, p_err, p_iters} = sp_rest_q;
 
   // ---- job: the pixel whose writes are being issued ----------------------------------------
   logic              job_q, phase_q;       // a pixel held; 1: its status write is next
@@ -124,24 +135,36 @@ module pix_dma
   logic [31:0]       rgba_q, stw_q;
   logic              issue, job_last, job_free;
 
-  logic [PIX_W-1:0]  h_y, h_x;
-  logic [ADDR_W-1:0] h_off;
-  assign h_y   = h_id >> xbits_q;
-  assign h_x   = h_id & ~({PIX_W{1'b1}} << xbits_q);
-  assign h_off = ADDR_W'((PIX_W + PITCH_W)'(h_y) * (PIX_W + PITCH_W)'(pitch_q))
-               + (ADDR_W'(h_x) << 2);
+  logic [ADDR_W-1:0] p_off;
+  assign p_off = ADDR_W'((PIX_W + PITCH_W)'(sp_y_q) * (PIX_W + PITCH_W)'(pitch_q))
+               + (ADDR_W'(sp_x_q) << 2);
 
   assign job_last = !st_en_q || phase_q;
   assign job_free = !job_q || (issue && job_last);
-  // a pixel leaves the FIFO into the job register, or is dropped during an abort
-  assign in_rd    = !in_empty && (abort_i || job_free);
+  assign sp_take  = sp_q && job_free;
+  // a pixel leaves the FIFO into the split register, or is dropped during an abort
+  assign in_rd    = !in_empty && (abort_i || !sp_q || sp_take);
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni)                sp_q <= 1'b0;
+    else if (abort_i)           sp_q <= 1'b0;     // dropped
+    else if (in_rd)             sp_q <= 1'b1;
+    else if (sp_take)           sp_q <= 1'b0;
+  end
+  always_ff @(posedge clk_i) begin
+    if (in_rd && !abort_i) begin
+      sp_y_q    <= h_id >> xbits_q;
+      sp_x_q    <= h_id & ~({PIX_W{1'b1}} << xbits_q);
+      sp_rest_q <= h_rest;
+    end
+  end
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       job_q   <= 1'b0;
       phase_q <= 1'b0;
     end else begin
-      if (in_rd && !abort_i) begin
+      if (sp_take && !abort_i) begin
         job_q   <= 1'b1;
         phase_q <= 1'b0;
       end else if (issue) begin
@@ -155,14 +178,14 @@ module pix_dma
   end
 
   always_ff @(posedge clk_i) begin
-    if (in_rd && !abort_i) begin
-      off_q  <= h_off;
-      rgba_q <= {8'(PIX_ALPHA), h_rgb};
+    if (sp_take && !abort_i) begin
+      off_q  <= p_off;
+      rgba_q <= {8'(PIX_ALPHA), p_rgb};
       stw_q  <= '0;
-      stw_q[STW_ITERS_LSB +: STW_ITERS_BITS] <= STW_ITERS_BITS'(h_iters);
-      stw_q[STW_HIT_BIT]     <= h_hit;
-      stw_q[STW_INVALID_BIT] <= h_inv;
-      stw_q[STW_ERR_BIT]     <= h_err;
+      stw_q[STW_ITERS_LSB +: STW_ITERS_BITS] <= STW_ITERS_BITS'(p_iters);
+      stw_q[STW_HIT_BIT]     <= p_hit;
+      stw_q[STW_INVALID_BIT] <= p_inv;
+      stw_q[STW_ERR_BIT]     <= p_err;
     end
   end
 
@@ -273,7 +296,7 @@ module pix_dma
     end
   end
 
-  assign idle_o    = in_empty && !job_q && !aw_q && !w_q && outst_q == '0;
+  assign idle_o    = in_empty && !sp_q && !job_q && !aw_q && !w_q && outst_q == '0;
   assign err_o     = err_q;
   assign pixels_o  = pixels_q;
   assign written_o = written_q;

@@ -103,6 +103,7 @@ BLOCKS = [
                                      "ID_W": 6}, what="texture cache, 64 KiB"),
     Block("pyr_build", "pyr_build", {"AXI_DATA_W": 64, "MAX_LG": 10, "BURST": 16},
           what="max-mipmap pyramid builder, maps up to 1024x1024"),
+    Block("pix_dma", "pix_dma", what="framebuffer DMA (the system top's pixel writer)"),
     Block("dm_pipeline", "dm_pipeline", pnr=False, what="the whole unit (ports: ~4,000 bits)"),
     # Five AXI ports (~620 pins, more than the package has): counts by default; --system-pnr
     # places and routes it out of context (docs/synthesis.md "The system top": 82% of the
