@@ -5,6 +5,7 @@ one-ray step trace (scripts/ray_steps.py).  Quick: no Yosys, nextpnr or Verilato
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import re
 import subprocess
@@ -107,14 +108,19 @@ def test_router_args():
 
 
 def test_top_ecp5_opts(tmp_path: Path):
-    # --top-ecp5-opts (default -nowidelut) reaches the top's synth_ecp5 only, after --ecp5-opts
+    # --top-ecp5-opts (default -nowidelut) reaches the tops' synth_ecp5 only (the P&R tops and
+    # the system top with its --param variants), after --ecp5-opts
     args = argparse.Namespace(out=tmp_path, ecp5_opts="-abc2", top_ecp5_opts="-nowidelut",
                               abc9_delay=0)
     f = synth.Flow(args, 1)
-    assert f.ecp5_opts(synth.TOP) == " -abc2 -nowidelut"
-    assert f.ecp5_opts("f24_add") == " -abc2" and f.ecp5_key("f24_add") == "-abc2"
+    blk = {b.name: b for b in synth.BLOCKS}
+    sys0 = dataclasses.replace(blk[synth.SYSTEM_TOP], name=synth.SYSTEM_TOP + "_PYR_BUILD0")
+    for top in (blk[synth.TOP], blk[synth.TOP2], blk[synth.SYSTEM_TOP], sys0):
+        assert f.ecp5_opts(top) == " -abc2 -nowidelut", top.name
+    assert f.ecp5_opts(blk["f24_add"]) == " -abc2" and f.ecp5_key(blk["f24_add"]) == "-abc2"
+    assert f.ecp5_opts() == " -abc2"
     args.ecp5_opts, args.top_ecp5_opts = "", ""
-    assert f.ecp5_opts(synth.TOP) == "" and f.ecp5_key(synth.TOP) == ""
+    assert f.ecp5_opts(blk[synth.TOP]) == "" and f.ecp5_key(blk[synth.TOP]) == ""
 
 
 def test_heatmap_args():
