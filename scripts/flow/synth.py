@@ -107,7 +107,8 @@ BLOCKS = [
     Block("dm_pipeline", "dm_pipeline", pnr=False, what="the whole unit (ports: ~4,000 bits)"),
     # Five AXI ports (~620 pins, more than the package has): counts by default; --system-pnr
     # places and routes it out of context (docs/synthesis.md "The system top": 82% of the
-    # LFE5U-85F's LUT4s with the pyramid builder; not routed on the current RTL).
+    # LFE5U-85F's LUT4s with the pyramid builder, not routed; routed with --param
+    # pidm_top:PYR_BUILD=0, the builder left out).
     Block("pidm_top", "pidm_top", pnr=False,
           what="the system top: register block, pyramid builder, fragment and framebuffer DMA, "
                "the pipeline"),
