@@ -117,9 +117,8 @@ module pix_dma
   logic [REST_W-1:0] h_rest;
   assign {h_id, h_rest} = in_head;
 
-  // ---- split: the head pixel's (x, y) from its id, registered before the offset's multiply
-  // (the FIFO's LUT-RAM read, the shift by xbits and the multiply in one clock were the
-  // system top's slowest path) -----------------------------------------------------------
+  // ---- split: the head pixel's (x, y) from its id, registered so that the FIFO's LUT-RAM
+  // read and the shift by xbits are not in the clock of the offset's multiply --------------
   logic              sp_q, sp_take;        // a pixel held; it moves on to the job register
   logic [PIX_W-1:0]  sp_y_q, sp_x_q;
   logic [REST_W-1:0] sp_rest_q;
