@@ -18,7 +18,7 @@ module traverse_loop
   parameter int unsigned MUL_LAT    = pipe_pkg::F24_MUL_LAT,  // (unused: the real ring's)
   parameter bit          XOR_PATH   = 1'b1,                   // (unused)
   parameter bit          PARK       = 1'b0,                   // (unused)
-  parameter int unsigned PARK_DEPTH = 31 - loop_depth(MUL_LAT), // (unused)
+  parameter int unsigned PARK_DEPTH = PARK_DEPTH_DEF, // (unused)
   parameter int unsigned PARK_WAIT  = 16,                     // (unused)
   parameter int unsigned PARK_MAX   = 4 * loop_depth(MUL_LAT), // (unused)
   parameter int unsigned CAP        = 2                       // rays held
@@ -51,7 +51,7 @@ module traverse_loop
   output logic              st_down_o,
   output logic              st_cross_o,
   output logic              st_up_o,
-  output logic [4:0]        busy_o
+  output logic [LOOP_BUSY_W-1:0] busy_o
 );
 
   localparam int unsigned KW = (CAP > 1) ? $clog2(CAP) : 1;
@@ -102,6 +102,6 @@ module traverse_loop
   assign lk_addr_o  = '0;
   assign lk_wide_o  = 1'b0;
   assign {st_iter_o, st_down_o, st_cross_o, st_up_o} = '0;
-  assign busy_o     = 5'($countones(h_v_q));
+  assign busy_o     = LOOP_BUSY_W'($countones(h_v_q));
 
 endmodule

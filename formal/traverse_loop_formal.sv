@@ -7,7 +7,7 @@
 // park_old_leaves, park_old_flag, park_wait_bound, rays_conserved), with PARK = 1 (the ring's
 // default is 0) and a park queue of PARK_DEPTH = 2.
 //
-// The float datapath is cut: the .sby script replaces the register done18_q (the ray at the tail,
+// The float datapath is cut: the .sby script replaces the register done19_q (the ray at the tail,
 // S18 at MUL_LAT 1, has finished: the only way the datapath reaches the ring's control) by a free
 // value each clock, so the proof holds for every finishing decision of every ray, whatever the
 // arithmetic computes;
@@ -46,7 +46,7 @@ module traverse_loop_formal
   result_t           res;
   logic [ADDR_W-1:0] lk_addr;
   logic              st_iter, st_down, st_cross, st_up;
-  logic [4:0]        busy;
+  logic [LOOP_BUSY_W-1:0] busy;
 
   traverse_loop #(.ID_W(ID_W), .PARK(1'b1), .PARK_DEPTH(PARK_DEPTH)) u_dut (
     .clk_i, .rst_ni, .cfg_i, .new_valid_i, .new_id_i, .new_ray_i, .new_pop_o(new_pop),
@@ -76,7 +76,7 @@ module traverse_loop_formal
       res_id_source: assert (!res_push || res_id == (u_dut.retire ? u_dut.id_q[LOOP_DEPTH-1]
                                                                    : new_id_i));
       res_once:      assert (!res_push || (u_dut.retire != u_dut.bypass));
-      c_full_ring:   cover (busy == 5'(LOOP_DEPTH));
+      c_full_ring:   cover (busy == LOOP_BUSY_W'(LOOP_DEPTH));
       c_retire_admit: cover (u_dut.retire && u_dut.admit);
       c_bypass:      cover (u_dut.bypass && busy != '0);
     end

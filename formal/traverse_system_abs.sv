@@ -22,7 +22,7 @@ module traverse_system
   parameter int unsigned AXI_ID_W         = 4,
   parameter int unsigned AXI_DATA_W       = 64,
   parameter bit          PARK             = 1'b0, // (unused: the real ring's park queue)
-  parameter int unsigned PARK_DEPTH       = 31 - LOOP_DEPTH,  // (unused)
+  parameter int unsigned PARK_DEPTH       = PARK_DEPTH_DEF,  // (unused)
   parameter int unsigned PARK_WAIT        = 16,  // (unused)
   parameter int unsigned PARK_MAX         = 4 * LOOP_DEPTH,  // (unused)
   parameter int unsigned CAP              = 2    // rays held

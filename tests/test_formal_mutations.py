@@ -175,7 +175,7 @@ def mutate(root: Path, rel: str, old: str, new: str) -> None:
 # than the induction, which proves the properties at every depth): the step at which each
 # mutant's counterexample ends lies beyond it.  file:task -> depth.
 MUTANT_BMC_DEPTH = {
-    "traverse_loop:bmc_ids": 26,   # id_in_ring at step LOOP_DEPTH + 3 = 25 (22 slots)
+    "traverse_loop:bmc_ids": 27,   # id_in_ring at step LOOP_DEPTH + 3 = 26 (23 slots)
     "tex_cache:bmc_tags": 10,      # inv_tq_read at step 5
     "pidm_regs:bmc": 5,            # the wrong read-back bit: rd_value at step 4
     "dm_pipeline_slots:bmc_slots": 14,  # the first pixel leaves at step 12: slot_count at 13

@@ -58,7 +58,7 @@ module dm_pipeline
   parameter int unsigned SLOTS      = 128,  // fragments in flight (power of two)
   parameter int unsigned N_RINGS    = 1,    // traverse rings, each with its own height cache
   parameter bit          PARK       = 1'b0, // 1: each ring parks missed rays (traverse_loop)
-  parameter int unsigned PARK_DEPTH = 31 - traverse_pkg::LOOP_DEPTH, // park queue entries per ring (traverse_loop; 9 for the 22-stage ring, 12 for 19)
+  parameter int unsigned PARK_DEPTH = traverse_pkg::PARK_DEPTH_DEF, // park queue entries per ring (traverse_loop)
   parameter int unsigned PARK_WAIT  = 16,   // clocks before a parked ray beats new rays (traverse_loop)
   parameter int unsigned PARK_MAX   = 4 * traverse_pkg::LOOP_DEPTH, // bound on a parked ray's wait
   parameter int unsigned TRIS       = 16,   // triangle table entries

@@ -2,10 +2,10 @@
 // traverse_loop: the second mode of the traverse unit, the iterative search of model/traverse.py
 // (the body of _trace's `while act.size` loop, for one ray per pass).
 //
-// A ring of D = traverse_pkg::loop_depth(MUL_LAT) = 16 + 3 * MUL_LAT stages (19 at MUL_LAT 1,
-// 22 at MUL_LAT 2); every stage holds one ray slot and every slot advances one stage per clock
+// A ring of D = traverse_pkg::loop_depth(MUL_LAT) = 17 + 3 * MUL_LAT stages (20 at MUL_LAT 1,
+// 23 at MUL_LAT 2); every stage holds one ray slot and every slot advances one stage per clock
 // (the loop never stalls).  One pass round the ring = one iteration = one height lookup.  At the
-// ring's tail (S18) a finished ray leaves for the result FIFO; a slot that is then empty takes a
+// ring's tail (S19) a finished ray leaves for the result FIFO; a slot that is then empty takes a
 // new ray from setup (re-circulating rays have priority: new rays only fill bubbles).
 //
 // Float latencies: every f24_mul runs at MUL_LAT (a parameter, default pipe_pkg::F24_MUL_LAT;
@@ -13,8 +13,8 @@
 // pipe_pkg::F24_ADD_LAT: the schedule is written for 3, checked by an $error); traverse_bdiff,
 // f24_to_index, f24_from_unorm and f24_one_minus at their fixed latencies.  Three multipliers lie
 // on the pass's dependent chain (tx, du * time, the child's crossing times), so each clock of
-// MUL_LAT above 1 adds three stages.  Stage names: S0 .. S18 below, and the numbers in signal
-// names (t6_q ... done18_q), are the stages at MUL_LAT 1; the code indexes stages by localparams
+// MUL_LAT above 1 adds three stages.  Stage names: S0 .. S19 below, and the numbers in signal
+// names (t6_q ... done19_q), are the stages at MUL_LAT 1; the code indexes stages by localparams
 // computed from MUL_LAT (S_RS, S_EXIT, ... S_TL), which are, at MUL_LAT 1 / MUL_LAT 2:
 //   S0 - S4  lookup; S_RS = 4: the response, tx's operands          0 - 4    / 0 - 4
 //   S5       S_EXIT: tx, ty arrive; t_exit; 1 - H (at MUL_LAT > 1 in S_EXIT - 1,
@@ -25,21 +25,21 @@
 //   S11-S15  S_FLR, S_XPRE, S_XUP, S_CB, S_LOC                       11 - 15  / 13 - 17
 //   S17      S_TEN: (boundary - u0) * (1/du), its operands
 //            (1/du read in S_TEN - 2)                                17       / 19
-//   S17      S_NS = S_TEN + MUL_LAT - 1: the next state (its copies
-//            made in S_NS - 1)                                       17       / 20
-//   S18      S_TL = S_TEN + MUL_LAT = D - 1: the tail                18       / 21
-// At MUL_LAT 1 the ring is clock for clock the 19-stage ring.  A multiplier's clock enable is
+//   S18      S_NS = S_TEN + MUL_LAT: the crossing times arrive; the next
+//            state (its copies made in S_NS - 1); locate's correction 18       / 21
+//   S19      S_TL = S_NS + 1 = D - 1: the tail                       19       / 22
+// At MUL_LAT 1 the ring is clock for clock the 20-stage ring.  A multiplier's clock enable is
 // the OR of the activity of the MUL_LAT stages its operations occupy (its registers advance while
 // any of them holds a pass that uses it).
 //
 // Ring registers: a ray's fields move with it, one register per field and stage (f_q[s] is the
-// field of the ray in stage s; S18 hands on to S0).  A stage reads the fields it needs straight
+// field of the ray in stage s; S19 hands on to S0).  A stage reads the fields it needs straight
 // from its own stage's registers, and a stage that changes a field writes the next stage's
 // register (f_q[s + 1] <= new value instead of f_q[s]).  Per ray:
 //   - the per-ray constants u0, v0, directions, t_map and the ray id, loaded when the ray enters
 //     the ring (u0, v0 become the hit's u, v when the ray hits: the result reads them);
-//   - the traversal state (level, cell, t, flags, iterations), loaded on entry and by S17 (the
-//     level and cell also by S18, a descent's node);
+//   - the traversal state (level, cell, t, flags, iterations), loaded on entry and by S18 (the
+//     level and cell also by S19, a descent's node);
 //   - what one pass computes for a stage far later in the same pass (t_new, the action, the
 //     crossing and the hit position): registers from the stage after the one that computes it
 //     to the one that reads it only.
@@ -49,7 +49,7 @@
 // ring was a slot table for every field before: its D:1 read multiplexers and the write
 // multiplexers of the state cost ~7,000 LUT4s, and the ring's registers cost no more flip-flops
 // than the table's.)  Activity bits per stage move with the slots too: the slot holds a ray
-// (v_q), a live ray (S1 - S4), the height read returned data (ok) or an error (S4 - S17), the pass
+// (v_q), a live ray (S1 - S4), the height read returned data (ok) or an error (S4 - S18), the pass
 // hits or descends (S8 - S13), the pass descends (S8 - S18).
 //
 // Clock enables: a unit advances only while its stages hold a pass that uses its result, and
@@ -64,11 +64,13 @@
 // through a table read or a comparison, min, max, clip, add or shift in the same clock: the
 // units are only just fast enough for 100 MHz from registers.  Integer logic that feeds a unit
 // has a stage of its own, and so does every comparison the next stage acts on.  For S0 the tail
-// (S18) loads the ray that comes round: the node S17 wrote, the descent's node (corrected in S18
-// itself), or the new ray from setup.
+// (S19) loads the ray that comes round: the node S18 wrote, the descent's node (corrected in S18
+// into a register of S19, so that the crossing times' comparisons, right behind four
+// multipliers, do not share a clock with the entry multiplexers of S0), or the new ray from
+// setup.
 //
 // Stage schedule (a unit "a -> b" takes operands in Sa and delivers in Sb):
-//   S18  (previous pass) node, directions of the ray entering S0   -> node_q[0], dir_q[0]
+//   S19  (previous pass) node, directions of the ray entering S0   -> node_q[0], dir_q[0]
 //   S0   height address base + off[k] + (cy * side_k + cx) * bytes  -> lk_* registers (S1)
 //        (traverse_addr); exit boundary integer (cx + (sx > 0)) << k -> S1
 //   S1   lookup presented (lk_valid_o, lk_addr_o, lk_wide_o)
@@ -101,11 +103,11 @@
 //                                                                   traverse_bdiff S14 -> S17
 //        child estimate c, the child's range at level k'
 //   S15  the three cells locate's correction chooses from
-//   S16  the state's copies for S17
 //   S17  (boundary - u0) * (1/du)                                   f24_mul      S17 -> S18
-//        next state (hit / miss / down / cross / lookup miss / cap)
-//   S18  locate's correction (the descent's cell); retire to the result FIFO, or merge with a
-//        new ray, -> S0
+//        the state's copies for S18
+//   S18  next state (hit / miss / down / cross / lookup miss / cap); locate's correction (the
+//        descent's cell, from the crossing times)                   -> ndn19_q
+//   S19  retire to the result FIFO, park, or merge with a new ray, -> S0
 // Positions on an axis that does not move are u0 itself (the model's np.where(s != 0, p, p0)).
 // Boundary - u0 (the model's ar.sub(ar.from_int(b), p0) of a crossing time) is traverse_bdiff:
 // u0 taken to 19 fraction bits (the last one sticky), subtracted from the integer boundary and
@@ -121,9 +123,10 @@
 // compare) costs the ring no stage.  Up to two positions per axis are computed in a pass: at t_end
 // for the XOR descent, and one at the time the pass uses, t_new (locate, the hit) or the plane
 // (selective's P1 for a crossing; a pass needs never both).  Picking that time first (S6) costs the
-// ring a stage: 19 deep (the paper's is 15), because the descent's locate (time, position, floor,
+// ring a stage: 20 deep (the paper's is 15), because the descent's locate (time, position, floor,
 // clip, level, boundaries, two crossing times, correction) follows the plane's arrival as a
-// dependent chain of 12 clocks (S6 - S18, at MUL_LAT 1; 15 at MUL_LAT 2).  The position adders
+// dependent chain of 13 clocks (S6 - S19, at MUL_LAT 1; 16 at MUL_LAT 2), the correction's
+// comparisons in a stage of their own.  The position adders
 // run at three clocks (their two-clock first stage, alignment shift and carry chain together,
 // was the ring's slowest path) in the same ring: the boundary integers, which had a register of
 // their own before traverse_bdiff's first stage (a register of the same integers, shifted by
@@ -139,7 +142,7 @@
 // for a whole pass for nothing while new rays wait in the setup FIFO.  At the tail a ray whose
 // lookup missed (state unchanged) may instead leave the ring for the park queue, a FIFO of
 // PARK_DEPTH entries in LUT RAM holding all it resumes with: id, u0, v0, directions, t_map, the
-// traversal state (node, t, status, iterations), du, dv, 1/du, 1/dv (read from the tables in S17
+// traversal state (node, t, status, iterations), du, dv, 1/du, 1/dv (read from the tables in S18
 // into their own read registers) and the clock it parked.  Its slot then takes a new ray at once.
 // It parks only when a ray takes its slot in the same clock (a new ray, or the queue's head) and
 // the queue has room (or its head leaves in that clock); otherwise it circulates as without
@@ -173,9 +176,9 @@ module traverse_loop
   // clock; no park register, no queue, no extra table read port).  Off by default: the park
   // decision costs the ring about 10 MHz out of context (docs/traverse.md, "Parking").
   parameter bit          PARK       = 1'b0,
-  // park queue entries (LUT RAM); loop_depth(MUL_LAT) + PARK_DEPTH <= 31 (busy_o counts ring
-  // and queue): 12 at MUL_LAT 1, 9 at MUL_LAT 2
-  parameter int unsigned PARK_DEPTH = 31 - loop_depth(MUL_LAT),
+  // park queue entries (LUT RAM); loop_depth(MUL_LAT) + PARK_DEPTH < 2^LOOP_BUSY_W (busy_o
+  // counts ring and queue)
+  parameter int unsigned PARK_DEPTH = PARK_DEPTH_DEF,
   // clocks a parked ray waits (for its line to arrive) before it takes a free slot ahead of new
   // rays (with no new ray waiting it takes one at once)
   parameter int unsigned PARK_WAIT  = 16,
@@ -211,7 +214,7 @@ module traverse_loop
   output logic              st_down_o,   // ... that descended
   output logic              st_cross_o,  // ... that crossed to a neighbour
   output logic              st_up_o,     // ... that crossed and went up a level
-  output logic [4:0]        busy_o       // rays in the ring and the park queue
+  output logic [LOOP_BUSY_W-1:0] busy_o  // rays in the ring and the park queue
 );
 
   // The position adders (u0 + du t, S8): three clocks (f24_add's LAT 3, the same word), so that
@@ -226,7 +229,7 @@ module traverse_loop
   end
   localparam int unsigned BD_LAT = 3;  // traverse_bdiff: boundary - u0 in 3 clocks
   // The stage schedule (header): a stage's index at MUL_LAT; the value at MUL_LAT 1 is the name
-  // the header and the signals use (S5 ... S18), the one at MUL_LAT 2 follows.  S0 - S4 do not
+  // the header and the signals use (S5 ... S19), the one at MUL_LAT 2 follows.  S0 - S4 do not
   // depend on it (the lookup's LOOKUP_LAT).
   localparam int unsigned S_RS   = 4;                      // 4  4: response; tx, ty operands
   localparam int unsigned S_EXIT = S_RS + MUL_LAT;         // 5  6: tx, ty; t_exit; 1 - H
@@ -239,8 +242,9 @@ module traverse_loop
   localparam int unsigned S_CB   = S_FLR + 3;              // 14 16: child's boundaries - u0
   localparam int unsigned S_LOC  = S_CB + 1;               // 15 17: locate's candidates
   localparam int unsigned S_TEN  = S_CB + BD_LAT;          // 17 19: (boundary - u0) * (1/du)
-  localparam int unsigned S_NS   = S_TEN + MUL_LAT - 1;    // 17 20: next state
-  localparam int unsigned S_TL   = S_TEN + MUL_LAT;        // 18 21: the tail
+  localparam int unsigned S_NS   = S_TEN + MUL_LAT;        // 18 21: next state; locate's
+                                                           //        correction (compared)
+  localparam int unsigned S_TL   = S_NS + 1;               // 19 22: the tail
   localparam int unsigned D  = S_TL + 1;    // stages S0 .. S_TL: traverse_pkg::loop_depth(MUL_LAT)
   localparam int unsigned SW = $clog2(D);   // block RAM table index width
   if (D != loop_depth(MUL_LAT)) begin : g_check_depth
@@ -301,21 +305,21 @@ module traverse_loop
 
   // Per ray, round the whole ring: f_q[s] is the field of the ray in stage s.
   logic [ID_W-1:0]  id_q     [D];
-  f24_pair_t        uv_q     [D];  // u0, v0; the hit's u, v once the ray has hit (from S18)
+  f24_pair_t        uv_q     [D];  // u0, v0; the hit's u, v once the ray has hit (from S19)
   dirs_t            dir_q    [D];
   f24_t             tmap_q   [D];  // time of leaving the map's extent
-  node_t            node_q   [D];  // (S17 a crossing, S18 a descent, S18 a new ray)
+  node_t            node_q   [D];  // (S18 a crossing, S19 a descent, S19 a new ray)
   f24_t             t_q      [D];  // time the ray is at (hit time once done with a hit)
   status_t          stat_q   [D];
   // Per pass: [the stage that computes it, on the passes named] the stage that reads it; the
   // registers run from the stage after the first to the second.  "ok": the height read returned
   // data; "inside": the pass hits or descends.
-  f24_t        t_new_q [S_NS:S_DEC];     // [S6 ok]              S17: max(t, plane)
+  f24_t        t_new_q [S_NS:S_DEC];     // [S6 ok]              S18: max(t, plane)
   act_t        act_q   [S_NS-1:S_DEC+1]; // [S7 ok]              S16
-  f24_pair_t   pos_q   [S_NS:S_XPRE];    // [S11 inside]          S17: position at t_new
-  f24_t        xt_q    [S_NS:S_XUP];     // [S12 ok, not inside] S17: the crossing's time
+  f24_pair_t   pos_q   [S_NS:S_XPRE];    // [S11 inside]          S18: position at t_new
+  f24_t        xt_q    [S_NS:S_XUP];     // [S12 ok, not inside] S18: the crossing's time
                                          // max(t, t_exit)
-  cross_node_t cross_q [S_NS:S_CB];      // [S13 ok, not inside] S17: the crossing's new node, up
+  cross_node_t cross_q [S_NS:S_CB];      // [S13 ok, not inside] S18: the crossing's new node, up
   // Per ray, in block RAM: du, dv and 1/du, 1/dv, one entry per slot (see the header), written
   // when the ray enters the ring.  They are read only into registers, so synthesis can put them
   // in block RAM (ram_style; a 16x4 LUT RAM costs 6 LUT4s).  Their reads are made a stage early
@@ -330,7 +334,7 @@ module traverse_loop
   logic         ok4, err4;         // the height read of the ray in S4 returned data / an error
   logic [S_NS:5]       ok_q, err_q;  // ok4, err4 of the ray in stage s (meaningful with v_q[s])
   logic [S_XUP:S_DEC+1] in_q;  // in_q[s]: ok, and the pass hits or descends (inside its node)
-  logic [S_TL:S_DEC+1]  dn_q;  // dn_q[s]: ok, and the pass descends
+  logic [S_NS:S_DEC+1]  dn_q;  // dn_q[s]: ok, and the pass descends
   logic [S_EXIT-1:1]   lv_q;   // lv_q[s]: the slot in stage s holds a live ray (not done)
   logic         xor_desc, sel_up;  // the method uses the XOR descent / the selective level-up
   descent_e     desc;              // the descent policy run (DESC_XOR as DESC_MULTI without
@@ -384,13 +388,14 @@ module traverse_loop
   logic [LVL_W-1:0] nk14_q, nk15_q;  // S14, S15: the descent's new level (computed in S13)
   logic [IDX_W-1:0] kben_x14, kbex_x14, kben_y14, kbex_y14;  // S14: the child's boundaries
   sidx_pair_t c15_q, lo15_q, hi15_q;  // S15: child estimate, the child's range at level k'
-  desc_t      dsc_q [S_TL:S_LOC+1];  // S16 - S18: new level, locate's candidates (from S15)
+  desc_t      dsc_q [S_NS:S_LOC+1];  // S16 - S18: new level, locate's candidates (from S15)
   f24_pair_t  inv16_q, inv17_q;    // S16 (block RAM read register), S17
-  status_t    st17_q;              // S17
-  logic [ITER_W-1:0] it17_q;       // S17: iterations + 1
-  act_t       act17_q;             // S17
+  status_t    st18_q;              // S18
+  logic [ITER_W-1:0] it18_q;       // S18: iterations + 1
+  act_t       act18_q;             // S18
   f24_ord_t   t_new18_q;           // S18: t_new, comparable
-  logic       down18_q, done18_q;  // S18: the pass descended (not capped); the ray is done
+  logic       down19_q, done19_q;  // S19: the pass descended (not capped); the ray is done
+  node_t      ndn19_q;             // S19: the descent's node, locate's correction made (S18)
 
   // ---- S0: height address, exit boundary integers ----------------------------------------------
   logic [ADDR_W-1:0] addr0;
@@ -651,8 +656,8 @@ module traverse_loop
   assign dex_x = dbx[1];
   assign den_y = dby[0];
   assign dex_y = dby[1];
-  logic ten_en;  // S17 .. S_TL - 1 hold a descent
-  assign ten_en = |dn_q[S_TL-1:S_TEN];
+  logic ten_en;  // S17 .. S_NS - 1 hold a descent (the crossing times' multipliers)
+  assign ten_en = |dn_q[S_NS-1:S_TEN];
   f24_mul #(.LAT(MUL_LAT)) u_ten_x (.clk_i, .en_i(ten_en), .a_i(den_x), .b_i(inv17_q.u),
                                     .y_o(ten_x));
   f24_mul #(.LAT(MUL_LAT)) u_tex_x (.clk_i, .en_i(ten_en), .a_i(dex_x), .b_i(inv17_q.u),
@@ -662,70 +667,73 @@ module traverse_loop
   f24_mul #(.LAT(MUL_LAT)) u_tex_y (.clk_i, .en_i(ten_en), .a_i(dex_y), .b_i(inv17_q.v),
                                     .y_o(tex_y));
 
-  // ---- S17: next state -----------------------------------------------------------------------
+  // ---- S18: next state -----------------------------------------------------------------------
   /* verilator lint_off UNUSEDSIGNAL */  // a live ray has no final flag (hit, ...) set: not read
-  status_t st17;
+  status_t st18;
   /* verilator lint_on UNUSEDSIGNAL */
-  status_t nst17;
-  cross_node_t x17;
-  logic live17, err17, iter17, hit17, miss17, down17, cross17, cap17;
-  assign st17    = st17_q;
-  assign x17     = cross_q[S_NS];
+  status_t nst18;
+  cross_node_t x18;
+  logic live18, err18, iter18, hit18, miss18, down18, cross18, cap18;
+  assign st18    = st18_q;
+  assign x18     = cross_q[S_NS];
   // A ray finished earlier (waiting for room in the result FIFO) is left untouched, and so is
   // one whose lookup missed in the cache (same state, round again).
-  assign live17  = v_q[S_NS] && !st17.done;
-  assign err17   = live17 && err_q[S_NS];
-  assign iter17  = live17 && !err_q[S_NS] && ok_q[S_NS];
-  assign hit17   = iter17 && act17_q.is_hit;
-  assign miss17  = iter17 && !act17_q.is_hit && act17_q.miss;
-  assign down17  = iter17 && !act17_q.is_hit && !act17_q.miss && act17_q.down;
-  assign cross17 = iter17 && !act17_q.is_hit && !act17_q.miss && !act17_q.down;
-  assign cap17   = iter17 && !act17_q.is_hit && !act17_q.miss && (it17_q >= cfg_i.iter_cap);
+  assign live18  = v_q[S_NS] && !st18.done;
+  assign err18   = live18 && err_q[S_NS];
+  assign iter18  = live18 && !err_q[S_NS] && ok_q[S_NS];
+  assign hit18   = iter18 && act18_q.is_hit;
+  assign miss18  = iter18 && !act18_q.is_hit && act18_q.miss;
+  assign down18  = iter18 && !act18_q.is_hit && !act18_q.miss && act18_q.down;
+  assign cross18 = iter18 && !act18_q.is_hit && !act18_q.miss && !act18_q.down;
+  assign cap18   = iter18 && !act18_q.is_hit && !act18_q.miss && (it18_q >= cfg_i.iter_cap);
   // (written for a live ray only, which has none of the final flags set yet)
-  assign nst17   = '{crossed:    st17.crossed || cross17,
-                     prev_cross: cross17 ? !x17.up : (st17.prev_cross && !down17),
-                     done:       err17 || hit17 || miss17 || cap17,
-                     hit:        hit17,
+  assign nst18   = '{crossed:    st18.crossed || cross18,
+                     prev_cross: cross18 ? !x18.up : (st18.prev_cross && !down18),
+                     done:       err18 || hit18 || miss18 || cap18,
+                     hit:        hit18,
                      invalid:    1'b0,
-                     capped:     cap17,
-                     err:        err17,
-                     iters:      iter17 ? it17_q : st17.iters};
+                     capped:     cap18,
+                     err:        err18,
+                     iters:      iter18 ? it18_q : st18.iters};
 
-  assign st_iter_o  = iter17;
-  assign st_down_o  = down17;
-  assign st_cross_o = cross17;
-  assign st_up_o    = cross17 && x17.up;
+  assign st_iter_o  = iter18;
+  assign st_down_o  = down18;
+  assign st_cross_o = cross18;
+  assign st_up_o    = cross18 && x18.up;
 
-  // ---- S18: the descent's cell, retire, merge ------------------------------------------------
+  // ---- S18: the descent's cell (locate's correction); S19: retire, merge ----------------------
   // locate's correction: the cell whose crossing times bracket t (cells are half-open in t).
+  // Made in S18 from the crossing times as f24_mul delivers them, into ndn19_q: the tail (S19)
+  // reads the corrected node from a register, so no comparison lies between a multiplier and
+  // the entry multiplexers of S0.
   function automatic logic [CELL_W-1:0] correct(input locate_t c, input f24_ord_t t_entry,
                                                 input f24_ord_t t_exit, input f24_ord_t t);
     return ord_lt(t, t_entry) ? c.back : ord_le(t_exit, t) ? c.fwd : c.est;
   endfunction
 
   node_t ndn18, n_new;
-  assign ndn18 = '{k:  dsc_q[S_TL].nk,
-                   cx: correct(dsc_q[S_TL].x, f24_ord(ten_x), f24_ord(tex_x), t_new18_q),
-                   cy: correct(dsc_q[S_TL].y, f24_ord(ten_y), f24_ord(tex_y), t_new18_q)};
+  assign ndn18 = '{k:  dsc_q[S_NS].nk,
+                   cx: correct(dsc_q[S_NS].x, f24_ord(ten_x), f24_ord(tex_x), t_new18_q),
+                   cy: correct(dsc_q[S_NS].y, f24_ord(ten_y), f24_ord(tex_y), t_new18_q)};
   assign n_new = '{k: new_ray_i.k, cx: new_ray_i.cx, cy: new_ray_i.cy};
 
   /* verilator lint_off UNUSEDSIGNAL */  // the tail reads the result flags only
-  status_t st18;
+  status_t st19;
   /* verilator lint_on UNUSEDSIGNAL */
-  logic    retire, bypass, admit, new_cand, free18;
+  logic    retire, bypass, admit, new_cand, free19;
   logic    park, unpark;  // the ray at the tail parks; the park queue's head takes the slot
-  assign st18   = stat_q[D-1];
-  assign retire = v_q[D-1] && done18_q && !res_full_i;
+  assign st19   = stat_q[D-1];
+  assign retire = v_q[D-1] && done19_q && !res_full_i;
   // A ray that setup already finished (invalid, or never enters the map) goes straight to the
   // result FIFO when the tail does not use it this clock.
   assign bypass   = !retire && new_valid_i && new_ray_i.done && !res_full_i;
   // The slot at the tail is free: no ray, or its ray retires or parks.  A parked ray that takes
   // it (unpark) goes before a new ray.
   assign new_cand = new_valid_i && !new_ray_i.done;
-  assign free18   = !v_q[D-1] || retire || park;
-  assign admit    = new_cand && free18 && !unpark;
+  assign free19   = !v_q[D-1] || retire || park;
+  assign admit    = new_cand && free19 && !unpark;
 
-  // ---- S18: the park queue (PARK) -------------------------------------------------------------
+  // ---- S19: the park queue (PARK) -------------------------------------------------------------
   // A FIFO of PARK_DEPTH entries (LUT RAM) holding everything a ray resumes with.  A ray at the
   // tail that is not done parks when its lookup missed this pass (its state is unchanged), or
   // when the queue's head has waited PARK_MAX clocks (any pass: its state is complete at the
@@ -744,10 +752,11 @@ module traverse_loop
   localparam int unsigned PAW  = (PQ > 1) ? $clog2(PQ) : 1;
   localparam int unsigned PCW  = $clog2(PQ + 1);
   localparam int unsigned PHW  = $clog2(PARK_MAX + 1);
-  if (PARK && (PARK_DEPTH < 1 || D + PARK_DEPTH > 31 || PARK_WAIT > 255
+  localparam int unsigned BUSY_MAX = (1 << LOOP_BUSY_W) - 1;
+  if (PARK && (PARK_DEPTH < 1 || D + PARK_DEPTH > BUSY_MAX || PARK_WAIT > 255
                || PARK_MAX < 1)) begin : g_check_park
     $error("traverse_loop: PARK_DEPTH 1 .. %0d, PARK_WAIT <= 255, PARK_MAX >= 1",
-           31 - D);
+           BUSY_MAX - D);
   end
   park_t          pk_head;         // the queue's head
   logic [PCW-1:0] pk_cnt;          // rays parked
@@ -765,9 +774,9 @@ module traverse_loop
     logic [PCW-1:0] cnt_q;
     logic [7:0]     ts_q;          // clock counter for the entries' time stamps
     logic [PHW-1:0] hw_q;          // clocks the head has waited, saturating at PARK_MAX
-    logic           miss18_q;      // S18: the ray's height read returned neither data nor an
+    logic           miss19_q;      // S19: the ray's height read returned neither data nor an
                                    // error (a lookup miss, for a ray that is not done)
-    f24_pair_t      pduv18_q, pinv18_q;  // S18: du, dv, 1/du, 1/dv (block RAM read registers)
+    f24_pair_t      pduv19_q, pinv19_q;  // S19: du, dv, 1/du, 1/dv (block RAM read registers)
     logic           ne, full, ready, cand;
     // The head's two flags, registered (computed a clock ahead for the head of the next clock,
     // off the park decision's path): old_q = pk_old (the head has waited PARK_MAX clocks),
@@ -792,9 +801,9 @@ module traverse_loop
     // has waited PARK_MAX - 1 clocks or more
     assign old_d    = ne && !unpark && (32'(hw_q) + 1 >= PARK_MAX);
     assign cand   = ne && (ready || !new_cand);
-    assign park   = v_q[D-1] && !done18_q && (miss18_q || pk_old) && (new_cand || cand)
+    assign park   = v_q[D-1] && !done19_q && (miss19_q || pk_old) && (new_cand || cand)
                     && (!full || cand);
-    assign unpark = cand && free18;
+    assign unpark = cand && free19;
     assign pk_head = pk_q[rd_q];
     assign pk_cnt  = cnt_q;
     assign pk_rd   = rd_q;
@@ -817,18 +826,18 @@ module traverse_loop
       end
     end
     always_ff @(posedge clk_i) begin
-      // (not live17: a ray that is not done in S18 was live in S17, and the status's done flag
+      // (not live18: a ray that is not done in S19 was live in S18, and the status's done flag
       // would bring the float datapath into the park decision, which the formal model cuts at
-      // done18_q)
-      miss18_q <= !ok_q[S_NS] && !err_q[S_NS];
+      // done19_q)
+      miss19_q <= !ok_q[S_NS] && !err_q[S_NS];
       if (v_q[S_NS]) begin
-        pduv18_q <= duv_q[sl_q[S_NS]];
-        pinv18_q <= inv_q[sl_q[S_NS]];
+        pduv19_q <= duv_q[sl_q[S_NS]];
+        pinv19_q <= inv_q[sl_q[S_NS]];
       end
       if (park) begin
-        pk_q[wr] <= '{id: id_q[D-1], uv: uv_q[D-1], duv: pduv18_q, inv: pinv18_q,
+        pk_q[wr] <= '{id: id_q[D-1], uv: uv_q[D-1], duv: pduv19_q, inv: pinv19_q,
                       dir: dir_q[D-1], tmap: tmap_q[D-1], t: t_q[D-1],
-                      node: down18_q ? ndn18 : node_q[D-1], stat: stat_q[D-1]};
+                      node: down19_q ? ndn19_q : node_q[D-1], stat: stat_q[D-1]};
         ts_mem[wr] <= ts_q;
       end
     end
@@ -854,22 +863,22 @@ module traverse_loop
   assign res_id_o   = retire ? id_q[D-1] : new_id_i;
   // (a retiring ray's uv_q holds the hit's u, v if it hit, else u0, v0)
   assign res_o      = retire ? '{t: t_q[D-1], u: uv_q[D-1].u, v: uv_q[D-1].v,
-                                 hit: st18.hit, invalid: st18.invalid, capped: st18.capped,
-                                 err: st18.err, iters: st18.iters}
+                                 hit: st19.hit, invalid: st19.invalid, capped: st19.capped,
+                                 err: st19.err, iters: st19.iters}
                              : '{t: new_ray_i.t, u: new_ray_i.u0, v: new_ray_i.v0,
                                  hit: new_ray_i.hit, invalid: new_ray_i.invalid,
                                  capped: new_ray_i.capped, err: new_ray_i.err,
                                  iters: new_ray_i.iters};
 
   // ---- ring ------------------------------------------------------------------------------------
-  // S18 -> S0: the ray re-circulates (priority), or a new ray fills the bubble.
+  // S19 -> S0: the ray re-circulates (priority), or a new ray fills the bubble.
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       v_q     <= '0;
       live0_q <= 1'b0;
     end else begin
       v_q     <= {v_q[D-2:0], (v_q[D-1] && !retire && !park) || admit || unpark};
-      live0_q <= admit || unpark || (v_q[D-1] && !done18_q && !park);
+      live0_q <= admit || unpark || (v_q[D-1] && !done19_q && !park);
     end
   end
 
@@ -886,7 +895,7 @@ module traverse_loop
       ok_q  <= {ok_q[S_NS-1:5], ok4};
       err_q <= {err_q[S_NS-1:5], err4};
       in_q  <= {in_q[S_XUP-1:S_DEC+1], ok_q[S_DEC] && inside7};
-      dn_q  <= {dn_q[S_TL-1:S_DEC+1], ok_q[S_DEC] && act7.down};
+      dn_q  <= {dn_q[S_NS-1:S_DEC+1], ok_q[S_DEC] && act7.down};
       lv_q  <= {lv_q[S_EXIT-2:1], live0_q};
     end
   end
@@ -894,7 +903,7 @@ module traverse_loop
   // The registered reads and the pipelines; each loads while the stage before its reader holds a
   // pass that uses it.
   always_ff @(posedge clk_i) begin
-    // S18 -> S0: the ray coming round (S17 wrote a crossing's node), its descent's node, or the
+    // S19 -> S0: the ray coming round (S18 wrote a crossing's node), its descent's node, or the
     // new ray
     if (lv_q[2]) inv3_q <= inv_q[sl_q[2]];
     if (lv_q[3]) inv4_q <= inv3_q;
@@ -974,20 +983,21 @@ module traverse_loop
              est:  CELL_W'(c15_q.y),
              fwd:  CELL_W'(clip_idx(c15_q.y + dir_val(d15_q.sy), lo15_q.y, hi15_q.y))}};
     end
-    for (int s = S_LOC + 1; s < S_TL; s++) begin
+    for (int s = S_LOC + 1; s < S_NS; s++) begin
       if (dn_q[s]) dsc_q[s+1] <= dsc_q[s];
     end
     if (dn_q[S_TEN-2]) inv16_q <= inv_q[sl_q[S_TEN-2]];
     if (dn_q[S_TEN-1]) inv17_q <= inv16_q;
     if (v_q[S_NS-1]) begin
-      st17_q  <= stat_q[S_NS-1];
-      it17_q  <= stat_q[S_NS-1].iters + ITER_W'(1);
-      act17_q <= act_q[S_NS-1];
+      st18_q  <= stat_q[S_NS-1];
+      it18_q  <= stat_q[S_NS-1].iters + ITER_W'(1);
+      act18_q <= act_q[S_NS-1];
     end
-    // S17 -> S18
-    if (dn_q[S_NS]) t_new18_q <= f24_ord(t_new_q[S_NS]);
-    down18_q <= down17 && !cap17;  // (a capped ray is done: its node is never read again)
-    done18_q <= (err17 || iter17) ? nst17.done : st17.done;
+    // S18 -> S19 (t_new from S17)
+    if (dn_q[S_NS-1]) t_new18_q <= f24_ord(t_new_q[S_NS-1]);
+    if (dn_q[S_NS]) ndn19_q <= ndn18;
+    down19_q <= down18 && !cap18;  // (a capped ray is done: its node is never read again)
+    done19_q <= (err18 || iter18) ? nst18.done : st18.done;
   end
 
   // The ring: every field moves on one stage per clock; a stage that changes a field loads the
@@ -1002,7 +1012,7 @@ module traverse_loop
       t_q[s]    <= t_q[s-1];
       stat_q[s] <= stat_q[s-1];
     end
-    // S18 -> S0: the ray re-circulates (its descent's node, if it descended), or a new ray fills
+    // S19 -> S0: the ray re-circulates (its descent's node, if it descended), or a new ray fills
     // the bubble
     // the bubble, or a parked ray comes back
     id_q[0]   <= admit ? new_id_i : unpark ? pk_head.id : id_q[D-1];
@@ -1010,25 +1020,25 @@ module traverse_loop
     dir_q[0]  <= admit ? '{sx: new_ray_i.sx, sy: new_ray_i.sy}
                : unpark ? pk_head.dir : dir_q[D-1];
     tmap_q[0] <= admit ? new_ray_i.t_map : unpark ? pk_head.tmap : tmap_q[D-1];
-    node_q[0] <= admit ? n_new : unpark ? pk_head.node : down18_q ? ndn18 : node_q[D-1];
+    node_q[0] <= admit ? n_new : unpark ? pk_head.node : down19_q ? ndn19_q : node_q[D-1];
     // (n - k of the same node, each candidate's difference made before the choice)
     nk0_q     <= admit ? cfg_i.n - new_ray_i.k : unpark ? cfg_i.n - pk_head.node.k
-               : down18_q ? cfg_i.n - ndn18.k : cfg_i.n - node_q[D-1].k;
+               : down19_q ? cfg_i.n - ndn19_q.k : cfg_i.n - node_q[D-1].k;
     t_q[0]    <= admit ? new_ray_i.t : unpark ? pk_head.t : t_q[D-1];
     stat_q[0] <= admit ? status_t'{crossed: new_ray_i.crossed, prev_cross: new_ray_i.prev_cross,
                                    done: new_ray_i.done, hit: new_ray_i.hit,
                                    invalid: new_ray_i.invalid, capped: new_ray_i.capped,
                                    err: new_ray_i.err, iters: new_ray_i.iters}
                : unpark ? pk_head.stat : stat_q[D-1];
-    // S17 -> S18: the next state (only a live ray whose lookup answered changes); a hit's u, v
+    // S18 -> S19: the next state (only a live ray whose lookup answered changes); a hit's u, v
     // take the place of u0, v0 (no stage reads those again)
-    if (err17 || iter17) stat_q[S_TL] <= nst17;
-    if (hit17 || down17) t_q[S_TL] <= t_new_q[S_NS];
-    if (cross17) begin
+    if (err18 || iter18) stat_q[S_TL] <= nst18;
+    if (hit18 || down18) t_q[S_TL] <= t_new_q[S_NS];
+    if (cross18) begin
       t_q[S_TL]    <= xt_q[S_NS];
-      node_q[S_TL] <= '{k: x17.k, cx: x17.cx, cy: x17.cy};
+      node_q[S_TL] <= '{k: x18.k, cx: x18.cx, cy: x18.cy};
     end
-    if (hit17) uv_q[S_TL] <= pos_q[S_NS];
+    if (hit18) uv_q[S_TL] <= pos_q[S_NS];
     // What this pass computes for its later stages (only for the passes that read it: the height
     // read returned data; hits and descents; crossings).
     for (int s = S_DEC + 1; s <= S_NS; s++) t_new_q[s] <= t_new_q[s-1];
@@ -1058,7 +1068,7 @@ module traverse_loop
   end
 
   always_comb begin
-    busy_o = 5'($countones(v_q)) + 5'(pk_cnt);
+    busy_o = LOOP_BUSY_W'($countones(v_q)) + LOOP_BUSY_W'(pk_cnt);
   end
 
   // The simulation checks are in traverse_loop_assert.sv (bound into every instance).

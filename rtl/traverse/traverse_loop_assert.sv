@@ -11,8 +11,8 @@
 //                           else);
 //   new_ray_only_in_bubble  a new ray enters only where the last stage holds no ray or one that
 //                           retires or parks;
-//   live_ray_has_no_result  a ray that is not done has none of the final flags (S17 relies on
-//                           it);
+//   live_ray_has_no_result  a ray that is not done has none of the final flags (the next state,
+//                           S_NS, relies on it);
 //   descent_not_admitted    the descent's node and a new (or parked) ray never take one entry in
 //                           one clock (unless the descending ray parks);
 //   nk0_is_n_minus_k        the address's n - k (nk0_q, made in the tail) is n minus the level
@@ -70,9 +70,9 @@ module traverse_loop_assert
   input logic                          admit_i,            // admit: a new ray enters
   input logic                          v_last_i,           // v_q[D-1]
   input logic                          retire_i,
-  input logic                          live17_i,
-  input logic                          st17_final_i,       // st17: hit, invalid, capped or err
-  input logic                          down18_i,           // down18_q
+  input logic                          live_ns_i,          // live18 (S_NS): a live ray
+  input logic                          st_ns_final_i,      // st18 (S_NS): hit, invalid, capped or err
+  input logic                          down_tl_i,          // down19_q (the tail)
   input logic                          lv1_i,              // lv_q[1]: a live ray in S1
   input logic [IDX_W-1:0]              kb1_i [2],          // kbx1_q, kby1_q
   input f24_t                          uv1_i [2],          // uv_q[1]
@@ -83,7 +83,7 @@ module traverse_loop_assert
   input logic [ID_W-1:0]               id_i [D],           // id_q: their ids
   input logic                          bypass_i,           // bypass: a new ray straight out
   input logic [ID_W-1:0]               new_id_i,
-  input logic                          done18_i,           // done18_q
+  input logic                          done_tl_i,          // done19_q (the tail)
   input logic                          res_full_i,
   input logic                          park_i,             // park
   input logic                          unpark_i,           // unpark
@@ -151,7 +151,7 @@ module traverse_loop_assert
   logic           blocked;   // the tail holds a finished ray the result FIFO has no room for
   logic [PHW-1:0] w_q;       // clocks the head has waited, blocked clocks not counted
   logic [NW-1:0]  n_q;       // rays admitted - rays retired
-  assign blocked = v_last_i && done18_i && res_full_i;
+  assign blocked = v_last_i && done_tl_i && res_full_i;
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       w_q <= '0;
@@ -169,7 +169,7 @@ module traverse_loop_assert
         else $error("traverse_loop: a parked ray leaves an empty park queue");
       park_in_range:      assert (32'(pk_cnt_i) <= PQ && 32'(pk_rd_i) < PQ)
         else $error("traverse_loop: park queue count %0d, head %0d", pk_cnt_i, pk_rd_i);
-      park_only_not_done: assert (!park_i || (v_last_i && !done18_i))
+      park_only_not_done: assert (!park_i || (v_last_i && !done_tl_i))
         else $error("traverse_loop: a finished ray or no ray parks");
       park_old_leaves:    assert (!pk_old_i || blocked || unpark_i)
         else $error("traverse_loop: the park queue's head waited PARK_MAX clocks and stays");
@@ -234,9 +234,9 @@ module traverse_loop_assert
         else $error("traverse_loop: S0's n - k %0d, want %0d", nk0_i, nk0_want_i);
       new_ray_only_in_bubble: assert (!(admit_i || unpark_i) || !v_last_i || retire_i || park_i)
         else $error("traverse_loop: a new ray admitted over a ray that stays");
-      live_ray_has_no_result: assert (!live17_i || !st17_final_i)
-        else $error("traverse_loop: a live ray in S17 has a final flag");
-      descent_not_admitted: assert (!down18_i || !(admit_i || unpark_i) || park_i)
+      live_ray_has_no_result: assert (!live_ns_i || !st_ns_final_i)
+        else $error("traverse_loop: a live ray in S_NS has a final flag");
+      descent_not_admitted: assert (!down_tl_i || !(admit_i || unpark_i) || park_i)
         else $error("traverse_loop: a descent and a new ray in one clock");
       bdiff_operand_in_range: assert (
           (!lv1_i || (bound_ok(kb1_i[0]) && bound_ok(kb1_i[1])
@@ -257,12 +257,12 @@ bind traverse_loop traverse_loop_assert #(.ID_W(ID_W), .D(D), .PQ(PQ), .PARK_MAX
 u_assert (
   .clk_i, .rst_ni, .sl_i(sl_q), .lk_valid_i(lk_valid_o), .rs_valid_i, .ok5_i(h_ok),
   .h_i(h_x), .live0_i(live0_q), .nk0_i(nk0_q), .nk0_want_i(LVL_W'(cfg_i.n - node_q[0].k)),
-  .admit_i(admit), .v_last_i(v_q[D-1]), .retire_i(retire), .live17_i(live17),
-  .st17_final_i(st17.hit || st17.invalid || st17.capped || st17.err), .down18_i(down18_q),
+  .admit_i(admit), .v_last_i(v_q[D-1]), .retire_i(retire), .live_ns_i(live18),
+  .st_ns_final_i(st18.hit || st18.invalid || st18.capped || st18.err), .down_tl_i(down19_q),
   .lv1_i(lv_q[1]), .kb1_i('{kbx1_q, kby1_q}), .uv1_i('{uv_q[1].u, uv_q[1].v}),
   .dn14_i(dn_q[S_CB]), .kb14_i('{kben_x14, kbex_x14, kben_y14, kbex_y14}),
   .uv14_i('{uv_q[S_CB].u, uv_q[S_CB].v}), .v_i(v_q), .id_i(id_q), .bypass_i(bypass),
-  .new_id_i, .done18_i(done18_q), .res_full_i, .park_i(park), .unpark_i(unpark),
+  .new_id_i, .done_tl_i(done19_q), .res_full_i, .park_i(park), .unpark_i(unpark),
   .pk_cnt_i(pk_cnt), .pk_rd_i(pk_rd), .pk_v_i(pk_v), .pk_id_i(pk_id), .pk_old_i(pk_old),
   .pk_hw_i(pk_hw));
 `endif

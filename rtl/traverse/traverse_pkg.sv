@@ -24,10 +24,15 @@ package traverse_pkg;
   localparam int unsigned CODE_W     = 16;  // a height code (unorm8 in the low byte, or unorm16)
   localparam int unsigned LOOKUP_LAT = 3;   // clocks from lk_valid_o to rs_valid_i
   // Stages of traverse_loop's ring (one ray slot each): one pass = one iteration = LOOP_DEPTH
-  // clocks.  16 + 3 * MUL_LAT: three f24_mul on the pass's dependent chain (tx, du * t, the
-  // child's crossing times; traverse_loop's header), each MUL_LAT stages; 22 at the package
-  // default pipe_pkg::F24_MUL_LAT = 2, 19 at the paper's MUL_LAT 1.  (Its f24_add run at a fixed 3 clocks.)
-  localparam int unsigned LOOP_DEPTH = 16 + 3 * pipe_pkg::F24_MUL_LAT;  // loop_depth(F24_MUL_LAT)
+  // clocks.  17 + 3 * MUL_LAT: three f24_mul on the pass's dependent chain (tx, du * t, the
+  // child's crossing times; traverse_loop's header), each MUL_LAT stages; 23 at the package
+  // default pipe_pkg::F24_MUL_LAT = 2, 20 at the paper's MUL_LAT 1.  (Its f24_add run at a fixed 3 clocks.)
+  localparam int unsigned LOOP_DEPTH = 17 + 3 * pipe_pkg::F24_MUL_LAT;  // loop_depth(F24_MUL_LAT)
+  // traverse_loop's busy_o: the rays in its ring and its park queue, loop_depth(MUL_LAT) +
+  // PARK_DEPTH <= 2^LOOP_BUSY_W - 1.
+  localparam int unsigned LOOP_BUSY_W = 6;
+  // traverse_loop's default park queue entries (PARK_DEPTH)
+  localparam int unsigned PARK_DEPTH_DEF = 16;
   // traverse_setup's schedule at f24_add LAT add_lat and f24_mul LAT mul_lat (its ADD_LAT /
   // MUL_LAT; its header has the stage table).  setup_gap: the item stages from a shared unit's
   // first operation to its second, add_lat + mul_lat + 3 rounded up to 2 mod 4 (the second
@@ -53,7 +58,7 @@ package traverse_pkg;
   // traverse_loop's ring length for an f24_mul latency of mul_lat clocks (LOOP_DEPTH above is its
   // value at pipe_pkg::F24_MUL_LAT, written out so that tb/harness/sv_params.py can read it).
   function automatic int unsigned loop_depth(input int unsigned mul_lat);
-    return 16 + 3 * mul_lat;
+    return 17 + 3 * mul_lat;
   endfunction
 
   // ---- methods (model.traverse.METHOD_CODES) ------------------------------------------------

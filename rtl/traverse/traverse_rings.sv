@@ -25,7 +25,7 @@ module traverse_rings
   parameter int unsigned RES_FIFO_DEPTH   = 16,  // power of two
   parameter int unsigned UNIT_CNT_W       = 48,  // width of the units' statistics counters
   parameter bit          PARK             = 1'b0, // 1: park queue for missed rays (traverse_loop)
-  parameter int unsigned PARK_DEPTH       = 31 - traverse_pkg::LOOP_DEPTH,  // park queue entries (traverse_loop; 9 for the 22-stage ring, 12 for 19)
+  parameter int unsigned PARK_DEPTH       = traverse_pkg::PARK_DEPTH_DEF,  // park queue entries (traverse_loop)
   parameter int unsigned PARK_WAIT        = 16,  // clocks before a parked ray beats new rays (traverse_loop)
   parameter int unsigned PARK_MAX         = 4 * traverse_pkg::LOOP_DEPTH, // bound on a parked ray's wait
   parameter int unsigned LINE_BYTES       = 32,  // height-cache line (one AXI burst per fill)

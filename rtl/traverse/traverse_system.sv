@@ -27,7 +27,7 @@ module traverse_system
   parameter int unsigned RES_FIFO_DEPTH   = 16,  // power of two
   parameter int unsigned UNIT_CNT_W       = 48,  // width of the unit's statistics counters
   parameter bit          PARK             = 1'b0, // 1: park queue for missed rays (traverse_loop)
-  parameter int unsigned PARK_DEPTH       = 31 - LOOP_DEPTH,  // park queue entries (traverse_loop; 9 for the 22-stage ring, 12 for 19)
+  parameter int unsigned PARK_DEPTH       = PARK_DEPTH_DEF,  // park queue entries (traverse_loop)
   parameter int unsigned PARK_WAIT        = 16,  // clocks before a parked ray beats new rays (traverse_loop)
   parameter int unsigned PARK_MAX         = 4 * LOOP_DEPTH, // bound on a parked ray's wait (traverse_loop)
   // height cache

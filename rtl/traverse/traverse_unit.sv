@@ -42,7 +42,7 @@ module traverse_unit
   parameter bit          XOR_PATH         = 1'b1, // 0: no XOR descent path (traverse_loop)
   parameter int unsigned MUL_LAT          = pipe_pkg::F24_MUL_LAT, // f24_mul latency (traverse_loop)
   parameter bit          PARK             = 1'b0, // 1: park queue for missed rays (traverse_loop)
-  parameter int unsigned PARK_DEPTH       = 31 - loop_depth(MUL_LAT), // park queue entries (traverse_loop; 9 for 22 stages)
+  parameter int unsigned PARK_DEPTH       = PARK_DEPTH_DEF, // park queue entries (traverse_loop)
   parameter int unsigned PARK_WAIT        = 16,   // clocks before a parked ray beats new rays (traverse_loop)
   parameter int unsigned PARK_MAX         = 4 * loop_depth(MUL_LAT) // bound on a parked ray's wait (traverse_loop)
 ) (
@@ -158,7 +158,7 @@ module traverse_unit
   logic [RF_W-1:0] rf_head;
   logic [RF_AW:0]  rf_count;
   logic            st_iter, st_down, st_cross, st_up;
-  logic [4:0]      lp_busy;
+  logic [LOOP_BUSY_W-1:0] lp_busy;
   traverse_loop #(
     .ID_W(ID_W), .MUL_LAT(MUL_LAT), .XOR_PATH(XOR_PATH), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH),
     .PARK_WAIT(PARK_WAIT), .PARK_MAX(PARK_MAX)
@@ -193,8 +193,10 @@ module traverse_unit
 
   // ---- statistics ----------------------------------------------------------------------------
   // Rays in the unit: in minus out.  At most SETUP_FIFO_DEPTH in setup and its FIFO (the
-  // credits above), the ring's slots (busy_o < 32) and RES_FIFO_DEPTH results.
-  localparam int unsigned MAX_INFLIGHT = SETUP_FIFO_DEPTH + 31 + RES_FIFO_DEPTH;
+  // credits above), the ring's slots and park queue (busy_o < 2^LOOP_BUSY_W) and RES_FIFO_DEPTH
+  // results.
+  localparam int unsigned MAX_INFLIGHT = SETUP_FIFO_DEPTH + (1 << LOOP_BUSY_W) - 1
+                                         + RES_FIFO_DEPTH;
   localparam int unsigned IF_W = $clog2(MAX_INFLIGHT + 1);
   logic [IF_W-1:0] inflight_q;
   assign idle_o = (inflight_q == '0);

@@ -38,7 +38,7 @@ module traverse_unit_assert
   input logic [SETUP_BUSY_W-1:0]                su_busy_i,
   input logic [$clog2(SETUP_FIFO_DEPTH):0]      sf_count_i,
   input logic [$clog2(SETUP_FIFO_DEPTH):0]      sf_used_i,    // sf_used_q
-  input logic [4:0]                             lp_busy_i,
+  input logic [LOOP_BUSY_W-1:0]                 lp_busy_i,
   input logic [$clog2(RES_FIFO_DEPTH):0]        rf_count_i,
   input logic                                   su_valid_i,
   input logic                                   sf_full_i,

@@ -18,9 +18,10 @@ over the ray's whole depth (|du, dv|) uniform in [0, --size / 2] texels, in rand
 secondary rays of a ray tracer (no two neighbours in the stream share a tile or a direction);
 --seed picks them.  --park measures the ring with its park queue (traverse_loop PARK = 1, a
 harness build of its own; off by default); --park-depth, --park-wait and --park-max set its
-knobs (traverse_loop PARK_DEPTH, PARK_WAIT, PARK_MAX) and --mshrs the height cache's line fills in
-flight (height_cache MSHRS; the AXI ID width grows to log2(MSHRS) + 2 where 4 is too narrow): each
-setting away from the defaults is a harness build of its own (build/traverse_<params>/).
+knobs (traverse_loop PARK_DEPTH, PARK_WAIT, PARK_MAX), --mshrs the height cache's line fills in
+flight (height_cache MSHRS; the AXI ID width grows to log2(MSHRS) + 2 where 4 is too narrow) and
+--sets its sets (height_cache SETS; 4 ways of 32-byte lines, so 256 sets = 32 KiB): each setting
+away from the defaults is a harness build of its own (build/traverse_<params>/).
 
 Every RTL result is compared with the f24 engine (t, u, v, hit, invalid, iterations): a
 difference fails the run (exit status 1).  Writes JSON (--out) and a markdown table (--md) and
@@ -44,7 +45,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[2]
 from model import camera, heightmap, scenes, traverse
 from model.cli import Parser, Progress, fail
-from tb.harness import traverse_system
+from tb.harness import sv_params, traverse_system
 from model.rays import Rays
 
 PROG = "bench_rtl.py"
@@ -110,8 +111,14 @@ def harness_params(a: Any) -> dict[str, int]:
         params["MSHRS"] = a.mshrs
         params["AXI_ID_W"] = max(traverse_system.PARAMS["AXI_ID_W"],
                                  (a.mshrs - 1).bit_length() + 2)
-    # traverse_loop's ranges: ring (19 stages) + queue <= 31, an 8-bit park age
-    for opt, name, val, lo, hi in (("--park-depth", "PARK_DEPTH", a.park_depth, 1, 31 - 19),
+    if a.sets is not None:
+        if a.sets < 16 or a.sets > 4096 or a.sets & (a.sets - 1):
+            fail(PROG, f"--sets must be a power of two in 16 .. 4096, got {a.sets}")
+        params["SETS"] = a.sets
+    # traverse_loop's ranges: ring + queue < 2^LOOP_BUSY_W (its busy_o), an 8-bit park age
+    depth_max = ((1 << sv_params.value("traverse_pkg", "LOOP_BUSY_W")) - 1
+                 - sv_params.value("traverse_pkg", "LOOP_DEPTH"))
+    for opt, name, val, lo, hi in (("--park-depth", "PARK_DEPTH", a.park_depth, 1, depth_max),
                                    ("--park-wait", "PARK_WAIT", a.park_wait, 0, 255),
                                    ("--park-max", "PARK_MAX", a.park_max, 1, 1 << 16)):
         if val is None:
@@ -142,13 +149,16 @@ def main() -> int:
                     help="height-cache MSHRs, line fills in flight (height_cache MSHRS; "
                          "default the harness's, 4)")
     ap.add_argument("--park-depth", type=int, default=None, metavar="N",
-                    help="park queue entries (traverse_loop PARK_DEPTH, default 12; with --park)")
+                    help="park queue entries (traverse_loop PARK_DEPTH, default 16; with --park)")
     ap.add_argument("--park-wait", type=int, default=None, metavar="N",
                     help="clocks a parked ray waits before it beats new rays to a free slot "
                          "(traverse_loop PARK_WAIT, default 16; with --park)")
     ap.add_argument("--park-max", type=int, default=None, metavar="N",
                     help="clocks the park queue's head waits before it takes any tail slot "
-                         "(traverse_loop PARK_MAX, default 4 x 19; with --park)")
+                         "(traverse_loop PARK_MAX, default 4 x the ring's stages; with --park)")
+    ap.add_argument("--sets", type=int, default=None, metavar="N",
+                    help="height-cache sets (height_cache SETS, 4 ways x 32 B each; default the "
+                         "harness's, 256 = 32 KiB)")
     ap.add_argument("--out", type=Path, default=ROOT / "out" / "bench" / "rtl.json")
     ap.add_argument("--md", type=Path, default=ROOT / "out" / "bench" / "rtl.md")
     a = ap.parse_args()

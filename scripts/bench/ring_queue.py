@@ -30,9 +30,10 @@ if str(ROOT) not in sys.path:
 
 from model import camera, scenes, shade  # noqa: E402
 from model.cli import Parser, fail  # noqa: E402
-from tb.harness import dm_pipeline  # noqa: E402
+from tb.harness import dm_pipeline, sv_params  # noqa: E402
 
 PROG = "ring_queue.py"
+LOOP_DEPTH = sv_params.value("traverse_pkg", "LOOP_DEPTH")  # the ring's stages
 
 
 def frame_rays(scene: str, view: str, map_side: int, image: int,
@@ -114,7 +115,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--buffer", default="48",
                     help="rays between the input and the ring, comma-separated (default 48: "
                          "FIFO #0 16 + setup and its FIFO 32)")
-    ap.add_argument("--depth", type=int, default=22, help="ring stages (default 22)")
+    ap.add_argument("--depth", type=int, default=LOOP_DEPTH,
+                    help=f"ring stages (default traverse_pkg::LOOP_DEPTH, {LOOP_DEPTH})")
     ap.add_argument("--res-depth", type=int, default=16, help="result FIFO (default 16)")
     ap.add_argument("--slots", type=int, default=128, help="pixels inside (default 128)")
     ap.add_argument("--back-end", type=int, default=150,

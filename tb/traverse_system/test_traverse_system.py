@@ -643,7 +643,7 @@ async def watch_park(dut, tally: dict[str, int]) -> None:
         tally["full"] += cnt == depth
         # a missed ray at the tail that stays in the ring because the queue is full
         if (cnt == depth and not park and not unpark and int(lp.v_q.value) & last
-                and not int(lp.done18_q.value) and int(lp.g_park.miss18_q.value)):
+                and not int(lp.done19_q.value) and int(lp.g_park.miss19_q.value)):
             tally["full_stay"] += 1
         tally["backpressure"] += bool(cnt and int(dut.u_unit.rf_full.value))
         tally["depth"] = depth
@@ -702,7 +702,9 @@ def test_traverse_system():
 
 
 def test_traverse_system_park():
-    # The ring with its park queue (PARK = 1; off by default), the same 4 KiB cache.
+    # The ring with its park queue (PARK = 1; off by default), the same 4 KiB cache.  A queue of
+    # 8 entries (the default is 16): the batches then fill it while its head has not waited
+    # PARK_WAIT clocks, so a missed ray must stay in the ring (full_stay).
     runner.run("traverse_system", "test_traverse_system", HERE,
-               parameters={"SETS": 64, "WAYS": 2, "PARK": 1},
+               parameters={"SETS": 64, "WAYS": 2, "PARK": 1, "PARK_DEPTH": 8},
                extra_env={"TRAVERSE_PARK": "1"}, testcase="traverse_system_incoherent_park")

@@ -57,7 +57,7 @@ MUL_LAT = int(os.environ.get("MUL_LAT", str(depths.DEFAULT[1])))
 
 def loop_depth(mul_lat: int) -> int:
     """traverse_pkg::loop_depth: the ring's stages for f24_mul latency ``mul_lat``."""
-    return 16 + 3 * mul_lat
+    return 17 + 3 * mul_lat
 
 
 def model_method(method: str) -> traverse.Method:

@@ -57,7 +57,7 @@ module ring_probe #(
   input logic              rf_full_i,     // result FIFO full
   // ring tail
   input logic              tail_v_i,      // v_q[D-1]
-  input logic              tail_done_i,   // done18_q
+  input logic              tail_done_i,   // done19_q
   input logic              new_valid_i,   // setup FIFO not empty
   input logic              new_cand_i,    // ... and its head is not done
   input logic              admit_i,
@@ -193,7 +193,7 @@ bind dm_pipeline ring_probe #(.SLOT_W(SLOT_W), .D(traverse_pkg::LOOP_DEPTH)) u_r
   .sf_count_i(8'(u_trav.g_ring[0].u_sys.u_unit.sf_count)),
   .rf_full_i(u_trav.g_ring[0].u_sys.u_unit.rf_full),
   .tail_v_i(u_trav.g_ring[0].u_sys.u_unit.u_loop.v_q[traverse_pkg::LOOP_DEPTH-1]),
-  .tail_done_i(u_trav.g_ring[0].u_sys.u_unit.u_loop.done18_q),
+  .tail_done_i(u_trav.g_ring[0].u_sys.u_unit.u_loop.done19_q),
   .new_valid_i(u_trav.g_ring[0].u_sys.u_unit.u_loop.new_valid_i),
   .new_cand_i(u_trav.g_ring[0].u_sys.u_unit.u_loop.new_cand),
   .admit_i(u_trav.g_ring[0].u_sys.u_unit.u_loop.admit),
