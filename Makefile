@@ -124,8 +124,8 @@ test-long: $(STAMP)
 # (out/terrain, out/relief_texture), the RTL traverse unit per scene and view (scripts/bench/bench_rtl.py:
 # clocks/iteration, height-cache hit rate, bytes/ray, harness clocks/s; out/bench/rtl.md) and on
 # incoherent rays (random positions and directions on 512x512 maps; out/bench/rtl_incoherent.md;
-# with the park queue, 16 height-cache MSHRs and PARK_WAIT 32: out/bench/rtl_incoherent_park.md,
-# docs/results/incoherent-rays.md),
+# with the park queue, 16 height-cache MSHRs, PARK_WAIT 32 and the pipeline's 64 KiB height cache:
+# out/bench/rtl_incoherent_park.md, docs/results/incoherent-rays.md),
 # the whole pipeline per scene, view and MIP on/off (scripts/bench/bench_pipeline.py: clocks/pixel vs
 # iterations, cache hit rates, bytes/pixel; out/bench/pipeline*.md), the harness on random rays,
 # and the 10 M-vector soak of model/f24.py against MPFR.
@@ -144,7 +144,7 @@ bench: $(STAMP)
 	@$(ENV) $(PY) scripts/bench/bench_rtl.py --incoherent 20000 --size 512 \
 	    --out out/bench/rtl_incoherent.json --md out/bench/rtl_incoherent.md
 	@$(ENV) $(PY) scripts/bench/bench_rtl.py --incoherent 20000 --size 512 \
-	    --park --mshrs 16 --park-wait 32 \
+	    --park --mshrs 16 --park-wait 32 --sets 512 \
 	    --out out/bench/rtl_incoherent_park.json --md out/bench/rtl_incoherent_park.md
 	@$(ENV) $(PY) scripts/bench/bench_pipeline.py
 	@$(ENV) $(PY) scripts/bench/bench_pipeline.py --rings 2 --out out/bench/pipeline_r2.json \

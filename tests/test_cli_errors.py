@@ -147,7 +147,8 @@ TOOL_CASES: dict[str, tuple[str, list[str], dict[str, str]]] = {
     "bench_rtl mshrs not a power of two": ("scripts/bench/bench_rtl.py", ["--mshrs", "6"], {}),
     "bench_rtl park knob without park": ("scripts/bench/bench_rtl.py", ["--park-wait", "8"], {}),
     "bench_rtl park depth too deep": ("scripts/bench/bench_rtl.py", ["--park", "--park-depth",
-                                                                    "13"], {}),
+                                                                    "41"], {}),
+    "bench_rtl sets not a power of two": ("scripts/bench/bench_rtl.py", ["--sets", "300"], {}),
     # bench_pipeline.py
     "bench_pipeline unknown scene": ("scripts/bench/bench_pipeline.py", ["--scenes", "nope"], {}),
     "bench_pipeline bad view": ("scripts/bench/bench_pipeline.py", ["--views", "sideways"], {}),
