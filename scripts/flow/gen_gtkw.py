@@ -27,6 +27,11 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 OUT = ROOT / "tb" / "waves"
 from model.cli import Parser
+from tb.harness import sv_params
+
+#: The traverse ring's stages and its busy count's width (traverse_pkg), for the loop's groups.
+LOOP_DEPTH = sv_params.value("traverse_pkg", "LOOP_DEPTH")
+LOOP_BUSY_W = sv_params.value("traverse_pkg", "LOOP_BUSY_W")
 
 # GTKWave trace flags: hex / binary / decimal, right-justified; comment; group begin / end.
 HEX, BIN, DEC = "22", "28", "24"
@@ -48,8 +53,8 @@ TRAVERSE: list[tuple[str, list[Sig]]] = [
         ("u_unit.su_ray.inv_dv", 24, HEX), ("u_unit.su_ray.t_map", 24, HEX),
         ("u_unit.su_ray.invalid", 1, BIN), ("u_unit.su_ray.done", 1, BIN)]),
     ("loop: v_q[s] stage s holds a ray (its fields in f_q[s]); S0 looks its height up; du, dv "
-     "tables' slot sl_q[s] = (sl_q[0] - s) mod 19", [
-        ("u_unit.u_loop.v_q", 19, BIN), ("u_unit.u_loop.sl_q.sl_q[0]", 5, DEC),
+     f"tables' slot sl_q[s] = (sl_q[0] - s) mod {LOOP_DEPTH}", [
+        ("u_unit.u_loop.v_q", LOOP_DEPTH, BIN), ("u_unit.u_loop.sl_q.sl_q[0]", 5, DEC),
         ("u_unit.u_loop.live0_q", 1, BIN), ("u_unit.u_loop.addr0", 32, HEX)]),
     ("S1 height lookup -> S4 response (LOOKUP_LAT 3; rs_hit 0: goes round again); the state of "
      "the ray in S1", [
@@ -67,16 +72,17 @@ TRAVERSE: list[tuple[str, list[Sig]]] = [
         ("u_unit.u_loop.inside7", 1, BIN)]),
     ("S14: descent (the new level, levels descended)", [
         ("u_unit.u_loop.nk14_q", 4, DEC), ("u_unit.u_loop.dd14", 4, DEC)]),
-    ("S17: the iteration's action and the next state", [
-        ("u_unit.u_loop.live17", 1, BIN), ("u_unit.u_loop.act17_q.is_hit", 1, BIN),
-        ("u_unit.u_loop.act17_q.down", 1, BIN), ("u_unit.u_loop.act17_q.miss", 1, BIN),
-        ("u_unit.u_loop.iter17", 1, BIN), ("u_unit.u_loop.hit17", 1, BIN),
-        ("u_unit.u_loop.down17", 1, BIN), ("u_unit.u_loop.cross17", 1, BIN),
-        ("u_unit.u_loop.miss17", 1, BIN), ("u_unit.u_loop.err17", 1, BIN),
-        ("u_unit.u_loop.cap17", 1, BIN), ("u_unit.u_loop.it17_q", 16, DEC)]),
-    ("S18: retire / admit a new ray", [
+    (f"S18: the iteration's action and the next state (stage {LOOP_DEPTH - 2} of the "
+     f"{LOOP_DEPTH}-stage ring)", [
+        ("u_unit.u_loop.live18", 1, BIN), ("u_unit.u_loop.act18_q.is_hit", 1, BIN),
+        ("u_unit.u_loop.act18_q.down", 1, BIN), ("u_unit.u_loop.act18_q.miss", 1, BIN),
+        ("u_unit.u_loop.iter18", 1, BIN), ("u_unit.u_loop.hit18", 1, BIN),
+        ("u_unit.u_loop.down18", 1, BIN), ("u_unit.u_loop.cross18", 1, BIN),
+        ("u_unit.u_loop.miss18", 1, BIN), ("u_unit.u_loop.err18", 1, BIN),
+        ("u_unit.u_loop.cap18", 1, BIN), ("u_unit.u_loop.it18_q", 16, DEC)]),
+    (f"S19: retire / admit a new ray (the tail, stage {LOOP_DEPTH - 1})", [
         ("u_unit.u_loop.retire", 1, BIN), ("u_unit.u_loop.admit", 1, BIN),
-        ("u_unit.u_loop.bypass", 1, BIN), ("u_unit.u_loop.busy_o", 5, DEC)]),
+        ("u_unit.u_loop.bypass", 1, BIN), ("u_unit.u_loop.busy_o", LOOP_BUSY_W, DEC)]),
     ("results out", [
         ("res_valid_o", 1, BIN), ("res_ready_i", 1, BIN), ("res_id_o", "ID", DEC),
         ("res_hit_o", 1, BIN), ("res_t_o", 24, HEX), ("res_u_o", 24, HEX), ("res_v_o", 24, HEX),
