@@ -15,10 +15,10 @@
 //   ar_line     the AR carries its MSHR's line address;
 // and the induction invariants: inv_queue (the AR queue holds exactly the pend MSHRs' indices),
 // inv_slave (the slave's reads are the shadow's, beats and errors counted alike), inv_dir (no
-// busy MSHR's line is valid in the directory), inv_rw (a busy MSHR's copy of its set's
-// replacement word, valid bits and round-robin pointer, is the set's word in the RAM, and so is
-// stage 2's copy for a lookup that may allocate) and inv_fill (a fill's valid bits and pointer
-// are its set's).
+// busy MSHR's line, nor the line of the miss waiting in stage 3, is valid in the directory),
+// inv_rw (a busy MSHR's copy of its set's replacement word, valid bits and round-robin pointer,
+// is the set's word in the RAM, and so are stage 2's copy for a lookup that may allocate and
+// stage 3's for its miss) and inv_fill (a fill's valid bits and pointer are its set's).
 module height_cache_formal #(
   parameter int unsigned ADDR_W     = 5,   // lines: 3 bits (2 sets, tag 2 bits)
   parameter int unsigned DATA_W     = 16,
@@ -173,8 +173,16 @@ module height_cache_formal #(
       end
     end
     if (u_dut.s2_valid_q && !u_dut.s2_conflict_q
-        && u_dut.s2_rw_q != u_dut.u_valid.mem_q[u_dut.s2_set][0])
+        && u_dut.s2_rw_q != u_dut.u_valid.mem_q[u_dut.s2_la[SET_W-1:0]][0])
       rw_ok = 1'b0;
+    if (u_dut.s3_miss_q) begin
+      if (u_dut.s3_rw_q != u_dut.u_valid.mem_q[u_dut.s3_la_q[SET_W-1:0]][0]) rw_ok = 1'b0;
+      for (int w = 0; w < WAYS; w++) begin
+        if (u_dut.u_valid.mem_q[u_dut.s3_la_q[SET_W-1:0]][0][w]
+            && tags[w][u_dut.s3_la_q[SET_W-1:0]] == u_dut.s3_la_q[LA_W-1:SET_W])
+          dir_ok = 1'b0;
+      end
+    end
     fill_ok = !u_dut.fill_q
               || {u_dut.fill_ptr, u_dut.fill_vbits} == u_dut.u_valid.mem_q[u_dut.fill_set][0];
   end
@@ -212,8 +220,7 @@ module height_cache_formal #(
     if (rst_ni) begin
       c_merge:     cover (u_dut.s2_valid_q && !u_dut.s2_hit && (|u_dut.mshr_match)
                           && (waiting & u_dut.mshr_match) != '0);
-      c_all_busy:  cover (u_dut.mshr_busy == '1 && u_dut.s2_valid_q && !u_dut.s2_hit
-                          && !(|u_dut.mshr_match) && !u_dut.s2_conflict_q);
+      c_all_busy:  cover (u_dut.mshr_busy == '1 && u_dut.s3_miss_q);
       c_hit:       cover (rs_valid && rs_hit && filled_q);
       c_err:       cover (rs_valid && rs_err);
       c_err_freed: cover (u_dut.mshr_state_q[0] == MSHR_ERR && u_dut.mshr_errc_q[0] == ERRC1);

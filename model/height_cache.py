@@ -11,8 +11,9 @@ compare the RTL with it clock by clock.  The behaviour (see the RTL header for t
   in the clock after (then: miss, no allocation);
 - reset clears the valid bits by a sweep of SETS clocks after it (one set a clock): a lookup
   presented during the sweep answers a miss and allocates nothing, like one that meets a fill;
-- a miss to a line held by an MSHR merges; else the lowest free MSHR is allocated and its AR queued;
-  with every MSHR busy the miss is not recorded;
+- a miss to a line held by an MSHR, or to the line of the miss in stage 3, merges; else the miss
+  goes to stage 3, where the lowest free MSHR (then) is allocated and its AR queued; with every
+  MSHR busy there the miss is not recorded;
 - replacement: the lowest invalid way, else round robin per set (the way after the one last filled
   in the set; only fills move it);
 - a line whose read had an AXI error is not cached; its MSHR answers rs_err to the first lookup of
@@ -148,6 +149,7 @@ class HeightCacheModel:
         self.s2_valid = False
         self.s2: tuple[int, int, list[bool], bool, list[tuple[int, bytes] | None], bool] | None \
             = None
+        self.s3_miss: int | None = None  # stage 3: the line address of a miss to allocate for
         self.rs = (0, 0, 0, 0)
         self.stats = {"hits": 0, "misses": 0, "bytes": 0, "lines": 0}
 
@@ -229,8 +231,8 @@ class HeightCacheModel:
             new_s2 = (addr1, wide1, vbits1, conflict1 or same_line, rd1, swept1)
 
         # ---- stage 2
-        hit = err = alloc = False
-        data = hit_way = s2set = alloc_idx = la = 0
+        hit = err = miss = False
+        data = hit_way = s2set = la = 0
         match = [False] * c.mshrs
         if self.s2_valid:
             assert self.s2 is not None
@@ -252,13 +254,20 @@ class HeightCacheModel:
                     data = line[off]
             match = [m.state != FREE and m.la == la for m in self.mshr]
             err = (not hit) and any(mt and m.state == ERR for mt, m in zip(match, self.mshr))
+            same3 = self.s3_miss == la
+            miss = (not conflict) and not any(way_hit) and not any(match) and not same3
+            ev["conflict"] = fill_conflict
+            ev["merge"] = not hit and (any(match) or (not conflict and same3))
+
+        # ---- stage 3: the miss allocates the lowest free MSHR
+        alloc = False
+        alloc_idx = 0
+        if self.s3_miss is not None:
             free = [k for k, m in enumerate(self.mshr) if m.state == FREE]
-            alloc = (not conflict) and not any(way_hit) and not any(match) and bool(free)
+            alloc = bool(free)
             if alloc:
                 alloc_idx = free[0]
-            ev["conflict"] = fill_conflict
-            ev["merge"] = not hit and any(match)
-            ev["full"] = not conflict and not any(way_hit) and not any(match) and not free
+            ev["full"] = not free
 
         # ---- R channel
         r_idx = i.rid & ((1 << c.midx_w) - 1)
@@ -316,7 +325,7 @@ class HeightCacheModel:
                 m.state = WAIT
                 m.beat = 0
                 m.rerr = False
-                m.la = la
+                m.la = self.s3_miss
         self.fill_q = r_acc and r_last and not r_bad
         self.fill_idx = r_idx if r_acc else self.fill_idx
 
@@ -341,6 +350,7 @@ class HeightCacheModel:
 
         # ---- pipeline registers
         self.rs = (int(self.s2_valid), int(hit), int(err), data if hit else 0)
+        self.s3_miss = la if miss else None
         self.s2_valid = self.s1_valid
         if new_s2 is not None:
             self.s2 = new_s2

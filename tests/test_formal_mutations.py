@@ -85,8 +85,8 @@ MUTANTS = {
         "height_cache:bmc_small", "fill_state_once"),
     "mshr_merge_dropped": (
         "rtl/cache/height_cache.sv",
-        "&& !(|way_hit) && !(|mshr_match) && free_any;",
-        "&& !(|way_hit) && free_any;",
+        "&& !(|way_hit) && !(|mshr_match) && !s3_same;",
+        "&& !(|way_hit) && !s3_same;",
         "height_cache:bmc_small", "(?:merge_no_alloc|mshr_unique)"),
     "axi_error_sticky": (
         "rtl/cache/cache_axi_read.sv",

@@ -12,9 +12,12 @@
 //                    fill, corrected for a fill of the set in this clock); note whether a fill
 //                    writes the lookup's line in this clock.  (The block RAMs' 4.3 ns
 //                    clock-to-out was in series with the compare: 81 MHz.)
-//   stage 2 (c + 2): compare tags, select the texel, search the MSHRs; allocate an MSHR on a miss
-//                    (it keeps the set's replacement word for its fill); register the answer.
-//   c + 3:           rs_valid_o, rs_hit_o, rs_err_o, rs_data_o.
+//   stage 2 (c + 2): compare tags, select the texel, search the MSHRs; register the answer, and
+//                    whether the lookup is a miss to allocate an MSHR for.
+//   c + 3:           rs_valid_o, rs_hit_o, rs_err_o, rs_data_o; stage 3: the miss allocates an
+//                    MSHR (it keeps the set's replacement word for its fill).  The allocation
+//                    is a clock after the compare so that the tag compare drives registers only
+//                    (in the routed top its path into the MSHRs' state was the slowest).
 // rs_data_o on a hit: lk_wide_i = 0: {8'h00, byte at lk_addr_i}; lk_wide_i = 1: the little-endian
 // 16-bit code at lk_addr_i (lk_addr_i[0] is ignored; the client keeps 16-bit texels aligned).
 // rs_data_o is 0 when rs_hit_o is 0; rs_hit_o and rs_err_o are 0 when rs_valid_o is 0.
@@ -37,9 +40,12 @@
 //
 // Misses (stage 2, rs_hit_o = 0):
 //   - the line is already held by an MSHR (being read, or errored): merged, no new read;
-//   - otherwise, with a free MSHR (lowest index): the MSHR is allocated and its AR is queued
-//     (a FIFO of MSHRS entries, so it can never overflow; an allocated miss is never dropped);
-//   - with every MSHR busy the miss is not recorded: the client's retry tries again.
+//   - the line is being allocated (by the lookup in stage 3, whether or not that one finds a free
+//     MSHR): no new read either;
+//   - otherwise the miss is registered, and in stage 3, with a free MSHR (lowest index then), the
+//     MSHR is allocated and its AR is queued (a FIFO of MSHRS entries, so it can never overflow;
+//     an allocated miss is never dropped);
+//   - with every MSHR busy in stage 3 the miss is not recorded: the client's retry tries again.
 //   AR: one INCR burst per line (arlen = BEATS - 1, arsize = log2(DATA_W / 8)), line-aligned,
 //   arid = {epoch, MSHR index} (see reset).  ARs leave in allocation order.
 // Fill: rready is tied to 1 (each MSHR buffers its own line, so beats of different reads may
@@ -196,6 +202,9 @@ module height_cache
   logic [15:0]       s2_word_q [WAYS];
   logic              rs_valid_q, rs_hit_q, rs_err_q;
   logic [15:0]       rs_data_q;
+  logic              s3_miss_q;    // stage 3: a miss to allocate an MSHR for
+  logic [LA_W-1:0]   s3_la_q;      // ... its line address
+  logic [WAY_W+WAYS-1:0] s3_rw_q;  // ... its set's replacement word, with the fills up to stage 2
 
   logic [47:0] st_hits_q, st_misses_q, st_bytes_q, st_lines_q;
 
@@ -303,7 +312,7 @@ module height_cache
   logic [LA_W-1:0]   s2_la;
   logic [WAYS-1:0]   way_hit;
   logic [15:0]       way_texel [WAYS];  // each way's texel (its word, or its byte of the word)
-  logic              s2_hit, s2_err, s2_alloc, free_any;
+  logic              s2_hit, s2_err, s2_miss, s3_same, s3_alloc, free_any;
   logic [15:0]       s2_data;
   logic [MSHRS-1:0]  mshr_match, mshr_busy, mshr_err;
   logic [MIDX_W-1:0] alloc_idx;
@@ -351,8 +360,13 @@ module height_cache
     end
   end
 
-  assign s2_err   = s2_valid_q && !s2_hit && (|mshr_err);
-  assign s2_alloc = s2_valid_q && !s2_conflict_q && !(|way_hit) && !(|mshr_match) && free_any;
+  // An errored line is never in the cache (hit_not_in_mshr: a hit matches no MSHR), so the error
+  // needs no !s2_hit, and the tag compare is not on the way to rs_err_q.
+  assign s2_err  = s2_valid_q && (|mshr_err);
+  // A miss that no MSHR holds and that stage 3 is not allocating already; its MSHR is allocated
+  // in stage 3 (the lowest free one then).
+  assign s3_same = s3_miss_q && (s3_la_q == s2_la);
+  assign s2_miss = s2_valid_q && !s2_conflict_q && !(|way_hit) && !(|mshr_match) && !s3_same;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -372,6 +386,23 @@ module height_cache
   assign rs_hit_o   = rs_hit_q;
   assign rs_err_o   = rs_err_q;
   assign rs_data_o  = rs_data_q;
+
+  // ---------------------------------------------------------------- stage 3: allocation
+  // The miss's set word takes a fill of the set in the stage-2 clock (as s2_rw_q takes one in
+  // stage 1); the allocation below takes one in the stage-3 clock.
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      s3_miss_q <= 1'b0;
+    end else begin
+      s3_miss_q <= s2_miss;
+    end
+    if (s2_miss) begin
+      s3_la_q <= s2_la;
+      s3_rw_q <= (fill_q && fill_set == s2_la[SET_W-1:0]) ? fill_rw : s2_rw_q;
+    end
+  end
+
+  assign s3_alloc = s3_miss_q && free_any;
 
   // ---------------------------------------------------------------- valid bits
   // Per set a word of WAYS valid bits and the set's round-robin pointer in one RAM (u_valid) with
@@ -409,7 +440,7 @@ module height_cache
     .SETS(SETS), .NPUSH(1), .AR_REG(1'b0)
   ) u_axi (
     .clk_i, .rst_ni,
-    .alloc_i(s2_alloc), .alloc_wr_i(la_we), .alloc_idx_i(alloc_idx),
+    .alloc_i(s3_alloc), .alloc_wr_i(la_we), .alloc_idx_i(alloc_idx),
     .la_idx_o(ar_idx), .la_i(mshr_la_q[ar_idx]),
     .arq_pop_o(), .arq_head_o(), .arq_cnt_o(arq_cnt),
     .r_idx_o(r_idx), .r_cur_o(), .r_ours_o(r_ours), .r_acc_i(r_acc), .r_beat_o(r_beat),
@@ -421,12 +452,10 @@ module height_cache
   assign r_acc = r_ours && (mshr_state_q[r_idx] == MSHR_WAIT);
 
   // ---------------------------------------------------------------- MSHRs
-  // The lowest free MSHR takes every stage-2 lookup's line address (and the AR queue its index),
-  // whether or not the lookup allocates it: a free MSHR's fields are read by nothing (the search,
-  // the AR port and the fill use busy MSHRs only), so only its state waits for the tag compare,
-  // which no longer drives the enables of MSHRS x LA_W flip-flops.  (Its beat count and error
-  // bit, in u_axi, are clear since its last line's last beat.)
-  assign la_we = s2_valid_q && free_any;
+  // The allocation (stage 3, from registers) writes the lowest free MSHR's line address and set
+  // word (and the AR queue its index).  (Its beat count and error bit, in u_axi, are clear since
+  // its last line's last beat.)
+  assign la_we = s3_alloc;
 
   logic ar_pop;  // an AR handshake
   assign ar_pop = m_axi_arvalid && m_axi_arready;
@@ -459,7 +488,7 @@ module height_cache
           end
           default: ;
         endcase
-        if (s2_alloc && alloc_idx == MIDX_W'(i)) mshr_state_q[i] <= MSHR_WAIT;
+        if (s3_alloc && alloc_idx == MIDX_W'(i)) mshr_state_q[i] <= MSHR_WAIT;
       end
       fill_q     <= r_acc && r_last_beat && !r_bad;
       fill_idx_q <= r_idx;
@@ -471,14 +500,14 @@ module height_cache
   end
 
   // Each MSHR's copy of its set's replacement word: loaded with the line address (from the
-  // lookup's stage-1 copy, or the word of a fill of the set in this clock), then rewritten by
+  // miss's stage-3 copy, or the word of a fill of the set in this clock), then rewritten by
   // every fill of the set (a free MSHR's copy is read by nothing).
-  logic [SET_W-1:0] s2_set;
-  assign s2_set = s2_la[SET_W-1:0];
+  logic [SET_W-1:0] s3_set;
+  assign s3_set = s3_la_q[SET_W-1:0];
   always_ff @(posedge clk_i) begin
     for (int i = 0; i < MSHRS; i++) begin
       if (la_we && alloc_idx == MIDX_W'(i)) begin
-        mshr_rw_q[i] <= (fill_q && fill_set == s2_set) ? fill_rw : s2_rw_q;
+        mshr_rw_q[i] <= (fill_q && fill_set == s3_set) ? fill_rw : s3_rw_q;
       end else if (fill_q && mshr_la_q[i][SET_W-1:0] == fill_set) begin
         mshr_rw_q[i] <= fill_rw;
       end
@@ -486,7 +515,7 @@ module height_cache
   end
 
   always_ff @(posedge clk_i) begin
-    if (la_we) mshr_la_q[alloc_idx] <= s2_la;
+    if (la_we) mshr_la_q[alloc_idx] <= s3_la_q;
     if (r_acc) mshr_buf_q[r_idx][r_beat] <= m_axi_rdata;
   end
 

@@ -10,11 +10,14 @@
 //   fill_state_once    an MSHR is in MSHR_FILL only in its fill's clock (the clock after its
 //                      line's last beat): then it is free again (no MSHR kept from the free pool);
 //   no_fill_in_sweep   no fill and no allocation during the valid bits' reset sweep;
-//   sweep_idle         ... every MSHR is free then, and every lookup in flight is a conflict;
-//   hit_not_in_mshr    a line is never both in the cache and in an MSHR;
+//   sweep_idle         ... every MSHR is free then, and every lookup in flight is a conflict
+//                      (no miss waits in stage 3);
+//   hit_not_in_mshr    a line is never both in the cache and in an MSHR (so an MSHR's error
+//                      needs no hit test);
 //   mshr_unique        the merge rule: two busy MSHRs never hold the same line (a miss to a line
-//                      an MSHR holds allocates nothing);
-//   merge_no_alloc     ... the allocation itself: only for a line no busy MSHR holds;
+//                      an MSHR holds, or the stage-3 miss holds, allocates nothing);
+//   merge_no_alloc     ... the miss waiting in stage 3 is for a line no busy MSHR holds (so its
+//                      allocation is too);
 //   wide_aligned       the client's 16-bit lookups are 2-byte aligned (its obligation).
 module height_cache_assert
   import cache_pkg::*;
@@ -35,8 +38,9 @@ module height_cache_assert
   input logic              s2_valid_q,
   input logic              s2_conflict_q,
   input logic              s2_hit,
-  input logic              s2_alloc,
-  input logic [LA_W-1:0]   s2_la,
+  input logic              s3_miss_q,
+  input logic              s3_alloc,
+  input logic [LA_W-1:0]   s3_la_q,
   input logic [MSHRS-1:0]  mshr_busy,
   input logic [MSHRS-1:0]  mshr_match,
   input mshr_state_e       mshr_state_q [MSHRS],
@@ -56,7 +60,7 @@ module height_cache_assert
       for (int j = i + 1; j < MSHRS; j++) begin
         if (mshr_busy[i] && mshr_busy[j] && (mshr_la_q[i] == mshr_la_q[j])) unique_ok = 1'b0;
       end
-      if (mshr_busy[i] && mshr_la_q[i] == s2_la) line_held = 1'b1;
+      if (mshr_busy[i] && mshr_la_q[i] == s3_la_q) line_held = 1'b1;
       if (mshr_state_q[i] == MSHR_FILL && !(fill_q && 32'(fill_idx_q) == i)) fill_once_ok = 1'b0;
     end
   end
@@ -70,10 +74,10 @@ module height_cache_assert
       fill_is_mshr_fill: assert (!fill_q || ((mshr_state_q[fill_idx_q] == MSHR_FILL)
                                              && (fill_la_q == mshr_la_q[fill_idx_q])))
         else $error("height_cache: fill without an MSHR in MSHR_FILL, or of another line");
-      no_fill_in_sweep: assert (!sweep || (!fill_q && !s2_alloc))
+      no_fill_in_sweep: assert (!sweep || (!fill_q && !s3_alloc))
         else $error("height_cache: a fill or an allocation during the valid bits' reset sweep");
       sweep_idle: assert (!sweep || (mshr_busy == '0 && (!s1_valid_q || s1_conflict_q)
-                                     && (!s2_valid_q || s2_conflict_q)))
+                                     && (!s2_valid_q || s2_conflict_q) && !s3_miss_q))
         else $error("height_cache: an MSHR busy or a lookup not a conflict during the sweep");
       hit_not_in_mshr: assert (!s2_hit || !(|mshr_match))
         else $error("height_cache: a line both in the cache and in an MSHR");
@@ -82,7 +86,7 @@ module height_cache_assert
         else $error("height_cache: unaligned 16-bit lookup");
       mshr_unique: assert (unique_ok)
         else $error("height_cache: two MSHRs hold one line");
-      merge_no_alloc: assert (!s2_alloc || !line_held)
+      merge_no_alloc: assert (!s3_miss_q || !line_held)
         else $error("height_cache: an MSHR allocated for a line an MSHR holds");
       fill_state_once: assert (fill_once_ok)
         else $error("height_cache: an MSHR in MSHR_FILL outside its fill's clock");

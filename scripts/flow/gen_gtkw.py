@@ -91,7 +91,8 @@ TRAVERSE: list[tuple[str, list[Sig]]] = [
     ("height cache", [
         ("u_cache.lk_valid_i", 1, BIN), ("u_cache.lk_addr_i", 32, HEX),
         ("u_cache.s1_valid_q", 1, BIN), ("u_cache.s2_valid_q", 1, BIN),
-        ("u_cache.s2_conflict_q", 1, BIN), ("u_cache.s2_hit", 1, BIN), ("u_cache.s2_alloc", 1, BIN),
+        ("u_cache.s2_conflict_q", 1, BIN), ("u_cache.s2_hit", 1, BIN), ("u_cache.s2_miss", 1, BIN),
+        ("u_cache.s3_alloc", 1, BIN),
         ("u_cache.rs_valid_o", 1, BIN), ("u_cache.rs_hit_o", 1, BIN), ("u_cache.rs_err_o", 1, BIN),
         ("u_cache.rs_data_o", 16, HEX), ("u_cache.stat_hits_o", 48, DEC),
         ("u_cache.stat_misses_o", 48, DEC)]),
