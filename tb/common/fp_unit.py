@@ -17,6 +17,7 @@ from typing import Callable, Mapping, Sequence
 
 import cocotb
 import numpy as np
+import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
@@ -33,7 +34,7 @@ def seed() -> int:
 VECTORS = 50_000
 #: Random vectors per build of a composite unit (shade_unit, view_calc, tex_addr, ...) in make
 #: test: each is built in several configurations, each seeing its own random stream.
-VECTORS_COMPOSITE = 20_000
+VECTORS_COMPOSITE = 10_000
 
 
 def vectors(default: int = VECTORS) -> int:
@@ -52,6 +53,16 @@ LAT_ENV = "FP_LAT"
 def latency(default: int) -> int:
     """The latency under test: ``FP_LAT`` (set by :func:`run_lat`), else the unit's default."""
     return int(os.environ.get(LAT_ENV, default))
+
+
+def lat_cases(lats: Sequence[int], used: Sequence[int]) -> list:
+    """pytest parameters ``lat`` for every LAT a unit accepts: ``make test`` runs the ones in
+    ``used`` (the unit's default and every LAT the design builds it at), ``make test-long``
+    (TB_LONG=1) every one of ``lats``."""
+    return [pytest.param(lat, id=str(lat), marks=[] if lat in used else pytest.mark.skipif(
+                not runner.long_stimulus(),
+                reason="a LAT the design does not build: make test-long (TB_LONG=1)"))
+            for lat in lats]
 
 
 def run_lat(top: str, test_module: str, test_dir: Path, lat: int, default: int,

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge
 from cocotbext.axi import AxiRamRead, AxiReadBus
@@ -214,12 +215,7 @@ async def pipeline_bit_exact(dut):
     rng = random.Random(seed())
     hram, tram = await start(dut, rng)
     total = 0
-    # With two rings in make test: the grazing frame and the back-pressured one (every case
-    # under make test-long; the one-ring build runs every case).
-    two_short = int(os.environ.get("N_RINGS_TB", "1")) > 1 and not runner.long_stimulus()
     for ci, case in enumerate(CASES):
-        if two_short and ci not in (1, 3):
-            continue
         frame, inp = await load_frame(dut, rng, hram, tram, ci, case)
         assert int(dut.idle_o.value) == 1
         total += await whole_frame(dut, rng, frame, inp, case)
@@ -265,6 +261,9 @@ async def pipeline_reset_mid_frame(dut):
     print(msg)
 
 
+@pytest.mark.skipif(not runner.long_stimulus(),
+                    reason="one ring: make test-long (TB_LONG=1); make test runs two rings here, "
+                           "one ring in tests/test_rtl_pipeline.py and tb/pidm_top")
 def test_dm_pipeline():
     # runner.LARGE_MODEL_OPT: the whole pipeline is one 12 MB model function, which GCC takes
     # about 110 s over at -O1.
@@ -275,13 +274,13 @@ def test_dm_pipeline():
 
 
 def test_dm_pipeline_two_rings():
-    """The frames with two traverse rings (N_RINGS 2: rays dealt to two traverse systems, each
-    with its own height cache, their reads merged onto the one height port): in make test the
-    grazing and the back-pressured frame; every frame and the resets in the middle of frames
-    with two rings only under ``make test-long`` (TB_LONG=1), to bound `make test`'s time
-    (test_dm_pipeline runs every frame and the resets with one ring)."""
+    """Every frame and the resets in the middle of frames with two traverse rings (N_RINGS 2:
+    rays dealt to two traverse systems, each with its own height cache, their reads merged onto
+    the one height port).  The one-ring build of these tests (test_dm_pipeline) runs under
+    ``make test-long`` only, to bound ``make test``'s time (a build of the pipeline is most of a
+    run): with one ring the pipeline is checked in make test by the harness's frames
+    (tests/test_rtl_pipeline.py, random AXI latency, the RTL's assertions on) and inside the
+    system top (tb/pidm_top, cocotbext-axi memories)."""
     runner.run("dm_pipeline", "test_dm_pipeline", HERE,
                parameters={"SLOTS": 32, "OUT_DEPTH": 16, "N_RINGS": 2, "H_SETS": 128},
-               opt=runner.LARGE_MODEL_OPT,
-               testcase=None if runner.long_stimulus() else "pipeline_bit_exact",
-               extra_env={"N_RINGS_TB": "2"})
+               opt=runner.LARGE_MODEL_OPT)

@@ -5,6 +5,7 @@ Run at every latency the unit accepts (LAT 1, the default, built with no paramet
 with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
 hold while en_i = 0 and every result bit.  test_f24_cmp_lats checks that exactly these LATs
 elaborate.
+make test runs USED_LATS only (the design's), make test-long every one.
 """
 from pathlib import Path
 
@@ -18,6 +19,8 @@ from tb.common import fp_unit
 #: The unit's default latency and every LAT it accepts.
 DEFAULT_LAT = 1
 LATS = (1, 2)
+#: The LATs make test runs: the default only (the design builds the unit at its default).
+USED_LATS = (DEFAULT_LAT,)
 
 
 @cocotb.test()
@@ -38,7 +41,7 @@ async def cmp_random_and_directed(dut):
                   len(da) + 8192, len(ra))
 
 
-@pytest.mark.parametrize("lat", LATS)
+@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
 def test_f24_cmp(lat: int):
     fp_unit.run_lat("f24_cmp", "test_f24_cmp", Path(__file__).parent, lat, DEFAULT_LAT)
 

@@ -10,6 +10,7 @@ Run at every latency the unit accepts (LAT 1, the default, built with no paramet
 with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
 hold while en_i = 0 and every result bit.  test_f24_from_int_lats checks that exactly these LATs
 elaborate.
+make test runs USED_LATS only (the design's), make test-long every one.
 """
 import os
 from pathlib import Path
@@ -24,6 +25,8 @@ from tb.common import fp_unit
 #: The unit's default latency and every LAT it accepts.
 DEFAULT_LAT = 1
 LATS = (1, 2)
+#: The LATs make test runs: the default only (the design builds the unit at its default).
+USED_LATS = (DEFAULT_LAT,)
 
 
 def boundary_values(w: int) -> np.ndarray:
@@ -65,13 +68,13 @@ async def from_int_boundary_random_exhaustive(dut):
                   "= whole range, shuffled" if exhaustive else "random")
 
 
-@pytest.mark.parametrize("lat", LATS)
+@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
 def test_f24_from_int(lat: int):
     fp_unit.run_lat("f24_from_int", "test_f24_from_int", Path(__file__).parent, lat, DEFAULT_LAT,
                     parameters={"W": 20})
 
 
-@pytest.mark.parametrize("lat", LATS)
+@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
 def test_f24_from_int_w12(lat: int):
     fp_unit.run_lat("f24_from_int", "test_f24_from_int", Path(__file__).parent, lat, DEFAULT_LAT,
                     parameters={"W": 12})

@@ -5,6 +5,7 @@ Run at every latency the unit accepts (LAT 1, the default, built with no paramet
 with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
 hold while en_i = 0 and every result bit.  test_f24_mul_lats checks that exactly these LATs
 elaborate.
+make test runs USED_LATS only (the design's), make test-long every one.
 """
 from pathlib import Path
 
@@ -13,11 +14,13 @@ import numpy as np
 import pytest
 
 from model import f24, f24_vectors as vec
-from tb.common import fp_unit
+from tb.common import depths, fp_unit
 
 #: The unit's default latency (the paper's) and every LAT it accepts.
 DEFAULT_LAT = 1
 LATS = (1, 2, 3)
+#: The LATs make test runs: the default (the paper's) and the design's MUL_LAT.
+USED_LATS = (DEFAULT_LAT, depths.DEFAULT[1])
 
 
 @cocotb.test()
@@ -32,7 +35,7 @@ async def mul_random_and_directed(dut):
                   len(da), len(ra))
 
 
-@pytest.mark.parametrize("lat", LATS)
+@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
 def test_f24_mul(lat: int):
     fp_unit.run_lat("f24_mul", "test_f24_mul", Path(__file__).parent, lat, DEFAULT_LAT)
 

@@ -11,6 +11,7 @@ Run at every latency the unit accepts (LAT 1, the default, built with no paramet
 with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
 hold while en_i = 0 and every result bit.  test_f24_one_minus_lats checks that exactly these LATs
 elaborate.
+make test runs USED_LATS only (the design's), make test-long every one.
 """
 from pathlib import Path
 
@@ -24,6 +25,8 @@ from tb.common import fp_unit, runner
 #: The unit's default latency and every LAT it accepts.
 DEFAULT_LAT = 1
 LATS = (1, 2)
+#: The LATs make test runs: the default only (the design builds the unit at its default).
+USED_LATS = (DEFAULT_LAT,)
 ONE = int(f24.from_float(1.0))
 
 
@@ -53,7 +56,7 @@ async def one_minus_range(dut):
                   lat, n, "every word of [+0, 1]" if whole else "6 exponents whole")
 
 
-@pytest.mark.parametrize("lat", LATS)
+@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
 def test_f24_one_minus(lat: int):
     fp_unit.run_lat("f24_one_minus", "test_f24_one_minus", Path(__file__).parent, lat,
                     DEFAULT_LAT)

@@ -3,6 +3,7 @@
 
 Run at every latency the unit accepts (LAT 2, the default, built with no parameter, and 3), each
 with the same stimulus; test_f24_sqrt_lats checks that exactly these LATs elaborate.
+make test runs USED_LATS only (the design's), make test-long every one.
 """
 from pathlib import Path
 
@@ -16,6 +17,8 @@ from tb.common import fp_unit
 #: The unit's default latency and every LAT it accepts.
 DEFAULT_LAT = 2
 LATS = (2, 3)
+#: The LATs make test runs: the default only (the design builds the unit at its default).
+USED_LATS = (DEFAULT_LAT,)
 
 
 @cocotb.test()
@@ -30,7 +33,7 @@ async def sqrt_random_and_directed(dut):
                   len(da), len(ra))
 
 
-@pytest.mark.parametrize("lat", LATS)
+@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
 def test_f24_sqrt(lat: int):
     fp_unit.run_lat("f24_sqrt", "test_f24_sqrt", Path(__file__).parent, lat, DEFAULT_LAT)
 

@@ -8,6 +8,7 @@ Run at every latency the unit accepts (LAT 1, the default, built with no paramet
 with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
 hold while en_i = 0 and every result bit.  test_f24_to_index_lats checks that exactly these LATs
 elaborate.
+make test runs USED_LATS only (the design's), make test-long every one.
 """
 from pathlib import Path
 
@@ -21,6 +22,8 @@ from tb.common import fp_unit
 #: The unit's default latency and every LAT it accepts.
 DEFAULT_LAT = 1
 LATS = (1, 2)
+#: The LATs make test runs: the default only (the design builds the unit at its default).
+USED_LATS = (DEFAULT_LAT,)
 
 
 def directed(rng: np.random.Generator, w: int) -> np.ndarray:
@@ -61,19 +64,19 @@ async def to_index_random_and_directed(dut):
                   "0 mismatches", w, lat, n, len(d), len(r), int(sat.sum()))
 
 
-@pytest.mark.parametrize("lat", LATS)
+@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
 def test_f24_to_index(lat: int):
     fp_unit.run_lat("f24_to_index", "test_f24_to_index", Path(__file__).parent, lat, DEFAULT_LAT,
                     parameters={"W": 20})
 
 
-@pytest.mark.parametrize("lat", LATS)
+@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
 def test_f24_to_index_w8(lat: int):
     fp_unit.run_lat("f24_to_index", "test_f24_to_index", Path(__file__).parent, lat, DEFAULT_LAT,
                     parameters={"W": 8})
 
 
-@pytest.mark.parametrize("lat", LATS)
+@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
 def test_f24_to_index_w9(lat: int):
     """W = 9: shade_unit's colour conversion (f24_to_index #(.W(9)))."""
     fp_unit.run_lat("f24_to_index", "test_f24_to_index", Path(__file__).parent, lat, DEFAULT_LAT,

@@ -528,6 +528,7 @@ def test_pyr_build():
                     "reset_mid_build,config_errors")
 
 
+@pytest.mark.skipif(not runner.long_stimulus(), reason="the 32-bit bus, not the design's default: make test-long (TB_LONG=1)")
 def test_pyr_build_bus32():
     """32-bit bus, 4-beat bursts, maps up to 256x256."""
     _run("bus32", "full_sizes,dirty_random,axi_errors,config_errors")

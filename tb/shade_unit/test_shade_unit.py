@@ -29,7 +29,7 @@ that pair, so a unit whose latency differs from the mirror fails every pixel che
 test_shade_latency checks the mirror itself: 59 at (2, 1), and no unit given two operations of
 one phase.
 
-Environment: SEED, VECTORS (random pixels, default 20,000; 50,000 with TB_LONG=1), WAVES=1;
+Environment: SEED, VECTORS (random pixels, default 10,000; 50,000 with TB_LONG=1), WAVES=1;
 SHADE_ADD_LAT, SHADE_MUL_LAT (the depth pair, set by test_shade_unit).
 """
 from __future__ import annotations

@@ -863,6 +863,7 @@ def test_tex_cache():
     _run("default")
 
 
+@pytest.mark.skipif(not runner.long_stimulus(), reason="2 KiB over a 32-bit bus, not the design's cache: make test-long (TB_LONG=1)")
 def test_tex_cache_small():
     """2 KiB: 64-byte lines over a 32-bit bus, SETS=4, WAYS=2, 4 MSHRs, an 8-pass FIFO."""
     _run("small")
