@@ -391,11 +391,7 @@ module height_cache
   // The miss's set word takes a fill of the set in the stage-2 clock (as s2_rw_q takes one in
   // stage 1); the allocation below takes one in the stage-3 clock.
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      s3_miss_q <= 1'b0;
-    end else begin
-      s3_miss_q <= s2_miss;
-    end
+    s3_miss_q <= rst_ni && s2_miss;  // (cleared by the synchronous reset)
     if (s2_miss) begin
       s3_la_q <= s2_la;
       s3_rw_q <= (fill_q && fill_set == s2_la[SET_W-1:0]) ? fill_rw : s2_rw_q;
