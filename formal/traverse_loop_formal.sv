@@ -11,9 +11,10 @@
 // S18 at MUL_LAT 1, has finished: the only way the datapath reaches the ring's control) by a free
 // value each clock, so the proof holds for every finishing decision of every ray, whatever the
 // arithmetic computes;
-// the datapath's own checks (plane_operand_in_range, nk0_is_n_minus_k, live_ray_has_no_result,
-// descent_not_admitted, bdiff_operand_in_range) and the slot counters' slot_counter are removed
-// from this model (they are about the arithmetic and the tables; simulation checks them).  Everything else is free: the new rays (id, fields,
+// the datapath's own checks (plane_operand_in_range, nk0_is_n_minus_k, bits16_copy,
+// live_ray_has_no_result, descent_not_admitted, bdiff_operand_in_range) and the slot counters'
+// slot_counter are removed from this model (they are about the arithmetic, the static
+// configuration and the tables; simulation checks them).  Everything else is free: the new rays (id, fields,
 // whether setup finished them), the result FIFO's full flag, the configuration.  Assumed: the
 // height cache answers only a lookup made LOOKUP_LAT clocks earlier (no_spurious_response, the
 // cache's side), a new ray's id is not in the ring (id_enter_free: dm_pipeline's slot ids are

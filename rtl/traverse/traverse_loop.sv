@@ -439,11 +439,17 @@ module traverse_loop
   // ---- S4: the height arrives; tx ---------------------------------------------------------------
   // One 16-bit conversion for both widths: code / 255 = (code * 257) / 65535, the same number, so
   // the same rounded f24 (a multiplexer in front of the fast unit, not of the plane's unit).
+  // The width flag is a copy of cfg_i.bits16 in a register of its own beside the conversion
+  // (the configuration changes only while the unit is idle, and a ray reaches S4 many clocks
+  // after it enters; asserted: bits16_copy): the configuration's register also drives the
+  // address unit, and in the routed top its wire to this select was 3.5 ns of the worst path.
   f24_t h, tx_raw, ty_raw;
+  logic bits16_q;
+  always_ff @(posedge clk_i) bits16_q <= cfg_i.bits16;
   assign ok4  = rs_valid_i && rs_hit_i && !rs_err_i;
   assign err4 = rs_valid_i && rs_err_i;
   f24_from_unorm #(.W(16)) u_h (.clk_i, .en_i(ok4),
-    .k_i(cfg_i.bits16 ? rs_data_i : {rs_data_i[7:0], rs_data_i[7:0]}), .y_o(h));
+    .k_i(bits16_q ? rs_data_i : {rs_data_i[7:0], rs_data_i[7:0]}), .y_o(h));
   // (tx, ty for every live ray: whether its read returned data is known only in this stage;
   // the units advance while S4 .. S_EXIT - 1 hold a live ray)
   logic tx_en;

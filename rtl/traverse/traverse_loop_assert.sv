@@ -17,6 +17,8 @@
 //                           one clock (unless the descending ray parks);
 //   nk0_is_n_minus_k        the address's n - k (nk0_q, made in the tail) is n minus the level
 //                           of the live ray in S0 (cfg_i.n is static while rays run);
+//   bits16_copy             the height conversion's width flag (bits16_q) is cfg_i.bits16
+//                           whenever a height response arrives (static while rays run);
 //   bdiff_operand_in_range  traverse_bdiff (boundary - u0) takes boundaries in [0, 2^15] and
 //                           positions u0 in [+-0, 2^15) only, where it gives f24_add's word: the
 //                           exit boundaries of a live ray in S1, the child's boundaries of a
@@ -67,6 +69,8 @@ module traverse_loop_assert
   input logic                          live0_i,            // live0_q
   input logic [LVL_W-1:0]              nk0_i,              // nk0_q
   input logic [LVL_W-1:0]              nk0_want_i,         // cfg_i.n - node_q[0].k
+  input logic                          bits16_i,           // bits16_q
+  input logic                          bits16_want_i,      // cfg_i.bits16
   input logic                          admit_i,            // admit: a new ray enters
   input logic                          v_last_i,           // v_q[D-1]
   input logic                          retire_i,
@@ -232,6 +236,8 @@ module traverse_loop_assert
         else $error("traverse_loop: H = %h outside [+0, 1]", h_i);
       nk0_is_n_minus_k: assert (!live0_i || nk0_i == nk0_want_i)
         else $error("traverse_loop: S0's n - k %0d, want %0d", nk0_i, nk0_want_i);
+      bits16_copy: assert (!rs_valid_i || bits16_i == bits16_want_i)
+        else $error("traverse_loop: the height width flag's copy differs from cfg_i.bits16");
       new_ray_only_in_bubble: assert (!(admit_i || unpark_i) || !v_last_i || retire_i || park_i)
         else $error("traverse_loop: a new ray admitted over a ray that stays");
       live_ray_has_no_result: assert (!live_ns_i || !st_ns_final_i)
@@ -257,6 +263,7 @@ bind traverse_loop traverse_loop_assert #(.ID_W(ID_W), .D(D), .PQ(PQ), .PARK_MAX
 u_assert (
   .clk_i, .rst_ni, .sl_i(sl_q), .lk_valid_i(lk_valid_o), .rs_valid_i, .ok5_i(h_ok),
   .h_i(h_x), .live0_i(live0_q), .nk0_i(nk0_q), .nk0_want_i(LVL_W'(cfg_i.n - node_q[0].k)),
+  .bits16_i(bits16_q), .bits16_want_i(cfg_i.bits16),
   .admit_i(admit), .v_last_i(v_q[D-1]), .retire_i(retire), .live_ns_i(live18),
   .st_ns_final_i(st18.hit || st18.invalid || st18.capped || st18.err), .down_tl_i(down19_q),
   .lv1_i(lv_q[1]), .kb1_i('{kbx1_q, kby1_q}), .uv1_i('{uv_q[1].u, uv_q[1].v}),
