@@ -25,8 +25,9 @@ from tb.common import fp_unit
 #: The unit's default latency and every LAT it accepts.
 DEFAULT_LAT = 1
 LATS = (1, 2)
-#: The LATs make test runs: the default only (the design builds the unit at its default).
-USED_LATS = (DEFAULT_LAT,)
+#: The LATs make test runs: every one (traverse_setup builds its boundary conversions at LAT CL:
+#: 2 at the design's float-unit depths, 1 at the paper's).
+USED_LATS = LATS
 
 
 def boundary_values(w: int) -> np.ndarray:
