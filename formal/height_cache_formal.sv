@@ -54,6 +54,7 @@ module height_cache_formal #(
 
   localparam int unsigned EPOCH_W = ID_W - MIDX_W;
   localparam int unsigned TAG_W   = LA_W - SET_W;
+  localparam int unsigned WAY_W   = (WAYS > 1) ? $clog2(WAYS) : 1;  // (as height_cache's)
   localparam logic [$clog2(ERR_HOLD + 1)-1:0] ERRC1 = 1;
 
   logic              rs_valid, rs_hit, rs_err;
@@ -157,34 +158,37 @@ module height_cache_formal #(
     end
   end
 
+  logic [SETS-1:0][WAYS+WAY_W-1:0] vword;  // the valid-bit RAM: {pointer, valid bits} per set
+  for (genvar s = 0; s < SETS; s++) begin : g_vword
+    assign vword[s] = u_dut.u_valid.mem_q[s][0];
+  end
+
+  // Line `la` is valid in the directory.
+  function automatic logic cached(input logic [LA_W-1:0] la);
+    cached = 1'b0;
+    for (int w = 0; w < WAYS; w++) begin
+      if (vword[la[SET_W-1:0]][w] && tags[w][la[SET_W-1:0]] == la[LA_W-1:SET_W]) cached = 1'b1;
+    end
+  endfunction
+
   logic dir_ok, rw_ok, fill_ok;
   always_comb begin
     dir_ok = 1'b1;
     rw_ok  = 1'b1;
     for (int i = 0; i < MSHRS; i++) begin
       if (u_dut.mshr_state_q[i] != MSHR_FREE) begin
-        for (int w = 0; w < WAYS; w++) begin
-          if (u_dut.u_valid.mem_q[u_dut.mshr_la_q[i][SET_W-1:0]][0][w]
-              && tags[w][u_dut.mshr_la_q[i][SET_W-1:0]] == u_dut.mshr_la_q[i][LA_W-1:SET_W])
-            dir_ok = 1'b0;
-        end
-        if (u_dut.mshr_rw_q[i] != u_dut.u_valid.mem_q[u_dut.mshr_la_q[i][SET_W-1:0]][0])
-          rw_ok = 1'b0;
+        if (cached(u_dut.mshr_la_q[i])) dir_ok = 1'b0;
+        if (u_dut.mshr_rw_q[i] != vword[u_dut.mshr_la_q[i][SET_W-1:0]]) rw_ok = 1'b0;
       end
     end
     if (u_dut.s2_valid_q && !u_dut.s2_conflict_q
-        && u_dut.s2_rw_q != u_dut.u_valid.mem_q[u_dut.s2_la[SET_W-1:0]][0])
+        && u_dut.s2_rw_q != vword[u_dut.s2_la[SET_W-1:0]])
       rw_ok = 1'b0;
     if (u_dut.s3_miss_q) begin
-      if (u_dut.s3_rw_q != u_dut.u_valid.mem_q[u_dut.s3_la_q[SET_W-1:0]][0]) rw_ok = 1'b0;
-      for (int w = 0; w < WAYS; w++) begin
-        if (u_dut.u_valid.mem_q[u_dut.s3_la_q[SET_W-1:0]][0][w]
-            && tags[w][u_dut.s3_la_q[SET_W-1:0]] == u_dut.s3_la_q[LA_W-1:SET_W])
-          dir_ok = 1'b0;
-      end
+      if (cached(u_dut.s3_la_q)) dir_ok = 1'b0;
+      if (u_dut.s3_rw_q != vword[u_dut.s3_la_q[SET_W-1:0]]) rw_ok = 1'b0;
     end
-    fill_ok = !u_dut.fill_q
-              || {u_dut.fill_ptr, u_dut.fill_vbits} == u_dut.u_valid.mem_q[u_dut.fill_set][0];
+    fill_ok = !u_dut.fill_q || {u_dut.fill_ptr, u_dut.fill_vbits} == vword[u_dut.fill_set];
   end
 
   // the last beat of a line and its error, a clock later
