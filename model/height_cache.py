@@ -261,8 +261,9 @@ class HeightCacheModel:
 
         # ---- stage 3: the miss allocates the lowest free MSHR
         alloc = False
-        alloc_idx = 0
+        alloc_idx = la3 = 0
         if self.s3_miss is not None:
+            la3 = self.s3_miss
             free = [k for k, m in enumerate(self.mshr) if m.state == FREE]
             alloc = bool(free)
             if alloc:
@@ -325,7 +326,7 @@ class HeightCacheModel:
                 m.state = WAIT
                 m.beat = 0
                 m.rerr = False
-                m.la = self.s3_miss
+                m.la = la3
         self.fill_q = r_acc and r_last and not r_bad
         self.fill_idx = r_idx if r_acc else self.fill_idx
 
