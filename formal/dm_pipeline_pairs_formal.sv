@@ -7,19 +7,21 @@
 //
 // The request FIFOs, the alternating request select (rq_sel_q, pair_slot_q) and tex_filter
 // (its valid and tag pipeline; its float datapath feeds only the cut shade_unit) are the real
-// ones; tex_cache is formal/tex_cache_abs.sv (responses in request order with their tags, the
-// real cache's proven rsp_tag_order), and the units in front (view_calc, traverse_rings,
+// ones, and so is the skid buffer in front of the cache (u_rq_skid); tex_cache is
+// formal/tex_cache_abs.sv (responses in request order with their tags, the real cache's proven
+// rsp_tag_order), and the units in front (view_calc, traverse_rings,
 // mip_level, tex_addr) and shade_unit are black boxes cut to free outputs, so the request FIFOs
 // are written whenever and with whatever the solver likes.
 // Assumed: reset in the first clock; resets may come again at any time.
 //
 // Induction invariant (inv_pairs): the texture lookups in flight, oldest first (the filter's
-// stages from its output back, then the cache's requests from the oldest), continue the
-// alternation where the filter's output left it (dm_pipeline_assert's tf_col_pend_q,
-// tf_col_slot_q): a normal-map entry for the pending colour's slot, then colour, normal-map
-// pairs of one slot each, and at the newest end a colour entry without its normal map exactly
-// when the request select is at the normal map (rq_sel_q), for the slot it keeps (pair_slot_q);
-// and the abstract cache's queue pointers agree with its count.
+// stages from its output back, then the cache's requests from the oldest, then the skid
+// buffer's request), continue the alternation where the filter's output left it
+// (dm_pipeline_assert's tf_col_pend_q, tf_col_slot_q): a normal-map entry for the pending
+// colour's slot, then colour, normal-map pairs of one slot each, and at the newest end a colour
+// entry without its normal map exactly when the request select is at the normal map (rq_sel_q),
+// for the slot it keeps (pair_slot_q); and the abstract cache's queue pointers agree with its
+// count.
 `ifdef FORMAL
 module dm_pipeline_pairs_formal #(
   parameter int unsigned SLOTS  = 4,    // dm_pipeline's SLOTS
@@ -52,18 +54,23 @@ module dm_pipeline_pairs_formal #(
     slot = dm_pipeline.u_assert.tf_col_slot_q;
     ok   = 1'b1;
     // the lookups from the oldest on: the filter's stages (S_TF_LAT down to S1), then the
-    // abstract cache's queue from its head; each must continue the alternation
-    for (int j = 0; j < TF_LAT + TC_CAP; j++) begin
+    // abstract cache's queue from its head, then the request in the skid buffer; each must
+    // continue the alternation
+    for (int j = 0; j <= TF_LAT + TC_CAP; j++) begin
       if (j < TF_LAT) begin
         valid = dm_pipeline.u_filter.u_valid_tag.v_q[TF_LAT - j];
         ft    = dm_pipeline.u_filter.u_valid_tag.tag_q[TF_LAT - j];
         nmap  = ft[1];
         s     = ft[TF_W-1 -: SLOT_W];
-      end else begin
+      end else if (j < TF_LAT + TC_CAP) begin
         valid = j - TF_LAT < int'(dm_pipeline.u_tc.cnt_q);
         ct    = dm_pipeline.u_tc.q_tag_q[(int'(dm_pipeline.u_tc.rp_q) + j - TF_LAT) % TC_CAP];
         nmap  = ct[48];
         s     = ct[TC_W-1 -: SLOT_W];
+      end else begin   // the skid buffer's request {normal?, slot, request}
+        valid = dm_pipeline.u_rq_skid.full_q;
+        nmap  = dm_pipeline.u_rq_skid.data_q[dm_pipeline.RS_W-1];
+        s     = dm_pipeline.u_rq_skid.data_q[dm_pipeline.REQ_W +: SLOT_W];
       end
       if (valid) begin
         if (pend) ok = ok && nmap && s == slot;

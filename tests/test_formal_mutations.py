@@ -146,6 +146,11 @@ MUTANTS = {
         "assign rq_slot      = rq_sel_q ? pair_slot_q : rq_c_head[SLOT_W+REQ_W-1 -: SLOT_W];",
         "assign rq_slot      = rq_c_head[SLOT_W+REQ_W-1 -: SLOT_W];",
         "dm_pipeline_pairs:bmc_pairs", "(?:inv_pairs|tf_pairs)"),
+    "skid_data_overwritten": (
+        "rtl/common/skid_buffer.sv",
+        "    if (!full_q) data_q <= data_i;",
+        "    data_q <= data_i;",
+        "skid_buffer:bmc", "(?:order|inv_data|out_held)"),
     "live_not_freed": (
         "rtl/pipe/dm_pipeline.sv",
         "else         live_q <= live_q + (SLOT_W+1)'(acc) - (SLOT_W+1)'(px_done);",

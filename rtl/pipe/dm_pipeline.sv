@@ -430,33 +430,49 @@ module dm_pipeline
   logic [SLOT_W+REQ_W-1:0] rq_c_head;
   logic [REQ_W-1:0]  rq_n_head, rq_head;
   logic [SLOT_W-1:0] rq_slot;
+  logic              rq_valid, rq_ready;  // the alternating select's stream (into u_rq_skid)
+  logic              rq_take;             // a request leaves its FIFO
   logic              tc_req_valid, tc_req_ready;
   logic [REQ_CW-1:0] rq_c_count, rq_n_count;
 
   traverse_fifo #(.W(SLOT_W + REQ_W), .DEPTH(REQ_DEPTH),
                 .RAM_STYLE("block")) u_rq_c (
     .clk_i, .rst_ni, .wr_i(ta_valid && !ta_tex), .wr_data_i({ta_slot, ta_req}),
-    .rd_i(tc_req_valid && tc_req_ready && !rq_sel_q), .rd_data_o(rq_c_head), .full_o(rq_c_full),
+    .rd_i(rq_take && !rq_sel_q), .rd_data_o(rq_c_head), .full_o(rq_c_full),
     .empty_o(rq_c_empty), .count_o(rq_c_count));
   traverse_fifo #(.W(REQ_W), .DEPTH(REQ_DEPTH), .RAM_STYLE("block")) u_rq_n (
     .clk_i, .rst_ni, .wr_i(ta_valid && ta_tex), .wr_data_i(ta_req),
-    .rd_i(tc_req_valid && tc_req_ready && rq_sel_q), .rd_data_o(rq_n_head), .full_o(rq_n_full),
+    .rd_i(rq_take && rq_sel_q), .rd_data_o(rq_n_head), .full_o(rq_n_full),
     .empty_o(rq_n_empty), .count_o(rq_n_count));
 
   // The slot of the pair being sent (the colour entry's, kept for the normal-map request).
   logic [SLOT_W-1:0] pair_slot_q;
-  assign rq_head      = rq_sel_q ? rq_n_head : rq_c_head[REQ_W-1:0];
-  assign rq_slot      = rq_sel_q ? pair_slot_q : rq_c_head[SLOT_W+REQ_W-1 -: SLOT_W];
-  assign tc_req_valid = rq_sel_q ? !rq_n_empty : !rq_c_empty;
-  assign req_done     = tc_req_valid && tc_req_ready && rq_sel_q;
+  assign rq_head  = rq_sel_q ? rq_n_head : rq_c_head[REQ_W-1:0];
+  assign rq_slot  = rq_sel_q ? pair_slot_q : rq_c_head[SLOT_W+REQ_W-1 -: SLOT_W];
+  assign rq_valid = rq_sel_q ? !rq_n_empty : !rq_c_empty;
+  assign rq_take  = rq_valid && rq_ready;
 
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) rq_sel_q <= 1'b0;
-    else if (tc_req_valid && tc_req_ready) rq_sel_q <= !rq_sel_q;
+    if (!rst_ni)      rq_sel_q <= 1'b0;
+    else if (rq_take) rq_sel_q <= !rq_sel_q;
   end
   always_ff @(posedge clk_i) begin
-    if (tc_req_valid && tc_req_ready && !rq_sel_q) pair_slot_q <= rq_slot;
+    if (rq_take && !rq_sel_q) pair_slot_q <= rq_slot;
   end
+
+  // The requests reach the cache through a skid buffer: its ready_o is a register, so the
+  // cache's req_ready_o (its front's pass queue) ends there instead of running on into the
+  // request FIFOs' read pointers and block-RAM read addresses (the routed top's worst path
+  // before it).  The cache sees the same requests in the same clocks (a request not taken
+  // waits in the buffer instead of the FIFO); req_done, the request credit's return, is the
+  // cache's handshake of a normal-map request, as before.
+  localparam int unsigned RS_W = 1 + SLOT_W + REQ_W;  // {normal?, slot, request}
+  logic [RS_W-1:0] tc_req;
+
+  skid_buffer #(.W(RS_W)) u_rq_skid (
+    .clk_i, .rst_ni, .valid_i(rq_valid), .ready_o(rq_ready), .data_i({rq_sel_q, rq_slot, rq_head}),
+    .valid_o(tc_req_valid), .ready_i(tc_req_ready), .data_o(tc_req));
+  assign req_done = tc_req_valid && tc_req_ready && tc_req[RS_W-1];
 
   // tex_cache: tag = {slot, normal?, fx, fy}
   localparam int unsigned TC_TAG_W = SLOT_W + 1 + 48;
@@ -470,8 +486,8 @@ module dm_pipeline
               .WAYS(T_WAYS), .ID_W(T_ID_W), .TAG_W(TC_TAG_W), .WIN_WORDS(T_WIN_WORDS)) u_tc (
     .clk_i, .rst_ni,
     .req_valid_i(tc_req_valid), .req_ready_o(tc_req_ready),
-    .req_addr_i(rq_head[4*TEX_ADDR_W-1:0]),  // [0] a00, [1] a01, [2] a10, [3] a11
-    .req_tag_i({rq_slot, rq_sel_q, rq_head[REQ_W-1 -: 48]}),
+    .req_addr_i(tc_req[4*TEX_ADDR_W-1:0]),  // [0] a00, [1] a01, [2] a10, [3] a11
+    .req_tag_i({tc_req[REQ_W +: SLOT_W], tc_req[RS_W-1], tc_req[REQ_W-1 -: 48]}),
     .rsp_valid_o(tc_rsp_valid), .rsp_ready_i(tf_ready), .rsp_texel_o(tc_rsp_texel),
     .rsp_err_o(tc_rsp_err), .rsp_tag_o(tc_rsp_tag),
     .m_axi_arid(m_axi_t_arid), .m_axi_araddr(m_axi_t_araddr), .m_axi_arlen(m_axi_t_arlen),

@@ -1,0 +1,137 @@
+# SPDX-License-Identifier: Apache-2.0
+"""skid_buffer (the register slice on the texture requests' ready path) against a reference.
+
+The producer is a queue, as the request FIFOs in front of the slice in dm_pipeline: item k
+arrives at a random clock (bursts and gaps) and the producer offers the queue's head until the
+slice takes it.  The consumer's ready_i is random.  The reference is the same queue and the same
+ready_i without the slice: every clock the test compares the slice's valid_o and data_o with the
+reference's offer (the consumer must see the same offers in the same clocks), its ready_o with
+"the slice is empty" (a register: it must not follow ready_i), and each item given on with the
+next number in order.  Phases: random; full rate (always valid, always ready: one item a clock);
+a stalled consumer (the slice fills and holds, nothing lost); a reset while the slice is full.
+The bound assertions (rtl/common/skid_buffer_assert.sv) are on.
+"""
+from __future__ import annotations
+
+from collections import deque
+from pathlib import Path
+
+import cocotb
+import numpy as np
+from cocotb.triggers import FallingEdge, RisingEdge
+
+from tb.common import clock_reset, fp_unit, report, runner
+
+W = 16
+
+
+@cocotb.test()
+async def skid_buffer_random(dut):
+    rng = np.random.default_rng(fp_unit.seed())
+    await clock_reset.start_and_reset(dut, ["valid_i", "ready_i", "data_i"], cycles=3)
+    n = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE)
+    # phase per clock: 0 random, 1 full rate, 2 consumer stalled, 3 reset (one clock)
+    phase = np.zeros(n, dtype=np.int64)
+    phase[n // 2: n // 2 + n // 8] = 1
+    phase[n // 2 + n // 8: n // 2 + n // 8 + 64] = 2
+    phase[n // 2 + n // 8 + 64] = 3
+    p_arr = rng.uniform(0.1, 1.0, n // 64 + 1).repeat(64)[:n]    # bursts of varying density
+    p_rdy = rng.uniform(0.1, 1.0, n // 64 + 1).repeat(64)[:n]
+    arrive = np.where(phase == 0, rng.random(n) < p_arr, phase != 3)
+    ready = np.where(phase == 0, rng.random(n) < p_rdy, phase == 1)
+    src: deque[int] = deque()   # the producer's queue (in front of the slice)
+    ref: deque[int] = deque()   # the same queue without the slice
+    seq_in = seq_out = 0
+    given_full = full_clocks = 0
+    bad = 0
+    msgs: list[str] = []
+
+    def fail(text: str) -> None:
+        nonlocal bad
+        bad += 1
+        if len(msgs) < 10:
+            msgs.append(text)
+
+    full = False                # the slice holds an item (the model of full_q)
+    for k in range(n):
+        if phase[k] == 3:       # reset: the slice and both queues are emptied
+            dut.rst_ni.value = 0
+            dut.valid_i.value = 0
+            dut.ready_i.value = 0
+            src.clear()
+            ref.clear()
+            full = False
+            await RisingEdge(dut.clk_i)
+            await FallingEdge(dut.clk_i)
+            dut.rst_ni.value = 1
+            seq_out = seq_in
+            continue
+        dut.valid_i.value = int(bool(src))
+        dut.data_i.value = src[0] if src else 0
+        dut.ready_i.value = int(ready[k])
+        await cocotb.triggers.Timer(1, unit="ns")
+        got = (int(dut.valid_o.value), int(dut.data_o.value) if int(dut.valid_o.value) else None,
+               int(dut.ready_o.value))
+        exp = (int(bool(ref)), ref[0] if ref else None, int(not full))
+        if got != exp:
+            fail(f"clock {k} (phase {phase[k]}): (valid_o, data_o, ready_o) = {got}, "
+                 f"reference {exp}")
+        # the edge: the producer's handshake, the consumer's, the reference's
+        took_in = bool(src) and not full
+        gave = bool(got[0]) and bool(ready[k])
+        if gave:
+            if got[1] != seq_out & 0xFFFF:
+                fail(f"clock {k}: item {got[1]} given on, expected {seq_out & 0xFFFF}")
+            seq_out += 1
+            given_full += int(phase[k] == 1)
+        full = (not ready[k]) if full else (took_in and not ready[k])
+        if took_in:
+            src.popleft()
+        if ref and ready[k]:
+            ref.popleft()
+        if arrive[k]:
+            src.append(seq_in & 0xFFFF)
+            ref.append(seq_in & 0xFFFF)
+            seq_in += 1
+        full_clocks += int(full)
+        await RisingEdge(dut.clk_i)
+        await FallingEdge(dut.clk_i)
+    # drain
+    dut.ready_i.value = 1
+    for _ in range(n // 4):
+        if not src and not full:
+            break
+        dut.valid_i.value = int(bool(src))
+        dut.data_i.value = src[0] if src else 0
+        await cocotb.triggers.Timer(1, unit="ns")
+        if int(dut.valid_o.value):
+            if int(dut.data_o.value) != seq_out & 0xFFFF:
+                fail(f"drain: item {int(dut.data_o.value)}, expected {seq_out & 0xFFFF}")
+            seq_out += 1
+        if src and not full:
+            src.popleft()
+        full = False
+        await RisingEdge(dut.clk_i)
+        await FallingEdge(dut.clk_i)
+    dut.valid_i.value = 0
+    await cocotb.triggers.Timer(1, unit="ns")
+    if int(dut.valid_o.value) or not int(dut.ready_o.value):
+        fail("not empty after draining")
+    if seq_out != seq_in:
+        fail(f"{seq_in} items in, {seq_out} out")
+    n_full = int(np.count_nonzero(phase == 1))
+    if given_full < n_full - 2:
+        fail(f"full rate: {given_full} items in {n_full} clocks")
+    if full_clocks == 0:
+        fail("the slice never filled")
+    report.record(dut._name, "RTL vs the queue without the slice", n, bad)
+    dut._log.info("VECTORS skid_buffer: %d clocks, %d items, %d clocks with the slice full, "
+                  "%d items in the %d full-rate clocks, %d mismatches",
+                  n, seq_in, full_clocks, given_full, n_full, bad)
+    if msgs:
+        raise AssertionError("\n".join(msgs))
+
+
+def test_skid_buffer():
+    runner.run("skid_buffer", "test_skid_buffer", Path(__file__).parent,
+               parameters={"W": W})
