@@ -42,7 +42,9 @@
 // The colour and normal-map requests of a pixel are pushed together into two FIFOs and sent to
 // the cache alternately (colour first), so its responses, and the filter's results, come in
 // pairs in that order (the cache and the filter keep order; asserted: tf_pairs); a pixel reaches
-// shade_unit every four clocks at most.
+// shade_unit every four clocks at most.  The requests pass a skid buffer (u_rq_skid) on the way:
+// the cache's req_ready_o ends at its register, and the cache sees the requests in the same
+// clocks as without it.
 //
 // Outputs.  Pixels leave in completion order with their pixel id (px_id_o); px_hit_o /
 // px_invalid_o / px_err_o (a height or texel read returned an AXI error) / px_iters_o describe
