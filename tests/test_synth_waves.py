@@ -132,6 +132,18 @@ def test_heatmap_args():
     assert synth.heatmap_args(True, "router1", False, "p") == []     # router1: no heatmaps
 
 
+def test_placer_args():
+    # only the heap placer's tuning options, each with its value; anything else is an error
+    assert synth.placer_args("") == []
+    assert synth.placer_args("--placer-heap-timingweight 20 --placer-heap-critexp 4") == [
+        "--placer-heap-timingweight", "20", "--placer-heap-critexp", "4"]
+    assert synth.placer_args("--placer-heap-no-ctrl-set") == ["--placer-heap-no-ctrl-set"]
+    with pytest.raises(ValueError, match="not one of"):
+        synth.placer_args("--router router2")
+    with pytest.raises(ValueError, match="needs a value"):
+        synth.placer_args("--placer-heap-alpha")
+
+
 def test_float_units_inventory(tmp_path):
     """float_units counts the units below every instance of each block from Yosys's statistics
     of the kept hierarchy: sub-blocks included, multiplicities multiplied, units inside units

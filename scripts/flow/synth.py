@@ -414,6 +414,7 @@ class Flow:
                "--lpf-allow-unconstrained", "--timing-allow-fail", "--seed", str(a.seed),
                "--report", rel(rep)]
         cmd += router_args(a.router, ooc, not a.no_tmg_ripup)
+        cmd += placer_args(a.placer_opts)
         hm = heatmap_args(a.heatmap, a.router, ooc, rel(self.out / "heatmap" / "top"))
         if hm:
             (self.out / "heatmap").mkdir(exist_ok=True)
@@ -719,7 +720,8 @@ def write_md(report: dict, path: Path) -> None:
              ", 7-series counts from `synth_xilinx -family xc7`; "
              f"fmax from nextpnr-ecp5 on {a['device_name']}, speed {a['speed']}, {a['package']}, "
              f"target {a['target_mhz']:.0f} MHz (constraints/{Path(a['lpf']).name}), seed "
-             f"{a['seed']}, {router_text(a.get('router', 'router1'), a.get('tmg_ripup', True))}. "
+             f"{a['seed']}, {router_text(a.get('router', 'router1'), a.get('tmg_ripup', True))}"
+             f"{', placer ' + a['placer_opts'] if a.get('placer_opts') else ''}. "
              "Blocks placed and routed out of "
              f"context (`--out-of-context`: no I/O, "
              f"clock on fabric routing); the top ({TOP}) placed and routed whole.\n")
@@ -839,6 +841,34 @@ def router_args(router: str, ooc: bool, tmg_ripup: bool = True) -> list[str]:
     return ["--router", r] + (["--tmg-ripup"] if r == "router2" and tmg_ripup else [])
 
 
+#: nextpnr's heap-placer options that --placer-opts may pass (name -> whether it takes a value).
+PLACER_OPTS = {"--placer-heap-alpha": True, "--placer-heap-beta": True,
+               "--placer-heap-critexp": True, "--placer-heap-timingweight": True,
+               "--placer-heap-no-ctrl-set": False}
+
+
+def placer_args(text: str) -> list[str]:
+    """nextpnr's placer options from `--placer-opts` (e.g. "--placer-heap-timingweight 20"): only
+    the heap placer's tuning options (PLACER_OPTS), each with its value if it takes one; a
+    ValueError names anything else (so a typing error does not silently route the default)."""
+    words = text.split()
+    out: list[str] = []
+    i = 0
+    while i < len(words):
+        w = words[i]
+        if w not in PLACER_OPTS:
+            raise ValueError(f"--placer-opts: {w!r} is not one of {', '.join(PLACER_OPTS)}")
+        if PLACER_OPTS[w]:
+            if i + 1 >= len(words):
+                raise ValueError(f"--placer-opts: {w} needs a value")
+            out += [w, words[i + 1]]
+            i += 2
+        else:
+            out.append(w)
+            i += 1
+    return out
+
+
 def heatmap_args(enabled: bool, router: str, ooc: bool, prefix: str) -> list[str]:
     """`--heatmap`: nextpnr's router2 congestion CSVs (per tile, per net, per wire type, one set
     per routing iteration, file names starting with prefix), for the top only and only when it
@@ -862,8 +892,9 @@ RESULTS = ROOT / "docs" / "results" / "synth-ecp5.json"
 TOP_FIELDS = ("name", "rings", "lut", "ff", "dsp", "bram", "fmax_mhz", "seed", "router", "device",
               "rtl_commit")
 #: Fields an entry carries only when they hold: `out_of_context` (true for the system top),
-#: `params` (the parameters a `--param` variant overrides, e.g. {"PYR_BUILD": 0}).
-TOP_OPTIONAL = ("out_of_context", "params")
+#: `params` (the parameters a `--param` variant overrides, e.g. {"PYR_BUILD": 0}),
+#: `placer_opts` (nextpnr placer options other than the defaults, `--placer-opts`).
+TOP_OPTIONAL = ("out_of_context", "params", "placer_opts")
 
 
 def rtl_commit(commit: str, changes: list[str]) -> str:
@@ -886,6 +917,8 @@ def top_record(name: str, counts: dict, fmax_mhz: float, settings: dict,
         r["out_of_context"] = True
     if params:
         r["params"] = dict(params)
+    if settings.get("placer_opts"):
+        r["placer_opts"] = settings["placer_opts"]
     return r
 
 
@@ -1004,6 +1037,11 @@ def main() -> int:
     ap.add_argument("--no-tmg-ripup", action="store_true",
                     help="router2 without nextpnr's timing-driven rip-up (--tmg-ripup), which "
                          "can keep a congested top from converging; recorded in the report")
+    ap.add_argument("--placer-opts", default="", metavar="OPTS",
+                    help="nextpnr heap-placer options for every place and route, e.g. "
+                         "--placer-opts='--placer-heap-timingweight 20' (only "
+                         "--placer-heap-alpha, -beta, -critexp, -timingweight, -no-ctrl-set); "
+                         "recorded in the report")
     ap.add_argument("--heatmap", action="store_true",
                     help="with --router router2: router2 writes its congestion per tile, per "
                          "net and per wire type at every iteration of the top's routing, as CSV "
@@ -1046,6 +1084,10 @@ def main() -> int:
         write_paths(report, args.out)
         print(f"synth: wrote {args.out / 'report.md'} and the critical-path files")
         return 0
+    try:
+        placer_args(args.placer_opts)
+    except ValueError as e:
+        return fail(str(e))
     names = ([n.strip() for n in args.blocks.split(",") if n.strip()]
              or [n for n in BLOCK_NAMES if n not in OPT_IN])
     bad = [n for n in names if n not in BLOCK_NAMES]
@@ -1118,6 +1160,7 @@ def main() -> int:
                 "package": args.package, "speed": args.speed, "lpf": rel(args.lpf),
                 "target_mhz": target, "seed": args.seed, "router": args.router,
                 "tmg_ripup": not args.no_tmg_ripup,
+                "placer_opts": " ".join(placer_args(args.placer_opts)),
                 "yosys": yv, "nextpnr": nv,
                 "ecp5_opts": args.ecp5_opts.strip(), "top_ecp5_opts": args.top_ecp5_opts.strip(),
                 "abc9_delay_ps": args.abc9_delay}
