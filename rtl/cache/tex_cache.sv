@@ -432,13 +432,15 @@ module tex_cache
   // Commit register (below): the pass that entered in the clock before, whose directory, MSHR
   // and FIFO writes happen in this clock.
   logic                        cm_valid_q;
-  pass_t                       e_pass;      // the pass as it enters the FIFO (request FIFO)
-  pass_t                       cm_pass_q;   // ... and as it is written there
+  pass_t                       e_pass;      // the pass as it enters the FIFO (request FIFO),
+                                            // its rc the slots' counts before its references
+  pass_t                       cm_pass_q;   // ... registered
+  pass_t                       cm_pass;     // ... as it is written there: rc = cm_inc
   logic [NSUB-1:0]             cm_alloc_q;  // (its sub-caches, sets and ways: in cm_pass_q)
   logic [NSUB-1:0][TAGB-1:0]   cm_tag_q;
   logic [NSUB-1:0][LA_W-1:0]   cm_la_q;
   logic [NSUB-1:0][MIDX_W-1:0] cm_mshr_q;
-  logic [NSUB-1:0][RC_W-1:0]   cm_inc_q;   // the slot's new reference-taken count
+  logic [NSUB-1:0][RC_W-1:0]   cm_inc;     // the slot's new reference-taken count
   logic [NSUB-1:0][PLRU_W-1:0] cm_plru_q;  // the set's new pseudo-LRU bits
   logic [NSUB-1:0][WAYS-1:0]   cm_ag_q;    // the set's new ag bits (written on an allocation)
   logic [NSUB-1:0][WAYS-1:0]   cm_live_q;  // ... and live bits
@@ -457,7 +459,7 @@ module tex_cache
     .set_live_i(set_live), .set_ag_i(set_ag), .set_fg_i(set_fg), .set_bad_i(set_bad),
     .b_valid_i(b_valid), .lk_v_i(lk_v), .lk_set_i(lk_set), .lk_tag_i(lk_tag),
     .cm_valid_i(cm_valid_q), .cm_used_i(cm_pass_q.used), .cm_set_i(cm_pass_q.set),
-    .cm_way_i(cm_pass_q.way), .cm_alloc_i(cm_alloc_q), .cm_tag_i(cm_tag_q), .cm_inc_i(cm_inc_q),
+    .cm_way_i(cm_pass_q.way), .cm_alloc_i(cm_alloc_q), .cm_tag_i(cm_tag_q), .cm_inc_i(cm_inc),
     .cm_plru_i(cm_plru_q), .cm_ag_i(cm_ag_q), .cm_live_i(cm_live_q),
     .free_idx_i(free_idx), .free_ok_i(free_ok),
     .lk_alloc_o(lk_alloc), .lk_blocked_o(lk_blocked), .lk_way_o(lk_way), .lk_mshr_o(lk_mshr),
@@ -483,12 +485,17 @@ module tex_cache
   logic [2:0] cm_texel_hits_q;
   logic       cm_qhit_q;
   logic [2:0] e_texel_hits;
-  logic [NSUB-1:0][RC_W-1:0] e_inc;  // the slots' inc after the pass's reference
+  // The slots' reference-taken counts before the pass's reference (e_ref) and after it
+  // (cm_inc = + 1, a clock later: the increment's carry chain is not behind the way's choice).
+  logic [NSUB-1:0][RC_W-1:0] e_ref;
 
   always_comb begin
     for (int c = 0; c < NSUB; c++) begin
-      e_inc[c] = (lk_alloc[c] ? b_dec[c][lk_way[c]] : f_inc[c][lk_way[c]]) + RC_W'(1);
+      e_ref[c]  = lk_alloc[c] ? b_dec[c][lk_way[c]] : f_inc[c][lk_way[c]];
+      cm_inc[c] = cm_pass_q.rc[c] + RC_W'(1);
     end
+    cm_pass    = cm_pass_q;
+    cm_pass.rc = cm_inc;
   end
 
   always_ff @(posedge clk_i) begin
@@ -503,7 +510,6 @@ module tex_cache
       // (the victim: not pending, no fill due)
       cm_ag_q[c]   <= with_way(f_ag[c], lk_way[c], !b_fg[c][lk_way[c]]);
       cm_live_q[c] <= with_way(f_live[c], lk_way[c], 1'b1);
-      cm_inc_q[c]  <= e_inc[c];
     end
     cm_pass_q       <= e_pass;
     cm_texel_hits_q <= e_texel_hits;
@@ -528,7 +534,7 @@ module tex_cache
     e_pass.win  = lk_win;
     e_pass.tsub = e_psub;
     e_pass.toff = e_toff;
-    e_pass.rc   = e_inc;
+    e_pass.rc   = e_ref;
     e_pass.last = e_last;
   end
 
@@ -540,7 +546,7 @@ module tex_cache
     .WIDTH($bits(pass_t)), .DEPTH(FIFO_DEPTH), .NPUSH(1), .NPOP(1), .ASYNC_RD(1'b0), .PEEK(2),
     .RAM_STYLE("block")
   ) u_fifo (
-    .clk_i, .rst_ni, .push_i(cm_valid_q), .wr_i(cm_valid_q), .wdata_i(cm_pass_q),
+    .clk_i, .rst_ni, .push_i(cm_valid_q), .wr_i(cm_valid_q), .wdata_i(cm_pass),
     .pop_n_i(h_pop), .rdata_o(), .peek_o(rd_eff), .count_o(fifo_cnt));
 
   // ---------------------------------------------------------------- head: wait, pop, read
@@ -548,11 +554,11 @@ module tex_cache
   logic [NSUB-1:0] hd_pend, hd_bad;  // the head's slot per sub-cache: pending, bad (g_dir)
   // The pop decides from flip-flops only: hd_pend and hd_bad are registers loaded one clock
   // ahead with the state of the slots of the pass that is head in the next clock (g_dir reads
-  // it at the sets of nx_q and cm_pass_q, with this clock's directory writes applied; for hd_q
+  // it at the sets of nx_q and cm_pass, with this clock's directory writes applied; for hd_q
   // it applies the fill to the registers themselves), so no LUT RAM read lies between the head
-  // register and the FIFO's pointers.  The next head: nx_q (a pop with two or more entries), cm_pass_q (a pop
-  // with one, or an empty FIFO), else hd_q.
-  logic            hs_nx, hs_cm;     // the next head is nx_q, cm_pass_q (else hd_q)
+  // register and the FIFO's pointers.  The next head: nx_q (a pop with two or more entries),
+  // cm_pass (a pop with one, or an empty FIFO), else hd_q.
+  logic            hs_nx, hs_cm;     // the next head is nx_q, cm_pass (else hd_q)
 
   // The head entry hd_q (= the FIFO's head while it holds a pass) and the one behind it, nx_q
   // (= the entry after the head while it holds two), are registers, so the head's readiness (its
@@ -568,10 +574,10 @@ module tex_cache
   // the next head and next-behind-head with and without a pop (from registers), then the pop
   // picks
   always_comb begin
-    hd_pop_d  = (fifo_cnt >= FC_W'(2)) ? nx_q : cm_pass_q;    // entry rp + 1
-    nx_pop_d  = (fifo_cnt >= FC_W'(3)) ? rd_eff : cm_pass_q;  // entry rp + 2
-    hd_hold_d = (fifo_cnt == '0) ? cm_pass_q : hd_q;          // entry rp
-    nx_hold_d = (fifo_cnt == FC_W'(1)) ? cm_pass_q : nx_q;     // entry rp + 1
+    hd_pop_d  = (fifo_cnt >= FC_W'(2)) ? nx_q : cm_pass;      // entry rp + 1
+    nx_pop_d  = (fifo_cnt >= FC_W'(3)) ? rd_eff : cm_pass;    // entry rp + 2
+    hd_hold_d = (fifo_cnt == '0) ? cm_pass : hd_q;            // entry rp
+    nx_hold_d = (fifo_cnt == FC_W'(1)) ? cm_pass : nx_q;       // entry rp + 1
   end
 
   always_ff @(posedge clk_i) begin
@@ -730,7 +736,7 @@ module tex_cache
       always_ff @(posedge clk_i) begin
         if (take && cm_pass_q.way[c] == WAY_W'(w)) begin
           if (cm_alloc_q[c]) tag_mem[cm_pass_q.set[c]] <= cm_tag_q[c];
-          inc_mem[cm_pass_q.set[c]] <= cm_inc_q[c];
+          inc_mem[cm_pass_q.set[c]] <= cm_inc[c];
         end
         if (give && hd_q.way[c] == WAY_W'(w)) dec_mem[hd_q.set[c]] <= hd_q.rc[c];
       end

@@ -626,7 +626,7 @@ bind tex_cache tex_cache_assert #(
   .out_push(u_data.out_push), .out_pop(u_data.out_pop), .out_cnt_q(u_data.out_cnt),
   .tq_wp_q(u_data.tq_wp_q), .tq_rp_q(u_data.tq_rp_q),
   .fl_hd_q(u_free.rp_q), .fl_cnt_q(u_free.cnt_q),
-  .cm_used(cm_pass_q.used), .cm_set(cm_pass_q.set), .cm_way(cm_pass_q.way),
+  .cm_used(cm_pass_q.used), .cm_set(cm_pass_q.set), .cm_way(cm_pass_q.way), .cm_inc_q(cm_inc),
   .hd_used(hd_q.used), .hd_set(hd_q.set), .hd_way(hd_q.way), .hd_tsel(hd_q.tsel),
   .hd_toff(hd_q.toff), .hd_rc(hd_q.rc), .fifo_wp_q(u_fifo.wp_q), .fifo_rp_q(u_fifo.rp_q), .fifo_cnt_q(fifo_cnt),
   .hd_is_head(hd_q == u_fifo.mem_q[u_fifo.rp_q]),
