@@ -16,7 +16,7 @@
 //
 // Induction invariant (inv_pairs): the texture lookups in flight, oldest first (the filter's
 // stages from its output back, then the cache's requests from the oldest, then the skid
-// buffer's request), continue the alternation where the filter's output left it
+// buffer's two registers), continue the alternation where the filter's output left it
 // (dm_pipeline_assert's tf_col_pend_q, tf_col_slot_q): a normal-map entry for the pending
 // colour's slot, then colour, normal-map pairs of one slot each, and at the newest end a colour
 // entry without its normal map exactly when the request select is at the normal map (rq_sel_q),
@@ -54,9 +54,9 @@ module dm_pipeline_pairs_formal #(
     slot = dm_pipeline.u_assert.tf_col_slot_q;
     ok   = 1'b1;
     // the lookups from the oldest on: the filter's stages (S_TF_LAT down to S1), then the
-    // abstract cache's queue from its head, then the request in the skid buffer; each must
-    // continue the alternation
-    for (int j = 0; j <= TF_LAT + TC_CAP; j++) begin
+    // abstract cache's queue from its head, then the requests in the skid buffer (its output
+    // register, then its skid register); each must continue the alternation
+    for (int j = 0; j <= TF_LAT + TC_CAP + 1; j++) begin
       if (j < TF_LAT) begin
         valid = dm_pipeline.u_filter.u_valid_tag.v_q[TF_LAT - j];
         ft    = dm_pipeline.u_filter.u_valid_tag.tag_q[TF_LAT - j];
@@ -67,7 +67,11 @@ module dm_pipeline_pairs_formal #(
         ct    = dm_pipeline.u_tc.q_tag_q[(int'(dm_pipeline.u_tc.rp_q) + j - TF_LAT) % TC_CAP];
         nmap  = ct[48];
         s     = ct[TC_W-1 -: SLOT_W];
-      end else begin   // the skid buffer's request {normal?, slot, request}
+      end else if (j == TF_LAT + TC_CAP) begin   // the skid buffer's output register
+        valid = dm_pipeline.tc_req_valid;
+        nmap  = dm_pipeline.tc_req[dm_pipeline.RS_W-1];
+        s     = dm_pipeline.tc_req[dm_pipeline.REQ_W +: SLOT_W];
+      end else begin   // its skid register {normal?, slot, request}
         valid = dm_pipeline.u_rq_skid.full_q;
         nmap  = dm_pipeline.u_rq_skid.data_q[dm_pipeline.RS_W-1];
         s     = dm_pipeline.u_rq_skid.data_q[dm_pipeline.REQ_W +: SLOT_W];

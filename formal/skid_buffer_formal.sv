@@ -7,10 +7,13 @@
 //   order   an item given to the consumer is the next one in the producer's order (data_o = the
 //           count of items given on)
 // with the bound count_model (none lost, none duplicated) says the stream leaves as it came.
-// The induction invariants: the numbers differ by the slice's fill (inv_count), and a full
-// slice holds the next number to give on (inv_data; the slice's register read hierarchically).
+// The induction invariants: the numbers differ by the slice's fill (inv_count), and the slice's
+// registers hold the next numbers to give on: with REG_OUT the output register the next one
+// and the skid register the one after it, else the skid register the next (inv_data; the
+// registers read hierarchically).
 module skid_buffer_formal #(
-  parameter int unsigned W = 3   // payload bits (the numbering wraps modulo 2^W)
+  parameter int unsigned W       = 3,    // payload bits (the numbering wraps modulo 2^W)
+  parameter bit          REG_OUT = 1'b0  // skid_buffer's REG_OUT
 ) (
   input logic clk_i,
   input logic rst_ni,
@@ -22,7 +25,7 @@ module skid_buffer_formal #(
   logic [W-1:0] data_o;
   logic [W-1:0] n_in_q, n_out_q;   // items taken from the producer, given to the consumer
 
-  skid_buffer #(.W(W)) u_dut (
+  skid_buffer #(.W(W), .REG_OUT(REG_OUT)) u_dut (
     .clk_i, .rst_ni, .valid_i, .ready_o(ready), .data_i(n_in_q), .valid_o(valid), .ready_i,
     .data_o);
 
@@ -49,8 +52,8 @@ module skid_buffer_formal #(
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
       order:     assert (!valid || data_o == n_out_q);
-      inv_count: assert (n_in_q - n_out_q == W'(u_dut.full_q));
-      inv_data:  assert (!u_dut.full_q || u_dut.data_q == n_out_q);
+      inv_count: assert (n_in_q - n_out_q == W'(u_dut.full_q) + W'(REG_OUT && valid));
+      inv_data:  assert (!u_dut.full_q || u_dut.data_q == n_out_q + W'(REG_OUT && valid));
     end
   end
 

@@ -150,7 +150,12 @@ MUTANTS = {
         "rtl/common/skid_buffer.sv",
         "    if (!full_q) data_q <= data_i;",
         "    data_q <= data_i;",
-        "skid_buffer:bmc", "(?:order|inv_data|out_held)"),
+        "skid_buffer:bmc_pass", "(?:order|inv_data|out_held)"),
+    "skid_item_dropped": (
+        "rtl/common/skid_buffer.sv",
+        "        out_v_q <= full_q || valid_i;    // the skid's item first, else the producer's",
+        "        out_v_q <= valid_i;",
+        "skid_buffer:bmc_reg", "(?:count_model|inv_count|order)"),
     "live_not_freed": (
         "rtl/pipe/dm_pipeline.sv",
         "else         live_q <= live_q + (SLOT_W+1)'(acc) - (SLOT_W+1)'(px_done);",

@@ -8,16 +8,18 @@
 //                producer's obligation (the formal wrapper assumes it);
 //   out_held     an offer to the consumer not taken stays offered, with the same data, in the
 //                next clock (the slice keeps it whatever the producer does);
-//   ready_state  ready_o is low exactly while the slice holds an item, and the slice holds one
+//   ready_state  ready_o is low exactly while the skid register holds an item, and it holds one
 //                only after a stall of the consumer (then valid_o is high);
 //   count_model  items taken from the producer - items given to the consumer = the slice's
-//                fill (0 or 1): none lost, none duplicated.
+//                fill (the skid register, and with REG_OUT the output register: 0 .. 2): none
+//                lost, none duplicated.
 // The order (an item leaves as the next one given on) is proven by the formal wrapper, which
 // numbers the items.  Covers: the slice filled; the producer's next item passed straight on in
 // the clock after the slice emptied; a full-rate run (three items in three clocks).
 `ifndef SYNTHESIS
 module skid_buffer_assert #(
-  parameter int unsigned W = 8   // skid_buffer's W
+  parameter int unsigned W       = 8,    // skid_buffer's W
+  parameter bit          REG_OUT = 1'b0  // skid_buffer's REG_OUT
 ) (
   input logic         clk_i,
   input logic         rst_ni,
@@ -37,7 +39,9 @@ module skid_buffer_assert #(
   logic [W-1:0] out_data_q;
   logic [1:0]   n_q;        // items taken - items given since reset
   logic [1:0]   run_q;      // consecutive clocks with an item given on, saturating at 3
-  logic         full_prev_q; // the slice held an item in the clock before
+  logic         full_prev_q; // the skid register held an item in the clock before
+  logic [1:0]   fill;        // items in the slice (with REG_OUT valid_o is the output register)
+  assign fill = 2'(full_q) + 2'(REG_OUT && valid_o);
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       past_q     <= 1'b0;
@@ -66,8 +70,8 @@ module skid_buffer_assert #(
         else $error("skid_buffer: an offer not taken was dropped or changed");
       ready_state: assert (ready_o == !full_q && (!full_q || valid_o))
         else $error("skid_buffer: ready_o does not follow the slice's fill");
-      count_model: assert (n_q == {1'b0, full_q})
-        else $error("skid_buffer: items taken - given %0d, slice fill %0d", n_q, full_q);
+      count_model: assert (n_q == fill)
+        else $error("skid_buffer: items taken - given %0d, slice fill %0d", n_q, fill);
       c_full:      cover (full_q);
       c_refill:    cover (past_q && full_prev_q && !full_q && valid_i && ready_i);
       c_full_rate: cover (run_q == 2'd3);
@@ -76,6 +80,6 @@ module skid_buffer_assert #(
 
 endmodule
 
-bind skid_buffer skid_buffer_assert #(.W(W)) u_assert (
+bind skid_buffer skid_buffer_assert #(.W(W), .REG_OUT(REG_OUT)) u_assert (
   .clk_i, .rst_ni, .valid_i, .ready_o, .data_i, .valid_o, .ready_i, .data_o, .full_q);
 `endif

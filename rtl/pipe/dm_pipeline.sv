@@ -42,9 +42,9 @@
 // The colour and normal-map requests of a pixel are pushed together into two FIFOs and sent to
 // the cache alternately (colour first), so its responses, and the filter's results, come in
 // pairs in that order (the cache and the filter keep order; asserted: tf_pairs); a pixel reaches
-// shade_unit every four clocks at most.  The requests pass a skid buffer (u_rq_skid) on the way:
-// the cache's req_ready_o ends at its register, and the cache sees the requests in the same
-// clocks as without it.
+// shade_unit every four clocks at most.  The requests pass a register slice (u_rq_skid) on the
+// way: the cache's req_ready_o ends at its register, and the cache takes them from its output
+// register (a clock later).
 //
 // Outputs.  Pixels leave in completion order with their pixel id (px_id_o); px_hit_o /
 // px_invalid_o / px_err_o (a height or texel read returned an AXI error) / px_iters_o describe
@@ -462,16 +462,17 @@ module dm_pipeline
     if (rq_take && !rq_sel_q) pair_slot_q <= rq_slot;
   end
 
-  // The requests reach the cache through a skid buffer: its ready_o is a register, so the
-  // cache's req_ready_o (its front's pass queue) ends there instead of running on into the
-  // request FIFOs' read pointers and block-RAM read addresses (the routed top's worst path
-  // before it).  The cache sees the same requests in the same clocks (a request not taken
-  // waits in the buffer instead of the FIFO); req_done, the request credit's return, is the
-  // cache's handshake of a normal-map request, as before.
+  // The requests reach the cache through a register slice (skid_buffer, REG_OUT 1): its
+  // ready_o is a register, so the cache's req_ready_o (its front's pass queue) ends there
+  // instead of running on into the request FIFOs' read pointers and block-RAM read addresses
+  // (the worst path of a routed top), and the cache's front takes the request from its output
+  // register instead of through the FIFO select (rq_sel_q, whose 170 loads made the next one).
+  // One clock of latency, the same rate (a request a clock); req_done, the request credit's
+  // return, is the cache's handshake of a normal-map request, as before.
   localparam int unsigned RS_W = 1 + SLOT_W + REQ_W;  // {normal?, slot, request}
   logic [RS_W-1:0] tc_req;
 
-  skid_buffer #(.W(RS_W)) u_rq_skid (
+  skid_buffer #(.W(RS_W), .REG_OUT(1'b1)) u_rq_skid (
     .clk_i, .rst_ni, .valid_i(rq_valid), .ready_o(rq_ready), .data_i({rq_sel_q, rq_slot, rq_head}),
     .valid_o(tc_req_valid), .ready_i(tc_req_ready), .data_o(tc_req));
   assign req_done = tc_req_valid && tc_req_ready && tc_req[RS_W-1];

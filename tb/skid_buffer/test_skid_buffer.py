@@ -1,23 +1,26 @@
 # SPDX-License-Identifier: Apache-2.0
-"""skid_buffer (the register slice on the texture requests' ready path) against a reference.
+"""skid_buffer (the register slice in front of the texture cache) against a model, both modes.
 
 The producer is a queue, as the request FIFOs in front of the slice in dm_pipeline: item k
 arrives at a random clock (bursts and gaps) and the producer offers the queue's head until the
-slice takes it.  The consumer's ready_i is random.  The reference is the same queue and the same
-ready_i without the slice: every clock the test compares the slice's valid_o and data_o with the
-reference's offer (the consumer must see the same offers in the same clocks), its ready_o with
-"the slice is empty" (a register: it must not follow ready_i), and each item given on with the
-next number in order.  Phases: random; full rate (always valid, always ready: one item a clock);
-a stalled consumer (the slice fills and holds, nothing lost); a reset while the slice is full.
+slice takes it.  The consumer's ready_i is random.  Every clock the test compares valid_o, data_o
+and ready_o with a clock-accurate model of the slice (ready_o a register: it must not follow
+ready_i), and each item given on with the next number in order.  With REG_OUT 0 it also compares
+the offers with the same queue and the same ready_i without the slice: the consumer must see
+the same offers in the same clocks.  Phases: random; full rate (always valid, always ready: one
+item a clock); a stalled consumer (the slice fills and holds, nothing lost); a reset while the
+slice is full.
 The bound assertions (rtl/common/skid_buffer_assert.sv) are on.
 """
 from __future__ import annotations
 
+import os
 from collections import deque
 from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 from cocotb.triggers import FallingEdge, RisingEdge
 
 from tb.common import clock_reset, fp_unit, report, runner
@@ -25,9 +28,45 @@ from tb.common import clock_reset, fp_unit, report, runner
 W = 16
 
 
+class SliceModel:
+    """skid_buffer clock by clock: the skid register, and with REG_OUT the output register."""
+
+    def __init__(self, reg_out: bool) -> None:
+        self.reg_out = reg_out
+        self.reset()
+
+    def reset(self) -> None:
+        self.full = False
+        self.skid = 0
+        self.out_v = False
+        self.out = 0
+
+    def outputs(self, valid_i: bool, data_i: int) -> tuple[int, int | None, int]:
+        """(valid_o, data_o or None, ready_o) in the current clock."""
+        if self.reg_out:
+            return int(self.out_v), (self.out if self.out_v else None), int(not self.full)
+        if self.full:
+            return 1, self.skid, 0
+        return int(valid_i), (data_i if valid_i else None), 1
+
+    def clock(self, valid_i: bool, data_i: int, ready_i: bool) -> None:
+        if self.reg_out:
+            if not self.out_v or ready_i:
+                self.out_v = self.full or valid_i
+                self.out = self.skid if self.full else data_i
+                self.full = False
+            elif valid_i and not self.full:
+                self.full, self.skid = True, data_i
+        elif self.full:
+            self.full = not ready_i
+        elif valid_i and not ready_i:
+            self.full, self.skid = True, data_i
+
+
 @cocotb.test()
 async def skid_buffer_random(dut):
     rng = np.random.default_rng(fp_unit.seed())
+    reg_out = bool(int(os.environ["REG_OUT"]))
     await clock_reset.start_and_reset(dut, ["valid_i", "ready_i", "data_i"], cycles=3)
     n = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE)
     # phase per clock: 0 random, 1 full rate, 2 consumer stalled, 3 reset (one clock)
@@ -52,7 +91,7 @@ async def skid_buffer_random(dut):
         if len(msgs) < 10:
             msgs.append(text)
 
-    full = False                # the slice holds an item (the model of full_q)
+    model = SliceModel(reg_out)
     for k in range(n):
         if phase[k] == 3:       # reset: the slice and both queues are emptied
             dut.rst_ni.value = 0
@@ -60,7 +99,7 @@ async def skid_buffer_random(dut):
             dut.ready_i.value = 0
             src.clear()
             ref.clear()
-            full = False
+            model.reset()
             await RisingEdge(dut.clk_i)
             await FallingEdge(dut.clk_i)
             dut.rst_ni.value = 1
@@ -72,19 +111,22 @@ async def skid_buffer_random(dut):
         await cocotb.triggers.Timer(1, unit="ns")
         got = (int(dut.valid_o.value), int(dut.data_o.value) if int(dut.valid_o.value) else None,
                int(dut.ready_o.value))
-        exp = (int(bool(ref)), ref[0] if ref else None, int(not full))
+        exp = model.outputs(bool(src), src[0] if src else 0)
         if got != exp:
             fail(f"clock {k} (phase {phase[k]}): (valid_o, data_o, ready_o) = {got}, "
-                 f"reference {exp}")
+                 f"model {exp}")
+        if not reg_out and got[:2] != (int(bool(ref)), ref[0] if ref else None):
+            fail(f"clock {k} (phase {phase[k]}): (valid_o, data_o) = {got[:2]}, without the "
+                 f"slice {(int(bool(ref)), ref[0] if ref else None)}")
         # the edge: the producer's handshake, the consumer's, the reference's
-        took_in = bool(src) and not full
+        took_in = bool(src) and bool(got[2])
         gave = bool(got[0]) and bool(ready[k])
         if gave:
             if got[1] != seq_out & 0xFFFF:
                 fail(f"clock {k}: item {got[1]} given on, expected {seq_out & 0xFFFF}")
             seq_out += 1
             given_full += int(phase[k] == 1)
-        full = (not ready[k]) if full else (took_in and not ready[k])
+        model.clock(bool(src), src[0] if src else 0, bool(ready[k]))
         if took_in:
             src.popleft()
         if ref and ready[k]:
@@ -93,13 +135,13 @@ async def skid_buffer_random(dut):
             src.append(seq_in & 0xFFFF)
             ref.append(seq_in & 0xFFFF)
             seq_in += 1
-        full_clocks += int(full)
+        full_clocks += int(model.full)
         await RisingEdge(dut.clk_i)
         await FallingEdge(dut.clk_i)
     # drain
     dut.ready_i.value = 1
     for _ in range(n // 4):
-        if not src and not full:
+        if not src and not model.full and not model.out_v:
             break
         dut.valid_i.value = int(bool(src))
         dut.data_i.value = src[0] if src else 0
@@ -108,9 +150,10 @@ async def skid_buffer_random(dut):
             if int(dut.data_o.value) != seq_out & 0xFFFF:
                 fail(f"drain: item {int(dut.data_o.value)}, expected {seq_out & 0xFFFF}")
             seq_out += 1
-        if src and not full:
+        took_in = bool(src) and bool(int(dut.ready_o.value))
+        model.clock(bool(src), src[0] if src else 0, True)
+        if took_in:
             src.popleft()
-        full = False
         await RisingEdge(dut.clk_i)
         await FallingEdge(dut.clk_i)
     dut.valid_i.value = 0
@@ -124,14 +167,15 @@ async def skid_buffer_random(dut):
         fail(f"full rate: {given_full} items in {n_full} clocks")
     if full_clocks == 0:
         fail("the slice never filled")
-    report.record(dut._name, "RTL vs the queue without the slice", n, bad)
-    dut._log.info("VECTORS skid_buffer: %d clocks, %d items, %d clocks with the slice full, "
-                  "%d items in the %d full-rate clocks, %d mismatches",
-                  n, seq_in, full_clocks, given_full, n_full, bad)
+    report.record(dut._name, f"RTL vs the slice's model (REG_OUT {int(reg_out)})", n, bad)
+    dut._log.info("VECTORS skid_buffer REG_OUT=%d: %d clocks, %d items, %d clocks with the skid "
+                  "register full, %d items in the %d full-rate clocks, %d mismatches",
+                  int(reg_out), n, seq_in, full_clocks, given_full, n_full, bad)
     if msgs:
         raise AssertionError("\n".join(msgs))
 
 
-def test_skid_buffer():
+@pytest.mark.parametrize("reg_out", [0, 1])
+def test_skid_buffer(reg_out: int):
     runner.run("skid_buffer", "test_skid_buffer", Path(__file__).parent,
-               parameters={"W": W})
+               parameters={"W": W, "REG_OUT": reg_out}, extra_env={"REG_OUT": str(reg_out)})
