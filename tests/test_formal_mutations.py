@@ -143,8 +143,8 @@ MUTANTS = {
         "dm_pipeline:bmc_merge", "(?:merge_count|inv_place|merge_leave_once)"),
     "pair_slot_from_colour_fifo": (
         "rtl/pipe/dm_pipeline.sv",
-        "assign rq_slot      = rq_sel_q ? pair_slot_q : rq_c_head[SLOT_W+REQ_W-1 -: SLOT_W];",
-        "assign rq_slot      = rq_c_head[SLOT_W+REQ_W-1 -: SLOT_W];",
+        "assign rq_slot  = rq_sel_q ? pair_slot_q : rq_c_head[SLOT_W+REQ_W-1 -: SLOT_W];",
+        "assign rq_slot  = rq_c_head[SLOT_W+REQ_W-1 -: SLOT_W];",
         "dm_pipeline_pairs:bmc_pairs", "(?:inv_pairs|tf_pairs)"),
     "skid_data_overwritten": (
         "rtl/common/skid_buffer.sv",
