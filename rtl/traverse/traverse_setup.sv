@@ -116,9 +116,9 @@
 // writes into a table only while it holds an item.
 //
 // The start time t0 (0, or max(0, 1 - H_root) for the clip policy) is the same for every ray; it
-// is derived from the configuration on [P] and [B] (ready 1 + MUL_LAT + ADD_LAT clocks after a
-// change: 4 at (2, 1), 6 at (3, 2)) while the unit is idle (idle_i), the only time the
-// configuration may change, and held otherwise.
+// is derived from the configuration on [P] and [B] (ready max(1 + MUL_LAT, 3) + ADD_LAT clocks
+// after a change or after the unit turns idle: 5 at (2, 1), 6 at (3, 2)) while the unit is idle
+// (idle_i), the only time the configuration may change, and held otherwise.
 module traverse_setup
   import f24_pkg::*;
   import traverse_pkg::*;
@@ -222,26 +222,34 @@ module traverse_setup
   assign size_s   = sidx_t'(1) <<< cfg_i.n;
 
   // t0 = clip ? max(+0, 1 - H_root) : +0 (model: np.maximum(zeros, sub(one, h_root))).  While
-  // idle, [P] adds -H_root (pa_q, from the configuration's root code: f24_from_unorm's
-  // conversion, as a function here) and 1 * 1 ([B] on md_q = mt_q = 1): the word of
+  // idle, [P] adds -H_root (pa_c_q, from the configuration's root code: f24_from_unorm's word,
+  // computed here in two registered steps) and 1 * 1 ([B] on md_q = mt_q = 1): the word of
   // f24_add(1, -H_root) (a correctly rounded sum does not depend on the operands' order), as
-  // early as with units of its own.
-  function automatic f24_t unorm_to_f24(input logic [15:0] k, input logic bits16);
-    logic [4:0]         lz;     // leading zeros of the code (garbage for 0, which is not used)
-    /* verilator lint_off UNUSEDSIGNAL */  // (its low bits are below the sticky position)
-    logic [31:0]        rep;    // the code repeated, then shifted so its leading one is on top
-    /* verilator lint_on UNUSEDSIGNAL */
-    logic signed [11:0] e;      // biased exponent: k / (2^W - 1) in [2^-(lz+1), 2^-lz)
-    logic [15:0]        kw;     // the code, left-aligned in 16 bits
-    kw  = bits16 ? k : {k[7:0], 8'd0};
-    lz  = f24_clz32({kw, 16'd0});
-    rep = bits16 ? ({k, k} << lz) : ({k[7:0], k[7:0], k[7:0], k[7:0]} << lz);
-    e   = 12'sd62 - $signed({7'd0, lz});
-    return (kw == '0) ? '0 : f24_round_pack(1'b0, e, rep[31 -: 17], rep[14], 1'b1);
-  endfunction
-  f24_t h_root, t0_d, t0_q;
+  // early as with units of its own.  H_root: the code's leading zeros and the code repeated to
+  // 32 bits (hr_*_q), then the normalising shift and the rounding (h_root_q), so neither the
+  // configuration register's wires nor the leading-zero count are in series with the shift and
+  // the rounding's carry chain.  The code is static while rays are in flight; a new one reaches
+  // t0_q in 3 + ADD_LAT clocks, the product 1 * 1 in 1 + MUL_LAT + ADD_LAT after the unit turns
+  // idle (T0_IDLE, traverse_setup_assert: the larger of the two).
+  logic [15:0] hr_kw;                 // the code, left-aligned in 16 bits
+  logic [4:0]  hr_lz_q;               // its leading zeros (garbage for 0, which is not used)
+  logic        hr_zero_q;             // the code is 0
+  logic [31:0] hr_rep_q;              // the code repeated to 32 bits
+  /* verilator lint_off UNUSEDSIGNAL */  // (its low bits are below the sticky position)
+  logic [31:0] hr_sh;                 // ... shifted so its leading one is on top
+  /* verilator lint_on UNUSEDSIGNAL */
+  f24_t        h_root_q;              // H_root = code / (2^W - 1), in [2^-(lz+1), 2^-lz)
+  assign hr_kw = cfg_i.bits16 ? cfg_i.root_code : {cfg_i.root_code[7:0], 8'd0};
+  assign hr_sh = hr_rep_q << hr_lz_q;
+  always_ff @(posedge clk_i) begin
+    hr_lz_q   <= f24_clz32({hr_kw, 16'd0});
+    hr_zero_q <= (hr_kw == '0);
+    hr_rep_q  <= cfg_i.bits16 ? {cfg_i.root_code, cfg_i.root_code} : {4{cfg_i.root_code[7:0]}};
+    h_root_q  <= hr_zero_q ? '0 : f24_round_pack(1'b0, 12'sd62 - $signed({7'd0, hr_lz_q}),
+                                                 hr_sh[31 -: 17], hr_sh[14], 1'b1);
+  end
+  f24_t t0_d, t0_q;
   f24_ord_t ot0;                      // t0 in comparable form
-  assign h_root = unorm_to_f24(cfg_i.root_code, cfg_i.bits16);
   always_ff @(posedge clk_i) begin
     if (idle_i) t0_q <= t0_d;
   end
@@ -450,7 +458,7 @@ module traverse_setup
     // I(C+0) .. I(C+MUL_LAT-1) / I(C+KB) .. : u0 passed on to [P]
     for (int j = 0; j < MUL_LAT; j++) begin
       if (iv[C+j] || iv[C+KB+j]) pa_c_q[j] <= (j == 0) ? pu_q : pa_c_q[(j == 0) ? 0 : j-1];
-      else if (idle_i && j == MUL_LAT - 1) pa_c_q[j] <= f24_neg(h_root);
+      else if (idle_i && j == MUL_LAT - 1) pa_c_q[j] <= f24_neg(h_root_q);
     end
     for (int j = 0; j < LE; j++) begin
       if (iv[C+j]) bad_c_q[j] <= (j == 0) ? bad0 : bad_c_q[(j == 0) ? 0 : j-1];

@@ -24,7 +24,8 @@
 //   t0_same_as_units  the start time (1 - H_root on the shared adder and multiplier, H_root by
 //                   a function) is the word of f24_from_unorm and f24_add(1, -H_root) beside
 //                   it (an f24_add of ADD_LAT, as the shared one), whenever a ray is inside after
-//                   1 + MUL_LAT + ADD_LAT idle clocks (the operand registers, [B], [P]).
+//                   max(1 + MUL_LAT, 3) + ADD_LAT idle clocks (the operand registers and [B], or
+//                   H_root's two registers and pa_c_q; then [P]).
 `ifndef SYNTHESIS
 module traverse_setup_assert
   import f24_pkg::*;
@@ -59,7 +60,8 @@ module traverse_setup_assert
 );
 
   localparam int unsigned AW = $clog2(NS);
-  localparam int unsigned T0_IDLE = 1 + MUL_LAT + ADD_LAT;  // idle clocks that make t0
+  localparam int unsigned T0_IDLE = ((1 + MUL_LAT > 3) ? 1 + MUL_LAT : 3) + ADD_LAT;  // idle
+                                    // clocks that make t0 (the header)
   localparam int unsigned IW = $clog2(T0_IDLE + 1);
 
   // The id each stage holds: T0 - T(NT-1) their entry of the id table, the rest the output

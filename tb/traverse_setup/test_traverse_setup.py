@@ -227,8 +227,9 @@ async def setup_bit_exact(dut):
         rays = adversarial_rays(rng, ww, hh, nrays)
         words = traverse_words.ray_words(rays)
         for mi, method in enumerate(METHODS):
-            # the start time takes 1 + MUL_LAT + ADD_LAT idle clocks (operand registers, [B], [P])
-            await h.configure(traverse_words.config(pyr, method), 2 + mul_lat + add_lat)
+            # the start time takes max(1 + MUL_LAT, 3) + ADD_LAT idle clocks (operand registers
+            # and [B], or H_root's two registers and pa_c_q; then [P])
+            await h.configure(traverse_words.config(pyr, method), 1 + max(1 + mul_lat, 3) + add_lat)
             valid_p = [1.0, 0.6, 0.3][(case + mi) % 3]
             got, errs = await h.run(words, rng, valid_p)
             exp = expected(pyr, rays, method)
