@@ -133,11 +133,15 @@ def test_heatmap_args():
 
 
 def test_placer_args():
-    # only the heap placer's tuning options, each with its value; anything else is an error
+    # only the placer and the heap placer's tuning options, each with its value; anything else
+    # is an error
     assert synth.placer_args("") == []
     assert synth.placer_args("--placer-heap-timingweight 20 --placer-heap-critexp 4") == [
         "--placer-heap-timingweight", "20", "--placer-heap-critexp", "4"]
     assert synth.placer_args("--placer-heap-no-ctrl-set") == ["--placer-heap-no-ctrl-set"]
+    assert synth.placer_args("--placer static") == ["--placer", "static"]
+    with pytest.raises(ValueError, match="is not one of heap, static"):
+        synth.placer_args("--placer sa")
     with pytest.raises(ValueError, match="not one of"):
         synth.placer_args("--router router2")
     with pytest.raises(ValueError, match="needs a value"):

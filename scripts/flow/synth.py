@@ -841,16 +841,21 @@ def router_args(router: str, ooc: bool, tmg_ripup: bool = True) -> list[str]:
     return ["--router", r] + (["--tmg-ripup"] if r == "router2" and tmg_ripup else [])
 
 
-#: nextpnr's heap-placer options that --placer-opts may pass (name -> whether it takes a value).
-PLACER_OPTS = {"--placer-heap-alpha": True, "--placer-heap-beta": True,
+#: nextpnr's placer options that --placer-opts may pass (name -> whether it takes a value): the
+#: placer itself (PLACERS) and the heap placer's tuning.
+PLACER_OPTS = {"--placer": True, "--placer-heap-alpha": True, "--placer-heap-beta": True,
                "--placer-heap-critexp": True, "--placer-heap-timingweight": True,
                "--placer-heap-no-ctrl-set": False}
+#: The placers `--placer` may name: nextpnr's analytic heap placer (its default) and its
+#: electrostatic placer (simulated annealing alone is too slow for the top).
+PLACERS = ("heap", "static")
 
 
 def placer_args(text: str) -> list[str]:
-    """nextpnr's placer options from `--placer-opts` (e.g. "--placer-heap-timingweight 20"): only
-    the heap placer's tuning options (PLACER_OPTS), each with its value if it takes one; a
-    ValueError names anything else (so a typing error does not silently route the default)."""
+    """nextpnr's placer options from `--placer-opts` (e.g. "--placer-heap-timingweight 20",
+    "--placer static"): only the placer's choice (PLACERS) and the heap placer's tuning options
+    (PLACER_OPTS), each with its value if it takes one; a ValueError names anything else (so a
+    typing error does not silently route the default)."""
     words = text.split()
     out: list[str] = []
     i = 0
@@ -861,6 +866,9 @@ def placer_args(text: str) -> list[str]:
         if PLACER_OPTS[w]:
             if i + 1 >= len(words):
                 raise ValueError(f"--placer-opts: {w} needs a value")
+            if w == "--placer" and words[i + 1] not in PLACERS:
+                raise ValueError(f"--placer-opts: --placer {words[i + 1]!r} is not one of "
+                                 f"{', '.join(PLACERS)}")
             out += [w, words[i + 1]]
             i += 2
         else:
@@ -1038,8 +1046,9 @@ def main() -> int:
                     help="router2 without nextpnr's timing-driven rip-up (--tmg-ripup), which "
                          "can keep a congested top from converging; recorded in the report")
     ap.add_argument("--placer-opts", default="", metavar="OPTS",
-                    help="nextpnr heap-placer options for every place and route, e.g. "
-                         "--placer-opts='--placer-heap-timingweight 20' (only "
+                    help="nextpnr placer options for every place and route, e.g. "
+                         "--placer-opts='--placer-heap-timingweight 20' or "
+                         "--placer-opts='--placer static' (only --placer heap|static and "
                          "--placer-heap-alpha, -beta, -critexp, -timingweight, -no-ctrl-set); "
                          "recorded in the report")
     ap.add_argument("--heatmap", action="store_true",
