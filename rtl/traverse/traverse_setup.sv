@@ -116,9 +116,10 @@
 // writes into a table only while it holds an item.
 //
 // The start time t0 (0, or max(0, 1 - H_root) for the clip policy) is the same for every ray; it
-// is derived from the configuration on [P] and [B] (ready max(1 + MUL_LAT, 3) + ADD_LAT clocks
-// after a change or after the unit turns idle: 5 at (2, 1), 6 at (3, 2)) while the unit is idle
-// (idle_i), the only time the configuration may change, and held otherwise.
+// is derived from the configuration on [P] and [B] while the unit is idle (idle_i), the only
+// time the configuration may change: t0_d is right 3 + ADD_LAT clocks after a change of cfg_i
+// (6 at (3, 2)); t0_q loads it only after 1 + MUL_LAT + ADD_LAT idle clocks in a row (the last
+// ray's operations leave [B] and [P] first) and holds otherwise.
 module traverse_setup
   import f24_pkg::*;
   import traverse_pkg::*;
@@ -229,8 +230,11 @@ module traverse_setup
   // 32 bits (hr_*_q), then the normalising shift and the rounding (h_root_q), so neither the
   // configuration register's wires nor the leading-zero count are in series with the shift and
   // the rounding's carry chain.  The code is static while rays are in flight; a new one reaches
-  // t0_q in 3 + ADD_LAT clocks, the product 1 * 1 in 1 + MUL_LAT + ADD_LAT after the unit turns
-  // idle (T0_IDLE, traverse_setup_assert: the larger of the two).
+  // t0_d in 3 + ADD_LAT clocks.  The sum of 1 * 1 and -H_root reaches t0_d once the unit has
+  // been idle T0_WAIT = 1 + MUL_LAT + ADD_LAT clocks: before that [B] and [P] still deliver the
+  // last ray's operations, so t0_q loads only after T0_WAIT idle clocks in a row and otherwise
+  // keeps the start time of the last idle stretch that was long enough (a unit idle for a few
+  // clocks between two rays keeps its t0; tb/traverse_setup's setup_idle_gaps).
   logic [15:0] hr_kw;                 // the code, left-aligned in 16 bits
   logic [4:0]  hr_lz_q;               // its leading zeros (garbage for 0, which is not used)
   logic        hr_zero_q;             // the code is 0
@@ -248,10 +252,15 @@ module traverse_setup
     h_root_q  <= hr_zero_q ? '0 : f24_round_pack(1'b0, 12'sd62 - $signed({7'd0, hr_lz_q}),
                                                  hr_sh[31 -: 17], hr_sh[14], 1'b1);
   end
+  localparam int unsigned T0_WAIT = 1 + MUL_LAT + ADD_LAT;  // idle clocks before t0_d is right
+  localparam int unsigned T0_W    = $clog2(T0_WAIT + 1);
+  logic [T0_W-1:0] t0_wait_q;         // idle clocks in a row before this one, up to T0_WAIT
   f24_t t0_d, t0_q;
   f24_ord_t ot0;                      // t0 in comparable form
   always_ff @(posedge clk_i) begin
-    if (idle_i) t0_q <= t0_d;
+    if (!rst_ni || !idle_i)                 t0_wait_q <= '0;
+    else if (t0_wait_q != T0_W'(T0_WAIT))   t0_wait_q <= t0_wait_q + T0_W'(1);
+    if (idle_i && t0_wait_q == T0_W'(T0_WAIT)) t0_q <= t0_d;
   end
   assign ot0 = f24_ord(t0_q);
 

@@ -21,19 +21,18 @@
 //                   entry of stages T0 - T(NT-1), the output registers of T(NT) - T(NS-1)): the
 //                   invariant that makes the induction step hold.
 // Data check (simulation; formal/traverse_setup.sby cuts the float datapath and removes it):
-//   t0_same_as_units  the start time (1 - H_root on the shared adder and multiplier, H_root by
-//                   a function) is the word of f24_from_unorm and f24_add(1, -H_root) beside
-//                   it (an f24_add of ADD_LAT, as the shared one), whenever a ray is inside after
-//                   max(1 + MUL_LAT, 3) + ADD_LAT idle clocks (the operand registers and [B], or
-//                   H_root's two registers and pa_c_q; then [P]).
+//   t0_same_as_units  the start time (1 - H_root on the shared adder and multiplier, H_root in
+//                   two registered steps) is the word of f24_from_unorm and f24_add(1, -H_root)
+//                   beside it (an f24_add of ADD_LAT, as the shared one), whenever a ray is
+//                   inside, however short the idle stretch before it (given the configuration
+//                   stable 4 + ADD_LAT clocks before the ray, traverse_unit's rule).
 `ifndef SYNTHESIS
 module traverse_setup_assert
   import f24_pkg::*;
   import traverse_pkg::*;
 #(
   parameter int unsigned ID_W    = 16,  // traverse_setup's ID_W
-  parameter int unsigned ADD_LAT = 2,   // traverse_setup's ADD_LAT, MUL_LAT
-  parameter int unsigned MUL_LAT = 1,
+  parameter int unsigned ADD_LAT = 2,   // traverse_setup's ADD_LAT (the reference adder's)
   parameter int unsigned NS      = 21,  // its stages (setup_lat(ADD_LAT, MUL_LAT))
   parameter int unsigned NT      = 16,  // its table entries (stages T0 .. T(NT-1))
   parameter int unsigned NO      = 5,   // its output registers (stages T(NT) .. T(NS-1))
@@ -60,9 +59,6 @@ module traverse_setup_assert
 );
 
   localparam int unsigned AW = $clog2(NS);
-  localparam int unsigned T0_IDLE = ((1 + MUL_LAT > 3) ? 1 + MUL_LAT : 3) + ADD_LAT;  // idle
-                                    // clocks that make t0 (the header)
-  localparam int unsigned IW = $clog2(T0_IDLE + 1);
 
   // The id each stage holds: T0 - T(NT-1) their entry of the id table, the rest the output
   // registers.
@@ -139,27 +135,18 @@ module traverse_setup_assert
 
   // The reference start time: the units the first mode used before sharing.
   f24_t h8, h16, ref_t0;
-  logic [IW-1:0] idle_n_q;   // idle clocks in a row, up to T0_IDLE
-  logic          t0_chk_q;   // the unit was idle T0_IDLE clocks before the ray now inside
   f24_from_unorm #(.W(8))  u_ref_h8  (.clk_i, .en_i(idle_i), .k_i(root_code_i[7:0]), .y_o(h8));
   f24_from_unorm #(.W(16)) u_ref_h16 (.clk_i, .en_i(idle_i), .k_i(root_code_i), .y_o(h16));
   f24_add #(.LAT(ADD_LAT)) u_ref_plane (.clk_i, .en_i(idle_i), .a_i(F24_ONE),
                                         .b_i(f24_neg(bits16_i ? h16 : h8)), .y_o(ref_t0));
   f24_t ref_t0_q;
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      idle_n_q <= '0;
-      t0_chk_q <= 1'b0;
-    end else begin
-      idle_n_q <= !idle_i ? '0 : (idle_n_q == IW'(T0_IDLE)) ? idle_n_q : idle_n_q + IW'(1);
-      if (idle_i) t0_chk_q <= (idle_n_q == IW'(T0_IDLE));
-    end
     if (idle_i) ref_t0_q <= clip_i ? f24_max(F24_POS_ZERO, ref_t0) : F24_POS_ZERO;
   end
 
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
-      t0_same_as_units: assert (idle_i || !t0_chk_q || t0_i == ref_t0_q)
+      t0_same_as_units: assert (idle_i || t0_i == ref_t0_q)
         else $error("traverse_setup: t0 %h, f24_add(1, -f24_from_unorm(root)) gives %h", t0_i,
                     ref_t0_q);
     end
@@ -168,7 +155,7 @@ module traverse_setup_assert
 endmodule
 
 // The parameters and the id path of the instance (its localparams NS, NT, NO: the schedule).
-bind traverse_setup traverse_setup_assert #(.ID_W(ID_W), .ADD_LAT(ADD_LAT), .MUL_LAT(MUL_LAT),
+bind traverse_setup traverse_setup_assert #(.ID_W(ID_W), .ADD_LAT(ADD_LAT),
                                             .NS(NS), .NT(NT), .NO(NO)) u_assert (
   .clk_i, .rst_ni, .ph_i(ph_q[1:0]), .ph_full_i(ph_q), .in_ready_i(in_ready_o), .in_valid_i,
   .in_id_i, .v_i(v_q),

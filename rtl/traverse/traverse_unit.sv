@@ -28,8 +28,9 @@
 //
 // Configuration (cfg_*): static while the unit holds rays (idle_o = 1 to change it) and stable at
 // least 7 clocks before the next ray enters (one register stage, which loads while idle_o = 1,
-// then traverse_setup derives the clip start time from it in max(1 + MUL_LAT, 3) + ADD_LAT = 6
-// more at its package-default float depths (3, 2)).
+// then traverse_setup derives the clip start time from it in 3 + ADD_LAT = 6 more at its
+// package-default float depths (3, 2)).  A ray may enter in any clock after the unit turns idle:
+// the start time is held until the shared units that compute it have been idle long enough.
 // tb/harness/traverse_words.py packs it from a Pyramid and a method name.
 module traverse_unit
   import f24_pkg::*;

@@ -227,9 +227,10 @@ async def setup_bit_exact(dut):
         rays = adversarial_rays(rng, ww, hh, nrays)
         words = traverse_words.ray_words(rays)
         for mi, method in enumerate(METHODS):
-            # the start time takes max(1 + MUL_LAT, 3) + ADD_LAT idle clocks (operand registers
-            # and [B], or H_root's two registers and pa_c_q; then [P])
-            await h.configure(traverse_words.config(pyr, method), 1 + max(1 + mul_lat, 3) + add_lat)
+            # the start time takes 1 + MUL_LAT + ADD_LAT idle clocks (operand registers, [B],
+            # [P]), and 3 + ADD_LAT after a change of the configuration (H_root's two
+            # registers, the operand register, [P])
+            await h.configure(traverse_words.config(pyr, method), 2 + max(mul_lat, 2) + add_lat)
             valid_p = [1.0, 0.6, 0.3][(case + mi) % 3]
             got, errs = await h.run(words, rng, valid_p)
             exp = expected(pyr, rays, method)
@@ -251,6 +252,43 @@ async def setup_bit_exact(dut):
     assert not failures, f"mismatches in: {failures}"
 
 
+@cocotb.test()
+async def setup_idle_gaps(dut):
+    """Rays after idle stretches of 0 .. T0_WAIT + 2 clocks with the clip policy (park-xor) and a
+    root below 1 (t0 > 0): the start time must not take the last ray's operations that the
+    shared adder and multiplier still deliver in the first idle clocks."""
+    add_lat, mul_lat = depths.current()
+    lat = setup_lat(add_lat, mul_lat)
+    rng = np.random.default_rng(seed())
+    h = Harness(dut, lat)
+    await h.reset()
+    hh, ww, bits = 16, 16, 8
+    pyr = heightmap.build(0.6 * rng.random((hh, ww)), bits)  # H_root <= 0.6: t0 >= 0.4
+    await h.configure(traverse_words.config(pyr, "park-xor"), 2 + max(mul_lat, 2) + add_lat)
+    t0_wait = 1 + mul_lat + add_lat
+    total = mism = 0
+    for gap in [None] + list(range(t0_wait + 3)):
+        # (None: the first batch, after the configuration's wait, leaves ray operations in the
+        # units; then each batch after `gap` idle clocks: run() leaves idle_i = 1)
+        if gap:
+            await ClockCycles(h.clk, gap)
+            await FallingEdge(h.clk)
+        rays = adversarial_rays(rng, ww, hh, 24)
+        got, errs = await h.run(traverse_words.ray_words(rays), rng, 1.0)
+        exp = expected(pyr, rays, "park-xor")
+        name = "after the configuration" if gap is None else f"after {gap} idle clocks"
+        nbad = compare(name, got, exp, dut._log)
+        for e in errs[:10]:
+            dut._log.error("%s: %s", name, e)
+        dut._log.info("%s: %d rays, %d mismatches, %d errors", name, len(rays.u0), nbad,
+                      len(errs))
+        total += len(rays.u0)
+        mism += nbad + len(errs)
+    report.record("traverse_setup", f"rays after short idle gaps (ADD_LAT {add_lat}, MUL_LAT "
+                  f"{mul_lat})", total, mism)
+    assert mism == 0, f"{mism} mismatching rays after short idle gaps"
+
+
 def test_setup_lat_mirror() -> None:
     """The Python mirror of traverse_pkg::setup_lat: the package's function at both depths, and
     SETUP_LAT at the package defaults."""
@@ -267,3 +305,5 @@ def test_traverse_setup(add_lat: int, mul_lat: int) -> None:
                parameters=depths.parameters(add_lat, mul_lat),
                extra_env=depths.env(add_lat, mul_lat),
                extra_sources=[str(HERE / "tb_traverse_setup.sv")], rtl_top="traverse_setup")
+
+
