@@ -14,6 +14,12 @@
 // Register port: synchronous; inputs are registered once; reg_rdata_o is the read-map word at the
 // reg_addr_i of two clocks earlier.
 //
+// AXI ports: each of the four channels (AR and R of both ports) passes a register slice
+// (skid_buffer, REG_OUT 1) between the pins and dm_pipeline, as an interconnect's register
+// slice would: every pin meets a flip-flop, so no path runs from a pin through the caches' logic
+// and the placer does not pull that logic towards the pins (the I/O are not located). Each
+// slice adds one clock to its channel (two to a read's latency) and keeps one beat a clock.
+//
 // Write map (word address: fields; unlisted bits ignored)
 //   0x00  [3:0] method, [7:4] root level, [8] bits16, [9] mip_en, [21:16] levels colour,
 //         [29:24] levels normal
@@ -233,6 +239,53 @@ module dm_pipeline_fpga_top
   logic [ITER_W-1:0] px_iters;
   logic [10:0][47:0] stat;
 
+  // ---- AXI register slices ------------------------------------------------------------------
+  // dm_pipeline's side of the two read ports (h_*: heights, t_*: textures)
+  logic [H_ID_W-1:0]     h_arid, h_rid;
+  logic [ADDR_W-1:0]     h_araddr;
+  logic [7:0]            h_arlen;
+  logic [2:0]            h_arsize;
+  logic [1:0]            h_arburst, h_rresp;
+  logic                  h_arvalid, h_arready, h_rvalid, h_rready, h_rlast;
+  logic [AXI_DATA_W-1:0] h_rdata;
+  logic [T_ID_W-1:0]     t_arid, t_rid;
+  logic [TEX_ADDR_W-1:0] t_araddr;
+  logic [7:0]            t_arlen;
+  logic [2:0]            t_arsize;
+  logic [1:0]            t_arburst, t_rresp;
+  logic                  t_arvalid, t_arready, t_rvalid, t_rready, t_rlast;
+  logic [AXI_DATA_W-1:0] t_rdata;
+
+  localparam int unsigned H_AR_W = H_ID_W + ADDR_W + 13;      // id, address, len, size, burst
+  localparam int unsigned T_AR_W = T_ID_W + TEX_ADDR_W + 13;
+  localparam int unsigned H_R_W  = H_ID_W + AXI_DATA_W + 3;   // id, data, resp, last
+  localparam int unsigned T_R_W  = T_ID_W + AXI_DATA_W + 3;
+
+  skid_buffer #(.W(H_AR_W), .REG_OUT(1'b1)) u_h_ar (
+    .clk_i, .rst_ni(rst_nq),
+    .valid_i(h_arvalid), .ready_o(h_arready),
+    .data_i({h_arid, h_araddr, h_arlen, h_arsize, h_arburst}),
+    .valid_o(m_axi_h_arvalid), .ready_i(m_axi_h_arready),
+    .data_o({m_axi_h_arid, m_axi_h_araddr, m_axi_h_arlen, m_axi_h_arsize, m_axi_h_arburst}));
+  skid_buffer #(.W(H_R_W), .REG_OUT(1'b1)) u_h_r (
+    .clk_i, .rst_ni(rst_nq),
+    .valid_i(m_axi_h_rvalid), .ready_o(m_axi_h_rready),
+    .data_i({m_axi_h_rid, m_axi_h_rdata, m_axi_h_rresp, m_axi_h_rlast}),
+    .valid_o(h_rvalid), .ready_i(h_rready),
+    .data_o({h_rid, h_rdata, h_rresp, h_rlast}));
+  skid_buffer #(.W(T_AR_W), .REG_OUT(1'b1)) u_t_ar (
+    .clk_i, .rst_ni(rst_nq),
+    .valid_i(t_arvalid), .ready_o(t_arready),
+    .data_i({t_arid, t_araddr, t_arlen, t_arsize, t_arburst}),
+    .valid_o(m_axi_t_arvalid), .ready_i(m_axi_t_arready),
+    .data_o({m_axi_t_arid, m_axi_t_araddr, m_axi_t_arlen, m_axi_t_arsize, m_axi_t_arburst}));
+  skid_buffer #(.W(T_R_W), .REG_OUT(1'b1)) u_t_r (
+    .clk_i, .rst_ni(rst_nq),
+    .valid_i(m_axi_t_rvalid), .ready_o(m_axi_t_rready),
+    .data_i({m_axi_t_rid, m_axi_t_rdata, m_axi_t_rresp, m_axi_t_rlast}),
+    .valid_o(t_rvalid), .ready_i(t_rready),
+    .data_o({t_rid, t_rdata, t_rresp, t_rlast}));
+
   dm_pipeline #(.PIX_W(PIX_W), .SLOTS(SLOTS), .N_RINGS(N_RINGS), .TRIS(TRIS), .H_ID_W(H_ID_W),
                 .T_ID_W(T_ID_W), .AXI_DATA_W(AXI_DATA_W)) u_pipe (
     .clk_i, .rst_ni(rst_nq),
@@ -252,12 +305,16 @@ module dm_pipeline_fpga_top
     .frag_tri_i(frag_tri_q), .frag_tbn_i(frag_tbn_q), .frag_view_i(frag_view_q),
     .px_valid_o(px_valid), .px_ready_i(px_ready), .px_id_o(px_id), .px_rgb_o(px_rgb),
     .px_hit_o(px_hit), .px_invalid_o(px_invalid), .px_err_o(px_err), .px_iters_o(px_iters),
-    .m_axi_h_arid, .m_axi_h_araddr, .m_axi_h_arlen, .m_axi_h_arsize, .m_axi_h_arburst,
-    .m_axi_h_arvalid, .m_axi_h_arready, .m_axi_h_rid, .m_axi_h_rdata, .m_axi_h_rresp,
-    .m_axi_h_rlast, .m_axi_h_rvalid, .m_axi_h_rready,
-    .m_axi_t_arid, .m_axi_t_araddr, .m_axi_t_arlen, .m_axi_t_arsize, .m_axi_t_arburst,
-    .m_axi_t_arvalid, .m_axi_t_arready, .m_axi_t_rid, .m_axi_t_rdata, .m_axi_t_rresp,
-    .m_axi_t_rlast, .m_axi_t_rvalid, .m_axi_t_rready,
+    .m_axi_h_arid(h_arid), .m_axi_h_araddr(h_araddr), .m_axi_h_arlen(h_arlen),
+    .m_axi_h_arsize(h_arsize), .m_axi_h_arburst(h_arburst), .m_axi_h_arvalid(h_arvalid),
+    .m_axi_h_arready(h_arready), .m_axi_h_rid(h_rid), .m_axi_h_rdata(h_rdata),
+    .m_axi_h_rresp(h_rresp), .m_axi_h_rlast(h_rlast), .m_axi_h_rvalid(h_rvalid),
+    .m_axi_h_rready(h_rready),
+    .m_axi_t_arid(t_arid), .m_axi_t_araddr(t_araddr), .m_axi_t_arlen(t_arlen),
+    .m_axi_t_arsize(t_arsize), .m_axi_t_arburst(t_arburst), .m_axi_t_arvalid(t_arvalid),
+    .m_axi_t_arready(t_arready), .m_axi_t_rid(t_rid), .m_axi_t_rdata(t_rdata),
+    .m_axi_t_rresp(t_rresp), .m_axi_t_rlast(t_rlast), .m_axi_t_rvalid(t_rvalid),
+    .m_axi_t_rready(t_rready),
     .clr_stats_i(clr_q),
     .stat_cycles_o(stat[0]), .stat_pixels_o(stat[1]), .stat_iters_o(stat[2]),
     .stat_h_hits_o(stat[3]), .stat_h_misses_o(stat[4]), .stat_h_bytes_o(stat[5]),
