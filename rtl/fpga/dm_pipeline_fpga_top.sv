@@ -15,8 +15,8 @@
 // reg_addr_i of two clocks earlier.
 //
 // AXI ports: each of the four channels (AR and R of both ports) passes a register slice
-// (skid_buffer, REG_OUT 1) between the pins and dm_pipeline, as an interconnect's register
-// slice would: every pin meets a flip-flop, so no path runs from a pin through the caches' logic
+// (axi_read_slice: a skid_buffer with REG_OUT 1 per channel) between the pins and dm_pipeline,
+// as an interconnect's register slice would: every pin meets a flip-flop, so no path runs from a pin through the caches' logic
 // and the placer does not pull that logic towards the pins (the I/O are not located). Each
 // slice adds one clock to its channel (two to a read's latency) and keeps one beat a clock.
 //
@@ -256,35 +256,28 @@ module dm_pipeline_fpga_top
   logic                  t_arvalid, t_arready, t_rvalid, t_rready, t_rlast;
   logic [AXI_DATA_W-1:0] t_rdata;
 
-  localparam int unsigned H_AR_W = H_ID_W + ADDR_W + 13;      // id, address, len, size, burst
-  localparam int unsigned T_AR_W = T_ID_W + TEX_ADDR_W + 13;
-  localparam int unsigned H_R_W  = H_ID_W + AXI_DATA_W + 3;   // id, data, resp, last
-  localparam int unsigned T_R_W  = T_ID_W + AXI_DATA_W + 3;
-
-  skid_buffer #(.W(H_AR_W), .REG_OUT(1'b1)) u_h_ar (
+  axi_read_slice #(.ID_W(H_ID_W), .ADDR_W(ADDR_W), .DATA_W(AXI_DATA_W)) u_h_slice (
     .clk_i, .rst_ni(rst_nq),
-    .valid_i(h_arvalid), .ready_o(h_arready),
-    .data_i({h_arid, h_araddr, h_arlen, h_arsize, h_arburst}),
-    .valid_o(m_axi_h_arvalid), .ready_i(m_axi_h_arready),
-    .data_o({m_axi_h_arid, m_axi_h_araddr, m_axi_h_arlen, m_axi_h_arsize, m_axi_h_arburst}));
-  skid_buffer #(.W(H_R_W), .REG_OUT(1'b1)) u_h_r (
+    .s_arid(h_arid), .s_araddr(h_araddr), .s_arlen(h_arlen), .s_arsize(h_arsize),
+    .s_arburst(h_arburst), .s_arvalid(h_arvalid), .s_arready(h_arready),
+    .s_rid(h_rid), .s_rdata(h_rdata), .s_rresp(h_rresp), .s_rlast(h_rlast),
+    .s_rvalid(h_rvalid), .s_rready(h_rready),
+    .m_arid(m_axi_h_arid), .m_araddr(m_axi_h_araddr), .m_arlen(m_axi_h_arlen),
+    .m_arsize(m_axi_h_arsize), .m_arburst(m_axi_h_arburst), .m_arvalid(m_axi_h_arvalid),
+    .m_arready(m_axi_h_arready), .m_rid(m_axi_h_rid), .m_rdata(m_axi_h_rdata),
+    .m_rresp(m_axi_h_rresp), .m_rlast(m_axi_h_rlast), .m_rvalid(m_axi_h_rvalid),
+    .m_rready(m_axi_h_rready));
+  axi_read_slice #(.ID_W(T_ID_W), .ADDR_W(TEX_ADDR_W), .DATA_W(AXI_DATA_W)) u_t_slice (
     .clk_i, .rst_ni(rst_nq),
-    .valid_i(m_axi_h_rvalid), .ready_o(m_axi_h_rready),
-    .data_i({m_axi_h_rid, m_axi_h_rdata, m_axi_h_rresp, m_axi_h_rlast}),
-    .valid_o(h_rvalid), .ready_i(h_rready),
-    .data_o({h_rid, h_rdata, h_rresp, h_rlast}));
-  skid_buffer #(.W(T_AR_W), .REG_OUT(1'b1)) u_t_ar (
-    .clk_i, .rst_ni(rst_nq),
-    .valid_i(t_arvalid), .ready_o(t_arready),
-    .data_i({t_arid, t_araddr, t_arlen, t_arsize, t_arburst}),
-    .valid_o(m_axi_t_arvalid), .ready_i(m_axi_t_arready),
-    .data_o({m_axi_t_arid, m_axi_t_araddr, m_axi_t_arlen, m_axi_t_arsize, m_axi_t_arburst}));
-  skid_buffer #(.W(T_R_W), .REG_OUT(1'b1)) u_t_r (
-    .clk_i, .rst_ni(rst_nq),
-    .valid_i(m_axi_t_rvalid), .ready_o(m_axi_t_rready),
-    .data_i({m_axi_t_rid, m_axi_t_rdata, m_axi_t_rresp, m_axi_t_rlast}),
-    .valid_o(t_rvalid), .ready_i(t_rready),
-    .data_o({t_rid, t_rdata, t_rresp, t_rlast}));
+    .s_arid(t_arid), .s_araddr(t_araddr), .s_arlen(t_arlen), .s_arsize(t_arsize),
+    .s_arburst(t_arburst), .s_arvalid(t_arvalid), .s_arready(t_arready),
+    .s_rid(t_rid), .s_rdata(t_rdata), .s_rresp(t_rresp), .s_rlast(t_rlast),
+    .s_rvalid(t_rvalid), .s_rready(t_rready),
+    .m_arid(m_axi_t_arid), .m_araddr(m_axi_t_araddr), .m_arlen(m_axi_t_arlen),
+    .m_arsize(m_axi_t_arsize), .m_arburst(m_axi_t_arburst), .m_arvalid(m_axi_t_arvalid),
+    .m_arready(m_axi_t_arready), .m_rid(m_axi_t_rid), .m_rdata(m_axi_t_rdata),
+    .m_rresp(m_axi_t_rresp), .m_rlast(m_axi_t_rlast), .m_rvalid(m_axi_t_rvalid),
+    .m_rready(m_axi_t_rready));
 
   dm_pipeline #(.PIX_W(PIX_W), .SLOTS(SLOTS), .N_RINGS(N_RINGS), .TRIS(TRIS), .H_ID_W(H_ID_W),
                 .T_ID_W(T_ID_W), .AXI_DATA_W(AXI_DATA_W)) u_pipe (
