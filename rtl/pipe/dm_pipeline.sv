@@ -198,10 +198,14 @@ module dm_pipeline
     .clk_i, .rst_ni, .wr_i(free_push), .wr_data_i(free_push_id), .rd_i(free_pop),
     .rd_data_o(free_head), .full_o(free_full), .empty_o(free_empty), .count_o(free_count));
 
-  // Per-slot context.  The fragment's id and the traversal's result flags are read only into the
-  // output register, so they are block RAM (a 128-deep LUT RAM costs about 16 LUT4s per bit and
-  // read port).  Pl0 and the triangle go to mip_level's first stage, whose registers synthesis
-  // does not merge into a RAM read port (Yosys: "no valid mapping"), so they stay LUT RAM.
+  // Per-slot context, all of it block RAM (a 128-deep LUT RAM costs about 16 LUT4s per bit and
+  // read port).  Every table is read only into a register of its own, loaded by its reader's
+  // enable, which synthesis takes as the block RAM's read register: the fragment's id and the
+  // traversal's result flags into the output register, Pl0, the triangle and seg at a hit's
+  // admission (mi_ctx_q, mi_seg_q), du and dv at the colour result of the pixel's texture pair
+  // (sh_duv_q, read for the normal-map result that follows it).  A slot is written only while
+  // no reader can address it (at the fragment's acceptance, at view_calc's output), so the
+  // tables need no read-during-write logic (no_rw_check).
   typedef struct packed {
     f24_t             pl0;
     logic [TRI_W-1:0] tri_id;
@@ -211,12 +215,11 @@ module dm_pipeline
     logic              herr;
     logic [ITER_W-1:0] iters;
   } ctx_res_t;
-  (* ram_style = "block" *) logic [PIX_W-1:0] ctx_pix_q  [SLOTS];
-  ctx_frag_t                          ctx_frag_q [SLOTS];
-  (* ram_style = "block" *) ctx_res_t         ctx_res_q  [SLOTS];
-  f24_t              ctx_du_q    [SLOTS];
-  f24_t              ctx_dv_q    [SLOTS];
-  f24_t              ctx_seg_q   [SLOTS];
+  (* ram_style = "block" *)              logic [PIX_W-1:0] ctx_pix_q  [SLOTS];
+  (* ram_style = "block", no_rw_check *) ctx_frag_t        ctx_frag_q [SLOTS];
+  (* ram_style = "block" *)              ctx_res_t         ctx_res_q  [SLOTS];
+  (* ram_style = "block", no_rw_check *) f24_t [1:0]       ctx_duv_q  [SLOTS];  // {du, dv}
+  (* ram_style = "block", no_rw_check *) f24_t             ctx_seg_q  [SLOTS];
 
   // ---- accept: fragment -> view_calc ---------------------------------------------------------
   logic [F0_CW-1:0]  vc_cnt;          // fragments inside view_calc
@@ -268,8 +271,7 @@ module dm_pipeline
   assign vc_slot = vc_tag[VC_TAG_W-1 -: SLOT_W];
   always_ff @(posedge clk_i) begin
     if (vc_valid) begin
-      ctx_du_q[vc_slot]  <= vc_du;
-      ctx_dv_q[vc_slot]  <= vc_dv;
+      ctx_duv_q[vc_slot] <= {vc_du, vc_dv};
       ctx_seg_q[vc_slot] <= vc_seg;
     end
   end
@@ -351,12 +353,12 @@ module dm_pipeline
     .full_o(miss_full), .empty_o(miss_empty), .count_o(miss_count));
 
   // hit -> mip_level (context read at admission: Pl0, triangle, seg).  The hit and its context
-  // reach mip_level through two registers, mi_q[0] and mi_q[1]: mip_level's first stage is a
-  // multiplier (t seg), and the context's seg is block RAM, whose 4.1 ns clock-to-out, 3 ns of
-  // routing and the multiplier's exponent logic were the routed top's slowest path (17.6 ns).
-  // Synthesis may take mi_q[0] into the block RAM as its read register; mi_q[1] is fabric, so
-  // the multiplier's operands always come from fabric registers.  (A hit is admitted every 4th
-  // clock at most, so mip_level still never sees two in consecutive clocks.)
+  // reach mip_level through two registers: the first (mi0_*, and the context tables' read
+  // registers mi_ctx_q, mi_seg_q, which synthesis takes into the block RAMs), then mi_q, all
+  // fabric, so the first stage's multiplier (t seg) always takes its operands from fabric
+  // registers (a block RAM's 4.1 ns clock-to-out, 3 ns of routing and the multiplier's exponent
+  // logic were once the routed top's slowest path, 17.6 ns).  (A hit is admitted every 4th clock
+  // at most, so mip_level still never sees two in consecutive clocks.)
   localparam int unsigned MIP_TAG_W = SLOT_W + 48;
   typedef struct packed {
     logic [MIP_TAG_W-1:0] tag;  // {slot, u, v}
@@ -365,16 +367,23 @@ module dm_pipeline
     f24_t                 pl0;
     logic [TRI_W-1:0]     tri_id;
   } mip_in_t;
-  logic    [1:0] mi_valid_q;
-  mip_in_t       mi_q [2];
+  logic    [1:0]        mi_valid_q;
+  logic [MIP_TAG_W-1:0] mi0_tag_q;
+  f24_t                 mi0_t_q;
+  ctx_frag_t            mi_ctx_q;
+  f24_t                 mi_seg_q;
+  mip_in_t              mi_q;
   always_ff @(posedge clk_i) begin
     if (!rst_ni) mi_valid_q <= '0;
     else         mi_valid_q <= {mi_valid_q[0], hit_adm};
     if (hit_adm) begin
-      mi_q[0] <= '{tag: {res_id, res_u, res_v}, t: res_t, seg: ctx_seg_q[res_id],
-                   pl0: ctx_frag_q[res_id].pl0, tri_id: ctx_frag_q[res_id].tri_id};
+      mi0_tag_q <= {res_id, res_u, res_v};
+      mi0_t_q   <= res_t;
+      mi_ctx_q  <= ctx_frag_q[res_id];
+      mi_seg_q  <= ctx_seg_q[res_id];
     end
-    if (mi_valid_q[0]) mi_q[1] <= mi_q[0];
+    if (mi_valid_q[0]) mi_q <= '{tag: mi0_tag_q, t: mi0_t_q, seg: mi_seg_q, pl0: mi_ctx_q.pl0,
+                                 tri_id: mi_ctx_q.tri_id};
   end
 
   logic                 mip_valid, mip_tex;
@@ -384,8 +393,8 @@ module dm_pipeline
   mip_level #(.TAG_W(MIP_TAG_W), .TRIS(TRIS)) u_mip (
     .clk_i, .rst_ni, .en_i(1'b1), .cfg_mip_en_i, .cfg_levels_colour_i, .cfg_levels_normal_i,
     .tt_we_i, .tt_waddr_i, .tt_wdata_i,
-    .valid_i(mi_valid_q[1]), .tag_i(mi_q[1].tag), .t_i(mi_q[1].t), .seg_i(mi_q[1].seg),
-    .pl0_i(mi_q[1].pl0), .tri_i(mi_q[1].tri_id),
+    .valid_i(mi_valid_q[1]), .tag_i(mi_q.tag), .t_i(mi_q.t), .seg_i(mi_q.seg),
+    .pl0_i(mi_q.pl0), .tri_i(mi_q.tri_id),
     .valid_o(mip_valid), .tag_o(mip_tag), .tex_o(mip_tex), .level_o(mip_lvl));
 
   // mip -> one address unit for both textures: mip_level gives a hit's colour level (texture 0)
@@ -522,10 +531,12 @@ module dm_pipeline
   logic [SLOT_W-1:0] sh_in_slot;
   assign sh_in_valid = tf_valid && tf_tag[1];
   assign sh_in_slot  = tf_tag[TF_TAG_W-1 -: SLOT_W];
+  f24_t [1:0] sh_duv_q;  // the ray's {du, dv}: ctx_duv_q's read register (block RAM)
   always_ff @(posedge clk_i) begin
     if (tf_valid && !tf_tag[1]) begin
       col_q     <= {tf_b, tf_g, tf_r};
       col_err_q <= tf_tag[0];
+      sh_duv_q  <= ctx_duv_q[sh_in_slot];  // the colour result's slot = the normal map's (tf_pairs)
     end
   end
 
@@ -536,7 +547,7 @@ module dm_pipeline
   shade_unit #(.TAG_W(SLOT_W + 1)) u_shade (
     .clk_i, .rst_ni, .en_i(1'b1), .cfg_i(cfg_shade_i), .valid_i(sh_in_valid),
     .tag_i({sh_in_slot, col_err_q | tf_tag[0]}), .col_i(col_q), .nrm_i({tf_b, tf_g, tf_r}),
-    .du_i(ctx_du_q[sh_in_slot]), .dv_i(ctx_dv_q[sh_in_slot]),
+    .du_i(sh_duv_q[1]), .dv_i(sh_duv_q[0]),
     .valid_o(sh_valid), .tag_o(sh_tag), .rgb_o(sh_rgb));
 
   // shaded FIFO {slot, err, rgb}
