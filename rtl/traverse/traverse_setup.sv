@@ -95,25 +95,24 @@
 //   T(C+KE+4) = T(NS-1): gone |= start cell outside the map; cell >> k: out
 // Units: [A] [B] [C] f24_mul, [M] [E] [P] f24_add, [F] [G] f24_from_int, [X] f24_to_index; all
 // but [C] serve two operations KB stages apart ([P] and [B] the start time while idle).
-// In the code, item stage I(C+k) is iv[C+k] / ss[k]; a ray stage Ts is v_q[s] / sl_q[s].
+// In the code, item stage I(C+k) is iv[C+k]; a ray stage Ts is v_q[s].
 //
-// Tables.  A ray's values do not move from stage to stage.  A phase counter ph_q steps every
-// clock (mod NT; the entry of each stage below is a counter of its own, sl_q); the item or ray
-// that entered stage 0 at phase e owns entry e of the tables of NT entries (the multiple of 4
-// from C + KE: 16 at (2, 1), 24 at (3, 2); LUT RAM), so the entry of the ray in Ts, and of the
-// item in Is, is (ph_q - s) mod NT: a ray's u item has the ray's entry, its v item the next one
-// (free, since no ray enters the clock after one).  Per-axis values (u0 / v0, du / dv,
-// 1/du / 1/dv, the directions, locate's estimate) are in item tables, one value wide: one read
-// port at (ph_q - s) gives the u item's value in one clock and the v item's in the next.  The
-// id, invalid, t_map and gone are in ray tables.  An entry is written by the stage that computes
-// the value and read by the later stages that need it, at the latest in stage NT-1 (T(NT-1) /
-// I(NT-1)), the clock at whose edge the entry is reused; a value a float unit takes as an
-// operand is read one clock early into a register (or passed on in registers from such a read).
-// Only the valid bits move, one stage per clock (v_q).
+// Stage registers.  A ray's values move with it, one register per field and stage (f_s[s]: the
+// field of the ray in Ts, or of the item in Is), as in traverse_loop's ring: a stage reads the
+// fields it needs from its own stage's registers, and the stage that computes a value writes it
+// into the next stage's register, from where it moves on every clock up to stage NT-1 (NT: the
+// multiple of 4 from C + KE, 16 at (2, 1), 24 at (3, 2)); the output registers out_q carry it
+// from T(NT) on.  Per-axis values (u0 / v0, du / dv, 1/du / 1/dv, the directions, locate's
+// estimate) are item registers: the u item's value in a stage in one clock, the v item's in the
+// next.  The id, invalid, t_map and gone are ray registers (the v item's clock carries nothing
+// of use there).  A value a float unit takes as an operand is copied one clock early into a
+// register (or passed on in registers from such a copy).  (Tables of NT entries in LUT RAM,
+// indexed by a phase, would need a read port per reading stage, each a copy of the table and a
+// multiplexer: up to five for u0, about 1,000 LUT4 more than the registers.)  A phase
+// counter ph_q (mod 4) gives the clocks a ray may enter in.
 //
 // Clock enables: a float unit advances only while an item is in it, and holds its registers
-// otherwise (less switching, and less work for a simulator); likewise a stage computes what it
-// writes into a table only while it holds an item.
+// otherwise (less switching, and less work for a simulator).
 //
 // The start time t0 (0, or max(0, 1 - H_root) for the clip policy) is the same for every ray; it
 // is derived from the configuration on [P] and [B] while the unit is idle (idle_i), the only
@@ -165,8 +164,7 @@ module traverse_setup
   localparam int unsigned KF  = KB - 1 - CL;                  // [F] [G]'s second operands
   localparam int unsigned PAD_E = KF - KR;                    // the estimate's delay to KF
   localparam int unsigned KE  = KR + KB;                      // results of the second operations
-  localparam int unsigned NT  = (C + KE + 3) / 4 * 4;         // table entries (stages 0 .. NT-1)
-  localparam int unsigned SW  = $clog2(NT);                   // table index width
+  localparam int unsigned NT  = (C + KE + 3) / 4 * 4;         // stages with stage registers
   localparam int unsigned NO  = NS - NT;                      // output registers (T(NT) ..)
   if (ADD_LAT < 2 || ADD_LAT > 3 || MUL_LAT < 1 || MUL_LAT > 3 || F24_DIV_LAT < ADD_LAT + 2
       || KB % 4 != 2 || KH < KR || NS != C + KE + 5 || NO < 2 || (NS + 3) / 4 >= 2 ** SETUP_BUSY_W
@@ -175,48 +173,42 @@ module traverse_setup
     $error("traverse_setup: stage schedule does not add up to setup_lat(ADD_LAT, MUL_LAT)");
   end
 
-  typedef logic [SW-1:0] slot_idx_t;
-
-  // Ray tables (see the header); the stage that writes each field is in brackets.
-  logic [ID_W-1:0] id_q      [NT];  // [in]
-  logic            invalid_q [NT];  // [T(C+LE+1)] NaN / Inf field, negative start, start >= W / H
-  f24_t            t_map_q   [NT];  // [T(C+KB)] time of leaving the map's extent
-  logic            gone_q    [NT];  // [T(C+KB)] t_map <= t0: never enters
-  // Item tables: u0 / v0, du / dv [in: u item with the ray, v item the clock after];
+  // Stage registers (see the header): f_s[s] is the field of the ray in Ts (the item in Is),
+  // from the stage after the one that writes it (in brackets) to NT-1.
+  logic [ID_W-1:0] id_s      [NT];             // [in]
+  logic            invalid_s [C+LE+2:NT-1];    // [T(C+LE+1)] NaN / Inf field, negative start,
+                                               // start >= W / H
+  f24_t            t_map_s   [C+KB+1:NT-1];    // [T(C+KB)] time of leaving the map's extent
+  logic            gone_s    [C+KB+1:NT-1];    // [T(C+KB)] t_map <= t0: never enters
+  // Item registers: u0 / v0, du / dv [in: u item with the ray, v item the clock after];
   // 1 / du, 1 / dv and the directions [I(C+ADD_LAT)]; locate's estimate of the start cell
   // [I(C+KR)].
-  f24_t            p0_q      [NT];
-  f24_t            d_q       [NT];
-  f24_t            inv_q     [NT];
-  dir_t            dir_q     [NT];
-  sidx_t           est_q     [NT];
+  f24_t            p0_s      [NT];
+  f24_t            d_s       [NT];
+  f24_t            inv_s     [C+ADD_LAT+1:NT-1];
+  dir_t            dir_s     [C+ADD_LAT+1:NT-1];
+  sidx_t           est_s     [C+KR+1:C+KE-1];
   // The v item's inputs, held from the ray's clock to its own.
   f24_t            v0_h_q, dv_h_q;
   // Values that live one clock or are held for the v item.
   logic            bad_c_q [LE];    // bad_c_q[j]: I(C+j+1): NaN / Inf field, negative, >= 2^16
   logic            bad_u_q;         // T(C+LE) -> T(C+LE+1): the u item's checks
   f24_t            tmx_q;           // T(C+KH) -> T(C+KH+1): the u item's time of leaving the map
-  f24_t            t_map_b_q;       // T(C+KB-1) -> T(C+KB): t_map, for the table and gone
+  f24_t            t_map_b_q;       // T(C+KB-1) -> T(C+KB): t_map, for t_map_s and gone
   sidx_t           c0x_q, c0y_q;    // T(C+KE) / T(C+KE+1) -> T(C+KE+2): the corrected start cell
   logic signed [IDX_W-1:0] ipe_x_q, ipe_y_q;  // T(C+KE) / T(C+KE+1) -> T(C+KE+2): floor of the
                                               // end point
 
   logic [NS-1:0]   v_q;             // v_q[s]: stage Ts holds a ray
   logic [NT-1:C-1-CL] iv;           // iv[s]: item stage Is holds an item (u of Ts, v of T(s+1))
-  slot_idx_t       ph_q;            // phase: stage s holds the entry (ph_q - s) mod NT
-  slot_idx_t       sl_q [NT];       // sl_q[s] = (ph_q - s) mod NT, s = 0 .. NT-1: counters of
-                                    // their own (sl_q[0] = ph_q), so that a table's read address
-                                    // is a register, not a subtraction mod NT
-  slot_idx_t       ss [KE];         // ss[k] = sl_q[C+k] (I(C+0) .. I(C+KE-1))
+  logic [1:0]      ph_q;            // phase: steps every clock (mod 4)
 
   always_comb begin
-    for (int k = 0; k < KE; k++) ss[k] = sl_q[C+k];
     for (int s = C - 1 - CL; s < NT; s++) iv[s] = v_q[s] || v_q[s+1];
   end
 
-  // A ray enters at phase 3 (mod 4), so that it is in T0 at phase 0 and owns an entry that is a
-  // multiple of 4 (its v item the next one).
-  assign in_ready_o = (ph_q[1:0] == 2'd3);
+  // A ray enters at phase 3 (mod 4), so that it is in Ts at phase s mod 4.
+  assign in_ready_o = (ph_q == 2'd3);
 
   // ---- configuration-derived constants -------------------------------------------------------
   sidx_t size_s;                      // N = 2^n
@@ -264,11 +256,11 @@ module traverse_setup
   end
   assign ot0 = f24_ord(t0_q);
 
-  // ---- operand registers and registered table reads -----------------------------------------
-  // A float unit takes its operands from registers, never through a table read or a select (a
-  // 16:1 read multiplexer in front of a unit's clock would cost its fmax): a value a stage
-  // I(C+k) needs is read from the table one clock earlier, in I(C+k-1), into a register, passed
-  // on from such a register, or forwarded from the value the earlier stage writes.  Each loads
+  // ---- operand registers -------------------------------------------------------------------
+  // A float unit takes its operands from registers, never through a select (a multiplexer in
+  // front of a unit's clock would cost its fmax): a value a stage I(C+k) needs is copied from the
+  // stage registers one clock earlier, in I(C+k-1), into a register, passed on from such a
+  // register, or forwarded from the value the earlier stage writes.  Each loads
   // while the stage before the reader holds an item: the u item's value, then the v item's the
   // clock after.  The operand registers of the shared units load for their first operation
   // (I(C+k-1)) or their second (I(C+KB+k-1)): never in one clock, as rays are a multiple of 4
@@ -291,8 +283,8 @@ module traverse_setup
     sidx_t back, est, fwd;
   } cand_t;
   cand_t     loc_q;                         // I(C+KE): computed in I(C+KE-1)
-  f24_t      d_r;                           // the table read for I(C+0)
-  f24_t      d_r2;                          // the table read for I(C-CL)
+  f24_t      d_r;                           // du (dv) for I(C+0), in I(C-1)
+  f24_t      d_r2;                          // du (dv) for I(C-CL), in I(C-1-CL)
 
   // ---- float units ---------------------------------------------------------------------------
   // Clock enables: OR of the item stages in which an operation of the unit is under way.
@@ -348,11 +340,11 @@ module traverse_setup
   // difference of a finite u0 and an integer is never rounded to zero)
   assign bad1 = bad_c_q[LE-1] || ae[23] || (ae[22:0] == '0);
 
-  // I(C+ADD_LAT) = I(F24_DIV_LAT): the direction (written to the table and passed on in
+  // I(C+ADD_LAT) = I(F24_DIV_LAT): the direction (written to dir_s and passed on in
   // dir_c_q)
   f24_t      d2;
   dir_t      dir2;
-  assign d2   = d_q[ss[ADD_LAT]];
+  assign d2   = d_s[C+ADD_LAT];
   assign dir2 = '{mv: !f24_is_zero(d2) && f24_is_finite(inv), neg: d2[23]};
   always_comb begin
     dir_k[ADD_LAT] = dir2;
@@ -431,9 +423,9 @@ module traverse_setup
   sidx_t c0_e;
   assign c0_e = correct(loc_q, f24_ord(ma), f24_ord(mc), ot0);
 
-  // The registered reads, the operand registers and the per-item registers.
-  assign d_r  = d_q[sl_q[C-1]];
-  assign d_r2 = d_q[sl_q[C-1-CL]];
+  // The operand registers and the per-item registers.
+  assign d_r  = d_s[C-1];
+  assign d_r2 = d_s[C-1-CL];
   always_ff @(posedge clk_i) begin
     if (in_valid_i) begin
       v0_h_q <= in_v0_i;
@@ -442,10 +434,10 @@ module traverse_setup
     if (in_valid_i || v_q[0]) div_b_q <= in_valid_i ? in_du_i : dv_h_q;
     // I(C-1) (first operations) / I(C+KB-1) (second operations); constants for t0 while idle
     if (iv[C+KB-1]) begin
-      pu_q <= p0_q[ss[KB-1]];
-      md_q <= d_q[ss[KB-1]];
+      pu_q <= p0_s[C+KB-1];
+      md_q <= d_s[C+KB-1];
     end else if (iv[C-1]) begin
-      pu_q <= p0_q[sl_q[C-1]];
+      pu_q <= p0_s[C-1];
       md_q <= d_r;
     end else if (idle_i) begin
       md_q <= F24_ONE;
@@ -474,22 +466,22 @@ module traverse_setup
     end
     if (v_q[C+LE]) bad_u_q <= bad1;
     // I(C+KA-1) / I(C+KA+KB-1): 1/du for [A] and [C] (from the divider the first time)
-    if (iv[C+KA+KB-1])  mi_q <= inv_q[ss[KA+KB-1]];
+    if (iv[C+KA+KB-1])  mi_q <= inv_s[C+KA+KB-1];
     else if (iv[C+KA-1]) mi_q <= inv;
     // I(C+KX-1) / I(C+KX+KB-1): the operands of [X]
     if (iv[C+KX+KB-1]) begin
-      mvx_q <= dir_q[ss[KX+KB-1]].mv;
-      p0x_q <= p0_q[ss[KX+KB-1]];
+      mvx_q <= dir_s[C+KX+KB-1].mv;
+      p0x_q <= p0_s[C+KX+KB-1];
     end else if (iv[C+KX-1]) begin
       mvx_q <= dir_k[KX-1].mv;
-      p0x_q <= p0_q[ss[KX-1]];
+      p0x_q <= p0_s[C+KX-1];
     end
     for (int j = 0; j < KH - ADD_LAT; j++) begin
       if (iv[C+ADD_LAT+j]) dir_c_q[j] <= dir_k[ADD_LAT+j];
     end
     if (v_q[C+KH]) tmx_q <= tm_h;
     if (v_q[C+KB-1]) t_map_b_q <= t_map_c;
-    if (iv[C+KE-1]) loc_q <= candidates(est_q[ss[KE-1]], dir_q[ss[KE-1]], -sidx_t'(1), size_s);
+    if (iv[C+KE-1]) loc_q <= candidates(est_s[C+KE-1], dir_s[C+KE-1], -sidx_t'(1), size_s);
     if (v_q[C+KE]) begin
       c0x_q   <= c0_e;
       ipe_x_q <= ix;
@@ -500,41 +492,49 @@ module traverse_setup
     end
   end
 
-  // ---- pipeline and tables -------------------------------------------------------------------
+  // ---- pipeline and stage registers ---------------------------------------------------------
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
-      v_q <= '0;
-      for (int s = 0; s < NT; s++) sl_q[s] <= SW'((NT - s) % NT);   // ph_q = 0
+      v_q  <= '0;
+      ph_q <= '0;
     end else begin
-      v_q <= {v_q[NS-2:0], in_valid_i};
-      for (int s = 0; s < NT; s++) sl_q[s] <= (sl_q[s] == SW'(NT - 1)) ? '0 : sl_q[s] + SW'(1);
+      v_q  <= {v_q[NS-2:0], in_valid_i};
+      ph_q <= ph_q + 2'd1;
     end
   end
-  assign ph_q = sl_q[0];
 
+  // Every field moves on one stage per clock; the stage that computes a field writes the next
+  // stage's register (what it writes in a clock without an item, or for the v item of a ray
+  // field, is never read).
   always_ff @(posedge clk_i) begin
-    // in: the ray and its u item take the entry of stage NT-1, whose last reads are at this
-    // clock's edge (that entry is stage 0's next clock); the v item the next entry, the clock
-    // after, from the held inputs
-    if (in_valid_i) id_q[sl_q[NT-1]] <= in_id_i;
-    if (in_valid_i || v_q[0]) begin
-      p0_q[sl_q[NT-1]] <= in_valid_i ? in_u0_i : v0_h_q;
-      d_q[sl_q[NT-1]]  <= in_valid_i ? in_du_i : dv_h_q;
+    // in: the ray and its u item enter T0 / I0; the v item the clock after, from the held inputs
+    id_s[0] <= in_id_i;
+    p0_s[0] <= in_valid_i ? in_u0_i : v0_h_q;
+    d_s[0]  <= in_valid_i ? in_du_i : dv_h_q;
+    for (int t = 1; t < NT; t++) begin
+      id_s[t] <= id_s[t-1];
+      p0_s[t] <= p0_s[t-1];
+      d_s[t]  <= d_s[t-1];
     end
-    // A stage computes and writes only while it holds an item.
     // T(C+LE+1): invalid = the u item's checks or the v item's (the v item in I(C+LE))
-    if (v_q[C+LE+1]) invalid_q[sl_q[C+LE+1]] <= bad_u_q || bad1;
+    invalid_s[C+LE+2] <= bad_u_q || bad1;
+    for (int t = C + LE + 3; t < NT; t++) invalid_s[t] <= invalid_s[t-1];
     // I(C+ADD_LAT) -> I(C+ADD_LAT+1): reciprocal and direction
-    if (iv[C+ADD_LAT]) begin
-      inv_q[ss[ADD_LAT]] <= inv;
-      dir_q[ss[ADD_LAT]] <= dir2;
+    inv_s[C+ADD_LAT+1] <= inv;
+    dir_s[C+ADD_LAT+1] <= dir2;
+    for (int t = C + ADD_LAT + 2; t < NT; t++) begin
+      inv_s[t] <= inv_s[t-1];
+      dir_s[t] <= dir_s[t-1];
     end
     // I(C+KR) -> I(C+KR+1): the start cell's estimate
-    if (iv[C+KR]) est_q[ss[KR]] <= est_r;
+    est_s[C+KR+1] <= est_r;
+    for (int t = C + KR + 2; t < C + KE; t++) est_s[t] <= est_s[t-1];
     // T(C+KB): time of leaving the map; never enters
-    if (v_q[C+KB]) begin
-      t_map_q[sl_q[C+KB]] <= t_map_b_q;
-      gone_q[sl_q[C+KB]]  <= ord_le(f24_ord(t_map_b_q), ot0);
+    t_map_s[C+KB+1] <= t_map_b_q;
+    gone_s[C+KB+1]  <= ord_le(f24_ord(t_map_b_q), ot0);
+    for (int t = C + KB + 2; t < NT; t++) begin
+      t_map_s[t] <= t_map_s[t-1];
+      gone_s[t]  <= gone_s[t-1];
     end
   end
 
@@ -559,8 +559,8 @@ module traverse_setup
     .cy_o         (cy)
   );
 
-  // The ray's table fields for the output: the ray's and its u item's read in T(NT-1) (the last
-  // stage that owns an entry), its v item's in I(NT-1) (T(NT)), and carried to T(NS-1) in
+  // The ray's fields for the output: the ray's and its u item's from T(NT-1) (the last stage
+  // with stage registers), its v item's from I(NT-1) (T(NT)), carried to T(NS-1) in the output
   // registers (the id in out_id_q beside them).
   typedef struct packed {
     f24_t p0, d, inv;
@@ -574,15 +574,14 @@ module traverse_setup
   item_fields_t    it_r;            // the item in I(NT-1)
   out_fields_t     out_q    [NO];   // the fields of the ray in T(NT) (v item not yet) .. T(NS-1)
   logic [ID_W-1:0] out_id_q [NO];   // its id
-  assign it_r = '{p0: p0_q[sl_q[NT-1]], d: d_q[sl_q[NT-1]], inv: inv_q[sl_q[NT-1]],
-                  dir: dir_q[sl_q[NT-1]]};
+  assign it_r = '{p0: p0_s[NT-1], d: d_s[NT-1], inv: inv_s[NT-1], dir: dir_s[NT-1]};
   always_ff @(posedge clk_i) begin
     if (v_q[NT-1]) begin
-      out_id_q[0]      <= id_q[sl_q[NT-1]];
+      out_id_q[0]      <= id_s[NT-1];
       out_q[0].u       <= it_r;
-      out_q[0].t_map   <= t_map_q[sl_q[NT-1]];
-      out_q[0].invalid <= invalid_q[sl_q[NT-1]];
-      out_q[0].gone    <= gone_q[sl_q[NT-1]];
+      out_q[0].t_map   <= t_map_s[NT-1];
+      out_q[0].invalid <= invalid_s[NT-1];
+      out_q[0].gone    <= gone_s[NT-1];
     end
     if (v_q[NT]) begin
       out_id_q[1] <= out_id_q[0];

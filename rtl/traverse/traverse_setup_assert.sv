@@ -10,15 +10,12 @@
 //   ray_spacing     no ray in the 3 clocks after one (what ray_phase implies, checked on its own);
 //   ray_phase_of_stage  a ray in stage Ts only at phase s mod 4 (the induction invariant of
 //                   ray_spacing);
-//   phase_in_range  the phase counter stays below NT (the table entries; NT is not a power of
-//                   two at every depth: 24 at (3, 2)), an induction invariant of trk_in_setup;
-//   stage_entries   each stage's table entry (a counter of its own) is (phase - s) mod NT;
 //   setup_id_order  a tracked ray (formal: any ray, picked freely; simulation: every ray that
 //                   enters while none is tracked) comes out NS clocks after it entered (NS =
 //                   setup_lat(ADD_LAT, MUL_LAT), traverse_setup's latency),
 //                   with its id: the pipeline neither loses, duplicates nor swaps ids;
-//   trk_in_setup    while inside, the tracked ray's stage holds a ray and its id (the table
-//                   entry of stages T0 - T(NT-1), the output registers of T(NT) - T(NS-1)): the
+//   trk_in_setup    while inside, the tracked ray's stage holds a ray and its id (the stage
+//                   registers of T0 - T(NT-1), the output registers of T(NT) - T(NS-1)): the
 //                   invariant that makes the induction step hold.
 // Data check (simulation; formal/traverse_setup.sby cuts the float datapath and removes it):
 //   t0_same_as_units  the start time (1 - H_root on the shared adder and multiplier, H_root in
@@ -34,9 +31,8 @@ module traverse_setup_assert
   parameter int unsigned ID_W    = 16,  // traverse_setup's ID_W
   parameter int unsigned ADD_LAT = 2,   // traverse_setup's ADD_LAT (the reference adder's)
   parameter int unsigned NS      = 21,  // its stages (setup_lat(ADD_LAT, MUL_LAT))
-  parameter int unsigned NT      = 16,  // its table entries (stages T0 .. T(NT-1))
-  parameter int unsigned NO      = 5,   // its output registers (stages T(NT) .. T(NS-1))
-  localparam int unsigned SW     = $clog2(NT)
+  parameter int unsigned NT      = 16,  // its stages with stage registers (T0 .. T(NT-1))
+  parameter int unsigned NO      = 5    // its output registers (stages T(NT) .. T(NS-1))
 ) (
   input logic                clk_i,
   input logic                rst_ni,
@@ -46,11 +42,9 @@ module traverse_setup_assert
   input logic [NS-1:0]       v_i,          // traverse_setup's v_q: stage Ts holds a ray
   input logic                out_valid_i,
   input logic [ID_W-1:0]     out_id_i,
-  input logic [ID_W-1:0]     id_tab_i [NT],  // its id table (id_q)
-  input logic [SW-1:0]       sl_i [NT],      // the table entry of stage Ts (sl_q)
+  input logic [ID_W-1:0]     id_stage_i [NT],    // the ids of T0 .. T(NT-1) (id_s)
   input logic [ID_W-1:0]     out_id_reg_i [NO],  // the ids of T(NT) .. T(NS-1) (out_id_q)
-  input logic [1:0]          ph_i,         // traverse_setup's phase (ph_q mod 4)
-  input logic [SW-1:0]       ph_full_i,    // ph_q (0 .. NT-1; = sl_q[0])
+  input logic [1:0]          ph_i,         // traverse_setup's phase (ph_q, mod 4)
   input logic                idle_i,
   input logic [CODE_W-1:0]   root_code_i,  // cfg_i.root_code, .bits16, .policy.clip
   input logic                bits16_i,
@@ -60,11 +54,10 @@ module traverse_setup_assert
 
   localparam int unsigned AW = $clog2(NS);
 
-  // The id each stage holds: T0 - T(NT-1) their entry of the id table, the rest the output
-  // registers.
+  // The id each stage holds: T0 - T(NT-1) their stage registers, the rest the output registers.
   logic [ID_W-1:0] stage_id [NS];
   always_comb begin
-    for (int s = 0; s < NT; s++) stage_id[s] = id_tab_i[sl_i[s]];
+    for (int s = 0; s < NT; s++) stage_id[s] = id_stage_i[s];
     for (int o = 0; o < NO; o++) stage_id[NT+o] = out_id_reg_i[o];
   end
 
@@ -93,15 +86,6 @@ module traverse_setup_assert
     end
   end
 
-  // Stage s's table entry (a counter of its own) is (phase - s) mod NT.
-  logic sl_ok;
-  always_comb begin
-    sl_ok = 1'b1;
-    for (int s = 0; s < NT; s++) begin
-      if (32'(sl_i[s]) != (32'(ph_full_i) + NT - s) % NT) sl_ok = 1'b0;
-    end
-  end
-
   // A ray in stage Ts: the phase is s mod 4 (the invariant that makes ray_spacing inductive).
   logic phase_ok;
   always_comb begin
@@ -119,10 +103,6 @@ module traverse_setup_assert
         else $error("traverse_setup: a ray less than 4 clocks after the one before");
       ray_phase_of_stage: assert (phase_ok)
         else $error("traverse_setup: a ray in a stage off the phase");
-      phase_in_range: assert (32'(ph_full_i) < NT)
-        else $error("traverse_setup: phase %0d outside the %0d table entries", ph_full_i, NT);
-      stage_entries: assert (sl_ok)
-        else $error("traverse_setup: a stage's table entry is not (phase - stage) mod NT");
       setup_id_order: assert (!trk_out || (out_valid_i && out_id_i == trk_id_q))
         else $error("traverse_setup: ray id %0d due out, out_valid %0d id %0d", trk_id_q,
                     out_valid_i, out_id_i);
@@ -157,9 +137,9 @@ endmodule
 // The parameters and the id path of the instance (its localparams NS, NT, NO: the schedule).
 bind traverse_setup traverse_setup_assert #(.ID_W(ID_W), .ADD_LAT(ADD_LAT),
                                             .NS(NS), .NT(NT), .NO(NO)) u_assert (
-  .clk_i, .rst_ni, .ph_i(ph_q[1:0]), .ph_full_i(ph_q), .in_ready_i(in_ready_o), .in_valid_i,
+  .clk_i, .rst_ni, .ph_i(ph_q), .in_ready_i(in_ready_o), .in_valid_i,
   .in_id_i, .v_i(v_q),
-  .out_valid_i(out_valid_o), .out_id_i(out_id_o), .id_tab_i(id_q), .sl_i(sl_q),
+  .out_valid_i(out_valid_o), .out_id_i(out_id_o), .id_stage_i(id_s),
   .out_id_reg_i(out_id_q),
   .idle_i, .root_code_i(cfg_i.root_code), .bits16_i(cfg_i.bits16), .clip_i(cfg_i.policy.clip),
   .t0_i(t0_q));
