@@ -371,6 +371,40 @@ def test_synth_bad_arguments():
     assert p.returncode == 2 and "--top-ecp5-opts" in p.stdout and len(p.stdout.splitlines()) == 1
     p = run("scripts/flow/synth.py", "--blocks", "f24_add", "--abc9-delay", "-5")
     assert p.returncode == 2 and "--abc9-delay" in p.stdout and len(p.stdout.splitlines()) == 1
+    p = run("scripts/flow/synth.py", "--breakdown", "--blocks", "view_calc")
+    assert p.returncode == 2 and "not an FPGA top" in p.stdout and len(p.stdout.splitlines()) == 1
+
+
+def test_breakdown_counts():
+    """breakdown_counts sums each kept block's instances (a block's own cells, LUT4 as nextpnr
+    counts them), puts every other module into the rest, and takes the total from the design;
+    report.md's table lists the blocks by LUT4 with their share of the total."""
+    cells = lambda **k: {"num_cells_by_type": k}  # noqa: E731
+    stat = {
+        "modules": {
+            "\\top": cells(LUT4=10, TRELLIS_FF=7, CCU2C=1),
+            "\\height_cache$top.u_pipe.g_ring[0].u_cache": cells(LUT4=20, DP16KD=3),
+            "\\height_cache$top.u_pipe.g_ring[1].u_cache": cells(LUT4=22, DP16KD=3),
+            "\\tex_cache$top.u_pipe.u_tc": cells(LUT4=5, TRELLIS_DPR16X4=2, TRELLIS_FF=4),
+            "\\traverse_fifo$top.u_pipe.u_f": cells(LUT4=3),  # not a kept block: the rest
+        },
+        "design": {"num_cells_by_type": {"LUT4": 60, "CCU2C": 1, "TRELLIS_DPR16X4": 2,
+                                         "TRELLIS_FF": 11, "DP16KD": 6}},
+    }
+    bd = synth.breakdown_counts(stat, ("height_cache", "tex_cache", "shade_unit"))
+    assert bd["blocks"]["height_cache"] == {"lut": 42, "ff": 0, "dsp": 0, "bram": 6,
+                                            "instances": 2}
+    assert bd["blocks"]["tex_cache"] == {"lut": 5 + 12, "ff": 4, "dsp": 0, "bram": 0,
+                                         "instances": 1}
+    assert bd["blocks"]["shade_unit"]["instances"] == 0
+    assert bd["rest"] == {"lut": 10 + 2 + 3, "ff": 7, "dsp": 0, "bram": 0}
+    assert bd["total"] == {"lut": 60 + 2 + 12, "ff": 11, "dsp": 0, "bram": 6}
+    assert (sum(r["lut"] for r in bd["blocks"].values()) + bd["rest"]["lut"]
+            == bd["total"]["lut"])
+    md = synth.breakdown_md(bd | {"top": "top"})
+    rows = [r for r in md if r.startswith("| `")]
+    assert rows[0].startswith("| `height_cache` | 2 | 42 | 56.8 |"), rows
+    assert md[-2].startswith("| total | | 74 | 100.0 | 11 |")
 
 
 def test_synth_param_overrides(tmp_path):

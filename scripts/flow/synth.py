@@ -13,7 +13,9 @@ Writes out/synth/report.json and out/synth/report.md (and logs/, one per tool ru
 critical_path.txt): with the float units of every block counted from Yosys's hierarchy of the
 elaborated top, beside the paper's Table 1 (`float_units`; `--float-units` does only that, in
 seconds), and one entry per routed top (`tops`: name, rings, lut, ff, dsp, bram, fmax_mhz,
-seed, router, device, rtl_commit), which `--record` copies into docs/results/synth-ecp5.json.  A failing step is named with its log and ends the run with exit status 1;
+seed, router, device, rtl_commit), which `--record` copies into docs/results/synth-ecp5.json.
+`--breakdown` synthesises only the top with each pipeline block kept as a module of its own and
+writes the top's counts per block (`breakdown`).  A failing step is named with its log and ends the run with exit status 1;
 bad arguments: one line, exit status 2.  Every step's wall time is measured and reported.
 """
 from __future__ import annotations
@@ -29,7 +31,7 @@ import subprocess
 import sys
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 import dataclasses
 from dataclasses import dataclass, field
@@ -46,6 +48,10 @@ TOP_RINGS = {TOP: 1, TOP2: 2}
 #: The system top (rtl/top/pidm_top.sv): more pins than the package has, so it is placed and routed
 #: out of context (a register on every port, no I/O); its result joins the `tops` marked so.
 SYSTEM_TOP = "pidm_top"
+# The blocks `--breakdown` keeps as modules of their own in the FPGA top (the pipeline's units;
+# the FIFOs, dm_pipeline's glue and the top's register port are the rest).
+BREAKDOWN = ("view_calc", "traverse_setup", "traverse_loop", "height_cache", "mip_level",
+             "tex_addr", "tex_cache", "tex_filter", "shade_unit")
 LPF = ROOT / "constraints" / "dm_pipeline.lpf"
 DEVICE = {"85k": "LFE5U-85F", "45k": "LFE5U-45F", "25k": "LFE5U-25F", "12k": "LFE5U-12F"}
 #: What each device has (Lattice ECP5 family data sheet): LUT4s (= flip-flops), MULT18X18D,
@@ -391,6 +397,25 @@ class Flow:
                   f"-json {rel(js)}")
         self.yosys(f"synth_ecp5 {top}", script, self.logs / f"ecp5_{top}.log")
 
+    def breakdown(self, b: Block) -> dict:
+        """The top's ECP5 counts per block (`--breakdown`): synth_ecp5 with the top's options on
+        the top whose BREAKDOWN blocks are kept as modules of their own."""
+        stat = self.logs / f"breakdown_{b.name}.stat.json"
+        keep = " ".join(f"{n}$*" for n in BREAKDOWN)
+        script = (f"{self.read_cmd(b, keep_hierarchy=True)}; hierarchy -top {b.module}; proc; "
+                  f"setattr -mod -set keep_hierarchy 1 {keep}; flatten; opt_clean; "
+                  f"memory_collect; memory_share -nosat; opt_clean; memory_map r:WR_PORTS>2; "
+                  f"{self.abc9_delay()}synth_ecp5 -top {b.module}{self.ecp5_opts(b)}; "
+                  f"tee -q -o {rel(stat)} stat -json")
+        dt = self.yosys(f"breakdown {b.name}", script, self.logs / f"breakdown_{b.name}.log")
+        r = breakdown_counts(json.loads(stat.read_text()), BREAKDOWN)
+        r["top"] = b.name
+        r["seconds"] = round(dt, 1)
+        self.say(f"    {b.name} per block: " + ", ".join(
+            f"{n} {c['lut']}" for n, c in sorted(r["blocks"].items(), key=lambda kv: -kv[1]["lut"]))
+            + f", rest {r['rest']['lut']}; total {r['total']['lut']} LUT4")
+        return r
+
     def inventory(self) -> dict:
         """The float units of every block below the top (float_units), from Yosys's `hierarchy`
         of the elaborated top with its hierarchy kept (a few seconds: no synthesis)."""
@@ -506,15 +531,64 @@ def ecp5_counts(stat: dict) -> dict:
     c = _design(stat)
     g = lambda k: int(c.get(k, 0))  # noqa: E731
     return {
-        "lut": g("LUT4") + 2 * g("CCU2C") + 6 * g("TRELLIS_DPR16X4"),
-        "ff": g("TRELLIS_FF"),
-        "dsp": g("MULT18X18D"),
-        "bram": g("DP16KD") + g("PDPW16KD"),
+        **ecp5_main_counts(c),
         "carry_ccu2c": g("CCU2C"),
         "lutram_dpr16x4": g("TRELLIS_DPR16X4"),
         "alu54b": g("ALU54B"),
         "cells": {k: int(v) for k, v in sorted(c.items())},
     }
+
+
+def ecp5_main_counts(cells: dict) -> dict[str, int]:
+    """lut, ff, dsp, bram (as ecp5_counts) of a netlist's ECP5 cells by type."""
+    g = lambda k: int(cells.get(k, 0))  # noqa: E731
+    return {"lut": g("LUT4") + 2 * g("CCU2C") + 6 * g("TRELLIS_DPR16X4"),
+            "ff": g("TRELLIS_FF"), "dsp": g("MULT18X18D"),
+            "bram": g("DP16KD") + g("PDPW16KD")}
+
+
+def breakdown_counts(stat: dict, names: Sequence[str]) -> dict:
+    """The top's ECP5 counts per block, from `stat -json` of a netlist whose blocks named in
+    ``names`` were kept as modules of their own (yosys-slang names each instance's module
+    ``<module>$<instance path>``): {"blocks": {name: counts and instances}, "rest": the counts
+    outside them, "total": the whole netlist's}.  A kept module's own cells are counted once,
+    so a block's count covers all its instances and the logic inside them."""
+    keys = ("lut", "ff", "dsp", "bram")
+    blocks = {n: dict.fromkeys(keys, 0) | {"instances": 0} for n in names}
+    rest = dict.fromkeys(keys, 0)
+    for mod, m in stat.get("modules", {}).items():
+        c = ecp5_main_counts(m.get("num_cells_by_type", {}))
+        base = mod.lstrip("\\").split("$", 1)[0]
+        row = blocks.get(base) if "$" in mod else None
+        if row is None:
+            row = rest
+        else:
+            row["instances"] += 1
+        for k in keys:
+            row[k] += c[k]
+    return {"blocks": blocks, "rest": rest, "total": ecp5_main_counts(_design(stat))}
+
+
+def breakdown_md(bd: dict) -> list[str]:
+    """report.md's section of the top's counts per block (`--breakdown`)."""
+    t = bd["total"]
+    L = [f"## {bd['top']} per block (`--breakdown`)\n",
+         "ECP5 counts of the top synthesised with each block below kept as a module of its own "
+         "(Yosys `keep_hierarchy`), so no optimisation crosses a block's boundary: the total is "
+         "above the flat synthesis's, and each row is what its block costs on its own.\n",
+         "| block | instances | ECP5 LUT | % of total | FF | DSP | BRAM |",
+         "|---|---:|---:|---:|---:|---:|---:|"]
+    rows = sorted(bd["blocks"].items(), key=lambda kv: -kv[1]["lut"])
+    rows.append(("(the rest: FIFOs, glue, the top's registers)", bd["rest"] | {"instances": ""}))
+    for n, r in rows:
+        pct = 100.0 * r["lut"] / t["lut"] if t["lut"] else 0.0
+        name = f"`{n}`" if not n.startswith("(") else n
+        L.append(f"| {name} | {r['instances']} | {fmt(r['lut'])} | {pct:.1f} | {fmt(r['ff'])} | "
+                 f"{fmt(r['dsp'])} | {fmt(r['bram'])} |")
+    L.append(f"| total | | {fmt(t['lut'])} | 100.0 | {fmt(t['ff'])} | {fmt(t['dsp'])} | "
+             f"{fmt(t['bram'])} |")
+    L.append("")
+    return L
 
 
 _X_LUTRAM = {"RAM32M": 4, "RAM32M16": 8, "RAM64M": 4, "RAM64M8": 8, "RAM32X1D": 2, "RAM64X1D": 2,
@@ -777,6 +851,9 @@ def write_md(report: dict, path: Path) -> None:
     fu = report.get("float_units")
     if fu and "blocks" in fu:
         L += float_units_md(fu)
+    for bd in (report.get("breakdown") or {}).values():
+        if isinstance(bd, dict) and "blocks" in bd:
+            L += breakdown_md(bd)
     L.append("## Run times (wall, this machine)\n")
     L.append("| step | s |")
     L.append("|---|---:|")
@@ -1062,6 +1139,11 @@ def main() -> int:
                     help="only count the float units of every block (Yosys hierarchy of the "
                          "top, a few seconds; every run does it too) into report.json's "
                          "float_units and report.md's table beside the paper's Table 1")
+    ap.add_argument("--breakdown", action="store_true",
+                    help="only synthesise the FPGA top(s) named by --blocks (default the one-ring "
+                         "top) with each pipeline block kept as a module of its own, into "
+                         "report.json's breakdown and report.md's table of counts per block "
+                         "(a few minutes; no place and route)")
     ap.add_argument("--record", action="store_true",
                     help="only copy report.json's routed tops (`tops`) into --results, "
                          "replacing the entries of the same name and keeping the others")
@@ -1112,6 +1194,11 @@ def main() -> int:
             return fail(f"--param {text!r}: unknown block {blk!r}; blocks: "
                         f"{', '.join(n for n in BLOCK_NAMES if n not in TOP_RINGS)}")
         overrides.setdefault(blk, {})[pname] = val
+    if args.breakdown and args.blocks.strip():
+        not_top = [n for n in names if n not in TOP_RINGS]
+        if not_top:
+            return fail(f"--breakdown: {', '.join(not_top)} is not an FPGA top; tops: "
+                        f"{', '.join(TOP_RINGS)}")
     if args.param and not args.blocks.strip():
         names = []  # only the overridden blocks
     names += [n for n in overrides if n not in names]
@@ -1142,12 +1229,16 @@ def main() -> int:
         blocks = [dataclasses.replace(b, pnr=True) if b.module == SYSTEM_TOP else b
                   for b in blocks]
     top_pnr = (any(t in names for t in TOP_RINGS) and not args.blocks_only
-               and not args.float_units and not args.no_top_pnr)
-    if args.float_units:
+               and not args.float_units and not args.breakdown and not args.no_top_pnr)
+    bd_tops: list[Block] = []
+    if args.breakdown:
+        bd_tops = ([b for b in blocks if b.name in TOP_RINGS] if args.blocks.strip()
+                   else [b for b in BLOCKS if b.name == TOP])
+    if args.float_units or args.breakdown:
         blocks = []
     if args.blocks_only:
         blocks = [b for b in blocks if b.name not in TOP_RINGS]
-    n_steps = (len(blocks) * (1 if args.no_xilinx else 2) + 1
+    n_steps = (len(blocks) * (1 if args.no_xilinx else 2) + 1 + len(bd_tops)
                + 3 * sum(1 for b in blocks if b.pnr and not args.no_block_pnr) + int(top_pnr))
     flow = Flow(args, n_steps)
 
@@ -1190,6 +1281,9 @@ def main() -> int:
             for k, v in new.items():
                 if k in ("blocks", "xilinx", "pnr", "seconds"):
                     report[k].update(v)
+                elif k == "breakdown":  # per top: this run's replaces its top's
+                    old_bd = report.get(k)
+                    report[k] = (old_bd if isinstance(old_bd, dict) else {}) | v
                 elif k == "tops":   # one entry per routed top: this run's replaces its name's
                     old_tops = report.get("tops")
                     report[k] = merge_tops(old_tops if isinstance(old_tops, list) else [], v)
@@ -1198,8 +1292,10 @@ def main() -> int:
             report["seconds"].update(flow.times)
             report["date"] = _dt.datetime.now().isoformat(timespec="seconds")
             report["top"] = TOP
-            # --float-units alone leaves the settings of the run that made the other figures.
-            if not (args.float_units and isinstance(report.get("settings"), dict)):
+            # --float-units or --breakdown alone leaves the settings of the run that made the
+            # other figures.
+            if not ((args.float_units or args.breakdown)
+                    and isinstance(report.get("settings"), dict)):
                 report["settings"] = settings
             path.write_text(json.dumps(report, indent=1) + "\n")
             write_md(report, args.out / "report.md")
@@ -1272,6 +1368,9 @@ def main() -> int:
 
     try:
         new["float_units"] = flow.inventory()
+        for b in bd_tops:
+            new.setdefault("breakdown", {})[b.name] = flow.breakdown(b)
+            save()
         # The longest chain first when running in parallel.
         order = sorted(blocks, key=lambda b: b.name not in TOP_RINGS) if args.jobs > 1 else blocks
         with ThreadPoolExecutor(max_workers=args.jobs) as ex:
@@ -1289,7 +1388,7 @@ def main() -> int:
         print(f"synth: {e}")
         return 1
     finally:
-        if not args.float_units:
+        if not (args.float_units or args.breakdown):
             new["seconds_total_last_run"] = round(time.monotonic() - t_start, 1)
         report = save()
     flow.say(f"done in {time.monotonic() - t_start:.0f} s: {rel(path)}, "
