@@ -108,7 +108,7 @@
 // of use there).  A value a float unit takes as an operand is copied one clock early into a
 // register (or passed on in registers from such a copy).  (Tables of NT entries in LUT RAM,
 // indexed by a phase, would need a read port per reading stage, each a copy of the table and a
-// multiplexer: up to five for u0, about 1,000 LUT4 more than the registers.)  A phase
+// multiplexer: up to five for u0, about 1,400 LUT4 more than the registers.)  A phase
 // counter ph_q (mod 4) gives the clocks a ray may enter in.
 //
 // Clock enables: a float unit advances only while an item is in it, and holds its registers
