@@ -308,8 +308,11 @@ class Flow:
         return self.prepare_top(self.read_cmd(b), b.module)
 
     @staticmethod
-    def prepare_top(read: str, top: str) -> str:
-        return (f"{read}; hierarchy -top {top}; proc; flatten; opt_clean; "
+    def prepare_top(read: str, top: str, keep: Sequence[str] = ()) -> str:
+        """prepare() for a read command; the modules matching a pattern in ``keep`` stay modules
+        of their own (keep_hierarchy) instead of being flattened into the top."""
+        kh = f"setattr -mod -set keep_hierarchy 1 {' '.join(keep)}; " if keep else ""
+        return (f"{read}; hierarchy -top {top}; proc; {kh}flatten; opt_clean; "
                 f"memory_collect; memory_share -nosat; opt_clean; memory_map r:WR_PORTS>2")
 
     def ecp5_opts(self, b: Block | None = None) -> str:
@@ -401,11 +404,9 @@ class Flow:
         """The top's ECP5 counts per block (`--breakdown`): synth_ecp5 with the top's options on
         the top whose BREAKDOWN blocks are kept as modules of their own."""
         stat = self.logs / f"breakdown_{b.name}.stat.json"
-        keep = " ".join(f"{n}$*" for n in BREAKDOWN)
-        script = (f"{self.read_cmd(b, keep_hierarchy=True)}; hierarchy -top {b.module}; proc; "
-                  f"setattr -mod -set keep_hierarchy 1 {keep}; flatten; opt_clean; "
-                  f"memory_collect; memory_share -nosat; opt_clean; memory_map r:WR_PORTS>2; "
-                  f"{self.abc9_delay()}synth_ecp5 -top {b.module}{self.ecp5_opts(b)}; "
+        prep = self.prepare_top(self.read_cmd(b, keep_hierarchy=True), b.module,
+                                keep=[f"{n}$*" for n in BREAKDOWN])
+        script = (f"{prep}; {self.abc9_delay()}synth_ecp5 -top {b.module}{self.ecp5_opts(b)}; "
                   f"tee -q -o {rel(stat)} stat -json")
         dt = self.yosys(f"breakdown {b.name}", script, self.logs / f"breakdown_{b.name}.log")
         r = breakdown_counts(json.loads(stat.read_text()), BREAKDOWN)
