@@ -148,14 +148,28 @@ def locate(ar: Arith, p0: F64, d: F64, inv: F64, s: I64, t: F64, level: I64, lo:
     crossing-time rule whenever the estimate is within one cell (always, in both engines, for
     positions inside the map).  Axes that do not move use floor(p0).
     """
+    return locate_parts(ar, p0, d, inv, s, t, level, lo, hi)[0]
+
+
+def locate_parts(ar: Arith, p0: F64, d: F64, inv: F64, s: I64, t: F64, level: I64, lo: I64,
+                 hi: I64) -> tuple[I64, B, I64]:
+    """:func:`locate`'s cell, whether its exit check moved it (t at or after the estimate's exit
+    crossing time, the cell one on), and the estimate that check started from.
+
+    The ring makes the exit check of a descent on the ray's next pass (traverse_loop.sv,
+    "Locate's exit check"): where it moves the cell, the ring reads the estimate's height once
+    more than the iterations count (a "relocate").
+    """
     p = np.where(s != 0, position(ar, p0, d, t), p0)
     c = np.clip(ar.to_index(p) >> level, lo, hi)
     entry = (c + (s < 0)) << level
     exit_ = (c + (s > 0)) << level
     t_entry = crossing_time(ar, entry, p0, inv, s)
     t_exit = crossing_time(ar, exit_, p0, inv, s)
-    c = np.where(t_entry > t, c - s, np.where(t_exit <= t, c + s, c))
-    return np.clip(c, lo, hi)
+    back = t_entry > t
+    fwd = ~back & (t_exit <= t) & (np.clip(c + s, lo, hi) != c)
+    est = np.where(back, np.clip(c - s, lo, hi), c)
+    return np.where(fwd, c + s, est), fwd, est
 
 
 def _bitlen(x: I64) -> I64:
@@ -298,9 +312,13 @@ def trace(pyr: Pyramid, rays: Rays, method: str | Method = "park", engine: str |
     """Trace rays through the pyramid with an exact method on an engine (``f64`` or ``f24``).
 
     ``record``, when given, receives one dict per iteration of ray 0 (level, cell, t, H, action):
-    the step-by-step trace that lines up with the RTL's waves.  ``stats``, when given, gets the
-    counts of what the iterations did: ``down``, ``cross``, ``hit``, ``miss`` (one per iteration,
-    so they sum to the iterations) and ``up`` (the crossings that also went up a level).
+    the step-by-step trace that lines up with the RTL's waves; a descent whose locate moved its
+    estimate one cell on also has ``estimate`` (level, cx, cy: the node the ring reads once more
+    before the next iteration).  ``stats``, when given, gets the counts of what the iterations
+    did: ``down``, ``cross``, ``hit``, ``miss`` (one per iteration, so they sum to the
+    iterations), ``up`` (the crossings that also went up a level) and ``relocate`` (the descents
+    that go on whose locate moved the estimate one cell on by its exit check: the ring's redo
+    passes, traverse_loop.sv's "Locate's exit check").
     ``touched``, when given (bool, one per texel of every level: :func:`pyramid_texels`), is set
     where an iteration read the texel (:func:`lines_touched` turns it into cache lines).
     """
@@ -379,6 +397,8 @@ def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
         # Descent (policy), for the rays that descend: the new level, then the child that holds
         # the ray at t_new.
         di = np.nonzero(down)[0]
+        relocate = 0
+        est0: tuple[int, int, int] | None = None
         if di.size:
             dk, dxx, dyy, dt = kk[di], xx[di], yy[di], t_new[di]
             du_, dv_, du0, dv0 = du[di], dv[di], u0[di], v0[di]
@@ -393,8 +413,14 @@ def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
             nk = descent_level(m.descent, m.descent_levels, dk, crossed[act[di]], dxx, dyy,
                                a_x, a_y, b_x, b_y)
             d = dk - nk
-            nxd = locate(ar, du0, du_, dix, dsx, dt, nk, dxx << d, ((dxx + 1) << d) - 1)
-            nyd = locate(ar, dv0, dv_, diy, dsy, dt, nk, dyy << d, ((dyy + 1) << d) - 1)
+            nxd, fx, ex_ = locate_parts(ar, du0, du_, dix, dsx, dt, nk, dxx << d,
+                                        ((dxx + 1) << d) - 1)
+            nyd, fy, ey_ = locate_parts(ar, dv0, dv_, diy, dsy, dt, nk, dyy << d,
+                                        ((dyy + 1) << d) - 1)
+            reloc = (fx | fy) & (iters[act[di]] < cap)  # (a capped descent reads no more)
+            relocate = int(np.count_nonzero(reloc))
+            if record is not None and act[0] == 0 and di[0] == 0 and reloc[0]:
+                est0 = (int(nk[0]), int(ex_[0]), int(ey_[0]))
             g = act[di]
             k[g], cx[g], cy[g], t[g] = nk, nxd, nyd, dt
             prev_cross[g] = False
@@ -428,10 +454,13 @@ def _trace(pyr: Pyramid, rays: Rays, m: Method, ar: Arith,
                            "cy": int(yy[0]), "t": float(tt[0]), "H": float(h[0]),
                            "plane": float(plane[0]), "t_exit": float(t_exit[0]),
                            "t_new": float(t_new[0]), "action": action})
+            if est0 is not None:
+                record[-1]["estimate"] = {"level": est0[0], "cx": est0[1], "cy": est0[2]}
 
         if stats is not None:
             for key, cnt in (("down", di.size), ("cross", ci.size), ("up", int(up.sum())),
-                             ("hit", int(is_hit.sum())), ("miss", int(miss.sum()))):
+                             ("hit", int(is_hit.sum())), ("miss", int(miss.sum())),
+                             ("relocate", relocate)):
                 stats[key] = stats.get(key, 0) + cnt
 
         hit[act] |= is_hit

@@ -12,6 +12,9 @@ The steps come from model.traverse.trace's `record` hook (the traversal itself i
 here).  With the f24 engine every float is also shown as its 24-bit pattern (hex), the form the
 waves show.  Iteration i of the model is the i-th height lookup of the ray that the cache answered
 with a hit (rs_hit_i = 1): lookups answered with a miss go round again and are not iterations.
+After a descent whose locate moved its estimate one cell on (the model's row has "estimate"), the
+ring reads the estimate once more before the next iteration (its exit check, a redo pass that is
+not an iteration): the expected reads list that read too (expected_reads).
 --pixel takes the ray the pipeline traces for that pixel of a scene view (the view unit's du, dv
 in the engine's arithmetic, model.view.view_calc).  Bad input: one line, exit status 2.
 """
@@ -120,9 +123,30 @@ def steps(pyr: heightmap.Pyramid, rays: Rays, method: str, engine: str, base: in
     stats: dict[str, int] = {}
     res = traverse.trace(pyr, rays, method, engine, record=rec, stats=stats)
     for r in rec:
-        r["code"] = int(pyr.levels[r["level"]][r["cy"], r["cx"]])
-        r["address"] = texel_address(pyr, base, r["level"], r["cx"], r["cy"])
+        for x in (r, r.get("estimate")):
+            if x is not None:
+                x["code"] = int(pyr.levels[x["level"]][x["cy"], x["cx"]])
+                x["address"] = texel_address(pyr, base, x["level"], x["cx"], x["cy"])
     return rec, res, stats
+
+
+def expected_reads(steps_: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """The answered height reads the RTL makes for the model's rows, in order: one per row
+    (iteration), and before the row after a descent whose locate moved its estimate, the redo's
+    read of that estimate (level, cell, address, code of the estimate; the next row's t and
+    iteration; "redo": True)."""
+    out: list[dict[str, Any]] = []
+    for i, s in enumerate(steps_):
+        est = steps_[i - 1].get("estimate") if i else None
+        if est is not None:
+            out.append({**est, "t": s["t"], "iteration": s["iteration"], "redo": True})
+        out.append(s)
+    return out
+
+
+def _what(s: dict[str, Any]) -> str:
+    return (f"the redo before iteration {s['iteration']}" if s.get("redo")
+            else f"iteration {s['iteration']}")
 
 
 def rtl_lookups(fst: Path, scope: str = "TOP.traverse_system.u_unit.") -> list[dict[str, Any]]:
@@ -184,13 +208,13 @@ def ring_states(fst: Path, looks: list[dict[str, Any]],
 
 
 def compare_states(steps_: list[dict[str, Any]], states: list[dict[str, int]]) -> str | None:
-    """None when S1's ring registers held each model row's level, cell, t and iteration - 1 at
-    the row's lookup, else the first difference."""
+    """None when S1's ring registers held each expected read's level, cell, t and iteration - 1
+    at its lookup (steps_: expected_reads of the model's rows), else the first difference."""
     for s, st in zip(steps_, states):
         want = {"level": s["level"], "cx": s["cx"], "cy": s["cy"],
                 "t": int(f24.from_float(np.array([s["t"]]))[0]), "iters": s["iteration"] - 1}
         if st != want:
-            return f"iteration {s['iteration']}: model {_fmt_state(want)}; RTL {_fmt_state(st)}"
+            return f"{_what(s)}: model {_fmt_state(want)}; RTL {_fmt_state(st)}"
     return None
 
 
@@ -199,22 +223,22 @@ def _fmt_state(st: dict[str, int]) -> str:
 
 
 def compare_lookups(steps_: list[dict[str, Any]], looks: list[dict[str, Any]]) -> str | None:
-    """None when the RTL's answered lookups read the model's addresses and codes in order, else
-    the first difference."""
+    """None when the RTL's answered lookups read the expected addresses and codes in order
+    (steps_: expected_reads of the model's rows), else the first difference."""
     read = [lk for lk in looks if lk.get("hit") or lk.get("err")]
     for i, s in enumerate(steps_):
         if i >= len(read):
-            return f"iteration {s['iteration']}: the model reads 0x{s['address']:08x}; the RTL " \
+            return f"{_what(s)}: the model reads 0x{s['address']:08x}; the RTL " \
                    f"made only {len(read)} answered lookups"
         lk = read[i]
         if lk["address"] != s["address"] or lk["code"] != s["code"] or lk.get("err"):
-            return (f"iteration {s['iteration']}: the model reads 0x{s['address']:08x} (code "
+            return (f"{_what(s)}: the model reads 0x{s['address']:08x} (code "
                     f"0x{s['code']:x}), the RTL 0x{lk['address']:08x} (code 0x{lk['code']:x}"
                     f"{', error' if lk.get('err') else ''}) at clock {lk['clock']} "
                     f"(time {lk['time']})")
     if len(read) > len(steps_):
         lk = read[len(steps_)]
-        return (f"the RTL reads on after the model's {len(steps_)} iterations: 0x"
+        return (f"the RTL reads on after the model's {len(steps_)} reads: 0x"
                 f"{lk['address']:08x} at clock {lk['clock']} (time {lk['time']})")
     return None
 
@@ -333,17 +357,18 @@ def main(argv: list[str] | None = None) -> int:
                   f"S0 at c - 1, lk_* at c, the answer at c + {LOOKUP_LAT}, the action and next "
                   f"state in S{NEXT_STAGE} at c + {NEXT_STAGE - 1}):", file=out)
             print(f"{'clock':>6} {'time':>6} {'address':>10}  answer", file=out)
+            reads = expected_reads(rec)
             it = 0
             for lk in looks:
                 ans = ("error" if lk.get("err") else f"hit {lk['code']:#06x}" if lk.get("hit")
                        else "miss (goes round again)" if "hit" in lk else "(no answer)")
                 if lk.get("hit") or lk.get("err"):
+                    ans += ("  = " + _what(reads[it]) if it < len(reads) else "  (not expected)")
                     it += 1
-                    ans += f"  = iteration {it}"
                 print(f"{lk['clock']:>6} {lk['time']:>6} {lk['address']:>#10x}  {ans}", file=out)
             states = ring_states(args.waves, looks)
             if states is not None:
-                sdiff = compare_states(rec, states)
+                sdiff = compare_states(reads, states)
                 print("state: at each answered lookup (clock c), S1's ring registers u_loop."
                       "node_q[1] (k, cx, cy), t_q[1] and stat_q[1].iters hold the row's level, "
                       "cell, t and iteration - 1 (the registers move one stage a clock: stage "
@@ -352,7 +377,7 @@ def main(argv: list[str] | None = None) -> int:
                       + ("yes" if sdiff is None else f"FIRST DIFFERENCE: {sdiff}"), file=out)
                 result["state_difference"] = sdiff
                 same = same and sdiff is None
-            diff = compare_lookups(rec, looks)
+            diff = compare_lookups(reads, looks)
             print("lookups: " + ("the RTL reads the model's addresses and codes in order"
                                  if diff is None else f"FIRST DIFFERENCE: {diff}"), file=out)
             print(f"waves: {args.waves} (gtkwave {args.waves} tb/waves/traverse_harness.gtkw)",

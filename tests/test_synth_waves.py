@@ -644,6 +644,30 @@ def test_ray_steps_compare_lookups():
     assert "reads on" in ray_steps.compare_lookups(steps_[:1], looks[:2] + [looks[1]])
 
 
+def test_ray_steps_expected_reads():
+    """A descent whose locate moved its estimate: the ring reads the estimate once more (the
+    redo) before the next iteration, at that iteration's t and count."""
+    from scripts import ray_steps
+    est = {"level": 1, "cx": 2, "cy": 3, "address": 0x180, "code": 9}
+    steps_ = [{"iteration": 1, "level": 2, "cx": 1, "cy": 1, "t": 0.0, "address": 0x100,
+               "code": 5, "estimate": est},
+              {"iteration": 2, "level": 1, "cx": 3, "cy": 3, "t": 0.25, "address": 0x184,
+               "code": 7}]
+    reads = ray_steps.expected_reads(steps_)
+    assert [r["address"] for r in reads] == [0x100, 0x180, 0x184]
+    assert reads[1]["redo"] and reads[1]["iteration"] == 2 and reads[1]["t"] == 0.25
+    looks = [{"clock": c, "time": 2 * c, "address": a, "hit": True, "err": False, "code": k}
+             for c, a, k in ((10, 0x100, 5), (30, 0x180, 9), (50, 0x184, 7))]
+    assert ray_steps.compare_lookups(reads, looks) is None
+    assert "the redo before iteration 2" in ray_steps.compare_lookups(reads, looks[:1] + looks[2:])
+    states = [{"level": 2, "cx": 1, "cy": 1, "t": 0, "iters": 0},
+              {"level": 1, "cx": 2, "cy": 3, "t": 0x3d0000, "iters": 1},
+              {"level": 1, "cx": 3, "cy": 3, "t": 0x3d0000, "iters": 1}]
+    assert ray_steps.compare_states(reads, states) is None
+    states[1]["cx"] = 3  # the RTL skipped the redo's cell
+    assert "the redo before iteration 2" in ray_steps.compare_states(reads, states)
+
+
 def test_congestion_summary(tmp_path, capsys):
     # router2's heatmap files of two iterations; the script reads the last by default
     hd = tmp_path / "heatmap"

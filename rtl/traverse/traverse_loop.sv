@@ -17,16 +17,16 @@
 // names (t6_q ... done19_q), are the stages at MUL_LAT 1; the code indexes stages by localparams
 // computed from MUL_LAT (S_RS, S_EXIT, ... S_TL), which are, at MUL_LAT 1 / MUL_LAT 2:
 //   S0 - S4  lookup; S_RS = 4: the response, tx's operands          0 - 4    / 0 - 4
-//   S5       S_EXIT: tx, ty arrive; t_exit; 1 - H (at MUL_LAT > 1 in S_EXIT - 1,
+//   S5       S_EXIT: tx, ty arrive; t_exit; the exit check; 1 - H (at MUL_LAT > 1 in S_EXIT - 1,
 //            H held MUL_LAT - 2 clocks; the plane registered for S_TNEW)
 //                                                                    5        / 6
 //   S6, S7   S_TNEW, S_DEC (du * that time: its operands)            6, 7     / 7, 8
 //   S8       S_POS: u0 + du * that time (f24_add, 3 clocks)          8        / 10
 //   S11-S15  S_FLR, S_XPRE, S_XUP, S_CB, S_LOC                       11 - 15  / 13 - 17
-//   S17      S_TEN: (boundary - u0) * (1/du), its operands
+//   S17      S_TEN: (entry boundary - u0) * (1/du), its operands
 //            (1/du read in S_TEN - 2)                                17       / 19
 //   S18      S_NS = S_TEN + MUL_LAT: the crossing times arrive; the next
-//            state (its copies made in S_NS - 1); locate's correction 18       / 21
+//            state (its copies made in S_NS - 1); locate's entry check 18     / 21
 //   S19      S_TL = S_NS + 1 = D - 1: the tail                       19       / 22
 // At MUL_LAT 1 the ring is clock for clock the 20-stage ring.  A multiplier's clock enable is
 // the OR of the activity of the MUL_LAT stages its operations occupy (its registers advance while
@@ -39,7 +39,8 @@
 //   - the per-ray constants u0, v0, directions, t_map and the ray id, loaded when the ray enters
 //     the ring (u0, v0 become the hit's u, v when the ray hits: the result reads them);
 //   - the traversal state (level, cell, t, flags, iterations), loaded on entry and by S18 (the
-//     level and cell also by S19, a descent's node);
+//     level and cell also by S19, a descent's node); the flags include the two exit-check bits
+//     of a descent's estimate (below, "Locate's exit check");
 //   - what one pass computes for a stage far later in the same pass (t_new, the action, the
 //     crossing and the hit position): registers from the stage after the one that computes it
 //     to the one that reads it only.
@@ -65,7 +66,7 @@
 // units are only just fast enough for 100 MHz from registers.  Integer logic that feeds a unit
 // has a stage of its own, and so does every comparison the next stage acts on.  For S0 the tail
 // (S19) loads the ray that comes round: the node S18 wrote, the descent's node (corrected in S18
-// into a register of S19, so that the crossing times' comparisons, right behind four
+// into a register of S19, so that the crossing times' comparisons, right behind two
 // multipliers, do not share a clock with the entry multiplexers of S0), or the new ray from
 // setup.
 //
@@ -81,7 +82,8 @@
 //        min(t_map, 1)
 //   S5   plane = 1 - H (f24_add(1, -H), H in [0, 1])                f24_one_minus S5 -> S6
 //        t_exit = min(tx, ty) (inf on an axis that does not move); t_end = min(t_exit,
-//        min(t_map, 1)) (= min(min(t_exit, t_map), 1): min is associative, NaN and ties too)
+//        min(t_map, 1)) (= min(min(t_exit, t_map), 1): min is associative, NaN and ties too);
+//        locate's exit check (tx <= t, ty <= t with a check bit set): a redo
 //   S6   t_new = max(t, plane); min(t_exit, t_map); whether t_new < min(t_exit, t_map) (the
 //        pass hits or descends, S7's comparison on the same words): the time whose position
 //        the pass uses, t_new for a hit or a descent, else the plane (selective's P1)
@@ -97,16 +99,16 @@
 //        (traverse_pkg::cross_pre); descent: the two positions clipped to the node
 //   S13  crossing, part 2: level-up policy (cross_up); descent: new level (one; multi: `levels`
 //        until the first crossing; XOR of the ends) (descend_pick)
-//   S14  the child's entry / exit boundary integers (c + (s < 0 / s > 0)) << k' (c the child
-//        estimate floor(p) >> k', p clipped to the node), straight into traverse_bdiff, whose
-//        first stage only registers them: entry / exit boundary - u0 (fixed point, see below)
+//   S14  the child's entry boundary integers (c + (s < 0)) << k' (c the child estimate
+//        floor(p) >> k', p clipped to the node), straight into traverse_bdiff, whose first
+//        stage only registers them: entry boundary - u0 (fixed point, see below)
 //                                                                   traverse_bdiff S14 -> S17
 //        child estimate c, the child's range at level k'
-//   S15  the three cells locate's correction chooses from
-//   S17  (boundary - u0) * (1/du)                                   f24_mul      S17 -> S18
-//        the state's copies for S18
-//   S18  next state (hit / miss / down / cross / lookup miss / cap); locate's correction (the
-//        descent's cell, from the crossing times)                   -> ndn19_q
+//   S15  one cell back (clipped); whether one cell on is in the child's range
+//   S17  (entry boundary - u0) * (1/du)                             f24_mul      S17 -> S18
+//        the state's copies for S18; a redo's node (one cell on)
+//   S18  next state (hit / miss / down / cross / lookup miss / cap / redo); locate's entry
+//        check (the descent's cell, from the entry crossing times)  -> ndn19_q
 //   S19  retire to the result FIFO, park, or merge with a new ray, -> S0
 // Positions on an axis that does not move are u0 itself (the model's np.where(s != 0, p, p0)).
 // Boundary - u0 (the model's ar.sub(ar.from_int(b), p0) of a crossing time) is traverse_bdiff:
@@ -114,8 +116,8 @@
 // rounded once, the same f24 word as f24_from_int and f24_add for every boundary in [0, 2^15]
 // and u0 in [0, 2^15) (the ring's only operands: the checker flags others), in the same 3 clocks;
 // the entry and exit boundaries of a descent share one unit's shift of u0.
-// Float units per axis pair: 6 boundary differences (4 traverse_bdiff), 4 f24_add, 10 f24_mul, 4
-// f24_to_index, 1 f24_from_unorm, 1 f24_one_minus; without XOR_PATH 2 f24_add, 8 f24_mul, 2
+// Float units per axis pair: 4 boundary differences (traverse_bdiff), 4 f24_add, 8 f24_mul, 4
+// f24_to_index, 1 f24_from_unorm, 1 f24_one_minus; without XOR_PATH 2 f24_add, 6 f24_mul, 2
 // f24_to_index (the position at t_end and its floor serve the XOR descent only: XOR_PATH = 0 leaves
 // them out and runs the XOR descent, park-xor's, as the multi-level descent).  The plane's 1 - H is
 // f24_one_minus, not an adder: the same word for every H in [0, 1] in one clock instead of two, so
@@ -124,7 +126,7 @@
 // for the XOR descent, and one at the time the pass uses, t_new (locate, the hit) or the plane
 // (selective's P1 for a crossing; a pass needs never both).  Picking that time first (S6) costs the
 // ring a stage: 20 deep (the paper's is 15), because the descent's locate (time, position, floor,
-// clip, level, boundaries, two crossing times, correction) follows the plane's arrival as a
+// clip, level, boundaries, two crossing times, entry check) follows the plane's arrival as a
 // dependent chain of 13 clocks (S6 - S19, at MUL_LAT 1; 16 at MUL_LAT 2), the correction's
 // comparisons in a stage of their own.  The position adders
 // run at three clocks (their two-clock first stage, alignment shift and carry chain together,
@@ -135,6 +137,24 @@
 //
 // Lookup misses: the ray keeps its state and goes round again; the iteration is not counted
 // (iterations = height reads that returned data).  A read error finishes the ray with err = 1.
+//
+// Locate's exit check: locate (model/traverse.py) corrects a descent's estimate by one cell with
+// the crossing times of its two edges: one back when t is before its entry, one on when t is at
+// or after its exit.  The entry check is made in the descent (S18).  The exit check is left to
+// the next pass, whose tx, ty are the estimate's exit crossing times (the same boundary, u0 and
+// 1/du, so the same words): the descent sets a check bit per axis where the entry check left the
+// estimate and one cell on lies in the child's range (chkx, chky).  With a check bit set and
+// t >= tx (ty), the pass is a redo: the height it read is neither used nor counted (ok and err
+// are cleared from S_TNEW on, as for a lookup miss), the node moves one cell on along the axes
+// whose check failed (made in S17, written by S18 like a crossing's node), and the check bits
+// clear.  The next pass is the model's iteration on the corrected cell, at the same t.  A pass
+// that finds the estimate right clears the bits as it makes its iteration; a lookup miss keeps
+// them (the check is made again).  The check costs no multiplier (the descent's exit crossing
+// times took two per axis pair, and a boundary difference each); a redo costs the ray one pass
+// and one height read more, which the model counts as "relocate" (lookups = iterations +
+// relocations when no lookup misses).  Redos are rare: the estimate is one cell short only where
+// the rounded position at t lies a few ulp short of the cell's exit edge (0.02 - 0.05% of the
+// descents on make render's frames).
 // Back-pressure: a finished ray leaves only when the result FIFO has room; otherwise it keeps
 // circulating (no lookups, state untouched) and tries again one pass later.
 //
@@ -272,6 +292,8 @@ module traverse_loop
     logic              invalid;
     logic              capped;
     logic              err;
+    logic              chkx, chky; // the node is a descent's estimate whose exit crossing time
+                                   // on x / y is still to be compared with t (next pass, S_EXIT)
     logic [ITER_W-1:0] iters;      // height reads that returned data
   } status_t;
   typedef struct packed {
@@ -296,7 +318,8 @@ module traverse_loop
   typedef struct packed {
     logic [CELL_W-1:0] back;       // t before the estimate's entry: one cell back (clipped)
     logic [CELL_W-1:0] est;        // the estimate itself
-    logic [CELL_W-1:0] fwd;        // t at or after its exit: one cell on (clipped)
+    logic              fwd;        // one cell on lies in the child's range (the exit check can
+                                   // move the estimate, on the next pass)
   } locate_t;
   typedef struct packed {
     logic [LVL_W-1:0] nk;          // the descent's new level
@@ -336,6 +359,11 @@ module traverse_loop
   logic [S_XUP:S_DEC+1] in_q;  // in_q[s]: ok, and the pass hits or descends (inside its node)
   logic [S_NS:S_DEC+1]  dn_q;  // dn_q[s]: ok, and the pass descends
   logic [S_EXIT-1:1]   lv_q;   // lv_q[s]: the slot in stage s holds a live ray (not done)
+  typedef struct packed {
+    logic x, y;
+  } rd_t;
+  rd_t          rd5;               // S_EXIT: the exit check moves the node on x / y (a redo)
+  rd_t          redo_q [S_NS:S_TNEW];  // ... of the ray in stage s (meaningful with v_q[s])
   logic         xor_desc, sel_up;  // the method uses the XOR descent / the selective level-up
   descent_e     desc;              // the descent policy run (DESC_XOR as DESC_MULTI without
                                    // XOR_PATH)
@@ -386,7 +414,7 @@ module traverse_loop
   logic [4:0] nkm13_q;             // S13: multi's new level
   sidx_pair_t a14_q;               // S14
   logic [LVL_W-1:0] nk14_q, nk15_q;  // S14, S15: the descent's new level (computed in S13)
-  logic [IDX_W-1:0] kben_x14, kbex_x14, kben_y14, kbex_y14;  // S14: the child's boundaries
+  logic [IDX_W-1:0] kben_x14, kben_y14;  // S14: the child's entry boundaries
   sidx_pair_t c15_q, lo15_q, hi15_q;  // S15: child estimate, the child's range at level k'
   desc_t      dsc_q [S_NS:S_LOC+1];  // S16 - S18: new level, locate's candidates (from S15)
   f24_pair_t  inv16_q, inv17_q;    // S16 (block RAM read register), S17
@@ -395,7 +423,8 @@ module traverse_loop
   act_t       act18_q;             // S18
   f24_ord_t   t_new18_q;           // S18: t_new, comparable
   logic       down19_q, done19_q;  // S19: the pass descended (not capped); the ray is done
-  node_t      ndn19_q;             // S19: the descent's node, locate's correction made (S18)
+  node_t      ndn19_q;             // S19: the descent's node, locate's entry check made (S18)
+  node_t      rn18_q;              // S18: a redo's node, one cell on (computed in S17)
 
   // ---- S0: height address, exit boundary integers ----------------------------------------------
   logic [ADDR_W-1:0] addr0;
@@ -536,6 +565,15 @@ module traverse_loop
   assign tx5 = d5_q.sx.mv ? tx_raw : F24_POS_INF;
   assign ty5 = d5_q.sy.mv ? ty_raw : F24_POS_INF;
 
+  // ---- S5: locate's exit check (header: "Locate's exit check") ---------------------------------
+  // tx, ty are the crossing times of the node's exit boundaries: for a descent's estimate the
+  // exit times of locate's estimate.  t at or after one of them: the ray is one cell on.  (A
+  // check bit is set only on an axis that moves, for a ray that is not done.)
+  f24_ord_t t5_o;
+  assign t5_o = f24_ord(t_q[S_EXIT]);
+  assign rd5  = '{x: v_q[S_EXIT] && stat_q[S_EXIT].chkx && ord_le(f24_ord(tx_raw), t5_o),
+                  y: v_q[S_EXIT] && stat_q[S_EXIT].chky && ord_le(f24_ord(ty_raw), t5_o)};
+
   // ---- S6: t_new, min(t_exit, t_map), whether the pass will be inside: the time to position ---
   // t_new7 and tmin7 are what S7 compares; S6 makes the same comparison on the same words to pick
   // the one time whose position the pass uses: t_new for a hit or a descent (its locate, the
@@ -642,36 +680,27 @@ module traverse_loop
   logic [LVL_W-1:0] dd14;  // levels descended
   assign dd14 = n14_q.k - nk14_q;
 
-  // ---- S14 - S17: crossing times of the child's boundaries -----------------------------------
-  // entry and exit boundary - u0 per axis, one traverse_bdiff (its shift of u0 shared).  The
-  // boundary integers go straight from their logic (S14's registers a14_q, nk14_q, d14_q) into
-  // the unit, whose first stage only registers them (b * 2^19: wiring).
+  // ---- S14 - S17: crossing times of the child's entry boundaries ------------------------------
+  // entry boundary - u0 per axis (traverse_bdiff).  The boundary integers go straight from their
+  // logic (S14's registers a14_q, nk14_q, d14_q) into the unit, whose first stage only registers
+  // them (b * 2^19: wiring).  The exit boundary's crossing time is the next pass's tx, ty (the
+  // exit check, header: "Locate's exit check").
   assign kben_x14 = child_bound(a14_q.x, nk14_q, d14_q.sx.mv && d14_q.sx.neg);
-  assign kbex_x14 = child_bound(a14_q.x, nk14_q, d14_q.sx.mv && !d14_q.sx.neg);
   assign kben_y14 = child_bound(a14_q.y, nk14_q, d14_q.sy.mv && d14_q.sy.neg);
-  assign kbex_y14 = child_bound(a14_q.y, nk14_q, d14_q.sy.mv && !d14_q.sy.neg);
-  f24_t dbx [2], dby [2];  // {entry, exit} - u0
-  f24_t den_x, dex_x, den_y, dex_y, ten_x, tex_x, ten_y, tex_y;
+  f24_t dbx [1], dby [1];  // entry - u0
+  f24_t ten_x, ten_y;
   logic bd_en;  // S14 - S16 hold a descent
   assign bd_en = |dn_q[S_TEN-1:S_CB];
-  traverse_bdiff #(.W(IDX_W), .NB(2)) u_dbx (.clk_i, .en_i(bd_en), .b_i('{kben_x14, kbex_x14}),
+  traverse_bdiff #(.W(IDX_W), .NB(1)) u_dbx (.clk_i, .en_i(bd_en), .b_i('{kben_x14}),
                                              .u_i(uv_q[S_CB].u), .y_o(dbx));
-  traverse_bdiff #(.W(IDX_W), .NB(2)) u_dby (.clk_i, .en_i(bd_en), .b_i('{kben_y14, kbex_y14}),
+  traverse_bdiff #(.W(IDX_W), .NB(1)) u_dby (.clk_i, .en_i(bd_en), .b_i('{kben_y14}),
                                              .u_i(uv_q[S_CB].v), .y_o(dby));
-  assign den_x = dbx[0];
-  assign dex_x = dbx[1];
-  assign den_y = dby[0];
-  assign dex_y = dby[1];
   logic ten_en;  // S17 .. S_NS - 1 hold a descent (the crossing times' multipliers)
   assign ten_en = |dn_q[S_NS-1:S_TEN];
-  f24_mul #(.LAT(MUL_LAT)) u_ten_x (.clk_i, .en_i(ten_en), .a_i(den_x), .b_i(inv17_q.u),
+  f24_mul #(.LAT(MUL_LAT)) u_ten_x (.clk_i, .en_i(ten_en), .a_i(dbx[0]), .b_i(inv17_q.u),
                                     .y_o(ten_x));
-  f24_mul #(.LAT(MUL_LAT)) u_tex_x (.clk_i, .en_i(ten_en), .a_i(dex_x), .b_i(inv17_q.u),
-                                    .y_o(tex_x));
-  f24_mul #(.LAT(MUL_LAT)) u_ten_y (.clk_i, .en_i(ten_en), .a_i(den_y), .b_i(inv17_q.v),
+  f24_mul #(.LAT(MUL_LAT)) u_ten_y (.clk_i, .en_i(ten_en), .a_i(dby[0]), .b_i(inv17_q.v),
                                     .y_o(ten_y));
-  f24_mul #(.LAT(MUL_LAT)) u_tex_y (.clk_i, .en_i(ten_en), .a_i(dex_y), .b_i(inv17_q.v),
-                                    .y_o(tex_y));
 
   // ---- S18: next state -----------------------------------------------------------------------
   /* verilator lint_off UNUSEDSIGNAL */  // a live ray has no final flag (hit, ...) set: not read
@@ -679,7 +708,8 @@ module traverse_loop
   /* verilator lint_on UNUSEDSIGNAL */
   status_t nst18;
   cross_node_t x18;
-  logic live18, err18, iter18, hit18, miss18, down18, cross18, cap18;
+  logic live18, err18, iter18, hit18, miss18, down18, cross18, cap18, redo18;
+  logic chkx18, chky18;  // the descent's estimate stands on x / y: its exit check is due
   assign st18    = st18_q;
   assign x18     = cross_q[S_NS];
   // A ray finished earlier (waiting for room in the result FIFO) is left untouched, and so is
@@ -692,6 +722,9 @@ module traverse_loop
   assign down18  = iter18 && !act18_q.is_hit && !act18_q.miss && act18_q.down;
   assign cross18 = iter18 && !act18_q.is_hit && !act18_q.miss && !act18_q.down;
   assign cap18   = iter18 && !act18_q.is_hit && !act18_q.miss && (it18_q >= cfg_i.iter_cap);
+  // The exit check found the estimate one cell short: the pass only moves the node on (its
+  // height read is not an iteration; S_TNEW on saw neither data nor an error).
+  assign redo18  = live18 && (redo_q[S_NS].x || redo_q[S_NS].y);
   // (written for a live ray only, which has none of the final flags set yet)
   assign nst18   = '{crossed:    st18.crossed || cross18,
                      prev_cross: cross18 ? !x18.up : (st18.prev_cross && !down18),
@@ -700,6 +733,8 @@ module traverse_loop
                      invalid:    1'b0,
                      capped:     cap18,
                      err:        err18,
+                     chkx:       down18 && !cap18 && chkx18,
+                     chky:       down18 && !cap18 && chky18,
                      iters:      iter18 ? it18_q : st18.iters};
 
   assign st_iter_o  = iter18;
@@ -707,20 +742,21 @@ module traverse_loop
   assign st_cross_o = cross18;
   assign st_up_o    = cross18 && x18.up;
 
-  // ---- S18: the descent's cell (locate's correction); S19: retire, merge ----------------------
-  // locate's correction: the cell whose crossing times bracket t (cells are half-open in t).
-  // Made in S18 from the crossing times as f24_mul delivers them, into ndn19_q: the tail (S19)
-  // reads the corrected node from a register, so no comparison lies between a multiplier and
-  // the entry multiplexers of S0.
-  function automatic logic [CELL_W-1:0] correct(input locate_t c, input f24_ord_t t_entry,
-                                                input f24_ord_t t_exit, input f24_ord_t t);
-    return ord_lt(t, t_entry) ? c.back : ord_le(t_exit, t) ? c.fwd : c.est;
-  endfunction
-
+  // ---- S18: the descent's cell (locate's entry check); S19: retire, merge --------------------
+  // locate's entry check: t before the estimate's entry crossing time is one cell back (cells
+  // are half-open in t).  Made in S18 from the crossing times as f24_mul delivers them, into
+  // ndn19_q: the tail (S19) reads the corrected node from a register, so no comparison lies
+  // between a multiplier and the entry multiplexers of S0.  Where the estimate stands and one
+  // cell on is in the child's range, its exit check is left to the next pass (chkx, chky).
+  logic backx18, backy18;  // t < the estimate's entry crossing time
+  assign backx18 = ord_lt(t_new18_q, f24_ord(ten_x));
+  assign backy18 = ord_lt(t_new18_q, f24_ord(ten_y));
+  assign chkx18  = !backx18 && dsc_q[S_NS].x.fwd;
+  assign chky18  = !backy18 && dsc_q[S_NS].y.fwd;
   node_t ndn18, n_new;
   assign ndn18 = '{k:  dsc_q[S_NS].nk,
-                   cx: correct(dsc_q[S_NS].x, f24_ord(ten_x), f24_ord(tex_x), t_new18_q),
-                   cy: correct(dsc_q[S_NS].y, f24_ord(ten_y), f24_ord(tex_y), t_new18_q)};
+                   cx: backx18 ? dsc_q[S_NS].x.back : dsc_q[S_NS].x.est,
+                   cy: backy18 ? dsc_q[S_NS].y.back : dsc_q[S_NS].y.est};
   assign n_new = '{k: new_ray_i.k, cx: new_ray_i.cx, cy: new_ray_i.cy};
 
   /* verilator lint_off UNUSEDSIGNAL */  // the tail reads the result flags only
@@ -835,7 +871,7 @@ module traverse_loop
       // (not live18: a ray that is not done in S19 was live in S18, and the status's done flag
       // would bring the float datapath into the park decision, which the formal model cuts at
       // done19_q)
-      miss19_q <= !ok_q[S_NS] && !err_q[S_NS];
+      miss19_q <= !ok_q[S_NS] && !err_q[S_NS] && !(redo_q[S_NS].x || redo_q[S_NS].y);
       if (v_q[S_NS]) begin
         pduv19_q <= duv_q[sl_q[S_NS]];
         pinv19_q <= inv_q[sl_q[S_NS]];
@@ -890,6 +926,19 @@ module traverse_loop
 
   // The stage flags are reset: they enable the stages' registers and the checks, and a reset
   // shorter than the ring must not leave a power-up value in them.
+  // A redo (rd5) clears the pass's ok and err from S_TNEW on: nothing after S_EXIT acts on its
+  // height read.
+  logic [S_NS:5] ok_d, err_d;
+  always_comb begin
+    ok_d[5]  = ok4;
+    err_d[5] = err4;
+    for (int s = 6; s <= S_NS; s++) begin
+      ok_d[s]  = ok_q[s-1];
+      err_d[s] = err_q[s-1];
+    end
+    ok_d[S_TNEW]  = ok_q[S_EXIT] && !(rd5.x || rd5.y);
+    err_d[S_TNEW] = err_q[S_EXIT] && !(rd5.x || rd5.y);
+  end
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       ok_q  <= '0;
@@ -897,9 +946,12 @@ module traverse_loop
       in_q  <= '0;
       dn_q  <= '0;
       lv_q  <= '0;
+      redo_q <= '{default: '0};
     end else begin
-      ok_q  <= {ok_q[S_NS-1:5], ok4};
-      err_q <= {err_q[S_NS-1:5], err4};
+      ok_q  <= ok_d;
+      err_q <= err_d;
+      redo_q[S_TNEW] <= rd5;
+      for (int s = S_TNEW + 1; s <= S_NS; s++) redo_q[s] <= redo_q[s-1];
       in_q  <= {in_q[S_XUP-1:S_DEC+1], ok_q[S_DEC] && inside7};
       dn_q  <= {dn_q[S_NS-1:S_DEC+1], ok_q[S_DEC] && act7.down};
       lv_q  <= {lv_q[S_EXIT-2:1], live0_q};
@@ -984,10 +1036,10 @@ module traverse_loop
       dsc_q[S_LOC+1] <= '{nk: nk15_q,
         x: '{back: CELL_W'(clip_idx(c15_q.x - dir_val(d15_q.sx), lo15_q.x, hi15_q.x)),
              est:  CELL_W'(c15_q.x),
-             fwd:  CELL_W'(clip_idx(c15_q.x + dir_val(d15_q.sx), lo15_q.x, hi15_q.x))},
+             fwd:  d15_q.sx.mv && (d15_q.sx.neg ? (c15_q.x > lo15_q.x) : (c15_q.x < hi15_q.x))},
         y: '{back: CELL_W'(clip_idx(c15_q.y - dir_val(d15_q.sy), lo15_q.y, hi15_q.y)),
              est:  CELL_W'(c15_q.y),
-             fwd:  CELL_W'(clip_idx(c15_q.y + dir_val(d15_q.sy), lo15_q.y, hi15_q.y))}};
+             fwd:  d15_q.sy.mv && (d15_q.sy.neg ? (c15_q.y > lo15_q.y) : (c15_q.y < hi15_q.y))}};
     end
     for (int s = S_LOC + 1; s < S_NS; s++) begin
       if (dn_q[s]) dsc_q[s+1] <= dsc_q[s];
@@ -1002,6 +1054,14 @@ module traverse_loop
     // S18 -> S19 (t_new from S17)
     if (dn_q[S_NS-1]) t_new18_q <= f24_ord(t_new_q[S_NS-1]);
     if (dn_q[S_NS]) ndn19_q <= ndn18;
+    // S17 -> S18: a redo's node, one cell on along the axes its exit check moved
+    if (v_q[S_NS-1] && (redo_q[S_NS-1].x || redo_q[S_NS-1].y)) begin
+      rn18_q <= '{k:  node_q[S_NS-1].k,
+                  cx: node_q[S_NS-1].cx
+                      + (redo_q[S_NS-1].x ? CELL_W'(dir_val(dir_q[S_NS-1].sx)) : '0),
+                  cy: node_q[S_NS-1].cy
+                      + (redo_q[S_NS-1].y ? CELL_W'(dir_val(dir_q[S_NS-1].sy)) : '0)};
+    end
     down19_q <= down18 && !cap18;  // (a capped ray is done: its node is never read again)
     done19_q <= (err18 || iter18) ? nst18.done : st18.done;
   end
@@ -1034,11 +1094,18 @@ module traverse_loop
     stat_q[0] <= admit ? status_t'{crossed: new_ray_i.crossed, prev_cross: new_ray_i.prev_cross,
                                    done: new_ray_i.done, hit: new_ray_i.hit,
                                    invalid: new_ray_i.invalid, capped: new_ray_i.capped,
-                                   err: new_ray_i.err, iters: new_ray_i.iters}
+                                   err: new_ray_i.err, chkx: 1'b0, chky: 1'b0,
+                                   iters: new_ray_i.iters}
                : unpark ? pk_head.stat : stat_q[D-1];
     // S18 -> S19: the next state (only a live ray whose lookup answered changes); a hit's u, v
     // take the place of u0, v0 (no stage reads those again)
     if (err18 || iter18) stat_q[S_TL] <= nst18;
+    if (redo18) begin
+      stat_q[S_TL]      <= st18;
+      stat_q[S_TL].chkx <= 1'b0;
+      stat_q[S_TL].chky <= 1'b0;
+      node_q[S_TL]      <= rn18_q;
+    end
     if (hit18 || down18) t_q[S_TL] <= t_new_q[S_NS];
     if (cross18) begin
       t_q[S_TL]    <= xt_q[S_NS];
@@ -1062,6 +1129,13 @@ module traverse_loop
     if (ok_q[S_XUP] && !in_q[S_XUP]) begin
       cross_q[S_CB] <= cross_up(cfg_i.policy.level_up, cfg_i.n, xpre13_q, prev13_q);
     end
+  end
+
+  // (checker) the slots whose ray has an exit check due, and those whose ray is done
+  logic [D-1:0] chk_v, chk_done;
+  for (genvar g = 0; g < D; g++) begin : g_chk
+    assign chk_v[g]    = v_q[g] && (stat_q[g].chkx || stat_q[g].chky);
+    assign chk_done[g] = stat_q[g].done;
   end
 
   // The block RAM tables: written when a ray enters the ring (new or from the park queue), in

@@ -21,8 +21,10 @@
 //                           whenever a height response arrives (static while rays run);
 //   bdiff_operand_in_range  traverse_bdiff (boundary - u0) takes boundaries in [0, 2^15] and
 //                           positions u0 in [+-0, 2^15) only, where it gives f24_add's word: the
-//                           exit boundaries of a live ray in S1, the child's boundaries of a
-//                           descent in S14.
+//                           exit boundaries of a live ray in S1, the child's entry boundaries of
+//                           a descent in S14;
+//   check_only_live         no ray that is done has an exit check due (chkx, chky: a redo
+//                           moves only a live ray; a descent that finishes, capped, sets none).
 // The park queue (PARK):
 //   park_no_overflow        no ray parks in a full queue (unless the head leaves in that clock);
 //   park_no_underflow       no ray leaves an empty queue;
@@ -81,7 +83,9 @@ module traverse_loop_assert
   input logic [IDX_W-1:0]              kb1_i [2],          // kbx1_q, kby1_q
   input f24_t                          uv1_i [2],          // uv_q[1]
   input logic                          dn14_i,             // dn_q[S_CB]: a descent in S14
-  input logic [IDX_W-1:0]              kb14_i [4],         // kben_x14, kbex_x14, kben_y14, kbex_y14
+  input logic [IDX_W-1:0]              kb14_i [2],         // kben_x14, kben_y14
+  input logic [D-1:0]                  chk_i,              // chk_v: a ray with a check bit set
+  input logic [D-1:0]                  done_i,             // chk_done: ... that is done
   input f24_t                          uv14_i [2],         // uv_q[S_CB]
   input logic [D-1:0]                  v_i,                // v_q: the slots holding a ray
   input logic [ID_W-1:0]               id_i [D],           // id_q: their ids
@@ -247,13 +251,15 @@ module traverse_loop_assert
       bdiff_operand_in_range: assert (
           (!lv1_i || (bound_ok(kb1_i[0]) && bound_ok(kb1_i[1])
                       && pos_ok(uv1_i[0][23:16]) && pos_ok(uv1_i[1][23:16])))
-          && (!dn14_i || (bound_ok(kb14_i[0]) && bound_ok(kb14_i[1]) && bound_ok(kb14_i[2])
-                          && bound_ok(kb14_i[3]) && pos_ok(uv14_i[0][23:16])
-                          && pos_ok(uv14_i[1][23:16]))))
+          && (!dn14_i || (bound_ok(kb14_i[0]) && bound_ok(kb14_i[1])
+                          && pos_ok(uv14_i[0][23:16]) && pos_ok(uv14_i[1][23:16]))))
         else $error("traverse_loop: boundary - u0 operands out of range (S1 %0d %0d %h %h, %s",
                     kb1_i[0], kb1_i[1], uv1_i[0], uv1_i[1],
-                    $sformatf("S14 %0d %0d %0d %0d %h %h)", kb14_i[0], kb14_i[1], kb14_i[2],
-                              kb14_i[3], uv14_i[0], uv14_i[1]));
+                    $sformatf("S14 %0d %0d %h %h)", kb14_i[0], kb14_i[1], uv14_i[0],
+                              uv14_i[1]));
+      check_only_live: assert ((chk_i & done_i) == '0)
+        else $error("traverse_loop: a finished ray still has an exit check due (%b)",
+                    chk_i & done_i);
     end
   end
 
@@ -267,7 +273,7 @@ u_assert (
   .admit_i(admit), .v_last_i(v_q[D-1]), .retire_i(retire), .live_ns_i(live18),
   .st_ns_final_i(st18.hit || st18.invalid || st18.capped || st18.err), .down_tl_i(down19_q),
   .lv1_i(lv_q[1]), .kb1_i('{kbx1_q, kby1_q}), .uv1_i('{uv_q[1].u, uv_q[1].v}),
-  .dn14_i(dn_q[S_CB]), .kb14_i('{kben_x14, kbex_x14, kben_y14, kbex_y14}),
+  .dn14_i(dn_q[S_CB]), .kb14_i('{kben_x14, kben_y14}), .chk_i(chk_v), .done_i(chk_done),
   .uv14_i('{uv_q[S_CB].u, uv_q[S_CB].v}), .v_i(v_q), .id_i(id_q), .bypass_i(bypass),
   .new_id_i, .done_tl_i(done19_q), .res_full_i, .park_i(park), .unpark_i(unpark),
   .pk_cnt_i(pk_cnt), .pk_rd_i(pk_rd), .pk_v_i(pk_v), .pk_id_i(pk_id), .pk_old_i(pk_old),
