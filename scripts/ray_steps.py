@@ -13,8 +13,9 @@ here).  With the f24 engine every float is also shown as its 24-bit pattern (hex
 waves show.  Iteration i of the model is the i-th height lookup of the ray that the cache answered
 with a hit (rs_hit_i = 1): lookups answered with a miss go round again and are not iterations.
 After a descent whose locate moved its estimate one cell on (the model's row has "estimate"), the
-ring reads the estimate once more before the next iteration (its exit check, a redo pass that is
-not an iteration): the expected reads list that read too (expected_reads).
+ring's next lookup reads the estimate (its exit check's redo pass, not an iteration, whether the
+cache answers it with a hit or a miss): expected_reads lists that read too, and match_reads pairs
+each expected read with its lookup.
 --pixel takes the ray the pipeline traces for that pixel of a scene view (the view unit's du, dv
 in the engine's arithmetic, model.view.view_calc).  Bad input: one line, exit status 2.
 """
@@ -131,10 +132,10 @@ def steps(pyr: heightmap.Pyramid, rays: Rays, method: str, engine: str, base: in
 
 
 def expected_reads(steps_: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """The answered height reads the RTL makes for the model's rows, in order: one per row
+    """The height reads the RTL makes for the model's rows, in order: one answered read per row
     (iteration), and before the row after a descent whose locate moved its estimate, the redo's
     read of that estimate (level, cell, address, code of the estimate; the next row's t and
-    iteration; "redo": True)."""
+    iteration; "redo": True): the lookup right after the descent's, answered or not."""
     out: list[dict[str, Any]] = []
     for i, s in enumerate(steps_):
         est = steps_[i - 1].get("estimate") if i else None
@@ -147,6 +148,36 @@ def expected_reads(steps_: list[dict[str, Any]]) -> list[dict[str, Any]]:
 def _what(s: dict[str, Any]) -> str:
     return (f"the redo before iteration {s['iteration']}" if s.get("redo")
             else f"iteration {s['iteration']}")
+
+
+def _answered(lk: dict[str, Any]) -> bool:
+    return bool(lk.get("hit") or lk.get("err"))
+
+
+def match_reads(reads: list[dict[str, Any]], looks: list[dict[str, Any]]
+                ) -> tuple[list[tuple[dict[str, Any], dict[str, Any]]], str | None]:
+    """Pairs each expected read (expected_reads) with the RTL lookup that makes it: an
+    iteration's is the next answered lookup (misses before it go round again), a redo's the next
+    lookup of any answer.  Returns the pairs and None, or the pairs so far and what is missing or
+    left over."""
+    pairs: list[tuple[dict[str, Any], dict[str, Any]]] = []
+    j = 0
+    for r in reads:
+        if not r.get("redo"):
+            while j < len(looks) and not _answered(looks[j]):
+                j += 1
+        if j >= len(looks):
+            n = sum(1 for _, lk in pairs if _answered(lk))
+            return pairs, (f"{_what(r)}: the model reads 0x{r['address']:08x}; the RTL made only "
+                           f"{n} answered lookups")
+        pairs.append((r, looks[j]))
+        j += 1
+    rest = [lk for lk in looks[j:] if _answered(lk)]
+    if rest:
+        lk = rest[0]
+        return pairs, (f"the RTL reads on after the model's {len(reads)} reads: 0x"
+                       f"{lk['address']:08x} at clock {lk['clock']} (time {lk['time']})")
+    return pairs, None
 
 
 def rtl_lookups(fst: Path, scope: str = "TOP.traverse_system.u_unit.") -> list[dict[str, Any]]:
@@ -184,9 +215,11 @@ def rtl_lookups(fst: Path, scope: str = "TOP.traverse_system.u_unit.") -> list[d
 
 
 def ring_states(fst: Path, looks: list[dict[str, Any]],
-                scope: str = "TOP.traverse_system.u_unit.u_loop.") -> list[dict[str, int]] | None:
+                scope: str = "TOP.traverse_system.u_unit.u_loop.",
+                answered_only: bool = True) -> list[dict[str, int]] | None:
     """The ray's state in stage S1's ring registers (node_q[1], t_q[1], stat_q[1].iters) at the
-    clock of each answered lookup (S1 presents the lookup); None when the FST lacks them."""
+    clock of each answered lookup (of every lookup given, with answered_only False: the lookups
+    match_reads paired; S1 presents the lookup); None when the FST lacks them."""
     import pywellen
 
     w = pywellen.Waveform(str(fst))
@@ -197,7 +230,7 @@ def ring_states(fst: Path, looks: list[dict[str, Any]],
         return None
     out = []
     for lk in looks:
-        if not (lk.get("hit") or lk.get("err")):
+        if answered_only and not _answered(lk):
             continue
         row = {}
         for k, n in names.items():
@@ -223,24 +256,19 @@ def _fmt_state(st: dict[str, int]) -> str:
 
 
 def compare_lookups(steps_: list[dict[str, Any]], looks: list[dict[str, Any]]) -> str | None:
-    """None when the RTL's answered lookups read the expected addresses and codes in order
-    (steps_: expected_reads of the model's rows), else the first difference."""
-    read = [lk for lk in looks if lk.get("hit") or lk.get("err")]
-    for i, s in enumerate(steps_):
-        if i >= len(read):
-            return f"{_what(s)}: the model reads 0x{s['address']:08x}; the RTL " \
-                   f"made only {len(read)} answered lookups"
-        lk = read[i]
-        if lk["address"] != s["address"] or lk["code"] != s["code"] or lk.get("err"):
+    """None when the RTL's lookups read the expected addresses in order (steps_: expected_reads
+    of the model's rows; paired by match_reads), with the expected codes where answered (an
+    iteration's always), else the first difference."""
+    pairs, short = match_reads(steps_, looks)
+    for s, lk in pairs:
+        code_ok = (not _answered(lk)) or lk.get("code") == s["code"]
+        if lk["address"] != s["address"] or not code_ok or lk.get("err"):
+            ans = ("a miss" if not _answered(lk) else
+                   f"code 0x{lk['code']:x}{', error' if lk.get('err') else ''}")
             return (f"{_what(s)}: the model reads 0x{s['address']:08x} (code "
-                    f"0x{s['code']:x}), the RTL 0x{lk['address']:08x} (code 0x{lk['code']:x}"
-                    f"{', error' if lk.get('err') else ''}) at clock {lk['clock']} "
-                    f"(time {lk['time']})")
-    if len(read) > len(steps_):
-        lk = read[len(steps_)]
-        return (f"the RTL reads on after the model's {len(steps_)} reads: 0x"
-                f"{lk['address']:08x} at clock {lk['clock']} (time {lk['time']})")
-    return None
+                    f"0x{s['code']:x}), the RTL 0x{lk['address']:08x} ({ans}) at clock "
+                    f"{lk['clock']} (time {lk['time']})")
+    return short
 
 
 def fmt_val(x: float, f24_engine: bool) -> str:
@@ -358,19 +386,23 @@ def main(argv: list[str] | None = None) -> int:
                   f"state in S{NEXT_STAGE} at c + {NEXT_STAGE - 1}):", file=out)
             print(f"{'clock':>6} {'time':>6} {'address':>10}  answer", file=out)
             reads = expected_reads(rec)
-            it = 0
+            pairs, _ = match_reads(reads, looks)
+            made = {id(lk): r for r, lk in pairs}
             for lk in looks:
                 ans = ("error" if lk.get("err") else f"hit {lk['code']:#06x}" if lk.get("hit")
-                       else "miss (goes round again)" if "hit" in lk else "(no answer)")
-                if lk.get("hit") or lk.get("err"):
-                    ans += ("  = " + _what(reads[it]) if it < len(reads) else "  (not expected)")
-                    it += 1
+                       else "miss" if "hit" in lk else "(no answer)")
+                if id(lk) in made and made[id(lk)].get("redo"):
+                    ans += "  = " + _what(made[id(lk)]) + " (locate's exit check)"
+                elif id(lk) in made:
+                    ans += "  = " + _what(made[id(lk)])
+                elif "hit" in lk and not lk.get("hit"):
+                    ans += " (goes round again)"
                 print(f"{lk['clock']:>6} {lk['time']:>6} {lk['address']:>#10x}  {ans}", file=out)
-            states = ring_states(args.waves, looks)
+            states = ring_states(args.waves, [lk for _, lk in pairs], answered_only=False)
             if states is not None:
                 sdiff = compare_states(reads, states)
-                print("state: at each answered lookup (clock c), S1's ring registers u_loop."
-                      "node_q[1] (k, cx, cy), t_q[1] and stat_q[1].iters hold the row's level, "
+                print("state: at each answered lookup and each redo's (clock c), S1's ring "
+                      "registers u_loop.node_q[1] (k, cx, cy), t_q[1] and stat_q[1].iters hold the row's level, "
                       "cell, t and iteration - 1 (the registers move one stage a clock: stage "
                       f"s at c + s - 1; S{NEXT_STAGE} loads stage {NEXT_STAGE + 1} with the next row's at "
                       f"c + {NEXT_STAGE - 1}): "

@@ -16,7 +16,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from model import f24, heightmap, traverse
+from model import f24, heightmap, scenes, traverse
+from model.rays import Rays
 from tb.common.traverse_stimulus import adversarial_rays, height_field
 from tb.harness import traverse_system
 
@@ -150,7 +151,9 @@ def test_bench_rtl_small(harness: None, tmp_path) -> None:
         for key in ("cold", "warm"):
             c = r[key]
             assert c["iterations"] == r["iterations"] and c["mismatches"] == 0
-            assert c["height_cache_hits"] == c["iterations"]  # a lookup that hit = an iteration
+            # a lookup that hit: an iteration, or a redo of locate's exit check (one per
+            # relocation at most)
+            assert c["iterations"] <= c["height_cache_hits"] <= c["iterations"] + r["relocations"]
             assert r[f"clk_per_iter_{key}"] == pytest.approx(c["cycles"] / c["iterations"])
         # a 32x32 pyramid (1,408 bytes) fits the cache: the warm run reads nothing from memory
         assert r["warm"]["mem_bytes"] == 0 and r["cold"]["mem_bytes"] > 0
@@ -237,3 +240,40 @@ def test_ray_steps_waves_state(tmp_path) -> None:
     assert ray_steps.compare_states(rows, states) is None
     rows[-1]["cx"] += 1
     assert f"iteration {len(rows)}" in ray_steps.compare_states(rows, states)
+
+
+def test_ray_steps_waves_redo(tmp_path) -> None:
+    """A ray whose descent's locate moves its estimate one cell on (found by the model's
+    `relocate` count): the ring reads the estimate once more before the next iteration (the
+    redo of locate's exit check), and ray_steps' expected reads, checked against the waves,
+    have that read in its place."""
+    import subprocess
+    import sys
+
+    from scripts import ray_steps
+
+    ray = ("10.3", "43.9", "-16.5", "20.5")
+    pyr = heightmap.build(scenes.load_scene("rocks", 64).heights)
+    rays = Rays(*(np.array([float(x)]) for x in ray))
+    st: dict[str, int] = {}
+    res = traverse.trace(pyr, rays, "park", "f24", stats=st)
+    assert st.get("relocate") == 1, st
+    fst = tmp_path / "redo.fst"
+    p = subprocess.run([sys.executable, str(traverse_system.ROOT / "scripts" / "ray_steps.py"),
+                        "--scene", "rocks", "--map-size", "64", "--ray", *ray, "--method", "park",
+                        "--waves", str(fst)], capture_output=True, text=True)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "identical to the model" in p.stdout
+    assert "lookups: the RTL reads the model's addresses and codes in order" in p.stdout
+    assert p.stdout.split("state: ")[1].splitlines()[0].endswith(": yes")
+    assert "= the redo before iteration 7 (locate's exit check)" in p.stdout
+    # the RTL's lookups against the model's rows: the redo reads the estimate right after the
+    # descent's lookup; without it in the expected reads, the lookups differ there
+    rec, _, _ = ray_steps.steps(pyr, rays, "park", "f24", ray_steps.DEFAULT_BASE)
+    looks = ray_steps.rtl_lookups(fst)
+    assert len(rec) == int(res.iterations[0])
+    reads = ray_steps.expected_reads(rec)
+    assert ray_steps.compare_lookups(reads, looks) is None
+    redo = next(r for r in reads if r.get("redo"))
+    redo["address"] -= 1  # (the corrected cell, one on towards -u: read without the redo)
+    assert "the redo before iteration 7" in ray_steps.compare_lookups(reads, looks)

@@ -93,7 +93,14 @@ def test_frame_equals_model(case: int, harness: Path, rng: np.random.Generator) 
     assert 4 * st["texture_quad_hits"] <= th <= 4 * req
     assert st["texture_line_misses"] <= 4 * req - th
     assert st["texture_cache_hit_rate"] == pytest.approx(th / max(4 * req, 1), abs=1e-6)
-    assert st["height_cache_hits"] == st["iterations"]  # a lookup that hit = an iteration
+    # a lookup that hit: an iteration, or a redo of locate's exit check (one per relocation the
+    # model counts, at most)
+    _, inp = shade.pixel_inputs(cam)
+    mst: dict[str, int] = {}
+    traverse.trace(frame.pyr, shade.pixel_rays(frame, inp)[0], frame.method, frame.engine,
+                   stats=mst)
+    assert (st["iterations"] <= st["height_cache_hits"]
+            <= st["iterations"] + mst.get("relocate", 0))
     assert st["mem_bytes"] == st["height_mem_bytes"] + st["texture_mem_bytes"]
     assert st["height_mem_bytes"] == st["axi_h_bytes"]
     assert st["texture_mem_bytes"] == st["axi_t_bytes"]

@@ -660,6 +660,14 @@ def test_ray_steps_expected_reads():
              for c, a, k in ((10, 0x100, 5), (30, 0x180, 9), (50, 0x184, 7))]
     assert ray_steps.compare_lookups(reads, looks) is None
     assert "the redo before iteration 2" in ray_steps.compare_lookups(reads, looks[:1] + looks[2:])
+    # the redo's lookup is the one after the descent's, whatever the cache answers; the
+    # iteration's is the next answered one
+    looks[1].update(hit=False, code=0)
+    looks.insert(2, {"clock": 40, "time": 80, "address": 0x184, "hit": False, "err": False,
+                     "code": 0})
+    pairs, short = ray_steps.match_reads(reads, looks)
+    assert short is None and [lk["clock"] for _, lk in pairs] == [10, 30, 50]
+    assert ray_steps.compare_lookups(reads, looks) is None
     states = [{"level": 2, "cx": 1, "cy": 1, "t": 0, "iters": 0},
               {"level": 1, "cx": 2, "cy": 3, "t": 0x3d0000, "iters": 1},
               {"level": 1, "cx": 3, "cy": 3, "t": 0x3d0000, "iters": 1}]

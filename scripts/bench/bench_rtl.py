@@ -29,7 +29,8 @@ prints the table; the README's performance table comes from it.
 
 Definitions: clocks/iteration = clocks from the first ray in to the last result out / height reads
 that returned data (the unit's iterations).  lookup hit rate = lookups that hit / all lookups
-(a ray whose read missed retries on its next pass, so one miss costs several lookups).  fills per
+(a ray whose read missed retries on its next pass, so one miss costs several lookups; a redo of
+locate's exit check, `relocations` in the JSON, reads once more too).  fills per
 iteration = cache-line fills / iterations; 1 - that is the share of height reads served without
 memory traffic (the figure comparable to the paper's "cache hit rate").
 """
@@ -69,8 +70,11 @@ def compare(res: Any, ref: Any) -> int:
 
 def run_case(pyr: heightmap.Pyramid, rays: Any, method: str, latency: int,
              park: bool = False, params: dict[str, int] | None = None) -> dict[str, Any]:
-    ref = traverse.trace(pyr, rays, method, "f24")
-    row: dict[str, Any] = {"rays": len(rays), "iterations": int(ref.iterations.sum())}
+    mst: dict[str, int] = {}
+    ref = traverse.trace(pyr, rays, method, "f24", stats=mst)
+    # (relocations: the ring's redos of locate's exit check, one height read more each)
+    row: dict[str, Any] = {"rays": len(rays), "iterations": int(ref.iterations.sum()),
+                           "relocations": mst.get("relocate", 0)}
     for warm in (False, True):
         res, st = traverse_system.trace_rtl(pyr, rays, method, latency=latency, warm=warm,
                                              park=park, params=params)
