@@ -136,7 +136,8 @@
 // and picking one in parallel, took a ring of 18 and two f24_mul, two f24_add more per axis pair.)
 //
 // Lookup misses: the ray keeps its state and goes round again; the iteration is not counted
-// (iterations = height reads that returned data).  A read error finishes the ray with err = 1.
+// (iterations = height reads that returned data, a redo's excepted: below).  A read error
+// finishes the ray with err = 1.
 //
 // Locate's exit check: locate (model/traverse.py) corrects a descent's estimate by one cell with
 // the crossing times of its two edges: one back when t is before its entry, one on when t is at
@@ -230,7 +231,8 @@ module traverse_loop
   input  logic              rs_err_i,
   input  logic [CODE_W-1:0] rs_data_i,
   // statistics strobes (one clock each) and occupancy
-  output logic              st_iter_o,   // an iteration (a height read that returned data)
+  output logic              st_iter_o,   // an iteration (a height read that returned data;
+                                         // not a redo's)
   output logic              st_down_o,   // ... that descended
   output logic              st_cross_o,  // ... that crossed to a neighbour
   output logic              st_up_o,     // ... that crossed and went up a level
@@ -294,7 +296,7 @@ module traverse_loop
     logic              err;
     logic              chkx, chky; // the node is a descent's estimate whose exit crossing time
                                    // on x / y is still to be compared with t (next pass, S_EXIT)
-    logic [ITER_W-1:0] iters;      // height reads that returned data
+    logic [ITER_W-1:0] iters;      // height reads that returned data (not a redo's)
   } status_t;
   typedef struct packed {
     f24_t     t;                   // a time

@@ -155,7 +155,7 @@ package traverse_pkg;
     f24_t              t;              // time the ray is at (hit time once done with a hit)
     logic              crossed;        // has crossed a node (multi-level descent stops)
     logic              prev_cross;     // the last iteration was a crossing without level-up
-    logic [ITER_W-1:0] iters;          // height reads that returned data
+    logic [ITER_W-1:0] iters;          // height reads that returned data (iterations)
     // status
     logic done;                        // finished: waits for the result FIFO
     logic hit;
