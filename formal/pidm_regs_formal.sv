@@ -39,6 +39,19 @@
 //             written bit one clock, then 0.  Every clock each tracked register's field values
 //             (hwif_out, or the block's storage where the field has no hardware output) equal
 //             their shadow (field_match): writes to the other addresses leave them alone.
+//             TEX[1].LEVEL_SIZE[15] is an external register (TEX[x].LEVEL_OFF / LEVEL_SIZE are
+//             not stored in the block: pidm_cfg passes each write on as a write of dm_pipeline's
+//             texture level tables, lvt_*): its "field" is the wrapper's model of the table
+//             entry {1, 1, 15} that pidm_cfg's lvt_* writes build (lvt_entry_q; in the clock of
+//             a write to it, the word written).
+//   level     the 64 external registers TEX[x].LEVEL_OFF[k] / LEVEL_SIZE[k]: a request strobe
+//   tables    (hwif_out .req) exactly in the clock a write to one is committed, never two at once
+//             (lvt_req_one, lvt_req_commit); no external access outstanding (ext_idle: they are
+//             acknowledged at once); lvt_we_o exactly the clock after such a commit (lvt_we_next)
+//             with lvt_waddr_o = {kind, x, k} of the address written and lvt_wdata_o the word
+//             written (lvt_fields); every write answered by the core in its commit clock, a
+//             level-table write by pidm_cfg's acknowledge (wr_ack_commit: also a lemma that
+//             keeps the induction short, 40 to 55 s of process time instead of 80 to 155).
 //   reads     a read of a tracked readable register returns its shadow (reserved bits 0), of
 //             any word of the write-only tables (HEIGHT / TEX[x] / PYR LEVEL_OFF, TEX[x].
 //             LEVEL_SIZE) 0, of ID / VERSION
@@ -90,6 +103,7 @@ module pidm_regs_formal (
   logic [31:0] rdata;
   pidm_regs_pkg::pidm_regs__in_t  hwif_in;
   pidm_regs_pkg::pidm_regs__out_t hwif_out;
+  pidm_regs_pkg::pidm_regs__TEXx__in_t hwif_in_tex [2];   // from pidm_cfg, as in pidm_top
 
   pidm_regs u_dut (
     .clk(clk_i), .rst_n(rst_ni),
@@ -148,17 +162,22 @@ module pidm_regs_formal (
     hwif_in.STATS.t_texel_hits.HI.val.next  = stats_i[9][47:32];
     hwif_in.STATS.t_bytes.LO.val.next       = stats_i[10][31:0];
     hwif_in.STATS.t_bytes.HI.val.next       = stats_i[10][47:32];
+    for (int x = 0; x < 2; x++) hwif_in.TEX[x] = hwif_in_tex[x];
   end
 
-  // pidm_cfg as the system top wires it (its outputs are checked by its bound properties)
+  // pidm_cfg as the system top wires it (its triangle-table outputs are checked by its bound
+  // properties, its level-table outputs below)
+  logic                              lvt_we;
+  logic [pipe_pkg::LVT_ADDR_W-1:0]   lvt_waddr;
+  logic [31:0]                       lvt_wdata;
   /* verilator lint_off PINCONNECTEMPTY */
   pidm_cfg #(.TRIS(16)) u_cfg (
     .clk_i, .rst_ni, .hwif_i(hwif_out), .cfg_method_o(), .cfg_width_o(), .cfg_height_o(),
     .cfg_root_level_o(), .cfg_bits16_o(), .cfg_base_o(), .cfg_level_off_o(), .cfg_root_code_o(),
     .cfg_iter_cap_o(), .cfg_depth_o(), .cfg_mip_en_o(), .cfg_levels_colour_o(),
     .cfg_levels_normal_o(), .cfg_shade_o(), .cfg_miss_rgb_o(), .cfg_tex_su_o(), .cfg_tex_sv_o(),
-    .cfg_tex_width_o(), .cfg_tex_height_o(), .cfg_tex_base_o(), .cfg_tex_level_off_o(),
-    .tt_we_o(), .tt_waddr_o(), .tt_wdata_o());
+    .cfg_tex_base_o(), .tt_we_o(), .tt_waddr_o(), .tt_wdata_o(), .lvt_we_o(lvt_we),
+    .lvt_waddr_o(lvt_waddr), .lvt_wdata_o(lvt_wdata), .hwif_tex_o(hwif_in_tex));
   /* verilator lint_on PINCONNECTEMPTY */
 
   // ---------------------------------------------------------------------------------------
@@ -331,7 +350,8 @@ module pidm_regs_formal (
       8:  return 12'h33C;   // SHADE.D2              RW f24 [23:0]
       9:  return 12'h400;   // TEX[0].SU             RW f24
       10: return 12'h508;   // TEX[1].BASE           RW 32 bits
-      11: return 12'h5BC;   // TEX[1].LEVEL_SIZE[15] W width, height (write-only)
+      11: return 12'h5BC;   // TEX[1].LEVEL_SIZE[15] W width, height (write-only, external:
+                            //   the level table entry {1, 1, 15} pidm_cfg writes)
       12: return 12'h100;   // TT_WRITE              RW data[23:0], addr[31:24] (swmod)
       13: return 12'h024;   // INTR_ENABLE           RW [2:0] (no hardware output)
       14: return 12'h018;   // ERROR                 W1C [8:0], hardware set
@@ -371,6 +391,34 @@ module pidm_regs_formal (
     endcase
   endfunction
 
+  // The texture level tables (external registers TEX[x].LEVEL_OFF[k], LEVEL_SIZE[k]): a write
+  // committed to one is lvt_waddr {kind, x, k} = {addr[7], addr[8], addr[5:2]}.
+  function automatic logic lvt_reg(logic [11:0] a);
+    return (a[11:8] == 4'h4 || a[11:8] == 4'h5) && (a[7:6] == 2'b01 || a[7:6] == 2'b10);
+  endfunction
+
+  logic [1:0][15:0] off_req, size_req;    // the block's external request strobes
+  for (genvar x = 0; x < 2; x++) begin : g_ext
+    for (genvar k = 0; k < 16; k++) begin : g_k
+      assign off_req[x][k]  = hwif_out.TEX[x].LEVEL_OFF[k].req;
+      assign size_req[x][k] = hwif_out.TEX[x].LEVEL_SIZE[k].req;
+    end
+  end
+
+  logic        lvt_wr_q;                  // the clock before committed a level-table write
+  logic [5:0]  lvt_idx_q;                 // its {kind, x, k}
+  logic [31:0] lvt_data_q;                // its word
+  logic [31:0] lvt_entry_q;               // the model of table entry {1, 1, 15}
+  logic [31:0] lvt_entry;                 // ... with this clock's write to it
+  always_ff @(posedge clk_i) begin
+    lvt_wr_q   <= rst_ni && wr_commit && lvt_reg(aw_addr);
+    lvt_idx_q  <= {aw_addr[7], aw_addr[8], aw_addr[5:2]};
+    lvt_data_q <= w_data;
+    if (!rst_ni) lvt_entry_q <= '0;
+    else         lvt_entry_q <= lvt_entry;
+  end
+  assign lvt_entry = (lvt_we && lvt_waddr == 6'h3F) ? lvt_wdata : lvt_entry_q;
+
   // Each tracked register's fields at their RDL bit positions (0 elsewhere).
   logic [31:0] view  [NT];
   logic [31:0] hwset [NT];   // bits the hardware sets (W1C registers)
@@ -390,8 +438,7 @@ module pidm_regs_formal (
     view[8]  = {8'b0, hwif_out.SHADE.D2.val.value};
     view[9]  = {8'b0, hwif_out.TEX[0].SU.val.value};
     view[10] = hwif_out.TEX[1].BASE.val.value;
-    view[11] = {hwif_out.TEX[1].LEVEL_SIZE[15].height.value,
-                hwif_out.TEX[1].LEVEL_SIZE[15].width.value};
+    view[11] = lvt_entry;
     view[12] = {hwif_out.TT_WRITE.addr.value, hwif_out.TT_WRITE.data.value};
     // INTR_ENABLE and INTR_STATE have no hardware outputs but the interrupt line: their storage
     view[13] = {29'b0, u_dut.field_storage.INTR_ENABLE.pyr_done.value,
@@ -532,9 +579,10 @@ module pidm_regs_formal (
     end
   end
 
-  logic wr_commit_q, intr_q;   // for the covers
+  logic wr_commit_q, intr_q, lvt_we_q;   // for the covers
   always_ff @(posedge clk_i) begin
     wr_commit_q <= wr_commit;
+    lvt_we_q    <= rst_ni && lvt_we;
     intr_q      <= rst_ni && hwif_out.INTR_STATE.intr;
   end
 
@@ -587,6 +635,15 @@ module pidm_regs_formal (
       front_entries: assert (entries_match);
       // --- registers ---
       tt_swmod:      assert (hwif_out.TT_WRITE.data.swmod == wr_sel[T_TT]);
+      // --- the texture level tables (external registers, pidm_cfg's lvt_* port) ---
+      lvt_req_one:    assert ($onehot0({off_req, size_req}));
+      lvt_req_commit: assert ((|{off_req, size_req}) == (wr_commit && lvt_reg(aw_addr)));
+      ext_idle:       assert (!u_dut.external_pending && !u_dut.readback_external_rd_ack);
+      // a write is answered in its commit clock (an external one by pidm_cfg's acknowledge)
+      wr_ack_commit:  assert (u_dut.cpuif_wr_ack == wr_commit
+                              && u_dut.external_wr_ack == (wr_commit && lvt_reg(aw_addr)));
+      lvt_we_next:    assert (lvt_we == lvt_wr_q);
+      lvt_fields:     assert (!lvt_we || (lvt_waddr == lvt_idx_q && lvt_wdata == lvt_data_q));
       intr_line:     assert (hwif_out.INTR_STATE.intr
                              == |(shadow[T_STATE][2:0] & shadow[T_ENABLE][2:0]));
       test_sets_state: assert ((view[T_STATE][2:0] & test_q) == test_q);
@@ -603,6 +660,8 @@ module pidm_regs_formal (
       c_interrupt:     cover (hwif_out.INTR_STATE.intr && !intr_q);
       c_hw_wins:       cover (wr_sel[T_ERROR] && error_set_i[0] && shadow[T_ERROR][0] && w_data[0]);
       c_wo_read:       cover (rd_commit && write_only(ar_addr));
+      c_lvt_write:     cover (lvt_we && lvt_waddr == 6'h3F && lvt_wdata != '0);
+      c_lvt_back_to_back: cover (lvt_we && lvt_we_q);
     end
   end
 

@@ -625,17 +625,14 @@ typedef struct __attribute__ ((__packed__)) {
 #define PIDM_REGS__TEXX__LEVEL_OFFX__VAL_bm 0xffffffff
 #define PIDM_REGS__TEXX__LEVEL_OFFX__VAL_bp 0
 #define PIDM_REGS__TEXX__LEVEL_OFFX__VAL_bw 32
-#define PIDM_REGS__TEXX__LEVEL_OFFX__VAL_reset 0x0
 
 // reg - pidm_regs.TEX[].LEVEL_SIZE[]
 #define PIDM_REGS__TEXX__LEVEL_SIZEX__WIDTH_bm 0xffff
 #define PIDM_REGS__TEXX__LEVEL_SIZEX__WIDTH_bp 0
 #define PIDM_REGS__TEXX__LEVEL_SIZEX__WIDTH_bw 16
-#define PIDM_REGS__TEXX__LEVEL_SIZEX__WIDTH_reset 0x0
 #define PIDM_REGS__TEXX__LEVEL_SIZEX__HEIGHT_bm 0xffff0000
 #define PIDM_REGS__TEXX__LEVEL_SIZEX__HEIGHT_bp 16
 #define PIDM_REGS__TEXX__LEVEL_SIZEX__HEIGHT_bw 16
-#define PIDM_REGS__TEXX__LEVEL_SIZEX__HEIGHT_reset 0x0
 
 // regfile - pidm_regs.TEX[]
 typedef struct __attribute__ ((__packed__)) {

@@ -36,10 +36,11 @@ def test_config_writes_round_trip_to_the_ports(scene):
     frame, _, packed = scene
     cfg = pipeline_words.config(frame, pipeline_words.HEIGHT_BASE, pipeline_words.COLOUR_BASE,
                                 dm_pipeline._normal_base(frame))
-    ports, tri = pidm_frame.ports_from_writes(packed.config)
+    ports, tri, lvt = pidm_frame.ports_from_writes(packed.config)
     for name, _bits in dm_pipeline.CFG_PORTS:
         assert ports[name] == cfg.ports[name], name
     assert tri == cfg.tri_writes and len(tri) == 2 * len(frame.log2pb_colour)
+    assert lvt == cfg.lvt_writes and len(lvt) == 2 * 2 * pipeline_words.TEX_LEVELS
     # every configuration register is written once, in address order, then the table
     addrs = [a for a, _ in packed.config]
     tt = pidm_regmap.reg("TT_WRITE").addr
@@ -51,10 +52,14 @@ def test_config_writes_round_trip_to_the_ports(scene):
 
 
 def test_a_changed_port_changes_the_writes(scene):
-    """The inverse is not trivially the identity: one port bit moves one register."""
+    """The inverse is not trivially the identity: one bit of a level-table write moves one
+    register."""
     frame, _, packed = scene
     cfg = dm_pipeline.frame_image(frame).cfg
-    cfg.ports["cfg_tex_level_off_i"] ^= 1 << (16 * 32 + 3 * 32 + 6)   # TEX[1].LEVEL_OFF[3] bit 6
+    i = cfg.lvt_writes.index(next(w for w in cfg.lvt_writes
+                                  if w[0] == pipeline_words.lvt_addr(False, 1, 3)))
+    a, d = cfg.lvt_writes[i]
+    cfg.lvt_writes[i] = (a, d ^ 64)                                       # TEX[1].LEVEL_OFF[3] bit 6
     diff = [(a, v, w) for (a, v), (_, w) in zip(packed.config, pidm_frame.config_writes(cfg))
             if v != w]
     assert diff == [(pidm_regmap.reg("TEX[1].LEVEL_OFF[3]").addr, diff[0][1], diff[0][1] ^ 64)]

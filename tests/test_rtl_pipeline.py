@@ -187,10 +187,15 @@ def test_input_file_checks(harness: Path, tmp_path: Path) -> None:
     dm_pipeline.write_input(path, fi, words)
     raw = path.read_bytes()
     head = np.frombuffer(raw[:64], dtype="<u4")
-    assert raw[:8] == b"PIPHIN01" and list(head[2:5]) == [1, 64, len(dm_pipeline.CFG_PORTS)]
+    assert raw[:8] == b"PIPHIN01" and list(head[2:5]) == [2, 64, len(dm_pipeline.CFG_PORTS)]
     assert head[7] == len(words) and head[8] == pipeline_words.HEIGHT_BASE
     assert head[9] == len(fi.cfg.height[1]) and head[10] == fi.tex_base
     assert head[11] == len(fi.tex_image) and head[12] == 16
+    # the level-table writes follow the triangle table's: both textures' offsets and sizes
+    assert head[13] == len(fi.cfg.lvt_writes) == 4 * pipeline_words.TEX_LEVELS
+    at = 64 + 4 * int(head[5]) + 8 * int(head[6])
+    lvt = np.frombuffer(raw[at:at + 8 * int(head[13])], dtype="<u4").reshape(-1, 2)
+    assert [tuple(int(x) for x in w) for w in lvt] == fi.cfg.lvt_writes
     cfg = np.frombuffer(raw[64:64 + 4 * int(head[5])], dtype="<u4")
     assert cfg[0] == 4 and cfg[1] == fi.cfg.ports["cfg_method_i"]   # first port: bits, value
     assert raw.endswith(words.astype("<u4").tobytes())

@@ -2,7 +2,7 @@
 // dm_pipeline_fpga_top: dm_pipeline with a pin count that fits an FPGA package, for place and
 // route (scripts/flow/synth.py, `make synth`).  Not used by the simulations.
 //
-// dm_pipeline has about 4,000 port bits (the configuration alone is ~2,900); an LFE5U-85F has at
+// dm_pipeline has about 2,000 port bits (the configuration alone about 1,100); an LFE5U-85F has at
 // most 365 user I/Os (CABGA756).  This wrapper keeps both AXI4 read ports as they are (252 pins)
 // and replaces the configuration, fragment, pixel and statistics ports by a 32-bit register
 // port: every configuration field, the fragment fields, the triangle table and the control
@@ -31,6 +31,7 @@
 //   0x20 + k            height level offset k (k = 0 .. 15)
 //   0x40 + 16 x + k     texture x level k offset
 //   0x60 + 16 x + k     texture x level k: [15:0] width, [31:16] height
+//         (0x40 .. 0x7F go straight to dm_pipeline's texture level tables, lvt_*: no register here)
 //   0x80  [PIX_W-1:0] fragment id     0x81 u0   0x82 v0   0x83 Pl0   0x84 [TRI_W-1:0] triangle
 //   0x85 .. 0x8D  TBN (T 0..2, B 3..5, N 6..8)     0x8E .. 0x90  view vector
 //   0x91  control, write 1 to: [0] push the fragment (waits in the register until accepted),
@@ -126,9 +127,11 @@ module dm_pipeline_fpga_top
   f24_t [7:0]                        cfg_shade_q;     // [7] light_x .. [0] d2 (shade_cfg_t order)
   logic [2:0][7:0]                   cfg_miss_rgb_q;
   f24_t [1:0]                        cfg_tex_su_q, cfg_tex_sv_q;
-  logic [1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0]  cfg_tex_width_q, cfg_tex_height_q;
   logic [1:0][TEX_ADDR_W-1:0]                 cfg_tex_base_q;
-  logic [1:0][TEX_LEVELS-1:0][TEX_ADDR_W-1:0] cfg_tex_level_off_q;
+  // The texture level tables are dm_pipeline's (LUT RAM): the words 0x40 .. 0x7F are its lvt_*
+  // writes, word address {kind, texture, level} = reg_addr_i[5:0].
+  logic lvt_we;
+  assign lvt_we = we_q && addr_q[7:6] == 2'b01;
 
   // fragment registers
   logic [PIX_W-1:0] frag_id_q;
@@ -176,16 +179,6 @@ module dm_pipeline_fpga_top
           default: ;
         endcase
         4'h2: cfg_level_off_q[a_lo] <= wdata_q;
-        4'h4: cfg_tex_level_off_q[0][a_lo] <= wdata_q;
-        4'h5: cfg_tex_level_off_q[1][a_lo] <= wdata_q;
-        4'h6: begin
-          cfg_tex_width_q[0][a_lo]  <= wdata_q[15:0];
-          cfg_tex_height_q[0][a_lo] <= wdata_q[31:16];
-        end
-        4'h7: begin
-          cfg_tex_width_q[1][a_lo]  <= wdata_q[15:0];
-          cfg_tex_height_q[1][a_lo] <= wdata_q[31:16];
-        end
         4'h8: case (a_lo)
           4'h0: frag_id_q  <= wdata_q[PIX_W-1:0];
           4'h1: frag_u0_q  <= wdata_q[23:0];
@@ -290,8 +283,8 @@ module dm_pipeline_fpga_top
     .cfg_levels_colour_i(cfg_levels_colour_q), .cfg_levels_normal_i(cfg_levels_normal_q),
     .cfg_shade_i(shade_cfg_t'(cfg_shade_q)), .cfg_miss_rgb_i(cfg_miss_rgb_q),
     .cfg_tex_su_i(cfg_tex_su_q), .cfg_tex_sv_i(cfg_tex_sv_q),
-    .cfg_tex_width_i(cfg_tex_width_q), .cfg_tex_height_i(cfg_tex_height_q),
-    .cfg_tex_base_i(cfg_tex_base_q), .cfg_tex_level_off_i(cfg_tex_level_off_q),
+    .cfg_tex_base_i(cfg_tex_base_q),
+    .lvt_we_i(lvt_we), .lvt_waddr_i(addr_q[LVT_ADDR_W-1:0]), .lvt_wdata_i(wdata_q),
     .tt_we_i(tt_we_q), .tt_waddr_i(tt_waddr_q), .tt_wdata_i(tt_wdata_q),
     .frag_valid_i(frag_valid_q), .frag_ready_o(frag_ready), .frag_id_i(frag_id_q),
     .frag_u0_i(frag_u0_q), .frag_v0_i(frag_v0_q), .frag_pl0_i(frag_pl0_q),

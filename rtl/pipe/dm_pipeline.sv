@@ -106,10 +106,13 @@ module dm_pipeline
   // textures: [0] colour, [1] normal map
   input  f24_t [1:0]                           cfg_tex_su_i,
   input  f24_t [1:0]                           cfg_tex_sv_i,
-  input  logic [1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0] cfg_tex_width_i,
-  input  logic [1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0] cfg_tex_height_i,
   input  logic [1:0][TEX_ADDR_W-1:0]           cfg_tex_base_i,
-  input  logic [1:0][TEX_LEVELS-1:0][TEX_ADDR_W-1:0] cfg_tex_level_off_i,
+  // texture level tables (tex_addr, LUT RAM; not reset, static while busy): write lvt_wdata_i
+  // into word lvt_waddr_i = {kind, texture, level}: kind 0 the level's byte offset from
+  // cfg_tex_base_i (Texture.level_offsets), 1 its size {height [31:16], width [15:0]}
+  input  logic                                 lvt_we_i,
+  input  logic [LVT_ADDR_W-1:0]                lvt_waddr_i,
+  input  logic [31:0]                          lvt_wdata_i,
   // triangle table (log2 Pb per triangle and texture)
   input  logic                                 tt_we_i,
   input  logic [TRI_W:0]                       tt_waddr_i,
@@ -427,9 +430,8 @@ module dm_pipeline
 
   tex_addr #(.TAG_W(SLOT_W + 1), .ADDR_W(TEX_ADDR_W), .NTEX(2)) u_addr (
     .clk_i, .rst_ni, .en_i(1'b1),
-    .cfg_su_i(cfg_tex_su_i), .cfg_sv_i(cfg_tex_sv_i), .cfg_width_i(cfg_tex_width_i),
-    .cfg_height_i(cfg_tex_height_i), .cfg_base_i(cfg_tex_base_i),
-    .cfg_level_off_i(cfg_tex_level_off_i),
+    .cfg_su_i(cfg_tex_su_i), .cfg_sv_i(cfg_tex_sv_i), .cfg_base_i(cfg_tex_base_i),
+    .lvt_we_i, .lvt_waddr_i, .lvt_wdata_i,
     .valid_i(ta_in_valid), .tag_i({mip_tag[MIP_TAG_W-1 -: SLOT_W], nl_valid_q}),
     .tex_i(nl_valid_q), .u_i(mip_tag[47:24]), .v_i(mip_tag[23:0]), .level_i(ta_in_lvl),
     .valid_o(ta_valid), .tag_o({ta_slot, ta_tex}), .addr00_o(ta_a00), .addr01_o(ta_a01),

@@ -29,20 +29,26 @@
 // conventions of view_calc otherwise: every register advances only while en_i is 1 (the
 // enclosing pipeline's stall), valid is reset by rst_ni (synchronous, active low), data
 // registers have no reset; a lookup taken on an enabled edge with valid_i = 1 shows at the
-// outputs after LAT enabled edges and holds while en_i is 0.  Configuration (cfg_*) must be
-// static while busy.
+// outputs after LAT enabled edges and holds while en_i is 0.  Configuration (cfg_* and the level
+// tables) must be static while busy.
 //
 // Configuration of each of NTEX textures (model.texture.Texture; index t of every cfg_* array is
-// texture t): su, sv = Texture.scale_for (engine words), per level k < TEX_LEVELS its width W_k
-// and height H_k (1 .. 32768; level_sizes), the base byte address and per-level byte offsets
-// (Texture.level_offsets).  Only levels 0 .. levels - 1 of a texture are meaningful: level_i
-// comes from mip_level, clamped to levels - 1 <= TEX_LEVELS - 1 (a level_i above TEX_LEVELS - 1
-// is read as TEX_LEVELS - 1).
+// texture t): su, sv = Texture.scale_for (engine words) and the base byte address on ports; per
+// level k < TEX_LEVELS its byte offset from the base (Texture.level_offsets) and its width W_k
+// and height H_k (1 .. 32768; level_size) in the level tables, two memories of NTEX x
+// TEX_LEVELS words in LUT RAM written through the lvt_* port, one word per clock with
+// lvt_we_i = 1 (the write port ignores en_i): word address {kind, texture, level}, kind 0 the
+// offset, kind 1 the size {H_k, W_k} (TEX_DIM_W bits each, W_k in the low bits); a write to a
+// texture of NTEX or more is ignored.  The tables are not reset: every entry a lookup reads
+// must be written first.  (Read from flip-flop arrays through 32:1 and 64:1 multiplexers
+// instead, the tables of two textures took about 1,900 LUT4 on the ECP5.)  Only levels 0 ..
+// levels - 1 of a texture are meaningful: level_i comes from mip_level, clamped to levels - 1
+// <= TEX_LEVELS - 1 (a level_i above TEX_LEVELS - 1 is read as TEX_LEVELS - 1).
 //
 // Textures sharing the unit (NTEX > 1): each lookup names its texture with tex_i, which travels
 // down the pipeline with the level; each stage reads the configuration of its own lookup's
 // texture (su or sv in front of the item register, W_L or H_L in I_IDX, base and level_off in
-// I_MEET),
+// I_MEET: each table has one read port),
 // so lookups of different textures may follow each other.  dm_pipeline uses one unit for the
 // colour texture (0) and the normal map (1).  A tex_i of NTEX or more reads texture NTEX - 1;
 // with NTEX = 1 tex_i is ignored.
@@ -100,7 +106,9 @@ module tex_addr
   parameter int unsigned TAG_W  = 8,          // side-band bits carried from tag_i to tag_o
   parameter int unsigned ADDR_W = TEX_ADDR_W, // byte address width (addresses wrap modulo 2^ADDR_W)
   parameter int unsigned NTEX   = 1,          // textures sharing the unit (lookups pick by tex_i)
-  parameter int unsigned SEL_W  = (NTEX > 1) ? $clog2(NTEX) : 1  // tex_i width
+  parameter int unsigned SEL_W  = (NTEX > 1) ? $clog2(NTEX) : 1, // tex_i width
+  parameter int unsigned LVT_W  = 1 + SEL_W + TEX_LVL_W,         // level-table word address
+  parameter int unsigned LVT_DW = (ADDR_W > 2 * TEX_DIM_W) ? ADDR_W : 2 * TEX_DIM_W // its data
 ) (
   input  logic                                 clk_i,
   input  logic                                 rst_ni,           // synchronous, active low: valid
@@ -108,10 +116,12 @@ module tex_addr
   // configuration of the textures (static while busy), [t] = texture t
   input  f24_t [NTEX-1:0]                      cfg_su_i,         // u scale: engine(Wt / W)
   input  f24_t [NTEX-1:0]                      cfg_sv_i,         // v scale: engine(Ht / H)
-  input  logic [NTEX-1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0] cfg_width_i,  // W_k of level k, >= 1
-  input  logic [NTEX-1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0] cfg_height_i, // H_k of level k, >= 1
   input  logic [NTEX-1:0][ADDR_W-1:0]          cfg_base_i,       // byte address of the texture
-  input  logic [NTEX-1:0][TEX_LEVELS-1:0][ADDR_W-1:0] cfg_level_off_i, // byte offset of level k
+  // level tables (static while busy): write lvt_wdata_i into word lvt_waddr_i = {kind, texture,
+  // level}; kind 0: the level's byte offset from the base, 1: {H_k [31:16], W_k [15:0]} (>= 1)
+  input  logic                                 lvt_we_i,
+  input  logic [LVT_W-1:0]                     lvt_waddr_i,
+  input  logic [LVT_DW-1:0]                    lvt_wdata_i,
   // lookups
   input  logic                                 valid_i,
   input  logic [TAG_W-1:0]                     tag_i,
@@ -151,6 +161,10 @@ module tex_addr
   if (TEX_IDX_W <= TEX_DIM_W) begin : g_check_w
     $error("tex_addr: the index width must exceed the dimension width");
   end
+  if (LVT_DW < ADDR_W || LVT_DW < 2 * TEX_DIM_W || LVT_W != 1 + SEL_W + TEX_LVL_W)
+  begin : g_check_lvt
+    $error("tex_addr: a level-table word holds an offset (ADDR_W bits) or a size (2 TEX_DIM_W)");
+  end
 
   localparam f24_t F24_NEG_HALF = 24'hbe0000;  // -0.5
   localparam int unsigned ROW_W = 2 * TEX_DIM_W;  // i W_L + j <= H_L W_L - 1 < 2^(2 TEX_DIM_W)
@@ -180,6 +194,27 @@ module tex_addr
          : (k >= top) ? {1'b0, dim_t'(top)}
          :              {1'b1, dim_t'(k)};
   endfunction
+
+  // ---- the level tables (LUT RAM, one write port, one asynchronous read port each) ------------
+  // Word {t, k} of either table is entry t * TEX_LEVELS + k.
+  localparam int unsigned LVT_N  = NTEX * TEX_LEVELS;
+  localparam int unsigned LVT_IW = $clog2(LVT_N);
+  function automatic logic [LVT_IW-1:0] lvt_index(input logic [SEL_W-1:0] t,
+                                                  input logic [TEX_LVL_W-1:0] k);
+    return LVT_IW'(32'(t) * TEX_LEVELS + 32'(k));
+  endfunction
+  logic [ADDR_W-1:0]    off_mem  [LVT_N];      // level offsets, read in I_MEET
+  logic [2*TEX_DIM_W-1:0] size_mem [LVT_N];    // {H_k, W_k}, read in I_IDX
+  logic                 lvt_kind;
+  logic [SEL_W-1:0]     lvt_tex;
+  logic [TEX_LVL_W-1:0] lvt_lvl;
+  assign {lvt_kind, lvt_tex, lvt_lvl} = lvt_waddr_i;
+  always_ff @(posedge clk_i) begin
+    if (lvt_we_i && 32'(lvt_tex) < NTEX) begin
+      if (lvt_kind) size_mem[lvt_index(lvt_tex, lvt_lvl)] <= lvt_wdata_i[2*TEX_DIM_W-1:0];
+      else          off_mem[lvt_index(lvt_tex, lvt_lvl)] <= ADDR_W'(lvt_wdata_i);
+    end
+  end
 
   // ---- S0: the texture; the level; the item register ------------------------------------------
   typedef logic [SEL_W-1:0] sel_t;
@@ -221,6 +256,8 @@ module tex_addr
   f24_to_index #(.W(TEX_IDX_W)) u_k0 (.clk_i, .en_i, .a_i(x), .idx_o(k0), .sat_o(unused_sat));
   f24_t x_q [I_IDX+1:I_FX];                    // x in item stages I_IDX + 1 .. I_FX
   dim_t n_q [I_CLP:I_MEET-1];                  // W_L (H_L) in item stages I_CLP .. I_MEET - 1
+  logic [2*TEX_DIM_W-1:0] sz_idx;              // {H_L, W_L} of the item in I_IDX
+  assign sz_idx = size_mem[lvt_index(tex_q[I_IDX], lvl_q[I_IDX])];
 
   // ---- I_CLP: from_int; clamp ----------------------------------------------------------------
   f24_t fk;                                    // I_FX: from_int(j0) (i0)
@@ -237,6 +274,8 @@ module tex_addr
   dim_t              rs_q;                     // I_SUM: i1c - i0c = 1 ? W_L : 0
   logic              dj_q;                     // I_SUM: j1c - j0c
   logic [ADDR_W-1:0] lb_q;                     // I_SUM: base + level_off[L]
+  logic [ADDR_W-1:0] off_meet;                 // level_off[L] of the item in I_MEET
+  assign off_meet = off_mem[lvt_index(tex_q[I_MEET], lvl_q[I_MEET])];
   assign fx_o = fx_q;
   assign fy_o = f;
 
@@ -273,8 +312,7 @@ module tex_addr
       // I_IDX -> I_CLP
       x_q[I_IDX+1] <= x;
       for (int s = I_IDX + 2; s <= I_FX; s++) x_q[s] <= x_q[s-1];
-      n_q[I_CLP] <= ax_q[I_IDX] ? cfg_height_i[tex_q[I_IDX]][lvl_q[I_IDX]]
-                                : cfg_width_i[tex_q[I_IDX]][lvl_q[I_IDX]];
+      n_q[I_CLP] <= ax_q[I_IDX] ? sz_idx[2*TEX_DIM_W-1:TEX_DIM_W] : sz_idx[TEX_DIM_W-1:0];
       // I_CLP -> I_FX
       cl_q[I_FX] <= clamp_pair(k0, n_q[I_CLP]);
       // -> I_MEET: the clamp and the level's size wait for fx's adder (no clock at ADD_LAT 2)
@@ -287,7 +325,7 @@ module tex_addr
       r_q  <= ROW_W'(cl_q[I_MEET][TEX_DIM_W-1:0]) * ROW_W'(w_q) + ROW_W'(cu_q[TEX_DIM_W-1:0]);
       rs_q <= cl_q[I_MEET][TEX_DIM_W] ? w_q : '0;
       dj_q <= cu_q[TEX_DIM_W];
-      lb_q <= cfg_base_i[tex_q[I_MEET]] + cfg_level_off_i[tex_q[I_MEET]][lvl_q[I_MEET]];
+      lb_q <= cfg_base_i[tex_q[I_MEET]] + off_meet;
       // I_SUM -> I_OUT
       addr_q[0] <= a00;
       addr_q[1] <= a00 + dj4;

@@ -1,10 +1,22 @@
 // SPDX-License-Identifier: Apache-2.0
 // pidm_cfg: the configuration registers of the register block pidm_regs (rtl/top/pidm_regs.rdl,
-// generated rtl/top/pidm_regs.sv) as dm_pipeline's cfg_* ports and triangle-table write port.
-// Wiring only, plus one register stage for the table write: TT_WRITE's swmod strobe comes in the
-// clock of the bus write, its stored value the clock after, so tt_we_o is the strobe delayed one
-// clock and tt_waddr_o / tt_wdata_o are the stored fields (scripts/pack_frame.py writes one
-// TT_WRITE per table word; tb/harness/pidm_frame.py ports_from_writes is the same map in Python).
+// generated rtl/top/pidm_regs.sv) as dm_pipeline's cfg_* ports, triangle-table write port and
+// texture level table write port.
+// Wiring, plus two table writes:
+// - TT_WRITE's swmod strobe comes in the clock of the bus write, its stored value the clock
+//   after, so tt_we_o is the strobe delayed one clock and tt_waddr_o / tt_wdata_o are the stored
+//   fields (scripts/pack_frame.py writes one TT_WRITE per table word; tb/harness/pidm_frame.py
+//   ports_from_writes is the same map in Python).
+// - TEX[x].LEVEL_OFF[k] and TEX[x].LEVEL_SIZE[k] are external registers of the block (no storage
+//   there: dm_pipeline keeps them in its LUT-RAM level tables).  A bus write to one of the 64 is
+//   its request strobe hwif_i.TEX[x].LEVEL_OFF[k].req / .LEVEL_SIZE[k].req for one clock (the
+//   block hands the register core one request per clock and keeps at most one external access
+//   outstanding, so at most one of the 64 strobes is 1), acknowledged in the same clock
+//   (hwif_tex_o[x].*[k].wr_ack = its req: the block answers the write at once, as any other).
+//   The block forwards no read of them (they are sw = w): a read is answered inside it with 0.
+//   lvt_we_o / lvt_waddr_o / lvt_wdata_o are that write registered once (a clock after the bus
+//   write; the index encoded by ORs of the one-hot strobes, the data the one bus word
+//   hwif_i.TEX[0].LEVEL_OFF[0].wr_data that every external register's wr_data carries).
 //
 // Field -> port (registers of docs/registers.md):
 //   HEIGHT.MODE method / root_level / bits16   cfg_method_o / cfg_root_level_o / cfg_bits16_o
@@ -16,8 +28,10 @@
 //   SHADE.MISS_RGB red / green / blue           cfg_miss_rgb_o[0] / [1] / [2]
 //   SHADE.LIGHT_X .. D2                         cfg_shade_o (shade_cfg_t fields light_x .. d2)
 //   TEX[x].SU / SV / BASE                       cfg_tex_su_o[x] / cfg_tex_sv_o[x] / cfg_tex_base_o[x]
-//   TEX[x].LEVEL_OFF[k], LEVEL_SIZE[k]          cfg_tex_level_off_o[x][k], cfg_tex_width_o /
-//                                               cfg_tex_height_o [x][k]
+//   TEX[x].LEVEL_OFF[k] (write)                 lvt_we_o, lvt_waddr_o = {1'b0, x, k},
+//                                               lvt_wdata_o = the written word (byte offset)
+//   TEX[x].LEVEL_SIZE[k] (write)                lvt_we_o, lvt_waddr_o = {1'b1, x, k},
+//                                               lvt_wdata_o = the written word {height, width}
 //   TT_WRITE data / addr (swmod)                tt_wdata_o / tt_waddr_o (tt_we_o)
 module pidm_cfg
   import f24_pkg::*;
@@ -31,7 +45,9 @@ module pidm_cfg
   input  logic                                 clk_i,
   input  logic                                 rst_ni,
   // the register block's outputs (only the configuration registers are read here)
-  /* verilator lint_off UNUSEDSIGNAL */  // control, frame, error and interrupt fields: pidm_top's
+  /* verilator lint_off UNUSEDSIGNAL */  // control, frame, error and interrupt fields: pidm_top's;
+                                         // the external registers' req_is_wr, wr_biten (all ones:
+                                         // whole-word writes) and all wr_data but one (the same)
   input  pidm_regs_pkg::pidm_regs__out_t       hwif_i,
   /* verilator lint_on UNUSEDSIGNAL */
   // dm_pipeline configuration
@@ -52,18 +68,26 @@ module pidm_cfg
   output logic [2:0][7:0]                      cfg_miss_rgb_o,
   output f24_t [1:0]                           cfg_tex_su_o,
   output f24_t [1:0]                           cfg_tex_sv_o,
-  output logic [1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0]  cfg_tex_width_o,
-  output logic [1:0][TEX_LEVELS-1:0][TEX_DIM_W-1:0]  cfg_tex_height_o,
   output logic [1:0][TEX_ADDR_W-1:0]           cfg_tex_base_o,
-  output logic [1:0][TEX_LEVELS-1:0][TEX_ADDR_W-1:0] cfg_tex_level_off_o,
   // triangle-table write port
   output logic                                 tt_we_o,
   output logic [TRI_W:0]                       tt_waddr_o,
-  output f24_t                                 tt_wdata_o
+  output f24_t                                 tt_wdata_o,
+  // texture level table write port (dm_pipeline lvt_*): {kind, texture x, level k}, the word
+  output logic                                 lvt_we_o,
+  output logic [LVT_ADDR_W-1:0]                lvt_waddr_o,
+  output logic [31:0]                          lvt_wdata_o,
+  // the register block's inputs of the external registers TEX[x].LEVEL_OFF / LEVEL_SIZE (their
+  // write acknowledges); the system top drives the block's hwif_in.TEX with them
+  output pidm_regs_pkg::pidm_regs__TEXx__in_t  hwif_tex_o [2]
 );
 
   if (TRI_W + 1 > 8) begin : g_check
     $error("pidm_cfg: TT_WRITE.addr holds 8 address bits (TRIS <= 128)");
+  end
+  if (TEX_LEVELS != 16 || LVT_ADDR_W != 2 + TEX_LVL_W || (1 << TEX_LVL_W) != TEX_LEVELS)
+  begin : g_check_lvt
+    $error("pidm_cfg: the RDL's TEX[x].LEVEL_OFF[16] / LEVEL_SIZE[16] are the level tables");
   end
 
   // ---- height pyramid and traversal --------------------------------------------------------------
@@ -101,12 +125,49 @@ module pidm_cfg
     assign cfg_tex_su_o[x]   = hwif_i.TEX[x].SU.val.value;
     assign cfg_tex_sv_o[x]   = hwif_i.TEX[x].SV.val.value;
     assign cfg_tex_base_o[x] = hwif_i.TEX[x].BASE.val.value;
+  end
+
+  // ---- texture level tables: the external registers' write strobes as one table write -------
+  logic [1:0][TEX_LEVELS-1:0] off_req, size_req;   // a write to TEX[x] LEVEL_OFF[k] / LEVEL_SIZE[k]
+  for (genvar x = 0; x < 2; x++) begin : g_lvt
     for (genvar k = 0; k < TEX_LEVELS; k++) begin : g_level
-      assign cfg_tex_level_off_o[x][k] = hwif_i.TEX[x].LEVEL_OFF[k].val.value;
-      assign cfg_tex_width_o[x][k]     = hwif_i.TEX[x].LEVEL_SIZE[k].width.value;
-      assign cfg_tex_height_o[x][k]    = hwif_i.TEX[x].LEVEL_SIZE[k].height.value;
+      assign off_req[x][k]  = hwif_i.TEX[x].LEVEL_OFF[k].req;
+      assign size_req[x][k] = hwif_i.TEX[x].LEVEL_SIZE[k].req;
+      // every access the block forwards (a write: reads of these registers are not forwarded)
+      // is acknowledged at once
+      assign hwif_tex_o[x].LEVEL_OFF[k].wr_ack  = off_req[x][k];
+      assign hwif_tex_o[x].LEVEL_SIZE[k].wr_ack = size_req[x][k];
     end
   end
+
+  // At most one strobe is 1: the address is the OR of the indices of the strobes that are 1.
+  logic                  lvt_req;
+  logic [LVT_ADDR_W-1:0] lvt_addr;
+  always_comb begin
+    logic [1:0][TEX_LEVELS-1:0] any_req;
+    logic [TEX_LVL_W-1:0]       k_or;
+    any_req = off_req | size_req;
+    k_or    = '0;
+    for (int unsigned k = 0; k < TEX_LEVELS; k++)
+      k_or |= TEX_LVL_W'(k) & {TEX_LVL_W{any_req[0][k] | any_req[1][k]}};
+    lvt_req  = |any_req;
+    lvt_addr = {|size_req, |any_req[1], k_or};
+  end
+
+  logic                  lvt_we_q;
+  logic [LVT_ADDR_W-1:0] lvt_waddr_q;
+  logic [31:0]           lvt_wdata_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) lvt_we_q <= 1'b0;
+    else         lvt_we_q <= lvt_req;
+  end
+  always_ff @(posedge clk_i) begin   // no reset: valid with lvt_we_q
+    lvt_waddr_q <= lvt_addr;
+    lvt_wdata_q <= hwif_i.TEX[0].LEVEL_OFF[0].wr_data.val;  // the bus word (every wr_data)
+  end
+  assign lvt_we_o    = lvt_we_q;
+  assign lvt_waddr_o = lvt_waddr_q;
+  assign lvt_wdata_o = lvt_wdata_q;
 
   // ---- triangle table: the write strobe one clock late, with the stored fields ------------------------
   logic tt_we_q;

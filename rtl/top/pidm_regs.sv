@@ -230,6 +230,7 @@ module pidm_regs (
     end
 
     logic cpuif_req_masked;
+    logic external_pending;
 
     // Read latency > write latency. May need to delay next write that follows a read
     logic [0:0] cpuif_req_stall_sr;
@@ -242,8 +243,8 @@ module pidm_regs (
             cpuif_req_stall_sr <= (cpuif_req_stall_sr >> 'd1);
         end
     end
-    assign cpuif_req_stall_rd = '0;
-    assign cpuif_req_stall_wr = cpuif_req_stall_sr[0];
+    assign cpuif_req_stall_rd = external_pending;
+    assign cpuif_req_stall_wr = cpuif_req_stall_sr[0] | external_pending;
     assign cpuif_req_masked = cpuif_req
                             & !(!cpuif_req_is_wr & cpuif_req_stall_rd)
                             & !(cpuif_req_is_wr & cpuif_req_stall_wr);
@@ -372,6 +373,8 @@ module pidm_regs (
     } decoded_reg_strb_t;
     decoded_reg_strb_t decoded_reg_strb;
     logic decoded_err;
+    logic decoded_req_is_external;
+
     logic [11:0] decoded_addr;
     logic decoded_req;
     logic decoded_req_is_wr;
@@ -381,6 +384,8 @@ module pidm_regs (
     always_comb begin
         automatic logic is_valid_addr;
         automatic logic is_valid_rw;
+        automatic logic is_external;
+        is_external = '0;
         is_valid_addr = '1; // No valid address check
         is_valid_rw = '1; // No valid RW check
         decoded_reg_strb.ID = cpuif_req_masked & (cpuif_addr == 12'h0) & !cpuif_req_is_wr;
@@ -449,9 +454,11 @@ module pidm_regs (
             decoded_reg_strb.TEX[i0].BASE = cpuif_req_masked & (cpuif_addr == 12'h408 + (12)'(i0) * 12'h100);
             for(int i1=0; i1<16; i1++) begin
                 decoded_reg_strb.TEX[i0].LEVEL_OFF[i1] = cpuif_req_masked & (cpuif_addr == 12'h440 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4) & cpuif_req_is_wr;
+                is_external |= cpuif_req_masked & (cpuif_addr == 12'h440 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4) & cpuif_req_is_wr;
             end
             for(int i1=0; i1<16; i1++) begin
                 decoded_reg_strb.TEX[i0].LEVEL_SIZE[i1] = cpuif_req_masked & (cpuif_addr == 12'h480 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4) & cpuif_req_is_wr;
+                is_external |= cpuif_req_masked & (cpuif_addr == 12'h480 + (12)'(i0) * 12'h100 + (12)'(i1) * 12'h4) & cpuif_req_is_wr;
             end
         end
         decoded_reg_strb.PYR.INFO = cpuif_req_masked & (cpuif_addr == 12'h600) & !cpuif_req_is_wr;
@@ -467,6 +474,23 @@ module pidm_regs (
             decoded_reg_strb.PYR.LEVEL_OFF[i0] = cpuif_req_masked & (cpuif_addr == 12'h640 + (12)'(i0) * 12'h4) & cpuif_req_is_wr;
         end
         decoded_err = '0;
+        decoded_req_is_external = is_external;
+    end
+    logic external_wr_ack;
+    logic external_rd_ack;
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            external_pending <= '0;
+        end else begin
+            if(decoded_req_is_external & ~external_wr_ack & ~external_rd_ack) external_pending <= '1;
+            else if(external_wr_ack | external_rd_ack) external_pending <= '0;
+            `ifndef SYNTHESIS
+                assert_bad_ext_wr_ack: assert(!external_wr_ack || (external_pending | decoded_req_is_external))
+                    else $error("An external wr_ack strobe was asserted when no external request was active");
+                assert_bad_ext_rd_ack: assert(!external_rd_ack || (external_pending | decoded_req_is_external))
+                    else $error("An external rd_ack strobe was asserted when no external request was active");
+            `endif
+        end
     end
 
     // Pass down signals to next stage
@@ -805,22 +829,6 @@ module pidm_regs (
                     logic load_next;
                 } val;
             } BASE;
-            struct {
-                struct {
-                    logic [31:0] next;
-                    logic load_next;
-                } val;
-            } LEVEL_OFF[16];
-            struct {
-                struct {
-                    logic [15:0] next;
-                    logic load_next;
-                } width;
-                struct {
-                    logic [15:0] next;
-                    logic load_next;
-                } height;
-            } LEVEL_SIZE[16];
         } TEX[2];
         struct {
             struct {
@@ -1162,19 +1170,6 @@ module pidm_regs (
                     logic [31:0] value;
                 } val;
             } BASE;
-            struct {
-                struct {
-                    logic [31:0] value;
-                } val;
-            } LEVEL_OFF[16];
-            struct {
-                struct {
-                    logic [15:0] value;
-                } width;
-                struct {
-                    logic [15:0] value;
-                } height;
-            } LEVEL_SIZE[16];
         } TEX[2];
         struct {
             struct {
@@ -2702,77 +2697,20 @@ module pidm_regs (
         end
         assign hwif_out.TEX[i0].BASE.val.value = field_storage.TEX[i0].BASE.val.value;
         for(genvar i1=0; i1<16; i1++) begin
-            // Field: pidm_regs.TEX[].LEVEL_OFF[].val
-            always_comb begin
-                automatic logic [31:0] next_c;
-                automatic logic load_next_c;
-                next_c = field_storage.TEX[i0].LEVEL_OFF[i1].val.value;
-                load_next_c = '0;
-                if(decoded_reg_strb.TEX[i0].LEVEL_OFF[i1] && decoded_req_is_wr) begin // SW write
-                    next_c = (field_storage.TEX[i0].LEVEL_OFF[i1].val.value & ~decoded_wr_biten[31:0]) | (decoded_wr_data[31:0] & decoded_wr_biten[31:0]);
-                    load_next_c = '1;
-                end
-                field_combo.TEX[i0].LEVEL_OFF[i1].val.next = next_c;
-                field_combo.TEX[i0].LEVEL_OFF[i1].val.load_next = load_next_c;
-            end
-            always_ff @(posedge clk) begin
-                if(~rst_n) begin
-                    field_storage.TEX[i0].LEVEL_OFF[i1].val.value <= 32'h0;
-                end else begin
-                    if(field_combo.TEX[i0].LEVEL_OFF[i1].val.load_next) begin
-                        field_storage.TEX[i0].LEVEL_OFF[i1].val.value <= field_combo.TEX[i0].LEVEL_OFF[i1].val.next;
-                    end
-                end
-            end
-            assign hwif_out.TEX[i0].LEVEL_OFF[i1].val.value = field_storage.TEX[i0].LEVEL_OFF[i1].val.value;
+            // External register: pidm_regs.TEX[].LEVEL_OFF[]
+
+            assign hwif_out.TEX[i0].LEVEL_OFF[i1].req = decoded_req_is_wr ? decoded_reg_strb.TEX[i0].LEVEL_OFF[i1] : '0;
+            assign hwif_out.TEX[i0].LEVEL_OFF[i1].req_is_wr = decoded_req_is_wr;
+            assign hwif_out.TEX[i0].LEVEL_OFF[i1].wr_data = decoded_wr_data;
+            assign hwif_out.TEX[i0].LEVEL_OFF[i1].wr_biten = decoded_wr_biten;
         end
         for(genvar i1=0; i1<16; i1++) begin
-            // Field: pidm_regs.TEX[].LEVEL_SIZE[].width
-            always_comb begin
-                automatic logic [15:0] next_c;
-                automatic logic load_next_c;
-                next_c = field_storage.TEX[i0].LEVEL_SIZE[i1].width.value;
-                load_next_c = '0;
-                if(decoded_reg_strb.TEX[i0].LEVEL_SIZE[i1] && decoded_req_is_wr) begin // SW write
-                    next_c = (field_storage.TEX[i0].LEVEL_SIZE[i1].width.value & ~decoded_wr_biten[15:0]) | (decoded_wr_data[15:0] & decoded_wr_biten[15:0]);
-                    load_next_c = '1;
-                end
-                field_combo.TEX[i0].LEVEL_SIZE[i1].width.next = next_c;
-                field_combo.TEX[i0].LEVEL_SIZE[i1].width.load_next = load_next_c;
-            end
-            always_ff @(posedge clk) begin
-                if(~rst_n) begin
-                    field_storage.TEX[i0].LEVEL_SIZE[i1].width.value <= 16'h0;
-                end else begin
-                    if(field_combo.TEX[i0].LEVEL_SIZE[i1].width.load_next) begin
-                        field_storage.TEX[i0].LEVEL_SIZE[i1].width.value <= field_combo.TEX[i0].LEVEL_SIZE[i1].width.next;
-                    end
-                end
-            end
-            assign hwif_out.TEX[i0].LEVEL_SIZE[i1].width.value = field_storage.TEX[i0].LEVEL_SIZE[i1].width.value;
-            // Field: pidm_regs.TEX[].LEVEL_SIZE[].height
-            always_comb begin
-                automatic logic [15:0] next_c;
-                automatic logic load_next_c;
-                next_c = field_storage.TEX[i0].LEVEL_SIZE[i1].height.value;
-                load_next_c = '0;
-                if(decoded_reg_strb.TEX[i0].LEVEL_SIZE[i1] && decoded_req_is_wr) begin // SW write
-                    next_c = (field_storage.TEX[i0].LEVEL_SIZE[i1].height.value & ~decoded_wr_biten[31:16]) | (decoded_wr_data[31:16] & decoded_wr_biten[31:16]);
-                    load_next_c = '1;
-                end
-                field_combo.TEX[i0].LEVEL_SIZE[i1].height.next = next_c;
-                field_combo.TEX[i0].LEVEL_SIZE[i1].height.load_next = load_next_c;
-            end
-            always_ff @(posedge clk) begin
-                if(~rst_n) begin
-                    field_storage.TEX[i0].LEVEL_SIZE[i1].height.value <= 16'h0;
-                end else begin
-                    if(field_combo.TEX[i0].LEVEL_SIZE[i1].height.load_next) begin
-                        field_storage.TEX[i0].LEVEL_SIZE[i1].height.value <= field_combo.TEX[i0].LEVEL_SIZE[i1].height.next;
-                    end
-                end
-            end
-            assign hwif_out.TEX[i0].LEVEL_SIZE[i1].height.value = field_storage.TEX[i0].LEVEL_SIZE[i1].height.value;
+            // External register: pidm_regs.TEX[].LEVEL_SIZE[]
+
+            assign hwif_out.TEX[i0].LEVEL_SIZE[i1].req = decoded_req_is_wr ? decoded_reg_strb.TEX[i0].LEVEL_SIZE[i1] : '0;
+            assign hwif_out.TEX[i0].LEVEL_SIZE[i1].req_is_wr = decoded_req_is_wr;
+            assign hwif_out.TEX[i0].LEVEL_SIZE[i1].wr_data = decoded_wr_data;
+            assign hwif_out.TEX[i0].LEVEL_SIZE[i1].wr_biten = decoded_wr_biten;
         end
     end
     // Field: pidm_regs.PYR.FORMAT.bits16
@@ -3057,16 +2995,54 @@ module pidm_regs (
     //--------------------------------------------------------------------------
     // Write response
     //--------------------------------------------------------------------------
-    assign cpuif_wr_ack = decoded_req & decoded_req_is_wr;
+    always_comb begin
+        automatic logic wr_ack;
+        wr_ack = '0;
+        for(int i0=0; i0<2; i0++) begin
+            for(int i1=0; i1<16; i1++) begin
+                wr_ack |= hwif_in.TEX[i0].LEVEL_OFF[i1].wr_ack;
+            end
+            for(int i1=0; i1<16; i1++) begin
+                wr_ack |= hwif_in.TEX[i0].LEVEL_SIZE[i1].wr_ack;
+            end
+        end
+        external_wr_ack = wr_ack;
+    end
+    assign cpuif_wr_ack = external_wr_ack | (decoded_req & decoded_req_is_wr & ~decoded_req_is_external);
     // Writes are always granted with no error response
     assign cpuif_wr_err = '0;
 
     //--------------------------------------------------------------------------
     // Readback
     //--------------------------------------------------------------------------
+    logic readback_external_rd_ack_c;
+    always_comb begin
+        automatic logic rd_ack;
+        rd_ack = '0;
+        
+        readback_external_rd_ack_c = rd_ack;
+    end
+
+    logic readback_external_rd_ack;
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            readback_external_rd_ack <= '0;
+        end else begin
+            readback_external_rd_ack <= readback_external_rd_ack_c;
+        end
+    end
 
     logic [11:0] rd_mux_addr;
-    assign rd_mux_addr = decoded_addr;
+    logic [11:0] pending_rd_addr;
+    // Hold read mux address to guarantee it is stable throughout any external accesses
+    always_ff @(posedge clk) begin
+        if(~rst_n) begin
+            pending_rd_addr <= '0;
+        end else begin
+            if(decoded_req) pending_rd_addr <= decoded_addr;
+        end
+    end
+    assign rd_mux_addr = decoded_req ? decoded_addr : pending_rd_addr;
 
     logic readback_err;
     logic readback_done;
@@ -3347,7 +3323,7 @@ module pidm_regs (
         end else begin
             readback_data_rt <= readback_data_rt_c;
             readback_err_rt <= decoded_err;
-            readback_done_rt <= decoded_req & ~decoded_req_is_wr;
+            readback_done_rt <= decoded_req & ~decoded_req_is_wr & ~decoded_req_is_external;
             readback_addr_rt <= rd_mux_addr;
         end
     end
@@ -3361,7 +3337,8 @@ module pidm_regs (
         readback_err = '0;
     end
 
-    assign cpuif_rd_ack = readback_done;
+    assign external_rd_ack = readback_external_rd_ack;
+    assign cpuif_rd_ack = readback_done | readback_external_rd_ack;
     assign cpuif_rd_data = readback_data;
     assign cpuif_rd_err = readback_err;
 endmodule

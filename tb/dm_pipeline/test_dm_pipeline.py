@@ -100,6 +100,7 @@ async def start(dut, rng: random.Random) -> tuple[LatencyRam, LatencyRam]:
     dut.frag_valid_i.value = 0
     dut.px_ready_i.value = 0
     dut.tt_we_i.value = 0
+    dut.lvt_we_i.value = 0
     dut.clr_stats_i.value = 0
     await ClockCycles(clk, 4)
     await FallingEdge(clk)
@@ -127,12 +128,13 @@ async def load_frame(dut, rng: random.Random, hram: LatencyRam, tram: LatencyRam
     await FallingEdge(clk)
     for port, val in cfg.ports.items():
         getattr(dut, port).value = val
-    for addr, word in cfg.tri_writes:
-        dut.tt_we_i.value = 1
-        dut.tt_waddr_i.value = addr
-        dut.tt_wdata_i.value = word
-        await FallingEdge(clk)
-    dut.tt_we_i.value = 0
+    for port, writes in (("tt", cfg.tri_writes), ("lvt", cfg.lvt_writes)):  # the two tables
+        for addr, word in writes:
+            getattr(dut, f"{port}_we_i").value = 1
+            getattr(dut, f"{port}_waddr_i").value = addr
+            getattr(dut, f"{port}_wdata_i").value = word
+            await FallingEdge(clk)
+        getattr(dut, f"{port}_we_i").value = 0
     await ClockCycles(clk, 140)   # configuration settles; the free list fills after reset
     await FallingEdge(clk)
     return frame, inp

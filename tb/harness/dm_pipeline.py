@@ -88,8 +88,7 @@ CFG_PORTS: tuple[tuple[str, int], ...] = (
     ("cfg_iter_cap_i", 16), ("cfg_depth_i", 24), ("cfg_mip_en_i", 1),
     ("cfg_levels_colour_i", 6), ("cfg_levels_normal_i", 6), ("cfg_shade_i", 192),
     ("cfg_miss_rgb_i", 24), ("cfg_tex_su_i", 48), ("cfg_tex_sv_i", 48),
-    ("cfg_tex_width_i", 512), ("cfg_tex_height_i", 512), ("cfg_tex_base_i", 64),
-    ("cfg_tex_level_off_i", 1024))
+    ("cfg_tex_base_i", 64))
 
 #: Largest map and texture side the configuration ports hold (traverse_pkg::MAX_LEVELS: root
 #: level <= MAX_LEVELS - 1; pipe_pkg::TEX_LEVELS MIP levels).
@@ -106,7 +105,7 @@ DEFAULT_BLOCKS = "rows"
 
 # ---- the file formats of tb/harness/pipeline_harness.h -----------------------------------------
 IN_MAGIC = b"PIPHIN01"
-IN_VERSION = 1
+IN_VERSION = 2
 IN_HEADER_WORDS = 16
 FRAG_WORDS = 16
 OUT_MAGIC = b"PIPHOUT1"
@@ -214,7 +213,8 @@ def fragment_words(inp: shade.PixelInputs) -> npt.NDArray[np.uint32]:
 
 def write_input(path: Path, fi: FrameImage, frags: npt.NDArray[np.uint32]) -> None:
     """Write the harness input (tb/harness/pipeline_harness.h): header, configuration ports,
-    triangle-table writes, the two memory images, the fragments ((N, 16) u32, stream order)."""
+    triangle-table writes, level-table writes, the two memory images, the fragments ((N, 16)
+    u32, stream order)."""
     ports = fi.cfg.ports
     cfg_words: list[int] = []
     for name, bits in CFG_PORTS:
@@ -229,14 +229,16 @@ def write_input(path: Path, fi: FrameImage, frags: npt.NDArray[np.uint32]) -> No
         raise ValueError(f"fragments are (N, {FRAG_WORDS}) words, got {frags.shape}")
     head = np.zeros(IN_HEADER_WORDS, dtype="<u4")
     head[0:2] = np.frombuffer(IN_MAGIC, dtype="<u4")
-    head[2:13] = [IN_VERSION, 4 * IN_HEADER_WORDS, len(CFG_PORTS), len(cfg_words),
+    head[2:14] = [IN_VERSION, 4 * IN_HEADER_WORDS, len(CFG_PORTS), len(cfg_words),
                   len(fi.cfg.tri_writes), len(frags), h_base, len(h_img), fi.tex_base,
-                  len(fi.tex_image), FRAG_WORDS]
+                  len(fi.tex_image), FRAG_WORDS, len(fi.cfg.lvt_writes)]
     tri = np.array(fi.cfg.tri_writes, dtype="<u4").reshape(-1, 2)
+    lvt = np.array(fi.cfg.lvt_writes, dtype="<u4").reshape(-1, 2)
     with open(path, "wb") as f:
         f.write(head.tobytes())
         f.write(np.array(cfg_words, dtype="<u4").tobytes())
         f.write(tri.tobytes())
+        f.write(lvt.tobytes())
         for img in (h_img, fi.tex_image):
             f.write(img)
             f.write(bytes(-len(img) % 4))

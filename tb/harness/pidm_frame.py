@@ -15,6 +15,7 @@ the bits of the image width; pidm_top writes its pixel at ``FB_BASE + row * FB_P
 """
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -25,7 +26,7 @@ from model import shade
 from model.camera import Camera, Fragments, tile_order
 
 from . import dm_pipeline, pidm_regmap, pipeline_words, sv_params
-from .pipeline_words import PipelineConfig, TEX_ADDR_W, TEX_DIM_W, TEX_LEVELS
+from .pipeline_words import PipelineConfig, TEX_ADDR_W, TEX_DIM_W, TEX_LVL_W
 
 # ---- rtl/top/pidm_pkg.sv ------------------------------------------------------------------------
 (FRAG_BYTES, FRAG_WORDS, FRAG_U0_WORD, FRAG_V0_WORD, FRAG_PL0_WORD, FRAG_TRI_WORD, FRAG_TRI_LSB,
@@ -95,34 +96,56 @@ def config_writes(cfg: PipelineConfig) -> Writes:
         out.append((R(f"SHADE.{name}").addr, R(f"SHADE.{name}").value(val=w)))
     su, sv = _elems(p["cfg_tex_su_i"], 24, 2), _elems(p["cfg_tex_sv_i"], 24, 2)
     bases = _elems(p["cfg_tex_base_i"], TEX_ADDR_W, 2)
-    offs = _elems(p["cfg_tex_level_off_i"], TEX_LEVELS * TEX_ADDR_W, 2)
-    widths = _elems(p["cfg_tex_width_i"], TEX_LEVELS * TEX_DIM_W, 2)
-    heights = _elems(p["cfg_tex_height_i"], TEX_LEVELS * TEX_DIM_W, 2)
     for x in range(2):
         t = f"TEX[{x}]"
         out += [(R(f"{t}.SU").addr, R(f"{t}.SU").value(val=su[x])),
                 (R(f"{t}.SV").addr, R(f"{t}.SV").value(val=sv[x])),
                 (R(f"{t}.BASE").addr, R(f"{t}.BASE").value(val=bases[x]))]
-        for k, o in enumerate(_elems(offs[x], TEX_ADDR_W, TEX_LEVELS)):
-            r = R(f"{t}.LEVEL_OFF[{k}]")
-            out.append((r.addr, r.value(val=o)))
-        for k, (w, h) in enumerate(zip(_elems(widths[x], TEX_DIM_W, TEX_LEVELS),
-                                       _elems(heights[x], TEX_DIM_W, TEX_LEVELS))):
-            r = R(f"{t}.LEVEL_SIZE[{k}]")
-            out.append((r.addr, r.value(width=w, height=h)))
+        for a, d in cfg.lvt_writes:
+            size, tex, k = _lvt_fields(a)
+            if tex != x:
+                continue
+            if size:
+                r = R(f"{t}.LEVEL_SIZE[{k}]")
+                out.append((r.addr, r.value(width=d & ((1 << TEX_DIM_W) - 1),
+                                            height=d >> TEX_DIM_W)))
+            else:
+                r = R(f"{t}.LEVEL_OFF[{k}]")
+                out.append((r.addr, r.value(val=d)))
     tt = R("TT_WRITE")
     out += [(tt.addr, tt.value(data=d, addr=a)) for a, d in cfg.tri_writes]
     return out
 
 
-def ports_from_writes(writes: Writes) -> tuple[dict[str, int], list[tuple[int, int]]]:
+def _lvt_fields(addr: int) -> tuple[bool, int, int]:
+    """(size, texture, level) of a lvt_waddr_i (pipeline_words.lvt_addr)."""
+    return (bool(addr >> (1 + TEX_LVL_W)), (addr >> TEX_LVL_W) & 1,
+            addr & ((1 << TEX_LVL_W) - 1))
+
+
+def _lvt_of(path: str, f: dict[str, int]) -> tuple[int, int] | None:
+    """The level-table write (lvt_waddr_i, lvt_wdata_i) a write of register ``path`` makes
+    (TEX[x].LEVEL_OFF[k], TEX[x].LEVEL_SIZE[k]), else None."""
+    m = re.fullmatch(r"TEX\[(\d)\]\.LEVEL_(OFF|SIZE)\[(\d+)\]", path)
+    if m is None:
+        return None
+    x, kind, k = int(m[1]), m[2], int(m[3])
+    if kind == "OFF":
+        return pipeline_words.lvt_addr(False, x, k), f["val"]
+    return pipeline_words.lvt_addr(True, x, k), (f["height"] << TEX_DIM_W) | f["width"]
+
+
+def ports_from_writes(writes: Writes) -> tuple[dict[str, int], list[tuple[int, int]],
+                                               list[tuple[int, int]]]:
     """The inverse of :func:`config_writes`: the cfg_* port values the registers hold after the
-    writes (the last write of a register counts), and the triangle-table writes (tt_waddr_i,
-    tt_wdata_i) in order.  What pidm_top wires from its register block to dm_pipeline."""
+    writes (the last write of a register counts), the triangle-table writes (tt_waddr_i,
+    tt_wdata_i) and the texture level-table writes (lvt_waddr_i, lvt_wdata_i), each in order.
+    What pidm_top wires from its register block to dm_pipeline."""
     regs = pidm_regmap.by_address()
     tt_addr = pidm_regmap.reg("TT_WRITE").addr
     held: dict[str, dict[str, int]] = {}
     tri: list[tuple[int, int]] = []
+    lvt: list[tuple[int, int]] = []
     for addr, value in writes:
         r = regs.get(addr)
         if r is None:
@@ -130,6 +153,9 @@ def ports_from_writes(writes: Writes) -> tuple[dict[str, int], list[tuple[int, i
         f = r.fields_of(value)
         if addr == tt_addr:
             tri.append((f["addr"], f["data"]))
+        w = _lvt_of(r.path, f)
+        if w is not None:
+            lvt.append(w)
         held[r.path] = f
 
     def g(path: str, name: str) -> int:
@@ -157,17 +183,8 @@ def ports_from_writes(writes: Writes) -> tuple[dict[str, int], list[tuple[int, i
         "cfg_tex_sv_i": pipeline_words.pack([g(f"TEX[{x}].SV", "val") for x in range(2)], 24),
         "cfg_tex_base_i": pipeline_words.pack([g(f"TEX[{x}].BASE", "val") for x in range(2)],
                                               TEX_ADDR_W),
-        "cfg_tex_level_off_i": pipeline_words.pack(
-            [arr(f"TEX[{x}].LEVEL_OFF[{{}}]", "val", TEX_LEVELS, TEX_ADDR_W) for x in range(2)],
-            TEX_LEVELS * TEX_ADDR_W),
-        "cfg_tex_width_i": pipeline_words.pack(
-            [arr(f"TEX[{x}].LEVEL_SIZE[{{}}]", "width", TEX_LEVELS, TEX_DIM_W) for x in range(2)],
-            TEX_LEVELS * TEX_DIM_W),
-        "cfg_tex_height_i": pipeline_words.pack(
-            [arr(f"TEX[{x}].LEVEL_SIZE[{{}}]", "height", TEX_LEVELS, TEX_DIM_W)
-             for x in range(2)], TEX_LEVELS * TEX_DIM_W),
     }
-    return p, tri
+    return p, tri, lvt
 
 
 # ---- fragments ---------------------------------------------------------------------------------

@@ -3,8 +3,8 @@
 // shaded pixels out) on a whole frame, fast.  tb/harness/dm_pipeline.py builds it
 // (build/harness/pipeline/<variant>/) and drives it.
 //
-//   input file      -> configuration ports, triangle-table writes, the height memory image (AXI
-//                      port H), the texture memory image (AXI port T), fragments
+//   input file      -> configuration ports, triangle- and level-table writes, the height memory
+//                      image (AXI port H), the texture memory image (AXI port T), fragments
 //   fragment stream -> dm_pipeline -> pixel stream -> output file (in fragment order) + JSON stats
 //
 // File formats: pipeline_harness.h.  Command line: --help.
@@ -199,7 +199,7 @@ Options parse_args(int argc, char** argv) {
 struct Input {
   piph::InHeader h;
   std::vector<std::vector<uint32_t>> cfg;  // per port of PIPH_CFG_PORTS: its value's words
-  std::vector<piph::TriWrite> tri;
+  std::vector<piph::TableWrite> tri, lvt;
   std::vector<uint8_t> himg, timg;
   std::vector<piph::Fragment> frags;
 };
@@ -281,7 +281,9 @@ Input read_input(const std::string& path) {
   if (words != h.cfg_words)
     fail(1, "%s: configuration of %u words, the header says %u", path.c_str(), words, h.cfg_words);
   in.tri.resize(h.n_tri_writes);
-  r.read(in.tri.data(), sizeof(piph::TriWrite) * in.tri.size(), "triangle-table writes");
+  r.read(in.tri.data(), sizeof(piph::TableWrite) * in.tri.size(), "triangle-table writes");
+  in.lvt.resize(h.n_lvt_writes);
+  r.read(in.lvt.data(), sizeof(piph::TableWrite) * in.lvt.size(), "level-table writes");
   in.himg = r.image(h.h_bytes, "height image");
   in.timg = r.image(h.t_bytes, "texture image");
   if (uint64_t{h.h_base} + h.h_bytes > (uint64_t{1} << 32) ||
@@ -355,7 +357,7 @@ class Sim {
   Sim(const Sim&) = delete;
   Sim& operator=(const Sim&) = delete;
 
-  // Configuration ports, reset, the triangle-table writes.
+  // Configuration ports, reset, the triangle- and level-table writes.
   void configure_and_reset() {
     auto* t = top_.get();
     size_t k = 0;
@@ -372,6 +374,7 @@ class Sim {
     t->frag_valid_i = 0;
     t->px_ready_i = 0;
     t->tt_we_i = 0;
+    t->lvt_we_i = 0;
     t->clr_stats_i = 0;
     t->m_axi_h_arready = 0;
     t->m_axi_t_arready = 0;
@@ -387,6 +390,13 @@ class Sim {
       clock();
     }
     t->tt_we_i = 0;
+    for (const auto& w : in_.lvt) {
+      t->lvt_we_i = 1;
+      t->lvt_waddr_i = w.addr;
+      t->lvt_wdata_i = w.data;
+      clock();
+    }
+    t->lvt_we_i = 0;
     for (int i = 0; i < 8; ++i) clock();  // the configuration settles (>= 4 clocks)
   }
 

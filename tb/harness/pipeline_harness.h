@@ -9,9 +9,9 @@
 // Input file (tb/harness/dm_pipeline.py write_input):
 //   header: 16 x u32 (64 bytes)
 //     [0..1]   magic "PIPHIN01" (8 ASCII bytes)
-//     [2]      version = 1
+//     [2]      version = 2
 //     [3]      header bytes = 64
-//     [4]      n_cfg_ports   = the number of entries of PIPH_CFG_PORTS below (21)
+//     [4]      n_cfg_ports   = the number of entries of PIPH_CFG_PORTS below (18)
 //     [5]      cfg_words     u32 words of the configuration section
 //     [6]      n_tri_writes  triangle-table writes
 //     [7]      n_frags       fragments
@@ -20,11 +20,13 @@
 //     [10]     t_base        byte address of the texture memory image on the texture port
 //     [11]     t_bytes       its length
 //     [12]     frag_words    u32 words per fragment = 16
-//     [13..15] reserved (0)
+//     [13]     n_lvt_writes  texture level-table writes
+//     [14..15] reserved (0)
 //   configuration: for each port of PIPH_CFG_PORTS, in that order: one u32 holding the port's bit
 //     width (checked against the table), then ceil(width / 32) u32 words of its value, least
 //     significant word first (packed arrays as SystemVerilog packs them: element i at i * W);
 //   triangle-table writes: n_tri_writes x 2 u32: tt_waddr_i, tt_wdata_i (pipeline_words.config);
+//   level-table writes: n_lvt_writes x 2 u32: lvt_waddr_i, lvt_wdata_i (pipeline_words.config);
 //   height image: h_bytes bytes (Pyramid.memory_image()), zero-padded to a multiple of 4;
 //   texture image: t_bytes bytes (colour texture and normal map, each at the base address the
 //     configuration's cfg_tex_base_i gives it, zeros between), zero-padded to a multiple of 4;
@@ -60,16 +62,13 @@
   X(cfg_miss_rgb_i, 24)                                                                           \
   X(cfg_tex_su_i, 48)                                                                             \
   X(cfg_tex_sv_i, 48)                                                                             \
-  X(cfg_tex_width_i, 512)                                                                         \
-  X(cfg_tex_height_i, 512)                                                                        \
-  X(cfg_tex_base_i, 64)                                                                           \
-  X(cfg_tex_level_off_i, 1024)
+  X(cfg_tex_base_i, 64)
 
 namespace piph {
 
 constexpr char kInMagic[8] = {'P', 'I', 'P', 'H', 'I', 'N', '0', '1'};
 constexpr char kOutMagic[8] = {'P', 'I', 'P', 'H', 'O', 'U', 'T', '1'};
-constexpr uint32_t kInVersion = 1;
+constexpr uint32_t kInVersion = 2;
 #define PIPH_COUNT(name, bits) +1
 constexpr uint32_t kCfgPorts = 0 PIPH_CFG_PORTS(PIPH_COUNT);
 #undef PIPH_COUNT
@@ -88,14 +87,15 @@ struct InHeader {
   uint32_t t_base;
   uint32_t t_bytes;
   uint32_t frag_words;
-  uint32_t reserved[3];
+  uint32_t n_lvt_writes;
+  uint32_t reserved[2];
 };
 static_assert(sizeof(InHeader) == 64, "input header is 64 bytes");
 
-struct TriWrite {
+struct TableWrite {  // a write of the triangle table or of the texture level tables
   uint32_t addr, data;
 };
-static_assert(sizeof(TriWrite) == 8, "a triangle-table write is 8 bytes");
+static_assert(sizeof(TableWrite) == 8, "a table write is 8 bytes");
 
 struct Fragment {
   uint32_t u0, v0, pl0, tri;

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Driving ``rtl/pipe/dm_pipeline.sv`` (the whole displacement-mapping pipeline) from the model:
-the configuration port values, the triangle-table writes, the memory images and the per-pixel
-fragment words of a frame (:class:`model.shade.Frame`, :class:`model.camera.Camera`).
+the configuration port values, the triangle-table and texture level-table writes, the memory
+images and the per-pixel fragment words of a frame (:class:`model.shade.Frame`, :class:`model.camera.Camera`).
 
 The RTL's pixels must equal ``model.shade.render_pixels(frame, inputs)`` with the f24 engine:
 rgb, hit, invalid and iterations per pixel.  Packed-array ports are single integers here, element
@@ -20,8 +20,8 @@ from model.arith import ENGINES
 from . import sv_params, traverse_words
 
 #: rtl/pipe/pipe_pkg.sv: levels a texture configuration holds, and the widths of its fields.
-TEX_LEVELS, TEX_DIM_W, TEX_ADDR_W = sv_params.values("pipe_pkg", "TEX_LEVELS", "TEX_DIM_W",
-                                                     "TEX_ADDR_W")
+TEX_LEVELS, TEX_DIM_W, TEX_ADDR_W, TEX_LVL_W = sv_params.values(
+    "pipe_pkg", "TEX_LEVELS", "TEX_DIM_W", "TEX_ADDR_W", "TEX_LVL_W")
 #: Default byte addresses of the pyramid and the two textures in the AXI address spaces.
 HEIGHT_BASE = 0x4000_0000
 COLOUR_BASE = 0x1000_0000
@@ -36,15 +36,24 @@ def pack(words: npt.ArrayLike, width: int) -> int:
     return out
 
 
+def lvt_addr(size: bool, tex: int, level: int) -> int:
+    """dm_pipeline's lvt_waddr_i of texture ``tex``'s level ``level``: its byte offset (size
+    False) or its size word {height, width} (size True)."""
+    return (int(size) << (1 + TEX_LVL_W)) | (tex << TEX_LVL_W) | level
+
+
 @dataclass
 class PipelineConfig:
     """``ports``: cfg_* values; ``tri_writes``: (tt_waddr_i, tt_wdata_i) pairs; ``height`` and
-    ``textures``: (base, image) the memories must hold (height port; texture port)."""
+    ``textures``: (base, image) the memories must hold (height port; texture port);
+    ``lvt_writes``: (lvt_waddr_i, lvt_wdata_i) pairs, the texture level tables (per texture the
+    TEX_LEVELS offsets, then the TEX_LEVELS sizes)."""
 
     ports: dict[str, int]
     tri_writes: list[tuple[int, int]]
     height: tuple[int, bytes]
     textures: list[tuple[int, bytes]] = field(default_factory=list)
+    lvt_writes: list[tuple[int, int]] = field(default_factory=list)
 
 
 def _f24(x: float) -> int:
@@ -72,8 +81,9 @@ def config(frame: shade.Frame, height_base: int = HEIGHT_BASE, colour_base: int 
     ports["cfg_levels_colour_i"] = frame.colour.n_levels
     ports["cfg_levels_normal_i"] = frame.normals.n_levels
     ports["cfg_miss_rgb_i"] = pack(shade.MISS_COLOUR, 8)
-    su, sv, widths, heights, bases, offs = [], [], [], [], [], []
-    for tex, base in ((frame.colour, colour_base), (frame.normals, normal_base)):
+    su, sv, bases = [], [], []
+    lvt: list[tuple[int, int]] = []
+    for x, (tex, base) in enumerate(((frame.colour, colour_base), (frame.normals, normal_base))):
         if tex.n_levels > TEX_LEVELS:
             raise ValueError(f"a texture of {tex.n_levels} levels; the RTL holds {TEX_LEVELS}")
         s_u, s_v = tex.scale_for(ar, pyr.width, pyr.height)
@@ -82,21 +92,17 @@ def config(frame: shade.Frame, height_base: int = HEIGHT_BASE, colour_base: int 
         w = [lv.shape[1] for lv in tex.levels] + [1] * (TEX_LEVELS - tex.n_levels)
         h = [lv.shape[0] for lv in tex.levels] + [1] * (TEX_LEVELS - tex.n_levels)
         o = tex.level_offsets() + [0] * (TEX_LEVELS - tex.n_levels)
-        widths.append(pack(w, TEX_DIM_W))
-        heights.append(pack(h, TEX_DIM_W))
-        offs.append(pack(o, TEX_ADDR_W))
+        lvt += [(lvt_addr(False, x, k), o[k]) for k in range(TEX_LEVELS)]
+        lvt += [(lvt_addr(True, x, k), (h[k] << TEX_DIM_W) | w[k]) for k in range(TEX_LEVELS)]
         bases.append(base)
     ports["cfg_tex_su_i"] = pack(su, 24)
     ports["cfg_tex_sv_i"] = pack(sv, 24)
-    ports["cfg_tex_width_i"] = pack(widths, TEX_LEVELS * TEX_DIM_W)
-    ports["cfg_tex_height_i"] = pack(heights, TEX_LEVELS * TEX_DIM_W)
     ports["cfg_tex_base_i"] = pack(bases, TEX_ADDR_W)
-    ports["cfg_tex_level_off_i"] = pack(offs, TEX_LEVELS * TEX_ADDR_W)
     words = mip.table_words(frame.log2pb_colour, frame.log2pb_normal)
     tri = [(2 * t + x, int(words[t, x])) for t in range(words.shape[0]) for x in range(2)]
     return PipelineConfig(ports, tri, (height_base, pyr.memory_image()),
                           [(colour_base, frame.colour.memory_image()),
-                           (normal_base, frame.normals.memory_image())])
+                           (normal_base, frame.normals.memory_image())], lvt)
 
 
 def fragment_words(inp: shade.PixelInputs) -> dict[str, npt.NDArray[np.int64]]:

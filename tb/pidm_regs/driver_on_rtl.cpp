@@ -6,7 +6,8 @@
 // clocks, then frame_done (and, when asked, an error flag with axi_error); soft reset ends it.
 //
 // Checks: pidm_init's ID / VERSION / HWCFG; pidm_load_config of a packed frame (frame_regs.h from
-// scripts/pack_frame.py) gives exactly the cfg_* port values and table writes expected.h lists
+// scripts/pack_frame.py) gives exactly the cfg_* port values, triangle-table writes and texture
+// level-table writes (lvt_we_o, one per TEX[x].LEVEL_OFF / LEVEL_SIZE write) expected.h lists
 // (tb/harness/pipeline_words.config, written by tb/pidm_regs/test_driver_on_rtl.py); pidm_start's
 // descriptor reaches the ports with one start pulse; pidm_poll_done, pidm_wait_irq with the
 // interrupt line, an error frame, statistics, clear statistics, soft reset mid-frame.
@@ -43,7 +44,8 @@ struct Sim {
   int busy_left = -1;       // clocks until the running frame ends (-1: no frame)
   uint32_t end_errors = 0;  // ERROR flags the running frame ends with
   unsigned starts = 0, soft_resets = 0, clears = 0;
-  std::vector<std::pair<uint32_t, uint32_t>> tt;  // table writes seen on tt_we_o
+  std::vector<std::pair<uint32_t, uint32_t>> tt;   // table writes seen on tt_we_o
+  std::vector<std::pair<uint32_t, uint32_t>> lvt;  // level-table writes seen on lvt_we_o
 
   // One clock: inputs are set before; the edge; the hardware reacts to the outputs after it.
   void tick() {
@@ -55,6 +57,7 @@ struct Sim {
     m->intr_event_i = 0;
     m->error_set_i = 0;
     if (m->tt_we_o) tt.emplace_back(m->tt_waddr_o, m->tt_wdata_o);
+    if (m->lvt_we_o) lvt.emplace_back(m->lvt_waddr_o, m->lvt_wdata_o);
     if (m->clear_stats_o) clears++;
     if (m->soft_reset_o) {
       soft_resets++;
@@ -180,6 +183,10 @@ int main(int argc, char** argv) {
   for (size_t i = 0; i < s.tt.size() && i < EXPECTED_TT_COUNT; i++)
     check(s.tt[i].first == EXPECTED_TT[i][0] && s.tt[i].second == EXPECTED_TT[i][1],
           "table write address and data");
+  check(s.lvt.size() == EXPECTED_LVT_COUNT, "level-table write count");
+  for (size_t i = 0; i < s.lvt.size() && i < EXPECTED_LVT_COUNT; i++)
+    check(s.lvt[i].first == EXPECTED_LVT[i][0] && s.lvt[i].second == EXPECTED_LVT[i][1],
+          "level-table write address and data");
 
   // A frame by polling.
   check(pidm_start(&dev, &pidm_frame_desc) == PIDM_OK, "pidm_start");

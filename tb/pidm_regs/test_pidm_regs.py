@@ -5,9 +5,17 @@ behind it, driven over AXI4-Lite by cocotbext-axi's master as the driver (sw/pid
 - frame_config: a frame packed by tb/harness/pidm_frame.py (the rocks scene) written register by
   register, in random order, with random gaps: every cfg_* port of pidm_cfg equals the port value
   the pipeline harness would drive (tb/harness/pipeline_words.config), the table writes come out
-  on tt_we_o / tt_waddr_o / tt_wdata_o one per TT_WRITE write in order, and every register reads
-  back what was written (the write-only tables LEVEL_OFF and LEVEL_SIZE read 0); the frame
-  descriptor reaches its ports;
+  on tt_we_o / tt_waddr_o / tt_wdata_o one per TT_WRITE write in order, each write of a texture
+  level register TEX[x].LEVEL_OFF[k] / LEVEL_SIZE[k] as one lvt_we_o pulse with lvt_waddr_o
+  {kind, x, k} and lvt_wdata_o the word written, in order (the tables end up as the harness's
+  level-table writes), and every register reads back what was written (the write-only tables
+  LEVEL_OFF and LEVEL_SIZE read 0); the frame descriptor reaches its ports;
+- level_tables: random writes to the 64 texture level registers (TEX[x] LEVEL_OFF and
+  LEVEL_SIZE, external registers of the block), back to back and with gaps, mixed with writes
+  to the stored tables HEIGHT.LEVEL_OFF / PYR.LEVEL_OFF, other registers and unmapped words
+  beside the texture tables, and with reads of the texture level registers: exactly one
+  lvt_we_o pulse per texture level write, in order, with its {kind, x, k} and data, none for
+  any other write; every read of them returns 0 with OKAY;
 - control_status_interrupts: CTRL bits are one-clock pulses and read 0; ERROR flags are set by
   the hardware, kept, and cleared by writing 1 (only the bits written); INTR_STATE is set by the
   hardware events and by INTR_TEST, the interrupt line follows INTR_STATE & INTR_ENABLE, writing 1
@@ -27,9 +35,40 @@ from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, RisingEdge
 from cocotbext.axi import AxiLiteBus, AxiLiteMaster
 
 from tb.common import fp_unit, report, runner
-from tb.harness import dm_pipeline, pidm_frame, pidm_regmap
+from tb.harness import dm_pipeline, pidm_frame, pidm_regmap, sv_params
 
 R = pidm_regmap.reg
+#: rtl/pipe/pipe_pkg.sv: the texture level table address {kind, texture, level}.
+TEX_LVL_W, LVT_ADDR_W = sv_params.values("pipe_pkg", "TEX_LVL_W", "LVT_ADDR_W")
+
+
+def lvt_write(addr: int, value: int) -> tuple[int, int] | None:
+    """The level-table write (lvt_waddr_o, lvt_wdata_o) a register write makes: a write of
+    TEX[x].LEVEL_OFF[k] is {0, x, k} with the word, of TEX[x].LEVEL_SIZE[k] {1, x, k} with the
+    word; None for any other address."""
+    for x in range(2):
+        for kind, name in enumerate(("LEVEL_OFF", "LEVEL_SIZE")):
+            base = R(f"TEX[{x}].{name}[0]").addr
+            k = (addr - base) // 4
+            if addr % 4 == 0 and 0 <= k < 1 << TEX_LVL_W:
+                assert R(f"TEX[{x}].{name}[{k}]").addr == addr
+                return (kind << (TEX_LVL_W + 1)) | (x << TEX_LVL_W) | k, value & 0xFFFFFFFF
+    return None
+
+
+def watch_writes(dut, port: str, seen: list[tuple[int, int]]) -> None:
+    """Record every table write of pidm_cfg's port ``port`` (tt, lvt): each <port>_we_o pulse's
+    (<port>_waddr_o, <port>_wdata_o), in ``seen``."""
+    we, waddr, wdata = (getattr(dut, f"{port}_{s}_o") for s in ("we", "waddr", "wdata"))
+
+    async def mon() -> None:
+        while True:
+            await RisingEdge(dut.clk_i)
+            await ReadOnly()
+            if int(we.value):
+                seen.append((int(waddr.value), int(wdata.value)))
+
+    cocotb.start_soon(mon())
 
 
 async def setup(dut) -> AxiLiteMaster:
@@ -76,19 +115,16 @@ async def frame_config(dut):
     tri = [(a, v) for a, v in packed.config if a == tt]
     # the table writes are watched on tt_we_o
     seen: list[tuple[int, int]] = []
-
-    async def watch() -> None:
-        while True:
-            await RisingEdge(dut.clk_i)
-            await ReadOnly()
-            if int(dut.tt_we_o.value):
-                seen.append((int(dut.tt_waddr_o.value), int(dut.tt_wdata_o.value)))
-
-    cocotb.start_soon(watch())
+    watch_writes(dut, "tt", seen)
+    lvt_seen: list[tuple[int, int]] = []
+    lvt_want: list[tuple[int, int]] = []
+    watch_writes(dut, "lvt", lvt_seen)
     order = rng.permutation(len(regs))
     for i in order:
         a, v = regs[int(i)]
         await write(axil, a, v)
+        if (w := lvt_write(a, v)) is not None:
+            lvt_want.append(w)
         if rng.random() < 0.2:
             await ClockCycles(dut.clk_i, int(rng.integers(1, 4)))
     for a, v in tri:
@@ -105,6 +141,15 @@ async def frame_config(dut):
     if seen != cfg.tri_writes:
         bad.append(f"table writes {seen[:4]}... ({len(seen)}) != {cfg.tri_writes[:4]}... "
                    f"({len(cfg.tri_writes)})")
+    # one level-table write per TEX[x].LEVEL_OFF / LEVEL_SIZE write, in order; the tables end up
+    # holding what the pipeline harness writes into them
+    if lvt_seen != lvt_want:
+        i = next((i for i, (g, w) in enumerate(zip(lvt_seen, lvt_want)) if g != w),
+                 min(len(lvt_seen), len(lvt_want)))
+        bad.append(f"level-table writes: {len(lvt_seen)} for {len(lvt_want)}, first difference "
+                   f"at {i}: {lvt_seen[i:i + 2]} != {lvt_want[i:i + 2]}")
+    if dict(lvt_seen) != dict(cfg.lvt_writes):
+        bad.append("the level tables do not hold the harness's level-table writes")
     d = packed.descriptor
     for port, want in (("frag_base_o", d["frag_base"]), ("frag_count_o", d["frag_count"]),
                        ("fb_base_o", d["fb_base"]), ("fb_pitch_o", d["fb_pitch"]),
@@ -123,12 +168,84 @@ async def frame_config(dut):
             v = 0
         if got != v:
             bad.append(f"read {pidm_regmap.by_address()[a].path} ({a:#x}): {got:#x} != {v:#x}")
-    n = len(dm_pipeline.CFG_PORTS) + len(cfg.tri_writes) + len(last)
+    n = len(dm_pipeline.CFG_PORTS) + len(cfg.tri_writes) + len(lvt_want) + len(last)
     report.record(dut._name, "configuration ports, table writes, read-back", n, len(bad))
     dut._log.info("VECTORS pidm_regs frame_config: %d register writes, %d table writes, %d "
-                  "checks (%d write-only reads), %d mismatches", len(regs), len(tri), n, n_wo,
-                  len(bad))
+                  "level-table writes, %d checks (%d write-only reads), %d mismatches",
+                  len(regs), len(tri), len(lvt_want), n, n_wo, len(bad))
     assert n_wo > 0, "the frame wrote no write-only register"
+    assert len(lvt_want) == 2 * 2 * (1 << TEX_LVL_W), "the frame wrote not every level register"
+    assert not bad, "\n".join(bad[:20])
+
+
+@cocotb.test()
+async def level_tables(dut):
+    rng = np.random.default_rng(fp_unit.seed())
+    axil = await setup(dut)
+    seen: list[tuple[int, int]] = []
+    watch_writes(dut, "lvt", seen)
+    tex = [R(f"TEX[{x}].{n}[{k}]").addr for x in range(2) for n in ("LEVEL_OFF", "LEVEL_SIZE")
+           for k in range(1 << TEX_LVL_W)]
+    # writes that must not reach the level tables: the stored tables, other registers of TEX and
+    # elsewhere, unmapped words beside the texture tables
+    others = ([R(f"HEIGHT.LEVEL_OFF[{k}]").addr for k in (0, 7, 15)]
+              + [R(f"PYR.LEVEL_OFF[{k}]").addr for k in (0, 9, 15)]
+              + [R(f"TEX[{x}].{n}").addr for x in range(2) for n in ("SU", "SV", "BASE")]
+              + [R("HEIGHT.BASE").addr, R("FRAME.FRAG_COUNT").addr,
+                 0x40C, 0x43C, 0x4C0, 0x4FC, 0x50C, 0x53C, 0x5C0, 0x5FC])
+    want: list[tuple[int, int]] = []
+    reads = 0
+
+    def value() -> int:
+        return int(rng.integers(0, 1 << 32, dtype=np.uint64))
+
+    # every entry once, back to back (the master's writes queued together)
+    events = []
+    for a in rng.permutation(tex):
+        v = value()
+        events.append(axil.init_write(int(a), v.to_bytes(4, "little")))
+        want.append(lvt_write(int(a), v))
+    for e in events:
+        await e.wait()
+        assert int(e.data.resp) == 0, "write response"
+    # random writes (texture level or other, some back to back) mixed with reads of the texture
+    # level registers, with gaps
+    for _ in range(300):
+        r = rng.random()
+        if r < 0.15:
+            a = int(rng.choice(tex))
+            got = await read(axil, a)
+            reads += 1
+            assert got == 0, f"read of {pidm_regmap.by_address()[a].path} ({a:#x}): {got:#x}"
+            continue
+        burst = int(rng.integers(1, 4))
+        events = []
+        for _ in range(burst):
+            a = int(rng.choice(tex)) if rng.random() < 0.7 else int(rng.choice(others))
+            v = value()
+            events.append(axil.init_write(a, v.to_bytes(4, "little")))
+            if (w := lvt_write(a, v)) is not None:
+                want.append(w)
+        if rng.random() < 0.3:   # a read issued while the writes are in flight
+            a = int(rng.choice(tex))
+            got = await read(axil, a)
+            reads += 1
+            assert got == 0, f"read of {a:#x} beside writes: {got:#x}"
+        for e in events:
+            await e.wait()
+            assert int(e.data.resp) == 0, "write response"
+        if rng.random() < 0.3:
+            await ClockCycles(dut.clk_i, int(rng.integers(1, 4)))
+    await ClockCycles(dut.clk_i, 4)
+    bad = [f"pulse {i}: (waddr, data) {s!r} != {w!r}"
+           for i, (s, w) in enumerate(zip(seen, want)) if s != w]
+    if len(seen) != len(want):
+        bad.append(f"{len(seen)} lvt_we_o pulses for {len(want)} level-table writes")
+    kinds = {(w[0] >> (TEX_LVL_W + 1), (w[0] >> TEX_LVL_W) & 1) for w in want}
+    assert kinds == {(0, 0), (0, 1), (1, 0), (1, 1)}, "both kinds of both textures"
+    report.record(dut._name, "level-table writes and reads", len(want) + reads, len(bad))
+    dut._log.info("VECTORS pidm_regs level_tables: %d level-table writes, %d reads, %d "
+                  "mismatches", len(want), reads, len(bad))
     assert not bad, "\n".join(bad[:20])
 
 

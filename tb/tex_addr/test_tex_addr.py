@@ -44,6 +44,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import cocotb
+from cocotb.triggers import FallingEdge
 import numpy as np
 import pytest
 
@@ -67,7 +68,8 @@ def latency() -> int:
 
 
 SPACING = 2  # enabled clocks from one lookup to the next, at least (u, then v on the same units)
-TEX_LEVELS, DIM_W = sv_params.values("pipe_pkg", "TEX_LEVELS", "TEX_DIM_W")
+TEX_LEVELS, DIM_W, TEX_LVL_W = sv_params.values("pipe_pkg", "TEX_LEVELS", "TEX_DIM_W",
+                                                "TEX_LVL_W")
 INS = ["u_i", "v_i", "level_i", "tex_i"]
 OUTS = ["addr00_o", "addr01_o", "addr10_o", "addr11_o", "fx_o", "fy_o"]
 AR = ENGINES["f24"]
@@ -169,13 +171,18 @@ def expected(tex: texture.Texture, ins: dict[str, np.ndarray], su: int, sv: int,
     return out
 
 
-def configure(dut, rng: np.random.Generator,
-              textures: list[tuple[texture.Texture, int, int, int]]) -> None:
-    """Drive the cfg_* ports with (texture, su, sv, base) per texture index (levels beyond a
-    texture's own: random junk)."""
+async def configure(dut, rng: np.random.Generator,
+                    textures: list[tuple[texture.Texture, int, int, int]]) -> None:
+    """Drive the cfg_* ports with (texture, su, sv, base) per texture index and write the level
+    tables through the lvt_* port (levels beyond a texture's own: random junk).  The writes come
+    in random order, about a third of the entries written with junk first (the last write
+    counts), with writes to texture codes NTEX and above (ignored) mixed in, and en_i random
+    (the write port does not wait for it)."""
     ntex = len(textures)
     addr_w = len(dut.cfg_base_i) // ntex
-    su = sv = wv = hv = ov = bv = 0
+    sel_w = len(dut.tex_i)
+    su = sv = bv = 0
+    final: list[tuple[int, int]] = []
     for t, (tex, su_t, sv_t, base) in enumerate(textures):
         offs = tex.level_offsets()
         for k in range(TEX_LEVELS):
@@ -185,18 +192,31 @@ def configure(dut, rng: np.random.Generator,
             else:
                 w, h = (int(x) for x in rng.integers(1, 1 << DIM_W, 2))
                 o = int(rng.integers(0, 1 << addr_w))
-            wv |= w << (DIM_W * (t * TEX_LEVELS + k))
-            hv |= h << (DIM_W * (t * TEX_LEVELS + k))
-            ov |= o << (addr_w * (t * TEX_LEVELS + k))
+            final.append(((t << TEX_LVL_W) | k, o))
+            final.append(((1 << (sel_w + TEX_LVL_W)) | (t << TEX_LVL_W) | k, (h << DIM_W) | w))
         su |= su_t << (24 * t)
         sv |= sv_t << (24 * t)
         bv |= base << (addr_w * t)
+    dw = len(dut.lvt_wdata_i)
+    junk = [(a, int(rng.integers(0, 1 << dw))) for a, _ in final if rng.random() < 0.3]
+    junk += [((kind << (sel_w + TEX_LVL_W)) | (t << TEX_LVL_W) | k,
+              int(rng.integers(0, 1 << dw)))
+             for kind in (0, 1) for t in range(ntex, 1 << sel_w) for k in range(TEX_LEVELS)]
+    order = [junk[i] for i in rng.permutation(len(junk))] + \
+        [final[i] for i in rng.permutation(len(final))]
     dut.cfg_su_i.value = su
     dut.cfg_sv_i.value = sv
-    dut.cfg_width_i.value = wv
-    dut.cfg_height_i.value = hv
-    dut.cfg_level_off_i.value = ov
     dut.cfg_base_i.value = bv
+    dut.valid_i.value = 0
+    for a, d in order:
+        await FallingEdge(dut.clk_i)
+        dut.en_i.value = int(rng.random() < 0.7)
+        dut.lvt_we_i.value = 1
+        dut.lvt_waddr_i.value = a
+        dut.lvt_wdata_i.value = d
+    await FallingEdge(dut.clk_i)
+    dut.lvt_we_i.value = 0
+    dut.en_i.value = 1
 
 
 def configs(rng: np.random.Generator, addr_w: int) -> list[tuple[str, texture.Texture, int, int,
@@ -233,6 +253,7 @@ async def tex_addr_random_and_directed(dut):
     dut._log.info("ADD_LAT, MUL_LAT = %s: latency %d", depths.current(), lat)
     pipe = ValidPipe(dut, lat, INS, OUTS, "RTL vs model.texture.lookup_addresses (f24)",
                      spacing=SPACING)
+    dut.lvt_we_i.value = 0
     await pipe.reset()
     cfgs = configs(rng, addr_w)
     total, lines = 0, []
@@ -265,7 +286,7 @@ async def tex_addr_random_and_directed(dut):
         perm = rng.permutation(len(ins["u_i"]))
         ins = {k: v[perm] for k, v in ins.items()}
         exp = {k: v[perm] for k, v in exp.items()}
-        configure(dut, rng, textures)  # pipeline drained: only bubbles in flight
+        await configure(dut, rng, textures)  # pipeline drained: only bubbles in flight
 
         def describe(k: int, ins=ins, names=names) -> str:
             t = min(int(ins["tex_i"][k]), ntex - 1) if ntex > 1 else 0
