@@ -29,7 +29,7 @@
 //             response; writes to read-only or unmapped addresses are ignored, answered OKAY).
 //   writes    a reference copy ("shadow") of a representative set of registers (tracked below:
 //             full-width and multi-field RW registers with reserved bits, f24 words, elements of
-//             the write-only tables HEIGHT.LEVEL_OFF and TEX[1].LEVEL_SIZE, TT_WRITE,
+//             the write-only external tables HEIGHT.LEVEL_OFF and TEX[1].LEVEL_SIZE, TT_WRITE,
 //             INTR_ENABLE, the W1C registers ERROR and INTR_STATE, the singlepulse registers CTRL
 //             and INTR_TEST) updated from the committed AXI writes by the RDL rules, every write
 //             a whole-word write (the strobes ignored): RW and write-only take the data on the
@@ -39,19 +39,25 @@
 //             written bit one clock, then 0.  Every clock each tracked register's field values
 //             (hwif_out, or the block's storage where the field has no hardware output) equal
 //             their shadow (field_match): writes to the other addresses leave them alone.
-//             TEX[1].LEVEL_SIZE[15] is an external register (TEX[x].LEVEL_OFF / LEVEL_SIZE are
-//             not stored in the block: pidm_cfg passes each write on as a write of dm_pipeline's
-//             texture level tables, lvt_*): its "field" is the wrapper's model of the table
-//             entry {1, 1, 15} that pidm_cfg's lvt_* writes build (lvt_entry_q; in the clock of
-//             a write to it, the word written).
-//   level     the 64 external registers TEX[x].LEVEL_OFF[k] / LEVEL_SIZE[k]: a request strobe
-//   tables    (hwif_out .req) exactly in the clock a write to one is committed, never two at once
-//             (lvt_req_one, lvt_req_commit); no external access outstanding (ext_idle: they are
-//             acknowledged at once); lvt_we_o exactly the clock after such a commit (lvt_we_next)
-//             with lvt_waddr_o = {kind, x, k} of the address written and lvt_wdata_o the word
-//             written (lvt_fields); every write answered by the core in its commit clock, a
-//             level-table write by pidm_cfg's acknowledge (wr_ack_commit: also a lemma that
-//             keeps the induction short, 40 to 55 s of process time instead of 80 to 155).
+//             HEIGHT.LEVEL_OFF[0], HEIGHT.LEVEL_OFF[15] and TEX[1].LEVEL_SIZE[15] are external
+//             registers (HEIGHT.LEVEL_OFF, TEX[x].LEVEL_OFF / LEVEL_SIZE are not stored in the
+//             block: pidm_cfg passes each write on as a write of dm_pipeline's level tables,
+//             lvt_*): the "field" of each is the wrapper's model of its table entry {kind, x, k}
+//             ({1, 0, 0}, {1, 0, 15}, {3, 1, 15}) that pidm_cfg's lvt_* writes build
+//             (lvt_entry_q), checked against the shadow of the clock before (shadow_q): the
+//             table write comes the clock after the commit, the model holds it a clock later.
+//             (Compared in the clock of the table write instead, the induction took about twice
+//             as long.)
+//   level     the 80 external registers HEIGHT.LEVEL_OFF[k], TEX[x].LEVEL_OFF[k] /
+//   tables    LEVEL_SIZE[k]: a request strobe (hwif_out .req) exactly in the clock a write to
+//             one is committed, never two at once (lvt_req_one, lvt_req_commit); no external
+//             access outstanding (ext_idle: they are acknowledged at once); lvt_we_o exactly the
+//             clock after such a commit (lvt_we_next) with lvt_waddr_o = {kind, x, k} of the
+//             address written (kind 1 HEIGHT.LEVEL_OFF, 2 TEX[x].LEVEL_OFF, 3 TEX[x].LEVEL_SIZE)
+//             and lvt_wdata_o the word written (lvt_fields; the lemma lvt_addr_enc: pidm_cfg's
+//             encoded address in the commit clock); every write answered by the core in its
+//             commit clock, a level-table write by pidm_cfg's acknowledge (wr_ack_commit: also
+//             a lemma that keeps the induction short).
 //   reads     a read of a tracked readable register returns its shadow (reserved bits 0), of
 //             any word of the write-only tables (HEIGHT / TEX[x] / PYR LEVEL_OFF, TEX[x].
 //             LEVEL_SIZE) 0, of ID / VERSION
@@ -103,7 +109,8 @@ module pidm_regs_formal (
   logic [31:0] rdata;
   pidm_regs_pkg::pidm_regs__in_t  hwif_in;
   pidm_regs_pkg::pidm_regs__out_t hwif_out;
-  pidm_regs_pkg::pidm_regs__TEXx__in_t hwif_in_tex [2];   // from pidm_cfg, as in pidm_top
+  pidm_regs_pkg::pidm_regs__HEIGHT__in_t hwif_in_height;  // from pidm_cfg, as in pidm_top
+  pidm_regs_pkg::pidm_regs__TEXx__in_t hwif_in_tex [2];
 
   pidm_regs u_dut (
     .clk(clk_i), .rst_n(rst_ni),
@@ -162,6 +169,7 @@ module pidm_regs_formal (
     hwif_in.STATS.t_texel_hits.HI.val.next  = stats_i[9][47:32];
     hwif_in.STATS.t_bytes.LO.val.next       = stats_i[10][31:0];
     hwif_in.STATS.t_bytes.HI.val.next       = stats_i[10][47:32];
+    hwif_in.HEIGHT = hwif_in_height;
     for (int x = 0; x < 2; x++) hwif_in.TEX[x] = hwif_in_tex[x];
   end
 
@@ -173,11 +181,12 @@ module pidm_regs_formal (
   /* verilator lint_off PINCONNECTEMPTY */
   pidm_cfg #(.TRIS(16)) u_cfg (
     .clk_i, .rst_ni, .hwif_i(hwif_out), .cfg_method_o(), .cfg_width_o(), .cfg_height_o(),
-    .cfg_root_level_o(), .cfg_bits16_o(), .cfg_base_o(), .cfg_level_off_o(), .cfg_root_code_o(),
+    .cfg_root_level_o(), .cfg_bits16_o(), .cfg_base_o(), .cfg_root_code_o(),
     .cfg_iter_cap_o(), .cfg_depth_o(), .cfg_mip_en_o(), .cfg_levels_colour_o(),
     .cfg_levels_normal_o(), .cfg_shade_o(), .cfg_miss_rgb_o(), .cfg_tex_su_o(), .cfg_tex_sv_o(),
     .cfg_tex_base_o(), .tt_we_o(), .tt_waddr_o(), .tt_wdata_o(), .lvt_we_o(lvt_we),
-    .lvt_waddr_o(lvt_waddr), .lvt_wdata_o(lvt_wdata), .hwif_tex_o(hwif_in_tex));
+    .lvt_waddr_o(lvt_waddr), .lvt_wdata_o(lvt_wdata), .hwif_height_o(hwif_in_height),
+    .hwif_tex_o(hwif_in_tex));
   /* verilator lint_on PINCONNECTEMPTY */
 
   // ---------------------------------------------------------------------------------------
@@ -343,15 +352,16 @@ module pidm_regs_formal (
       1:  return 12'h060;   // FRAME.FB_LAYOUT       RW xbits[4:0], status_en[8]
       2:  return 12'h200;   // HEIGHT.MODE           RW method[3:0] (reset 7), root_level, bits16
       3:  return 12'h204;   // HEIGHT.SIZE           RW width[15:0], height[31:16]
-      4:  return 12'h240;   // HEIGHT.LEVEL_OFF[0]   W 32 bits (write-only: reads 0)
-      5:  return 12'h27C;   // HEIGHT.LEVEL_OFF[15]
+      4:  return 12'h240;   // HEIGHT.LEVEL_OFF[0]   W 32 bits (write-only: reads 0; external:
+                            //   the level table entry {1, 0, 0} pidm_cfg writes)
+      5:  return 12'h27C;   // HEIGHT.LEVEL_OFF[15]  (external: entry {1, 0, 15})
       6:  return 12'h300;   // SHADE.MIP             RW mip_en[0], levels_colour[13:8], levels_normal[21:16]
       7:  return 12'h304;   // SHADE.MISS_RGB        RW red, green, blue [23:0]
       8:  return 12'h33C;   // SHADE.D2              RW f24 [23:0]
       9:  return 12'h400;   // TEX[0].SU             RW f24
       10: return 12'h508;   // TEX[1].BASE           RW 32 bits
       11: return 12'h5BC;   // TEX[1].LEVEL_SIZE[15] W width, height (write-only, external:
-                            //   the level table entry {1, 1, 15} pidm_cfg writes)
+                            //   the level table entry {3, 1, 15} pidm_cfg writes)
       12: return 12'h100;   // TT_WRITE              RW data[23:0], addr[31:24] (swmod)
       13: return 12'h024;   // INTR_ENABLE           RW [2:0] (no hardware output)
       14: return 12'h018;   // ERROR                 W1C [8:0], hardware set
@@ -383,6 +393,11 @@ module pidm_regs_formal (
     return (i == 2) ? 32'h0000_0007 : 32'h0;
   endfunction
 
+  // The external registers among them (their fields are modelled table entries, lvt_e).
+  function automatic logic t_ext(int unsigned i);
+    return i == 4 || i == 5 || i == 11;
+  endfunction
+
   function automatic int unsigned t_kind(int unsigned i);
     case (i)
       14, 15:  return K_W1C;
@@ -391,33 +406,57 @@ module pidm_regs_formal (
     endcase
   endfunction
 
-  // The texture level tables (external registers TEX[x].LEVEL_OFF[k], LEVEL_SIZE[k]): a write
-  // committed to one is lvt_waddr {kind, x, k} = {addr[7], addr[8], addr[5:2]}.
+  // The level tables (external registers HEIGHT.LEVEL_OFF[k], TEX[x].LEVEL_OFF[k],
+  // LEVEL_SIZE[k]): a write committed to one is lvt_waddr {kind, x, k} (lvt_idx).
   function automatic logic lvt_reg(logic [11:0] a);
-    return (a[11:8] == 4'h4 || a[11:8] == 4'h5) && (a[7:6] == 2'b01 || a[7:6] == 2'b10);
+    return (a[11:8] == 4'h2) ? a[7:6] == 2'b01
+         : (a[11:8] == 4'h4 || a[11:8] == 4'h5) && (a[7:6] == 2'b01 || a[7:6] == 2'b10);
+  endfunction
+  function automatic logic [6:0] lvt_idx(logic [11:0] a);   // of an address lvt_reg accepts
+    return (a[11:8] == 4'h2) ? {2'b01, 1'b0, a[5:2]}        // HEIGHT.LEVEL_OFF[k]
+                             : {1'b1, a[7], a[8], a[5:2]};  // TEX[x].LEVEL_OFF / LEVEL_SIZE[k]
+  endfunction
+  // The modelled table entries, for the tracked registers 4, 5 and 11.
+  localparam int unsigned NE = 3;
+  function automatic logic [6:0] lvt_e(int unsigned e);
+    case (e)
+      0:       return 7'h20;   // {1, 0, 0}:  HEIGHT.LEVEL_OFF[0]
+      1:       return 7'h2F;   // {1, 0, 15}: HEIGHT.LEVEL_OFF[15]
+      default: return 7'h7F;   // {3, 1, 15}: TEX[1].LEVEL_SIZE[15]
+    endcase
   endfunction
 
-  logic [1:0][15:0] off_req, size_req;    // the block's external request strobes
+  logic [15:0]      height_req;           // the block's external request strobes
+  logic [1:0][15:0] off_req, size_req;
+  for (genvar k = 0; k < 16; k++) begin : g_hext
+    assign height_req[k] = hwif_out.HEIGHT.LEVEL_OFF[k].req;
+  end
   for (genvar x = 0; x < 2; x++) begin : g_ext
     for (genvar k = 0; k < 16; k++) begin : g_k
       assign off_req[x][k]  = hwif_out.TEX[x].LEVEL_OFF[k].req;
       assign size_req[x][k] = hwif_out.TEX[x].LEVEL_SIZE[k].req;
     end
   end
+  logic [79:0] lvt_reqs;
+  assign lvt_reqs = {height_req, off_req, size_req};
 
   logic        lvt_wr_q;                  // the clock before committed a level-table write
-  logic [5:0]  lvt_idx_q;                 // its {kind, x, k}
+  logic [6:0]  lvt_idx_q;                 // its {kind, x, k}
   logic [31:0] lvt_data_q;                // its word
-  logic [31:0] lvt_entry_q;               // the model of table entry {1, 1, 15}
-  logic [31:0] lvt_entry;                 // ... with this clock's write to it
+  logic [31:0] lvt_entry_q [NE];          // the model of the table entries lvt_e(e)
+  logic [31:0] lvt_entry   [NE];          // ... with this clock's write to them
   always_ff @(posedge clk_i) begin
     lvt_wr_q   <= rst_ni && wr_commit && lvt_reg(aw_addr);
-    lvt_idx_q  <= {aw_addr[7], aw_addr[8], aw_addr[5:2]};
+    lvt_idx_q  <= lvt_idx(aw_addr);
     lvt_data_q <= w_data;
-    if (!rst_ni) lvt_entry_q <= '0;
-    else         lvt_entry_q <= lvt_entry;
+    for (int unsigned e = 0; e < NE; e++) begin
+      if (!rst_ni) lvt_entry_q[e] <= '0;
+      else         lvt_entry_q[e] <= lvt_entry[e];
+    end
   end
-  assign lvt_entry = (lvt_we && lvt_waddr == 6'h3F) ? lvt_wdata : lvt_entry_q;
+  always_comb
+    for (int unsigned e = 0; e < NE; e++)
+      lvt_entry[e] = (lvt_we && lvt_waddr == lvt_e(e)) ? lvt_wdata : lvt_entry_q[e];
 
   // Each tracked register's fields at their RDL bit positions (0 elsewhere).
   logic [31:0] view  [NT];
@@ -429,8 +468,8 @@ module pidm_regs_formal (
     view[2]  = {23'b0, hwif_out.HEIGHT.MODE.bits16.value, hwif_out.HEIGHT.MODE.root_level.value,
                 hwif_out.HEIGHT.MODE.method.value};
     view[3]  = {hwif_out.HEIGHT.SIZE.height.value, hwif_out.HEIGHT.SIZE.width.value};
-    view[4]  = hwif_out.HEIGHT.LEVEL_OFF[0].val.value;
-    view[5]  = hwif_out.HEIGHT.LEVEL_OFF[15].val.value;
+    view[4]  = lvt_entry_q[0];   // external: checked against the shadow a clock late
+    view[5]  = lvt_entry_q[1];
     view[6]  = {10'b0, hwif_out.SHADE.MIP.levels_normal.value, 2'b0,
                 hwif_out.SHADE.MIP.levels_colour.value, 7'b0, hwif_out.SHADE.MIP.mip_en.value};
     view[7]  = {8'b0, hwif_out.SHADE.MISS_RGB.blue.value, hwif_out.SHADE.MISS_RGB.green.value,
@@ -438,7 +477,7 @@ module pidm_regs_formal (
     view[8]  = {8'b0, hwif_out.SHADE.D2.val.value};
     view[9]  = {8'b0, hwif_out.TEX[0].SU.val.value};
     view[10] = hwif_out.TEX[1].BASE.val.value;
-    view[11] = lvt_entry;
+    view[11] = lvt_entry_q[2];
     view[12] = {hwif_out.TT_WRITE.addr.value, hwif_out.TT_WRITE.data.value};
     // INTR_ENABLE and INTR_STATE have no hardware outputs but the interrupt line: their storage
     view[13] = {29'b0, u_dut.field_storage.INTR_ENABLE.pyr_done.value,
@@ -481,6 +520,12 @@ module pidm_regs_formal (
       endcase
     end
   end
+
+  // The shadows of the clock before (for the external registers: pidm_cfg writes the table the
+  // clock after the commit, lvt_entry_q holds the word one clock later still).
+  logic [31:0] shadow_q [NT];
+  always_ff @(posedge clk_i)
+    for (int unsigned i = 0; i < NT; i++) shadow_q[i] <= rst_ni ? shadow[i] : t_reset(i);
 
   // What a read of the committed address returns (rq_push_chk: known for this address).
   function automatic logic mapped(logic [11:0] a);
@@ -635,13 +680,15 @@ module pidm_regs_formal (
       front_entries: assert (entries_match);
       // --- registers ---
       tt_swmod:      assert (hwif_out.TT_WRITE.data.swmod == wr_sel[T_TT]);
-      // --- the texture level tables (external registers, pidm_cfg's lvt_* port) ---
-      lvt_req_one:    assert ($onehot0({off_req, size_req}));
-      lvt_req_commit: assert ((|{off_req, size_req}) == (wr_commit && lvt_reg(aw_addr)));
+      // --- the level tables (external registers, pidm_cfg's lvt_* port) ---
+      lvt_req_one:    assert ($onehot0(lvt_reqs));
+      lvt_req_commit: assert ((|lvt_reqs) == (wr_commit && lvt_reg(aw_addr)));
       ext_idle:       assert (!u_dut.external_pending && !u_dut.readback_external_rd_ack);
       // a write is answered in its commit clock (an external one by pidm_cfg's acknowledge)
       wr_ack_commit:  assert (u_dut.cpuif_wr_ack == wr_commit
                               && u_dut.external_wr_ack == (wr_commit && lvt_reg(aw_addr)));
+      // pidm_cfg's encoded address in the commit clock (a lemma for lvt_fields)
+      lvt_addr_enc:   assert (!(|lvt_reqs) || u_cfg.lvt_addr == lvt_idx(aw_addr));
       lvt_we_next:    assert (lvt_we == lvt_wr_q);
       lvt_fields:     assert (!lvt_we || (lvt_waddr == lvt_idx_q && lvt_wdata == lvt_data_q));
       intr_line:     assert (hwif_out.INTR_STATE.intr
@@ -660,7 +707,8 @@ module pidm_regs_formal (
       c_interrupt:     cover (hwif_out.INTR_STATE.intr && !intr_q);
       c_hw_wins:       cover (wr_sel[T_ERROR] && error_set_i[0] && shadow[T_ERROR][0] && w_data[0]);
       c_wo_read:       cover (rd_commit && write_only(ar_addr));
-      c_lvt_write:     cover (lvt_we && lvt_waddr == 6'h3F && lvt_wdata != '0);
+      c_lvt_write:     cover (lvt_we && lvt_waddr == 7'h7F && lvt_wdata != '0);
+      c_lvt_height:    cover (lvt_we && lvt_waddr == 7'h2F && lvt_wdata != '0);
       c_lvt_back_to_back: cover (lvt_we && lvt_we_q);
     end
   end
@@ -669,7 +717,7 @@ module pidm_regs_formal (
   for (genvar i = 0; i < NT; i++) begin : g_t
     always_comb begin
       if (rst_ni && started_q) begin
-        field_match: assert (view[i] == shadow[i]);
+        field_match: assert (view[i] == (t_ext(i) ? shadow_q[i] : shadow[i]));
       end
     end
   end

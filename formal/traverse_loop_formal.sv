@@ -50,7 +50,8 @@ module traverse_loop_formal
   logic [LOOP_BUSY_W-1:0] busy;
 
   traverse_loop #(.ID_W(ID_W), .PARK(1'b1), .PARK_DEPTH(PARK_DEPTH)) u_dut (
-    .clk_i, .rst_ni, .cfg_i, .new_valid_i, .new_id_i, .new_ray_i, .new_pop_o(new_pop),
+    .clk_i, .rst_ni, .cfg_i, .hlt_we_i(1'b0), .hlt_waddr_i('0), .hlt_wdata_i('0),
+    .new_valid_i, .new_id_i, .new_ray_i, .new_pop_o(new_pop),
     .res_full_i, .res_push_o(res_push), .res_id_o(res_id), .res_o(res),
     .lk_valid_o(lk_valid), .lk_addr_o(lk_addr), .lk_wide_o(lk_wide),
     .rs_valid_i, .rs_hit_i, .rs_err_i, .rs_data_i,

@@ -37,8 +37,8 @@ module traverse_rings_formal
   traverse_rings #(.N_RINGS(N_RINGS), .RAY_ID_W(ID_W), .AXI_ID_W(4)) u_dut (
     .clk_i, .rst_ni,
     .cfg_method_i('0), .cfg_width_i('0), .cfg_height_i('0), .cfg_root_level_i('0),
-    .cfg_bits16_i(1'b0), .cfg_base_i('0), .cfg_level_off_i('0), .cfg_root_code_i('0),
-    .cfg_iter_cap_i('0),
+    .cfg_bits16_i(1'b0), .cfg_base_i('0), .cfg_root_code_i('0),
+    .cfg_iter_cap_i('0), .hlt_we_i(1'b0), .hlt_waddr_i('0), .hlt_wdata_i('0),
     .ray_valid_i, .ray_ready_o(ray_ready), .ray_id_i, .ray_u0_i('0), .ray_v0_i('0),
     .ray_du_i('0), .ray_dv_i('0),
     .res_valid_o(res_valid), .res_ready_i, .res_id_o(res_id), .res_t_o(), .res_u_o(),

@@ -499,7 +499,6 @@ typedef struct __attribute__ ((__packed__)) {
 #define PIDM_REGS__HEIGHT__LEVEL_OFFX__VAL_bm 0xffffffff
 #define PIDM_REGS__HEIGHT__LEVEL_OFFX__VAL_bp 0
 #define PIDM_REGS__HEIGHT__LEVEL_OFFX__VAL_bw 32
-#define PIDM_REGS__HEIGHT__LEVEL_OFFX__VAL_reset 0x0
 
 // regfile - pidm_regs.HEIGHT
 typedef struct __attribute__ ((__packed__)) {

@@ -40,7 +40,7 @@ def test_config_writes_round_trip_to_the_ports(scene):
     for name, _bits in dm_pipeline.CFG_PORTS:
         assert ports[name] == cfg.ports[name], name
     assert tri == cfg.tri_writes and len(tri) == 2 * len(frame.log2pb_colour)
-    assert lvt == cfg.lvt_writes and len(lvt) == 2 * 2 * pipeline_words.TEX_LEVELS
+    assert lvt == cfg.lvt_writes and len(lvt) == (1 + 2 * 2) * pipeline_words.TEX_LEVELS
     # every configuration register is written once, in address order, then the table
     addrs = [a for a, _ in packed.config]
     tt = pidm_regmap.reg("TT_WRITE").addr
@@ -57,7 +57,8 @@ def test_a_changed_port_changes_the_writes(scene):
     frame, _, packed = scene
     cfg = dm_pipeline.frame_image(frame).cfg
     i = cfg.lvt_writes.index(next(w for w in cfg.lvt_writes
-                                  if w[0] == pipeline_words.lvt_addr(False, 1, 3)))
+                                  if w[0] == pipeline_words.lvt_addr(pipeline_words.LVT_TEX_OFF,
+                                                                     1, 3)))
     a, d = cfg.lvt_writes[i]
     cfg.lvt_writes[i] = (a, d ^ 64)                                       # TEX[1].LEVEL_OFF[3] bit 6
     diff = [(a, v, w) for (a, v), (_, w) in zip(packed.config, pidm_frame.config_writes(cfg))

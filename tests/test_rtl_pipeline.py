@@ -191,8 +191,9 @@ def test_input_file_checks(harness: Path, tmp_path: Path) -> None:
     assert head[7] == len(words) and head[8] == pipeline_words.HEIGHT_BASE
     assert head[9] == len(fi.cfg.height[1]) and head[10] == fi.tex_base
     assert head[11] == len(fi.tex_image) and head[12] == 16
-    # the level-table writes follow the triangle table's: both textures' offsets and sizes
-    assert head[13] == len(fi.cfg.lvt_writes) == 4 * pipeline_words.TEX_LEVELS
+    # the level-table writes follow the triangle table's: the height level offsets, both
+    # textures' offsets and sizes
+    assert head[13] == len(fi.cfg.lvt_writes) == 5 * pipeline_words.TEX_LEVELS
     at = 64 + 4 * int(head[5]) + 8 * int(head[6])
     lvt = np.frombuffer(raw[at:at + 8 * int(head[13])], dtype="<u4").reshape(-1, 2)
     assert [tuple(int(x) for x in w) for w in lvt] == fi.cfg.lvt_writes

@@ -2,7 +2,7 @@
 // dm_pipeline_fpga_top: dm_pipeline with a pin count that fits an FPGA package, for place and
 // route (scripts/flow/synth.py, `make synth`).  Not used by the simulations.
 //
-// dm_pipeline has about 2,000 port bits (the configuration alone about 1,100); an LFE5U-85F has at
+// dm_pipeline has about 1,500 port bits (the configuration alone about 520); an LFE5U-85F has at
 // most 365 user I/Os (CABGA756).  This wrapper keeps both AXI4 read ports as they are (252 pins)
 // and replaces the configuration, fragment, pixel and statistics ports by a 32-bit register
 // port: every configuration field, the fragment fields, the triangle table and the control
@@ -31,7 +31,8 @@
 //   0x20 + k            height level offset k (k = 0 .. 15)
 //   0x40 + 16 x + k     texture x level k offset
 //   0x60 + 16 x + k     texture x level k: [15:0] width, [31:16] height
-//         (0x40 .. 0x7F go straight to dm_pipeline's texture level tables, lvt_*: no register here)
+//         (0x20 .. 0x2F and 0x40 .. 0x7F go straight to dm_pipeline's level tables, lvt_*: no
+//         register here)
 //   0x80  [PIX_W-1:0] fragment id     0x81 u0   0x82 v0   0x83 Pl0   0x84 [TRI_W-1:0] triangle
 //   0x85 .. 0x8D  TBN (T 0..2, B 3..5, N 6..8)     0x8E .. 0x90  view vector
 //   0x91  control, write 1 to: [0] push the fragment (waits in the register until accepted),
@@ -119,7 +120,6 @@ module dm_pipeline_fpga_top
   logic [LVL_W-1:0]                  cfg_root_level_q;
   logic                              cfg_bits16_q, cfg_mip_en_q;
   logic [ADDR_W-1:0]                 cfg_base_q;
-  logic [MAX_LEVELS-1:0][ADDR_W-1:0] cfg_level_off_q;
   logic [CODE_W-1:0]                 cfg_root_code_q;
   logic [ITER_W-1:0]                 cfg_iter_cap_q;
   f24_t                              cfg_depth_q;
@@ -128,10 +128,10 @@ module dm_pipeline_fpga_top
   logic [2:0][7:0]                   cfg_miss_rgb_q;
   f24_t [1:0]                        cfg_tex_su_q, cfg_tex_sv_q;
   logic [1:0][TEX_ADDR_W-1:0]                 cfg_tex_base_q;
-  // The texture level tables are dm_pipeline's (LUT RAM): the words 0x40 .. 0x7F are its lvt_*
-  // writes, word address {kind, texture, level} = reg_addr_i[5:0].
+  // The level tables are dm_pipeline's (LUT RAM): the words 0x20 .. 0x2F and 0x40 .. 0x7F are
+  // its lvt_* writes, word address {kind, texture, level} = reg_addr_i[6:0] (pipe_pkg::LVT_*).
   logic lvt_we;
-  assign lvt_we = we_q && addr_q[7:6] == 2'b01;
+  assign lvt_we = we_q && (addr_q[7:4] == 4'h2 || addr_q[7:6] == 2'b01);
 
   // fragment registers
   logic [PIX_W-1:0] frag_id_q;
@@ -178,7 +178,6 @@ module dm_pipeline_fpga_top
           4'h3: cfg_tex_base_q[1] <= wdata_q;
           default: ;
         endcase
-        4'h2: cfg_level_off_q[a_lo] <= wdata_q;
         4'h8: case (a_lo)
           4'h0: frag_id_q  <= wdata_q[PIX_W-1:0];
           4'h1: frag_u0_q  <= wdata_q[23:0];
@@ -277,7 +276,7 @@ module dm_pipeline_fpga_top
     .clk_i, .rst_ni(rst_nq),
     .cfg_method_i(cfg_method_q), .cfg_width_i(cfg_width_q), .cfg_height_i(cfg_height_q),
     .cfg_root_level_i(cfg_root_level_q), .cfg_bits16_i(cfg_bits16_q), .cfg_base_i(cfg_base_q),
-    .cfg_level_off_i(cfg_level_off_q), .cfg_root_code_i(cfg_root_code_q),
+    .cfg_root_code_i(cfg_root_code_q),
     .cfg_iter_cap_i(cfg_iter_cap_q),
     .cfg_depth_i(cfg_depth_q), .cfg_mip_en_i(cfg_mip_en_q),
     .cfg_levels_colour_i(cfg_levels_colour_q), .cfg_levels_normal_i(cfg_levels_normal_q),

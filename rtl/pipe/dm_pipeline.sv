@@ -93,7 +93,6 @@ module dm_pipeline
   input  logic [LVL_W-1:0]                     cfg_root_level_i,
   input  logic                                 cfg_bits16_i,
   input  logic [ADDR_W-1:0]                    cfg_base_i,
-  input  logic [MAX_LEVELS-1:0][ADDR_W-1:0]    cfg_level_off_i,
   input  logic [CODE_W-1:0]                    cfg_root_code_i,
   input  logic [ITER_W-1:0]                    cfg_iter_cap_i,
   // view unit, MIP levels, shading, miss colour
@@ -107,9 +106,10 @@ module dm_pipeline
   input  f24_t [1:0]                           cfg_tex_su_i,
   input  f24_t [1:0]                           cfg_tex_sv_i,
   input  logic [1:0][TEX_ADDR_W-1:0]           cfg_tex_base_i,
-  // texture level tables (tex_addr, LUT RAM; not reset, static while busy): write lvt_wdata_i
-  // into word lvt_waddr_i = {kind, texture, level}: kind 0 the level's byte offset from
-  // cfg_tex_base_i (Texture.level_offsets), 1 its size {height [31:16], width [15:0]}
+  // level tables (LUT RAM; not reset, static while busy): write lvt_wdata_i into word
+  // lvt_waddr_i = {kind [1:0], texture, level} (pipe_pkg::LVT_*): kind 1 the height pyramid's
+  // level offset from cfg_base_i (every ring's traverse_addr), 2 a texture level's byte offset
+  // from cfg_tex_base_i, 3 its size {height [31:16], width [15:0]} (tex_addr); kind 0 ignored
   input  logic                                 lvt_we_i,
   input  logic [LVT_ADDR_W-1:0]                lvt_waddr_i,
   input  logic [31:0]                          lvt_wdata_i,
@@ -185,6 +185,9 @@ module dm_pipeline
   localparam int unsigned REQ_CW = $clog2(REQ_DEPTH) + 1;
   localparam int unsigned F0_CW  = $clog2(F0_DEPTH) + 1;
 
+  if (LVL_W > TEX_LVL_W || ADDR_W != 32 || TEX_ADDR_W != 32) begin : g_check_lvt
+    $error("dm_pipeline: a level-table word address holds a height level, its data 32 bits");
+  end
   if ((1 << SLOT_W) != SLOTS || SLOTS < 2) begin : g_check_slots
     $error("dm_pipeline: SLOTS must be a power of two >= 2");
   end
@@ -307,7 +310,9 @@ module dm_pipeline
                    .WAYS(H_WAYS)) u_trav (
     .clk_i, .rst_ni,
     .cfg_method_i, .cfg_width_i, .cfg_height_i, .cfg_root_level_i, .cfg_bits16_i, .cfg_base_i,
-    .cfg_level_off_i, .cfg_root_code_i, .cfg_iter_cap_i,
+    .cfg_root_code_i, .cfg_iter_cap_i,
+    .hlt_we_i(lvt_we_i && lvt_waddr_i[LVT_ADDR_W-1 -: 2] == 2'(LVT_HEIGHT_OFF)),
+    .hlt_waddr_i(lvt_waddr_i[LVL_W-1:0]), .hlt_wdata_i(lvt_wdata_i),
     .ray_valid_i(!f0_empty), .ray_ready_o(ray_ready), .ray_id_i(f0_head[F0_W-1 -: SLOT_W]),
     .ray_u0_i(f0_head[95:72]), .ray_v0_i(f0_head[71:48]), .ray_du_i(f0_head[47:24]),
     .ray_dv_i(f0_head[23:0]),
@@ -431,7 +436,8 @@ module dm_pipeline
   tex_addr #(.TAG_W(SLOT_W + 1), .ADDR_W(TEX_ADDR_W), .NTEX(2)) u_addr (
     .clk_i, .rst_ni, .en_i(1'b1),
     .cfg_su_i(cfg_tex_su_i), .cfg_sv_i(cfg_tex_sv_i), .cfg_base_i(cfg_tex_base_i),
-    .lvt_we_i, .lvt_waddr_i, .lvt_wdata_i,
+    .lvt_we_i(lvt_we_i && lvt_waddr_i[LVT_ADDR_W-1]), .lvt_waddr_i(lvt_waddr_i[LVT_ADDR_W-2:0]),
+    .lvt_wdata_i,
     .valid_i(ta_in_valid), .tag_i({mip_tag[MIP_TAG_W-1 -: SLOT_W], nl_valid_q}),
     .tex_i(nl_valid_q), .u_i(mip_tag[47:24]), .v_i(mip_tag[23:0]), .level_i(ta_in_lvl),
     .valid_o(ta_valid), .tag_o({ta_slot, ta_tex}), .addr00_o(ta_a00), .addr01_o(ta_a01),

@@ -60,10 +60,16 @@ package pipe_pkg;
   localparam int unsigned TEX_LVL_W   = 4;   // a level 0 .. TEX_LEVELS - 1
   localparam int unsigned TEX_DIM_W   = 16;  // a level's width / height, 1 .. 32768
   localparam int unsigned TEX_ADDR_W  = 32;  // byte address of a texel (default of tex_addr)
-  // The texture level tables (tex_addr, dm_pipeline's lvt_* write port): one 32-bit word per
-  // entry, word address {kind, texture, level}: kind 0 the level's byte offset from the
-  // texture's base (Texture.level_offsets), kind 1 its size {height [31:16], width [15:0]}.
-  localparam int unsigned LVT_ADDR_W  = 2 + TEX_LVL_W;  // dm_pipeline's two textures
+  // The level tables (dm_pipeline's lvt_* write port): one 32-bit word per entry, word address
+  // {kind [1:0], texture, level}: kind LVT_HEIGHT_OFF the height pyramid's level offset from
+  // cfg_base_i (Pyramid.level_offsets; texture bit 0; held by traverse_addr in each ring),
+  // LVT_TEX_OFF a texture level's byte offset from its base (Texture.level_offsets),
+  // LVT_TEX_SIZE its size {height [31:16], width [15:0]} (both held by tex_addr); kind 0 is
+  // ignored.  The same word addresses as dm_pipeline_fpga_top's register words 0x20 .. 0x7F.
+  localparam int unsigned LVT_ADDR_W  = 3 + TEX_LVL_W;  // 7
+  localparam int unsigned LVT_HEIGHT_OFF = 1;  // kinds (the two top bits of the word address)
+  localparam int unsigned LVT_TEX_OFF    = 2;
+  localparam int unsigned LVT_TEX_SIZE   = 3;
   localparam int unsigned TEX_IDX_W   = 20;  // f24_to_index / f24_from_int width (INDEX_W)
   localparam int unsigned TEXEL_W     = 32;  // an RGBA unorm8 texel: R in bits 7:0 .. A in 31:24
   // the item register (u, then v a clock later on the same units); scale (mul); 2^-L (exponent

@@ -6,8 +6,9 @@
 //   we_fields_stable   while tt_we_o is 1 the address and data it writes are the stored fields
 //                      (no second TT_WRITE write arrived in between: the register block takes
 //                      one write per clock, so the fields are those of the write being applied);
-//   lvt_req_onehot     at most one of the 64 request strobes of the external registers
-//                      TEX[x].LEVEL_OFF[k] / LEVEL_SIZE[k] is 1 (the address encoding ORs them);
+//   lvt_req_onehot     at most one of the 80 request strobes of the external registers
+//                      HEIGHT.LEVEL_OFF[k], TEX[x].LEVEL_OFF[k] / LEVEL_SIZE[k] is 1 (the
+//                      address encoding ORs them);
 //   lvt_we_late        lvt_we_o is 1 exactly in the clock after such a request.
 // Covers: a table write, two table writes in consecutive clocks, a level-table write.
 `ifndef SYNTHESIS
@@ -22,7 +23,8 @@ module pidm_cfg_assert #(
   input logic           tt_we_i,      // tt_we_o
   input logic [TRI_W:0] tt_waddr_i,   // tt_waddr_o
   input logic [23:0]    tt_wdata_i,   // tt_wdata_o
-  input logic [63:0]    lvt_req_i,    // the 64 level-table request strobes ({off_req, size_req})
+  input logic [79:0]    lvt_req_i,    // the 80 level-table request strobes
+                                      // ({height_req, off_req, size_req})
   input logic           lvt_we_i      // lvt_we_o
 );
 
@@ -56,5 +58,5 @@ endmodule
 bind pidm_cfg pidm_cfg_assert #(.TRI_W(TRI_W)) u_assert (
   .clk_i, .rst_ni, .swmod_i(hwif_i.TT_WRITE.data.swmod), .addr_i(hwif_i.TT_WRITE.addr.value[TRI_W:0]),
   .data_i(hwif_i.TT_WRITE.data.value), .tt_we_i(tt_we_o), .tt_waddr_i(tt_waddr_o),
-  .tt_wdata_i(tt_wdata_o), .lvt_req_i({off_req, size_req}), .lvt_we_i(lvt_we_o));
+  .tt_wdata_i(tt_wdata_o), .lvt_req_i({height_req, off_req, size_req}), .lvt_we_i(lvt_we_o));
 `endif

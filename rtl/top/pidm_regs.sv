@@ -437,6 +437,7 @@ module pidm_regs (
         decoded_reg_strb.HEIGHT.DEPTH = cpuif_req_masked & (cpuif_addr == 12'h210);
         for(int i0=0; i0<16; i0++) begin
             decoded_reg_strb.HEIGHT.LEVEL_OFF[i0] = cpuif_req_masked & (cpuif_addr == 12'h240 + (12)'(i0) * 12'h4) & cpuif_req_is_wr;
+            is_external |= cpuif_req_masked & (cpuif_addr == 12'h240 + (12)'(i0) * 12'h4) & cpuif_req_is_wr;
         end
         decoded_reg_strb.SHADE.MIP = cpuif_req_masked & (cpuif_addr == 12'h300);
         decoded_reg_strb.SHADE.MISS_RGB = cpuif_req_masked & (cpuif_addr == 12'h304);
@@ -725,12 +726,6 @@ module pidm_regs (
                     logic load_next;
                 } val;
             } DEPTH;
-            struct {
-                struct {
-                    logic [31:0] next;
-                    logic load_next;
-                } val;
-            } LEVEL_OFF[16];
         } HEIGHT;
         struct {
             struct {
@@ -1084,11 +1079,6 @@ module pidm_regs (
                     logic [23:0] value;
                 } val;
             } DEPTH;
-            struct {
-                struct {
-                    logic [31:0] value;
-                } val;
-            } LEVEL_OFF[16];
         } HEIGHT;
         struct {
             struct {
@@ -2280,29 +2270,12 @@ module pidm_regs (
     end
     assign hwif_out.HEIGHT.DEPTH.val.value = field_storage.HEIGHT.DEPTH.val.value;
     for(genvar i0=0; i0<16; i0++) begin
-        // Field: pidm_regs.HEIGHT.LEVEL_OFF[].val
-        always_comb begin
-            automatic logic [31:0] next_c;
-            automatic logic load_next_c;
-            next_c = field_storage.HEIGHT.LEVEL_OFF[i0].val.value;
-            load_next_c = '0;
-            if(decoded_reg_strb.HEIGHT.LEVEL_OFF[i0] && decoded_req_is_wr) begin // SW write
-                next_c = (field_storage.HEIGHT.LEVEL_OFF[i0].val.value & ~decoded_wr_biten[31:0]) | (decoded_wr_data[31:0] & decoded_wr_biten[31:0]);
-                load_next_c = '1;
-            end
-            field_combo.HEIGHT.LEVEL_OFF[i0].val.next = next_c;
-            field_combo.HEIGHT.LEVEL_OFF[i0].val.load_next = load_next_c;
-        end
-        always_ff @(posedge clk) begin
-            if(~rst_n) begin
-                field_storage.HEIGHT.LEVEL_OFF[i0].val.value <= 32'h0;
-            end else begin
-                if(field_combo.HEIGHT.LEVEL_OFF[i0].val.load_next) begin
-                    field_storage.HEIGHT.LEVEL_OFF[i0].val.value <= field_combo.HEIGHT.LEVEL_OFF[i0].val.next;
-                end
-            end
-        end
-        assign hwif_out.HEIGHT.LEVEL_OFF[i0].val.value = field_storage.HEIGHT.LEVEL_OFF[i0].val.value;
+        // External register: pidm_regs.HEIGHT.LEVEL_OFF[]
+
+        assign hwif_out.HEIGHT.LEVEL_OFF[i0].req = decoded_req_is_wr ? decoded_reg_strb.HEIGHT.LEVEL_OFF[i0] : '0;
+        assign hwif_out.HEIGHT.LEVEL_OFF[i0].req_is_wr = decoded_req_is_wr;
+        assign hwif_out.HEIGHT.LEVEL_OFF[i0].wr_data = decoded_wr_data;
+        assign hwif_out.HEIGHT.LEVEL_OFF[i0].wr_biten = decoded_wr_biten;
     end
     // Field: pidm_regs.SHADE.MIP.mip_en
     always_comb begin
@@ -2998,6 +2971,9 @@ module pidm_regs (
     always_comb begin
         automatic logic wr_ack;
         wr_ack = '0;
+        for(int i0=0; i0<16; i0++) begin
+            wr_ack |= hwif_in.HEIGHT.LEVEL_OFF[i0].wr_ack;
+        end
         for(int i0=0; i0<2; i0++) begin
             for(int i1=0; i1<16; i1++) begin
                 wr_ack |= hwif_in.TEX[i0].LEVEL_OFF[i1].wr_ack;

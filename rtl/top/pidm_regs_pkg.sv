@@ -381,6 +381,14 @@ package pidm_regs_pkg;
 
     typedef struct {
         logic wr_ack;
+    } pidm_regs__HEIGHT__LEVEL_OFFx__in_t;
+
+    typedef struct {
+        pidm_regs__HEIGHT__LEVEL_OFFx__in_t LEVEL_OFF[16];
+    } pidm_regs__HEIGHT__in_t;
+
+    typedef struct {
+        logic wr_ack;
     } pidm_regs__TEXx__LEVEL_OFFx__in_t;
 
     typedef struct {
@@ -416,6 +424,7 @@ package pidm_regs_pkg;
         pidm_regs__PROGRESS__in_t PROGRESS;
         pidm_regs__INTR_STATE__in_t INTR_STATE;
         pidm_regs__STATS__in_t STATS;
+        pidm_regs__HEIGHT__in_t HEIGHT;
         pidm_regs__TEXx__in_t TEX[2];
         pidm_regs__PYR__in_t PYR;
     } pidm_regs__in_t;
@@ -688,12 +697,15 @@ package pidm_regs_pkg;
         pidm_regs__HEIGHT__DEPTH__val__out_t val;
     } pidm_regs__HEIGHT__DEPTH__out_t;
 
-    typedef struct {
-        logic [31:0] value;
-    } pidm_regs__HEIGHT__LEVEL_OFFx__val__out_t;
+    typedef struct packed {
+        logic [31:0] val;
+    } pidm_regs__HEIGHT__LEVEL_OFFx__fields__out_t;
 
     typedef struct {
-        pidm_regs__HEIGHT__LEVEL_OFFx__val__out_t val;
+        logic req;
+        logic req_is_wr;
+        pidm_regs__HEIGHT__LEVEL_OFFx__fields__out_t wr_data;
+        pidm_regs__HEIGHT__LEVEL_OFFx__fields__out_t wr_biten;
     } pidm_regs__HEIGHT__LEVEL_OFFx__out_t;
 
     typedef struct {

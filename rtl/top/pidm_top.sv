@@ -3,7 +3,7 @@
 // and pixels out over AXI4, the two memory read masters of the pipeline, an interrupt line.
 //
 //   s_axil (CPU) -> pidm_regs (generated from rtl/top/pidm_regs.rdl) -> pidm_cfg -> cfg_*;
-//                   triangle table and texture level table writes (tt_*, lvt_*);
+//                   triangle table and level table writes (tt_*, lvt_*);
 //                   frame descriptor, control, status, interrupts, statistics
 //   m_axi_f (AR/R)  -> frag_dma -> dm_pipeline -> pix_dma -> m_axi_w (AW/W/B)
 //                                  |  m_axi_h (AR/R): height pyramid
@@ -67,15 +67,15 @@
 // ADDR_W are ignored (the register map's 64-bit addresses serve every ADDR_W).
 //
 // Configuration registers feed dm_pipeline's cfg_* inputs directly: they must not change while
-// STATUS.busy is 1 (the driver's obligation, as for dm_pipeline).  The texture level tables
-// TEX[x].LEVEL_OFF / LEVEL_SIZE are not stored in the register block (external registers):
-// pidm_cfg turns each write into one write of dm_pipeline's lvt_* port (its LUT-RAM tables, not
-// reset), a clock after the bus write.  The pipeline's height and texture addresses are 32 bits
-// (traverse_pkg::ADDR_W, pipe_pkg::TEX_ADDR_W): its masters reach the first 4 GiB of the ADDR_W
-// space (upper address bits 0).
+// STATUS.busy is 1 (the driver's obligation, as for dm_pipeline).  The level tables
+// HEIGHT.LEVEL_OFF and TEX[x].LEVEL_OFF / LEVEL_SIZE are not stored in the register block
+// (external registers): pidm_cfg turns each write into one write of dm_pipeline's lvt_* port
+// (its LUT-RAM tables, not reset: the height pyramid's level offsets in each traverse ring, the
+// texture entries in tex_addr), a clock after the bus write.  The pipeline's height and texture
+// addresses are 32 bits (traverse_pkg::ADDR_W, pipe_pkg::TEX_ADDR_W): its masters reach the
+// first 4 GiB of the ADDR_W space (upper address bits 0).
 module pidm_top
   import f24_pkg::*;
-  import traverse_pkg::MAX_LEVELS;
   import traverse_pkg::ITER_W;
   import traverse_pkg::DIM_W;
   import traverse_pkg::LVL_W;
@@ -374,13 +374,12 @@ module pidm_top
   logic              p_h_arvalid, p_h_arready, p_h_rvalid, p_h_rready;
 
   // the configuration registers as dm_pipeline's cfg_* ports, triangle-table write port and
-  // texture level table write port (TEX[x].LEVEL_OFF / LEVEL_SIZE: external registers)
+  // level table write port (HEIGHT.LEVEL_OFF, TEX[x].LEVEL_OFF / LEVEL_SIZE: external registers)
   logic [3:0]                        c_method;
   logic [DIM_W-1:0]                  c_width, c_height;
   logic [LVL_W-1:0]                  c_root_level;
   logic                              c_bits16, c_mip_en, tt_we;
   logic [31:0]                       c_base;
-  logic [MAX_LEVELS-1:0][31:0]       c_level_off;
   logic [CODE_W-1:0]                 c_root_code;
   logic [ITER_W-1:0]                 c_iter_cap;
   f24_t                              c_depth, tt_wdata;
@@ -390,21 +389,24 @@ module pidm_top
   f24_t [1:0]                        c_tex_su, c_tex_sv;
   logic [1:0][TEX_ADDR_W-1:0]        c_tex_base;
   logic [TRI_W:0]                    tt_waddr;
-  logic                              lvt_we;       // texture level table write
+  logic                              lvt_we;       // level table write
   logic [LVT_ADDR_W-1:0]             lvt_waddr;
   logic [31:0]                       lvt_wdata;
-  pidm_regs_pkg::pidm_regs__TEXx__in_t hw_in_tex [2];  // the external TEX level registers' acks
+  // the external level-table registers' acknowledges (pidm_cfg)
+  pidm_regs_pkg::pidm_regs__HEIGHT__in_t hw_in_height;
+  pidm_regs_pkg::pidm_regs__TEXx__in_t   hw_in_tex [2];
 
   pidm_cfg #(.TRIS(TRIS), .TRI_W(TRI_W)) u_cfg (
     .clk_i, .rst_ni, .hwif_i(hw),
     .cfg_method_o(c_method), .cfg_width_o(c_width), .cfg_height_o(c_height),
     .cfg_root_level_o(c_root_level), .cfg_bits16_o(c_bits16), .cfg_base_o(c_base),
-    .cfg_level_off_o(c_level_off), .cfg_root_code_o(c_root_code), .cfg_iter_cap_o(c_iter_cap),
+    .cfg_root_code_o(c_root_code), .cfg_iter_cap_o(c_iter_cap),
     .cfg_depth_o(c_depth), .cfg_mip_en_o(c_mip_en), .cfg_levels_colour_o(c_levels_colour),
     .cfg_levels_normal_o(c_levels_normal), .cfg_shade_o(c_shade), .cfg_miss_rgb_o(c_miss_rgb),
     .cfg_tex_su_o(c_tex_su), .cfg_tex_sv_o(c_tex_sv), .cfg_tex_base_o(c_tex_base),
     .tt_we_o(tt_we), .tt_waddr_o(tt_waddr), .tt_wdata_o(tt_wdata),
-    .lvt_we_o(lvt_we), .lvt_waddr_o(lvt_waddr), .lvt_wdata_o(lvt_wdata), .hwif_tex_o(hw_in_tex));
+    .lvt_we_o(lvt_we), .lvt_waddr_o(lvt_waddr), .lvt_wdata_o(lvt_wdata),
+    .hwif_height_o(hw_in_height), .hwif_tex_o(hw_in_tex));
 
   dm_pipeline #(
     .PIX_W(PIX_W), .TRIS(TRIS), .H_ID_W(H_ID_W), .T_ID_W(T_ID_W), .AXI_DATA_W(DATA_W)
@@ -412,7 +414,7 @@ module pidm_top
     .clk_i, .rst_ni(rst_ni && pipe_rst_nq),
     .cfg_method_i(c_method), .cfg_width_i(c_width), .cfg_height_i(c_height),
     .cfg_root_level_i(c_root_level), .cfg_bits16_i(c_bits16), .cfg_base_i(c_base),
-    .cfg_level_off_i(c_level_off), .cfg_root_code_i(c_root_code), .cfg_iter_cap_i(c_iter_cap),
+    .cfg_root_code_i(c_root_code), .cfg_iter_cap_i(c_iter_cap),
     .cfg_depth_i(c_depth), .cfg_mip_en_i(c_mip_en), .cfg_levels_colour_i(c_levels_colour),
     .cfg_levels_normal_i(c_levels_normal), .cfg_shade_i(c_shade), .cfg_miss_rgb_i(c_miss_rgb),
     .cfg_tex_su_i(c_tex_su), .cfg_tex_sv_i(c_tex_sv), .cfg_tex_base_i(c_tex_base),
@@ -660,7 +662,8 @@ module pidm_top
     hw_in.STATS.t_texel_hits.HI.val.next  = st_t_texel_hits[47:32];
     hw_in.STATS.t_bytes.LO.val.next       = st_t_bytes[31:0];
     hw_in.STATS.t_bytes.HI.val.next       = st_t_bytes[47:32];
-    for (int x = 0; x < 2; x++) hw_in.TEX[x] = hw_in_tex[x];   // pidm_cfg: TEX level table acks
+    hw_in.HEIGHT = hw_in_height;                               // pidm_cfg: level table acks
+    for (int x = 0; x < 2; x++) hw_in.TEX[x] = hw_in_tex[x];
   end
 
   assign irq_o = hw.INTR_STATE.intr;

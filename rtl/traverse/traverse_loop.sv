@@ -212,6 +212,10 @@ module traverse_loop
   /* verilator lint_off UNUSEDSIGNAL */  // the second mode reads only part of the configuration
   input  cfg_t              cfg_i,
   /* verilator lint_on UNUSEDSIGNAL */
+  // the level-offset table (traverse_addr, LUT RAM; not reset, static while busy)
+  input  logic              hlt_we_i,
+  input  logic [LVL_W-1:0]  hlt_waddr_i,
+  input  logic [ADDR_W-1:0] hlt_wdata_i,
   // new rays from setup (head of the setup FIFO, first-word fall-through)
   input  logic              new_valid_i,
   input  logic [ID_W-1:0]   new_id_i,
@@ -432,8 +436,11 @@ module traverse_loop
   logic [ADDR_W-1:0] addr0;
   logic              wide0;
   traverse_addr u_addr (
+    .clk_i,
+    .hlt_we_i,
+    .hlt_waddr_i,
+    .hlt_wdata_i,
     .base_i     (cfg_i.base),
-    .level_off_i(cfg_i.level_off),
     .bits16_i   (cfg_i.bits16),
     .k_i        (node_q[0].k),
     .nk_i       (nk0_q),

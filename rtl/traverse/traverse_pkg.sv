@@ -128,7 +128,6 @@ package traverse_pkg;
     logic [LVL_W-1:0]                    n;          // root level: N = 2^n >= max(W, H)
     logic                                bits16;     // 1: unorm16 heights (2 bytes), 0: unorm8
     logic [ADDR_W-1:0]                   base;       // byte address of level 0
-    logic [MAX_LEVELS-1:0][ADDR_W-1:0]   level_off;  // byte offset of level k from base
     logic [CODE_W-1:0]                   root_code;  // the root texel's code (clip start)
     logic [ITER_W-1:0]                   iter_cap;   // model.traverse.iteration_cap(pyr)
   } cfg_t;

@@ -48,9 +48,13 @@ module traverse_system
   input  logic [LVL_W-1:0]                  cfg_root_level_i,
   input  logic                              cfg_bits16_i,
   input  logic [ADDR_W-1:0]                 cfg_base_i,        // byte address of the pyramid
-  input  logic [MAX_LEVELS-1:0][ADDR_W-1:0] cfg_level_off_i,
   input  logic [CODE_W-1:0]                 cfg_root_code_i,
   input  logic [ITER_W-1:0]                 cfg_iter_cap_i,
+  // the height pyramid's level-offset table (traverse_addr: LUT RAM, not reset, static while
+  // busy): write hlt_wdata_i as level hlt_waddr_i's byte offset from cfg_base_i
+  input  logic                              hlt_we_i,
+  input  logic [LVL_W-1:0]                  hlt_waddr_i,
+  input  logic [ADDR_W-1:0]                 hlt_wdata_i,
   // rays in
   input  logic                              ray_valid_i,
   output logic                              ray_ready_o,
@@ -120,7 +124,7 @@ module traverse_system
   ) u_unit (
     .clk_i, .rst_ni,
     .cfg_method_i, .cfg_width_i, .cfg_height_i, .cfg_root_level_i, .cfg_bits16_i, .cfg_base_i,
-    .cfg_level_off_i, .cfg_root_code_i, .cfg_iter_cap_i,
+    .cfg_root_code_i, .cfg_iter_cap_i, .hlt_we_i, .hlt_waddr_i, .hlt_wdata_i,
     .ray_valid_i, .ray_ready_o, .ray_id_i, .ray_u0_i, .ray_v0_i, .ray_du_i, .ray_dv_i,
     .res_valid_o, .res_ready_i, .res_id_o, .res_t_o, .res_u_o, .res_v_o, .res_hit_o,
     .res_invalid_o, .res_capped_o, .res_err_o, .res_iters_o,

@@ -56,9 +56,13 @@ module traverse_unit
   input  logic [LVL_W-1:0]                  cfg_root_level_i,  // n (N = 2^n >= max(W, H))
   input  logic                              cfg_bits16_i,      // 1: unorm16 heights, 0: unorm8
   input  logic [ADDR_W-1:0]                 cfg_base_i,        // byte address of the pyramid
-  input  logic [MAX_LEVELS-1:0][ADDR_W-1:0] cfg_level_off_i,   // Pyramid.level_offsets()
   input  logic [CODE_W-1:0]                 cfg_root_code_i,   // root texel code (clip)
   input  logic [ITER_W-1:0]                 cfg_iter_cap_i,    // traverse.iteration_cap(pyr)
+  // the height pyramid's level-offset table (traverse_addr: LUT RAM, not reset, static while
+  // busy): write hlt_wdata_i as level hlt_waddr_i's byte offset from cfg_base_i
+  input  logic                              hlt_we_i,
+  input  logic [LVL_W-1:0]                  hlt_waddr_i,
+  input  logic [ADDR_W-1:0]                 hlt_wdata_i,
   // rays in
   input  logic                              ray_valid_i,
   output logic                              ray_ready_o,
@@ -111,7 +115,7 @@ module traverse_unit
     if (idle_o) begin
       cfg <= '{policy: decode_method(cfg_method_i), width: cfg_width_i, height: cfg_height_i,
                n: cfg_root_level_i, bits16: cfg_bits16_i, base: cfg_base_i,
-               level_off: cfg_level_off_i, root_code: cfg_root_code_i, iter_cap: cfg_iter_cap_i};
+               root_code: cfg_root_code_i, iter_cap: cfg_iter_cap_i};
     end
   end
 
@@ -164,7 +168,7 @@ module traverse_unit
     .ID_W(ID_W), .MUL_LAT(MUL_LAT), .XOR_PATH(XOR_PATH), .PARK(PARK), .PARK_DEPTH(PARK_DEPTH),
     .PARK_WAIT(PARK_WAIT), .PARK_MAX(PARK_MAX)
   ) u_loop (
-    .clk_i, .rst_ni, .cfg_i(cfg),
+    .clk_i, .rst_ni, .cfg_i(cfg), .hlt_we_i, .hlt_waddr_i, .hlt_wdata_i,
     .new_valid_i(!sf_empty), .new_id_i(sf_head[SF_W-1 -: ID_W]),
     .new_ray_i(ray_t'(sf_head[$bits(ray_t)-1:0])), .new_pop_o(sf_pop),
     .res_full_i(rf_full), .res_push_o(rf_push), .res_id_o(lp_res_id), .res_o(lp_res),

@@ -25,6 +25,7 @@ from cocotbext.axi import AxiRamRead, AxiReadBus
 from model import camera, heightmap, scenes, shade, texture
 from tb.harness import pipeline_words
 from tb.common import report, runner
+from tb.common.tables import write_table
 
 HERE = Path(__file__).resolve().parent
 
@@ -128,13 +129,8 @@ async def load_frame(dut, rng: random.Random, hram: LatencyRam, tram: LatencyRam
     await FallingEdge(clk)
     for port, val in cfg.ports.items():
         getattr(dut, port).value = val
-    for port, writes in (("tt", cfg.tri_writes), ("lvt", cfg.lvt_writes)):  # the two tables
-        for addr, word in writes:
-            getattr(dut, f"{port}_we_i").value = 1
-            getattr(dut, f"{port}_waddr_i").value = addr
-            getattr(dut, f"{port}_wdata_i").value = word
-            await FallingEdge(clk)
-        getattr(dut, f"{port}_we_i").value = 0
+    await write_table(dut, clk, "tt", cfg.tri_writes)
+    await write_table(dut, clk, "lvt", cfg.lvt_writes)
     await ClockCycles(clk, 140)   # configuration settles; the free list fills after reset
     await FallingEdge(clk)
     return frame, inp

@@ -84,7 +84,7 @@ PIPELINE = pipeline_spec(1)
 #: PIPH_CFG_PORTS; the harness checks every width).
 CFG_PORTS: tuple[tuple[str, int], ...] = (
     ("cfg_method_i", 4), ("cfg_width_i", 16), ("cfg_height_i", 16), ("cfg_root_level_i", 4),
-    ("cfg_bits16_i", 1), ("cfg_base_i", 32), ("cfg_level_off_i", 512), ("cfg_root_code_i", 16),
+    ("cfg_bits16_i", 1), ("cfg_base_i", 32), ("cfg_root_code_i", 16),
     ("cfg_iter_cap_i", 16), ("cfg_depth_i", 24), ("cfg_mip_en_i", 1),
     ("cfg_levels_colour_i", 6), ("cfg_levels_normal_i", 6), ("cfg_shade_i", 192),
     ("cfg_miss_rgb_i", 24), ("cfg_tex_su_i", 48), ("cfg_tex_sv_i", 48),

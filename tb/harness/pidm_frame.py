@@ -81,9 +81,11 @@ def config_writes(cfg: PipelineConfig) -> Writes:
                                                        iter_cap=p["cfg_iter_cap_i"])),
         (R("HEIGHT.DEPTH").addr, R("HEIGHT.DEPTH").value(val=p["cfg_depth_i"])),
     ]
-    n_lvl = sum(1 for k in pidm_regmap.registers() if k.startswith("HEIGHT.LEVEL_OFF["))
-    for k, off in enumerate(_elems(p["cfg_level_off_i"], 32, n_lvl)):
-        out.append((R(f"HEIGHT.LEVEL_OFF[{k}]").addr, R(f"HEIGHT.LEVEL_OFF[{k}]").value(val=off)))
+    for a, off in cfg.lvt_writes:
+        kind, _, k = _lvt_fields(a)
+        if kind == pipeline_words.LVT_HEIGHT_OFF:
+            out.append((R(f"HEIGHT.LEVEL_OFF[{k}]").addr,
+                        R(f"HEIGHT.LEVEL_OFF[{k}]").value(val=off)))
     red, green, blue = _elems(p["cfg_miss_rgb_i"], 8, 3)
     out += [
         (R("SHADE.MIP").addr, R("SHADE.MIP").value(
@@ -102,10 +104,10 @@ def config_writes(cfg: PipelineConfig) -> Writes:
                 (R(f"{t}.SV").addr, R(f"{t}.SV").value(val=sv[x])),
                 (R(f"{t}.BASE").addr, R(f"{t}.BASE").value(val=bases[x]))]
         for a, d in cfg.lvt_writes:
-            size, tex, k = _lvt_fields(a)
-            if tex != x:
+            kind, tex, k = _lvt_fields(a)
+            if tex != x or kind == pipeline_words.LVT_HEIGHT_OFF:
                 continue
-            if size:
+            if kind == pipeline_words.LVT_TEX_SIZE:
                 r = R(f"{t}.LEVEL_SIZE[{k}]")
                 out.append((r.addr, r.value(width=d & ((1 << TEX_DIM_W) - 1),
                                             height=d >> TEX_DIM_W)))
@@ -117,29 +119,32 @@ def config_writes(cfg: PipelineConfig) -> Writes:
     return out
 
 
-def _lvt_fields(addr: int) -> tuple[bool, int, int]:
-    """(size, texture, level) of a lvt_waddr_i (pipeline_words.lvt_addr)."""
-    return (bool(addr >> (1 + TEX_LVL_W)), (addr >> TEX_LVL_W) & 1,
-            addr & ((1 << TEX_LVL_W) - 1))
+def _lvt_fields(addr: int) -> tuple[int, int, int]:
+    """(kind, texture, level) of a lvt_waddr_i (pipeline_words.lvt_addr)."""
+    return addr >> (1 + TEX_LVL_W), (addr >> TEX_LVL_W) & 1, addr & ((1 << TEX_LVL_W) - 1)
 
 
 def _lvt_of(path: str, f: dict[str, int]) -> tuple[int, int] | None:
     """The level-table write (lvt_waddr_i, lvt_wdata_i) a write of register ``path`` makes
-    (TEX[x].LEVEL_OFF[k], TEX[x].LEVEL_SIZE[k]), else None."""
+    (HEIGHT.LEVEL_OFF[k], TEX[x].LEVEL_OFF[k], TEX[x].LEVEL_SIZE[k]), else None."""
+    m = re.fullmatch(r"HEIGHT\.LEVEL_OFF\[(\d+)\]", path)
+    if m is not None:
+        return pipeline_words.lvt_addr(pipeline_words.LVT_HEIGHT_OFF, 0, int(m[1])), f["val"]
     m = re.fullmatch(r"TEX\[(\d)\]\.LEVEL_(OFF|SIZE)\[(\d+)\]", path)
     if m is None:
         return None
     x, kind, k = int(m[1]), m[2], int(m[3])
     if kind == "OFF":
-        return pipeline_words.lvt_addr(False, x, k), f["val"]
-    return pipeline_words.lvt_addr(True, x, k), (f["height"] << TEX_DIM_W) | f["width"]
+        return pipeline_words.lvt_addr(pipeline_words.LVT_TEX_OFF, x, k), f["val"]
+    return (pipeline_words.lvt_addr(pipeline_words.LVT_TEX_SIZE, x, k),
+            (f["height"] << TEX_DIM_W) | f["width"])
 
 
 def ports_from_writes(writes: Writes) -> tuple[dict[str, int], list[tuple[int, int]],
                                                list[tuple[int, int]]]:
     """The inverse of :func:`config_writes`: the cfg_* port values the registers hold after the
     writes (the last write of a register counts), the triangle-table writes (tt_waddr_i,
-    tt_wdata_i) and the texture level-table writes (lvt_waddr_i, lvt_wdata_i), each in order.
+    tt_wdata_i) and the level-table writes (lvt_waddr_i, lvt_wdata_i), each in order.
     What pidm_top wires from its register block to dm_pipeline."""
     regs = pidm_regmap.by_address()
     tt_addr = pidm_regmap.reg("TT_WRITE").addr
@@ -164,13 +169,11 @@ def ports_from_writes(writes: Writes) -> tuple[dict[str, int], list[tuple[int, i
     def arr(fmt: str, name: str, n: int, width: int) -> int:
         return pipeline_words.pack([g(fmt.format(k), name) for k in range(n)], width)
 
-    n_lvl = sum(1 for k in pidm_regmap.registers() if k.startswith("HEIGHT.LEVEL_OFF["))
     p = {
         "cfg_method_i": g("HEIGHT.MODE", "method"), "cfg_width_i": g("HEIGHT.SIZE", "width"),
         "cfg_height_i": g("HEIGHT.SIZE", "height"),
         "cfg_root_level_i": g("HEIGHT.MODE", "root_level"),
         "cfg_bits16_i": g("HEIGHT.MODE", "bits16"), "cfg_base_i": g("HEIGHT.BASE", "val"),
-        "cfg_level_off_i": arr("HEIGHT.LEVEL_OFF[{}]", "val", n_lvl, 32),
         "cfg_root_code_i": g("HEIGHT.ROOT", "root_code"),
         "cfg_iter_cap_i": g("HEIGHT.ROOT", "iter_cap"), "cfg_depth_i": g("HEIGHT.DEPTH", "val"),
         "cfg_mip_en_i": g("SHADE.MIP", "mip_en"),

@@ -11,7 +11,7 @@
 //     [0..1]   magic "PIPHIN01" (8 ASCII bytes)
 //     [2]      version = 2
 //     [3]      header bytes = 64
-//     [4]      n_cfg_ports   = the number of entries of PIPH_CFG_PORTS below (18)
+//     [4]      n_cfg_ports   = the number of entries of PIPH_CFG_PORTS below (17)
 //     [5]      cfg_words     u32 words of the configuration section
 //     [6]      n_tri_writes  triangle-table writes
 //     [7]      n_frags       fragments
@@ -51,7 +51,6 @@
   X(cfg_root_level_i, 4)                                                                          \
   X(cfg_bits16_i, 1)                                                                              \
   X(cfg_base_i, 32)                                                                               \
-  X(cfg_level_off_i, 512)                                                                         \
   X(cfg_root_code_i, 16)                                                                          \
   X(cfg_iter_cap_i, 16)                                                                           \
   X(cfg_depth_i, 24)                                                                              \

@@ -22,6 +22,9 @@ from . import sv_params, traverse_words
 #: rtl/pipe/pipe_pkg.sv: levels a texture configuration holds, and the widths of its fields.
 TEX_LEVELS, TEX_DIM_W, TEX_ADDR_W, TEX_LVL_W = sv_params.values(
     "pipe_pkg", "TEX_LEVELS", "TEX_DIM_W", "TEX_ADDR_W", "TEX_LVL_W")
+#: rtl/pipe/pipe_pkg.sv: the kinds of a level-table word (dm_pipeline's lvt_waddr_i).
+LVT_HEIGHT_OFF, LVT_TEX_OFF, LVT_TEX_SIZE = sv_params.values(
+    "pipe_pkg", "LVT_HEIGHT_OFF", "LVT_TEX_OFF", "LVT_TEX_SIZE")
 #: Default byte addresses of the pyramid and the two textures in the AXI address spaces.
 HEIGHT_BASE = 0x4000_0000
 COLOUR_BASE = 0x1000_0000
@@ -36,18 +39,20 @@ def pack(words: npt.ArrayLike, width: int) -> int:
     return out
 
 
-def lvt_addr(size: bool, tex: int, level: int) -> int:
-    """dm_pipeline's lvt_waddr_i of texture ``tex``'s level ``level``: its byte offset (size
-    False) or its size word {height, width} (size True)."""
-    return (int(size) << (1 + TEX_LVL_W)) | (tex << TEX_LVL_W) | level
+def lvt_addr(kind: int, tex: int, level: int) -> int:
+    """dm_pipeline's lvt_waddr_i {kind, texture, level}: kind LVT_HEIGHT_OFF the height
+    pyramid's level offset (tex 0), LVT_TEX_OFF a texture level's byte offset, LVT_TEX_SIZE its
+    size word {height, width}."""
+    return (kind << (1 + TEX_LVL_W)) | (tex << TEX_LVL_W) | level
 
 
 @dataclass
 class PipelineConfig:
     """``ports``: cfg_* values; ``tri_writes``: (tt_waddr_i, tt_wdata_i) pairs; ``height`` and
     ``textures``: (base, image) the memories must hold (height port; texture port);
-    ``lvt_writes``: (lvt_waddr_i, lvt_wdata_i) pairs, the texture level tables (per texture the
-    TEX_LEVELS offsets, then the TEX_LEVELS sizes)."""
+    ``lvt_writes``: (lvt_waddr_i, lvt_wdata_i) pairs, the level tables: the height pyramid's
+    MAX_LEVELS level offsets, then per texture the TEX_LEVELS offsets and the TEX_LEVELS
+    sizes."""
 
     ports: dict[str, int]
     tri_writes: list[tuple[int, int]]
@@ -67,7 +72,8 @@ def config(frame: shade.Frame, height_base: int = HEIGHT_BASE, colour_base: int 
         raise ValueError("the RTL pipeline is the f24 engine")
     ar = ENGINES["f24"]
     pyr = frame.pyr
-    ports = dict(traverse_words.config(pyr, frame.method, base=height_base).ports())
+    tcfg = traverse_words.config(pyr, frame.method, base=height_base)
+    ports = dict(tcfg.ports())
     d = _f24(frame.depth_scale)
     m = frame.material
     lu = m.light_unit()
@@ -82,7 +88,7 @@ def config(frame: shade.Frame, height_base: int = HEIGHT_BASE, colour_base: int 
     ports["cfg_levels_normal_i"] = frame.normals.n_levels
     ports["cfg_miss_rgb_i"] = pack(shade.MISS_COLOUR, 8)
     su, sv, bases = [], [], []
-    lvt: list[tuple[int, int]] = []
+    lvt = [(lvt_addr(LVT_HEIGHT_OFF, 0, k), off) for k, off in tcfg.hlt_writes()]
     for x, (tex, base) in enumerate(((frame.colour, colour_base), (frame.normals, normal_base))):
         if tex.n_levels > TEX_LEVELS:
             raise ValueError(f"a texture of {tex.n_levels} levels; the RTL holds {TEX_LEVELS}")
@@ -92,8 +98,9 @@ def config(frame: shade.Frame, height_base: int = HEIGHT_BASE, colour_base: int 
         w = [lv.shape[1] for lv in tex.levels] + [1] * (TEX_LEVELS - tex.n_levels)
         h = [lv.shape[0] for lv in tex.levels] + [1] * (TEX_LEVELS - tex.n_levels)
         o = tex.level_offsets() + [0] * (TEX_LEVELS - tex.n_levels)
-        lvt += [(lvt_addr(False, x, k), o[k]) for k in range(TEX_LEVELS)]
-        lvt += [(lvt_addr(True, x, k), (h[k] << TEX_DIM_W) | w[k]) for k in range(TEX_LEVELS)]
+        lvt += [(lvt_addr(LVT_TEX_OFF, x, k), o[k]) for k in range(TEX_LEVELS)]
+        lvt += [(lvt_addr(LVT_TEX_SIZE, x, k), (h[k] << TEX_DIM_W) | w[k])
+                for k in range(TEX_LEVELS)]
         bases.append(base)
     ports["cfg_tex_su_i"] = pack(su, 24)
     ports["cfg_tex_sv_i"] = pack(sv, 24)

@@ -253,7 +253,6 @@ class Sim {
     t->cfg_root_level_i = h.root_level;
     t->cfg_bits16_i = h.bits16;
     t->cfg_base_i = h.base;
-    for (unsigned k = 0; k < trvh::kMaxLevels; ++k) t->cfg_level_off_i[k] = h.level_off[k];
     t->cfg_root_code_i = h.root_code;
     t->cfg_iter_cap_i = h.iter_cap;
     t->ray_valid_i = 0;
@@ -261,9 +260,17 @@ class Sim {
     t->m_axi_arready = 0;
     t->m_axi_rvalid = 0;
     t->clr_stats_i = 0;
+    t->hlt_we_i = 0;
     t->rst_ni = 0;
     for (int i = 0; i < 10; ++i) clock();
     t->rst_ni = 1;
+    for (unsigned k = 0; k < trvh::kMaxLevels; ++k) {  // the level-offset table
+      t->hlt_we_i = 1;
+      t->hlt_waddr_i = k;
+      t->hlt_wdata_i = h.level_off[k];
+      clock();
+    }
+    t->hlt_we_i = 0;
     for (int i = 0; i < 8; ++i) clock();  // the configuration settles (>= 5 clocks)
   }
 

@@ -20,7 +20,8 @@
 //     [11]     cfg_iter_cap      model.traverse.iteration_cap(pyr)
 //     [12]     n_rays
 //     [13]     mem_bytes         length of the memory image
-//     [14..29] cfg_level_off[0..15]  byte offset of level k from cfg_base (0 past the root)
+//     [14..29] level_off[0..15]  byte offset of level k from cfg_base (0 past the root): the
+//              level-offset table, written through hlt_* after the reset
 //     [30..31] reserved (0)
 //   memory image: mem_bytes bytes (Pyramid.memory_image()), then zeros up to a multiple of 4
 //   rays: n_rays x 4 u32: u0, v0, du, dv as f24 words (bits 23..0), ray by ray

@@ -80,12 +80,16 @@ class Config:
     iter_cap: int
 
     def ports(self) -> dict[str, int]:
-        """Port name -> value."""
+        """Port name -> value (the level offsets are a table: :meth:`hlt_writes`)."""
         return {"cfg_method_i": self.method, "cfg_width_i": self.width,
                 "cfg_height_i": self.height, "cfg_root_level_i": self.root_level,
                 "cfg_bits16_i": self.bits16, "cfg_base_i": self.base,
-                "cfg_level_off_i": self.level_off, "cfg_root_code_i": self.root_code,
-                "cfg_iter_cap_i": self.iter_cap}
+                "cfg_root_code_i": self.root_code, "cfg_iter_cap_i": self.iter_cap}
+
+    def hlt_writes(self) -> list[tuple[int, int]]:
+        """The writes (hlt_waddr_i, hlt_wdata_i) of the unit's level-offset table: every level
+        0 .. MAX_LEVELS - 1 (0 past the root)."""
+        return [(k, (self.level_off >> (32 * k)) & 0xFFFFFFFF) for k in range(MAX_LEVELS)]
 
 
 def config(pyr: Pyramid, method: str, base: int = 0, align: int = 64) -> Config:

@@ -6,9 +6,10 @@
 // clocks, then frame_done (and, when asked, an error flag with axi_error); soft reset ends it.
 //
 // Checks: pidm_init's ID / VERSION / HWCFG; pidm_load_config of a packed frame (frame_regs.h from
-// scripts/pack_frame.py) gives exactly the cfg_* port values, triangle-table writes and texture
-// level-table writes (lvt_we_o, one per TEX[x].LEVEL_OFF / LEVEL_SIZE write) expected.h lists
-// (tb/harness/pipeline_words.config, written by tb/pidm_regs/test_driver_on_rtl.py); pidm_start's
+// scripts/pack_frame.py) gives exactly the cfg_* port values, triangle-table writes and
+// level-table writes (lvt_we_o, one per HEIGHT.LEVEL_OFF, TEX[x].LEVEL_OFF / LEVEL_SIZE write)
+// expected.h lists, in order (tb/harness/pipeline_words.config, written by
+// tb/pidm_regs/test_driver_on_rtl.py); pidm_start's
 // descriptor reaches the ports with one start pulse; pidm_poll_done, pidm_wait_irq with the
 // interrupt line, an error frame, statistics, clear statistics, soft reset mid-frame.
 // Prints "driver_on_rtl: N checks, F failed"; exit status 1 when F > 0.

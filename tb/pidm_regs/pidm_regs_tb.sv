@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // pidm_regs_tb: the generated register block pidm_regs with pidm_cfg behind it, its hwif structs
 // flattened into ports for cocotb: the configuration as dm_pipeline's cfg_* ports, triangle-table
-// write port and texture level table write port (pidm_cfg), the control, error, interrupt and
+// write port and level table write port (pidm_cfg), the control, error, interrupt and
 // frame-descriptor fields, and the hardware inputs (status, error sets, interrupt events,
 // progress, statistics, HWCFG).  The interrupt inputs are driven as pidm_top drives them: event |
-// INTR_TEST pulse; the external registers' acknowledges (hwif_in.TEX) come from pidm_cfg, as in
-// pidm_top.
+// INTR_TEST pulse; the external registers' acknowledges (hwif_in.HEIGHT, hwif_in.TEX) come from
+// pidm_cfg, as in pidm_top.
 module pidm_regs_tb
   import f24_pkg::*;
   import traverse_pkg::*;
@@ -44,7 +44,6 @@ module pidm_regs_tb
   output logic [LVL_W-1:0]     cfg_root_level_o,
   output logic                 cfg_bits16_o,
   output logic [ADDR_W-1:0]    cfg_base_o,
-  output logic [MAX_LEVELS-1:0][ADDR_W-1:0] cfg_level_off_o,
   output logic [CODE_W-1:0]    cfg_root_code_o,
   output logic [ITER_W-1:0]    cfg_iter_cap_o,
   output f24_t                 cfg_depth_o,
@@ -91,7 +90,8 @@ module pidm_regs_tb
 
   pidm_regs_pkg::pidm_regs__in_t  hwif_in;
   pidm_regs_pkg::pidm_regs__out_t hwif_out;
-  pidm_regs_pkg::pidm_regs__TEXx__in_t hwif_in_tex [2];
+  pidm_regs_pkg::pidm_regs__HEIGHT__in_t hwif_in_height;
+  pidm_regs_pkg::pidm_regs__TEXx__in_t   hwif_in_tex [2];
 
   pidm_regs u_regs (
     .clk(clk_i), .rst_n(rst_ni),
@@ -103,10 +103,10 @@ module pidm_regs_tb
   pidm_cfg #(.TRIS(TRIS)) u_cfg (
     .clk_i, .rst_ni, .hwif_i(hwif_out),
     .cfg_method_o, .cfg_width_o, .cfg_height_o, .cfg_root_level_o, .cfg_bits16_o, .cfg_base_o,
-    .cfg_level_off_o, .cfg_root_code_o, .cfg_iter_cap_o, .cfg_depth_o, .cfg_mip_en_o,
+    .cfg_root_code_o, .cfg_iter_cap_o, .cfg_depth_o, .cfg_mip_en_o,
     .cfg_levels_colour_o, .cfg_levels_normal_o, .cfg_shade_o, .cfg_miss_rgb_o, .cfg_tex_su_o,
     .cfg_tex_sv_o, .cfg_tex_base_o, .tt_we_o, .tt_waddr_o, .tt_wdata_o, .lvt_we_o, .lvt_waddr_o,
-    .lvt_wdata_o, .hwif_tex_o(hwif_in_tex));
+    .lvt_wdata_o, .hwif_height_o(hwif_in_height), .hwif_tex_o(hwif_in_tex));
 
   assign start_o       = hwif_out.CTRL.start.value;
   assign soft_reset_o  = hwif_out.CTRL.soft_reset.value;
@@ -174,6 +174,7 @@ module pidm_regs_tb
     hwif_in.STATS.t_texel_hits.HI.val.next  = stats_i[9][47:32];
     hwif_in.STATS.t_bytes.LO.val.next       = stats_i[10][31:0];
     hwif_in.STATS.t_bytes.HI.val.next       = stats_i[10][47:32];
+    hwif_in.HEIGHT = hwif_in_height;
     for (int x = 0; x < 2; x++) hwif_in.TEX[x] = hwif_in_tex[x];
   end
 

@@ -2,16 +2,14 @@
 """The C driver (sw/pidm.c) on the RTL register block: tb/pidm_regs/driver_on_rtl.cpp runs the
 driver's register accesses as AXI4-Lite transactions on the Verilator model of pidm_regs_tb (the
 generated pidm_regs and pidm_cfg).  This test packs a frame (tb/harness/pidm_frame.py; its C form
-frame_regs.h as scripts/pack_frame.py writes it), writes the configuration ports and table writes
-the pipeline harness would drive for that frame (expected.h, from
-tb/harness/pipeline_words.config) and the texture level-table writes (lvt_we_o / lvt_waddr_o /
-lvt_wdata_o) the driver's writes of TEX[x].LEVEL_OFF / LEVEL_SIZE must make, in order, compiles
-the driver with the machine's C compiler, builds the model with Verilator and runs it: every
-check must pass."""
+frame_regs.h as scripts/pack_frame.py writes it), writes the configuration ports, triangle-table
+writes and level-table writes (lvt_we_o / lvt_waddr_o / lvt_wdata_o, one per write of
+HEIGHT.LEVEL_OFF, TEX[x].LEVEL_OFF / LEVEL_SIZE) the pipeline harness would drive for that frame,
+in its order (expected.h, from tb/harness/pipeline_words.config), compiles the driver with the
+machine's C compiler, builds the model with Verilator and runs it: every check must pass."""
 from __future__ import annotations
 
 import os
-import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -20,23 +18,29 @@ import pytest
 
 from scripts.pack_frame import c_header
 from tb.common.runner import rtl_files
-from tb.harness import dm_pipeline, pidm_frame, pidm_regmap, sv_params
+from tb.harness import dm_pipeline, pidm_frame, pidm_regmap, pipeline_words, sv_params
 
 ROOT = Path(__file__).resolve().parents[2]
 HERE = Path(__file__).parent
 TEX_LVL_W = sv_params.value("pipe_pkg", "TEX_LVL_W")
+#: The level registers (external registers of the block): name -> (lvt kind, texture).
+LEVEL_TABLES = {"HEIGHT.LEVEL_OFF": (pipeline_words.LVT_HEIGHT_OFF, 0),
+                **{f"TEX[{x}].{n}": (kind, x) for x in range(2)
+                   for n, kind in (("LEVEL_OFF", pipeline_words.LVT_TEX_OFF),
+                                   ("LEVEL_SIZE", pipeline_words.LVT_TEX_SIZE))}}
 
 
 def lvt_writes(writes) -> list[tuple[int, int]]:
     """The level-table writes (lvt_waddr_o, lvt_wdata_o) register writes make, in order: a write
-    of TEX[x].LEVEL_OFF[k] is {0, x, k} with the word, of TEX[x].LEVEL_SIZE[k] {1, x, k}."""
+    of HEIGHT.LEVEL_OFF[k] is {LVT_HEIGHT_OFF, 0, k} with the word, of TEX[x].LEVEL_OFF[k]
+    {LVT_TEX_OFF, x, k}, of TEX[x].LEVEL_SIZE[k] {LVT_TEX_SIZE, x, k}."""
     regs = pidm_regmap.by_address()
     out = []
     for addr, value in writes:
-        m = re.fullmatch(r"TEX\[(\d)\]\.LEVEL_(OFF|SIZE)\[(\d+)\]", regs[addr].path)
-        if m:
-            kind = int(m[2] == "SIZE")
-            out.append(((kind << (TEX_LVL_W + 1)) | (int(m[1]) << TEX_LVL_W) | int(m[3]),
+        name, _, k = regs[addr].path.rpartition("[")
+        if name in LEVEL_TABLES:
+            kind, x = LEVEL_TABLES[name]
+            out.append((pipeline_words.lvt_addr(kind, x, int(k.rstrip("]"))),
                         int(value) & 0xFFFFFFFF))
     return out
 
@@ -78,10 +82,11 @@ def test_driver_on_rtl(tmp_path):
     gen = tmp_path / "gen"
     gen.mkdir()
     (gen / "frame_regs.h").write_text(c_header(packed, "rocks"))
-    lvt = lvt_writes(packed.config)
-    assert len(lvt) == 2 * 2 * (1 << TEX_LVL_W), "the frame writes every level register"
-    assert dict(lvt) == dict(cfg.lvt_writes), "the packed frame's level tables"
-    (gen / "expected.h").write_text(expected_header(cfg, lvt))
+    # the driver writes the level registers in the harness's order: the height offsets, then per
+    # texture its offsets and its sizes
+    assert lvt_writes(packed.config) == cfg.lvt_writes, "the packed frame's level-table writes"
+    assert len(cfg.lvt_writes) == (1 + 2 * 2) << TEX_LVL_W, "the frame writes every level register"
+    (gen / "expected.h").write_text(expected_header(cfg, cfg.lvt_writes))
     obj = tmp_path / "pidm.o"
     b = subprocess.run([cc, "-Wall", "-Wextra", "-Werror", "-std=c11", "-O1", "-c",
                         "-I", str(ROOT / "sw"), "-o", str(obj), str(ROOT / "sw" / "pidm.c")],

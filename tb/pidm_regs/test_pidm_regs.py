@@ -5,17 +5,18 @@ behind it, driven over AXI4-Lite by cocotbext-axi's master as the driver (sw/pid
 - frame_config: a frame packed by tb/harness/pidm_frame.py (the rocks scene) written register by
   register, in random order, with random gaps: every cfg_* port of pidm_cfg equals the port value
   the pipeline harness would drive (tb/harness/pipeline_words.config), the table writes come out
-  on tt_we_o / tt_waddr_o / tt_wdata_o one per TT_WRITE write in order, each write of a texture
-  level register TEX[x].LEVEL_OFF[k] / LEVEL_SIZE[k] as one lvt_we_o pulse with lvt_waddr_o
-  {kind, x, k} and lvt_wdata_o the word written, in order (the tables end up as the harness's
-  level-table writes), and every register reads back what was written (the write-only tables
-  LEVEL_OFF and LEVEL_SIZE read 0); the frame descriptor reaches its ports;
-- level_tables: random writes to the 64 texture level registers (TEX[x] LEVEL_OFF and
+  on tt_we_o / tt_waddr_o / tt_wdata_o one per TT_WRITE write in order, each write of a level
+  register HEIGHT.LEVEL_OFF[k], TEX[x].LEVEL_OFF[k] / LEVEL_SIZE[k] as one lvt_we_o pulse with
+  lvt_waddr_o {kind, x, k} (kind 1, 2, 3; x 0 for HEIGHT) and lvt_wdata_o the word written, in
+  order (the tables end up holding the harness's level-table writes,
+  tb/harness/pipeline_words.config's lvt_writes), and every register reads back what was written
+  (the write-only tables LEVEL_OFF and LEVEL_SIZE read 0); the frame descriptor reaches its ports;
+- level_tables: random writes to the 80 level registers (HEIGHT.LEVEL_OFF, TEX[x] LEVEL_OFF and
   LEVEL_SIZE, external registers of the block), back to back and with gaps, mixed with writes
-  to the stored tables HEIGHT.LEVEL_OFF / PYR.LEVEL_OFF, other registers and unmapped words
-  beside the texture tables, and with reads of the texture level registers: exactly one
-  lvt_we_o pulse per texture level write, in order, with its {kind, x, k} and data, none for
-  any other write; every read of them returns 0 with OKAY;
+  to the stored table PYR.LEVEL_OFF, other registers and unmapped words beside the level
+  tables, and with reads of the level registers: exactly one lvt_we_o pulse per level-register
+  write, in order, with its {kind, x, k} and data, none for any other write; every read of them
+  returns 0 with OKAY;
 - control_status_interrupts: CTRL bits are one-clock pulses and read 0; ERROR flags are set by
   the hardware, kept, and cleared by writing 1 (only the bits written); INTR_STATE is set by the
   hardware events and by INTR_TEST, the interrupt line follows INTR_STATE & INTR_ENABLE, writing 1
@@ -35,24 +36,33 @@ from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, RisingEdge
 from cocotbext.axi import AxiLiteBus, AxiLiteMaster
 
 from tb.common import fp_unit, report, runner
-from tb.harness import dm_pipeline, pidm_frame, pidm_regmap, sv_params
+from tb.harness import dm_pipeline, pidm_frame, pidm_regmap, pipeline_words, sv_params
 
 R = pidm_regmap.reg
-#: rtl/pipe/pipe_pkg.sv: the texture level table address {kind, texture, level}.
+#: rtl/pipe/pipe_pkg.sv: the level table address {kind [1:0], texture, level}.
 TEX_LVL_W, LVT_ADDR_W = sv_params.values("pipe_pkg", "TEX_LVL_W", "LVT_ADDR_W")
+LVT_HEIGHT_OFF, LVT_TEX_OFF, LVT_TEX_SIZE = (pipeline_words.LVT_HEIGHT_OFF,
+                                             pipeline_words.LVT_TEX_OFF,
+                                             pipeline_words.LVT_TEX_SIZE)
+#: The level registers (external registers of the block) as (name, kind, texture).
+LEVEL_TABLES = (("HEIGHT.LEVEL_OFF", LVT_HEIGHT_OFF, 0),
+                *((f"TEX[{x}].{n}", kind, x) for x in range(2)
+                  for n, kind in (("LEVEL_OFF", LVT_TEX_OFF), ("LEVEL_SIZE", LVT_TEX_SIZE))))
 
 
 def lvt_write(addr: int, value: int) -> tuple[int, int] | None:
     """The level-table write (lvt_waddr_o, lvt_wdata_o) a register write makes: a write of
-    TEX[x].LEVEL_OFF[k] is {0, x, k} with the word, of TEX[x].LEVEL_SIZE[k] {1, x, k} with the
-    word; None for any other address."""
-    for x in range(2):
-        for kind, name in enumerate(("LEVEL_OFF", "LEVEL_SIZE")):
-            base = R(f"TEX[{x}].{name}[0]").addr
-            k = (addr - base) // 4
-            if addr % 4 == 0 and 0 <= k < 1 << TEX_LVL_W:
-                assert R(f"TEX[{x}].{name}[{k}]").addr == addr
-                return (kind << (TEX_LVL_W + 1)) | (x << TEX_LVL_W) | k, value & 0xFFFFFFFF
+    HEIGHT.LEVEL_OFF[k] is {LVT_HEIGHT_OFF, 0, k} with the word, of TEX[x].LEVEL_OFF[k]
+    {LVT_TEX_OFF, x, k}, of TEX[x].LEVEL_SIZE[k] {LVT_TEX_SIZE, x, k}; None for any other
+    address."""
+    for name, kind, x in LEVEL_TABLES:
+        base = R(f"{name}[0]").addr
+        k = (addr - base) // 4
+        if addr % 4 == 0 and 0 <= k < 1 << TEX_LVL_W:
+            assert R(f"{name}[{k}]").addr == addr
+            w = pipeline_words.lvt_addr(kind, x, k)
+            assert w < 1 << LVT_ADDR_W
+            return w, value & 0xFFFFFFFF
     return None
 
 
@@ -141,8 +151,8 @@ async def frame_config(dut):
     if seen != cfg.tri_writes:
         bad.append(f"table writes {seen[:4]}... ({len(seen)}) != {cfg.tri_writes[:4]}... "
                    f"({len(cfg.tri_writes)})")
-    # one level-table write per TEX[x].LEVEL_OFF / LEVEL_SIZE write, in order; the tables end up
-    # holding what the pipeline harness writes into them
+    # one level-table write per HEIGHT.LEVEL_OFF, TEX[x].LEVEL_OFF / LEVEL_SIZE write, in order;
+    # the tables end up holding what the pipeline harness writes into them
     if lvt_seen != lvt_want:
         i = next((i for i, (g, w) in enumerate(zip(lvt_seen, lvt_want)) if g != w),
                  min(len(lvt_seen), len(lvt_want)))
@@ -174,7 +184,8 @@ async def frame_config(dut):
                   "level-table writes, %d checks (%d write-only reads), %d mismatches",
                   len(regs), len(tri), len(lvt_want), n, n_wo, len(bad))
     assert n_wo > 0, "the frame wrote no write-only register"
-    assert len(lvt_want) == 2 * 2 * (1 << TEX_LVL_W), "the frame wrote not every level register"
+    assert len(lvt_want) == (1 + 2 * 2) << TEX_LVL_W == len(cfg.lvt_writes), \
+        "the frame wrote not every level register"
     assert not bad, "\n".join(bad[:20])
 
 
@@ -184,14 +195,14 @@ async def level_tables(dut):
     axil = await setup(dut)
     seen: list[tuple[int, int]] = []
     watch_writes(dut, "lvt", seen)
-    tex = [R(f"TEX[{x}].{n}[{k}]").addr for x in range(2) for n in ("LEVEL_OFF", "LEVEL_SIZE")
-           for k in range(1 << TEX_LVL_W)]
-    # writes that must not reach the level tables: the stored tables, other registers of TEX and
-    # elsewhere, unmapped words beside the texture tables
-    others = ([R(f"HEIGHT.LEVEL_OFF[{k}]").addr for k in (0, 7, 15)]
-              + [R(f"PYR.LEVEL_OFF[{k}]").addr for k in (0, 9, 15)]
+    lvl = [R(f"{name}[{k}]").addr for name, _, _ in LEVEL_TABLES for k in range(1 << TEX_LVL_W)]
+    # writes that must not reach the level tables: the stored table PYR.LEVEL_OFF, other
+    # registers of HEIGHT, TEX and elsewhere, unmapped words beside the level tables
+    others = ([R(f"PYR.LEVEL_OFF[{k}]").addr for k in (0, 9, 15)]
               + [R(f"TEX[{x}].{n}").addr for x in range(2) for n in ("SU", "SV", "BASE")]
-              + [R("HEIGHT.BASE").addr, R("FRAME.FRAG_COUNT").addr,
+              + [R(f"HEIGHT.{n}").addr for n in ("MODE", "BASE", "DEPTH")]
+              + [R("FRAME.FRAG_COUNT").addr,
+                 0x214, 0x23C, 0x280, 0x2FC,
                  0x40C, 0x43C, 0x4C0, 0x4FC, 0x50C, 0x53C, 0x5C0, 0x5FC])
     want: list[tuple[int, int]] = []
     reads = 0
@@ -201,19 +212,19 @@ async def level_tables(dut):
 
     # every entry once, back to back (the master's writes queued together)
     events = []
-    for a in rng.permutation(tex):
+    for a in rng.permutation(lvl):
         v = value()
         events.append(axil.init_write(int(a), v.to_bytes(4, "little")))
         want.append(lvt_write(int(a), v))
     for e in events:
         await e.wait()
         assert int(e.data.resp) == 0, "write response"
-    # random writes (texture level or other, some back to back) mixed with reads of the texture
-    # level registers, with gaps
+    # random writes (level or other, some back to back) mixed with reads of the level registers,
+    # with gaps
     for _ in range(300):
         r = rng.random()
         if r < 0.15:
-            a = int(rng.choice(tex))
+            a = int(rng.choice(lvl))
             got = await read(axil, a)
             reads += 1
             assert got == 0, f"read of {pidm_regmap.by_address()[a].path} ({a:#x}): {got:#x}"
@@ -221,13 +232,13 @@ async def level_tables(dut):
         burst = int(rng.integers(1, 4))
         events = []
         for _ in range(burst):
-            a = int(rng.choice(tex)) if rng.random() < 0.7 else int(rng.choice(others))
+            a = int(rng.choice(lvl)) if rng.random() < 0.7 else int(rng.choice(others))
             v = value()
             events.append(axil.init_write(a, v.to_bytes(4, "little")))
             if (w := lvt_write(a, v)) is not None:
                 want.append(w)
         if rng.random() < 0.3:   # a read issued while the writes are in flight
-            a = int(rng.choice(tex))
+            a = int(rng.choice(lvl))
             got = await read(axil, a)
             reads += 1
             assert got == 0, f"read of {a:#x} beside writes: {got:#x}"
@@ -242,7 +253,9 @@ async def level_tables(dut):
     if len(seen) != len(want):
         bad.append(f"{len(seen)} lvt_we_o pulses for {len(want)} level-table writes")
     kinds = {(w[0] >> (TEX_LVL_W + 1), (w[0] >> TEX_LVL_W) & 1) for w in want}
-    assert kinds == {(0, 0), (0, 1), (1, 0), (1, 1)}, "both kinds of both textures"
+    assert kinds == {(LVT_HEIGHT_OFF, 0)} | {(kind, x) for kind in (LVT_TEX_OFF, LVT_TEX_SIZE)
+                                             for x in range(2)}, \
+        "the height offsets and both kinds of both textures"
     report.record(dut._name, "level-table writes and reads", len(want) + reads, len(bad))
     dut._log.info("VECTORS pidm_regs level_tables: %d level-table writes, %d reads, %d "
                   "mismatches", len(want), reads, len(bad))

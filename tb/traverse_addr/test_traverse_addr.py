@@ -1,8 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
 """traverse_addr against the model's memory layout, bit for bit.
 
-The module is combinational (loop stage S0).  Its configuration inputs come from
-``tb.harness.traverse_words.config`` (what the traverse unit is given), the expected address from
+The module is combinational (loop stage S0) from its inputs and its level-offset table, which
+each map's vectors find written through hlt_* (a clock per level, in random order, after junk
+writes).  Its configuration comes from ``tb.harness.traverse_words.config`` (what the traverse
+unit is given), the expected address from
 ``model.traverse.texel_offset`` over ``Pyramid.level_offsets`` (model/heightmap.py's layout: the
 same function the model's trace reads its heights through), and, for every map small enough, the
 byte(s) at that address of ``Pyramid.memory_image`` must be the texel's code in ``pyr.levels``:
@@ -21,12 +23,15 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
+from cocotb.clock import Clock
+from cocotb.triggers import FallingEdge
 
 from model import heightmap, traverse
 from tb.harness import traverse_words
 from model.traverse import EXACT_METHODS
 from tb.common import fp_unit, report, runner
 from tb.common.comb_unit import apply
+from tb.common.tables import write_table
 
 HERE = Path(__file__).resolve().parent
 ADDR_MASK = (1 << traverse_words.ADDR_W) - 1
@@ -80,8 +85,12 @@ async def addr_random_and_directed(dut):
     rng = np.random.default_rng(fp_unit.seed())
     per_map = max(1, fp_unit.vectors() // len(MAPS))
     cols: dict[str, list[np.ndarray]] = {k: [] for k in (
-        "base_i", "level_off_i", "bits16_i", "k_i", "nk_i", "cx_i", "cy_i")}
+        "base_i", "bits16_i", "k_i", "nk_i", "cx_i", "cy_i")}
     exp: dict[str, list[np.ndarray]] = {k: [] for k in OUTPUTS}
+    got: dict[str, list[np.ndarray]] = {k: [] for k in OUTPUTS}
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    dut.hlt_we_i.value = 0
+    await FallingEdge(dut.clk_i)
     image_checked = image_bad = directed = 0
     for h, w, bits, base in MAPS:
         pyr = pyramid(rng, h, w, bits)
@@ -103,19 +112,25 @@ async def addr_random_and_directed(dut):
             image_checked += len(k)
             image_bad += int(np.count_nonzero(code != want))
         m = len(k)
-        cols["base_i"].append(np.full(m, cfg.base, dtype=object))
-        cols["level_off_i"].append(np.full(m, cfg.level_off, dtype=object))
-        cols["bits16_i"].append(np.full(m, cfg.bits16))
-        cols["k_i"].append(k)
-        cols["nk_i"].append(cfg.root_level - k)   # n - k: the ring registers it with the node
-        cols["cx_i"].append(cx)
-        cols["cy_i"].append(cy)
+        vm = {"base_i": np.full(m, cfg.base, dtype=object), "bits16_i": np.full(m, cfg.bits16),
+              "k_i": k, "nk_i": cfg.root_level - k,   # n - k: the ring registers it with the node
+              "cx_i": cx, "cy_i": cy}
+        for name, col in vm.items():
+            cols[name].append(col)
         exp["addr_o"].append(addr)
         exp["wide_o"].append(np.full(m, int(bits == 16)))
+        # the level-offset table: junk in some entries first, then every level in random order
+        writes = cfg.hlt_writes()
+        junk = [(a, int(rng.integers(0, 1 << 32))) for a, _ in writes if rng.random() < 0.5]
+        await write_table(dut, dut.clk_i, "hlt", junk + [writes[i] for i in
+                                                        rng.permutation(len(writes))])
+        gm = await apply(dut, vm, OUTPUTS)
+        for name in OUTPUTS:
+            got[name].append(gm[name])
     assert image_bad == 0, f"{image_bad} model addresses do not hold the node's code"
     v = {k: np.concatenate(x) for k, x in cols.items()}
     e = {k: np.concatenate(x) for k, x in exp.items()}
-    got = await apply(dut, v, OUTPUTS)
+    got = {k: np.concatenate(x) for k, x in got.items()}
     bad = np.zeros(len(v["k_i"]), dtype=bool)
     for k in OUTPUTS:
         bad |= got[k] != e[k]

@@ -51,6 +51,7 @@ from model import camera, heightmap, scenes, traverse
 from model.rays import Rays
 from model.traverse import EXACT_METHODS
 from tb.common import report, runner
+from tb.common.tables import write_table
 from tb.common.traverse_stimulus import adversarial_rays, height_field
 from tb.harness import traverse_words
 
@@ -151,6 +152,7 @@ class Harness:
     async def reset(self):
         d = self.dut
         d.rst_ni.value = 0
+        d.hlt_we_i.value = 0
         d.ray_valid_i.value = 0
         d.res_ready_i.value = 0
         d.clr_stats_i.value = 0
@@ -187,6 +189,7 @@ class Harness:
         assert int(self.s["idle_o"].value) == 1, "configuration change while rays are in the unit"
         for name, val in cfg.ports().items():
             getattr(self.dut, name).value = val
+        await write_table(self.dut, self.clk, "hlt", cfg.hlt_writes())
         self.ram.ar_channel.set_pause_generator(pauses(self.rng, case.ar_pause))
         self.ram.r_channel.set_pause_generator(pauses(self.rng, case.r_pause))
         self.ram.lat = case.lat

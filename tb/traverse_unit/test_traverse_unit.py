@@ -37,6 +37,7 @@ from cocotb.triggers import ClockCycles, FallingEdge, RisingEdge
 from model import heightmap, traverse
 from model.traverse import EXACT_METHODS
 from tb.common import depths, report, runner
+from tb.common.tables import write_table
 from tb.common.traverse_stimulus import adversarial_rays, height_field
 from tb.harness import traverse_words
 
@@ -91,6 +92,7 @@ class Harness:
         d = self.dut
         cocotb.start_soon(Clock(self.clk, 10, unit="ns").start())
         d.rst_ni.value = 0
+        d.hlt_we_i.value = 0
         d.ray_valid_i.value = 0
         d.res_ready_i.value = 0
         d.wr_en_i.value = 0
@@ -119,6 +121,7 @@ class Harness:
         assert int(self.s["idle_o"].value) == 1, "configuration change while rays are in the unit"
         for name, val in cfg.ports().items():
             getattr(self.dut, name).value = val
+        await write_table(self.dut, self.clk, "hlt", cfg.hlt_writes())
         await ClockCycles(self.clk, 7)   # register stage + the clip start time: 7 clocks
         await FallingEdge(self.clk)
 
