@@ -27,6 +27,9 @@ module traverse_loop
   input  logic              rst_ni,
   /* verilator lint_off UNUSEDSIGNAL */
   input  cfg_t              cfg_i,
+  input  logic              hlt_we_i,     // the level-offset table's write port (unused here)
+  input  logic [LVL_W-1:0]  hlt_waddr_i,
+  input  logic [ADDR_W-1:0] hlt_wdata_i,
   /* verilator lint_on UNUSEDSIGNAL */
   input  logic              new_valid_i,
   input  logic [ID_W-1:0]   new_id_i,
