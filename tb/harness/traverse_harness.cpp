@@ -29,6 +29,7 @@
 // at cfg_base and zeros around it up to the 4 KiB pages the image touches (so line reads of an
 // unaligned image stay inside); beat data is the bus-aligned DATA_W/8-byte window; a transfer
 // reaching outside the memory answers DECERR, one overlapping an --err range answers SLVERR.
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cinttypes>
@@ -260,17 +261,17 @@ class Sim {
     t->m_axi_arready = 0;
     t->m_axi_rvalid = 0;
     t->clr_stats_i = 0;
-    t->hlt_we_i = 0;
     t->rst_ni = 0;
-    for (int i = 0; i < 10; ++i) clock();
-    t->rst_ni = 1;
-    for (unsigned k = 0; k < trvh::kMaxLevels; ++k) {  // the level-offset table
-      t->hlt_we_i = 1;
-      t->hlt_waddr_i = k;
-      t->hlt_wdata_i = h.level_off[k];
+    // The level-offset table is written during the reset (its write port does not look at
+    // rst_ni), so the unit starts as many clocks after the reset as before the table existed.
+    for (unsigned i = 0; i < std::max(10u, trvh::kMaxLevels); ++i) {
+      t->hlt_we_i = i < trvh::kMaxLevels;
+      t->hlt_waddr_i = i % trvh::kMaxLevels;
+      t->hlt_wdata_i = h.level_off[i % trvh::kMaxLevels];
       clock();
     }
     t->hlt_we_i = 0;
+    t->rst_ni = 1;
     for (int i = 0; i < 8; ++i) clock();  // the configuration settles (>= 5 clocks)
   }
 
