@@ -183,7 +183,7 @@ module traverse_loop
 #(
   parameter int unsigned ID_W     = 8,
   // f24_mul latency (1 .. 3; f24_mul's LAT, the same word at every LAT): the ring is
-  // loop_depth(MUL_LAT) = 16 + 3 * MUL_LAT stages (header, "Stage schedule").  The f24_add (the
+  // loop_depth(MUL_LAT) = 17 + 3 * MUL_LAT stages (header, "Stage schedule").  The f24_add (the
   // positions) run at a fixed POS_ADD_LAT = 3 whatever pipe_pkg::F24_ADD_LAT is.
   parameter int unsigned MUL_LAT  = pipe_pkg::F24_MUL_LAT,
   // 1: every method.  0: no XOR descent: the positions at t_end and their floors (2 f24_mul,

@@ -26,7 +26,7 @@ from model import shade
 from model.camera import Camera, Fragments, tile_order
 
 from . import dm_pipeline, pidm_regmap, pipeline_words, sv_params
-from .pipeline_words import PipelineConfig, TEX_ADDR_W, TEX_DIM_W, TEX_LVL_W
+from .pipeline_words import PipelineConfig, TEX_ADDR_W, TEX_DIM_W
 
 # ---- rtl/top/pidm_pkg.sv ------------------------------------------------------------------------
 (FRAG_BYTES, FRAG_WORDS, FRAG_U0_WORD, FRAG_V0_WORD, FRAG_PL0_WORD, FRAG_TRI_WORD, FRAG_TRI_LSB,
@@ -82,7 +82,7 @@ def config_writes(cfg: PipelineConfig) -> Writes:
         (R("HEIGHT.DEPTH").addr, R("HEIGHT.DEPTH").value(val=p["cfg_depth_i"])),
     ]
     for a, off in cfg.lvt_writes:
-        kind, _, k = _lvt_fields(a)
+        kind, _, k = pipeline_words.lvt_fields(a)
         if kind == pipeline_words.LVT_HEIGHT_OFF:
             out.append((R(f"HEIGHT.LEVEL_OFF[{k}]").addr,
                         R(f"HEIGHT.LEVEL_OFF[{k}]").value(val=off)))
@@ -104,7 +104,7 @@ def config_writes(cfg: PipelineConfig) -> Writes:
                 (R(f"{t}.SV").addr, R(f"{t}.SV").value(val=sv[x])),
                 (R(f"{t}.BASE").addr, R(f"{t}.BASE").value(val=bases[x]))]
         for a, d in cfg.lvt_writes:
-            kind, tex, k = _lvt_fields(a)
+            kind, tex, k = pipeline_words.lvt_fields(a)
             if tex != x or kind == pipeline_words.LVT_HEIGHT_OFF:
                 continue
             if kind == pipeline_words.LVT_TEX_SIZE:
@@ -117,11 +117,6 @@ def config_writes(cfg: PipelineConfig) -> Writes:
     tt = R("TT_WRITE")
     out += [(tt.addr, tt.value(data=d, addr=a)) for a, d in cfg.tri_writes]
     return out
-
-
-def _lvt_fields(addr: int) -> tuple[int, int, int]:
-    """(kind, texture, level) of a lvt_waddr_i (pipeline_words.lvt_addr)."""
-    return addr >> (1 + TEX_LVL_W), (addr >> TEX_LVL_W) & 1, addr & ((1 << TEX_LVL_W) - 1)
 
 
 def _lvt_of(path: str, f: dict[str, int]) -> tuple[int, int] | None:
@@ -165,9 +160,6 @@ def ports_from_writes(writes: Writes) -> tuple[dict[str, int], list[tuple[int, i
 
     def g(path: str, name: str) -> int:
         return held.get(path, {}).get(name, 0)
-
-    def arr(fmt: str, name: str, n: int, width: int) -> int:
-        return pipeline_words.pack([g(fmt.format(k), name) for k in range(n)], width)
 
     p = {
         "cfg_method_i": g("HEIGHT.MODE", "method"), "cfg_width_i": g("HEIGHT.SIZE", "width"),

@@ -46,6 +46,11 @@ def lvt_addr(kind: int, tex: int, level: int) -> int:
     return (kind << (1 + TEX_LVL_W)) | (tex << TEX_LVL_W) | level
 
 
+def lvt_fields(addr: int) -> tuple[int, int, int]:
+    """(kind, texture, level) of a lvt_waddr_i: the inverse of lvt_addr."""
+    return addr >> (1 + TEX_LVL_W), (addr >> TEX_LVL_W) & 1, addr & ((1 << TEX_LVL_W) - 1)
+
+
 @dataclass
 class PipelineConfig:
     """``ports``: cfg_* values; ``tri_writes``: (tt_waddr_i, tt_wdata_i) pairs; ``height`` and
