@@ -14,7 +14,7 @@ package shade_pkg;
   /* verilator lint_off UNUSEDPARAM */
 
   // ---- the stage schedule, a function of the float units' latencies ---------------------------
-  // shade_unit's 36 shared-unit operations (a lane-0 "stream" op, x then z, counts once and takes
+  // shade_unit's 41 shared-unit operations (a lane-0 "stream" op, x then z, counts once and takes
   // two consecutive phases), listed in their priority order: each operation, in this order, takes
   // the first core stage a at or after the stage its operands are ready in whose phase a mod 4
   // (and a + 1 mod 4 for a stream) its unit has not given to an earlier-listed operation.  An
@@ -22,9 +22,9 @@ package shade_pkg;
   // register is loaded by its select in a - 1); the inputs are ready in S0.  The order (the
   // critical path, view vector -> half vector -> n.h -> colour, before the normal's chain) is the
   // one design choice; at (ADD_LAT, MUL_LAT) = (2, 1) it gives the hand schedule of the paper's
-  // depths (SHADE_LAT 59), at (3, 2) SHADE_LAT 86.  tb/shade_unit mirrors this in Python.
-  localparam int unsigned SHADE_NOPS = 36;
-  localparam int unsigned SHADE_NUNITS = 14;  // the shared units (+ the direct-fed pseudo units)
+  // depths (SHADE_LAT 67), at (3, 2) SHADE_LAT 90.  tb/shade_unit mirrors this in Python.
+  localparam int unsigned SHADE_NOPS = 41;
+  localparam int unsigned SHADE_NUNITS = 15;  // the shared units (+ the direct-fed pseudo units)
   // operations (priority order) ...
   localparam int unsigned OP_DU2 = 0, OP_NY = 1, OP_NY2 = 2, OP_DV2 = 3, OP_UV = 4, OP_VV = 5,
                           OP_RV = 6, OP_VY = 7, OP_VXZ = 8, OP_HXZ = 9, OP_HXZ2 = 10, OP_HY = 11,
@@ -32,11 +32,12 @@ package shade_pkg;
                           OP_HUXZ = 17, OP_NXZ = 18, OP_NXY2 = 19, OP_NN = 20, OP_RN = 21,
                           OP_NUXZ = 22, OP_NHXZ = 23, OP_NUY = 24, OP_NHY = 25, OP_NHXY = 26,
                           OP_NLY = 27, OP_NLXY = 28, OP_DOTS = 29, OP_KDN = 30, OP_A = 31,
-                          OP_CYA = 32, OP_CG = 33, OP_CAXZ = 34, OP_CRB = 35;
+                          OP_CYA = 32, OP_S2 = 33, OP_S4 = 34, OP_S8 = 35, OP_S16 = 36,
+                          OP_CAXZ = 37, OP_SP = 38, OP_CG = 39, OP_CRB = 40;
   // ... and their units
   localparam int unsigned U_UV2HY2 = 0, U_DVNC = 1, U_NC = 2, U_NUA = 3, U_NV = 4, U_NY2H = 5,
                           U_VA = 6, U_NXH = 7, U_HD = 8, U_HKD = 9, U_RVNH = 10, U_NUNH1 = 11,
-                          U_HUNH1 = 12, U_CAA = 13;
+                          U_HUNH1 = 12, U_CAA = 13, U_SQ = 14;
 
   // The unit of an operation, and whether it is a stream (x in a, z in a + 1).
   function automatic int unsigned shade_op_unit(input int unsigned op);
@@ -54,7 +55,8 @@ package shade_pkg;
       OP_RV, OP_RN, OP_RH:                return U_RVNH;
       OP_NUY, OP_NHXZ:                    return U_NUNH1;
       OP_HUY, OP_NHY, OP_NLY:             return U_HUNH1;
-      default:                            return U_CAA;  // OP_CAXZ
+      OP_S2, OP_S4, OP_S8, OP_S16:        return U_SQ;
+      default:                            return U_CAA;  // OP_CAXZ, OP_SP
     endcase
   endfunction
 
@@ -125,10 +127,14 @@ package shade_pkg;
         OP_KDN:  e = rs[OP_DOTS] + 1;                                 // ndl: the max register
         OP_A:    e = rs[OP_KDN];
         OP_CYA, OP_CAXZ: e = rs[OP_A];
-        // sp = KS s^16: s^2 in rs[OP_DOTS] + 2 (ndh in the max register), five unshared mul
-        OP_CG:   e = (rs[OP_CYA] > rs[OP_DOTS] + 2 + 5 * m) ? rs[OP_CYA] : rs[OP_DOTS] + 2 + 5 * m;
-        default: e = (rs[OP_CAXZ] > rs[OP_DOTS] + 2 + 5 * m) ? rs[OP_CAXZ]   // OP_CRB
-                                                             : rs[OP_DOTS] + 2 + 5 * m;
+        // s = ndh^2 (ndh in the max register a stage after ndl), s^4, s^8, s^16; sp = KS s^16
+        OP_S2:   e = rs[OP_DOTS] + 2;
+        OP_S4:   e = rs[OP_S2];
+        OP_S8:   e = rs[OP_S4];
+        OP_S16:  e = rs[OP_S8];
+        OP_SP:   e = rs[OP_S16];
+        OP_CG:   e = (rs[OP_CYA] > rs[OP_SP]) ? rs[OP_CYA] : rs[OP_SP];
+        default: e = (rs[OP_CAXZ] > rs[OP_SP]) ? rs[OP_CAXZ] : rs[OP_SP];  // OP_CRB
       endcase
       u = shade_op_unit(i);
       a = e + 1;
@@ -162,7 +168,7 @@ package shade_pkg;
            + pipe_pkg::F24_TO_INDEX_LAT + 2 + 3;
   endfunction
 
-  // At the package defaults (pipe_pkg::F24_ADD_LAT, F24_MUL_LAT); 59 at (2, 1), 86 at (3, 2).
+  // At the package defaults (pipe_pkg::F24_ADD_LAT, F24_MUL_LAT); 67 at (2, 1), 90 at (3, 2).
   // rsqrt: f24_rsqrt #(.LAT(3)) (pipe_pkg::F24_RSQRT_LAT).
   localparam int unsigned SHADE_LAT = shade_lat(pipe_pkg::F24_ADD_LAT, pipe_pkg::F24_MUL_LAT);
 

@@ -27,7 +27,7 @@
 // (shade_pkg): EPS = 2^-40, 1, 0, 255 and 0.5; the constant 2 only appears as mul(M_c, 2).
 //
 // Fully pipelined, fixed latency SHADE_LAT = shade_pkg::shade_lat(ADD_LAT, MUL_LAT) enabled
-// clocks (59 at the paper's depths (ADD_LAT, MUL_LAT) = (2, 1), 86 at (3, 2)), one pixel every
+// clocks (67 at the paper's depths (ADD_LAT, MUL_LAT) = (2, 1), 90 at (3, 2)), one pixel every
 // 4th enabled clock at most at every depth (valid_i must not be 1 within 3 enabled clocks after a
 // pixel; asserted: pixel_spacing).  In dm_pipeline a pixel needs two filtered quads, which come
 // one per two clocks at most.
@@ -62,7 +62,7 @@
 // Core stage schedule.  Latencies: f24_add ADD_LAT, f24_mul MUL_LAT, f24_rsqrt 3
 // (pipe_pkg::F24_RSQRT_LAT: table / product + sum / round, over 120 MHz; at 2 clocks it limits
 // the unit to below 60 MHz), f24_to_index 1.  Every stage is a localparam computed from ADD_LAT
-// and MUL_LAT by shade_pkg::shade_op_stage: the 36 shared-unit operations, in a fixed priority
+// and MUL_LAT by shade_pkg::shade_op_stage: the 41 shared-unit operations, in a fixed priority
 // order (the critical path first), each take the first stage a after their operands' results
 // (a >= b + 1 for a result in Sb; the inputs are in S0) whose phase a mod 4 (and a + 1 for a
 // stream) their unit has free.  "@a/a'": the unit works on the operands in Sa at (2, 1), Sa' at
@@ -70,9 +70,9 @@
 //   u_uv2hy2 (f24_mul): du^2 @1/1 / h_y^2 @18/23
 //   u_dvnc (f24_mul):   dv^2 @1/1 / n_x rn, n_z rn @19/22 / C_y a @46/68
 //   u_nc (f24_add):     n_x - 1, n_z - 1 @1/1 (n = 2M - 1, 2M_z waits a clock in m2z_q) /
-//                       c_R, c_B = C_x a + sp, C_z a + sp @47/71
+//                       c_R, c_B = C_x a + sp, C_z a + sp @55/75
 //   u_nua (f24_add):    n_y - 1 @1/1 / du^2 + dv^2 @3/4 / a = AMBIENT + KD ndl @42/62 /
-//                       c_G = C_y a + sp @48/71
+//                       c_G = C_y a + sp @56/75
 //   u_nv (f24_add):     vv = (du^2 + dv^2) + D2 @6/8 / nn = (nx2 + ny2) + nz2 @9/13 /
 //                       hx2 + hy2 @20/26 / hh = (hx2 + hy2) + hz2 @23/31
 //   u_rvnh (f24_rsqrt): rv = rsqrt(vv) @9/12 / rn = rsqrt(max(nn, EPS)) @15/18 /
@@ -86,15 +86,16 @@
 //   u_hkd (f24_mul):    h_x^2, h_z^2 @18/23 / KD ndl @40/58
 //   u_nunh1 (f24_mul):  n_y rn @19/23 / n_x h_x, n_z h_z @32/45
 //   u_hunh1 (f24_mul):  n_y l_y @21/28 / h_y rh @30/39 / n_y h_y @32/42
-//   u_caa (f24_mul):    C_x a, C_z a @45/66
+//   u_caa (f24_mul):    C_x a, C_z a @45/66 / sp = KS s^16 @51/72
+//   u_sq (f24_mul):     s = ndh^2 @41/59 / s^4 @43/62 / s^8 @46/65 / s^16 @48/68 (each square
+//                       fed back through the unit's operand register)
 // Fed directly (no select): u_nsqa n_x^2, n_z^2 from u_nc's result (@3/4); u_nla n_x l_x, n_z l_z
 // from u_dvnc's (@20/24, l_x / l_z by a select); ndl = max(dot(n, l), 0) and then ndh in one
-// register (m_q); u_s2 .. u_sp: s = ndh^2, s^4, s^8, s^16, sp = KS s^16, five f24_mul each fed by
-// the one before (@40/58 .. -> sp in 45/68); max(nn, EPS) in nnm_q.
-// The tail: the clamp min(max(c, 0), 1) takes c_R in C0 = shade_clamp_stage (49/74; c_G a stage
+// register (m_q); max(nn, EPS) in nnm_q.
+// The tail: the clamp min(max(c, 0), 1) takes c_R in C0 = shade_clamp_stage (57/78; c_G a stage
 // later, c_B two), then one lane for the three channels a stage apart: c 255 (u_k, from C0 + 1),
 // + 0.5 (u_kh, from C0 + 1 + MUL_LAT), floor -> unorm8 (u_idx, from C0 + 1 + MUL_LAT + ADD_LAT);
-// R and G held, the result complete in CS = C0 + MUL_LAT + ADD_LAT + 4 (56/83).  Output: a pixel
+// R and G held, the result complete in CS = C0 + MUL_LAT + ADD_LAT + 4 (64/87).  Output: a pixel
 // that waited 3 clocks shows its result from core CS directly, the others from res_q (loaded in
 // CS); valid and tag delayed S0 -> S(SHADE_LAT) (pipe_valid_tag).
 //
@@ -107,8 +108,8 @@
 // only while en_i is 1 (its read register holds its word through a stall), so the taps, the
 // pixels and the latency are the registers' (DELAY_RAM_MIN = 0 builds registers only).
 //
-// Float units: 16 f24_mul (11 shared: u_dvnc and u_ny2h with four operations, u_hkd, u_nunh1,
-// u_hunh1 and u_k with three, 5 with two; the five of the s^16 chain unshared), 6 f24_add (all
+// Float units: 12 f24_mul (all shared: u_dvnc, u_ny2h and u_sq with four operations, u_hkd,
+// u_nunh1, u_hunh1, u_caa and u_k with three, 4 with two), 6 f24_add (all
 // shared: u_nc, u_nua, u_nv, u_nxh and u_hd with four, u_kh with three: the 23 additions fill
 // 23 of the 24 slots, 6 units x 4 phases), 1 f24_rsqrt (three operations), 1 f24_to_index #(9)
 // (three); no f24_cmp.  Exact logic (no rounding involved, each into one register): 3 doublers,
@@ -195,6 +196,11 @@ module shade_unit
   localparam int unsigned S_KDN  = shade_op_stage(OP_KDN,  ADD_LAT, MUL_LAT);
   localparam int unsigned S_A    = shade_op_stage(OP_A,    ADD_LAT, MUL_LAT);
   localparam int unsigned S_CYA  = shade_op_stage(OP_CYA,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_S2   = shade_op_stage(OP_S2,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_S4   = shade_op_stage(OP_S4,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_S8   = shade_op_stage(OP_S8,   ADD_LAT, MUL_LAT);
+  localparam int unsigned S_S16  = shade_op_stage(OP_S16,  ADD_LAT, MUL_LAT);
+  localparam int unsigned S_SP   = shade_op_stage(OP_SP,   ADD_LAT, MUL_LAT);
   localparam int unsigned S_CG   = shade_op_stage(OP_CG,   ADD_LAT, MUL_LAT);
   localparam int unsigned S_CAXZ = shade_op_stage(OP_CAXZ, ADD_LAT, MUL_LAT);
   localparam int unsigned S_CRB  = shade_op_stage(OP_CRB,  ADD_LAT, MUL_LAT);
@@ -216,7 +222,10 @@ module shade_unit
                           R_NLXY = S_NLXY + ADD_LAT,  R_DOTS = S_DOTS + ADD_LAT,
                           R_KDN  = S_KDN + MUL_LAT,   R_A    = S_A + ADD_LAT,
                           R_CYA  = S_CYA + MUL_LAT,   R_CG   = S_CG + ADD_LAT,
-                          R_CAXZ = S_CAXZ + MUL_LAT,  R_CRB  = S_CRB + ADD_LAT;
+                          R_CAXZ = S_CAXZ + MUL_LAT,  R_CRB  = S_CRB + ADD_LAT,
+                          R_S2   = S_S2 + MUL_LAT,    R_S4   = S_S4 + MUL_LAT,
+                          R_S8   = S_S8 + MUL_LAT,    R_S16  = S_S16 + MUL_LAT,
+                          R_SP   = S_SP + MUL_LAT;
   // the units fed directly (no select) and the exact registers
   localparam int unsigned S_NSQ = R_NXZ;                  // u_nsqa: n_x^2, n_z^2 (from u_nc)
   localparam int unsigned R_NSQ = S_NSQ + MUL_LAT;
@@ -224,8 +233,6 @@ module shade_unit
   localparam int unsigned R_NL  = S_NL + MUL_LAT;
   localparam int unsigned B_NNM = R_NN + 1;               // max(nn, EPS) in nnm_q
   localparam int unsigned B_M   = R_DOTS + 1;             // ndl in m_q (ndh a stage later)
-  localparam int unsigned S_S2  = B_M + 1;                // s = ndh^2 .. sp = KS s^16
-  localparam int unsigned B_SP  = S_S2 + 5 * MUL_LAT;     // sp
   localparam int unsigned C0    = shade_clamp_stage(ADD_LAT, MUL_LAT);  // the clamp takes c_R
   localparam int unsigned F_R   = C0 + 1 + MUL_LAT + ADD_LAT + IDX_LAT;  // R's floor (G, B after)
 
@@ -323,11 +330,12 @@ module shade_unit
   // which the placer keeps next to it: a select driven by cv_q[1], shared by five units, was
   // 2.5 ns of routing into an adder's stage 1 (77 MHz out of context).  The copies are not
   // merged by synthesis: each register's next value is its own rotation.
-  localparam int unsigned NPS = 16;  // operand selects (units and the clamp's)
+  localparam int unsigned NPS = 17;  // operand selects (units and the clamp's)
   localparam int unsigned PS_UV2HY2 = 0,  PS_DVNC = 1,   PS_NUA = 2,    PS_NV = 3,
                           PS_NY2H = 4,    PS_VA = 5,     PS_NXH = 6,    PS_HD = 7,
                           PS_HKD = 8,     PS_RVNH = 9,   PS_NUNH1 = 10, PS_NLA = 11,
-                          PS_HUNH1 = 12,  PS_CAA = 13,   PS_NC = 14,    PS_CL = 15;
+                          PS_HUNH1 = 12,  PS_CAA = 13,   PS_NC = 14,    PS_CL = 15,
+                          PS_SQ = 16;
   logic [3:0] ps_q [NPS];
 
   for (genvar u = 0; u < NPS; u++) begin : g_ps
@@ -367,8 +375,8 @@ module shade_unit
   f24_t nunh1_y;    // unit normal y, n_x h_x, n_z h_z (stream)
   f24_t nla_y;      // n_x l_x, n_z l_z (stream)
   f24_t hunh1_y;    // n_y l_y, unit half vector y, n_y h_y
-  f24_t s2_y, s4_y, s8_y, s16_y, sp_y;  // ndh^2, ^4, ^8, ^16; sp = KS s^16
-  f24_t caa_y;      // C_x a, C_z a (stream)
+  f24_t sq_y;       // s = ndh^2, s^4, s^8, s^16
+  f24_t caa_y;      // C_x a, C_z a (stream), sp = KS s^16
   f24_t k_y, kh_y;  // c 255, c 255 + 0.5 (R, then G and B a stage apart each)
   logic signed [8:0] idx;  // floor(c 255 + 0.5): R (F_R), G, B (CS); 0 .. 255
 
@@ -387,7 +395,7 @@ module shade_unit
   localparam int unsigned T_DU = 0, T_DV = 1, T_COL0 = 2, T_COL1 = 3, T_UV2HY2 = 4, T_DVNC = 5,
                           T_NC = 6, T_NUA = 7, T_NV = 8, T_NSQA = 9, T_NY2H = 10, T_VA = 11,
                           T_NXH = 12, T_HD = 13, T_HKD = 14, T_RVNH = 15, T_NUNH1 = 16,
-                          T_NLA = 17, T_HUNH1 = 18, T_NNM = 19, T_M = 20, T_SP = 21, T_CAA = 22;
+                          T_NLA = 17, T_HUNH1 = 18, T_NNM = 19, T_M = 20, T_SQ = 21, T_CAA = 22;
   localparam int unsigned NT = 23;
   f24_t src [NT];
   /* verilator lint_off UNUSEDSIGNAL */  // the taps no operation reads (removed by synthesis)
@@ -415,7 +423,7 @@ module shade_unit
   assign src[T_HUNH1]  = hunh1_y;
   assign src[T_NNM]    = nnm_q;
   assign src[T_M]      = m_q;
-  assign src[T_SP]     = sp_y;
+  assign src[T_SQ]     = sq_y;
   assign src[T_CAA]    = caa_y;
 
   // Delay lines: each source's longest wait between two taps that are read, from tap LO (read,
@@ -480,9 +488,10 @@ module shade_unit
       T_HUNH1:  return big_gap(taps(S_NLXY - 1 - R_NLY, S_NHY - 1 - R_HUY,
                                     S_NHXY - 1 - R_NHY));
       T_NNM:    return big_gap(taps(S_RN - 1 - B_NNM));
-      T_M:      return big_gap(taps(S_KDN - 1 - B_M));
-      T_SP:     return big_gap(taps(S_CG - 1 - B_SP, S_CRB - 1 - B_SP));
-      T_CAA:    return big_gap(taps(S_CRB - 1 - R_CAXZ));
+      T_M:      return big_gap(taps(S_KDN - 1 - B_M, S_S2 - 1 - (B_M + 1)));
+      T_SQ:     return big_gap(taps(S_S4 - 1 - R_S2, S_S8 - 1 - R_S4, S_S16 - 1 - R_S8,
+                                    S_SP - 1 - R_S16));
+      T_CAA:    return big_gap(taps(S_CRB - 1 - R_CAXZ, S_CG - 1 - R_SP, S_CRB - 1 - R_SP));
       default:  return '0;
     endcase
   endfunction
@@ -562,6 +571,7 @@ module shade_unit
   f24_t opnl_b_q;                      // u_nla (a: u_dvnc's result, direct)
   f24_t ophh_a_q, ophh_b_q;            // u_hunh1
   f24_t opca_a_q, opca_b_q;            // u_caa
+  f24_t opsq_q;                        // u_sq (squares: one operand)
 
   // -x: the sign bit flipped
   function automatic f24_t neg(input f24_t x);
@@ -585,7 +595,7 @@ module shade_unit
       opnc_a_q <= at(ps_q[PS_NC], S_NXZ - 1) ? dbl(in_nrm[0]) : at(ps_q[PS_NC], S_NXZ) ? m2z_q
                 : tp[T_CAA][S_CRB - 1 - R_CAXZ];
       opnc_b_q <= (at(ps_q[PS_NC], S_NXZ - 1) || at(ps_q[PS_NC], S_NXZ)) ? NEG_ONE
-                : at(ps_q[PS_NC], S_CRB - 1) ? tp[T_SP][S_CRB - 1 - B_SP] : opnc_b_q;
+                : at(ps_q[PS_NC], S_CRB - 1) ? tp[T_CAA][S_CRB - 1 - R_SP] : opnc_b_q;
       // u_nua: n_y - 1 / du^2 + dv^2 / a = AMBIENT + KD ndl / c_G = C_y a + sp
       opnu_a_q <= at(ps_q[PS_NUA], S_NY - 1) ? dbl(in_nrm[1])
                 : at(ps_q[PS_NUA], S_UV - 1) ? tp[T_UV2HY2][S_UV - 1 - R_DU2]
@@ -593,7 +603,7 @@ module shade_unit
       opnu_b_q <= at(ps_q[PS_NUA], S_NY - 1) ? NEG_ONE
                 : at(ps_q[PS_NUA], S_UV - 1) ? tp[T_DVNC][S_UV - 1 - R_DV2]
                 : at(ps_q[PS_NUA], S_A - 1) ? tp[T_HKD][S_A - 1 - R_KDN]
-                : tp[T_SP][S_CG - 1 - B_SP];
+                : tp[T_CAA][S_CG - 1 - R_SP];
       // u_nv: vv = (du^2 + dv^2) + D2 / nn = (nx2 + ny2) + nz2 / hx2 + hy2 / hh = (..) + hz2
       opnv_a_q <= at(ps_q[PS_NV], S_VV - 1) ? tp[T_NUA][S_VV - 1 - R_UV]
                 : at(ps_q[PS_NV], S_NN - 1) ? tp[T_NXH][S_NN - 1 - R_NXY2]
@@ -652,9 +662,15 @@ module shade_unit
       ophh_b_q <= at(ps_q[PS_HUNH1], S_NLY - 1) ? light[1]
                 : at(ps_q[PS_HUNH1], S_HUY - 1) ? tp[T_RVNH][S_HUY - 1 - R_RH]
                 : tp[T_HUNH1][S_NHY - 1 - R_HUY];
-      // u_caa: C_x a, C_z a
-      opca_a_q <= tp[T_COL0][S_CAXZ - 1];
-      opca_b_q <= at(ps_q[PS_CAA], S_CAXZ - 1) ? tp[T_NUA][S_CAXZ - 1 - R_A] : opca_b_q;
+      // u_caa: C_x a, C_z a / sp = KS s^16
+      opca_a_q <= at(ps_q[PS_CAA], S_SP - 1) ? cfg_i.ks : tp[T_COL0][S_CAXZ - 1];
+      opca_b_q <= at(ps_q[PS_CAA], S_CAXZ - 1) ? tp[T_NUA][S_CAXZ - 1 - R_A]
+                : at(ps_q[PS_CAA], S_SP - 1) ? tp[T_SQ][S_SP - 1 - R_S16] : opca_b_q;
+      // u_sq: s = ndh^2 (ndh in m_q a stage after ndl) / s^4 / s^8 / s^16
+      opsq_q   <= at(ps_q[PS_SQ], S_S2 - 1) ? tp[T_M][S_S2 - 1 - (B_M + 1)]
+                : at(ps_q[PS_SQ], S_S4 - 1) ? tp[T_SQ][S_S4 - 1 - R_S2]
+                : at(ps_q[PS_SQ], S_S8 - 1) ? tp[T_SQ][S_S8 - 1 - R_S4]
+                : tp[T_SQ][S_S16 - 1 - R_S8];
     end
   end
 
@@ -676,13 +692,9 @@ module shade_unit
   f24_mul #(.LAT(MUL_LAT)) u_nla  (.clk_i, .en_i, .a_i(dvnc_y), .b_i(opnl_b_q), .y_o(nla_y));
   f24_mul #(.LAT(MUL_LAT)) u_hunh1 (.clk_i, .en_i, .a_i(ophh_a_q), .b_i(ophh_b_q),
                                     .y_o(hunh1_y));
-  // s = ndh; four times s = mul(s, s); sp = mul(KS, s): one unit per operation, each fed by the
-  // previous one's result register (ndh: m_q in S_S2)
-  f24_mul #(.LAT(MUL_LAT)) u_s2  (.clk_i, .en_i, .a_i(m_q), .b_i(m_q), .y_o(s2_y));
-  f24_mul #(.LAT(MUL_LAT)) u_s4  (.clk_i, .en_i, .a_i(s2_y), .b_i(s2_y), .y_o(s4_y));
-  f24_mul #(.LAT(MUL_LAT)) u_s8  (.clk_i, .en_i, .a_i(s4_y), .b_i(s4_y), .y_o(s8_y));
-  f24_mul #(.LAT(MUL_LAT)) u_s16 (.clk_i, .en_i, .a_i(s8_y), .b_i(s8_y), .y_o(s16_y));
-  f24_mul #(.LAT(MUL_LAT)) u_sp  (.clk_i, .en_i, .a_i(cfg_i.ks), .b_i(s16_y), .y_o(sp_y));
+  // s = ndh; four times s = mul(s, s) on one unit, each square fed back through its operand
+  // register (sp = mul(KS, s): u_caa)
+  f24_mul #(.LAT(MUL_LAT)) u_sq   (.clk_i, .en_i, .a_i(opsq_q), .b_i(opsq_q), .y_o(sq_y));
   f24_mul #(.LAT(MUL_LAT)) u_caa (.clk_i, .en_i, .a_i(opca_a_q), .b_i(opca_b_q), .y_o(caa_y));
   // the tail: one lane for the three channels, R, G and B a stage apart (c 255 from C0 + 1,
   // + 0.5 from C0 + 1 + MUL_LAT, floor from C0 + 1 + MUL_LAT + ADD_LAT)

@@ -26,8 +26,8 @@ rtl/pipe/shade_pkg.sv are checked against the model's.
 Built and run at the depth pairs (ADD_LAT, MUL_LAT) of tb/common/depths.py: the package defaults
 (3, 2), and under make test-long the paper's (2, 1); SHADE_LAT is the Python mirror of shade_pkg's schedule (shade_op_stage / shade_lat) at
 that pair, so a unit whose latency differs from the mirror fails every pixel check.
-test_shade_latency checks the mirror itself: 59 at (2, 1), and no unit given two operations of
-one phase.
+test_shade_latency checks the mirror itself: 67 at (2, 1), 90 at (3, 2), and no unit given two
+operations of one phase.
 
 Environment: SEED, VECTORS (random pixels, default 10,000; 50,000 with TB_LONG=1), WAVES=1;
 SHADE_ADD_LAT, SHADE_MUL_LAT (the depth pair, set by test_shade_unit).
@@ -78,7 +78,9 @@ OPS = [("du2", "uv2hy2", False), ("ny", "nua", False), ("ny2", "ny2h", False),
        ("nuxz", "dvnc", True), ("nhxz", "nunh1", True), ("nuy", "nunh1", False),
        ("nhy", "hunh1", False), ("nhxy", "hd", False), ("nly", "hunh1", False),
        ("nlxy", "nxh", False), ("dots", "hd", True), ("kdn", "hkd", False), ("a", "nua", False),
-       ("cya", "dvnc", False), ("cg", "nua", False), ("caxz", "caa", True), ("crb", "nc", True)]
+       ("cya", "dvnc", False), ("s2", "sq", False), ("s4", "sq", False), ("s8", "sq", False),
+       ("s16", "sq", False), ("caxz", "caa", True), ("sp", "caa", False), ("cg", "nua", False),
+       ("crb", "nc", True)]
 ADDERS = {"nc", "nua", "nv", "nxh", "hd"}
 
 
@@ -107,8 +109,9 @@ def schedule(add_lat: int, mul_lat: int, rsqrt_lat: int) -> dict[str, int]:
             "nlxy": lambda: max(r("nuxz") + m, r("nly")),
             "dots": lambda: max(r("nlxy"), r("nuxz") + m + 1, r("nhxy") - 1, r("nhxz")),
             "kdn": lambda: r("dots") + 1, "a": lambda: r("kdn"), "cya": lambda: r("a"),
-            "caxz": lambda: r("a"), "cg": lambda: max(r("cya"), r("dots") + 2 + 5 * m),
-            "crb": lambda: max(r("caxz"), r("dots") + 2 + 5 * m)}
+            "caxz": lambda: r("a"), "s2": lambda: r("dots") + 2, "s4": lambda: r("s2"),
+            "s8": lambda: r("s4"), "s16": lambda: r("s8"), "sp": lambda: r("s16"),
+            "cg": lambda: max(r("cya"), r("sp")), "crb": lambda: max(r("caxz"), r("sp"))}
         return table[op]() if op in table else 0
 
     for op, unit, stream in OPS:
@@ -462,11 +465,13 @@ def test_shade_unit(add_lat: int, mul_lat: int) -> None:
 
 
 def test_shade_latency() -> None:
-    """The Python mirror of the schedule: at the paper's depths (2, 1) the unit keeps its
-    latency of 59 clocks (the hand schedule before the depths were parameters), and every shared
-    unit's operations are in distinct phases mod 4 at each tested depth pair."""
+    """The Python mirror of the schedule: 67 clocks at the paper's depths (2, 1) and 90 at the
+    design's (3, 2) (shade_pkg's figures; 59 and 86 when the four squares and KS s^16 had five
+    multipliers of their own), and every shared unit's operations are in distinct phases mod 4 at
+    each tested depth pair."""
     rsqrt_lat = sv_params.value("pipe_pkg", "F24_RSQRT_LAT")
-    assert shade_lat(2, 1) == 59
+    assert shade_lat(2, 1) == 67
+    assert shade_lat(3, 2) == 90
     units = {op: unit for op, unit, _ in OPS}
     for add_lat, mul_lat in depths.PAIRS:
         st = schedule(add_lat, mul_lat, rsqrt_lat)
