@@ -7,8 +7,11 @@
 //   lod = sub(log2(Pl), log2Pb[tri][tex])       log2: the approximate unit f24_log2
 //   L   = clamp(to_index(add(lod, 0.5)), 0, levels[tex] - 1)
 //   and L = 0 when cfg_mip_en_i = 0 (the model's mip=False)
-// to_index is f24_to_index with W = MIP_IDX_W = 20 = model.arith.INDEX_W: floor, saturating to
-// [-2^19, 2^19 - 1], NaN -> 0, exactly F24Arith.to_index.  So a NaN t, seg or Pl0, Pl = NaN,
+// to_index(add(lod, 0.5)) is f24_round_index (the word of f24_add and f24_to_index) with W =
+// MIP_IDX_W = 7: floor, saturating to [-64, 63], NaN -> 0.  The model's to_index saturates at
+// model.arith.INDEX_W = 20 bits instead; the clamp to [0, levels - 1] (levels <= 32) gives the
+// same level from either, since both saturations lie outside [0, 31].  So a NaN t, seg or Pl0,
+// Pl = NaN,
 // a negative Pl (log2 NaN) or lod NaN give level 0; Pl = +-0 (log2 = -Inf) gives level 0;
 // Pl = +Inf gives levels - 1.
 //
@@ -38,8 +41,8 @@
 //                   the normal map's {log2(Pl), log2Pb normal} held and taken the next
 //                   enabled clock                                register     -> S_LOD
 //   S_LOD = S_JOB+1 lod = log2(Pl) - log2Pb (7 / 9)              f24_add      -> S_HALF
-//   S_HALF = S_LOD+A  lod + 0.5 (9 / 12)                         f24_add      -> S_IDX
-//   S_IDX = S_HALF+A  floor (11 / 15)                            f24_to_index -> S_CLMP
+//   S_HALF = S_LOD+A  floor(lod + 0.5) (9 / 12)     f24_round_index, A + 1 clocks -> S_CLMP
+//                     (S_IDX = S_HALF+A: where f24_add's sum would enter f24_to_index)
 //   S_CLMP = S_IDX+1  clamp to [0, levels[tex] - 1], mip_en (12 / 16)  register -> S_OUT
 //   S_OUT = S_CLMP+1  outputs (13 / 17; straight from registers); the normal map's a clock
 //                     after the colour's
@@ -48,7 +51,8 @@
 // and hits two clocks apart at least, in every unit at any unit latency.
 // log2 runs at LAT = F24_LOG2_LAT = 3 (table / product + sum / normalise + round: over 100 MHz;
 // at its 2 clocks it limits the unit to about 50 MHz); the result is the same at either LAT.
-// Float units: 1 f24_mul, 3 f24_add, 1 f24_log2, 1 f24_to_index; a 2 x TRIS-word tri_table.
+// Float units: 1 f24_mul, 2 f24_add, 1 f24_log2, 1 f24_round_index (lod + 0.5 and its floor in
+// one unit: before it, an f24_add and an f24_to_index #(.W(20))); a 2 x TRIS-word tri_table.
 // (Before the textures shared the lod datapath: 5 f24_add and 2 f24_to_index, both levels of a
 // hit per clock, MIP_LAT 12.)
 module mip_level
@@ -103,8 +107,6 @@ module mip_level
   if (S_OUT != mip_lat(ADD_LAT, MUL_LAT)) begin : g_check_lat
     $error("mip_level: stage schedule does not add up to pipe_pkg::mip_lat");
   end
-
-  localparam f24_t F24_HALF = 24'h3e0000;  // 0.5
 
   // ---- S0: t seg; S_PL: Pl --------------------------------------------------------------------
   f24_t ts, pl, l2;
@@ -163,9 +165,8 @@ module mip_level
   end
 
   // ---- S_LOD .. S_OUT: the job's texture ----------------------------------------------------
-  f24_t lod, lodh;
+  f24_t lod;
   logic signed [MIP_IDX_W-1:0] idx;
-  logic                        unused_sat;
   logic                        tex_q [S_LOD+1:S_CLMP];  // the job's texture, S_LOD+1 .. S_CLMP
   logic [MIP_LEVEL_W:0]        levels;
   logic [MIP_LEVEL_W-1:0]      top;    // levels - 1 (0 for a count of 0)
@@ -173,11 +174,9 @@ module mip_level
   // S_LOD: lod = log2(Pl) - log2Pb (subtract: flip the sign bit)
   f24_add #(.LAT(ADD_LAT)) u_lod (.clk_i, .en_i, .a_i(job_l2_q),
                                   .b_i({~job_pb_q[23], job_pb_q[22:0]}), .y_o(lod));
-  // S_HALF: lod + 0.5
-  f24_add #(.LAT(ADD_LAT)) u_half (.clk_i, .en_i, .a_i(lod), .b_i(F24_HALF), .y_o(lodh));
-  // S_IDX: floor
-  f24_to_index #(.W(MIP_IDX_W)) u_idx (.clk_i, .en_i, .a_i(lodh), .idx_o(idx),
-                                       .sat_o(unused_sat));
+  // S_HALF: floor(lod + 0.5) (to_index(add(lod, 0.5))), in the clocks of the add and the floor
+  f24_round_index #(.W(MIP_IDX_W), .LAT(ADD_LAT + F24_TO_INDEX_LAT)) u_idx (
+    .clk_i, .en_i, .a_i(lod), .idx_o(idx));
   // S_CLMP: clamp(idx, 0, levels - 1); level 0 with MIP mapping off
   // (a count of 0 acts as 1, one above 2^MIP_LEVEL_W as 2^MIP_LEVEL_W)
   assign levels = tex_q[S_CLMP] ? cfg_levels_normal_i : cfg_levels_colour_i;

@@ -42,10 +42,14 @@ package pipe_pkg;
 
   // ---- tri_table / mip_level (model/texture.py "MIP level", model/mip.py) -------------------------
   localparam int unsigned TRI_TABLE_LAT = 1;   // registered read
-  localparam int unsigned MIP_IDX_W     = 20;  // f24_to_index width: model.arith.INDEX_W
   localparam int unsigned MIP_LEVEL_W   = 5;   // level output width: levels 0 .. 31
+  // The floor's width in mip_level (f24_round_index): [-64, 63] holds the clamp's range [0, 31],
+  // so the clamped level equals the model's, whose floor saturates at model.arith.INDEX_W (20)
+  // bits.
+  localparam int unsigned MIP_IDX_W     = MIP_LEVEL_W + 2;
   // Pl = Pl0 + t seg (mul, add); log2; the texture's job register (colour, then the normal map
-  // a clock later); lod = - log2Pb (add); + 0.5 (add); floor (to_index); clamp to the level
+  // a clock later); lod = - log2Pb (add); + 0.5 and floor (f24_round_index, the clocks of an
+  // add and a to_index); clamp to the level
   // range and the mip_en select (one register).  The colour level's latency; the normal map's
   // is one more.  mip_lat: at mip_level's ADD_LAT / MUL_LAT (the f24_add / f24_mul LATs it
   // instantiates): 13 at (2, 1), 17 at (3, 2).

@@ -160,9 +160,10 @@ package shade_pkg;
     return (r + 1 > g) ? r : g - 1;
   endfunction
 
-  // The latency: the clamp (1), c 255 (mul), + 0.5 (add), floor (F24_TO_INDEX_LAT), G and B a
-  // stage after R each (2) complete the result in core stage CS; 3 more for the alignment (a
-  // pixel enters the core on phase 0 mod 4, up to 3 clocks late; the others wait at the output).
+  // The latency: the clamp (1), c 255 (mul), + 0.5 and floor (f24_round_index, in the clocks of
+  // an add and F24_TO_INDEX_LAT), G and B a stage after R each (2) complete the result in core
+  // stage CS; 3 more for the alignment (a pixel enters the core on phase 0 mod 4, up to 3 clocks
+  // late; the others wait at the output).
   function automatic int unsigned shade_lat(input int unsigned add_lat, input int unsigned mul_lat);
     return shade_clamp_stage(add_lat, mul_lat) + 1 + mul_lat + add_lat
            + pipe_pkg::F24_TO_INDEX_LAT + 2 + 3;
@@ -194,7 +195,7 @@ package shade_pkg;
   localparam f24_t SHADE_ONE  = 24'h3f0000;  // 1.0
   localparam f24_t SHADE_ZERO = 24'h000000;  // +0
   localparam f24_t SHADE_255  = 24'h46fe00;  // 255.0
-  localparam f24_t SHADE_HALF = 24'h3e0000;  // 0.5
+  localparam f24_t SHADE_HALF = 24'h3e0000;  // 0.5 (added inside f24_round_index)
 
   /* verilator lint_on UNUSEDPARAM */
 

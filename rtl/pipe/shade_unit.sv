@@ -61,7 +61,7 @@
 //
 // Core stage schedule.  Latencies: f24_add ADD_LAT, f24_mul MUL_LAT, f24_rsqrt 3
 // (pipe_pkg::F24_RSQRT_LAT: table / product + sum / round, over 120 MHz; at 2 clocks it limits
-// the unit to below 60 MHz), f24_to_index 1.  Every stage is a localparam computed from ADD_LAT
+// the unit to below 60 MHz), f24_round_index ADD_LAT + 1 (the add and floor it replaces).  Every stage is a localparam computed from ADD_LAT
 // and MUL_LAT by shade_pkg::shade_op_stage: the 41 shared-unit operations, in a fixed priority
 // order (the critical path first), each take the first stage a after their operands' results
 // (a >= b + 1 for a result in Sb; the inputs are in S0) whose phase a mod 4 (and a + 1 for a
@@ -94,8 +94,8 @@
 // register (m_q); max(nn, EPS) in nnm_q.
 // The tail: the clamp min(max(c, 0), 1) takes c_R in C0 = shade_clamp_stage (57/78; c_G a stage
 // later, c_B two), then one lane for the three channels a stage apart: c 255 (u_k, from C0 + 1),
-// + 0.5 (u_kh, from C0 + 1 + MUL_LAT), floor -> unorm8 (u_idx, from C0 + 1 + MUL_LAT + ADD_LAT);
-// R and G held, the result complete in CS = C0 + MUL_LAT + ADD_LAT + 4 (64/87).  Output: a pixel
+// floor(c 255 + 0.5) -> unorm8 (u_idx, f24_round_index, from C0 + 1 + MUL_LAT, ADD_LAT + 1
+// clocks); R and G held, the result complete in CS = C0 + MUL_LAT + ADD_LAT + 4 (64/87).  Output: a pixel
 // that waited 3 clocks shows its result from core CS directly, the others from res_q (loaded in
 // CS); valid and tag delayed S0 -> S(SHADE_LAT) (pipe_valid_tag).
 //
@@ -109,11 +109,11 @@
 // pixels and the latency are the registers' (DELAY_RAM_MIN = 0 builds registers only).
 //
 // Float units: 12 f24_mul (all shared: u_dvnc, u_ny2h and u_sq with four operations, u_hkd,
-// u_nunh1, u_hunh1, u_caa and u_k with three, 4 with two), 6 f24_add (all
-// shared: u_nc, u_nua, u_nv, u_nxh and u_hd with four, u_kh with three: the 23 additions fill
-// 23 of the 24 slots, 6 units x 4 phases), 1 f24_rsqrt (three operations), 1 f24_to_index #(9)
-// (three); no f24_cmp.  Exact logic (no rounding involved, each into one register): 3 doublers,
-// max(nn, EPS), one max(., 0) for ndl then ndh, and 1 clamp.
+// u_nunh1, u_hunh1, u_caa and u_k with three, 4 with two), 5 f24_add (all shared: u_nc, u_nua,
+// u_nv, u_nxh and u_hd with four: the 20 additions fill the 20 slots, 5 units x 4 phases), 1
+// f24_rsqrt (three operations), 1 f24_round_index #(9) (three: the tail's + 0.5 and floor,
+// to_index(add(c 255, 0.5)), in one unit); no f24_cmp.  Exact logic (no rounding involved, each
+// into one register): 3 doublers, max(nn, EPS), one max(., 0) for ndl then ndh, and 1 clamp.
 //
 // Exact parts, bit-identical to the model:
 // - mul(M_c, 2) is an exponent increment: e = 126 overflows to Inf, zeros and subnormal patterns
@@ -121,11 +121,11 @@
 // - The model's max / min are numpy.maximum / numpy.minimum on float64: a NaN operand gives NaN, and
 //   equal operands (+0 and -0) give the second one (the constant).  Comparisons use the order of
 //   f24_cmp (-0 == +0, subnormal patterns read as zeros).  A NaN passed on here is the operand
-//   itself; every consumer is a float unit, which turns any NaN into F24_NAN (and f24_to_index gives
-//   0 for NaN, as the model's to_index does).
+//   itself; every consumer is a float unit, which turns any NaN into F24_NAN (and f24_round_index
+//   gives 0 for NaN, as the model's to_index does).
 // - -du, -dv: the sign bit flipped (the model's float64 negation).
-// - The model clips the index to [0, 255]; after the clamp the operand of the floor is in
-//   [0.5, 255.5] or NaN (-> 0), so a 9-bit f24_to_index is exact and its low 8 bits are the code.
+// - The model clips the index to [0, 255]; after the clamp c 255 + 0.5 is in [0.5, 255.5] or NaN
+//   (-> 0), so a 9-bit index is exact and its low 8 bits are the code.
 module shade_unit
   import f24_pkg::*;
   import shade_pkg::*;
@@ -377,7 +377,7 @@ module shade_unit
   f24_t hunh1_y;    // n_y l_y, unit half vector y, n_y h_y
   f24_t sq_y;       // s = ndh^2, s^4, s^8, s^16
   f24_t caa_y;      // C_x a, C_z a (stream), sp = KS s^16
-  f24_t k_y, kh_y;  // c 255, c 255 + 0.5 (R, then G and B a stage apart each)
+  f24_t k_y;        // c 255 (R, then G and B a stage apart each)
   logic signed [8:0] idx;  // floor(c 255 + 0.5): R (F_R), G, B (CS); 0 .. 255
 
   f24_t m2z_q;      // S1: 2M_z, waiting a clock (lane 0 of u_nc)
@@ -697,11 +697,9 @@ module shade_unit
   f24_mul #(.LAT(MUL_LAT)) u_sq   (.clk_i, .en_i, .a_i(opsq_q), .b_i(opsq_q), .y_o(sq_y));
   f24_mul #(.LAT(MUL_LAT)) u_caa (.clk_i, .en_i, .a_i(opca_a_q), .b_i(opca_b_q), .y_o(caa_y));
   // the tail: one lane for the three channels, R, G and B a stage apart (c 255 from C0 + 1,
-  // + 0.5 from C0 + 1 + MUL_LAT, floor from C0 + 1 + MUL_LAT + ADD_LAT)
+  // floor(c 255 + 0.5) from C0 + 1 + MUL_LAT: to_index(add(., 0.5)) in the clocks of the two)
   f24_mul #(.LAT(MUL_LAT)) u_k  (.clk_i, .en_i, .a_i(cl_q), .b_i(SHADE_255), .y_o(k_y));
-  f24_add #(.LAT(ADD_LAT)) u_kh (.clk_i, .en_i, .a_i(k_y), .b_i(SHADE_HALF), .y_o(kh_y));
-  // sat_o is not needed: the operand is in [0.5, 255.5] or NaN
-  f24_to_index #(.W(9)) u_idx (.clk_i, .en_i, .a_i(kh_y), .idx_o(idx), .sat_o());
+  f24_round_index #(.W(9), .LAT(ADD_LAT + IDX_LAT)) u_idx (.clk_i, .en_i, .a_i(k_y), .idx_o(idx));
   logic unused_idx;                 // bit 8: the index is in 0 .. 255 (see the header)
   assign unused_idx = idx[8];
   // a pixel that waited 3 clocks is at the output in core CS, the others in CS + 1 .. CS + 3

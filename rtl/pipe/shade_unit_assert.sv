@@ -61,8 +61,9 @@ module shade_unit_assert
 
   localparam int unsigned C0 = shade_clamp_stage(ADD_LAT, MUL_LAT);  // the tail's first stage
   // Every float unit with more than one operation: the shared units (with u_va and u_caa, one
-  // stream each), u_nsqa and u_nla (streams fed directly), the tail's c 255, + 0.5 and floor.
-  localparam int NSH = SHADE_NUNITS + 5;
+  // stream each), u_nsqa and u_nla (streams fed directly), the tail's c 255 and its
+  // floor(. + 0.5).
+  localparam int NSH = SHADE_NUNITS + 4;
   logic [CS:1] shared [NSH];
   for (genvar u = 0; u < SHADE_NUNITS; u++) begin : g_unit
     assign shared[u] = unit_ops(u);
@@ -71,7 +72,6 @@ module shade_unit_assert
   assign shared[SHADE_NUNITS + 1] = run(shade_op_stage(OP_NUXZ, ADD_LAT, MUL_LAT) + MUL_LAT, 2);
   assign shared[SHADE_NUNITS + 2] = run(C0 + 1, 3);
   assign shared[SHADE_NUNITS + 3] = run(C0 + 1 + MUL_LAT, 3);
-  assign shared[SHADE_NUNITS + 4] = run(C0 + 1 + MUL_LAT + ADD_LAT, 3);
 
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
