@@ -96,7 +96,7 @@ module f24_round_index
   endfunction
 
   s1_t                 s1_q;
-  logic signed [W-1:0] y_q, y;
+  logic signed [W-1:0] y_q;
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
@@ -105,12 +105,6 @@ module f24_round_index
     end
   end
 
-  if (LAT > 2) begin : g_delay
-    f24_delay #(.W(W), .N(LAT - 2)) u_delay (.clk_i, .en_i, .d_i(y_q), .q_o(y));
-  end else begin : g_out
-    assign y = y_q;
-  end
-
-  assign idx_o = y;
+  f24_delay #(.W(W), .N(LAT - 2)) u_delay (.clk_i, .en_i, .d_i(y_q), .q_o(idx_o));
 
 endmodule

@@ -56,8 +56,8 @@
 // Axis items (as in traverse_setup).  A lookup is two items on one set of float units: its u
 // item (u, su, W_L: x, j0, fx) enters the item register with the lookup, its v item (v, sv, H_L:
 // y, i0, fy) on the next enabled clock, from hold registers of v_i, the level and the texture
-// (loaded on every enabled clock; the v item's clock takes no lookup).  So one multiplier, two
-// adders, one to_index and one from_int serve both axes, each fully used at a lookup per two
+// (loaded on every enabled clock; the v item's clock takes no lookup).  So one multiplier, one
+// adder, one to_index and one f24_frac serve both axes, each fully used at a lookup per two
 // clocks.  Item stage Ik holds the u item of the lookup taken k enabled clocks ago or the v item
 // of the one taken k + 1 ago; the item's axis, level and texture travel with it (ax_q, lvl_q,
 // tex_q).  Where the axes meet (the row product, the address sums) the u item's clamp and W_L
@@ -80,13 +80,13 @@
 //           front of the adder it cost the adder's clock)         register     -> I_X
 //   I_X     = I_P2 + 1 (3, 4): x = add(t 2^-L, -0.5) (y)          f24_add      -> I_IDX
 //   I_IDX   = I_X + ADD_LAT (5, 7): j0 = floor(x) (i0)            f24_to_index -> I_CLP
-//           x delayed I_IDX -> I_FX; W_L (H_L for the v item) read
-//                                                                 register     -> I_CLP
-//   I_CLP   = I_IDX + 1 (6, 8): from_int(j0) (i0)                 f24_from_int -> I_FX
-//           clamp: {dj, j0c} ({di, i0c})                          register     -> I_FX
+//           fx = sub(x, from_int(j0)) (fy): the word of f24_from_int and f24_add in one unit,
+//           in their clocks                             f24_frac, ADD_LAT + 2 -> I_OUT
+//           W_L (H_L for the v item) read                         register     -> I_CLP
+//   I_CLP   = I_IDX + 1 (6, 8): clamp: {dj, j0c} ({di, i0c})      register     -> I_FX
 //           W_L delayed I_CLP -> I_MEET - 1, held there for the v item (w_q)
-//   I_FX    = I_CLP + 1 (7, 9): fx = add(x, -from_int(j0)) (fy)   f24_add      -> I_OUT
-//           the clamp delayed I_FX -> I_MEET
+//   I_FX    = I_CLP + 1 (7, 9): the clamp delayed I_FX -> I_MEET (where the chain's adder
+//           took its operands)
 //   I_MEET  = I_OUT - 2 (7, 10): u item: {dj, j0c} held a clock (cu_q)
 //           v item: r = i0c W_L + j0c; rs = di ? W_L : 0; base + level_off[L]
 //                                                                 register     -> I_SUM
@@ -94,8 +94,9 @@
 //                                                                 register     -> I_OUT
 //   I_OUT   = I_FX + ADD_LAT (9, 12): u item: fx held a clock (fx_q); v item: the outputs
 //           (straight from registers), the lookup's clock LAT = I_OUT + 1 (10, 13)
-// Float units: 1 f24_mul #(.LAT(MUL_LAT)), 2 f24_add #(.LAT(ADD_LAT)), 1 f24_to_index,
-// 1 f24_from_int (before the axes shared them: 2, 4, 2, 2); one 16 x 16 multiplier (the second
+// Float units: 1 f24_mul #(.LAT(MUL_LAT)), 1 f24_add #(.LAT(ADD_LAT)), 1 f24_to_index,
+// 1 f24_frac (before it: an f24_from_int and a second f24_add; before the axes shared them: 2,
+// 4, 2, 2 and no f24_frac); one 16 x 16 multiplier (the second
 // row's address is the first's plus 4 W_L: i1c - i0c is 0 or 1).
 module tex_addr
   import f24_pkg::*;
@@ -254,22 +255,20 @@ module tex_addr
   idx_t k0;                                    // I_CLP: j0 (i0)
   logic unused_sat;                            // saturation flag: the clamp covers it
   f24_to_index #(.W(TEX_IDX_W)) u_k0 (.clk_i, .en_i, .a_i(x), .idx_o(k0), .sat_o(unused_sat));
-  f24_t x_q [I_IDX+1:I_FX];                    // x in item stages I_IDX + 1 .. I_FX
+  // fx = x - from_int(j0) (fy), the word of f24_from_int and f24_add, from x in I_IDX to I_OUT
+  f24_t f;                                     // I_OUT: fx (fy)
+  f24_frac #(.LAT(I_OUT - I_IDX)) u_f (.clk_i, .en_i, .a_i(x), .y_o(f));
   dim_t n_q [I_CLP:I_MEET-1];                  // W_L (H_L) in item stages I_CLP .. I_MEET - 1
   logic [2*TEX_DIM_W-1:0] sz_idx;              // {H_L, W_L} of the item in I_IDX
   assign sz_idx = size_mem[lvt_index(tex_q[I_IDX], lvl_q[I_IDX])];
 
-  // ---- I_CLP: from_int; clamp ----------------------------------------------------------------
-  f24_t fk;                                    // I_FX: from_int(j0) (i0)
-  f24_from_int #(.W(TEX_IDX_W)) u_fk (.clk_i, .en_i, .k_i(k0), .y_o(fk));
+  // ---- I_CLP: clamp ---------------------------------------------------------------------------
   logic [TEX_DIM_W:0] cl_q [I_FX:I_MEET];      // {dj, j0c} ({di, i0c}) in I_FX .. I_MEET
   logic [TEX_DIM_W:0] cu_q;                    // the u item's {dj, j0c}, a clock later
   dim_t               w_q;                     // W_L of the last u item in I_MEET - 1
 
-  // ---- I_FX: fx, fy; I_MEET: the axes meet, the row product ------------------------------------
-  f24_t f;                                     // I_OUT: fx (fy)
+  // ---- I_MEET: the axes meet, the row product ---------------------------------------------------
   f24_t fx_q;                                  // fx, a clock later
-  f24_add #(.LAT(ADD_LAT)) u_f (.clk_i, .en_i, .a_i(x_q[I_FX]), .b_i({~fk[23], fk[22:0]}), .y_o(f));
   logic [ROW_W-1:0]  r_q;                      // I_SUM: i0c W_L + j0c
   dim_t              rs_q;                     // I_SUM: i1c - i0c = 1 ? W_L : 0
   logic              dj_q;                     // I_SUM: j1c - j0c
@@ -310,8 +309,6 @@ module tex_addr
       // I_P2 -> I_X
       tl_q <= f24_pow2_down(t, lvl_q[I_P2]);
       // I_IDX -> I_CLP
-      x_q[I_IDX+1] <= x;
-      for (int s = I_IDX + 2; s <= I_FX; s++) x_q[s] <= x_q[s-1];
       n_q[I_CLP] <= ax_q[I_IDX] ? sz_idx[2*TEX_DIM_W-1:TEX_DIM_W] : sz_idx[TEX_DIM_W-1:0];
       // I_CLP -> I_FX
       cl_q[I_FX] <= clamp_pair(k0, n_q[I_CLP]);

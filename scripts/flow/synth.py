@@ -174,7 +174,7 @@ PAPER_KINDS = ["add2", "add3", "cmp", "mul", "div", "sqrt"]
 #: The float units (rtl/fp) counted per block, in the report's column order.
 FLOAT_UNITS = ["f24_add", "f24_one_minus", "f24_mul", "f24_div", "f24_cmp", "f24_sqrt",
                "f24_rsqrt", "f24_log2", "f24_from_unorm", "f24_from_int", "f24_to_index",
-               "f24_round_index"]
+               "f24_round_index", "f24_frac"]
 #: The blocks whose float units are counted (every instance of the module below the top).
 FLOAT_BLOCKS = ["view_calc", "traverse_setup", "traverse_loop", "traverse_unit", "mip_level",
                 "tex_addr", "tex_filter", "shade_unit", "dm_pipeline"]
@@ -187,11 +187,13 @@ PAPER_ROWS = {
 }
 #: The paper's columns as our units: a subtraction 1 - x (f24_one_minus) is an adder; the
 #: conversions (conv, with f24_round_index: floor(x + 0.5), an add of the constant 0.5 fused with
-#: the floor) and the approximate units have no column in the paper's table.
+#: the floor; and f24_frac: x - floor(x), the floor's conversion back and the subtraction fused)
+#: and the approximate units have no column in the paper's table.
 OURS_VS_PAPER = {"add": ("f24_add", "f24_one_minus"), "mul": ("f24_mul",), "div": ("f24_div",),
                  "cmp": ("f24_cmp",), "sqrt": ("f24_sqrt",), "rsqrt": ("f24_rsqrt",),
                  "log2": ("f24_log2",),
-                 "conv": ("f24_from_unorm", "f24_from_int", "f24_to_index", "f24_round_index")}
+                 "conv": ("f24_from_unorm", "f24_from_int", "f24_to_index", "f24_round_index",
+                          "f24_frac")}
 
 
 class StepError(Exception):
@@ -696,8 +698,9 @@ def float_units_md(fu: dict) -> list[str]:
     L.append("The paper's figures (Park et al. 2013, Table 1: floating-point elements per "
              "Virtex-6 FPGA chip, by unit) beside ours grouped the same way: add = f24_add + "
              "f24_one_minus (1 - x); rsqrt, log2 and conv (f24_from_unorm + f24_from_int + "
-             "f24_to_index + f24_round_index, floor(x + 0.5): an add of 0.5 fused with the floor) "
-             "have no column in the paper's table. Our blocks per row: "
+             "f24_to_index + f24_round_index, floor(x + 0.5): an add of 0.5 fused with the floor, "
+             "+ f24_frac, x - floor(x): a conversion and a subtraction fused) have no column in "
+             "the paper's table. Our blocks per row: "
              + "; ".join(f"{r} = {' + '.join(bs)}" for r, bs in PAPER_ROWS.items())
              + "; total = dm_pipeline.\n")
     pk = PAPER_KINDS
