@@ -28,8 +28,9 @@
 //     (2^17 - 1) 2^(e - 80) exactly, any other m the even one of m - 1 and m (a tie); for e >= 100
 //     y = a.
 //
-// Stage 1: the case, the value to normalise (the fraction, 2^k minus it, or m - 2^(98 - e): one
-//          17-bit difference) and the words of the cases that need no normalising.
+// Stage 1: the case, the value to normalise (the fraction, 2^k minus it, 2^17 - r, m - 2^(98 - e)
+//          or m - 1: one 17-bit addition with its operands chosen by the case) and the words of
+//          the cases that need no normalising.
 // Stage 2: the value normalised (leading-zero count, shift) into its word, or the word of stage 1.
 // Latency LAT enabled clocks (2 or more; tex_addr uses ADD_LAT + 2, the clocks of the chain):
 // LAT - 2 plain delay registers (f24_delay) after the two stages, the same word at every LAT.
@@ -63,12 +64,14 @@ module f24_frac
     logic [4:0]  k;     // 79 - e: the fraction bits of m (e in 62 .. 78)
     logic [16:0] mask;  // the k low bits
     logic [16:0] f;     // the fraction of |a| in ulps of a
-    logic [16:0] d;     // the value to normalise
     logic [4:0]  sh;    // 62 - e: m's shift into RNE(|a| 2^17) (e in 45 .. 61)
     logic [16:0] q;     // m >> sh
     logic        g;     // the bit below q
     logic        st;    // a bit under g
-    logic [16:0] r;     // RNE(|a| 2^17), at most 2^16
+    logic        rnd;   // RNE(|a| 2^17) = r = q + rnd
+    logic [16:0] x, y;  // the one addition of stage 1: d = x + y + c
+    logic        c;
+    logic [16:0] d;     // the value to normalise
     s1_t         o;
     s    = a[23];
     e    = a[22:16];
@@ -76,33 +79,57 @@ module f24_frac
     k    = 5'(7'd79 - e);
     mask = ~(17'h1FFFF << k);
     f    = m & mask;
-    // one 17-bit difference: a >= 0: f; a < 0: 2^k - f (within k bits); |a| >= 2^19: m - 2^(98-e)
-    if (e >= 7'd82) d = m - (17'd1 << 5'(7'd98 - e));
-    else if (s)     d = (17'd0 - f) & mask;
-    else            d = f;
-    sh = 5'(7'd62 - e);
-    q  = (e < 7'd45) ? 17'd0 : m >> sh;
-    g  = (e < 7'd44) ? 1'b0 : (e == 7'd44) ? 1'b0 : m[5'(sh - 5'd1)];
-    st = (e < 7'd44) ? 1'b1 : (m & ~(17'h1FFFF << 5'(sh - 5'd1))) != 17'd0;
-    r  = q + 17'(g && (st || q[0]));
-    o  = '{nrm: 1'b0, s: 1'b0, e: e, v: d, w: a};
+    sh   = 5'(7'd62 - e);
+    q    = (e < 7'd45) ? 17'd0 : m >> sh;
+    g    = (e < 7'd45) ? 1'b0 : m[5'(sh - 5'd1)];
+    st   = (e < 7'd44) ? 1'b1 : (m & ~(17'h1FFFF << 5'(sh - 5'd1))) != 17'd0;
+    rnd  = g && (st || q[0]);
+    // one 17-bit addition for every case that needs one
+    if (e <= 7'd61) begin          // a < 0: 2^17 - r = ~q + 1 - rnd
+      x = ~q;
+      y = '0;
+      c = !rnd;
+    end else if (e <= 7'd78) begin // a >= 0: f; a < 0: 2^k - f = (~f + 1) within k bits
+      x = s ? ~f : f;
+      y = '0;
+      c = s;
+    end else if (e <= 7'd98) begin // |a| >= 2^19: m - 2^(98 - e)
+      x = m;
+      y = ~(17'd1 << 5'(7'd98 - e));
+      c = 1'b1;
+    end else begin                 // e = 99, m odd: m - 1
+      x = m;
+      y = 17'h1FFFF;
+      c = 1'b0;
+    end
+    d = x + y + 17'(c);
+    if (e >= 7'd62 && e <= 7'd78) d = d & mask;
+    o = '{nrm: 1'b0, s: 1'b0, e: e, v: d, w: a};
     if (e == EXP_SPEC) begin
       o.w = (a[15:0] != 16'd0) ? F24_NAN : a;                       // Inf: a
     end else if (e == 7'd0) begin
       o.w = {s, 23'd0};                                             // a zero of a's sign
     end else if (!s && e <= 7'd62) begin
       o.w = a;                                                      // 0 < a < 1
-    end else if (s && e <= 7'd61) begin
-      o.w = (r == 17'd0) ? {1'b0, 7'd63, 16'd0}                     // 1 - |a| rounds to 1.0
-                         : {1'b0, 7'd62, 16'(17'h10000 - r)};
-    end else if (e <= 7'd78 || (e >= 7'd82 && e <= 7'd98)) begin
-      o.nrm = 1'b1;                                                 // the exact differences
-      o.s   = (e >= 7'd82) && s;
+    end else if (e <= 7'd61) begin                                  // 1 - |a|, rounded:
+      if (q == 17'd0 && !rnd) o.w = {1'b0, 7'd63, 16'd0};           // 1.0, or 2^-17 d
+      else begin
+        o.nrm = 1'b1;
+        o.e   = 7'd62;
+      end
+    end else if (e <= 7'd78) begin
+      o.nrm = 1'b1;                                                 // the exact fractions
     end else if (e <= 7'd81) begin
       o.w = '0;                                                     // integers: +0
+    end else if (e <= 7'd98) begin
+      o.nrm = 1'b1;                                                 // |a| - 2^19, exact
+      o.s   = s;
     end else if (e == 7'd99) begin
-      o.w = (a[15:0] == 16'd0) ? {s, 7'd98, 16'hFFFF}               // 2^16 - 1/2 ulps
-          : a[0] ? {s, e, a[15:0] - 16'd1} : a;                     // the tie, to even
+      if (a[15:0] == 16'd0) o.w = {s, 7'd98, 16'hFFFF};             // 2^16 - 1/2 ulps
+      else if (a[0]) begin                                          // the tie, to even: m - 1
+        o.nrm = 1'b1;
+        o.s   = s;
+      end
     end
     return o;
   endfunction

@@ -145,7 +145,7 @@ MITERS = {
         "miter_frac", MITER_FRAC, ROOT / "rtl" / "fp" / "f24_frac.sv",
         ("rtl/fp/f24_pkg.sv", "rtl/pipe/pipe_pkg.sv", "rtl/fp/f24_delay.sv",
          "rtl/fp/f24_add.sv", "rtl/fp/f24_to_index.sv", "rtl/fp/f24_from_int.sv"), 5,
-        "    r  = q + 17'(g && (st || q[0]));", "    r  = q + 17'(g);",
+        "    rnd  = g && (st || q[0]);", "    rnd  = g;",
         "f24_frac == f24_add(a, -f24_from_int(f24_to_index(a))) for every word a"),
 }
 MUTANT_WHAT = {"bdiff": "round half up", "round_index": "without the word 0.5 - 2^-18",
