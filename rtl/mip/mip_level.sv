@@ -11,9 +11,8 @@
 // MIP_IDX_W = 7: floor, saturating to [-64, 63], NaN -> 0.  The model's to_index saturates at
 // model.arith.INDEX_W = 20 bits instead; the clamp to [0, levels - 1] (levels <= 32) gives the
 // same level from either, since both saturations lie outside [0, 31].  So a NaN t, seg or Pl0,
-// Pl = NaN,
-// a negative Pl (log2 NaN) or lod NaN give level 0; Pl = +-0 (log2 = -Inf) gives level 0;
-// Pl = +Inf gives levels - 1.
+// Pl = NaN, a negative Pl (log2 NaN) or lod NaN give level 0; Pl = +-0 (log2 = -Inf) gives level
+// 0; Pl = +Inf gives levels - 1.
 //
 // Fully pipelined, fixed latency, one hit every other enabled clock at most: the two textures
 // share one lod datapath.  A hit taken on an enabled edge with valid_i = 1 gives two results,
