@@ -18,9 +18,9 @@
 //   a < 0, 1/2 <= |a| < 2^16 (62 <= e <= 78): y = ceil(|a|) - |a|: 2^k minus those k bits,
 //     exact, normalised; +0 when they are 0;
 //   a < 0, |a| < 1/2 (1 <= e <= 61): y = 1 - |a| in (1/2, 1], which needs rounding: RNE of
-//     2^17 - |a| 2^17 is 2^17 - RNE(|a| 2^17) (2^17 is even), with RNE(|a| 2^17) = r = m >> (62 - e)
-//     rounded to nearest even by the bit below and the bits under it: y = 2^-17 (2^17 - r), 1.0
-//     for r = 0;
+//     2^17 - |a| 2^17 is 2^17 - RNE(|a| 2^17) (2^17 is even), with RNE(|a| 2^17) = r =
+//     m >> (62 - e) rounded to nearest even by the bit below and the bits under it:
+//     y = 2^-17 (2^17 - r), 1.0 for r = 0;
 //   2^16 <= |a| < 2^19 (79 <= e <= 81): a is an integer, from_int(floor(a)) = a, y = +0;
 //   |a| >= 2^19 (e >= 82): the floor saturates to 2^19 - 1 (from_int rounds it to 2^19) or to
 //     -2^19, so y = sign(a) RNE(|a| - 2^19): for e <= 98 the difference m - 2^(98 - e) (ulps of a)

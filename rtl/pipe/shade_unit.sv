@@ -61,12 +61,12 @@
 //
 // Core stage schedule.  Latencies: f24_add ADD_LAT, f24_mul MUL_LAT, f24_rsqrt 3
 // (pipe_pkg::F24_RSQRT_LAT: table / product + sum / round, over 120 MHz; at 2 clocks it limits
-// the unit to below 60 MHz), f24_round_index ADD_LAT + 1 (the add and floor it replaces).  Every stage is a localparam computed from ADD_LAT
-// and MUL_LAT by shade_pkg::shade_op_stage: the 41 shared-unit operations, in a fixed priority
-// order (the critical path first), each take the first stage a after their operands' results
-// (a >= b + 1 for a result in Sb; the inputs are in S0) whose phase a mod 4 (and a + 1 for a
-// stream) their unit has free.  "@a/a'": the unit works on the operands in Sa at (2, 1), Sa' at
-// (3, 2) (a stream: x in Sa, z in Sa + 1):
+// the unit to below 60 MHz), f24_round_index ADD_LAT + 1 (the add and floor it replaces).
+// Every stage is a localparam computed from ADD_LAT and MUL_LAT by shade_pkg::shade_op_stage:
+// the 41 shared-unit operations, in a fixed priority order (the critical path first), each take
+// the first stage a after their operands' results (a >= b + 1 for a result in Sb; the inputs are
+// in S0) whose phase a mod 4 (and a + 1 for a stream) their unit has free.  "@a/a'": the unit
+// works on the operands in Sa at (2, 1), Sa' at (3, 2) (a stream: x in Sa, z in Sa + 1):
 //   u_uv2hy2 (f24_mul): du^2 @1/1 / h_y^2 @18/23
 //   u_dvnc (f24_mul):   dv^2 @1/1 / n_x rn, n_z rn @19/22 / C_y a @46/68
 //   u_nc (f24_add):     n_x - 1, n_z - 1 @1/1 (n = 2M - 1, 2M_z waits a clock in m2z_q) /
@@ -95,9 +95,9 @@
 // The tail: the clamp min(max(c, 0), 1) takes c_R in C0 = shade_clamp_stage (57/78; c_G a stage
 // later, c_B two), then one lane for the three channels a stage apart: c 255 (u_k, from C0 + 1),
 // floor(c 255 + 0.5) -> unorm8 (u_idx, f24_round_index, from C0 + 1 + MUL_LAT, ADD_LAT + 1
-// clocks); R and G held, the result complete in CS = C0 + MUL_LAT + ADD_LAT + 4 (64/87).  Output: a pixel
-// that waited 3 clocks shows its result from core CS directly, the others from res_q (loaded in
-// CS); valid and tag delayed S0 -> S(SHADE_LAT) (pipe_valid_tag).
+// clocks); R and G held, the result complete in CS = C0 + MUL_LAT + ADD_LAT + 4 (64/87).
+// Output: a pixel that waited 3 clocks shows its result from core CS directly, the others from
+// res_q (loaded in CS); valid and tag delayed S0 -> S(SHADE_LAT) (pipe_valid_tag).
 //
 // Delay lines: a source's taps are registers, but for its longest wait between two taps that
 // are read (LO to HI, tap_gap): that wait is one pipe_delay of HI - LO enabled clocks, a RAM

@@ -16,7 +16,8 @@ seconds), and one entry per routed top (`tops`: name, rings, lut, ff, dsp, bram,
 seed, router, device, rtl_commit), which `--record` copies into docs/results/synth-ecp5.json.
 `--breakdown` synthesises only the top with each pipeline block kept as a module of its own and
 writes the top's counts per block (`breakdown`).  A failing step is named with its log and ends
-the run with exit status 1; bad arguments: one line, exit status 2.  Every step's wall time is measured and reported.
+the run with exit status 1; bad arguments: one line, exit status 2.  Every step's wall time is
+measured and reported.
 """
 from __future__ import annotations
 

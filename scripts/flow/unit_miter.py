@@ -17,8 +17,8 @@ every operand in the unit's range the outputs are equal once both pipelines have
 
 ``--mutant`` proves the same against a copy of the fused unit with one rounding detail broken
 (bdiff: round-half-up for round-to-nearest-even; round_index: without the one word whose sum
-rounds across an integer; frac: 1 - |a| rounded half up): the proof must fail, which shows that the miter can catch a wrong
-result.
+rounds across an integer; frac: 1 - |a| rounded half up): the proof must fail, which shows that
+the miter can catch a wrong result.
 
 Prints one line (PROVEN / FAILED) and exits 0 when the outcome is the expected one, 1 otherwise.
 """
