@@ -28,16 +28,17 @@
 //     (2^17 - 1) 2^(e - 80) exactly, any other m the even one of m - 1 and m (a tie); for e >= 100
 //     y = a.
 //
-// Stage 1: the case, the value to normalise (the fraction, 2^k minus it, 2^17 - r, m - 2^(98 - e)
-//          or m - 1: one 17-bit addition with its operands chosen by the case) and the words of
-//          the cases that need no normalising.
-// Stage 2: the value normalised (leading-zero count, shift) into its word, or the word of stage 1.
-// Latency LAT enabled clocks (2 or more; tex_addr uses ADD_LAT + 2, the clocks of the chain):
-// LAT - 2 plain delay registers (f24_delay) after the two stages, the same word at every LAT.
+// Stage 1: the case, the operands of the one 17-bit addition (the fraction, 2^k minus it, 2^17 - r,
+//          m - 2^(98 - e) or m - 1: every shift and mask by the exponent is decoded here) and
+//          the words of the cases that need no normalising.
+// Stage 2: the addition and the fraction mask: the value to normalise.
+// Stage 3: the value normalised (leading-zero count, shift) into its word, or the word of stage 1.
+// Latency LAT enabled clocks (3 or more; tex_addr uses ADD_LAT + 2, the clocks of the chain):
+// LAT - 3 plain delay registers (f24_delay) after the three stages, the same word at every LAT.
 module f24_frac
   import f24_pkg::*;
 #(
-  parameter int unsigned LAT = 2  // latency in enabled clocks, at least 2
+  parameter int unsigned LAT = 3  // latency in enabled clocks, at least 3
 ) (
   input  logic clk_i,  // clock
   input  logic en_i,   // clock enable: the registers advance only while en_i is 1
@@ -45,9 +46,19 @@ module f24_frac
   output f24_t y_o     // a - from_int(to_index(a, 20), 20), as the engine rounds it
 );
 
-  if (LAT < 2) begin : g_check_lat
-    $error("f24_frac: LAT must be at least 2");
+  if (LAT < 3) begin : g_check_lat
+    $error("f24_frac: LAT must be at least 3");
   end
+
+  typedef struct packed {
+    logic        nrm;   // the result is the sum normalised (else the word w)
+    logic        s;     // its sign
+    logic [6:0]  e;     // the exponent of the sum's bit 16 (before normalising)
+    logic [16:0] x, y;  // the addition: x + y + c
+    logic        c;
+    logic [16:0] mask;  // the bits of the sum kept (the k low bits for e in 62 .. 78)
+    f24_t        w;     // the result of the other cases
+  } s1_t;
 
   typedef struct packed {
     logic        nrm;  // the result is v normalised (else the word w)
@@ -55,7 +66,7 @@ module f24_frac
     logic [6:0]  e;    // the exponent of v's bit 16 (before normalising)
     logic [16:0] v;    // the value to normalise (0: +0)
     f24_t        w;    // the result of the other cases
-  } s1_t;
+  } s2_t;
 
   function automatic s1_t stage1(input f24_t a);
     logic        s;
@@ -69,9 +80,6 @@ module f24_frac
     logic        g;     // the bit below q
     logic        st;    // a bit under g
     logic        rnd;   // RNE(|a| 2^17) = r = q + rnd
-    logic [16:0] x, y;  // the one addition of stage 1: d = x + y + c
-    logic        c;
-    logic [16:0] d;     // the value to normalise
     s1_t         o;
     s    = a[23];
     e    = a[22:16];
@@ -84,27 +92,23 @@ module f24_frac
     g    = (e < 7'd45) ? 1'b0 : m[5'(sh - 5'd1)];
     st   = (e < 7'd44) ? 1'b1 : (m & ~(17'h1FFFF << 5'(sh - 5'd1))) != 17'd0;
     rnd  = g && (st || q[0]);
-    // one 17-bit addition for every case that needs one
+    o = '{nrm: 1'b0, s: 1'b0, e: e, x: '0, y: '0, c: 1'b0, mask: '1, w: a};
+    // the operands of the one 17-bit addition, for every case that needs one
     if (e <= 7'd61) begin          // a < 0: 2^17 - r = ~q + 1 - rnd
-      x = ~q;
-      y = '0;
-      c = !rnd;
+      o.x = ~q;
+      o.c = !rnd;
     end else if (e <= 7'd78) begin // a >= 0: f; a < 0: 2^k - f = (~f + 1) within k bits
-      x = s ? ~f : f;
-      y = '0;
-      c = s;
+      o.x    = s ? ~f : f;
+      o.c    = s;
+      o.mask = mask;
     end else if (e <= 7'd98) begin // |a| >= 2^19: m - 2^(98 - e)
-      x = m;
-      y = ~(17'd1 << 5'(7'd98 - e));
-      c = 1'b1;
+      o.x = m;
+      o.y = ~(17'd1 << 5'(7'd98 - e));
+      o.c = 1'b1;
     end else begin                 // e = 99, m odd: m - 1
-      x = m;
-      y = 17'h1FFFF;
-      c = 1'b0;
+      o.x = m;
+      o.y = 17'h1FFFF;
     end
-    d = x + y + 17'(c);
-    if (e >= 7'd62 && e <= 7'd78) d = d & mask;
-    o = '{nrm: 1'b0, s: 1'b0, e: e, v: d, w: a};
     if (e == EXP_SPEC) begin
       o.w = (a[15:0] != 16'd0) ? F24_NAN : a;                       // Inf: a
     end else if (e == 7'd0) begin
@@ -134,7 +138,11 @@ module f24_frac
     return o;
   endfunction
 
-  function automatic f24_t stage2(input s1_t r);
+  function automatic s2_t stage2(input s1_t r);
+    return '{nrm: r.nrm, s: r.s, e: r.e, v: (r.x + r.y + 17'(r.c)) & r.mask, w: r.w};
+  endfunction
+
+  function automatic f24_t stage3(input s2_t r);
     logic [4:0]  lz;
     logic [15:0] n;     // v's bits below its leading one, shifted up
     lz = 5'd16;
@@ -148,15 +156,17 @@ module f24_frac
   endfunction
 
   s1_t  s1_q;
+  s2_t  s2_q;
   f24_t y_q;
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       s1_q <= stage1(a_i);
-      y_q  <= stage2(s1_q);
+      s2_q <= stage2(s1_q);
+      y_q  <= stage3(s2_q);
     end
   end
 
-  f24_delay #(.W(24), .N(LAT - 2)) u_delay (.clk_i, .en_i, .d_i(y_q), .q_o(y_o));
+  f24_delay #(.W(24), .N(LAT - 3)) u_delay (.clk_i, .en_i, .d_i(y_q), .q_o(y_o));
 
 endmodule

@@ -8,11 +8,11 @@ and random ones: the negative values below 1/2 whose 1 - |a| rounds, the integer
 saturated floors around 2^19 and the ties at 2^35; a few ulps either side of the integers and
 half-integers near 0), then random words.  fp_unit.check_pipeline drops en_i at random and checks
 the latency, the hold while en_i = 0 and every result bit.  Built at tex_addr's LAT (ADD_LAT + 2:
-5 at the design's depths; make test-long adds 4, the paper's, and 2, the unit's least).
+5 at the design's depths; make test-long adds 4, the paper's, and 3, the unit's least).
 test_frac_every_word runs a numpy mirror of the unit's cases over all 2^24 words against the
 model (the mirror's equality with the RTL is what the cocotb test checks on its vectors);
 test_frac_miter runs the SAT proof against the chain (and its mutant, which must fail);
-test_frac_rejects checks the elaboration error for LAT below 2.
+test_frac_rejects checks the elaboration error for LAT below 3.
 """
 from __future__ import annotations
 
@@ -32,7 +32,7 @@ HERE = Path(__file__).parent
 NAN = 0x7F8000
 #: LATs: tex_addr's at the design's depths (make test), then the others of make test-long.
 USED = [5]
-LONG = [4, 2]
+LONG = [4, 3]
 
 
 def expected(a: npt.ArrayLike) -> np.ndarray:
@@ -146,8 +146,8 @@ def test_frac_miter() -> None:
 
 
 def test_frac_rejects() -> None:
-    """LAT below 2 stops at the unit's $error; 2 and 7 elaborate."""
-    for lat, ok in ((2, True), (7, True), (1, False), (0, False)):
+    """LAT below 3 stops at the unit's $error; 3 and 7 elaborate."""
+    for lat, ok in ((3, True), (7, True), (2, False), (0, False)):
         rc, out = fp_unit.elaborate("f24_frac", {"LAT": lat})
         rejected = "f24_frac: LAT must" in out
         assert (rc == 0 and not rejected) if ok else (rc != 0 and rejected), f"LAT={lat}:\n{out}"
