@@ -54,12 +54,19 @@ def test_expressions_of_the_packages() -> None:
         (sv_params.value("traverse_pkg", "SETUP_LAT")).bit_length()
     add, mul, log2, idx = sv_params.values("pipe_pkg", "F24_ADD_LAT", "F24_MUL_LAT",
                                            "F24_LOG2_LAT", "F24_TO_INDEX_LAT")
-    assert sv_params.value("pipe_pkg", "MIP_LAT") == mul + add + log2 + 1 + 2 * add + idx + 1
+
+    def mip_gap(a: int) -> int:
+        """Pl's addition to the colour lod's on mip_level's one adder, padded to 1 or 2 mod 4."""
+        base = a + log2 + 1
+        return base + next(p for p in range(4) if (base + p) % 4 in (1, 2))
+
+    assert sv_params.value("pipe_pkg", "MIP_LAT") == mul + mip_gap(add) + 1 + 2 * add + idx + 1
     assert sv_params.value("pipe_pkg", "VIEW_CALC_LAT") == 1 + mul + 2 * add + f24_div + 1 + mul + 1
     for a, m in ((2, 1), (3, 2)):  # view_calc and mip_level at their ADD_LAT / MUL_LAT
         assert sv_params.call("pipe_pkg", "view_calc_lat", a, m) == \
             1 + m + 2 * a + f24_div + 1 + m + 1
-        assert sv_params.call("pipe_pkg", "mip_lat", a, m) == m + a + log2 + 1 + 2 * a + idx + 1
+        assert sv_params.call("pipe_pkg", "mip_gap", a) == mip_gap(a)
+        assert sv_params.call("pipe_pkg", "mip_lat", a, m) == m + mip_gap(a) + 1 + 2 * a + idx + 1
         # traverse_setup at its ADD_LAT / MUL_LAT: 21 at (2, 1), 26 at (3, 2)
         gap_am = a + m + 3 + (6 - (a + m + 3) % 4) % 4
         assert sv_params.call("traverse_pkg", "setup_gap", a, m) == gap_am

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // mip_level: the MIP-level unit after Park et al., IEICE Electronics Express 2011, eq. (2), for
-// the colour texture and the normal map of a hit (a hit every other clock at most, the two
+// the colour texture and the normal map of a hit (hits under the input rule below, the two
 // levels in consecutive clocks).  Specification: model/mip.py
 // (model/texture.py ray_length and mip_level) in the f24 engine, bit for bit:
 //   Pl  = add(Pl0, mul(t, seg))                 eye-to-hit ray length
@@ -14,14 +14,19 @@
 // Pl = NaN, a negative Pl (log2 NaN) or lod NaN give level 0; Pl = +-0 (log2 = -Inf) gives level
 // 0; Pl = +Inf gives levels - 1.
 //
-// Fully pipelined, fixed latency, one hit every other enabled clock at most: the two textures
-// share one lod datapath.  A hit taken on an enabled edge with valid_i = 1 gives two results,
-// each a valid_o clock with the hit's tag: the colour texture's level (tex_o = 0)
-// pipe_pkg::mip_lat(ADD_LAT, MUL_LAT) enabled edges later (13 at the float units' paper depths
-// (ADD_LAT, MUL_LAT) = (2, 1), pipe_pkg::MIP_LAT; 17 at (3, 2)) and the normal map's
-// (tex_o = 1) on the next enabled edge.
-// valid_i must not be 1 on two consecutive enabled clocks (asserted; dm_pipeline admits a hit
-// at most every 4th clock).  tag_o holds the hit's tag from its colour result until the next
+// Fully pipelined, fixed latency: the two textures share one lod datapath, and one adder
+// serves a hit's three additions (Pl, then the two lods).  A hit taken on an enabled edge with
+// valid_i = 1 gives two results, each a valid_o clock with the hit's tag: the colour texture's
+// level (tex_o = 0) pipe_pkg::mip_lat(ADD_LAT, MUL_LAT) enabled edges later (14 at the float
+// units' paper depths (ADD_LAT, MUL_LAT) = (2, 1); 20 at (3, 2), pipe_pkg::MIP_LAT) and the
+// normal map's (tex_o = 1) on the next enabled edge.
+// Input rule (asserted: spacing, share_gap): valid_i must not be 1 on the enabled clock after a
+// hit (the lod datapath), nor G or G + 1 enabled clocks after one, G = pipe_pkg::mip_gap(ADD_LAT)
+// (6 at ADD_LAT 2, 9 at 3): the clocks in which the later hit's Pl addition would meet the
+// earlier hit's lod additions on the adder.  G is 1 or 2 mod 4, so hits a multiple of 4 clocks
+// apart always pass; dm_pipeline admits a hit at most every 4th clock and holds one back in
+// the two clocks G, G + 1 after another (its admission rule).
+// tag_o holds the hit's tag from its colour result until the next
 // hit's colour result (the job register's tag holds the normal map's between jobs): dm_pipeline
 // reads it for the normal map's lookup, held a clock, a clock after that result.  The
 // conventions of view_calc otherwise: every register advances only while en_i is 1 (the
@@ -30,29 +35,37 @@
 // contents) must be static while busy; the table's write port works whatever en_i is.
 //
 // Stage schedule (S0 = the input ports; "a -> b": a unit takes operands in Sa, result in Sb;
-// A = ADD_LAT, M = MUL_LAT; the stage numbers "x / y": x at (A, M) = (2, 1), y at (3, 2)):
-//   S0              t seg                                        f24_mul      S0 -> S_PL
-//                   Pl0 delayed S0 -> S_PL; tri delayed S0 -> S_TT
-//   S_PL = M        Pl = Pl0 + t seg (1 / 2)                     f24_add      -> S_LOG
-//   S_LOG = S_PL+A  log2(Pl) (3 / 5)                             f24_log2     -> S_JOB
-//   S_TT = S_JOB-1  triangle table read (both textures; 5 / 7)   tri_table    -> S_JOB
-//   S_JOB = S_LOG+3 the job register (6 / 8): the colour job {log2(Pl), log2Pb colour} now,
-//                   the normal map's {log2(Pl), log2Pb normal} held and taken the next
-//                   enabled clock                                register     -> S_LOD
-//   S_LOD = S_JOB+1 lod = log2(Pl) - log2Pb (7 / 9)              f24_add      -> S_HALF
-//   S_HALF = S_LOD+A  floor(lod + 0.5) (9 / 12)     f24_round_index, A + 1 clocks -> S_CLMP
+// A = ADD_LAT, M = MUL_LAT, G = mip_gap(A); the stage numbers "x / y": x at (A, M) = (2, 1),
+// y at (3, 2)):
+//   S0               t seg                                       f24_mul      S0 -> S_PL
+//                    Pl0 delayed S0 -> S_PL; tri delayed S0 -> S_TT
+//   S_PL = M         the adder's operand registers <- Pl0, t seg (1 / 2)  register -> S_PLA
+//   S_PLA = S_PL+1   Pl = Pl0 + t seg (2 / 3)                    f24_add      -> S_LOG
+//   S_LOG = S_PLA+A  log2(Pl) (4 / 6)                            f24_log2     -> S_L2
+//   S_L2 = S_LOG+3   log2(Pl) delayed PAD = G - A - 4 clocks (0 / 2: the pad that makes G
+//                    1 or 2 mod 4)                               registers    -> S_JOB
+//   S_TT = S_JOB-1   triangle table read (both textures; 6 / 10) tri_table    -> S_JOB
+//   S_JOB = S_PL+G   the job (7 / 11): the adder's operand registers <- the colour job
+//                    {log2(Pl), -log2Pb colour} now, the normal map's {log2(Pl), -log2Pb
+//                    normal} (held) the next enabled clock        register     -> S_LOD
+//   S_LOD = S_JOB+1  lod = log2(Pl) - log2Pb (8 / 12): the adder, G clocks after Pl's
+//                                                                f24_add      -> S_HALF
+//   S_HALF = S_LOD+A  floor(lod + 0.5) (10 / 15)    f24_round_index, A + 1 clocks -> S_CLMP
 //                     (S_IDX = S_HALF+A: where f24_add's sum would enter f24_to_index)
-//   S_CLMP = S_IDX+1  clamp to [0, levels[tex] - 1], mip_en (12 / 16)  register -> S_OUT
-//   S_OUT = S_CLMP+1  outputs (13 / 17; straight from registers); the normal map's a clock
+//   S_CLMP = S_IDX+1  clamp to [0, levels[tex] - 1], mip_en (13 / 19)  register -> S_OUT
+//   S_OUT = S_CLMP+1  outputs (14 / 20; straight from registers); the normal map's a clock
 //                     after the colour's
-// No unit takes an operand through a select but the lod adder, whose operands are the job
-// register's (loaded by the colour / normal-map select); the two jobs of a hit are a clock apart
-// and hits two clocks apart at least, in every unit at any unit latency.
+// The adder takes its operands only from its operand registers, loaded by the select of the
+// three additions (Pl in the clock a hit is in S_PL, the colour lod in S_JOB, the normal map's
+// the clock after; never two at once under the input rule: asserted, share_free).  Its sum
+// goes to both f24_log2 (read as Pl by the hit in S_LOG) and f24_round_index (read as lod by
+// the job in S_HALF); each reads the other's sums too, which no valid result uses.
 // log2 runs at LAT = F24_LOG2_LAT = 3 (table / product + sum / normalise + round: over 100 MHz;
 // at its 2 clocks it limits the unit to about 50 MHz); the result is the same at either LAT.
-// Float units: 1 f24_mul, 2 f24_add, 1 f24_log2, 1 f24_round_index (lod + 0.5 and its floor in
+// Float units: 1 f24_mul, 1 f24_add, 1 f24_log2, 1 f24_round_index (lod + 0.5 and its floor in
 // one unit: before it, an f24_add and an f24_to_index #(.W(20))); a 2 x TRIS-word tri_table.
-// (Before the textures shared the lod datapath: 5 f24_add and 2 f24_to_index, both levels of a
+// (Before the adder was shared: 2 f24_add, MIP_LAT 13 / 17, a hit every other clock at most;
+// before the textures shared the lod datapath: 5 f24_add and 2 f24_to_index, both levels of a
 // hit per clock, MIP_LAT 12.)
 module mip_level
   import f24_pkg::*;
@@ -94,26 +107,33 @@ module mip_level
 
   // Stage numbers ("x / y": at (ADD_LAT, MUL_LAT) = (2, 1) / (3, 2)); S_OUT = the latency (the
   // colour result).
+  localparam int unsigned GAP    = mip_gap(ADD_LAT);          // 6 / 9
   localparam int unsigned S_PL   = MUL_LAT;                  // 1 / 2
-  localparam int unsigned S_LOG  = S_PL + ADD_LAT;           // 3 / 5
-  localparam int unsigned S_JOB  = S_LOG + F24_LOG2_LAT;     // 6 / 8
-  localparam int unsigned S_TT   = S_JOB - TRI_TABLE_LAT;    // 5 / 7
-  localparam int unsigned S_LOD  = S_JOB + 1;                // 7 / 9
-  localparam int unsigned S_HALF = S_LOD + ADD_LAT;          // 9 / 12
-  localparam int unsigned S_IDX  = S_HALF + ADD_LAT;         // 11 / 15
-  localparam int unsigned S_CLMP = S_IDX + F24_TO_INDEX_LAT; // 12 / 16
-  localparam int unsigned S_OUT  = S_CLMP + 1;               // 13 / 17
-  if (S_OUT != mip_lat(ADD_LAT, MUL_LAT)) begin : g_check_lat
+  localparam int unsigned S_PLA  = S_PL + 1;                 // 2 / 3
+  localparam int unsigned S_LOG  = S_PLA + ADD_LAT;          // 4 / 6
+  localparam int unsigned S_L2   = S_LOG + F24_LOG2_LAT;     // 7 / 9
+  localparam int unsigned S_JOB  = S_PL + GAP;               // 7 / 11
+  localparam int unsigned PAD    = S_JOB - S_L2;             // 0 / 2
+  localparam int unsigned S_TT   = S_JOB - TRI_TABLE_LAT;    // 6 / 10
+  localparam int unsigned S_LOD  = S_JOB + 1;                // 8 / 12
+  localparam int unsigned S_HALF = S_LOD + ADD_LAT;          // 10 / 15
+  localparam int unsigned S_IDX  = S_HALF + ADD_LAT;         // 12 / 18
+  localparam int unsigned S_CLMP = S_IDX + F24_TO_INDEX_LAT; // 13 / 19
+  localparam int unsigned S_OUT  = S_CLMP + 1;               // 14 / 20
+  if (S_OUT != mip_lat(ADD_LAT, MUL_LAT) || S_JOB < S_L2 || GAP % 4 == 0 || GAP % 4 == 3
+      || GAP + 1 > S_JOB) begin : g_check_lat
     $error("mip_level: stage schedule does not add up to pipe_pkg::mip_lat");
   end
 
-  // ---- S0: t seg; S_PL: Pl --------------------------------------------------------------------
-  f24_t ts, pl, l2;
+  // ---- S0: t seg; S_PL: Pl's operands; S_PLA: Pl; S_LOG: log2(Pl) ------------------------
+  f24_t ts, sum, l2, l2_job;
   f24_t pl0_q [1:S_PL];                 // Pl0 in stages S1 .. S_PL
+  f24_t op_a_q, op_b_q;                 // the adder's operands: Pl0, t seg / log2(Pl), -log2Pb
   f24_mul #(.LAT(MUL_LAT)) u_ts (.clk_i, .en_i, .a_i(t_i), .b_i(seg_i), .y_o(ts));
-  f24_add #(.LAT(ADD_LAT)) u_pl (.clk_i, .en_i, .a_i(pl0_q[S_PL]), .b_i(ts), .y_o(pl));
-  // ---- S_LOG: log2(Pl)
-  f24_log2 #(.LAT(F24_LOG2_LAT)) u_l2 (.clk_i, .en_i, .a_i(pl), .y_o(l2));
+  // the one adder: Pl (a hit in S_PLA), the colour lod and the normal map's (jobs in S_LOD)
+  f24_add #(.LAT(ADD_LAT)) u_add (.clk_i, .en_i, .a_i(op_a_q), .b_i(op_b_q), .y_o(sum));
+  f24_log2 #(.LAT(F24_LOG2_LAT)) u_l2 (.clk_i, .en_i, .a_i(sum), .y_o(l2));
+  f24_delay #(.W(24), .N(PAD)) u_pad (.clk_i, .en_i, .d_i(l2), .q_o(l2_job));
 
   // ---- S_TT: the triangle table ----------------------------------------------------------------
   logic [TRI_W-1:0] tri_q [1:S_TT];     // the triangle id in stages S1 .. S_TT
@@ -122,9 +142,9 @@ module mip_level
     .clk_i, .we_i(tt_we_i), .waddr_i(tt_waddr_i), .wdata_i(tt_wdata_i),
     .re_i(en_i), .raddr_i(tri_q[S_TT]), .rdata_colour_o(pb[0]), .rdata_normal_o(pb[1]));
 
-  // ---- S_JOB: the job register -----------------------------------------------------------
-  // The hit's valid and tag reach S_JOB through u_hit; its colour job goes into the job register
-  // at once, its normal-map job (held in nrm_*) the enabled clock after.
+  // ---- S_JOB: the jobs -----------------------------------------------------------------------
+  // The hit's valid and tag reach S_JOB through u_hit; its colour job goes into the adder's
+  // operand registers at once, its normal-map job (held in nrm_*) the enabled clock after.
   logic             v6;                 // a hit in S_JOB
   logic [TAG_W-1:0] tag6;
   logic             nrm_pend_q;         // the held normal-map job waits
@@ -132,9 +152,8 @@ module mip_level
   f24_t             nrm_l2_q, nrm_pb_q;
   logic             job_valid_q, job_tex_q;
   logic [TAG_W-1:0] job_tag_q;
-  f24_t             job_l2_q, job_pb_q;  // S_LOD: the adder's operands
 
-  /* verilator lint_off UNUSEDSIGNAL */  // only hit_v[1] is read (the spacing check)
+  /* verilator lint_off UNUSEDSIGNAL */  // read: hit_v[1], [S_PL], [GAP], [GAP + 1]
   logic [S_JOB:1]   hit_v;              // a hit in S1 .. S_JOB
   /* verilator lint_on UNUSEDSIGNAL */
   pipe_valid_tag #(.TAG_W(TAG_W), .DEPTH(S_JOB)) u_hit (
@@ -153,29 +172,33 @@ module mip_level
     if (en_i) begin
       if (v6) begin
         nrm_tag_q <= tag6;
-        nrm_l2_q  <= l2;
+        nrm_l2_q  <= l2_job;
         nrm_pb_q  <= pb[1];
       end
       job_tex_q <= !v6;
-      job_tag_q <= v6 ? tag6  : nrm_tag_q;
-      job_l2_q  <= v6 ? l2    : nrm_l2_q;
-      job_pb_q  <= v6 ? pb[0] : nrm_pb_q;
+      job_tag_q <= v6 ? tag6 : nrm_tag_q;
+      // the adder's operands: Pl's for a hit in S_PL, else the colour job, else the normal
+      // map's (subtract: log2Pb's sign bit flipped)
+      if (hit_v[S_PL]) begin
+        op_a_q <= pl0_q[S_PL];
+        op_b_q <= ts;
+      end else begin
+        op_a_q <= v6 ? l2_job : nrm_l2_q;
+        op_b_q <= v6 ? {~pb[0][23], pb[0][22:0]} : {~nrm_pb_q[23], nrm_pb_q[22:0]};
+      end
     end
   end
 
   // ---- S_LOD .. S_OUT: the job's texture ----------------------------------------------------
-  f24_t lod;
   logic signed [MIP_IDX_W-1:0] idx;
   logic                        tex_q [S_LOD+1:S_CLMP];  // the job's texture, S_LOD+1 .. S_CLMP
   logic [MIP_LEVEL_W:0]        levels;
   logic [MIP_LEVEL_W-1:0]      top;    // levels - 1 (0 for a count of 0)
   logic [MIP_LEVEL_W-1:0]      lvl, lvl_q;
-  // S_LOD: lod = log2(Pl) - log2Pb (subtract: flip the sign bit)
-  f24_add #(.LAT(ADD_LAT)) u_lod (.clk_i, .en_i, .a_i(job_l2_q),
-                                  .b_i({~job_pb_q[23], job_pb_q[22:0]}), .y_o(lod));
+  // S_LOD: lod = log2(Pl) - log2Pb on the adder (its sum in S_HALF)
   // S_HALF: floor(lod + 0.5) (to_index(add(lod, 0.5))), in the clocks of the add and the floor
   f24_round_index #(.W(MIP_IDX_W), .LAT(ADD_LAT + F24_TO_INDEX_LAT)) u_idx (
-    .clk_i, .en_i, .a_i(lod), .idx_o(idx));
+    .clk_i, .en_i, .a_i(sum), .idx_o(idx));
   // S_CLMP: clamp(idx, 0, levels - 1); level 0 with MIP mapping off
   // (a count of 0 acts as 1, one above 2^MIP_LEVEL_W as 2^MIP_LEVEL_W)
   assign levels = tex_q[S_CLMP] ? cfg_levels_normal_i : cfg_levels_colour_i;

@@ -36,9 +36,11 @@
 //     takes one per two clocks, so the back end takes a hit per 4 clocks at most and admitting
 //     hits more often gains nothing.  That leaves room for the shared units in front of it:
 //     mip_level's lod datapath serves both textures (the colour level, the normal map's the
-//     clock after) and one tex_addr both lookups, each lookup as two axis items (u, v) in
-//     consecutive clocks, so a hit's two lookups fill 4 clocks (colour, then the normal map's
-//     held a clock: nl_*).
+//     clock after; one adder for Pl and both lods, so a hit is also not admitted
+//     pipe_pkg::mip_gap or one more clocks after another, which hits 4 clocks apart never are)
+//     and one tex_addr both lookups, each lookup as two axis items (u, v) in consecutive
+//     clocks, so a hit's two lookups fill 4 clocks (colour, then the normal map's held a
+//     clock: nl_*).
 // The colour and normal-map requests of a pixel are pushed together into two FIFOs and sent to
 // the cache alternately (colour first), so its responses, and the filter's results, come in
 // pairs in that order (the cache and the filter keep order; asserted: tf_pairs); a pixel reaches
@@ -340,13 +342,24 @@ module dm_pipeline
   logic              req_room, hit_room;
   logic              hit_adm, req_done, hit_out;
 
-  // A hit is not admitted in the 3 clocks after one (its two lookups take 4 clocks of tex_addr).
-  logic [2:0] hit_adm_q;  // [k]: a hit was admitted k + 1 clocks ago
+  // A hit is not admitted in the 3 clocks after one (its two lookups take 4 clocks of tex_addr),
+  // nor MIP_GAP or MIP_GAP + 1 clocks after one (mip_level's shared adder: pipe_pkg::mip_gap,
+  // 1 or 2 mod 4, so hits 4 clocks apart, the full rate, never wait for it).
+  localparam int unsigned MIP_GAP = mip_gap(F24_ADD_LAT);  // mip_level's, at its ADD_LAT
+  logic [2:0]         hit_adm_q;  // [k]: a hit was admitted k + 1 clocks ago
+  logic [MIP_GAP:3]   hit_old_q;  // [k]: a hit was admitted k + 1 clocks ago
   always_ff @(posedge clk_i) begin
-    if (!rst_ni) hit_adm_q <= '0;
-    else         hit_adm_q <= {hit_adm_q[1:0], hit_adm};
+    if (!rst_ni) begin
+      hit_adm_q <= '0;
+      hit_old_q <= '0;
+    end else begin
+      hit_adm_q <= {hit_adm_q[1:0], hit_adm};
+      hit_old_q <= {hit_old_q[MIP_GAP-1:3], hit_adm_q[2]};
+    end
   end
-  assign res_ready = res_hit ? (req_room && hit_room && hit_adm_q == '0) : !miss_full;
+  assign res_ready = res_hit ? (req_room && hit_room && hit_adm_q == '0
+                                && !hit_old_q[MIP_GAP-1] && !hit_old_q[MIP_GAP])
+                             : !miss_full;
   assign hit_adm   = res_valid && res_ready && res_hit;
   assign miss_wr   = res_valid && res_ready && !res_hit;
 

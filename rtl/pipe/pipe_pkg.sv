@@ -47,16 +47,25 @@ package pipe_pkg;
   // so the clamped level equals the model's, whose floor saturates at model.arith.INDEX_W (20)
   // bits.
   localparam int unsigned MIP_IDX_W     = MIP_LEVEL_W + 2;
-  // Pl = Pl0 + t seg (mul, add); log2; the texture's job register (colour, then the normal map
-  // a clock later); lod = - log2Pb (add); + 0.5 and floor (f24_round_index, the clocks of an
-  // add and a to_index); clamp to the level
-  // range and the mip_en select (one register).  The colour level's latency; the normal map's
-  // is one more.  mip_lat: at mip_level's ADD_LAT / MUL_LAT (the f24_add / f24_mul LATs it
-  // instantiates): 13 at (2, 1), 17 at (3, 2).
-  function automatic int unsigned mip_lat(int unsigned add_lat, int unsigned mul_lat);
-    return mul_lat + add_lat + F24_LOG2_LAT + 1 + 2 * add_lat + F24_TO_INDEX_LAT + 1;
+  // mip_level's one adder serves a hit's three additions: Pl = Pl0 + t seg, then, mip_gap
+  // enabled clocks later, the colour texture's lod = log2(Pl) - log2Pb and the normal map's a
+  // clock after that.  So a hit may not follow another by mip_gap or mip_gap + 1 enabled clocks
+  // (nor by 1: the lod datapath).  mip_gap = the adder, log2 (F24_LOG2_LAT), the job register,
+  // and a pad of 0 .. 2 clocks that makes it 1 or 2 mod 4: hits a multiple of 4 clocks apart
+  // (dm_pipeline's full rate) never meet that rule.  6 at ADD_LAT 2, 9 at 3 and 4.
+  function automatic int unsigned mip_gap(int unsigned add_lat);
+    return add_lat + F24_LOG2_LAT + 1 + ((5 - (add_lat + F24_LOG2_LAT + 1) % 4) % 4) % 3;
   endfunction
-  localparam int unsigned MIP_LAT = mip_lat(F24_ADD_LAT, F24_MUL_LAT);  // 17
+  // Pl = Pl0 + t seg (mul; the adder's operand registers; add); log2; the pad; the texture's
+  // job register (colour, then the normal map a clock later) into the adder's operand
+  // registers; lod = - log2Pb (add); + 0.5 and floor (f24_round_index, the clocks of an add and
+  // a to_index); clamp to the level range and the mip_en select (one register).  The colour
+  // level's latency; the normal map's is one more.  mip_lat: at mip_level's ADD_LAT / MUL_LAT
+  // (the f24_add / f24_mul LATs it instantiates): 14 at (2, 1), 20 at (3, 2).
+  function automatic int unsigned mip_lat(int unsigned add_lat, int unsigned mul_lat);
+    return mul_lat + mip_gap(add_lat) + 1 + 2 * add_lat + F24_TO_INDEX_LAT + 1;
+  endfunction
+  localparam int unsigned MIP_LAT = mip_lat(F24_ADD_LAT, F24_MUL_LAT);  // 20
 
   // ---- tex_addr / tex_filter (model/texture.py lookup_addresses, filter_texels) --------------
   localparam int unsigned TEX_LEVELS  = 16;  // levels a texture configuration holds: textures up

@@ -21,7 +21,9 @@ texture's level, then the normal map's) show result ``j`` of an operand set ``la
 enabled edges after it, and need ``spacing`` >= ``jobs`` enabled clocks between operand sets:
 after a valid slot the driver puts ``spacing - 1`` bubbles; the expected arrays then hold
 ``jobs`` entries per operand set (operand set ``k``'s result ``j`` at ``k * jobs + j``) and
-``tag_o`` repeats the tag.
+``tag_o`` repeats the tag.  ``forbid`` lists distances (enabled clocks) at which no operand set
+may follow an earlier one (mip_level: its shared adder's mip_gap and mip_gap + 1); the driver
+puts a bubble there.
 
 The unit's pipeline must hold only bubbles when :meth:`ValidPipe.run` starts: after
 :meth:`ValidPipe.reset` or a previous :meth:`run` (which stops when its last operand set came
@@ -46,12 +48,16 @@ class ValidPipe:
     """One unit under test; starts its clock and keeps the count of vectors checked."""
 
     def __init__(self, dut, latency: int, data_in: list[str], data_out: list[str],
-                 report_what: str, jobs: int = 1, spacing: int = 1) -> None:
+                 report_what: str, jobs: int = 1, spacing: int = 1,
+                 forbid: tuple[int, ...] = ()) -> None:
         if spacing < jobs:
             raise ValueError("spacing must be at least jobs (results would overlap)")
+        if any(f < 1 for f in forbid):
+            raise ValueError("forbidden distances are enabled clocks, 1 or more")
         self.dut = dut
         self.jobs = jobs            # results per operand set, in consecutive enabled clocks
         self.spacing = spacing      # enabled clocks from one operand set to the next, at least
+        self.forbid = tuple(forbid)  # distances at which no operand set may follow another
         self.report_what = report_what  # the comparison's name in tb/common/report.py's table
         self.latency = latency
         self.data_in = data_in
@@ -85,8 +91,12 @@ class ValidPipe:
         d = self.dut
         d.rst_ni.value = 1
         d.en_i.value = 1
+        taken: list[int] = []
         for i in range(self.latency):
-            d.valid_i.value = int(i % self.spacing == 0)
+            ok = all(i - t >= self.spacing and i - t not in self.forbid for t in taken)
+            if ok:
+                taken.append(i)
+            d.valid_i.value = int(ok)
             d.tag_i.value = int(rng.integers(0, 1 << self.tag_w))
             await RisingEdge(d.clk_i)
             await FallingEdge(d.clk_i)
@@ -125,7 +135,7 @@ class ValidPipe:
         junk_valid = rng.integers(0, 2, m).tolist()
         junk_tag = rng.integers(0, 1 << self.tag_w, m).tolist()
         # The operand set of each of the last lat + jobs - 1 enabled clocks (-1: a bubble).
-        depth = lat + jobs - 1
+        depth = max(lat + jobs - 1, *self.forbid, 1)
         hist: collections.deque = collections.deque([-1] * depth, maxlen=depth)
         got: dict[str, list[int]] = {k: [] for k in ["tag_o"] + self.data_out}
         got_idx: list[int] = []
@@ -137,7 +147,8 @@ class ValidPipe:
             j = cyc % m
             cyc += 1
             en = en_seq[j]
-            take = en and issued < n and not bub_seq[j] and gap == 0
+            take = (en and issued < n and not bub_seq[j] and gap == 0
+                    and all(hist[-f] < 0 for f in self.forbid))
             if en:
                 gap = self.spacing - 1 if take else max(gap - 1, 0)
             k = issued if take else junk_idx[j]

@@ -4,8 +4,9 @@
 Each phase writes the triangle table through the write port (log2 Pb words for both textures,
 with en_i random or held at 0), sets the configuration (mip_en, the two level counts) and
 streams hits with random en_i gaps and valid bubbles, a hit every other enabled clock at most
-(tb/common/valid_pipe.py with jobs = spacing = 2: the two textures share the lod datapath, and
-each hit gives its colour level, tex_o = 0, MIP_LAT enabled edges later and its normal map's,
+and none mip_gap or mip_gap + 1 enabled clocks after another (tb/common/valid_pipe.py with jobs =
+spacing = 2 and those two distances forbidden: the two textures share the lod datapath, one
+adder serves Pl and both lods, and each hit gives its colour level, tex_o = 0, MIP_LAT enabled edges later and its normal map's,
 tex_o = 1, on the next one); the levels must equal the model's bit for bit:
   random       realistic t, seg, Pl0 and table words: lod from far below 0 to beyond the levels;
                every triangle id
@@ -21,7 +22,7 @@ and a reset of a full pipeline while stalled.
 Run at the float units' depths (ADD_LAT, MUL_LAT) of tb/common/depths.py with the same
 stimulus: (3, 2), the package defaults (built with no parameter, so the run also checks the
 defaults), and under make test-long the paper's (2, 1).  The colour level must come exactly
-pipe_pkg::mip_lat(ADD_LAT, MUL_LAT) enabled edges after valid_i (17 at (3, 2), 13 at (2, 1)),
+pipe_pkg::mip_lat(ADD_LAT, MUL_LAT) enabled edges after valid_i (20 at (3, 2), 14 at (2, 1)),
 the normal map's on the next one, with the same levels.
 """
 from __future__ import annotations
@@ -162,8 +163,9 @@ async def mip_level_random_and_directed(dut):
     # pipe_pkg::mip_lat (f24_log2 at pipe_pkg::F24_LOG2_LAT): the colour level's latency
     latency = sv_params.call("pipe_pkg", "mip_lat", add_lat, mul_lat)
     dut._log.info("mip_level ADD_LAT=%d MUL_LAT=%d: latency %d", add_lat, mul_lat, latency)
+    gap = sv_params.call("pipe_pkg", "mip_gap", add_lat)  # the shared adder's rule
     pipe = ValidPipe(dut, latency, INS, OUTS, "RTL vs model.texture.mip_level (f24)", jobs=2,
-                     spacing=2)
+                     spacing=2, forbid=(gap, gap + 1))
     dut.tt_we_i.value = 0
     await pipe.reset()
     specials_tab = np.array([f24.NAN, f24.POS_INF, f24.NEG_INF, f24.MAX_FINITE, 0xFEFFFF,
@@ -225,11 +227,16 @@ def run_lats(lats: tuple[int, int], parameters: dict[str, int] | None = None,
 
 def test_default_latency() -> None:
     """pipe_pkg::MIP_LAT (dm_pipeline's) is mip_lat at the package defaults; the function gives
-    the header's figures (13 at (2, 1), 17 at (3, 2))."""
+    the header's figures (14 at (2, 1), 20 at (3, 2)); mip_gap is 1 or 2 mod 4 at every ADD_LAT
+    the unit takes, so hits a multiple of 4 clocks apart (dm_pipeline's full rate) never meet
+    the shared adder's rule."""
     assert sv_params.value("pipe_pkg", "MIP_LAT") == \
         sv_params.call("pipe_pkg", "mip_lat", *DEFAULT_LATS)
-    assert sv_params.call("pipe_pkg", "mip_lat", 2, 1) == 13
-    assert sv_params.call("pipe_pkg", "mip_lat", 3, 2) == 17
+    assert sv_params.call("pipe_pkg", "mip_lat", 2, 1) == 14
+    assert sv_params.call("pipe_pkg", "mip_lat", 3, 2) == 20
+    for add in (2, 3, 4):
+        gap = sv_params.call("pipe_pkg", "mip_gap", add)
+        assert gap % 4 in (1, 2) and gap >= add + 4, (add, gap)
 
 
 @pytest.mark.parametrize("add,mul", depths.cases())
