@@ -24,8 +24,7 @@
 // hit (the lod datapath), nor G or G + 1 enabled clocks after one, G = pipe_pkg::mip_gap(ADD_LAT)
 // (6 at ADD_LAT 2, 9 at 3): the clocks in which the later hit's Pl addition would meet the
 // earlier hit's lod additions on the adder.  G is 1 or 2 mod 4, so hits a multiple of 4 clocks
-// apart always pass; dm_pipeline admits a hit at most every 4th clock and holds one back in
-// the two clocks G, G + 1 after another (its admission rule).
+// apart always pass: dm_pipeline admits hits on a grid of 4 clocks.
 // tag_o holds the hit's tag from its colour result until the next
 // hit's colour result (the job register's tag holds the normal map's between jobs): dm_pipeline
 // reads it for the normal map's lookup, held a clock, a clock after that result.  The

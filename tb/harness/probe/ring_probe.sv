@@ -68,7 +68,7 @@ module ring_probe #(
   input logic              res_valid_i,
   input logic              res_ready_i,
   input logic              res_hit_i,
-  input logic              hit_spacing_i,  // the admission's spacing rule holds a hit back
+  input logic              hit_spacing_i,  // the admission's grid holds a hit back
   input logic              req_room_i,
   input logic              hit_room_i,
   input logic              miss_full_i
@@ -201,7 +201,7 @@ bind dm_pipeline ring_probe #(.SLOT_W(SLOT_W), .D(traverse_pkg::LOOP_DEPTH)) u_r
   .retire_i(u_trav.g_ring[0].u_sys.u_unit.u_loop.retire),
   .ring_busy_i(u_trav.g_ring[0].u_sys.u_unit.u_loop.busy_o),
   .res_valid_i(res_valid), .res_ready_i(res_ready), .res_hit_i(res_hit),
-  .hit_spacing_i(hit_adm_q != '0 || hit_old_q[MIP_GAP-1] || hit_old_q[MIP_GAP]),
+  .hit_spacing_i(hit_adm_q != '0 || hit_ph_q != '0),
   .req_room_i(req_room), .hit_room_i(hit_room),
   .miss_full_i(miss_full)
 );
