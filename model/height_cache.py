@@ -152,6 +152,7 @@ class HeightCacheModel:
         self.s3_miss: int | None = None  # stage 3: the line address of a miss to allocate for
         self.rs = (0, 0, 0, 0)
         self.stats = {"hits": 0, "misses": 0, "bytes": 0, "lines": 0}
+        self.st_ev = (False, False)  # stage 2's hit and miss, a clock before the counters
 
     # ------------------------------------------------------------------ helpers
     def _split(self, addr: int) -> tuple[int, int, int, int]:
@@ -341,9 +342,11 @@ class HeightCacheModel:
         # ---- statistics
         if i.clr_stats:
             self.stats = {"hits": 0, "misses": 0, "bytes": 0, "lines": 0}
+            self.st_ev = (False, False)
         else:
-            self.stats["hits"] += int(hit)
-            self.stats["misses"] += int(self.s2_valid and not hit)
+            self.stats["hits"] += int(self.st_ev[0])
+            self.stats["misses"] += int(self.st_ev[1])
+            self.st_ev = (bool(hit), bool(self.s2_valid and not hit))
             self.stats["lines"] += int(ar_pop)
             self.stats["bytes"] += c.beat_bytes if r_acc else 0
         ev["beat"] = r_acc
