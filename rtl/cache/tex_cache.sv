@@ -467,14 +467,10 @@ module tex_cache
     .f_inc_o(f_inc), .b_fg_o(b_fg), .b_dec_o(b_dec));
 
   // The free MSHRs are a queue of indices (u_free, in the MSHR section below), taken from its
-  // head as a pass enters the FIFO: free_idx[k] = entry head + k, from registers; a line's
-  // last beat puts its MSHR back at the tail (seen from the next clock).
-  logic [2:0] lk_n;  // the pass's misses
-
-  always_comb begin
-    lk_n = '0;
-    for (int c = 0; c < NSUB; c++) lk_n = lk_n + 3'(lk_alloc[c]);
-  end
+  // head by the pass in the commit register (its misses' MSHRs leave the queue in its commit
+  // clock, so no count of the deciding pass's misses reaches the queue's pointers): the deciding
+  // pass's k-th miss takes entry head + (the commit register's MSHRs) + k, from registers; a
+  // line's last beat puts its MSHR back at the tail (seen from the next clock).
 
   assign e_fire      = rst_ni && b_valid && (32'(fifo_cnt) + 32'(cm_valid_q) < FIFO_DEPTH)
                        && !(|lk_blocked) && !mshr_short;
@@ -816,19 +812,34 @@ module tex_cache
 `endif
   end
 
-  // Free MSHRs, a queue of indices: all of them after a reset; a pass entering the FIFO takes
-  // one per miss from the head (they are busy from its commit clock on), a line's last beat
-  // returns its MSHR at the tail (one per clock at most).
-  logic [QCNT_W-1:0] fl_cnt;  // free MSHRs
-
-  circ_queue #(
-    .WIDTH(MIDX_W), .DEPTH(MSHRS), .NPUSH(1), .NPOP(NSUB), .INIT_SEQ(1'b1)
-  ) u_free (
-    .clk_i, .rst_ni, .push_i(fill_v), .wr_i(fill_v), .wdata_i(r_idx),
-    .pop_n_i(e_fire ? lk_n : 3'd0), .rdata_o(free_idx), .peek_o(), .count_o(fl_cnt));
+  // Free MSHRs, a queue of indices: all of them after a reset; the pass in the commit register
+  // takes one per miss from the head (they are busy from that clock on), a line's last beat
+  // returns its MSHR at the tail (one per clock at most).  The deciding pass's misses take the
+  // entries after the commit register's (head + cm_n + k): FL_RD entries are read.
+  localparam int unsigned FL_RD = (2 * NSUB < MSHRS) ? 2 * NSUB : MSHRS;
+  localparam int unsigned FLP_W = $clog2(FL_RD + 1);
+  logic [QCNT_W-1:0]             fl_cnt;  // free MSHRs, the commit register's among them
+  logic [FL_RD-1:0][MIDX_W-1:0]  fl_rd;   // entries head .. head + FL_RD - 1
+  logic [2:0]                    cm_n;    // MSHRs the commit register's pass takes
 
   always_comb begin
-    for (int k = 0; k < NSUB; k++) free_ok[k] = 32'(fl_cnt) > k;
+    cm_n = '0;
+    for (int c = 0; c < NSUB; c++) cm_n = cm_n + 3'(cm_new[c]);
+  end
+
+  circ_queue #(
+    .WIDTH(MIDX_W), .DEPTH(MSHRS), .NPUSH(1), .NPOP(FL_RD), .INIT_SEQ(1'b1)
+  ) u_free (
+    .clk_i, .rst_ni, .push_i(fill_v), .wr_i(fill_v), .wdata_i(r_idx),
+    .pop_n_i(FLP_W'(cm_n)), .rdata_o(fl_rd), .peek_o(), .count_o(fl_cnt));
+
+  always_comb begin
+    for (int k = 0; k < NSUB; k++) begin
+      free_ok[k]  = 32'(fl_cnt) > 32'(cm_n) + k;
+      // (an entry past FL_RD is never free_ok: cm_n + k < fl_cnt <= MSHRS)
+      free_idx[k] = '0;
+      for (int j = 0; j < FL_RD; j++) if (32'(cm_n) + k == j) free_idx[k] = fl_rd[j];
+    end
   end
 
   // ---------------------------------------------------------------- statistics

@@ -79,6 +79,7 @@ module tex_cache_assert #(
   // commit register
   input logic                               cm_valid_q,
   input logic [NSUB-1:0]                    cm_alloc_q,
+  input logic [NSUB-1:0][MIDX_W-1:0]        cm_mshr_q,
   input logic [NSUB-1:0][LA_W-1:0]          cm_la_q,
   input logic [NSUB-1:0][RC_W-1:0]          cm_inc_q,
   input logic [NSUB-1:0]                    cm_used,      // the committing pass's sub-caches
@@ -278,11 +279,20 @@ module tex_cache_assert #(
   // MSHR bookkeeping.
   logic [QCNT_W-1:0] busy_cnt;
   logic [2:0]        cm_n;  // MSHRs the pass in the commit register takes
+  logic              fl_head_ok;  // ... the free list's first cm_n entries, in sub-cache order
   always_comb begin
     busy_cnt = '0;
     for (int m = 0; m < MSHRS; m++) busy_cnt = busy_cnt + QCNT_W'(mshr_busy_q[m]);
-    cm_n = '0;
-    for (int c = 0; c < NSUB; c++) cm_n = cm_n + 3'(cm_valid_q && cm_alloc_q[c]);
+    cm_n       = '0;
+    fl_head_ok = 1'b1;
+    for (int c = 0; c < NSUB; c++) begin
+      if (cm_valid_q && cm_alloc_q[c]) begin
+        if (32'(cm_n) >= 32'(fl_cnt_q)
+            || cm_mshr_q[c] != tex_cache.u_free.mem_q[(32'(fl_hd_q) + 32'(cm_n)) % MSHRS])
+          fl_head_ok = 1'b0;
+        cm_n = cm_n + 3'd1;
+      end
+    end
   end
 
   // The checks over every MSHR, slot and sub-cache, each folded into one flag (with the first
@@ -457,11 +467,14 @@ module tex_cache_assert #(
       tag_queue_read: assert (!(rsp_valid_o && p_tq_push_q && p_tq_wp_q == tq_rp_q))
         else $error("tex_cache: the answer's tag is read in the clock it is written");
       // MSHRs: the AR queue holds at most the busy MSHRs; the free list holds exactly the MSHRs
-      // that are not busy and not taken by the pass in the commit register.
+      // that are not busy (those the pass in the commit register takes among them, at its head:
+      // free_list_head).
       arq_within_busy: assert (arq_cnt <= busy_cnt)
         else $error("tex_cache: AR queue holds more reads than busy MSHRs");
-      free_list_count: assert (32'(busy_cnt) + 32'(fl_cnt_q) + 32'(cm_n) == MSHRS)
+      free_list_count: assert (32'(busy_cnt) + 32'(fl_cnt_q) == MSHRS)
         else $error("tex_cache: free-list count differs from the MSHRs not busy");
+      free_list_head: assert (fl_head_ok)
+        else $error("tex_cache: the commit register's MSHRs are not the free list's head");
       free_list_not_busy: assert (lp_fl_ok)
         else $error("tex_cache: busy MSHR %0d on the free list", lp_fl_m);
     end
