@@ -33,9 +33,9 @@
 //   inv_use    s is in use (use_q) exactly when it is in one of the traversal, the back end and
 //              the merge;
 //   inv_init   the fill counter stays below SLOTS while filling;
-//   inv_spacing  the admission's spacing registers (acc_q, hit_adm_q) agree with the checker's
-//              clocks since the last fragment / hit (frag_spacing, hit_spacing: what view_calc's
-//              and tex_addr's proofs assume of their input);
+//   inv_spacing  the admission's spacing registers (acc_q; the hit grid hit_ph_q) agree with the
+//              checker's clocks since the last fragment / hit (frag_spacing, hit_spacing: what
+//              view_calc's and tex_addr's proofs assume of their input);
 //   inv_f0_credit   FIFO #0's credit counts the slots in view_calc;
 //   inv_out_credit  the out credit counts the slots in the back end and in the out FIFO.
 `ifdef FORMAL
@@ -142,8 +142,9 @@ module dm_pipeline_slots_formal #(
     end
   end
 
-  // The admission's spacing registers (acc_q, hit_adm_q: [k] one admitted k + 1 clocks ago)
-  // agree with the checker's counters of clocks since the last one (saturating at 3).
+  // The admission's spacing registers agree with the checker's counters of clocks since the last
+  // one (saturating at 3): acc_q ([k] a fragment accepted k + 1 clocks ago), and the hit grid
+  // hit_ph_q (a hit only where it is 0, so it is age + 1 within 3 clocks of a hit).
   function automatic logic age_ok(input logic [2:0] adm_q, input logic [1:0] age_q);
     return (adm_q == 3'b000 && age_q == 2'd3) || (adm_q == 3'b001 && age_q == 2'd0)
         || (adm_q == 3'b010 && age_q == 2'd1) || (adm_q == 3'b100 && age_q == 2'd2);
@@ -157,7 +158,8 @@ module dm_pipeline_slots_formal #(
       inv_use:   assert (ok_use == '1);
       inv_init:  assert (!dm_pipeline.init_q || 32'(dm_pipeline.init_cnt_q) < SLOTS);
       inv_spacing: assert (age_ok(dm_pipeline.acc_q, dm_pipeline.u_assert.frag_age_q)
-                           && age_ok(dm_pipeline.hit_adm_q, dm_pipeline.u_assert.hit_age_q));
+                           && (dm_pipeline.u_assert.hit_age_q == 2'd3
+                               || dm_pipeline.hit_ph_q == dm_pipeline.u_assert.hit_age_q + 2'd1));
       inv_f0_credit:  assert (32'(dm_pipeline.vc_cnt) == 32'($countones(vc_held)));
       inv_out_credit: assert (32'(dm_pipeline.hit_cnt)
                               == 32'($countones(be_held)) + 32'(dm_pipeline.out_count));

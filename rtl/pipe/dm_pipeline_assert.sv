@@ -11,7 +11,7 @@
 //   frag_spacing     view_calc shares its float units over 4 clocks: a fragment accepted every
 //                    4th clock at most (counted here apart from acc_q);
 //   hit_spacing      one address unit serves both textures: a hit every 4th clock at most
-//                    (counted here apart from hit_adm_q);
+//                    (counted here apart from the admission's grid, hit_ph_q);
 //   nl_tag_held      the held normal-map lookup reads mip_level's tag a clock after its result:
 //                    still the hit's;
 //   addr_pairs       a hit's two lookups come out of tex_addr 2 clocks apart, colour first, for

@@ -201,7 +201,7 @@ bind dm_pipeline ring_probe #(.SLOT_W(SLOT_W), .D(traverse_pkg::LOOP_DEPTH)) u_r
   .retire_i(u_trav.g_ring[0].u_sys.u_unit.u_loop.retire),
   .ring_busy_i(u_trav.g_ring[0].u_sys.u_unit.u_loop.busy_o),
   .res_valid_i(res_valid), .res_ready_i(res_ready), .res_hit_i(res_hit),
-  .hit_spacing_i(hit_adm_q != '0 || hit_ph_q != '0),
+  .hit_spacing_i(hit_ph_q != '0),
   .req_room_i(req_room), .hit_room_i(hit_room),
   .miss_full_i(miss_full)
 );
