@@ -136,15 +136,19 @@ def _verilator_args(spec: HarnessSpec, variant: str, jobs: int) -> list[str]:
             # 4.5 minutes at -O1 or -O2, split -O1 takes 1.5 (its test runs 30% slower).
             *(["--output-split-cfuncs", "0"] if fast else []), "--build-jobs", str(jobs),
             # The wheel's verilated.mk leaves CFG_CXXFLAGS_STD and CFG_CXXFLAGS_PCH_I empty: give
-            # the C++ standard, and -include for the precompiled header of the split output (so
-            # the files compile in parallel).  The once-run setup code -O0, Verilator's runtime
-            # library -O1 (it is off the hot path).
+            # the C++ standard.  No precompiled header for the split output: VK_PCH_I_* empty
+            # (each file includes Vtop__pch.h itself), and the .gch targets the objects depend
+            # on only preprocessed (-E, a few MB that nothing reads).  A real one was 250 MB,
+            # made twice (fast, slow) for the few files of --build-jobs: the system harness's
+            # checked build took 150 s of process time with it, 106 s without.  The once-run
+            # setup code -O0, Verilator's runtime library -O1 (it is off the hot path).
             # The FST writer wants liblz4; the waves variant uses tb/harness/lz4_compat instead
             # (no -llz4: LDLIBS is given whole).
             "-CFLAGS", f"-std=c++20 {defines} -I{HARNESS_DIR}"
             + (f" -DHARNESS_TRACE -I{HARNESS_DIR / 'lz4_compat'}" if trace else ""),
-            "-MAKEFLAGS", f"CFG_CXXFLAGS_PCH_I=-include OPT_FAST={'-O2' if fast else '-O1'} "
-            "OPT_SLOW=-O0 OPT_GLOBAL=-O1" + (" LDLIBS=-lz" if trace else ""),
+            "-MAKEFLAGS", "VK_PCH_I_FAST= VK_PCH_I_SLOW= CFG_CXXFLAGS_PCH=-E "
+            f"OPT_FAST={'-O2' if fast else '-O1'} OPT_SLOW=-O0 OPT_GLOBAL=-O1"
+            + (" LDLIBS=-lz" if trace else ""),
             "-o", spec.binary]
     args += [f"-G{k}={v}" for k, v in spec.params.items()]
     if trace:  # the debugging variant also checks the RTL's assertions
