@@ -18,16 +18,22 @@ from tb.common import fp_unit, runner
 
 #: The latencies the units are built and checked at (their LAT parameter; 2 is the default).
 LATS = (2, 3)
-#: Biased exponents swept over all 2^16 fractions: both parities (both tables) and the range ends.
+#: Biased exponents swept over all 2^16 fractions under make test-long (TB_LONG=1), at every
+#: latency: both parities (both tables) and the range ends.
 EXPONENTS = (1, 2, 62, 63, 64, 65, 125, 126)
-#: The sweep at the other latencies (the same tables and datapath, registers placed elsewhere):
-#: one exponent of each parity, unless TB_LONG=1 (make test-long) asks for EXPONENTS.
+#: The sweep at the default latency in make test: both parities, both range ends and the two
+#: exponents around 1.0 (half of EXPONENTS: the other four only under make test-long).
+EXPONENTS_DEFAULT_LAT = (1, 63, 64, 126)
+#: The sweep at the other latencies in make test (the same tables and datapath, registers placed
+#: elsewhere): one exponent of each parity.
 EXPONENTS_OTHER_LAT = (63, 64)
 
 
 def exponents(latency: int) -> tuple[int, ...]:
     """The exponents whose every fraction is checked at ``latency``."""
-    return EXPONENTS if latency == 2 or runner.long_stimulus() else EXPONENTS_OTHER_LAT
+    if runner.long_stimulus():
+        return EXPONENTS
+    return EXPONENTS_DEFAULT_LAT if latency == 2 else EXPONENTS_OTHER_LAT
 
 
 def every_fraction(exps: tuple[int, ...]) -> np.ndarray:

@@ -158,7 +158,7 @@ def random_table(rng: np.random.Generator, tris: int, lo: float, hi: float) -> n
 async def mip_level_random_and_directed(dut):
     rng = np.random.default_rng(fp_unit.seed())
     tris = 1 << len(dut.tri_i)  # the test runs power-of-two TRIS (tb/tri_table: the others)
-    nvec = fp_unit.vectors()
+    nvec = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE)  # 50,000 with TB_LONG=1
     add_lat, mul_lat = depths.current()
     # pipe_pkg::mip_lat (f24_log2 at pipe_pkg::F24_LOG2_LAT): the colour level's latency
     latency = sv_params.call("pipe_pkg", "mip_lat", add_lat, mul_lat)
