@@ -226,7 +226,9 @@ def run_task(root: Path, out: Path, t: Task, env: dict[str, str]) -> Result:
             else "ERROR"
         if rc != 0 and status == "PASS":
             status = "ERROR"
-    got = model_properties(workdir / "model" / "design_smt2.smt2")
+    # design_smt2.smt2, or design_smt2_stbv.smt2 for an engine with --stbv
+    models = sorted((workdir / "model").glob("design_smt2*.smt2"))
+    got = model_properties(models[0] if models else workdir / "model" / "design_smt2.smt2")
     r = Result(t.sby, t.name, t.mode, status, secs, cpu, len(got["assert"]), len(got["cover"]),
                len(set(re.findall(r"Reached cover statement .* at \S+: (\S+)", log))), rel)
     if status == "PASS" and t.mode == "cover":
