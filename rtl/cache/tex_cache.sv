@@ -815,30 +815,32 @@ module tex_cache
   // Free MSHRs, a queue of indices: all of them after a reset; the pass in the commit register
   // takes one per miss from the head (they are busy from that clock on), a line's last beat
   // returns its MSHR at the tail (one per clock at most).  The deciding pass's misses take the
-  // entries after the commit register's (head + cm_n + k): FL_RD entries are read.
+  // entries after the commit register's (head + cm_n_q + k): FL_RD entries are read.
   localparam int unsigned FL_RD = (2 * NSUB < MSHRS) ? 2 * NSUB : MSHRS;
   localparam int unsigned FLP_W = $clog2(FL_RD + 1);
   logic [QCNT_W-1:0]             fl_cnt;  // free MSHRs, the commit register's among them
   logic [FL_RD-1:0][MIDX_W-1:0]  fl_rd;   // entries head .. head + FL_RD - 1
-  logic [2:0]                    cm_n;    // MSHRs the commit register's pass takes
+  logic [2:0]                    cm_n_q;  // MSHRs the commit register's pass takes ($countones
+                                          // of cm_new, registered with it)
 
-  always_comb begin
-    cm_n = '0;
-    for (int c = 0; c < NSUB; c++) cm_n = cm_n + 3'(cm_new[c]);
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) cm_n_q <= '0;
+    else         cm_n_q <= e_fire ? 3'($countones(lk_alloc)) : 3'd0;
   end
 
   circ_queue #(
     .WIDTH(MIDX_W), .DEPTH(MSHRS), .NPUSH(1), .NPOP(FL_RD), .INIT_SEQ(1'b1)
   ) u_free (
     .clk_i, .rst_ni, .push_i(fill_v), .wr_i(fill_v), .wdata_i(r_idx),
-    .pop_n_i(FLP_W'(cm_n)), .rdata_o(fl_rd), .peek_o(), .count_o(fl_cnt));
+    .pop_n_i(FLP_W'(cm_n_q)), .rdata_o(fl_rd), .peek_o(), .count_o(fl_cnt));
 
+  // (from registers: the lookup's short-of-MSHRs test takes free_ok as a thermometer)
   always_comb begin
     for (int k = 0; k < NSUB; k++) begin
-      free_ok[k]  = 32'(fl_cnt) > 32'(cm_n) + k;
-      // (an entry past FL_RD is never free_ok: cm_n + k < fl_cnt <= MSHRS)
+      free_ok[k]  = 32'(fl_cnt) > 32'(cm_n_q) + k;
+      // (an entry past FL_RD is never free_ok: cm_n_q + k < fl_cnt <= MSHRS)
       free_idx[k] = '0;
-      for (int j = 0; j < FL_RD; j++) if (32'(cm_n) + k == j) free_idx[k] = fl_rd[j];
+      for (int j = 0; j < FL_RD; j++) if (32'(cm_n_q) + k == j) free_idx[k] = fl_rd[j];
     end
   end
 

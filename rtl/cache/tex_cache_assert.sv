@@ -80,6 +80,7 @@ module tex_cache_assert #(
   input logic                               cm_valid_q,
   input logic [NSUB-1:0]                    cm_alloc_q,
   input logic [NSUB-1:0][MIDX_W-1:0]        cm_mshr_q,
+  input logic [2:0]                         cm_n_q,       // the MSHRs it takes, registered
   input logic [NSUB-1:0][LA_W-1:0]          cm_la_q,
   input logic [NSUB-1:0][RC_W-1:0]          cm_inc_q,
   input logic [NSUB-1:0]                    cm_used,      // the committing pass's sub-caches
@@ -279,7 +280,8 @@ module tex_cache_assert #(
   // MSHR bookkeeping.
   logic [QCNT_W-1:0] busy_cnt;
   logic [2:0]        cm_n;  // MSHRs the pass in the commit register takes
-  logic              fl_head_ok;  // ... the free list's first cm_n entries, in sub-cache order
+  logic              fl_head_ok;  // ... the free list's first cm_n entries, in sub-cache order,
+                                  // and cm_n_q counts them
   always_comb begin
     busy_cnt = '0;
     for (int m = 0; m < MSHRS; m++) busy_cnt = busy_cnt + QCNT_W'(mshr_busy_q[m]);
@@ -293,6 +295,7 @@ module tex_cache_assert #(
         cm_n = cm_n + 3'd1;
       end
     end
+    if (cm_n_q != cm_n) fl_head_ok = 1'b0;
   end
 
   // The checks over every MSHR, slot and sub-cache, each folded into one flag (with the first
