@@ -9,8 +9,9 @@ saturated floors around 2^19 and the ties at 2^35; a few ulps either side of the
 half-integers near 0), then random words.  fp_unit.check_pipeline drops en_i at random and checks
 the latency, the hold while en_i = 0 and every result bit.  Built at tex_addr's LAT (ADD_LAT + 2:
 5 at the design's depths; make test-long adds 4, the paper's, and 3, the unit's least).
-test_frac_every_word runs a numpy mirror of the unit's cases over all 2^24 words against the
-model (the mirror's equality with the RTL is what the cocotb test checks on its vectors);
+test_frac_every_word (make test-long) runs a numpy mirror of the unit's cases over all 2^24 words
+against the model (the mirror's equality with the RTL is what the cocotb test checks on its
+vectors);
 test_frac_miter runs the SAT proof against the chain (and its mutant, which must fail);
 test_frac_rejects checks the elaboration error for LAT below 3.
 """
@@ -125,8 +126,10 @@ def mirror(a: np.ndarray) -> np.ndarray:
     return np.where(e == 127, np.where(fr != 0, NAN, a), y)
 
 
+@pytest.mark.skipif(not runner.long_stimulus(),
+                    reason="make test-long: make test proves the unit by the miter")
 def test_frac_every_word() -> None:
-    """The mirror against the model on all 2^24 words."""
+    """The mirror against the model on all 2^24 words (make test-long)."""
     a = np.arange(1 << 24, dtype=np.uint32)
     exp = expected(a).astype(np.int64)
     got = mirror(a)

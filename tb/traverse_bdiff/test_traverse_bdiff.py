@@ -9,8 +9,8 @@ the range ends), then random (b, u) pairs, u drawn with a uniform exponent.  The
 ports take different b for one u (the ring's entry and exit).  fp_unit.check_pipeline drops
 en_i at random and checks the latency (3), the hold while en_i = 0 and every result bit.
 test_bdiff_every_u (plain Python) runs a bit-exact mirror of the unit's algorithm over every u in
-the range for a set of b (the mirror's own equality with the RTL is what the cocotb test checks on
-its vectors).
+the range for a set of b (two in make test, eight in make test-long; the mirror's own equality
+with the RTL is what the cocotb test checks on its vectors).
 """
 from __future__ import annotations
 
@@ -119,13 +119,15 @@ def mirror(b: np.ndarray, u: np.ndarray) -> np.ndarray:
 
 
 def test_bdiff_every_u():
-    """The mirror against the model for every u in the range (and -0), a set of b."""
+    """The mirror against the model for every u in the range (and -0), a set of b: b = 0 (the
+    unit's special case) and one random b in make test; 1, 3, 2^15, 2^16 - 1 and two more random
+    ones too in make test-long."""
     seed = int(os.environ.get("SEED", random.randrange(1 << 31)))
     print(f"SEED={seed}")
     rng = np.random.default_rng(seed)
     u = np.concatenate([np.arange(0, U_MAX, dtype=np.int64), [NEG_ZERO]])
-    bs = [0, 1, 3, 1 << 15, (1 << 16) - 1] + \
-        [int(x) for x in rng.integers(0, 1 << 16, 3)]
+    bs = [0] + [int(x) for x in rng.integers(0, 1 << 16, 3)]
+    bs = bs + [1, 3, 1 << 15, (1 << 16) - 1] if runner.long_stimulus() else bs[:2]
     for b in bs:
         bb = np.full(u.shape, b, dtype=np.int64)
         got, exp = mirror(bb, u), expected(bb, u)
