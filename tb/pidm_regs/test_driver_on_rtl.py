@@ -17,8 +17,10 @@ from pathlib import Path
 import pytest
 
 from scripts.pack_frame import c_header
+from tb.common import vbuild
 from tb.common.runner import rtl_files
 from tb.harness import dm_pipeline, pidm_frame, pidm_regmap, pipeline_words, sv_params
+from tb.harness.build import verilator_env
 
 ROOT = Path(__file__).resolve().parents[2]
 HERE = Path(__file__).parent
@@ -96,17 +98,17 @@ def test_driver_on_rtl(tmp_path):
     srcs = pkgs + [ROOT / "rtl/top/pidm_regs.sv", ROOT / "rtl/top/pidm_cfg.sv",
                    ROOT / "rtl/top/pidm_cfg_assert.sv", HERE / "pidm_regs_tb.sv",
                    HERE / "driver_on_rtl.cpp"]
-    # --output-split 0: the model in one file (Vpidm_regs_tb__ALL.cpp), no precompiled headers.
-    # Split, the build made a 240 MB precompiled header twice (fast and slow code) for a handful
-    # of files: 70 s of process time where the one file takes 23 s.
+    # The model in one C++ file (Vpidm_regs_tb__ALL.cpp): no precompiled header
+    # (tb/common/vbuild.py says why).
     cmd = [verilator, "--cc", "--exe", "--build", "--assert", "-Wno-fatal", "-Wno-lint",
            "-Wno-style", "-Wno-MULTIDRIVEN", "--top-module", "pidm_regs_tb",
            "-Mdir", str(tmp_path / "obj"), "-o", "driver_on_rtl", "--build-jobs", "1",
-           "--output-split", "0",
-           "-CFLAGS", f"-std=c++20 -O1 -I{ROOT / 'sw'} -I{gen}",
+           *vbuild.ONE_FILE,
+           "-CFLAGS", f"{vbuild.CXX_STD} -O1 -I{ROOT / 'sw'} -I{gen}",
            "-MAKEFLAGS", "OPT_FAST=-O1 OPT_SLOW=-O0",
            "-LDFLAGS", str(obj), *map(str, srcs)]
-    p = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp_path)
+    # verilator_env: Verilator's runtime library from the object cache (tb/common/objcache.py)
+    p = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp_path, env=verilator_env())
     assert p.returncode == 0, (p.stdout + p.stderr)[-4000:]
     r = subprocess.run([str(tmp_path / "obj" / "driver_on_rtl")], capture_output=True, text=True,
                        timeout=120)
