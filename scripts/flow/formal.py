@@ -226,9 +226,15 @@ def run_task(root: Path, out: Path, t: Task, env: dict[str, str]) -> Result:
             else "ERROR"
         if rc != 0 and status == "PASS":
             status = "ERROR"
-    # design_smt2.smt2, or design_smt2_stbv.smt2 for an engine with --stbv
+    # design_smt2.smt2, or design_smt2_stbv.smt2 for an engine with --stbv (a task with both
+    # must hand the solvers the same properties in each)
     models = sorted((workdir / "model").glob("design_smt2*.smt2"))
-    got = model_properties(models[0] if models else workdir / "model" / "design_smt2.smt2")
+    listed = [model_properties(m) for m in models] or \
+        [model_properties(workdir / "model" / "design_smt2.smt2")]
+    got = listed[0]
+    if any(x != got for x in listed[1:]):
+        log += "\nthe models " + ", ".join(m.name for m in models) + " list different properties"
+        status = "ERROR"
     r = Result(t.sby, t.name, t.mode, status, secs, cpu, len(got["assert"]), len(got["cover"]),
                len(set(re.findall(r"Reached cover statement .* at \S+: (\S+)", log))), rel)
     if status == "PASS" and t.mode == "cover":
