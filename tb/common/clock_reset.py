@@ -14,10 +14,20 @@ async def start_and_reset(dut, zero: Iterable[str], cycles: int = 2, period_ns: 
     ``zero`` to 0 for ``cycles`` rising edges, and release ``rst_ni`` after the next falling edge
     (so the first clock after the reset is the next rising edge)."""
     cocotb.start_soon(Clock(dut.clk_i, period_ns, unit="ns").start())
-    dut.rst_ni.value = 0
+    await reset(dut, zero, cycles)
+
+
+async def reset(unit, zero: Iterable[str], cycles: int = 2, clk=None) -> None:
+    """Drive ``unit.rst_ni`` low and each input of ``unit`` named in ``zero`` to 0 for ``cycles``
+    rising edges of ``clk`` (default ``unit.clk_i``, which must be running), and release
+    ``rst_ni`` after the next falling edge: :func:`start_and_reset` without starting the clock,
+    for one of several units in one build that share a clock (e.g. ``dut.g_case[i]`` of a
+    testbench wrapper, each with its own reset)."""
+    clk = unit.clk_i if clk is None else clk
+    unit.rst_ni.value = 0
     for name in zero:
-        getattr(dut, name).value = 0
+        getattr(unit, name).value = 0
     for _ in range(cycles):
-        await RisingEdge(dut.clk_i)
-    await FallingEdge(dut.clk_i)
-    dut.rst_ni.value = 1
+        await RisingEdge(clk)
+    await FallingEdge(clk)
+    unit.rst_ni.value = 1

@@ -1,6 +1,11 @@
 # SPDX-License-Identifier: Apache-2.0
 """skid_buffer (the register slice in front of the texture cache) against a model, both modes.
 
+Both modes (REG_OUT 0 and 1) are built once, side by side, in the wrapper ``skid_buffer_tb``
+(one instance each, own ports and reset, a shared clock) and run at once in one simulation, each
+with its own random stream from the printed seed, its own model and checks; a failure names the
+mode.  What each instance goes through:
+
 The producer is a queue, as the request FIFOs in front of the slice in dm_pipeline: item k
 arrives at a random clock (bursts and gaps) and the producer offers the queue's head until the
 slice takes it.  The consumer's ready_i is random.  Every clock the test compares valid_o, data_o
@@ -14,18 +19,19 @@ The bound assertions (rtl/common/skid_buffer_assert.sv) are on.
 """
 from __future__ import annotations
 
-import os
 from collections import deque
 from pathlib import Path
 
 import cocotb
 import numpy as np
-import pytest
+from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
-from tb.common import clock_reset, fp_unit, report, runner
+from tb.common import cases, clock_reset, fp_unit, report, runner
 
 W = 16
+#: REG_OUT of the instances g_case[0], g_case[1] of skid_buffer_tb (the wrapper's table).
+REG_OUTS = [0, 1]
 
 
 class SliceModel:
@@ -65,9 +71,20 @@ class SliceModel:
 
 @cocotb.test()
 async def skid_buffer_random(dut):
-    rng = np.random.default_rng(fp_unit.seed())
-    reg_out = bool(int(os.environ["REG_OUT"]))
-    await clock_reset.start_and_reset(dut, ["valid_i", "ready_i", "data_i"], cycles=3)
+    """Both instances of skid_buffer_tb at once (:func:`check_slice` each)."""
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    rngs = cases.streams(len(REG_OUTS))
+    await cases.check_all([(f"skid_buffer REG_OUT {r}", check_slice(dut, i, r, rngs[i]))
+                           for i, r in enumerate(REG_OUTS)])
+
+
+async def check_slice(dut, i: int, reg_out: int, rng: np.random.Generator) -> list[str]:
+    """Drive and check ``dut.g_case[i]`` (skid_buffer with REG_OUT ``reg_out``) as the module
+    docstring says; return the failure messages (none: it passed)."""
+    inst = dut.g_case[i]
+    if mism := cases.param_mismatches(inst, {"REG_OUT": reg_out}):
+        return mism
+    await clock_reset.reset(inst, ["valid_i", "ready_i", "data_i"], cycles=3, clk=dut.clk_i)
     n = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE)
     # phase per clock: 0 random, 1 full rate, 2 consumer stalled, 3 reset (one clock)
     phase = np.zeros(n, dtype=np.int64)
@@ -91,26 +108,26 @@ async def skid_buffer_random(dut):
         if len(msgs) < 10:
             msgs.append(text)
 
-    model = SliceModel(reg_out)
+    model = SliceModel(bool(reg_out))
     for k in range(n):
         if phase[k] == 3:       # reset: the slice and both queues are emptied
-            dut.rst_ni.value = 0
-            dut.valid_i.value = 0
-            dut.ready_i.value = 0
+            inst.rst_ni.value = 0
+            inst.valid_i.value = 0
+            inst.ready_i.value = 0
             src.clear()
             ref.clear()
             model.reset()
             await RisingEdge(dut.clk_i)
             await FallingEdge(dut.clk_i)
-            dut.rst_ni.value = 1
+            inst.rst_ni.value = 1
             seq_out = seq_in
             continue
-        dut.valid_i.value = int(bool(src))
-        dut.data_i.value = src[0] if src else 0
-        dut.ready_i.value = int(ready[k])
+        inst.valid_i.value = int(bool(src))
+        inst.data_i.value = src[0] if src else 0
+        inst.ready_i.value = int(ready[k])
         await cocotb.triggers.Timer(1, unit="ns")
-        got = (int(dut.valid_o.value), int(dut.data_o.value) if int(dut.valid_o.value) else None,
-               int(dut.ready_o.value))
+        valid_o = int(inst.valid_o.value)
+        got = (valid_o, int(inst.data_o.value) if valid_o else None, int(inst.ready_o.value))
         exp = model.outputs(bool(src), src[0] if src else 0)
         if got != exp:
             fail(f"clock {k} (phase {phase[k]}): (valid_o, data_o, ready_o) = {got}, "
@@ -139,26 +156,26 @@ async def skid_buffer_random(dut):
         await RisingEdge(dut.clk_i)
         await FallingEdge(dut.clk_i)
     # drain
-    dut.ready_i.value = 1
+    inst.ready_i.value = 1
     for _ in range(n // 4):
         if not src and not model.full and not model.out_v:
             break
-        dut.valid_i.value = int(bool(src))
-        dut.data_i.value = src[0] if src else 0
+        inst.valid_i.value = int(bool(src))
+        inst.data_i.value = src[0] if src else 0
         await cocotb.triggers.Timer(1, unit="ns")
-        if int(dut.valid_o.value):
-            if int(dut.data_o.value) != seq_out & 0xFFFF:
-                fail(f"drain: item {int(dut.data_o.value)}, expected {seq_out & 0xFFFF}")
+        if int(inst.valid_o.value):
+            if int(inst.data_o.value) != seq_out & 0xFFFF:
+                fail(f"drain: item {int(inst.data_o.value)}, expected {seq_out & 0xFFFF}")
             seq_out += 1
-        took_in = bool(src) and bool(int(dut.ready_o.value))
+        took_in = bool(src) and bool(int(inst.ready_o.value))
         model.clock(bool(src), src[0] if src else 0, True)
         if took_in:
             src.popleft()
         await RisingEdge(dut.clk_i)
         await FallingEdge(dut.clk_i)
-    dut.valid_i.value = 0
+    inst.valid_i.value = 0
     await cocotb.triggers.Timer(1, unit="ns")
-    if int(dut.valid_o.value) or not int(dut.ready_o.value):
+    if int(inst.valid_o.value) or not int(inst.ready_o.value):
         fail("not empty after draining")
     if seq_out != seq_in:
         fail(f"{seq_in} items in, {seq_out} out")
@@ -167,15 +184,15 @@ async def skid_buffer_random(dut):
         fail(f"full rate: {given_full} items in {n_full} clocks")
     if full_clocks == 0:
         fail("the slice never filled")
-    report.record(dut._name, f"RTL vs the slice's model (REG_OUT {int(reg_out)})", n, bad)
+    report.record("skid_buffer", f"RTL vs the slice's model (REG_OUT {reg_out})", n, bad)
     dut._log.info("VECTORS skid_buffer REG_OUT=%d: %d clocks, %d items, %d clocks with the skid "
                   "register full, %d items in the %d full-rate clocks, %d mismatches",
-                  int(reg_out), n, seq_in, full_clocks, given_full, n_full, bad)
-    if msgs:
-        raise AssertionError("\n".join(msgs))
+                  reg_out, n, seq_in, full_clocks, given_full, n_full, bad)
+    return msgs
 
 
-@pytest.mark.parametrize("reg_out", [0, 1])
-def test_skid_buffer(reg_out: int):
-    runner.run("skid_buffer", "test_skid_buffer", Path(__file__).parent,
-               parameters={"W": W, "REG_OUT": reg_out}, extra_env={"REG_OUT": str(reg_out)})
+def test_skid_buffer() -> None:
+    """Build skid_buffer_tb (both modes) once and run :func:`skid_buffer_random`."""
+    runner.run("skid_buffer_tb", "test_skid_buffer", Path(__file__).parent,
+               parameters={"W": W}, rtl_top="skid_buffer",
+               extra_sources=[str(Path(__file__).parent / "skid_buffer_tb.sv")])
