@@ -9,27 +9,44 @@ ahead: its read register must keep the word through a stall).  Mid-run the reset
 for a few clocks with the enable random: the line needs N enabled edges again afterwards and is
 checked from then on.  Built as a RAM line (N = 2, the shortest; 16, one LUT RAM deep; 67, the
 shade unit's longest colour lane) and as registers (N = 5 below RAM_MIN; 67 with RAM_MIN = 0).
+The five are built once, side by side, in the wrapper ``pipe_delay_tb`` (one instance each, own
+ports and reset, a shared clock) and run at once in one simulation, each with its own random
+stream from the printed seed and its own checks; a failure names the configuration.
 """
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import cocotb
 import numpy as np
-import pytest
+from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
-from tb.common import clock_reset, fp_unit, report, runner
+from tb.common import cases, clock_reset, report, runner
 
 W = 16
+#: (N, RAM_MIN) of the instances g_case[0 ..] of pipe_delay_tb (the wrapper's table).
+CASES = [(2, 2), (16, 8), (67, 8), (5, 8), (67, 0)]
 
 
 @cocotb.test()
 async def pipe_delay_random(dut):
-    rng = np.random.default_rng(fp_unit.seed())
-    n_del = int(os.environ["N"])
-    await clock_reset.start_and_reset(dut, ["en_i", "d_i"])
+    """Every instance of pipe_delay_tb at once (:func:`check_line` each)."""
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    rngs = cases.streams(len(CASES))
+    await cases.check_all([(f"pipe_delay N {n}, RAM_MIN {ram_min}",
+                            check_line(dut, i, n, ram_min, rngs[i]))
+                           for i, (n, ram_min) in enumerate(CASES)])
+
+
+async def check_line(dut, i: int, n_del: int, ram_min: int,
+                     rng: np.random.Generator) -> list[str]:
+    """Drive and check ``dut.g_case[i]`` (pipe_delay with N ``n_del``, RAM_MIN ``ram_min``) as
+    the module docstring says; return the failure messages (none: it passed)."""
+    inst = dut.g_case[i]
+    if mism := cases.param_mismatches(inst, {"N": n_del, "RAM_MIN": ram_min}):
+        return mism
+    await clock_reset.reset(inst, ["en_i", "d_i"], clk=dut.clk_i)
     clocks = 20000
     p_en = rng.choice([0.05, 0.3, 0.7, 1.0], clocks // 64 + 1).repeat(64)[:clocks]
     en = rng.random(clocks) < p_en
@@ -41,16 +58,16 @@ async def pipe_delay_random(dut):
     last = None
     for k in range(clocks):
         rst = reset_at <= k < reset_at + 3
-        dut.rst_ni.value = int(not rst)
-        dut.en_i.value = int(en[k])
-        dut.d_i.value = int(data[k])
+        inst.rst_ni.value = int(not rst)
+        inst.en_i.value = int(en[k])
+        inst.d_i.value = int(data[k])
         await RisingEdge(dut.clk_i)
         await FallingEdge(dut.clk_i)
         if rst:
             hist = []        # the line's contents before the reset are not checked
             last = None
             continue
-        got = int(dut.q_o.value)
+        got = int(inst.q_o.value)
         if en[k]:
             hist.append(int(data[k]))
             if len(hist) >= n_del:
@@ -67,17 +84,18 @@ async def pipe_delay_random(dut):
                 if len(msgs) < 10:
                     msgs.append(f"clock {k} (stalled): q_o {got:#x}, held {last:#x}")
         last = got
-    report.record(dut._name, f"RTL vs delay model (N {n_del}, RAM_MIN {os.environ['RAM_MIN']})",
+    report.record("pipe_delay", f"RTL vs delay model (N {n_del}, RAM_MIN {ram_min})",
                   checked + held, bad)
     dut._log.info("VECTORS pipe_delay N=%d: %d enabled clocks checked, %d stalled clocks held, "
                   "%d mismatches", n_del, checked, held, bad)
-    assert checked > clocks // 4 and held > clocks // 8, (checked, held)
-    if msgs:
-        raise AssertionError("\n".join(msgs))
+    if not (checked > clocks // 4 and held > clocks // 8):
+        msgs.append(f"too few clocks checked: {checked} enabled (more than {clocks // 4} "
+                    f"expected), {held} stalled (more than {clocks // 8})")
+    return msgs
 
 
-@pytest.mark.parametrize("n,ram_min", [(2, 2), (16, 8), (67, 8), (5, 8), (67, 0)])
-def test_pipe_delay(n: int, ram_min: int) -> None:
-    runner.run("pipe_delay", "test_pipe_delay", Path(__file__).parent,
-               parameters={"W": W, "N": n, "RAM_MIN": ram_min},
-               extra_env={"N": str(n), "RAM_MIN": str(ram_min)})
+def test_pipe_delay() -> None:
+    """Build pipe_delay_tb (every configuration of CASES) once and run :func:`pipe_delay_random`."""
+    here = Path(__file__).parent
+    runner.run("pipe_delay_tb", "test_pipe_delay", here, parameters={"W": W},
+               rtl_top="pipe_delay", extra_sources=[str(here / "pipe_delay_tb.sv")])
