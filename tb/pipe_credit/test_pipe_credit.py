@@ -9,20 +9,28 @@ with the model.  Each item carries a sequence number: it must come out once, in 
 assertions bound into the FIFO, the counter and the delay line (rtl/**/*_assert.sv: overflow,
 underflow, admission without room, the limit, data order) are on.  Phases:
 random, full throughput (always valid, always ready: the model gives the rate), and a stalled
-output (the credit must stop admission with the FIFO exactly full, never over).
+output (the credit must stop admission with the FIFO exactly full, never over).  The three
+(DEPTH, LAT) of CASES are built once, side by side, in ``pipe_credit_tb`` (one arrangement each,
+own ports and reset, a shared clock) and run at once in one simulation, each with its own random
+stream from the printed seed, its own model and checks; a failure names the configuration.
 """
 from __future__ import annotations
 
-import os
 from collections import deque
 from pathlib import Path
 
 import cocotb
 import numpy as np
-import pytest
+from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
-from tb.common import clock_reset, fp_unit, report, runner
+from tb.common import cases, clock_reset, fp_unit, report, runner
+
+#: (DEPTH, LAT) of the arrangements g_case[0 ..] of pipe_credit_tb (the wrapper's table):
+#: dm_pipeline's FIFO #0 depth (F0_DEPTH = 16) behind a shorter latency; a FIFO shallower than
+#: the latency (the credit throttles, as for FIFO #0 behind view_calc, pipe_pkg::VIEW_CALC_LAT =
+#: 21); the smallest case.
+CASES = [(16, 14), (4, 11), (2, 1)]
 
 
 class CreditModel:
@@ -55,9 +63,22 @@ class CreditModel:
 
 @cocotb.test()
 async def pipe_credit_random(dut):
-    rng = np.random.default_rng(fp_unit.seed())
-    depth, lat = int(os.environ["DEPTH"]), int(os.environ["LAT"])
-    await clock_reset.start_and_reset(dut, ["in_valid_i", "out_ready_i", "in_data_i"], cycles=3)
+    """Every arrangement of pipe_credit_tb at once (:func:`check_credit` each)."""
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    rngs = cases.streams(len(CASES))
+    await cases.check_all([(f"pipe_credit DEPTH {depth}, LAT {lat}",
+                            check_credit(dut, i, depth, lat, rngs[i]))
+                           for i, (depth, lat) in enumerate(CASES)])
+
+
+async def check_credit(dut, i: int, depth: int, lat: int, rng: np.random.Generator) -> list[str]:
+    """Drive and check ``dut.g_case[i]`` (the arrangement with DEPTH ``depth``, LAT ``lat``) as
+    the module docstring says; return the failure messages (none: it passed)."""
+    inst = dut.g_case[i]
+    if mism := cases.param_mismatches(inst, {"DEPTH": depth, "LAT": lat}):
+        return mism
+    await clock_reset.reset(inst, ["in_valid_i", "out_ready_i", "in_data_i"], cycles=3,
+                            clk=dut.clk_i)
     model = CreditModel(depth, lat)
     n = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE)
     # phase per clock: 0 random, 1 always valid + ready (throughput), 2 output stalled
@@ -74,14 +95,14 @@ async def pipe_credit_random(dut):
     taken_full = 0
     stalled_full = True
     for k in range(n):
-        dut.in_valid_i.value = int(valid[k])
-        dut.in_data_i.value = seq_in & 0xFFFF
-        dut.out_ready_i.value = int(ready[k])
+        inst.in_valid_i.value = int(valid[k])
+        inst.in_data_i.value = seq_in & 0xFFFF
+        inst.out_ready_i.value = int(ready[k])
         exp = model.outputs()
-        got = {name: int(getattr(dut, name).value) for name in exp}
+        got = {name: int(getattr(inst, name).value) for name in exp}
         if exp["out_valid_o"]:
             exp["out_data_o"] = model.fifo[0] & 0xFFFF
-            got["out_data_o"] = int(dut.out_data_o.value)
+            got["out_data_o"] = int(inst.out_data_o.value)
         if got != exp:
             bad += 1
             if len(msgs) < 10:
@@ -100,15 +121,15 @@ async def pipe_credit_random(dut):
         await RisingEdge(dut.clk_i)
         await FallingEdge(dut.clk_i)
     # drain
-    dut.in_valid_i.value = 0
-    dut.out_ready_i.value = 1
+    inst.in_valid_i.value = 0
+    inst.out_ready_i.value = 1
     for _ in range(lat + depth + 4):
         _, out = model.clock(0, 0, 1)
         if out is not None:
             seq_out += 1
         await RisingEdge(dut.clk_i)
         await FallingEdge(dut.clk_i)
-    if int(dut.out_valid_o.value) or int(dut.count_o.value):
+    if int(inst.out_valid_o.value) or int(inst.count_o.value):
         bad += 1
         msgs.append("not empty after draining")
     if seq_out != seq_in:
@@ -116,22 +137,19 @@ async def pipe_credit_random(dut):
         msgs.append(f"{seq_in} items in, {seq_out} out")
     if not stalled_full:
         bad += 1
-        msgs.append("with the output stalled the FIFO did not end exactly full with nothing in flight")
+        msgs.append("with the output stalled the FIFO did not end exactly full with nothing in "
+                    "flight")
     rate = taken_full / max(1, int(np.count_nonzero(phase == 1)))
-    report.record(dut._name, f"RTL vs credit model (DEPTH {depth}, LAT {lat})", n, bad)
+    report.record("pipe_credit_tb", f"RTL vs credit model (DEPTH {depth}, LAT {lat})", n, bad)
     dut._log.info("VECTORS pipe_credit DEPTH=%d LAT=%d: %d clocks, %d items, %d mismatches; "
                   "admission rate with output always ready %.3f (expected min(1, DEPTH/(LAT+1)) "
                   "= %.3f)", depth, lat, n, seq_in, bad, rate, min(1.0, depth / (lat + 1)))
-    if msgs:
-        raise AssertionError("\n".join(msgs))
+    return msgs
 
 
-# (DEPTH, LAT): dm_pipeline's FIFO #0 depth (F0_DEPTH = 16) behind a shorter latency; a FIFO
-# shallower than the latency (the credit throttles, as for FIFO #0 behind view_calc,
-# pipe_pkg::VIEW_CALC_LAT = 21); the smallest case.
-@pytest.mark.parametrize("depth,lat", [(16, 14), (4, 11), (2, 1)])
-def test_pipe_credit(depth: int, lat: int):
-    runner.run("pipe_credit_tb", "test_pipe_credit", Path(__file__).parent,
-               parameters={"DEPTH": depth, "LAT": lat}, rtl_top="pipe_credit",
-               extra_sources=[str(Path(__file__).parent / "pipe_credit_tb.sv")],
-               extra_env={"DEPTH": str(depth), "LAT": str(lat), "VECTORS": "20000"})
+def test_pipe_credit() -> None:
+    """Build pipe_credit_tb (every arrangement of CASES) once and run :func:`pipe_credit_random`
+    (20,000 clocks per arrangement)."""
+    here = Path(__file__).parent
+    runner.run("pipe_credit_tb", "test_pipe_credit", here, rtl_top="pipe_credit",
+               extra_sources=[str(here / "pipe_credit_tb.sv")], extra_env={"VECTORS": "20000"})
