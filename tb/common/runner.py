@@ -101,6 +101,13 @@ def coverage_file(name: str, test_module: str, testcase: str | None,
     return out / f"{name}{'-' + testcase if testcase else ''}-{tag}.dat"
 
 
+def build_path(name: str) -> Path:
+    """The directory of build ``name``: ``build/sim/<name>``, with ``-waves`` (``WAVES=1``) or
+    ``-cov`` (:func:`coverage_enabled`) appended."""
+    waves = os.environ.get("WAVES", "0") == "1"
+    return BUILD / (name + ("-waves" if waves else "-cov" if coverage_enabled() else ""))
+
+
 def verilator_args(waves: bool, coverage: bool = False, opt: str = "-O1") -> list[str]:
     # The model in one C++ file: no precompiled header (tb/common/vbuild.py says why).
     args = ["--assert", "-Wno-fatal", "-O3", "--x-assign", "unique", "--x-initial", "unique",
@@ -137,7 +144,7 @@ def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, obj
     name = name or top + "".join(f"-{k}{v}" for k, v in sorted(parameters.items()))
     waves = os.environ.get("WAVES", "0") == "1"
     cov = coverage_enabled()
-    build_dir = BUILD / (name + ("-waves" if waves else "-cov" if cov else ""))
+    build_dir = build_path(name)
     # Verilator's makefiles prefix every compile with $(OBJCACHE): the runtime and cocotb's main
     # are compiled once, not in every build (set OBJCACHE= empty to compile everything again).
     os.environ.setdefault("OBJCACHE", objcache.COMMAND)
