@@ -2,13 +2,15 @@
 """The cocotb tests shared by the approximate one-operand units (f24_rsqrt, f24_log2).
 
 Each unit is checked against its bit-exact model on every fraction at several exponents, on the
-special values and on random patterns; ``unary_tests`` builds the three cocotb tests for a unit.
-The latency under test is the environment's APPROX_LAT (the unit's LAT parameter; default 2).
+special values and on random patterns; ``unary_tests`` builds the three cocotb tests for a unit
+and ``run`` its build: the unit at every latency of :data:`LATS` (its LAT parameter; 2, the
+default, built with no parameter), all in one build (``fp_unit.run_lats``: one instance per LAT on
+the same stimulus and en_i), each instance checked at its own latency.
 """
 from __future__ import annotations
 
-import os
-from typing import Callable
+from pathlib import Path
+from typing import Callable, Sequence
 
 import cocotb
 import numpy as np
@@ -18,6 +20,8 @@ from tb.common import fp_unit, runner
 
 #: The latencies the units are built and checked at (their LAT parameter; 2 is the default).
 LATS = (2, 3)
+#: The units' default latency.
+DEFAULT_LAT = 2
 #: Biased exponents swept over all 2^16 fractions under make test-long (TB_LONG=1), at every
 #: latency: both parities (both tables) and the range ends.
 EXPONENTS = (1, 2, 62, 63, 64, 65, 125, 126)
@@ -25,15 +29,18 @@ EXPONENTS = (1, 2, 62, 63, 64, 65, 125, 126)
 #: exponents around 1.0 (half of EXPONENTS: the other four only under make test-long).
 EXPONENTS_DEFAULT_LAT = (1, 63, 64, 126)
 #: The sweep at the other latencies in make test (the same tables and datapath, registers placed
-#: elsewhere): one exponent of each parity.
+#: elsewhere): one exponent of each parity.  A build holding the default latency too checks every
+#: instance on the default's sweep (one stream for all).
 EXPONENTS_OTHER_LAT = (63, 64)
 
 
-def exponents(latency: int) -> tuple[int, ...]:
-    """The exponents whose every fraction is checked at ``latency``."""
+def exponents(latencies: Sequence[int]) -> tuple[int, ...]:
+    """The exponents whose every fraction is checked in a build of ``latencies``: each one's
+    sweep (all of them under make test-long), merged."""
     if runner.long_stimulus():
         return EXPONENTS
-    return EXPONENTS_DEFAULT_LAT if latency == 2 else EXPONENTS_OTHER_LAT
+    return tuple(sorted({e for lat in latencies
+                         for e in (EXPONENTS_DEFAULT_LAT if lat == 2 else EXPONENTS_OTHER_LAT)}))
 
 
 def every_fraction(exps: tuple[int, ...]) -> np.ndarray:
@@ -54,13 +61,14 @@ def unary_tests(unit: str, model: Callable[[np.ndarray], np.ndarray]) -> tuple:
     prefix = unit.removeprefix("f24_")
 
     async def run(dut, what: str, a: np.ndarray, rng: np.random.Generator) -> None:
-        latency = int(os.environ.get("APPROX_LAT", "2"))
-        n = await fp_unit.check_pipeline(dut, latency, {"a_i": a}, {"y_o": model(a)}, rng)
-        dut._log.info("VECTORS %s LAT=%d %s: %d, 0 mismatches", unit, latency, what, n)
+        lanes = fp_unit.lanes(dut)
+        n = await fp_unit.check_pipeline(dut, lanes, {"a_i": a}, {"y_o": model(a)}, rng)
+        dut._log.info("VECTORS %s LAT=%s %s: %d each, 0 mismatches", unit,
+                      fp_unit.lat_list(lanes), what, n)
 
     async def every_fraction_test(dut):
         rng = np.random.default_rng(fp_unit.seed())
-        exps = exponents(int(os.environ.get("APPROX_LAT", "2")))
+        exps = exponents([lane.latency for lane in fp_unit.lanes(dut)])
         await run(dut, f"every fraction at biased exponents {exps}", every_fraction(exps), rng)
 
     async def specials_test(dut):
@@ -80,3 +88,9 @@ def unary_tests(unit: str, model: Callable[[np.ndarray], np.ndarray]) -> tuple:
         fn.__name__ = fn.__qualname__ = f"{prefix}_{name}"
         tests.append(cocotb.test()(fn))
     return tuple(tests)
+
+
+def run(unit: str, test_dir: Path) -> None:
+    """Build ``unit`` at every latency of :data:`LATS` and run its cocotb tests
+    (``test_<unit>`` in ``test_dir``)."""
+    fp_unit.run_lats(unit, f"test_{unit}", test_dir, LATS, DEFAULT_LAT)

@@ -1,16 +1,15 @@
 # SPDX-License-Identifier: Apache-2.0
 """f24_add against model.f24.add: random patterns, values near 1.0 and the directed set.
 
-Run at every latency the unit accepts (LAT 2, the default, built with no parameter; 3; 4), each
-with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
-hold while en_i = 0 and every result bit.  test_f24_add_lats checks that exactly these LATs
-elaborate.
+Run at every latency the unit accepts (LAT 2, the default, built with no parameter; 3; 4), all
+in one build (fp_unit.run_lats: one instance per LAT on the same stimulus and en_i);
+fp_unit.check_pipeline drops en_i at random and checks each instance's latency, its hold while
+en_i = 0 and every result bit.  test_f24_add_lats checks that exactly these LATs elaborate.
 """
 from pathlib import Path
 
 import cocotb
 import numpy as np
-import pytest
 
 from model import f24, f24_vectors as vec
 from tb.common import fp_unit
@@ -43,17 +42,17 @@ async def add_random_and_directed(dut):
     da, db = np.concatenate([da, ea, eb]), np.concatenate([db, eb, ea])
     ra, rb = vec.random_binary(rng, fp_unit.vectors())
     a, b = np.concatenate([da, ra]), np.concatenate([db, rb])
-    with np.errstate(invalid="ignore"):  # Inf - Inf in the float64 model: NaN is the expected result
+    # Inf - Inf in the float64 model: NaN is the expected result
+    with np.errstate(invalid="ignore"):
         y = f24.add(a, b)
-    lat = fp_unit.latency(DEFAULT_LAT)
-    n = await fp_unit.check_pipeline(dut, lat, {"a_i": a, "b_i": b}, {"y_o": y}, rng)
-    dut._log.info("VECTORS f24_add LAT=%d: %d (%d directed, %d random), 0 mismatches", lat, n,
-                  len(da), len(ra))
+    lanes = fp_unit.lanes(dut)
+    n = await fp_unit.check_pipeline(dut, lanes, {"a_i": a, "b_i": b}, {"y_o": y}, rng)
+    dut._log.info("VECTORS f24_add LAT=%s: %d each (%d directed, %d random), 0 mismatches",
+                  fp_unit.lat_list(lanes), n, len(da), len(ra))
 
 
-@pytest.mark.parametrize("lat", LATS)
-def test_f24_add(lat: int):
-    fp_unit.run_lat("f24_add", "test_f24_add", Path(__file__).parent, lat, DEFAULT_LAT)
+def test_f24_add():
+    fp_unit.run_lats("f24_add", "test_f24_add", Path(__file__).parent, LATS, DEFAULT_LAT)
 
 
 def test_f24_add_lats():

@@ -7,8 +7,10 @@ with fraction bits; every exponent, both signs, with the fractions 0, 1, 0x8000,
 and random ones: the negative values below 1/2 whose 1 - |a| rounds, the integers, the
 saturated floors around 2^19 and the ties at 2^35; a few ulps either side of the integers and
 half-integers near 0), then random words.  fp_unit.check_pipeline drops en_i at random and checks
-the latency, the hold while en_i = 0 and every result bit.  Built at tex_addr's LAT (ADD_LAT + 2:
-5 at the design's depths; make test-long adds 4, the paper's, and 3, the unit's least).
+each instance's latency, its hold while en_i = 0 and every result bit.  Built at tex_addr's LAT
+(ADD_LAT + 2: 5 at the design's depths; make test-long adds 4, the paper's, and 3, the unit's
+least and default), all LATs in one build (fp_unit.run_lats: one instance per LAT on the same
+stimulus and en_i).
 test_frac_every_word (make test-long) runs a numpy mirror of the unit's cases over all 2^24 words
 against the model (the mirror's equality with the RTL is what the cocotb test checks on its
 vectors);
@@ -34,6 +36,8 @@ NAN = 0x7F8000
 #: LATs: tex_addr's at the design's depths (make test), then the others of make test-long.
 USED = [5]
 LONG = [4, 3]
+#: The unit's default latency (its least).
+DEFAULT_LAT = 3
 
 
 def expected(a: npt.ArrayLike) -> np.ndarray:
@@ -63,25 +67,18 @@ async def frac_random_and_directed(dut):
     d = directed(rng)
     r = vec.random_unary(rng, fp_unit.vectors())
     a = np.concatenate([d, r])
-    lat = fp_unit.latency(5)
+    lanes = fp_unit.lanes(dut)
     n = await fp_unit.check_pipeline(
-        dut, lat, {"a_i": a}, {"y_o": expected(a)}, rng,
+        dut, lanes, {"a_i": a}, {"y_o": expected(a)}, rng,
         describe=lambda i: f"a=0x{int(a[i]):06x}",
         label="RTL vs model sub(a, from_int(to_index(a)))")
-    dut._log.info("VECTORS f24_frac LAT=%d: %d (%d directed, %d random), 0 mismatches", lat, n,
-                  len(d), len(r))
+    dut._log.info("VECTORS f24_frac LAT=%s: %d each (%d directed, %d random), 0 mismatches",
+                  fp_unit.lat_list(lanes), n, len(d), len(r))
 
 
-def _case(lat: int, long_only: bool):
-    return pytest.param(lat, id=f"lat{lat}", marks=[pytest.mark.skipif(
-        not runner.long_stimulus(), reason="not a LAT the design builds: make test-long "
-        "(TB_LONG=1)")] if long_only else [])
-
-
-@pytest.mark.parametrize("lat", [_case(lat, False) for lat in USED]
-                         + [_case(lat, True) for lat in LONG])
-def test_f24_frac(lat: int) -> None:
-    fp_unit.run_lat("f24_frac", "test_f24_frac", HERE, lat, 2)
+def test_f24_frac() -> None:
+    fp_unit.run_lats("f24_frac", "test_f24_frac", HERE, fp_unit.lat_set(USED + LONG, USED),
+                     DEFAULT_LAT)
 
 
 def _norm(v: np.ndarray, e: np.ndarray) -> np.ndarray:

@@ -6,9 +6,10 @@ The DUT's width W is read from the width of ``k_i``.  Inputs are driven and repo
 two's complement patterns.  W <= 16 always runs the whole range; the W = 20 build runs 100k random
 values by default (the whole 2^20 range takes about 90 s of simulation) and the whole range with
 ``FROM_INT_EXHAUSTIVE=1``.
-Run at every latency the unit accepts (LAT 1, the default, built with no parameter, and 2), each
-with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
-hold while en_i = 0 and every result bit.  test_f24_from_int_lats checks that exactly these LATs
+Run at every latency the unit accepts (LAT 1, the default, built with no parameter, and 2), all in
+one build (fp_unit.run_lats: one instance per LAT on the same stimulus and en_i);
+fp_unit.check_pipeline drops en_i at random and checks each instance's latency, its hold
+while en_i = 0 and every result bit.  test_f24_from_int_lats checks that exactly these LATs
 elaborate.
 make test runs USED_LATS only (the design's), make test-long every one.
 """
@@ -17,7 +18,6 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
-import pytest
 
 from model import f24
 from tb.common import fp_unit
@@ -61,24 +61,22 @@ async def from_int_boundary_random_exhaustive(dut):
         full = rng.integers(lo, hi, max(fp_unit.vectors(), 100_000), endpoint=True, dtype=np.int64)
     k = np.concatenate([bnd, full])
     mask = (1 << w) - 1
-    lat = fp_unit.latency(DEFAULT_LAT)
-    n = await fp_unit.check_pipeline(dut, lat, {"k_i": k & mask}, {"y_o": f24.from_int(k, w)},
+    lanes = fp_unit.lanes(dut)
+    n = await fp_unit.check_pipeline(dut, lanes, {"k_i": k & mask}, {"y_o": f24.from_int(k, w)},
                                      rng, describe=lambda i: f"k_i={int(k[i])}")
-    dut._log.info("VECTORS f24_from_int W=%d LAT=%d: %d (%d boundary, %d %s), 0 mismatches", w,
-                  lat, n, len(bnd), len(full),
+    dut._log.info("VECTORS f24_from_int W=%d LAT=%s: %d each (%d boundary, %d %s), "
+                  "0 mismatches", w, fp_unit.lat_list(lanes), n, len(bnd), len(full),
                   "= whole range, shuffled" if exhaustive else "random")
 
 
-@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
-def test_f24_from_int(lat: int):
-    fp_unit.run_lat("f24_from_int", "test_f24_from_int", Path(__file__).parent, lat, DEFAULT_LAT,
-                    parameters={"W": 20})
+def test_f24_from_int():
+    fp_unit.run_lats("f24_from_int", "test_f24_from_int", Path(__file__).parent,
+                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 20})
 
 
-@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
-def test_f24_from_int_w12(lat: int):
-    fp_unit.run_lat("f24_from_int", "test_f24_from_int", Path(__file__).parent, lat, DEFAULT_LAT,
-                    parameters={"W": 12})
+def test_f24_from_int_w12():
+    fp_unit.run_lats("f24_from_int", "test_f24_from_int", Path(__file__).parent,
+                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 12})
 
 
 def test_f24_from_int_lats():

@@ -3,9 +3,10 @@
 
 The DUT's width W (8 or 16) is read from the width of ``k_i``; the pytest functions build W = 8 and
 W = 16.
-Run at every latency the unit accepts (LAT 1, the default, built with no parameter, and 2), each
-with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
-hold while en_i = 0 and every result bit.  test_f24_from_unorm_lats checks that exactly these LATs
+Run at every latency the unit accepts (LAT 1, the default, built with no parameter, and 2), all in
+one build (fp_unit.run_lats: one instance per LAT on the same stimulus and en_i);
+fp_unit.check_pipeline drops en_i at random and checks each instance's latency, its hold
+while en_i = 0 and every result bit.  test_f24_from_unorm_lats checks that exactly these LATs
 elaborate.
 make test runs USED_LATS only (the design's), make test-long every one.
 """
@@ -13,7 +14,6 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
-import pytest
 
 from model import f24
 from tb.common import fp_unit
@@ -33,22 +33,20 @@ async def from_unorm_all_codes(dut):
     rounds = 8 if w <= 8 else 1
     # In order first (neighbouring codes), then shuffled passes.
     k = np.concatenate([codes] + [rng.permutation(codes) for _ in range(rounds)])
-    lat = fp_unit.latency(DEFAULT_LAT)
-    n = await fp_unit.check_pipeline(dut, lat, {"k_i": k}, {"y_o": f24.from_unorm(k, w)}, rng)
-    dut._log.info("VECTORS f24_from_unorm W=%d LAT=%d: %d (all %d codes %d times), 0 mismatches",
-                  w, lat, n, 1 << w, rounds + 1)
+    lanes = fp_unit.lanes(dut)
+    n = await fp_unit.check_pipeline(dut, lanes, {"k_i": k}, {"y_o": f24.from_unorm(k, w)}, rng)
+    dut._log.info("VECTORS f24_from_unorm W=%d LAT=%s: %d each (all %d codes %d times), "
+                  "0 mismatches", w, fp_unit.lat_list(lanes), n, 1 << w, rounds + 1)
 
 
-@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
-def test_f24_from_unorm_w8(lat: int):
-    fp_unit.run_lat("f24_from_unorm", "test_f24_from_unorm", Path(__file__).parent, lat,
-                    DEFAULT_LAT, parameters={"W": 8})
+def test_f24_from_unorm_w8():
+    fp_unit.run_lats("f24_from_unorm", "test_f24_from_unorm", Path(__file__).parent,
+                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 8})
 
 
-@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
-def test_f24_from_unorm_w16(lat: int):
-    fp_unit.run_lat("f24_from_unorm", "test_f24_from_unorm", Path(__file__).parent, lat,
-                    DEFAULT_LAT, parameters={"W": 16})
+def test_f24_from_unorm_w16():
+    fp_unit.run_lats("f24_from_unorm", "test_f24_from_unorm", Path(__file__).parent,
+                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 16})
 
 
 def test_f24_from_unorm_lats():

@@ -7,9 +7,10 @@ shift; shifts of 1, 16, 17 and 18 bits: the guard at the top, at the hidden one,
 ends (+0, 1.0, 2^-62), and random words over the whole range [+0, 1] (every exponent), in a
 shuffled order.  ``make test-long`` (TB_LONG=1) adds every fraction at every exponent: all
 4,128,770 words of the range.
-Run at every latency the unit accepts (LAT 1, the default, built with no parameter, and 2), each
-with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
-hold while en_i = 0 and every result bit.  test_f24_one_minus_lats checks that exactly these LATs
+Run at every latency the unit accepts (LAT 1, the default, built with no parameter, and 2), all in
+one build (fp_unit.run_lats: one instance per LAT on the same stimulus and en_i);
+fp_unit.check_pipeline drops en_i at random and checks each instance's latency, its hold
+while en_i = 0 and every result bit.  test_f24_one_minus_lats checks that exactly these LATs
 elaborate.
 make test runs USED_LATS only (the design's), make test-long every one.
 """
@@ -17,7 +18,6 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
-import pytest
 
 from model import f24, f24_conv
 from tb.common import fp_unit, runner
@@ -50,16 +50,16 @@ async def one_minus_range(dut):
     whole = runner.long_stimulus()
     x = domain(rng, whole)
     want = f24.add(np.full_like(x, ONE), f24.neg(x))
-    lat = fp_unit.latency(DEFAULT_LAT)
-    n = await fp_unit.check_pipeline(dut, lat, {"a_i": x}, {"y_o": want}, rng)
-    dut._log.info("VECTORS f24_one_minus LAT=%d: %d (all unorm16 H, %s, random), 0 mismatches",
-                  lat, n, "every word of [+0, 1]" if whole else "6 exponents whole")
+    lanes = fp_unit.lanes(dut)
+    n = await fp_unit.check_pipeline(dut, lanes, {"a_i": x}, {"y_o": want}, rng)
+    dut._log.info("VECTORS f24_one_minus LAT=%s: %d each (all unorm16 H, %s, random), "
+                  "0 mismatches", fp_unit.lat_list(lanes), n,
+                  "every word of [+0, 1]" if whole else "6 exponents whole")
 
 
-@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
-def test_f24_one_minus(lat: int):
-    fp_unit.run_lat("f24_one_minus", "test_f24_one_minus", Path(__file__).parent, lat,
-                    DEFAULT_LAT)
+def test_f24_one_minus():
+    fp_unit.run_lats("f24_one_minus", "test_f24_one_minus", Path(__file__).parent,
+                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT)
 
 
 def test_f24_one_minus_lats():

@@ -6,9 +6,11 @@ Stimulus (seed printed, SEED=... to repeat): a directed set (the specials; the o
 rounds across an integer, 0.5 - 2^-18, and its neighbours; a few ulps either side of every
 half-integer and integer of the index range and beyond its ends; every exponent from 2^-6 to
 2^(W+2) with the fractions 0, 1, 0x8000, 0xFFFF and random ones, both signs), then random words.
-fp_unit.check_pipeline drops en_i at random and checks the latency, the hold while en_i = 0 and
-every result bit.  Built at the design's (W, LAT) pairs, shade_unit's (9, 4) and mip_level's
-(7, 4); make test-long adds the paper's depths' LAT 3 and the range ends W = 2 and 16 at LAT 2.
+fp_unit.check_pipeline drops en_i at random and checks each instance's latency, its hold while
+en_i = 0 and every result bit.  Built at the design's (W, LAT) pairs, shade_unit's (9, 4) and
+mip_level's (7, 4); make test-long adds the paper's depths' LAT 3 and the range ends W = 2 and 16
+at LAT 2.  One build per W with all its LATs (fp_unit.run_lats: one instance per LAT on the same
+stimulus and en_i).
 test_round_index_every_word (make test-long) runs a numpy mirror of the unit's two stages over all
 2^24 words against the model at every W (the mirror's equality with the RTL is what the cocotb
 test checks on its vectors); test_round_index_miter runs the SAT proof against the pair at the
@@ -65,29 +67,33 @@ def directed(rng: np.random.Generator, w: int) -> np.ndarray:
 @cocotb.test()
 async def round_index_random_and_directed(dut):
     rng = np.random.default_rng(fp_unit.seed())
-    w = len(dut.idx_o)
+    lanes = fp_unit.lanes(dut)
+    w = len(lanes[0].signal("idx_o"))
     d = directed(rng, w)
     r = vec.random_unary(rng, fp_unit.vectors())
     a = np.concatenate([d, r])
-    lat = fp_unit.latency(4)
     n = await fp_unit.check_pipeline(
-        dut, lat, {"a_i": a}, {"idx_o": expected(a, w) & ((1 << w) - 1)}, rng,
+        dut, lanes, {"a_i": a}, {"idx_o": expected(a, w) & ((1 << w) - 1)}, rng,
         describe=lambda i: f"a=0x{int(a[i]):06x}", label="RTL vs model to_index(add(a, 0.5))")
-    dut._log.info("VECTORS f24_round_index W=%d LAT=%d: %d (%d directed, %d random), "
-                  "0 mismatches", w, lat, n, len(d), len(r))
+    dut._log.info("VECTORS f24_round_index W=%d LAT=%s: %d each (%d directed, %d random), "
+                  "0 mismatches", w, fp_unit.lat_list(lanes), n, len(d), len(r))
 
 
-def _case(w: int, lat: int, long_only: bool):
-    return pytest.param(w, lat, id=f"w{w}-lat{lat}", marks=[pytest.mark.skipif(
+def _case(w: int):
+    """W's build: skipped in make test when the design builds no LAT at W."""
+    long_only = all(uw != w for uw, _ in USED)
+    return pytest.param(w, id=f"w{w}", marks=[pytest.mark.skipif(
         not runner.long_stimulus(), reason="not a pair the design builds: make test-long "
         "(TB_LONG=1)")] if long_only else [])
 
 
-@pytest.mark.parametrize("w,lat", [_case(w, lat, False) for w, lat in USED]
-                         + [_case(w, lat, True) for w, lat in LONG])
-def test_f24_round_index(w: int, lat: int) -> None:
-    fp_unit.run_lat("f24_round_index", "test_f24_round_index", HERE, lat, 2,
-                    parameters={"W": w})
+@pytest.mark.parametrize("w", [_case(w) for w in dict.fromkeys(w for w, _ in USED + LONG)])
+def test_f24_round_index(w: int) -> None:
+    """Every LAT under test at W, in one build."""
+    lats = fp_unit.lat_set([lat for pw, lat in USED + LONG if pw == w],
+                           [lat for pw, lat in USED if pw == w])
+    fp_unit.run_lats("f24_round_index", "test_f24_round_index", HERE, lats, 2,
+                     parameters={"W": w})
 
 
 def mirror(a: np.ndarray, w: int) -> np.ndarray:

@@ -2,11 +2,12 @@
 """f24_to_index against model.f24.to_index: random patterns plus a directed set (specials, integers
 and half-integers around 0, values one ulp either side of integers, the +-2^(W-1) boundaries).
 
-The DUT's width W is read from the width of ``idx_o``; ``idx_o`` is compared as a W-bit two's
-complement pattern (expected idx & (2^W - 1)), ``sat_o`` as 0 / 1.
-Run at every latency the unit accepts (LAT 1, the default, built with no parameter, and 2), each
-with the same stimulus; fp_unit.check_pipeline drops en_i at random and checks the latency, the
-hold while en_i = 0 and every result bit.  test_f24_to_index_lats checks that exactly these LATs
+The width W is read from the width of the instances' ``idx_o``; ``idx_o`` is compared as a W-bit
+two's complement pattern (expected idx & (2^W - 1)), ``sat_o`` as 0 / 1.
+Run at every latency the unit accepts (LAT 1, the default, built with no parameter, and 2), all in
+one build (fp_unit.run_lats: one instance per LAT on the same stimulus and en_i);
+fp_unit.check_pipeline drops en_i at random and checks each instance's latency, its hold
+while en_i = 0 and every result bit.  test_f24_to_index_lats checks that exactly these LATs
 elaborate.
 make test runs USED_LATS only (the design's), make test-long every one.
 """
@@ -14,7 +15,6 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
-import pytest
 
 from model import f24, f24_vectors as vec
 from tb.common import fp_unit
@@ -52,35 +52,33 @@ def directed(rng: np.random.Generator, w: int) -> np.ndarray:
 @cocotb.test()
 async def to_index_random_and_directed(dut):
     rng = np.random.default_rng(fp_unit.seed())
-    w = len(dut.idx_o)
+    lanes = fp_unit.lanes(dut)
+    w = len(lanes[0].signal("idx_o"))
     d = directed(rng, w)
     r = vec.random_unary(rng, fp_unit.vectors())
     a = np.concatenate([d, r])
     idx, sat = f24.to_index(a, w)
     exp = {"idx_o": idx & ((1 << w) - 1), "sat_o": sat.astype(np.int64)}
-    lat = fp_unit.latency(DEFAULT_LAT)
-    n = await fp_unit.check_pipeline(dut, lat, {"a_i": a}, exp, rng)
-    dut._log.info("VECTORS f24_to_index W=%d LAT=%d: %d (%d directed, %d random; %d saturated), "
-                  "0 mismatches", w, lat, n, len(d), len(r), int(sat.sum()))
+    n = await fp_unit.check_pipeline(dut, lanes, {"a_i": a}, exp, rng)
+    dut._log.info("VECTORS f24_to_index W=%d LAT=%s: %d each (%d directed, %d random; "
+                  "%d saturated), 0 mismatches", w, fp_unit.lat_list(lanes), n, len(d), len(r),
+                  int(sat.sum()))
 
 
-@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
-def test_f24_to_index(lat: int):
-    fp_unit.run_lat("f24_to_index", "test_f24_to_index", Path(__file__).parent, lat, DEFAULT_LAT,
-                    parameters={"W": 20})
+def test_f24_to_index():
+    fp_unit.run_lats("f24_to_index", "test_f24_to_index", Path(__file__).parent,
+                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 20})
 
 
-@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
-def test_f24_to_index_w8(lat: int):
-    fp_unit.run_lat("f24_to_index", "test_f24_to_index", Path(__file__).parent, lat, DEFAULT_LAT,
-                    parameters={"W": 8})
+def test_f24_to_index_w8():
+    fp_unit.run_lats("f24_to_index", "test_f24_to_index", Path(__file__).parent,
+                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 8})
 
 
-@pytest.mark.parametrize("lat", fp_unit.lat_cases(LATS, USED_LATS))
-def test_f24_to_index_w9(lat: int):
+def test_f24_to_index_w9():
     """W = 9: shade_unit's colour conversion (f24_to_index #(.W(9)))."""
-    fp_unit.run_lat("f24_to_index", "test_f24_to_index", Path(__file__).parent, lat, DEFAULT_LAT,
-                    parameters={"W": 9})
+    fp_unit.run_lats("f24_to_index", "test_f24_to_index", Path(__file__).parent,
+                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 9})
 
 
 def test_f24_to_index_lats():
