@@ -62,7 +62,8 @@ lint: $(STAMP)
 	@$(ENV) $(PY) scripts/flow/lint.py
 
 # The whole regression: lint and a quick Yosys elaboration of every module (at once: the
-# elaboration is one process), the formal proofs, then the model and cocotb tests in parallel
+# elaboration is one process), the formal proofs (the bmc tasks only of a file whose induction
+# did not close: formal.py --bmc unproven), then the model and cocotb tests in parallel
 # (pytest-xdist; conftest.py hands the workers the longest tests first, after
 # tests/durations.json), then the table of vectors checked.  Exit status is non-zero when
 # anything failed.
@@ -71,7 +72,7 @@ test: $(STAMP)
 	$(ENV) $(PY) scripts/flow/synth_check.py > build/synth_check.out 2>&1 & synth=$$!; \
 	$(PY) scripts/flow/lint.py; lint=$$?; wait $$synth; synth=$$?; cat build/synth_check.out; \
 	[ $$lint = 0 ] && [ $$synth = 0 ] && \
-	$(PY) scripts/flow/formal.py --jobs $(JOBS) && \
+	$(PY) scripts/flow/formal.py --jobs $(JOBS) --bmc unproven && \
 	$(PY) -m pytest -n $(JOBS) --dist loadgroup --no-loadscope-reorder -q -p no:cacheprovider \
 	    --durations=25 tests tb; rc=$$?; \
 	$(PY) scripts/bench/vector_summary.py --json build/vectors.json || rc=1; \

@@ -64,3 +64,27 @@ def test_run_counted_time_and_timeout(tmp_path: Path):
     t0 = time.time()
     out, rc, cpu, killed = formal.run_counted(["sleep", "30"], tmp_path, env, 0.5)
     assert killed and rc != 0 and time.time() - t0 < 10
+
+
+def test_bmc_unproven_runs_the_bmc_of_unproven_files_only(tmp_path: Path, monkeypatch, capsys):
+    """--bmc unproven: the prove and cover tasks first; then the bmc tasks of the files one of
+    whose prove tasks did not pass, and no other bmc task.  --bmc all runs every task."""
+    formal = load_formal()
+    ran: list[tuple[str, str]] = []
+
+    def fake(root, out, t, env):  # type: ignore[no-untyped-def]
+        ran.append((t.sby, t.name))
+        status = "FAIL" if (t.sby, t.mode) == ("skid_buffer", "prove") else "PASS"
+        return formal.Result(t.sby, t.name, t.mode, status, 0.0, 0.0, 1, 1, 1, str(tmp_path))
+
+    monkeypatch.setattr(formal, "run_task", fake)
+    only = ["--only", "skid_buffer", "--only", "pipe_credit", "--out", "build/formal_sched_test"]
+    assert formal.main(["--jobs", "1", "--bmc", "unproven", *only]) == 1
+    modes = {n: n.split("_")[0] for _, n in ran}
+    bmc = [(s, n) for s, n in ran if modes[n] == "bmc"]
+    assert bmc and all(s == "skid_buffer" for s, _ in bmc), ran
+    assert ran.index(bmc[0]) > max(i for i, (_, n) in enumerate(ran) if modes[n] != "bmc")
+    assert "bmc tasks not run" in capsys.readouterr().out
+    ran.clear()
+    assert formal.main(["--jobs", "1", *only]) == 1
+    assert any(s == "pipe_credit" and n.startswith("bmc") for s, n in ran), ran

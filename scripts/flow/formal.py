@@ -5,7 +5,8 @@
 Each formal/<name>.sby proves one module or one wiring of modules: `prove` tasks (k-induction),
 `bmc` tasks (bounded model checks deeper than the induction: a file whose deepest bmc task is
 not deeper than its deepest induction is refused) and `cover` tasks (every cover statement
-reached).  The properties are the ones bound into the RTL (rtl/**/<module>_assert.sv),
+reached).  With --bmc unproven (make test) a file's bmc tasks run only when one of its prove
+tasks did not pass: a closed induction already holds at every depth.  The properties are the ones bound into the RTL (rtl/**/<module>_assert.sv),
 which simulation checks too; docs/formal.md lists them.
 
 The tasks run in parallel (--jobs, default the number of CPUs), each in its own directory
@@ -282,6 +283,15 @@ def tool_env(root: Path) -> dict[str, str]:
     return env
 
 
+def run_all(root: Path, out: Path, tasks: list[Task], env: dict[str, str],
+            before: dict[tuple[str, str], float], jobs: int) -> list[Result]:
+    """Run ``tasks``, ``jobs`` at once, the longest first; the results in the tasks' order."""
+    order = sorted(range(len(tasks)), key=lambda i: -estimate(root, tasks[i], before))
+    with ThreadPoolExecutor(max_workers=jobs) as ex:
+        futures = {i: ex.submit(run_task, root, out, tasks[i], env) for i in order}
+        return [futures[i].result() for i in range(len(tasks))]
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = Parser(prog=PROG, description=__doc__.split("\n\n")[0])
     ap.add_argument("--root", type=Path, default=ROOT,
@@ -293,6 +303,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out", type=Path, default=None,
                     help="work directories and summary.json (default: <root>/build/formal)")
     ap.add_argument("--list", action="store_true", help="print the tasks and exit")
+    ap.add_argument("--bmc", choices=("all", "unproven"), default="all",
+                    help="all: every bmc task (default); unproven: a file's bmc tasks only when "
+                         "one of its prove tasks did not pass, after the other tasks (a closed "
+                         "induction, base case included, holds at every depth: the deeper BMC "
+                         "then adds no proof, only a real counterexample trace where the "
+                         "induction fails; make test runs this way)")
     args = ap.parse_args(argv)
     root = args.root.resolve()
     if not (root / "formal").is_dir():
@@ -325,11 +341,15 @@ def main(argv: list[str] | None = None) -> int:
             fail(PROG, f"{name} not found (run `make setup`: requirements.txt pins it)")
     out.mkdir(parents=True, exist_ok=True)
     before = previous_times(out / "task_times.json") or previous_times(out / "summary.json")
-    order = sorted(range(len(tasks)), key=lambda i: -estimate(root, tasks[i], before))
+    held = [t for t in tasks if t.mode == "bmc"] if args.bmc == "unproven" else []
+    skipped = 0
     t0 = time.time()
-    with ThreadPoolExecutor(max_workers=args.jobs) as ex:
-        futures = {i: ex.submit(run_task, root, out, tasks[i], env) for i in order}
-        results = [futures[i].result() for i in range(len(tasks))]
+    results = run_all(root, out, [t for t in tasks if t not in held], env, before, args.jobs)
+    if held:
+        unproven = {r.sby for r in results if r.mode == "prove" and r.status != "PASS"}
+        results += run_all(root, out, [t for t in held if t.sby in unproven], env, before,
+                           args.jobs)
+        skipped = sum(t.sby not in unproven for t in held)
     wall = time.time() - t0
     cpu = sum(r.cpu_seconds for r in results)
     for r in results:
@@ -356,6 +376,9 @@ def main(argv: list[str] | None = None) -> int:
     print(f"formal: {len(results)} tasks in {wall:.0f} s ({args.jobs} at once; process time "
           f"{cpu:.0f} s), "
           f"summary {os.path.relpath(out / 'summary.json', root)}")
+    if held:
+        print(f"formal: {skipped} bmc tasks not run: every induction of their files closed "
+              f"(--bmc unproven; make formal runs them)")
     print(f"formal: {proven} properties proven, {reached} covers reached, {len(failed)} failed")
     return 1 if failed else 0
 
