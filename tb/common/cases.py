@@ -7,7 +7,9 @@ ports: ``rst_ni``, ``valid_i``, ...); only ``clk_i`` is shared.  The cocotb test
 clock, then one coroutine per instance (:func:`check_all`), each with its own random stream
 (:func:`streams`) and its own checker, driving and reading ``dut.g_case[i]`` as the test of a
 lone unit drives its top.  A coroutine returns its failure messages; :func:`check_all` fails the
-test with those of every failing configuration, each under the configuration's name.
+test with those of every failing configuration, each under the configuration's name.  A checker
+written as a lone unit's test, which stops at its first failed ``assert``, takes part through
+:func:`asserts`.
 
 One Verilator build (a small unit's C++ compile takes about 6 s) and one simulator launch, not
 one per configuration; the instances advance in the same clocks, so the cocotb scheduler's work
@@ -51,3 +53,13 @@ async def check_all(cases: Sequence[tuple[str, Coroutine[Any, Any, list[str]]]])
     if failed:
         raise AssertionError(f"{len(failed)} of {len(tasks)} configurations failed\n"
                              + "\n".join(failed))
+
+
+async def asserts(coro: Coroutine[Any, Any, Any]) -> list[str]:
+    """Run ``coro`` (a checker that raises AssertionError at its first failure) as a checker for
+    :func:`check_all`: its failure message, or none when it returns."""
+    try:
+        await coro
+    except AssertionError as e:
+        return [str(e) or "assertion failed"]
+    return []
