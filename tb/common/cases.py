@@ -17,6 +17,8 @@ per clock is shared too.
 """
 from __future__ import annotations
 
+import logging
+import random
 from typing import Any, Coroutine, Mapping, Sequence
 
 import cocotb
@@ -30,6 +32,21 @@ def streams(count: int) -> list[np.random.Generator]:
     with SEED=...): stream i is ``SeedSequence(seed).spawn(count)[i]``, so one SEED reproduces
     every instance's stimulus."""
     return [np.random.default_rng(s) for s in np.random.SeedSequence(fp_unit.seed()).spawn(count)]
+
+
+def randoms(count: int) -> list[random.Random]:
+    """:func:`streams` for a checker written with Python's ``random.Random``: instance i's
+    generator is seeded from stream i (one SEED reproduces every instance's stimulus)."""
+    return [random.Random(int(g.integers(1 << 63))) for g in streams(count)]
+
+
+def logger(name: str) -> logging.LoggerAdapter:
+    """cocotb's log with every message under the configuration's ``name`` (``name: message``),
+    for a checker whose log lines would otherwise not tell the instances apart."""
+    class _Named(logging.LoggerAdapter):
+        def process(self, msg: Any, kwargs: Any) -> tuple[Any, Any]:
+            return f"{name}: {msg}", kwargs
+    return _Named(cocotb.log, {})
 
 
 def param_mismatches(inst: Any, expected: Mapping[str, int]) -> list[str]:

@@ -13,6 +13,11 @@ err_o = 0; AWCACHE / AWPROT / AWSIZE / AWLEN as parameterised; no write outside 
 Error cases: an SLVERR range inside the framebuffer (err_o; every pixel outside it still
 written, idle_o reached); abort_i at a random clock (idle_o reached; the next frame exact).
 
+The three (DATA_W, MAX_OUTST) of CASES are built once, side by side, in the wrapper
+``pix_dma_tb`` (one instance each, own ports, reset and memory model, a shared clock) and run at
+once in one simulation, each with its own random stream from the printed seed and its own
+checks; a failure names the configuration.
+
 Environment: SEED, PIX_FRAMES (random frames, default 10).
 """
 from __future__ import annotations
@@ -22,32 +27,35 @@ import os
 import random
 from pathlib import Path
 
+from typing import Any, Callable, Coroutine
+
 import cocotb
-import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge
 from cocotbext.axi import AxiWriteBus
 
-from tb.common import report, runner
+from tb.common import cases, report, runner
 from tb.common.axi_ram import FaultWrite, set_pauses
 
 HERE = Path(__file__).resolve().parent
 FILL = 0xA5
-
-
-def seed() -> int:
-    s = int(os.environ.get("SEED", random.randrange(1 << 31)))
-    cocotb.log.info("SEED=%d", s)
-    print(f"pix_dma SEED={s}")
-    return s
+#: (DATA_W, MAX_OUTST) of the instances g_case[0 ..] of pix_dma_tb (the wrapper's table): the
+#: default, the narrowest bus with the fewest writes in flight, a wide bus.
+CASES = [(64, 8), (32, 2), (128, 4)]
+#: AWCACHE and AWPROT of every instance (not the defaults, so that the bus shows them).
+AWCACHE, AWPROT = 0b0111, 0b001
 
 
 class Tb:
-    def __init__(self, dut, rng: random.Random) -> None:
+    """One instance ``g_case[i]`` of pix_dma_tb (``dut``: its scope) on the shared clock ``clk``,
+    with its own memory model on its m_axi_* signals and its own random generator."""
+
+    def __init__(self, dut, clk, rng: random.Random, name: str) -> None:
         self.dut = dut
+        self.clk = clk
         self.rng = rng
-        cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-        self.ram = FaultWrite(AxiWriteBus.from_prefix(dut, "m_axi"), dut.clk_i, reset=None,
+        self.log = cases.logger(name)
+        self.ram = FaultWrite(AxiWriteBus.from_prefix(dut, "m_axi"), clk, reset=None,
                               rng=rng, size=1 << 32)
         self.ram.log.setLevel(logging.CRITICAL)
 
@@ -57,10 +65,10 @@ class Tb:
         d.start_i.value = 0
         d.abort_i.value = 0
         d.px_valid_i.value = 0
-        await ClockCycles(d.clk_i, 4)
-        await FallingEdge(d.clk_i)
+        await ClockCycles(self.clk, 4)
+        await FallingEdge(self.clk)
         d.rst_ni.value = 1
-        await FallingEdge(d.clk_i)
+        await FallingEdge(self.clk)
 
     async def start(self, fb: int, st: int, pitch: int, st_en: int, xbits: int) -> None:
         d = self.dut
@@ -70,14 +78,14 @@ class Tb:
         d.pitch_i.value = pitch
         d.st_en_i.value = st_en
         d.start_i.value = 1
-        await FallingEdge(d.clk_i)
+        await FallingEdge(self.clk)
         d.start_i.value = 0
 
     async def stream(self, pixels: list[tuple[int, ...]], valid_p: float,
                      abort_at: int | None = None, max_clocks: int = 100_000) -> int:
         """Offer the pixels; then wait for idle_o.  Returns clocks."""
         d = self.dut
-        cache, prot = int(os.environ["AWCACHE"]), int(os.environ["AWPROT"])
+        cache, prot = AWCACHE, AWPROT
         i, cyc, presenting = 0, 0, False
         while True:
             if cyc >= max_clocks:
@@ -102,7 +110,7 @@ class Tb:
                 assert int(d.m_axi_awlen.value) == 0 and int(d.m_axi_awsize.value) == 2
             if i == len(pixels) and not presenting and int(d.idle_o.value):
                 break
-            await FallingEdge(d.clk_i)
+            await FallingEdge(self.clk)
             cyc += 1
             if fire:
                 i += 1
@@ -111,7 +119,7 @@ class Tb:
         d.abort_i.value = 0
         for _ in range(10):       # nothing more
             assert int(d.idle_o.value) and not int(d.m_axi_awvalid.value)
-            await FallingEdge(d.clk_i)
+            await FallingEdge(self.clk)
         return cyc
 
 
@@ -199,57 +207,81 @@ async def one_frame(tb: Tb, k: int, w: int, h: int, n: int, st_en: int, log,
     return n, bad, cyc
 
 
+Check = Callable[[Tb], Coroutine[Any, Any, None]]
+
+
+async def each_case(dut, check: Check) -> None:
+    """Start the clock, then reset every instance of pix_dma_tb and run ``check`` on it (all at
+    once, each with its own memory model and random generator: :func:`cases.randoms`); fail
+    naming every configuration whose check failed."""
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    rngs = cases.randoms(len(CASES))
+
+    async def one(i: int, data_w: int, outst: int, name: str) -> list[str]:
+        inst = dut.g_case[i]
+        if mism := (cases.param_mismatches(inst, {"DATA_W": data_w, "MAX_OUTST": outst})
+                    + cases.param_mismatches(dut, {"AWCACHE": AWCACHE, "AWPROT": AWPROT})):
+            return mism
+        tb = Tb(inst, dut.clk_i, rngs[i], name)
+        await tb.reset()
+        return await cases.asserts(check(tb))
+
+    names = [f"pix_dma DATA_W {data_w}, MAX_OUTST {outst}" for data_w, outst in CASES]
+    await cases.check_all([(names[i], one(i, *c, names[i])) for i, c in enumerate(CASES)])
+
+
 @cocotb.test()
 async def pix_dma_frames(dut):
+    """Random frames (:func:`frames`) on every instance."""
+    await each_case(dut, frames)
+
+
+async def frames(tb: Tb) -> None:
     """Random frames under latency and back-pressure, every word of both buffers."""
-    rng = random.Random(seed())
-    tb = Tb(dut, rng)
-    await tb.reset()
+    rng = tb.rng
     total = bad = clocks = 0
     shapes = [(1, 1, 1), (3, 2, 6), (17, 9, 100), (40, 30, 1200), (64, 4, 256)]
     for _ in range(int(os.environ.get("PIX_FRAMES", "10"))):
         w, h = rng.randrange(1, 80), rng.randrange(1, 40)
         shapes.append((w, h, rng.randrange(1, w * h + 1)))
     for k, (w, h, n) in enumerate(shapes):
-        t, b, c = await one_frame(tb, k, w, h, n, st_en=k % 3 != 1, log=dut._log)
+        t, b, c = await one_frame(tb, k, w, h, n, st_en=k % 3 != 1, log=tb.log)
         assert b == 0, f"frame {k}: {b} words differ"
         total, bad, clocks = total + t, bad + b, clocks + c
     report.record("pix_dma", "framebuffer and status words vs pixels", total, bad)
-    print(f"PIX_DMA frames: {len(shapes)} frames, {total} pixels in {clocks} clocks, "
-          f"{bad} mismatching words")
+    tb.log.info(f"PIX_DMA frames: {len(shapes)} frames, {total} pixels in {clocks} clocks, "
+                f"{bad} mismatching words")
 
 
 @cocotb.test()
 async def pix_dma_errors(dut):
+    """SLVERR and abort (:func:`errors`) on every instance."""
+    await each_case(dut, errors)
+
+
+async def errors(tb: Tb) -> None:
     """SLVERR in the framebuffer and abort: err_o / idle_o, no hang, the next frame exact."""
-    rng = random.Random(seed())
-    tb = Tb(dut, rng)
-    await tb.reset()
+    rng = tb.rng
     checked = 0
     for k in range(8):
         w, h = rng.randrange(8, 40), rng.randrange(4, 20)
         n = rng.randrange(w * h // 2, w * h + 1)
         if k % 2 == 0:
-            t, b, _ = await one_frame(tb, 2 * k, w, h, n, 1, dut._log,
+            t, b, _ = await one_frame(tb, 2 * k, w, h, n, 1, tb.log,
                                       err_lo=rng.randrange(0, 4 * w * h))
             assert b == 0, f"SLVERR frame {k}: {b} words differ outside the SLVERR range"
             checked += t
         else:
-            await one_frame(tb, 2 * k, w, h, n, 1, dut._log, abort_at=rng.randrange(0, 6 * n))
-        t, b, _ = await one_frame(tb, 2 * k + 1, w, h, n, 1, dut._log)
+            await one_frame(tb, 2 * k, w, h, n, 1, tb.log, abort_at=rng.randrange(0, 6 * n))
+        t, b, _ = await one_frame(tb, 2 * k + 1, w, h, n, 1, tb.log)
         assert b == 0, f"the frame after error case {k}: {b} words differ"
         checked += t
     report.record("pix_dma", "pixels around SLVERR / abort and the next frame", checked, 0)
-    print(f"PIX_DMA errors: 4 SLVERR frames, 4 aborts, each followed by an exact frame "
-          f"({checked} pixels checked), SLVERR words {tb.ram.err_words}")
+    tb.log.info(f"PIX_DMA errors: 4 SLVERR frames, 4 aborts, each followed by an exact frame "
+                f"({checked} pixels checked), SLVERR words {tb.ram.err_words}")
 
 
-# (DATA_W, MAX_OUTST)
-CASES = [(64, 8), (32, 2), (128, 4)]
-
-
-@pytest.mark.parametrize("data_w,outst", CASES)
-def test_pix_dma(data_w: int, outst: int) -> None:
-    params = {"DATA_W": data_w, "MAX_OUTST": outst, "AWCACHE": 0b0111, "AWPROT": 0b001}
-    runner.run("pix_dma", "test_pix_dma", HERE, parameters=params,
-               extra_env={k: str(v) for k, v in params.items()})
+def test_pix_dma() -> None:
+    """Build pix_dma_tb (every configuration of CASES) once and run the cocotb tests."""
+    runner.run("pix_dma_tb", "test_pix_dma", HERE, rtl_top="pix_dma",
+               extra_sources=[str(HERE / "pix_dma_tb.sv")])
