@@ -15,6 +15,11 @@ Error cases: a range of the buffer answers SLVERR (err_o; the records delivered 
 the good records before the first bad one; the port drains: busy_o falls; the next frame exact);
 abort_i at a random clock (a prefix; busy_o falls; the next frame exact).
 
+The three (DATA_W, MAX_BURST, FIFO_RECS) of CASES are built once, side by side, in the wrapper
+``frag_dma_tb`` (one instance each, own ports, reset and memory model, a shared clock) and run at
+once in one simulation, each with its own random stream from the printed seed and its own
+checks; a failure names the configuration.
+
 Environment: SEED, FRAG_FRAMES (random frames, default 24).
 """
 from __future__ import annotations
@@ -24,36 +29,41 @@ import os
 import random
 from pathlib import Path
 
+from typing import Any, Callable, Coroutine
+
 import cocotb
-import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge
 from cocotbext.axi import AxiReadBus
 
-from tb.common import report, runner
+from tb.common import cases, report, runner
 from tb.common.axi_ram import FaultRead, set_pauses
 
 HERE = Path(__file__).resolve().parent
 REC = 64
 BASE = 0x2000_0000
-
-
-def seed() -> int:
-    s = int(os.environ.get("SEED", random.randrange(1 << 31)))
-    cocotb.log.info("SEED=%d", s)
-    print(f"frag_dma SEED={s}")
-    return s
+#: (DATA_W, MAX_BURST, FIFO_RECS) of the instances g_case[0 ..] of frag_dma_tb (the wrapper's
+#: table): the default; a narrow bus with short bursts and a small FIFO; a wide bus with long
+#: bursts.
+CASES = [(64, 4, 8), (32, 2, 4), (128, 8, 8)]
+#: ARCACHE and ARPROT of every instance (not the defaults, so that the bus shows them).
+ARCACHE, ARPROT = 0b0010, 0b010
 
 
 class Tb:
-    def __init__(self, dut, rng: random.Random) -> None:
+    """One instance ``g_case[i]`` of frag_dma_tb (``dut``: its scope) with DATA_W ``data_w``, on
+    the shared clock ``clk``, with its own memory model on its m_axi_* signals and its own random
+    generator."""
+
+    def __init__(self, dut, clk, rng: random.Random, data_w: int, name: str) -> None:
         self.dut = dut
+        self.clk = clk
         self.rng = rng
+        self.log = cases.logger(name)
         self.pix_w = 24                            # frag_dma's defaults
         self.tri_w = 4
-        self.data_w = int(os.environ["DATA_W"])
-        cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-        self.ram = FaultRead(AxiReadBus.from_prefix(dut, "m_axi"), dut.clk_i, reset=None,
+        self.data_w = data_w
+        self.ram = FaultRead(AxiReadBus.from_prefix(dut, "m_axi"), clk, reset=None,
                              rng=rng, size=1 << 32)
         self.ram.log.setLevel(logging.ERROR)
 
@@ -65,10 +75,10 @@ class Tb:
         d.base_i.value = 0
         d.count_i.value = 0
         d.frag_ready_i.value = 0
-        await ClockCycles(d.clk_i, 4)
-        await FallingEdge(d.clk_i)
+        await ClockCycles(self.clk, 4)
+        await FallingEdge(self.clk)
         d.rst_ni.value = 1
-        await FallingEdge(d.clk_i)
+        await FallingEdge(self.clk)
 
     def expect(self, words: list[int]) -> tuple[int, ...]:
         """The fragment-port values of one record (16 words)."""
@@ -99,19 +109,19 @@ class Tb:
         d.base_i.value = base
         d.count_i.value = len(recs)
         d.start_i.value = 1
-        await FallingEdge(d.clk_i)
+        await FallingEdge(self.clk)
         d.start_i.value = 0
         d.base_i.value = self.rng.getrandbits(32)       # only sampled at start_i
         d.count_i.value = self.rng.getrandbits(8)
         out: list[tuple[int, ...]] = []
         dones = 0
         cyc = 0
-        cache, prot = int(os.environ["ARCACHE"]), int(os.environ["ARPROT"])
+        cache, prot = ARCACHE, ARPROT
         while True:
             if not int(d.busy_o.value):
                 break
             if cyc >= max_clocks:
-                st = {k: int(getattr(d, k).value) for k in (
+                st = {k: int(getattr(d.u_dut, k).value) for k in (
                     "m_axi_arvalid", "inflight_q", "f_count", "asm_cnt_q", "left_q",
                     "out_valid_q", "stop_q", "err_q")}
                 raise AssertionError(f"frag_dma hangs: {len(out)} of {len(recs)} from {base:#x} "
@@ -127,7 +137,7 @@ class Tb:
                 assert int(d.m_axi_arburst.value) == 1
                 assert 1 << int(d.m_axi_arsize.value) == self.data_w // 8
             dones += int(d.done_o.value)
-            await FallingEdge(d.clk_i)
+            await FallingEdge(self.clk)
             cyc += 1
         d.abort_i.value = 0
         d.frag_ready_i.value = 0
@@ -135,7 +145,7 @@ class Tb:
         # Quiet afterwards: nothing offered, nothing requested.
         for _ in range(20):
             assert not int(d.frag_valid_o.value) and not int(d.m_axi_arvalid.value)
-            await FallingEdge(d.clk_i)
+            await FallingEdge(self.clk)
         return out, cyc, dones, err
 
 
@@ -149,12 +159,40 @@ def counts(rng: random.Random, n: int) -> list[tuple[int, int]]:
     return fr
 
 
+Check = Callable[[Tb], Coroutine[Any, Any, None]]
+
+
+async def each_case(dut, check: Check) -> None:
+    """Start the clock, then reset every instance of frag_dma_tb and run ``check`` on it (all at
+    once, each with its own memory model and random generator: :func:`cases.randoms`); fail
+    naming every configuration whose check failed."""
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    rngs = cases.randoms(len(CASES))
+
+    async def one(i: int, data_w: int, burst: int, fifo: int, name: str) -> list[str]:
+        inst = dut.g_case[i]
+        want = {"DATA_W": data_w, "MAX_BURST": burst, "FIFO_RECS": fifo}
+        if mism := (cases.param_mismatches(inst, want)
+                    + cases.param_mismatches(dut, {"ARCACHE": ARCACHE, "ARPROT": ARPROT})):
+            return mism
+        tb = Tb(inst, dut.clk_i, rngs[i], data_w, name)
+        await tb.reset()
+        return await cases.asserts(check(tb))
+
+    names = [f"frag_dma DATA_W {d}, MAX_BURST {b}, FIFO_RECS {f}" for d, b, f in CASES]
+    await cases.check_all([(names[i], one(i, *c, names[i])) for i, c in enumerate(CASES)])
+
+
 @cocotb.test()
 async def frag_dma_frames(dut):
+    """Random frames (:func:`frames`) on every instance."""
+    await each_case(dut, frames)
+
+
+async def frames(tb: Tb) -> None:
     """Random frames under latency and back-pressure, bit for bit."""
-    rng = random.Random(seed())
-    tb = Tb(dut, rng)
-    await tb.reset()
+    rng = tb.rng
+    dut = tb.dut
     nframes = int(os.environ.get("FRAG_FRAMES", "24"))
     total = bad = clocks = 0
     for k, (base, n) in enumerate(counts(rng, nframes)):
@@ -168,7 +206,7 @@ async def frag_dma_frames(dut):
         nbad = sum(a != b for a, b in zip(out, exp)) + abs(len(out) - len(exp))
         msg = (f"frame {k}: base {base:#x} count {n} pauses {p} ready {ready_p}: {len(out)} out, "
                f"{cyc} clocks, {nbad} bad, done {dones}, err {err}")
-        dut._log.info(msg)
+        tb.log.info(msg)
         assert nbad == 0, msg
         assert dones == 1 and err == 0, msg
         assert int(dut.sent_o.value) == n, msg
@@ -177,15 +215,19 @@ async def frag_dma_frames(dut):
         bad += nbad
         clocks += cyc
     report.record("frag_dma", "fragment records through AXI vs memory words", total, bad)
-    print(f"FRAG_DMA frames: {total} records in {clocks} clocks, {bad} mismatches")
+    tb.log.info(f"FRAG_DMA frames: {total} records in {clocks} clocks, {bad} mismatches")
 
 
 @cocotb.test()
 async def frag_dma_errors(dut):
+    """SLVERR ranges and abort (:func:`errors`) on every instance."""
+    await each_case(dut, errors)
+
+
+async def errors(tb: Tb) -> None:
     """SLVERR ranges and abort: a clean prefix, the port drained, the next frame exact."""
-    rng = random.Random(seed())
-    tb = Tb(dut, rng)
-    await tb.reset()
+    rng = tb.rng
+    dut = tb.dut
     checked = 0
     for k in range(12):
         set_pauses(tb.ram, rng, rng.choice((0.0, 0.3)))
@@ -212,7 +254,7 @@ async def frag_dma_errors(dut):
         assert dones == 1, f"{what}: {dones} done pulses"
         assert out == exp[:len(out)], f"{what}: the records delivered are not a prefix"
         assert int(dut.sent_o.value) == len(out)
-        dut._log.info("%s: count %d, %d delivered, %d clocks", what, n, len(out), cyc)
+        tb.log.info("%s: count %d, %d delivered, %d clocks", what, n, len(out), cyc)
         # The next frame exact.
         base2 = BASE + 0x10_0000 + rng.randrange(0, 1 << 10) * REC
         n2 = rng.randrange(1, 50)
@@ -224,17 +266,12 @@ async def frag_dma_errors(dut):
         checked += len(out) + n2
     report.record("frag_dma", "records after SLVERR / abort (prefix) and the next frame",
                   checked, 0)
-    print(f"FRAG_DMA errors: 6 SLVERR frames, 6 aborts, each followed by an exact frame "
-          f"({checked} records checked), SLVERR words {tb.ram.err_words}")
+    tb.log.info(f"FRAG_DMA errors: 6 SLVERR frames, 6 aborts, each followed by an exact frame "
+                f"({checked} records checked), SLVERR words {tb.ram.err_words}")
 
 
-# (DATA_W, MAX_BURST, FIFO_RECS)
-CASES = [(64, 4, 8), (32, 2, 4), (128, 8, 8)]
 
-
-@pytest.mark.parametrize("data_w,burst,fifo", CASES)
-def test_frag_dma(data_w: int, burst: int, fifo: int) -> None:
-    params = {"DATA_W": data_w, "MAX_BURST": burst, "FIFO_RECS": fifo, "ARCACHE": 0b0010,
-              "ARPROT": 0b010}
-    runner.run("frag_dma", "test_frag_dma", HERE, parameters=params,
-               extra_env={k: str(v) for k, v in params.items()})
+def test_frag_dma() -> None:
+    """Build frag_dma_tb (every configuration of CASES) once and run the cocotb tests."""
+    runner.run("frag_dma_tb", "test_frag_dma", HERE, rtl_top="frag_dma",
+               extra_sources=[str(HERE / "frag_dma_tb.sv")])
