@@ -55,12 +55,14 @@ def current() -> tuple[int, int]:
 
 
 def latency(func: str, mirror: Optional[Callable[[int, int], int]] = None,
-            const: Optional[str] = None, pkg: str = "pipe_pkg") -> int:
+            const: Optional[str] = None, pkg: str = "pipe_pkg",
+            pair: Optional[tuple[int, int]] = None) -> int:
     """Inside the cocotb test: the latency of the unit under test, the package function ``func``
     (for example ``tex_addr_lat``) at the build's pair; checked equal to the test's own
     ``mirror`` of that function when given, and at the design's pair to the package constant
-    ``const`` (for example ``TEX_ADDR_LAT``) when given."""
-    add, mul = current()
+    ``const`` (for example ``TEX_ADDR_LAT``) when given.  ``pair``: the (ADD_LAT, MUL_LAT) of
+    the instance under test instead of the build's (several instances of one build)."""
+    add, mul = pair or current()
     lat = int(sv_params.call(pkg, func, add, mul))
     if mirror is not None:
         assert lat == mirror(add, mul), (func, add, mul, lat)

@@ -29,6 +29,10 @@ The unit's pipeline must hold only bubbles when :meth:`ValidPipe.run` starts: af
 :meth:`ValidPipe.reset` or a previous :meth:`run` (which stops when its last operand set came
 out, so that only bubbles follow it).  Configuration inputs are set by the caller between runs.
 
+One ValidPipe per instance drives a wrapper's ``g_case[i]`` (tb/common/cases.py): ``clk`` the
+wrapper's shared clock (started by the test, not here), ``unit`` the unit's name for the vector
+table (else the handle's name: the top's).
+
 (Used by tb/view_calc, tb/mip_level, tb/tex_addr; tb/tex_filter, whose driver has a ready input, uses its reset.)
 """
 from __future__ import annotations
@@ -45,11 +49,12 @@ from tb.common import report
 
 
 class ValidPipe:
-    """One unit under test; starts its clock and keeps the count of vectors checked."""
+    """One unit under test; starts its clock (unless given ``clk``, a running clock) and keeps
+    the count of vectors checked."""
 
     def __init__(self, dut, latency: int, data_in: list[str], data_out: list[str],
                  report_what: str, jobs: int = 1, spacing: int = 1,
-                 forbid: tuple[int, ...] = ()) -> None:
+                 forbid: tuple[int, ...] = (), clk=None, unit: str | None = None) -> None:
         if spacing < jobs:
             raise ValueError("spacing must be at least jobs (results would overlap)")
         if any(f < 1 for f in forbid):
@@ -67,7 +72,11 @@ class ValidPipe:
         self.out_sigs = {k: getattr(dut, k) for k in ["valid_o", "tag_o"] + data_out}
         self.checked = 0
         self.mismatches = 0
-        cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+        self.unit = unit or dut._name  # the unit in the vector table
+        if clk is None:
+            clk = dut.clk_i
+            cocotb.start_soon(Clock(clk, 10, unit="ns").start())
+        self.clk = clk
 
     def sample(self) -> dict[str, int]:
         return {k: int(s.value) for k, s in self.out_sigs.items()}
@@ -78,10 +87,10 @@ class ValidPipe:
         d.rst_ni.value = 0
         d.en_i.value = 0
         d.valid_i.value = 1
-        await FallingEdge(d.clk_i)
+        await FallingEdge(self.clk)
         for _ in range(cycles):
-            await RisingEdge(d.clk_i)
-            await FallingEdge(d.clk_i)
+            await RisingEdge(self.clk)
+            await FallingEdge(self.clk)
             assert int(d.valid_o.value) == 0, "valid_o not cleared by rst_ni"
         d.rst_ni.value = 1
         d.valid_i.value = 0
@@ -98,20 +107,20 @@ class ValidPipe:
                 taken.append(i)
             d.valid_i.value = int(ok)
             d.tag_i.value = int(rng.integers(0, 1 << self.tag_w))
-            await RisingEdge(d.clk_i)
-            await FallingEdge(d.clk_i)
+            await RisingEdge(self.clk)
+            await FallingEdge(self.clk)
         assert int(d.valid_o.value) == 1, "valid_o should show the first valid slot"
         d.en_i.value = 0
         d.rst_ni.value = 0
-        await RisingEdge(d.clk_i)
-        await FallingEdge(d.clk_i)
+        await RisingEdge(self.clk)
+        await FallingEdge(self.clk)
         assert int(d.valid_o.value) == 0, "rst_ni with en_i = 0 did not clear valid_o"
         d.rst_ni.value = 1
         d.valid_i.value = 0
         for _ in range(self.latency + self.jobs + 2):
             d.en_i.value = 1
-            await RisingEdge(d.clk_i)
-            await FallingEdge(d.clk_i)
+            await RisingEdge(self.clk)
+            await FallingEdge(self.clk)
             assert int(d.valid_o.value) == 0, "a slot cleared by rst_ni came out valid"
 
     async def run(self, what: str, inputs: Mapping[str, np.ndarray],
@@ -157,8 +166,8 @@ class ValidPipe:
             d.valid_i.value = 1 if take else (0 if en else junk_valid[j])
             d.tag_i.value = int(tags[k]) if take else junk_tag[j]
             d.en_i.value = int(en)
-            await RisingEdge(d.clk_i)
-            await FallingEdge(d.clk_i)
+            await RisingEdge(self.clk)
+            await FallingEdge(self.clk)
             now = self.sample()
             if en:
                 hist.append(issued if take else -1)
@@ -206,7 +215,7 @@ class ValidPipe:
         nbad = int(bad_any.sum())
         self.checked += n
         self.mismatches += nbad
-        report.record(d._name, self.report_what, n, nbad)
+        report.record(self.unit, self.report_what, n, nbad)
         d._log.info("%s: %d operand sets in %d clocks (latency %d), %d mismatches", what, n, cyc,
                     lat, nbad)
         if mism:

@@ -32,25 +32,34 @@ Lookups per texture (every level):
   patterns     u, v random 24-bit patterns
 and a reset of a full pipeline while stalled.
 
-Every run is built at one pair of float-unit depths (ADD_LAT, MUL_LAT) of tb/common/depths.py:
-the package defaults (3, 2) (built with no parameter, so the defaults are checked too), and under
-``make test-long`` (TB_LONG=1) the paper's (2, 1); the latency
+Every configuration is at one pair of float-unit depths (ADD_LAT, MUL_LAT) of
+tb/common/depths.py: the package defaults (3, 2) (built with no depth parameter, so the defaults
+are checked too), and under ``make test-long`` (TB_LONG=1) the paper's (2, 1) too; the latency
 the run expects is pipe_pkg::tex_addr_lat(ADD_LAT, MUL_LAT), which must equal this file's
 mirror of the schedule (and TEX_ADDR_LAT at the defaults); the stimulus and the bit-exact
 checks are the same at every depth.
+
+The configurations of CASES (the design's unit; TAG_W 1 with ADDR_W 40; NTEX 2 with TAG_W 9)
+and, under make test-long, LONG_CASES (the first and the third at (2, 1); NTEX 3) are built
+once, side by side, in the wrapper ``tex_addr_tb`` (one instance each, own ports and reset, a
+shared clock; its parameter LONG adds LONG_CASES) and run at once in one simulation, each with
+its own random stream from the printed seed and its own checks; a failure names the
+configuration.
 """
 from __future__ import annotations
 
 from pathlib import Path
 
+from typing import NamedTuple
+
 import cocotb
+from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 import numpy as np
-import pytest
 
 from model import f24, f24_vectors as vec, texture
 from model.arith import ENGINES
-from tb.common import depths, fp_unit, runner
+from tb.common import cases, depths, fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 from tb.harness import sv_params
 
@@ -61,18 +70,54 @@ def tex_addr_lat(add_lat: int, mul_lat: int) -> int:
     return 1 + mul_lat + 1 + add_lat + idx + fi + add_lat + 1
 
 
-def latency() -> int:
-    """The latency under test: pipe_pkg::tex_addr_lat at the build's depths, checked against the
-    mirror above (and TEX_ADDR_LAT at the defaults)."""
-    return depths.latency("tex_addr_lat", tex_addr_lat, "TEX_ADDR_LAT")
+def latency(pair: tuple[int, int]) -> int:
+    """The latency under test: pipe_pkg::tex_addr_lat at the instance's depths ``pair``, checked
+    against the mirror above (and TEX_ADDR_LAT at the defaults)."""
+    return depths.latency("tex_addr_lat", tex_addr_lat, "TEX_ADDR_LAT", pair=pair)
 
 
 SPACING = 2  # enabled clocks from one lookup to the next, at least (u, then v on the same units)
-TEX_LEVELS, DIM_W, TEX_LVL_W = sv_params.values("pipe_pkg", "TEX_LEVELS", "TEX_DIM_W",
-                                                "TEX_LVL_W")
+TEX_LEVELS, DIM_W, TEX_LVL_W, TEX_ADDR_W = sv_params.values(
+    "pipe_pkg", "TEX_LEVELS", "TEX_DIM_W", "TEX_LVL_W", "TEX_ADDR_W")
 INS = ["u_i", "v_i", "level_i", "tex_i"]
 OUTS = ["addr00_o", "addr01_o", "addr10_o", "addr11_o", "fx_o", "fy_o"]
 AR = ENGINES["f24"]
+
+
+class Case(NamedTuple):
+    """One instance of tex_addr_tb: its parameters and the random lookups of its first phase
+    (``vectors``: None for fp_unit.vectors(VECTORS_COMPOSITE), i.e. VECTORS=... or the default)."""
+    ADD_LAT: int
+    MUL_LAT: int
+    TAG_W: int
+    ADDR_W: int
+    NTEX: int
+    vectors: int | None
+
+    def name(self) -> str:
+        """How a failure names the configuration."""
+        return (f"tex_addr ADD_LAT {self.ADD_LAT}, MUL_LAT {self.MUL_LAT}, TAG_W {self.TAG_W}, "
+                f"ADDR_W {self.ADDR_W}, NTEX {self.NTEX}")
+
+
+_ADD, _MUL = depths.DEFAULT
+_OTHER = [p for p in depths.PAIRS if p != depths.DEFAULT]
+#: The instances g_case[0 ..] of tex_addr_tb (the wrapper's table): the design's unit (the
+#: package defaults), TAG_W 1 with 40-bit addresses, two textures sharing the unit as in
+#: dm_pipeline (colour and normal map).
+CASES = [Case(_ADD, _MUL, 8, TEX_ADDR_W, 1, None), Case(_ADD, _MUL, 1, 40, 1, 3000),
+         Case(_ADD, _MUL, 9, TEX_ADDR_W, 2, 6000)]
+#: The instances after CASES in the make test-long build (the wrapper's LONG = 1): the design's
+#: unit and the two textures at the other depths of depths.PAIRS (the paper's (2, 1)); three
+#: textures (not the design's two: tex_i = 3 must read texture 2).
+LONG_CASES = ([Case(a, m, 8, TEX_ADDR_W, 1, None) for a, m in _OTHER]
+              + [Case(a, m, 9, TEX_ADDR_W, 2, 6000) for a, m in _OTHER]
+              + [Case(_ADD, _MUL, 8, TEX_ADDR_W, 3, 3000)])
+
+
+def build_cases() -> list[Case]:
+    """The instances of the build: CASES, and LONG_CASES under TB_LONG=1."""
+    return CASES + (LONG_CASES if runner.long_stimulus() else [])
 
 
 def stand_in(h: int, w: int) -> texture.Texture:
@@ -171,13 +216,13 @@ def expected(tex: texture.Texture, ins: dict[str, np.ndarray], su: int, sv: int,
     return out
 
 
-async def configure(dut, rng: np.random.Generator,
+async def configure(dut, clk, rng: np.random.Generator,
                     textures: list[tuple[texture.Texture, int, int, int]]) -> None:
     """Drive the cfg_* ports with (texture, su, sv, base) per texture index and write the level
     tables through the lvt_* port (levels beyond a texture's own: random junk).  The writes come
     in random order, about a third of the entries written with junk first (the last write
     counts), with writes to texture codes NTEX and above (ignored) mixed in, and en_i random
-    (the write port does not wait for it)."""
+    (the write port does not wait for it); ``clk``: the unit's clock."""
     ntex = len(textures)
     addr_w = len(dut.cfg_base_i) // ntex
     sel_w = len(dut.tex_i)
@@ -209,12 +254,12 @@ async def configure(dut, rng: np.random.Generator,
     dut.cfg_base_i.value = bv
     dut.valid_i.value = 0
     for a, d in order:
-        await FallingEdge(dut.clk_i)
+        await FallingEdge(clk)
         dut.en_i.value = int(rng.random() < 0.7)
         dut.lvt_we_i.value = 1
         dut.lvt_waddr_i.value = a
         dut.lvt_wdata_i.value = d
-    await FallingEdge(dut.clk_i)
+    await FallingEdge(clk)
     dut.lvt_we_i.value = 0
     dut.en_i.value = 1
 
@@ -245,14 +290,36 @@ def configs(rng: np.random.Generator, addr_w: int) -> list[tuple[str, texture.Te
 
 @cocotb.test()
 async def tex_addr_random_and_directed(dut):
-    rng = np.random.default_rng(fp_unit.seed())
+    """Every instance of tex_addr_tb at once (:func:`check_case` each)."""
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    configs = build_cases()
+    assert int(dut.NCASE.value) == len(configs), \
+        f"tex_addr_tb holds {int(dut.NCASE.value)} instances, the test expects {len(configs)}"
+    rngs = cases.streams(len(configs))
+    await cases.check_all([(c.name(), check_case(dut, i, c, rngs[i]))
+                           for i, c in enumerate(configs)])
+
+
+async def check_case(top, i: int, case: Case, rng: np.random.Generator) -> list[str]:
+    """Drive and check ``top.g_case[i]`` (tex_addr with the parameters of ``case``) as the module
+    docstring says; return the failure messages (none: it passed)."""
+    dut = top.g_case[i]
+    params = {k: v for k, v in case._asdict().items() if k != "vectors"}
+    if mism := cases.param_mismatches(dut, params):
+        return mism
+    return await cases.asserts(random_and_directed(dut, top.clk_i, case, rng))
+
+
+async def random_and_directed(dut, clk, case: Case, rng: np.random.Generator) -> None:
+    """The phases of the module docstring on one instance ``dut`` (clock ``clk``)."""
     addr_w = len(dut.addr00_o)
     ntex = len(dut.cfg_su_i) // 24
     sel_codes = 1 << len(dut.tex_i)
-    lat = latency()
-    dut._log.info("ADD_LAT, MUL_LAT = %s: latency %d", depths.current(), lat)
+    pair = (case.ADD_LAT, case.MUL_LAT)
+    lat = latency(pair)
+    dut._log.info("ADD_LAT, MUL_LAT = %s: latency %d", pair, lat)
     pipe = ValidPipe(dut, lat, INS, OUTS, "RTL vs model.texture.lookup_addresses (f24)",
-                     spacing=SPACING)
+                     spacing=SPACING, clk=clk, unit="tex_addr")
     dut.lvt_we_i.value = 0
     await pipe.reset()
     cfgs = configs(rng, addr_w)
@@ -265,7 +332,8 @@ async def tex_addr_random_and_directed(dut):
             su, sv = int(f24w(su_v)[0]), int(f24w(sv_v)[0])
             scale = (float(su_v[0]), float(sv_v[0]))
             sweep = scale == (1.0, 1.0)
-            n_random = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE) if i == 0 else 3000
+            n_first = case.vectors or fp_unit.vectors(fp_unit.VECTORS_COMPOSITE)
+            n_random = n_first if i == 0 else 3000
             ins_t, counts = lookups(rng, tex, mw, mh, scale, n_random // ntex, sweep,
                                     tex.n_levels == TEX_LEVELS)
             n = len(ins_t["u_i"])
@@ -286,7 +354,7 @@ async def tex_addr_random_and_directed(dut):
         perm = rng.permutation(len(ins["u_i"]))
         ins = {k: v[perm] for k, v in ins.items()}
         exp = {k: v[perm] for k, v in exp.items()}
-        await configure(dut, rng, textures)  # pipeline drained: only bubbles in flight
+        await configure(dut, clk, rng, textures)  # pipeline drained: only bubbles in flight
 
         def describe(k: int, ins=ins, names=names) -> str:
             t = min(int(ins["tex_i"][k]), ntex - 1) if ntex > 1 else 0
@@ -309,37 +377,13 @@ async def tex_addr_random_and_directed(dut):
     for ln in lines:
         dut._log.info("  %s", ln)
     dut._log.info("VECTORS tex_addr: %d lookups over %d textures (NTEX %d, ADD_LAT %d, MUL_LAT "
-                  "%d), 0 mismatches", total, len(lines), ntex, *depths.current())
+                  "%d), 0 mismatches", total, len(lines), ntex, *pair)
 
 
-def run_at(add: int, mul: int, parameters: dict[str, object] | None = None,
-           extra_env: dict[str, str] | None = None) -> None:
-    """Build tex_addr at f24_add LAT ``add``, f24_mul LAT ``mul`` (the package defaults with no
-    depth parameter) and run the test."""
-    params = {**(parameters or {}), **depths.parameters(add, mul)}
-    env = {**(extra_env or {}), **depths.env(add, mul)}
-    runner.run("tex_addr", "test_tex_addr", Path(__file__).parent, parameters=params,
-               extra_env=env)
-
-
-@pytest.mark.parametrize("add,mul", depths.cases())
-def test_tex_addr(add: int, mul: int) -> None:
-    run_at(add, mul)
-
-
-def test_tex_addr_tag1_addr40():
-    runner.run("tex_addr", "test_tex_addr", Path(__file__).parent,
-               parameters={"TAG_W": 1, "ADDR_W": 40}, extra_env={"VECTORS": "3000"})
-
-
-@pytest.mark.parametrize("add,mul", depths.cases())
-def test_tex_addr_ntex2(add: int, mul: int) -> None:
-    """Two textures sharing the unit, as in dm_pipeline (colour and normal map)."""
-    run_at(add, mul, {"TAG_W": 9, "NTEX": 2}, {"VECTORS": "6000"})
-
-
-@pytest.mark.skipif(not runner.long_stimulus(), reason="NTEX 3, not the design's 2: make test-long (TB_LONG=1)")
-def test_tex_addr_ntex3():
-    """Three textures: tex_i = 3 must read texture 2."""
-    runner.run("tex_addr", "test_tex_addr", Path(__file__).parent,
-               parameters={"NTEX": 3}, extra_env={"VECTORS": "3000"})
+def test_tex_addr() -> None:
+    """Build tex_addr_tb once (the configurations of CASES; under make test-long, TB_LONG=1, with
+    LONG = 1: LONG_CASES too) and run :func:`tex_addr_random_and_directed` on every instance."""
+    here = Path(__file__).parent
+    runner.run("tex_addr_tb", "test_tex_addr", here, rtl_top="tex_addr",
+               parameters={"LONG": 1} if runner.long_stimulus() else {},
+               extra_sources=[str(here / "tex_addr_tb.sv")])
