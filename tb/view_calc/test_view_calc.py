@@ -16,18 +16,25 @@ stimulus: (3, 2), the package defaults (built with no parameter, so the run also
 defaults), and under make test-long the paper's (2, 1).  valid_o must come exactly
 pipe_pkg::view_calc_lat(ADD_LAT, MUL_LAT) enabled edges after valid_i (21 at (3, 2), 17 at
 (2, 1)), with the same words.
+
+The configurations of CASES (the design's unit; TAG_W 1 with 2,000 random vectors) and, under
+make test-long, LONG_CASES (the first at (2, 1)) are built once, side by side, in the wrapper
+``view_calc_tb`` (one instance each, own ports and reset, a shared clock; its parameter LONG
+adds LONG_CASES) and run at once in one simulation, each with its own random stream from the
+printed seed and its own checks; a failure names the configuration.
 """
 from __future__ import annotations
 
 from pathlib import Path
+from typing import NamedTuple
 
 import cocotb
 import numpy as np
-import pytest
+from cocotb.clock import Clock
 
 from model import f24, f24_vectors as vec, view
 from model.arith import ENGINES
-from tb.common import depths, fp_unit, runner
+from tb.common import cases, depths, fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 from tb.harness import sv_params
 
@@ -37,6 +44,33 @@ SPACING = 4   # enabled clocks from one fragment to the next, at least (view_cal
 WORDS = ["tx_i", "ty_i", "tz_i", "bx_i", "by_i", "bz_i", "nx_i", "ny_i", "nz_i",
          "vx_i", "vy_i", "vz_i"]
 OUTS = ["du_o", "dv_o", "seg_o"]
+
+
+class Case(NamedTuple):
+    """One instance of view_calc_tb: its parameters and the random vectors of its first depth
+    scale (``vectors``: None for fp_unit.vectors(VECTORS_COMPOSITE), i.e. VECTORS=... or the
+    default)."""
+    ADD_LAT: int
+    MUL_LAT: int
+    TAG_W: int
+    vectors: int | None
+
+    def name(self) -> str:
+        """How a failure names the configuration."""
+        return f"view_calc ADD_LAT {self.ADD_LAT}, MUL_LAT {self.MUL_LAT}, TAG_W {self.TAG_W}"
+
+
+#: The instances g_case[0 ..] of view_calc_tb (the wrapper's table): the design's unit (the
+#: package defaults) and a 1-bit tag.
+CASES = [Case(*DEFAULT_LATS, 8, None), Case(*DEFAULT_LATS, 1, 2000)]
+#: The instances after CASES in the make test-long build (the wrapper's LONG = 1): the design's
+#: unit at the other depths of depths.PAIRS (the paper's (2, 1)).
+LONG_CASES = [Case(a, m, 8, None) for a, m in depths.PAIRS if (a, m) != DEFAULT_LATS]
+
+
+def build_cases() -> list[Case]:
+    """The instances of the build: CASES, and LONG_CASES under TB_LONG=1."""
+    return CASES + (LONG_CASES if runner.long_stimulus() else [])
 
 
 def orthonormal(rng: np.random.Generator, n: int) -> np.ndarray:
@@ -139,18 +173,40 @@ DEPTHS = {"20.48": int(f24.from_float(20.48)), "1": f24.ONE, "max finite": f24.M
 
 @cocotb.test()
 async def view_calc_random_and_directed(dut):
-    rng = np.random.default_rng(fp_unit.seed())
-    add_lat, mul_lat = depths.current()
+    """Every instance of view_calc_tb at once (:func:`random_and_directed` each)."""
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    configs = build_cases()
+    assert int(dut.NCASE.value) == len(configs), \
+        f"view_calc_tb holds {int(dut.NCASE.value)} instances, the test expects {len(configs)}"
+    rngs = cases.streams(len(configs))
+    await cases.check_all([(c.name(), check_case(dut, i, c, rngs[i]))
+                           for i, c in enumerate(configs)])
+
+
+async def check_case(top, i: int, case: Case, rng: np.random.Generator) -> list[str]:
+    """Drive and check ``top.g_case[i]`` (view_calc with the parameters of ``case``) as the
+    module docstring says; return the failure messages (none: it passed)."""
+    dut = top.g_case[i]
+    params = {k: v for k, v in case._asdict().items() if k != "vectors"}
+    if mism := cases.param_mismatches(dut, params):
+        return mism
+    return await cases.asserts(random_and_directed(dut, top.clk_i, case, rng))
+
+
+async def random_and_directed(dut, clk, case: Case, rng: np.random.Generator) -> None:
+    """Every depth scale's stream on one instance ``dut`` (clock ``clk``)."""
+    add_lat, mul_lat = case.ADD_LAT, case.MUL_LAT
     # pipe_pkg::view_calc_lat (the divider: f24_pkg::F24_DIV_LAT = 8): 17 at (2, 1), 21 at (3, 2)
     latency = sv_params.call("pipe_pkg", "view_calc_lat", add_lat, mul_lat)
     dut._log.info("view_calc ADD_LAT=%d MUL_LAT=%d: latency %d", add_lat, mul_lat, latency)
     # z, x and y share their float units: a fragment every 4th enabled clock at most
     pipe = ValidPipe(dut, latency, WORDS, OUTS, "RTL vs model.view.view_calc (f24)",
-                     spacing=SPACING)
+                     spacing=SPACING, clk=clk, unit="view_calc")
     await pipe.reset()
     total, classes = 0, {}
     for i, (dname, dword) in enumerate(DEPTHS.items()):
-        n_random = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE) if i == 0 else 2000
+        n_first = case.vectors or fp_unit.vectors(fp_unit.VECTORS_COMPOSITE)
+        n_random = n_first if i == 0 else 2000
         words, counts = stimulus(rng, n_random)
         if i == 0:
             classes = counts
@@ -172,15 +228,6 @@ async def view_calc_random_and_directed(dut):
                   total, len(DEPTHS), ", ".join(f"{k} {v}" for k, v in classes.items()))
 
 
-def run_lats(lats: tuple[int, int], parameters: dict[str, int] | None = None,
-             extra_env: dict[str, str] | None = None) -> None:
-    """Build view_calc at (ADD_LAT, MUL_LAT) = ``lats`` (the defaults with no parameter) and run
-    the test."""
-    params = {**(parameters or {}), **depths.parameters(*lats)}
-    runner.run("view_calc", "test_view_calc", Path(__file__).parent, parameters=params,
-               extra_env={**(extra_env or {}), **depths.env(*lats)})
-
-
 def test_default_latency() -> None:
     """pipe_pkg::VIEW_CALC_LAT (dm_pipeline's) is view_calc_lat at the package defaults; the
     function gives the header's figures (17 at (2, 1), 21 at (3, 2))."""
@@ -190,10 +237,10 @@ def test_default_latency() -> None:
     assert sv_params.call("pipe_pkg", "view_calc_lat", 3, 2) == 21
 
 
-@pytest.mark.parametrize("add,mul", depths.cases())
-def test_view_calc(add: int, mul: int):
-    run_lats((add, mul))
-
-
-def test_view_calc_tag1():
-    run_lats(DEFAULT_LATS, parameters={"TAG_W": 1}, extra_env={"VECTORS": "2000"})
+def test_view_calc() -> None:
+    """Build view_calc_tb once (the configurations of CASES; under make test-long, TB_LONG=1,
+    with LONG = 1: LONG_CASES too) and run :func:`view_calc_random_and_directed`."""
+    here = Path(__file__).parent
+    runner.run("view_calc_tb", "test_view_calc", here, rtl_top="view_calc",
+               parameters={"LONG": 1} if runner.long_stimulus() else {},
+               extra_sources=[str(here / "view_calc_tb.sv")])
