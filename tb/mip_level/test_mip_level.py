@@ -24,19 +24,26 @@ stimulus: (3, 2), the package defaults (built with no parameter, so the run also
 defaults), and under make test-long the paper's (2, 1).  The colour level must come exactly
 pipe_pkg::mip_lat(ADD_LAT, MUL_LAT) enabled edges after valid_i (20 at (3, 2), 14 at (2, 1)),
 the normal map's on the next one, with the same levels.
+
+The configurations of CASES (the design's unit; two triangles with a 3-bit tag and 5,000
+vectors) and, under make test-long, LONG_CASES (the first at (2, 1)) are built once, side by
+side, in the wrapper ``mip_level_tb`` (one instance each, own ports and reset, a shared clock;
+its parameter LONG adds LONG_CASES) and run at once in one simulation, each with its own random
+stream from the printed seed and its own checks; a failure names the configuration.
 """
 from __future__ import annotations
 
 from pathlib import Path
+from typing import NamedTuple
 
 import cocotb
 import numpy as np
-import pytest
+from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
 from model import f24, f24_vectors as vec, texture
 from model.arith import ENGINES
-from tb.common import depths, fp_unit, runner
+from tb.common import cases, depths, fp_unit, runner
 from tb.common.valid_pipe import ValidPipe
 from tb.harness import sv_params
 
@@ -74,7 +81,8 @@ def results(per_tex: list[np.ndarray]) -> dict[str, np.ndarray]:
     return {"tex_o": np.tile([0, 1], n), "level_o": np.stack(per_tex, axis=1).ravel()}
 
 
-async def write_table(dut, table: np.ndarray, rng: np.random.Generator, en_random: bool) -> None:
+async def write_table(dut, clk, table: np.ndarray, rng: np.random.Generator,
+                      en_random: bool) -> None:
     """Every word {tri, tex} through the write port, in random order, with en_i random or 0 and
     valid_i = 0 (only bubbles enter the pipeline)."""
     tris = table.shape[0]
@@ -85,8 +93,8 @@ async def write_table(dut, table: np.ndarray, rng: np.random.Generator, en_rando
         dut.tt_waddr_i.value = int(a)
         dut.tt_wdata_i.value = int(table[a >> 1, a & 1])
         dut.en_i.value = int(rng.random() < 0.5) if en_random else 0
-        await RisingEdge(dut.clk_i)
-        await FallingEdge(dut.clk_i)
+        await RisingEdge(clk)
+        await FallingEdge(clk)
     dut.tt_we_i.value = 0
     dut.en_i.value = 0
 
@@ -154,18 +162,68 @@ def random_table(rng: np.random.Generator, tris: int, lo: float, hi: float) -> n
     return f24.from_float(rng.uniform(lo, hi, (tris, 2))).astype(np.uint32)
 
 
+class Case(NamedTuple):
+    """One instance of mip_level_tb: its parameters and its random vectors (``vectors``: None for
+    fp_unit.vectors(VECTORS_COMPOSITE), i.e. VECTORS=... or the default)."""
+    ADD_LAT: int
+    MUL_LAT: int
+    TAG_W: int
+    TRIS: int
+    vectors: int | None
+
+    def name(self) -> str:
+        """How a failure names the configuration."""
+        return (f"mip_level ADD_LAT {self.ADD_LAT}, MUL_LAT {self.MUL_LAT}, TAG_W {self.TAG_W}, "
+                f"TRIS {self.TRIS}")
+
+
+#: The instances g_case[0 ..] of mip_level_tb (the wrapper's table): the design's unit (the
+#: package defaults) and two triangles with a 3-bit tag.
+CASES = [Case(*DEFAULT_LATS, 8, 16, None), Case(*DEFAULT_LATS, 3, 2, 5000)]
+#: The instances after CASES in the make test-long build (the wrapper's LONG = 1): the design's
+#: unit at the other depths of depths.PAIRS (the paper's (2, 1)).
+LONG_CASES = [Case(a, m, 8, 16, None) for a, m in depths.PAIRS if (a, m) != DEFAULT_LATS]
+
+
+def build_cases() -> list[Case]:
+    """The instances of the build: CASES, and LONG_CASES under TB_LONG=1."""
+    return CASES + (LONG_CASES if runner.long_stimulus() else [])
+
+
 @cocotb.test()
 async def mip_level_random_and_directed(dut):
-    rng = np.random.default_rng(fp_unit.seed())
+    """Every instance of mip_level_tb at once (:func:`random_and_directed` each)."""
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    configs = build_cases()
+    assert int(dut.NCASE.value) == len(configs), \
+        f"mip_level_tb holds {int(dut.NCASE.value)} instances, the test expects {len(configs)}"
+    rngs = cases.streams(len(configs))
+    await cases.check_all([(c.name(), check_case(dut, i, c, rngs[i]))
+                           for i, c in enumerate(configs)])
+
+
+async def check_case(top, i: int, case: Case, rng: np.random.Generator) -> list[str]:
+    """Drive and check ``top.g_case[i]`` (mip_level with the parameters of ``case``) as the
+    module docstring says; return the failure messages (none: it passed)."""
+    dut = top.g_case[i]
+    params = {k: v for k, v in case._asdict().items() if k != "vectors"}
+    if mism := cases.param_mismatches(dut, params):
+        return mism
+    return await cases.asserts(random_and_directed(dut, top.clk_i, case, rng))
+
+
+async def random_and_directed(dut, clk, case: Case, rng: np.random.Generator) -> None:
+    """Every phase on one instance ``dut`` (clock ``clk``)."""
     tris = 1 << len(dut.tri_i)  # the test runs power-of-two TRIS (tb/tri_table: the others)
-    nvec = fp_unit.vectors(fp_unit.VECTORS_COMPOSITE)  # 50,000 with TB_LONG=1
-    add_lat, mul_lat = depths.current()
+    # 50,000 with TB_LONG=1
+    nvec = case.vectors or fp_unit.vectors(fp_unit.VECTORS_COMPOSITE)
+    add_lat, mul_lat = case.ADD_LAT, case.MUL_LAT
     # pipe_pkg::mip_lat (f24_log2 at pipe_pkg::F24_LOG2_LAT): the colour level's latency
     latency = sv_params.call("pipe_pkg", "mip_lat", add_lat, mul_lat)
     dut._log.info("mip_level ADD_LAT=%d MUL_LAT=%d: latency %d", add_lat, mul_lat, latency)
     gap = sv_params.call("pipe_pkg", "mip_gap", add_lat)  # the shared adder's rule
     pipe = ValidPipe(dut, latency, INS, OUTS, "RTL vs model.texture.mip_level (f24)", jobs=2,
-                     spacing=2, forbid=(gap, gap + 1))
+                     spacing=2, forbid=(gap, gap + 1), clk=clk, unit="mip_level")
     dut.tt_we_i.value = 0
     await pipe.reset()
     specials_tab = np.array([f24.NAN, f24.POS_INF, f24.NEG_INF, f24.MAX_FINITE, 0xFEFFFF,
@@ -194,7 +252,7 @@ async def mip_level_random_and_directed(dut):
     cfg_counts = {"counts 0 and 40": (0, 40)}
     total = 0
     for i, (name, hits, table, levels, mip, en_random) in enumerate(phases):
-        await write_table(dut, table, rng, en_random)
+        await write_table(dut, clk, table, rng, en_random)
         dut.cfg_mip_en_i.value = int(mip)
         dut.cfg_levels_colour_i.value = cfg_counts.get(name, levels)[0]
         dut.cfg_levels_normal_i.value = cfg_counts.get(name, levels)[1]
@@ -216,15 +274,6 @@ async def mip_level_random_and_directed(dut):
                   len(phases))
 
 
-def run_lats(lats: tuple[int, int], parameters: dict[str, int] | None = None,
-             extra_env: dict[str, str] | None = None) -> None:
-    """Build mip_level at (ADD_LAT, MUL_LAT) = ``lats`` (the defaults with no parameter) and run
-    the test."""
-    params = {**(parameters or {}), **depths.parameters(*lats)}
-    runner.run("mip_level", "test_mip_level", Path(__file__).parent, parameters=params,
-               extra_env={**(extra_env or {}), **depths.env(*lats)})
-
-
 def test_default_latency() -> None:
     """pipe_pkg::MIP_LAT (dm_pipeline's) is mip_lat at the package defaults; the function gives
     the header's figures (14 at (2, 1), 20 at (3, 2)); mip_gap is 1 or 2 mod 4 at every ADD_LAT
@@ -239,10 +288,10 @@ def test_default_latency() -> None:
         assert gap % 4 in (1, 2) and gap >= add + 4, (add, gap)
 
 
-@pytest.mark.parametrize("add,mul", depths.cases())
-def test_mip_level(add: int, mul: int):
-    run_lats((add, mul))
-
-
-def test_mip_level_two_triangles():
-    run_lats(DEFAULT_LATS, parameters={"TRIS": 2, "TAG_W": 3}, extra_env={"VECTORS": "5000"})
+def test_mip_level() -> None:
+    """Build mip_level_tb once (the configurations of CASES; under make test-long, TB_LONG=1,
+    with LONG = 1: LONG_CASES too) and run :func:`mip_level_random_and_directed`."""
+    here = Path(__file__).parent
+    runner.run("mip_level_tb", "test_mip_level", here, rtl_top="mip_level",
+               parameters={"LONG": 1} if runner.long_stimulus() else {},
+               extra_sources=[str(here / "mip_level_tb.sv")])
