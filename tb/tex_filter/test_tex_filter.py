@@ -23,29 +23,35 @@ a stall) is held and taken at the next ready, exactly once, its result at the fi
 reset of a full pipeline while stalled.  ALPHA = 1 checks all four channels; the ALPHA = 0 build
 checks R, G, B and that a_o is 0.
 
-Every run is built at one pair of float-unit depths (ADD_LAT, MUL_LAT) of tb/common/depths.py:
-the package defaults (3, 2) (built with no parameter, so the defaults are checked too), and under
-``make test-long`` (TB_LONG=1) the paper's (2, 1) and, for test_tex_filter, (2, 2), the depths
-without m's parity delay; the latency
-the driver expects is pipe_pkg::tex_filter_lat(ADD_LAT, MUL_LAT), which must equal this file's
-mirror of the schedule (and TEX_FILTER_LAT at the defaults); the stimulus and the bit-exact
-checks are the same at every depth.
+Every configuration is at one pair of float-unit depths (ADD_LAT, MUL_LAT) of
+tb/common/depths.py: the package defaults (3, 2) (built with no depth parameter, so the defaults
+are checked too), and under ``make test-long`` (TB_LONG=1) the paper's (2, 1) and, for ALPHA = 1,
+(2, 2), the depths without m's parity delay; the latency the driver expects is
+pipe_pkg::tex_filter_lat(ADD_LAT, MUL_LAT), which must equal this file's mirror of the schedule
+(and TEX_FILTER_LAT at the defaults); the stimulus and the bit-exact checks are the same at
+every depth.
+
+The configurations of CASES (ALPHA = 1; dm_pipeline's ALPHA = 0 with a 1-bit tag and 4,000
+vectors) and, under make test-long, LONG_CASES (both at (2, 1), ALPHA = 1 at (2, 2)) are built
+once, side by side, in the wrapper ``tex_filter_tb`` (one instance each, own ports and reset, a
+shared clock; its parameter LONG adds LONG_CASES), and each cocotb test runs on all of them at
+once, each with its own random stream from the printed seed and its own checks; a failure names
+the configuration.
 """
 from __future__ import annotations
 
 import collections
 from pathlib import Path
-from typing import Callable, Mapping
+from typing import Any, Callable, Coroutine, Mapping, NamedTuple
 
 import cocotb
 import numpy as np
-import pytest
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
 from model import f24, f24_vectors as vec, texture
 from model.arith import ENGINES
-from tb.common import depths, fp_unit, report, runner
+from tb.common import cases, depths, fp_unit, report, runner
 from tb.common.valid_pipe import ValidPipe
 from tb.harness import sv_params
 
@@ -60,13 +66,43 @@ def tex_filter_lat(add_lat: int, mul_lat: int) -> int:
     return unorm + rows + 1 + apart + add_lat
 
 
-def latency() -> int:
-    """The latency under test: pipe_pkg::tex_filter_lat at the build's depths, checked against the
-    mirror above (and TEX_FILTER_LAT at the defaults)."""
-    return depths.latency("tex_filter_lat", tex_filter_lat, "TEX_FILTER_LAT")
+def latency(pair: tuple[int, int]) -> int:
+    """The latency under test: pipe_pkg::tex_filter_lat at the instance's depths ``pair``,
+    checked against the mirror above (and TEX_FILTER_LAT at the defaults)."""
+    return depths.latency("tex_filter_lat", tex_filter_lat, "TEX_FILTER_LAT", pair=pair)
 
 
-LATENCY = latency()  # of the build under test (in the simulator's process)
+class Case(NamedTuple):
+    """One instance of tex_filter_tb: its parameters and its random vectors (``vectors``: None
+    for fp_unit.vectors(VECTORS_COMPOSITE), i.e. VECTORS=... or the default)."""
+    ADD_LAT: int
+    MUL_LAT: int
+    TAG_W: int
+    ALPHA: int
+    vectors: int | None
+
+    def name(self) -> str:
+        """How a failure names the configuration."""
+        return (f"tex_filter ADD_LAT {self.ADD_LAT}, MUL_LAT {self.MUL_LAT}, TAG_W {self.TAG_W}, "
+                f"ALPHA {self.ALPHA}")
+
+
+_OTHER = [p for p in depths.PAIRS if p != depths.DEFAULT]
+#: The instances g_case[0 ..] of tex_filter_tb (the wrapper's table): all four channels;
+#: dm_pipeline's build (R, G, B) with a 1-bit tag.
+CASES = [Case(*depths.DEFAULT, 8, 1, None), Case(*depths.DEFAULT, 1, 0, 4000)]
+#: The instances after CASES in the make test-long build (the wrapper's LONG = 1): ALPHA = 1 at
+#: the other depths of depths.PAIRS (the paper's (2, 1)) and at (2, 2), where ADD_LAT + MUL_LAT
+#: is even and m goes to the last adder's operand register without a delay; dm_pipeline's build
+#: at the other depths of depths.PAIRS.
+LONG_CASES = ([Case(a, m, 8, 1, None) for a, m in _OTHER + [(2, 2)]]
+              + [Case(a, m, 1, 0, 4000) for a, m in _OTHER])
+
+
+def build_cases() -> list[Case]:
+    """The instances of the build: CASES, and LONG_CASES under TB_LONG=1."""
+    return CASES + (LONG_CASES if runner.long_stimulus() else [])
+
 TEXELS = ["t00_i", "t01_i", "t10_i", "t11_i"]
 INS = TEXELS + ["fx_i", "fy_i"]
 OUTS = ["r_o", "g_o", "b_o", "a_o"]
@@ -174,22 +210,23 @@ def expected(ins: dict[str, np.ndarray], alpha: bool) -> dict[str, np.ndarray]:
 
 
 class HandshakePipe:
-    """tex_filter under test with its valid / ready handshake; starts the clock and checks every
-    clock: ready_o is 0 while en_i is 0 and alternates over enabled clocks (1 on the first
-    enabled clock after a reset); valid_o after an enabled edge is the take LATENCY enabled edges
-    earlier (a take: an edge with valid_i && ready_o, en_i is part of ready_o); every output holds
-    over a stalled edge."""
+    """tex_filter under test (``dut``: an instance's scope, ``clk``: the running clock, ``lat``:
+    its latency) with its valid / ready handshake; checks every clock: ready_o is 0 while en_i is
+    0 and alternates over enabled clocks (1 on the first enabled clock after a reset); valid_o
+    after an enabled edge is the take ``lat`` enabled edges earlier (a take: an edge with
+    valid_i && ready_o, en_i is part of ready_o); every output holds over a stalled edge."""
 
-    def __init__(self, dut) -> None:
+    def __init__(self, dut, clk, lat: int) -> None:
         self.dut = dut
+        self.clk = clk
+        self.latency = lat
         self.tag_w = len(dut.tag_i)
         self.in_sigs = {k: getattr(dut, k) for k in INS}
         self.out_sigs = {k: getattr(dut, k) for k in ["valid_o", "tag_o"] + OUTS}
-        self.hist: collections.deque = collections.deque([-1] * LATENCY, maxlen=LATENCY)
+        self.hist: collections.deque = collections.deque([-1] * lat, maxlen=lat)
         self.last_ready = 0   # ready_o on the last enabled clock (after a reset: as if 0)
         self.cyc = 0
         self.prev = self.sample()
-        cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
 
     def sample(self) -> dict[str, int]:
         return {k: int(s.value) for k, s in self.out_sigs.items()}
@@ -197,8 +234,9 @@ class HandshakePipe:
     async def reset(self, cycles: int = 2) -> None:
         """rst_ni low for ``cycles`` edges with en_i = 0 and valid_i = 1 (the reset does not wait
         for en_i and nothing is taken): ValidPipe's reset, then this driver's state."""
-        await ValidPipe.reset(self, cycles)  # type: ignore[arg-type]  # uses only self.dut
-        self.hist.extend([-1] * LATENCY)
+        # (uses only self.dut and self.clk)
+        await ValidPipe.reset(self, cycles)  # type: ignore[arg-type]
+        self.hist.extend([-1] * self.latency)
         self.last_ready = 0
         self.prev = self.sample()
 
@@ -225,8 +263,8 @@ class HandshakePipe:
                                      f"{self.cyc}): a lookup every other enabled clock")
             self.last_ready = ready
         taken = bool(en and valid and ready)
-        await RisingEdge(d.clk_i)
-        await FallingEdge(d.clk_i)
+        await RisingEdge(self.clk)
+        await FallingEdge(self.clk)
         now = self.sample()
         out = -1
         if en:
@@ -256,7 +294,7 @@ class HandshakePipe:
         in_lists = {k: [int(x) for x in inputs[k]] for k in INS}
         tags = rng.integers(0, 1 << self.tag_w, n)
         kinds = ((0.8, 0.2), (1.0, 0.0), (0.75, 0.0), (0.9, 0.6))  # (P(en_i), P(bubble))
-        m = 4 * n + 4 * LATENCY + 64
+        m = 4 * n + 4 * self.latency + 64
         u_en = rng.random(m).tolist()
         u_bub = rng.random(m).tolist()
         hold = (rng.random(m) < 0.5).tolist()
@@ -319,9 +357,9 @@ class HandshakePipe:
             if len(bad):
                 mism.append(f"{what}: {name}: {len(bad)} mismatches of {n}")
         nbad = int(bad_any.sum())
-        report.record(d._name, "RTL vs model.texture.filter_texels (f24)", n, nbad)
+        report.record("tex_filter", "RTL vs model.texture.filter_texels (f24)", n, nbad)
         d._log.info("%s: %d lookups in %d clocks (latency %d, %d enabled clocks offered while "
-                    "not ready), %d mismatches", what, n, self.cyc - c0, LATENCY, waits, nbad)
+                    "not ready), %d mismatches", what, n, self.cyc - c0, self.latency, waits, nbad)
         if mism:
             raise AssertionError("\n".join(mism))
         assert waits > 0, f"{what}: no lookup was ever offered while ready_o was 0"
@@ -333,7 +371,7 @@ class HandshakePipe:
         d = self.dut
         d.rst_ni.value = 1
         shown = False
-        for _ in range(LATENCY + 2):
+        for _ in range(self.latency + 2):
             _, now, _ = await self.step(True, 1, data, int(rng.integers(0, 1 << self.tag_w)), 0)
             shown |= bool(now["valid_o"])
         assert shown, "valid_o should show the first lookup taken"
@@ -341,24 +379,54 @@ class HandshakePipe:
         d.en_i.value = 0
         d.valid_i.value = 1
         d.rst_ni.value = 0
-        await RisingEdge(d.clk_i)
-        await FallingEdge(d.clk_i)
+        await RisingEdge(self.clk)
+        await FallingEdge(self.clk)
         assert int(d.valid_o.value) == 0, "rst_ni with en_i = 0 did not clear valid_o"
         d.rst_ni.value = 1
-        self.hist.extend([-1] * LATENCY)
+        self.hist.extend([-1] * self.latency)
         self.last_ready = 0
         self.prev = self.sample()
-        for _ in range(LATENCY + 2):
+        for _ in range(self.latency + 2):
             await self.step(True, 0, data, 0)  # step checks valid_o = 0 and ready_o's phase
+
+
+Check = Callable[[Any, HandshakePipe, Case, np.random.Generator], Coroutine[Any, Any, None]]
+
+
+async def each_case(top, check: Check) -> None:
+    """Start the clock, then reset every instance of tex_filter_tb and run ``check`` on it (all
+    at once, each with its own random stream: :func:`cases.streams`); fail naming every
+    configuration whose check failed."""
+    cocotb.start_soon(Clock(top.clk_i, 10, unit="ns").start())
+    configs = build_cases()
+    assert int(top.NCASE.value) == len(configs), \
+        f"tex_filter_tb holds {int(top.NCASE.value)} instances, the test expects {len(configs)}"
+    rngs = cases.streams(len(configs))
+
+    async def one(i: int, case: Case) -> list[str]:
+        dut = top.g_case[i]
+        params = {k: v for k, v in case._asdict().items() if k != "vectors"}
+        if mism := cases.param_mismatches(dut, params):
+            return mism
+        pipe = HandshakePipe(dut, top.clk_i, latency((case.ADD_LAT, case.MUL_LAT)))
+        await pipe.reset()
+        return await cases.asserts(check(dut, pipe, case, rngs[i]))
+
+    await cases.check_all([(c.name(), one(i, c)) for i, c in enumerate(configs)])
 
 
 @cocotb.test()
 async def tex_filter_random_and_directed(dut):
-    rng = np.random.default_rng(fp_unit.seed())
+    """The stimulus of the module docstring (:func:`random_and_directed`), every instance."""
+    await each_case(dut, random_and_directed)
+
+
+async def random_and_directed(dut, pipe: HandshakePipe, case: Case,
+                              rng: np.random.Generator) -> None:
+    """The stimulus classes in two parts, a reset of a full pipeline between them, on one
+    instance ``dut`` driven by ``pipe``."""
     alpha = bool(int(dut.ALPHA.value))
-    pipe = HandshakePipe(dut)
-    await pipe.reset()
-    ins, counts = stimulus(rng, fp_unit.vectors(fp_unit.VECTORS_COMPOSITE))
+    ins, counts = stimulus(rng, case.vectors or fp_unit.vectors(fp_unit.VECTORS_COMPOSITE))
     perm = rng.permutation(len(ins["fx_i"]))
     ins = {k: v[perm] for k, v in ins.items()}
     exp = expected(ins, alpha)
@@ -379,17 +447,20 @@ async def tex_filter_random_and_directed(dut):
             await pipe.flush_check(rng, {n: int(v[0]) for n, v in ins.items()})
     dut._log.info("VECTORS tex_filter: %d lookups (%s; ADD_LAT, MUL_LAT = %s, latency %d), "
                   "0 mismatches", total, ", ".join(f"{k} {v}" for k, v in counts.items()),
-                  depths.current(), LATENCY)
+                  (case.ADD_LAT, case.MUL_LAT), pipe.latency)
 
 
 @cocotb.test()
 async def tex_filter_held_while_not_ready(dut):
+    """Held lookups (:func:`held_while_not_ready`), every instance."""
+    await each_case(dut, held_while_not_ready)
+
+
+async def held_while_not_ready(dut, pipe: HandshakePipe, case: Case,
+                               rng: np.random.Generator) -> None:
     """Directed: lookups offered while ready_o is 0 (the clock after a take; across a stall) are
     held, taken at the next ready exactly once, and come out at the fixed latency, right."""
-    rng = np.random.default_rng(fp_unit.seed())
     alpha = bool(int(dut.ALPHA.value))
-    pipe = HandshakePipe(dut)
-    await pipe.reset()
     ins, _ = stimulus(rng, 200)
     pick = rng.choice(len(ins["fx_i"]), 4, replace=False)
     ins = {k: v[pick] for k, v in ins.items()}
@@ -399,7 +470,7 @@ async def tex_filter_held_while_not_ready(dut):
     # (en_i, lookup offered or -1): A at once; B in the clock after (not ready), held; C after B,
     # held over three stalled clocks; D after C, held over one stalled clock.
     plan = [(1, 0), (1, 1), (1, 1), (1, 2), (0, 2), (0, 2), (0, 2), (1, 2), (1, 3), (0, 3),
-            (1, 3)] + [(1, -1)] * (LATENCY + 2)
+            (1, 3)] + [(1, -1)] * (pipe.latency + 2)
     takes, seen, outs = [], [], {k: [] for k in ["tag_o"] + OUTS}
     for clock, (en, q) in enumerate(plan, start=1):
         data = {n: int(ins[n][q]) for n in INS} if q >= 0 else zero
@@ -418,29 +489,15 @@ async def tex_filter_held_while_not_ready(dut):
     for name, g in outs.items():
         assert [int(x) for x in expect[name]] == g, (
             f"{name}: got {[hex(x) for x in g]} expected {[hex(int(x)) for x in expect[name]]}")
-    report.record(dut._name, "RTL vs model.texture.filter_texels (f24), held lookups", 4, 0)
-    dut._log.info("held while not ready: takes %s, 4 results at latency %d", takes, LATENCY)
+    report.record("tex_filter", "RTL vs model.texture.filter_texels (f24), held lookups", 4, 0)
+    dut._log.info("held while not ready: takes %s, 4 results at latency %d", takes,
+                  pipe.latency)
 
 
-def run_at(add: int, mul: int, parameters: dict[str, object],
-           extra_env: dict[str, str] | None = None) -> None:
-    """Build tex_filter at f24_add LAT ``add``, f24_mul LAT ``mul`` (the package defaults with no
-    depth parameter) and run the tests."""
-    params = {**parameters, **depths.parameters(add, mul)}
-    env = {**(extra_env or {}), **depths.env(add, mul)}
-    runner.run("tex_filter", "test_tex_filter", Path(__file__).parent, parameters=params,
-               extra_env=env)
-
-
-@pytest.mark.parametrize("add,mul", depths.cases(depths.PAIRS + ((2, 2),)))
-def test_tex_filter(add: int, mul: int) -> None:
-    """All four channels; under ``make test-long`` also at (2, 1) and (2, 2), where ADD_LAT +
-    MUL_LAT is even and m goes to the last adder's operand register without a delay."""
-    run_at(add, mul, {"ALPHA": 1})
-
-
-@pytest.mark.parametrize("add,mul", depths.cases())
-def test_tex_filter_rgb_tag1(add: int, mul: int) -> None:
-    """dm_pipeline's build (R, G, B) with a 1-bit tag; at depths other than the package's only
-    under ``make test-long``."""
-    run_at(add, mul, {"ALPHA": 0, "TAG_W": 1}, {"VECTORS": "4000"})
+def test_tex_filter() -> None:
+    """Build tex_filter_tb once (the configurations of CASES; under make test-long, TB_LONG=1,
+    with LONG = 1: LONG_CASES too) and run the cocotb tests on every instance."""
+    here = Path(__file__).parent
+    runner.run("tex_filter_tb", "test_tex_filter", here, rtl_top="tex_filter",
+               parameters={"LONG": 1} if runner.long_stimulus() else {},
+               extra_sources=[str(here / "tex_filter_tb.sv")])
