@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Several configurations of one small unit in one build and one simulation.
+"""Several configurations of one unit in one build and one simulation.
 
 A wrapper ``tb/<unit>/<unit>_tb.sv`` instantiates the unit once per configuration, in a generate
 loop ``g_case[i]`` that holds the instance and its own copy of the unit's ports (named as the
@@ -11,9 +11,9 @@ test with those of every failing configuration, each under the configuration's n
 written as a lone unit's test, which stops at its first failed ``assert``, takes part through
 :func:`asserts`.
 
-One Verilator build (a small unit's C++ compile takes about 6 s) and one simulator launch, not
-one per configuration; the instances advance in the same clocks, so the cocotb scheduler's work
-per clock is shared too.
+One Verilator build (a small unit's C++ compile takes about 6 s, a medium one's such as
+traverse_unit's about 30 s) and one simulator launch, not one per configuration; the instances
+advance in the same clocks, so the cocotb scheduler's work per clock is shared too.
 """
 from __future__ import annotations
 
