@@ -19,10 +19,11 @@ from __future__ import annotations
 
 import logging
 import random
-from typing import Any, Coroutine, Mapping, Sequence
+from typing import Any, Callable, Coroutine, Mapping, Sequence, TypeVar
 
 import cocotb
 import numpy as np
+from cocotb.clock import Clock
 
 from tb.common import fp_unit
 
@@ -80,3 +81,36 @@ async def asserts(coro: Coroutine[Any, Any, Any]) -> list[str]:
     except AssertionError as e:
         return [str(e) or "assertion failed"]
     return []
+
+
+C = TypeVar("C")
+
+
+def upper_fields(case: Any) -> dict[str, int]:
+    """The fields of a NamedTuple configuration named in capitals: the unit's parameters (its
+    other fields, e.g. ``vectors``, are the test's)."""
+    return {k: v for k, v in case._asdict().items() if k.isupper()}
+
+
+async def run_each(top: Any, configs: Sequence[C], name: Callable[[C], str],
+                   body: Callable[[Any, C, np.random.Generator], Coroutine[Any, Any, Any]],
+                   params: Callable[[C], Mapping[str, int]] = upper_fields) -> None:
+    """The whole test of a wrapper whose ``NCASE`` instances ``g_case[i]`` are ``configs``:
+    start ``top.clk_i`` (10 ns), check ``NCASE`` against the configurations, then on every
+    instance at once read its parameters back (:func:`param_mismatches` against
+    ``params(case)``) and run ``body(inst, case, rng)`` (its own stream, :func:`streams`; an
+    AssertionError is that configuration's failure, :func:`asserts`); fail naming every
+    configuration that failed (``name(case)``, :func:`check_all`)."""
+    cocotb.start_soon(Clock(top.clk_i, 10, unit="ns").start())
+    n = int(top.NCASE.value)
+    assert n == len(configs), \
+        f"{top._name} holds {n} instances, the test expects {len(configs)}"
+    rngs = streams(len(configs))
+
+    async def one(i: int, case: C) -> list[str]:
+        inst = top.g_case[i]
+        if mism := param_mismatches(inst, params(case)):
+            return mism
+        return await asserts(body(inst, case, rngs[i]))
+
+    await check_all([(name(c), one(i, c)) for i, c in enumerate(configs)])

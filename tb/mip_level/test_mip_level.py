@@ -38,7 +38,6 @@ from typing import NamedTuple
 
 import cocotb
 import numpy as np
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge
 
 from model import f24, f24_vectors as vec, texture
@@ -193,23 +192,8 @@ def build_cases() -> list[Case]:
 @cocotb.test()
 async def mip_level_random_and_directed(dut):
     """Every instance of mip_level_tb at once (:func:`random_and_directed` each)."""
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    configs = build_cases()
-    assert int(dut.NCASE.value) == len(configs), \
-        f"mip_level_tb holds {int(dut.NCASE.value)} instances, the test expects {len(configs)}"
-    rngs = cases.streams(len(configs))
-    await cases.check_all([(c.name(), check_case(dut, i, c, rngs[i]))
-                           for i, c in enumerate(configs)])
-
-
-async def check_case(top, i: int, case: Case, rng: np.random.Generator) -> list[str]:
-    """Drive and check ``top.g_case[i]`` (mip_level with the parameters of ``case``) as the
-    module docstring says; return the failure messages (none: it passed)."""
-    dut = top.g_case[i]
-    params = {k: v for k, v in case._asdict().items() if k != "vectors"}
-    if mism := cases.param_mismatches(dut, params):
-        return mism
-    return await cases.asserts(random_and_directed(dut, top.clk_i, case, rng))
+    await cases.run_each(dut, build_cases(), Case.name,
+                         lambda inst, c, rng: random_and_directed(inst, dut.clk_i, c, rng))
 
 
 async def random_and_directed(dut, clk, case: Case, rng: np.random.Generator) -> None:

@@ -53,7 +53,6 @@ from pathlib import Path
 from typing import NamedTuple
 
 import cocotb
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 import numpy as np
 
@@ -290,24 +289,9 @@ def configs(rng: np.random.Generator, addr_w: int) -> list[tuple[str, texture.Te
 
 @cocotb.test()
 async def tex_addr_random_and_directed(dut):
-    """Every instance of tex_addr_tb at once (:func:`check_case` each)."""
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    configs = build_cases()
-    assert int(dut.NCASE.value) == len(configs), \
-        f"tex_addr_tb holds {int(dut.NCASE.value)} instances, the test expects {len(configs)}"
-    rngs = cases.streams(len(configs))
-    await cases.check_all([(c.name(), check_case(dut, i, c, rngs[i]))
-                           for i, c in enumerate(configs)])
-
-
-async def check_case(top, i: int, case: Case, rng: np.random.Generator) -> list[str]:
-    """Drive and check ``top.g_case[i]`` (tex_addr with the parameters of ``case``) as the module
-    docstring says; return the failure messages (none: it passed)."""
-    dut = top.g_case[i]
-    params = {k: v for k, v in case._asdict().items() if k != "vectors"}
-    if mism := cases.param_mismatches(dut, params):
-        return mism
-    return await cases.asserts(random_and_directed(dut, top.clk_i, case, rng))
+    """Every instance of tex_addr_tb at once (:func:`random_and_directed` each)."""
+    await cases.run_each(dut, build_cases(), Case.name,
+                         lambda inst, c, rng: random_and_directed(inst, dut.clk_i, c, rng))
 
 
 async def random_and_directed(dut, clk, case: Case, rng: np.random.Generator) -> None:

@@ -46,7 +46,6 @@ from typing import Any, Callable, Coroutine, Mapping, NamedTuple
 
 import cocotb
 import numpy as np
-from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
 from model import f24, f24_vectors as vec, texture
@@ -397,22 +396,12 @@ async def each_case(top, check: Check) -> None:
     """Start the clock, then reset every instance of tex_filter_tb and run ``check`` on it (all
     at once, each with its own random stream: :func:`cases.streams`); fail naming every
     configuration whose check failed."""
-    cocotb.start_soon(Clock(top.clk_i, 10, unit="ns").start())
-    configs = build_cases()
-    assert int(top.NCASE.value) == len(configs), \
-        f"tex_filter_tb holds {int(top.NCASE.value)} instances, the test expects {len(configs)}"
-    rngs = cases.streams(len(configs))
-
-    async def one(i: int, case: Case) -> list[str]:
-        dut = top.g_case[i]
-        params = {k: v for k, v in case._asdict().items() if k != "vectors"}
-        if mism := cases.param_mismatches(dut, params):
-            return mism
+    async def one(dut, case: Case, rng: np.random.Generator) -> None:
         pipe = HandshakePipe(dut, top.clk_i, latency((case.ADD_LAT, case.MUL_LAT)))
         await pipe.reset()
-        return await cases.asserts(check(dut, pipe, case, rngs[i]))
+        await check(dut, pipe, case, rng)
 
-    await cases.check_all([(c.name(), one(i, c)) for i, c in enumerate(configs)])
+    await cases.run_each(top, build_cases(), Case.name, one)
 
 
 @cocotb.test()

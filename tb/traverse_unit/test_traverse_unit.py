@@ -34,7 +34,6 @@ from typing import Any, Callable, Coroutine
 
 import cocotb
 import numpy as np
-from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge, RisingEdge
 
 from model import heightmap, traverse
@@ -258,21 +257,13 @@ async def each_case(dut, check: Check) -> None:
     """Start the clock, then reset every instance of traverse_unit_tb and run ``check`` on it
     (all at once, each with its own random stream: :func:`cases.streams`); fail naming every
     configuration whose check failed."""
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    configs = build_cases()
-    assert int(dut.NCASE.value) == len(configs), \
-        f"traverse_unit_tb holds {int(dut.NCASE.value)} instances, the test expects {configs}"
-    rngs = cases.streams(len(configs))
-
-    async def one(i: int, xor_path: int, mul_lat: int) -> list[str]:
-        inst = dut.g_case[i]
-        if mism := cases.param_mismatches(inst, {"XOR_PATH": xor_path, "MUL_LAT": mul_lat}):
-            return mism
-        h = Harness(inst, dut.clk_i, xor_path, mul_lat)
+    async def one(inst, case: tuple[int, int], rng: np.random.Generator) -> None:
+        h = Harness(inst, dut.clk_i, *case)
         await h.reset()
-        return await cases.asserts(check(h, rngs[i]))
+        await check(h, rng)
 
-    await cases.check_all([(case_name(*c), one(i, *c)) for i, c in enumerate(configs)])
+    await cases.run_each(dut, build_cases(), lambda c: case_name(*c), one,
+                         lambda c: {"XOR_PATH": c[0], "MUL_LAT": c[1]})
 
 
 @cocotb.test()
