@@ -93,24 +93,26 @@ def upper_fields(case: Any) -> dict[str, int]:
 
 
 async def run_each(top: Any, configs: Sequence[C], name: Callable[[C], str],
-                   body: Callable[[Any, C, np.random.Generator], Coroutine[Any, Any, Any]],
-                   params: Callable[[C], Mapping[str, int]] = upper_fields) -> None:
+                   body: Callable[[Any, C, Any], Coroutine[Any, Any, Any]],
+                   params: Callable[[C], Mapping[str, int]] = upper_fields,
+                   rngs: Callable[[int], Sequence[Any]] = streams) -> None:
     """The whole test of a wrapper whose ``NCASE`` instances ``g_case[i]`` are ``configs``:
     start ``top.clk_i`` (10 ns), check ``NCASE`` against the configurations, then on every
     instance at once read its parameters back (:func:`param_mismatches` against
-    ``params(case)``) and run ``body(inst, case, rng)`` (its own stream, :func:`streams`; an
+    ``params(case)``) and run ``body(inst, case, rng)`` (its own stream: ``rngs``, :func:`streams`
+    or :func:`randoms`; an
     AssertionError is that configuration's failure, :func:`asserts`); fail naming every
     configuration that failed (``name(case)``, :func:`check_all`)."""
     cocotb.start_soon(Clock(top.clk_i, 10, unit="ns").start())
     n = int(top.NCASE.value)
     assert n == len(configs), \
         f"{top._name} holds {n} instances, the test expects {len(configs)}"
-    rngs = streams(len(configs))
+    gens = rngs(len(configs))
 
     async def one(i: int, case: C) -> list[str]:
         inst = top.g_case[i]
         if mism := param_mismatches(inst, params(case)):
             return mism
-        return await asserts(body(inst, case, rngs[i]))
+        return await asserts(body(inst, case, gens[i]))
 
     await check_all([(name(c), one(i, c)) for i, c in enumerate(configs)])

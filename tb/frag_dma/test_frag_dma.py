@@ -32,7 +32,6 @@ from pathlib import Path
 from typing import Any, Callable, Coroutine
 
 import cocotb
-from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge
 from cocotbext.axi import AxiReadBus
 
@@ -166,21 +165,19 @@ async def each_case(dut, check: Check) -> None:
     """Start the clock, then reset every instance of frag_dma_tb and run ``check`` on it (all at
     once, each with its own memory model and random generator: :func:`cases.randoms`); fail
     naming every configuration whose check failed."""
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    rngs = cases.randoms(len(CASES))
+    def name(case: tuple[int, int, int]) -> str:
+        return f"frag_dma DATA_W {case[0]}, MAX_BURST {case[1]}, FIFO_RECS {case[2]}"
 
-    async def one(i: int, data_w: int, burst: int, fifo: int, name: str) -> list[str]:
-        inst = dut.g_case[i]
-        want = {"DATA_W": data_w, "MAX_BURST": burst, "FIFO_RECS": fifo}
-        if mism := (cases.param_mismatches(inst, want)
-                    + cases.param_mismatches(dut, {"ARCACHE": ARCACHE, "ARPROT": ARPROT})):
-            return mism
-        tb = Tb(inst, dut.clk_i, rngs[i], data_w, name)
+    async def one(inst, case: tuple[int, int, int], rng: random.Random) -> None:
+        mism = cases.param_mismatches(dut, {"ARCACHE": ARCACHE, "ARPROT": ARPROT})
+        assert not mism, "\n".join(mism)
+        tb = Tb(inst, dut.clk_i, rng, case[0], name(case))
         await tb.reset()
-        return await cases.asserts(check(tb))
+        await check(tb)
 
-    names = [f"frag_dma DATA_W {d}, MAX_BURST {b}, FIFO_RECS {f}" for d, b, f in CASES]
-    await cases.check_all([(names[i], one(i, *c, names[i])) for i, c in enumerate(CASES)])
+    await cases.run_each(dut, CASES, name, one,
+                         lambda c: {"DATA_W": c[0], "MAX_BURST": c[1], "FIFO_RECS": c[2]},
+                         cases.randoms)
 
 
 @cocotb.test()

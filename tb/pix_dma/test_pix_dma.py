@@ -30,7 +30,6 @@ from pathlib import Path
 from typing import Any, Callable, Coroutine
 
 import cocotb
-from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge
 from cocotbext.axi import AxiWriteBus
 
@@ -214,20 +213,18 @@ async def each_case(dut, check: Check) -> None:
     """Start the clock, then reset every instance of pix_dma_tb and run ``check`` on it (all at
     once, each with its own memory model and random generator: :func:`cases.randoms`); fail
     naming every configuration whose check failed."""
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    rngs = cases.randoms(len(CASES))
+    def name(case: tuple[int, int]) -> str:
+        return f"pix_dma DATA_W {case[0]}, MAX_OUTST {case[1]}"
 
-    async def one(i: int, data_w: int, outst: int, name: str) -> list[str]:
-        inst = dut.g_case[i]
-        if mism := (cases.param_mismatches(inst, {"DATA_W": data_w, "MAX_OUTST": outst})
-                    + cases.param_mismatches(dut, {"AWCACHE": AWCACHE, "AWPROT": AWPROT})):
-            return mism
-        tb = Tb(inst, dut.clk_i, rngs[i], name)
+    async def one(inst, case: tuple[int, int], rng: random.Random) -> None:
+        mism = cases.param_mismatches(dut, {"AWCACHE": AWCACHE, "AWPROT": AWPROT})
+        assert not mism, "\n".join(mism)
+        tb = Tb(inst, dut.clk_i, rng, name(case))
         await tb.reset()
-        return await cases.asserts(check(tb))
+        await check(tb)
 
-    names = [f"pix_dma DATA_W {data_w}, MAX_OUTST {outst}" for data_w, outst in CASES]
-    await cases.check_all([(names[i], one(i, *c, names[i])) for i, c in enumerate(CASES)])
+    await cases.run_each(dut, CASES, name, one,
+                         lambda c: {"DATA_W": c[0], "MAX_OUTST": c[1]}, cases.randoms)
 
 
 @cocotb.test()
