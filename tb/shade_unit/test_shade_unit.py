@@ -13,6 +13,16 @@ from straight above or from below the surface, AMBIENT > 1):
 - random: realistic pixels (colours and normals in [0, 1], rays up to several D) and, for one
   tenth, random bit patterns in every input word.
 
+The whole directed set (:func:`directed`, about 4,200 pixels) goes to the default configuration;
+in ``make test`` the seven others get its part that meets what tells them apart, the light
+direction, AMBIENT, KD, KS and D (``full=False``, about 1,700 pixels): every normal of the cube
+against every ray (one of the three colours each, in turn), the 0 / 1 colours, every special word
+in the ray words (against D and D^2) with all four base pixels and in the colour and normal words
+with two, and a quarter of the all-specials and grazing-ray pixels.  The rest of the cube (each
+normal and ray again with the other two colours, the same special words on more base pixels)
+exercises the datapath the same way under every configuration; ``make test-long`` (TB_LONG=1)
+gives every configuration the whole set.
+
 Pixels stream in with random valid bubbles (random data on the ports while valid_i = 0), a
 pixel every 4th enabled clock at most (the unit's float units serve up to four operations), at
 that minimum spacing and at random larger ones, so pixels come on every phase modulo 4 (counted
@@ -211,7 +221,13 @@ def wild(rng: np.random.Generator, n: int) -> np.ndarray:
     return vec.rand_bits(rng, n * 8).reshape(n, 8)
 
 
-def directed(rng: np.random.Generator, depth: float) -> np.ndarray:
+def directed(rng: np.random.Generator, depth: float, full: bool = True) -> np.ndarray:
+    """The directed pixels of the module docstring at depth scale ``depth``: (N, 8) words.
+
+    ``full`` False: the part that meets the configuration (light, AMBIENT, KD, KS, D; the module
+    docstring): every (normal, ray) pair of the cube with one colour, the colours in turn; the
+    special words in the ray words on all four base pixels, in the other words on two; 100 of
+    the 400 all-specials and of the 400 grazing-ray pixels."""
     rows = []
     zero, half, one = 0x000000, 0x3E0000, 0x3F0000
     nvals = [zero, half, one, int(f24.from_unorm(np.uint32(127), 8)),
@@ -220,12 +236,13 @@ def directed(rng: np.random.Generator, depth: float) -> np.ndarray:
     d = max(depth, 1.0)
     rays = [(0.0, 0.0), (-0.0, 0.0), (0.3 * d, -0.2 * d), (-40.0 * d, 25.0 * d), (1e6, -1e6),
             (2.0**40, 2.0**40)]
-    for nx in nvals:
-        for ny in nvals:
-            for nz in nvals:
-                for c in cols:
-                    for du, dv in rays:
-                        rows.append(c + [nx, ny, nz] + [int(words_of(du)), int(words_of(dv))])
+    normals = [[nx, ny, nz] for nx in nvals for ny in nvals for nz in nvals]
+    for j, nrm in enumerate(normals):
+        for r, (du, dv) in enumerate(rays):
+            # not full: the colour of normal j and ray r is colour (j + r) mod 3, so every
+            # normal meets every colour over the rays and every ray every colour over the normals
+            for c in (cols if full else [cols[(j + r) % len(cols)]]):
+                rows.append(c + nrm + [int(words_of(du)), int(words_of(dv))])
     # colours with every component 0 or 1, flat and tilted normals, a few rays
     for bits in range(8):
         c = [one if bits >> i & 1 else zero for i in range(3)]
@@ -234,18 +251,19 @@ def directed(rng: np.random.Generator, depth: float) -> np.ndarray:
                 rows.append(c + m + [int(words_of(du)), int(words_of(dv))])
     base = realistic(rng, 4, depth)
     specials = np.concatenate([vec.SPECIALS, np.array([half, 0x3effff, 0x3e0001], np.uint32)])
-    # every special word in each input word in turn
+    # every special word in each input word in turn (the ray words, du and dv: on every base)
     for slot in range(8):
         for s in specials:
-            for b in base:
+            for b in (base if full or slot >= 6 else base[:2]):
                 r = b.copy()
                 r[slot] = s
                 rows.append(list(r))
+    n_odd = 400 if full else 100
     # specials everywhere at once
-    rows += [list(r) for r in rng.choice(specials, (400, 8))]
+    rows += [list(r) for r in rng.choice(specials, (n_odd, 8))]
     # grazing rays: |du|, |dv| up to 2^40
-    g = realistic(rng, 400, depth)
-    mag = 2.0 ** rng.uniform(0, 40, (400, 2)) * rng.choice([-1.0, 1.0], (400, 2))
+    g = realistic(rng, n_odd, depth)
+    mag = 2.0 ** rng.uniform(0, 40, (n_odd, 2)) * rng.choice([-1.0, 1.0], (n_odd, 2))
     g[:, 6:8] = words_of(mag)
     rows += [list(r) for r in g]
     return np.array(rows, dtype=np.uint32)
@@ -409,8 +427,10 @@ async def shade_random_and_directed(dut):
         # the default configuration gets half of the random pixels, the others share the rest
         nr = n_rand // 2 if i == 0 else max(200, n_rand // (2 * (len(cfgs) - 1)))
         nw = nr // 10
-        parts = {"directed": directed(rng, cfg.depth), "random": realistic(rng, nr - nw, cfg.depth),
-                 "wild": wild(rng, nw)}
+        # the whole directed set on the default configuration (on every one under TB_LONG=1)
+        full = i == 0 or runner.long_stimulus()
+        parts = {"directed": directed(rng, cfg.depth, full),
+                 "random": realistic(rng, nr - nw, cfg.depth), "wild": wild(rng, nw)}
         x = np.concatenate(list(parts.values()))
         perm = rng.permutation(len(x))
         x = x[perm]
