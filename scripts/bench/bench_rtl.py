@@ -181,7 +181,10 @@ def main() -> int:
             fail(PROG, f"{what} must be >= {lo}, got {val}")
     params = harness_params(a)
     try:
-        traverse_system.build("fast", quiet=False, park=a.park, params=params)
+        # the variant trace_rtl runs: checked under RTL_ENGINE_CHECKED=1 (the test suite),
+        # else fast (make bench)
+        traverse_system.build(traverse_system.default_variant(), quiet=False, park=a.park,
+                              params=params)
     except traverse_system.RtlEngineError as e:
         fail(PROG, str(e).splitlines()[0])
     rows: list[dict[str, Any]] = []
