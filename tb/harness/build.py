@@ -18,7 +18,6 @@ e.g. a stand-in module while the real one is being written (never for committed 
 """
 from __future__ import annotations
 
-import fcntl
 import hashlib
 import os
 import shutil
@@ -243,9 +242,7 @@ def build(spec: HarnessSpec, variant: str = "fast", *, force: bool = False,
     binary = obj / spec.binary
     stamp = vdir / "inputs.sha256"
     log = vdir / "build.log"
-    spec.build_dir.mkdir(parents=True, exist_ok=True)
-    with open(spec.build_dir / f"{variant}.lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
+    with vbuild.build_lock(spec.build_dir / f"{variant}.lock"):
         if not force and binary.is_file() and stamp.is_file() and stamp.read_text().strip() == digest:
             return binary
         if vdir.exists():
