@@ -6,9 +6,8 @@
 // Stage 1: swap so |a| >= |b|, align the smaller significand with a guard, a round and a
 //          sticky bit (every bit shifted further out is ORed into the sticky bit; the sticky bit
 //          comes from a trailing-zero count compared with the shift, not from a shifter: the
-//          count of the smaller operand after the swap, encoded as tz + 3 with no adder, compared
-//          with the picked difference: one count and one compare, beside the shift rather than
-//          in front of it), add or subtract in one carry
+//          count of either operand, each encoded as tz + 3 with no adder, compared with the
+//          difference taken in that order, picked by the swap), add or subtract in one carry
 //          chain; flag an exactly zero sum (two zeros, or equal magnitudes cancelling) and the
 //          special result (NaN / Inf) from the larger operand's class.
 // Stage 2: the position q of the leading one of sum[20:2] (one leading-zero count), and two
@@ -139,7 +138,7 @@ module f24_add
     logic       z_spec;                // exponent 127 (z special implies x special)
     logic       sub;                   // effective subtraction
     logic [6:0] d_ab, d_ba;            // exponent differences
-    logic [6:0] d;                     // the exponent difference |x| - |z|
+    logic       st_ab, st_ba;          // the sticky bit for either order
     a_big  = (a[22:0] >= b[22:0]);
     x      = a_big ? a : b;
     z      = a_big ? b : a;
@@ -147,10 +146,14 @@ module f24_add
     // the shift does not wait for a subtraction after the swap.
     d_ab   = a[22:16] - b[22:16];
     d_ba   = b[22:16] - a[22:16];
+    // The sticky bit for b shifted by d_ab and for a shifted by d_ba, picked by a_big like d:
+    // significand bit i of z sits at window bit i + 3 - d and falls out when i + 3 < d, so some
+    // one falls out when the lowest one (bit tz) does.
+    st_ab  = (b[22:16] != 7'd0) && ({2'b0, sig_tz3(b[15:0])} < d_ab);
+    st_ba  = (a[22:16] != 7'd0) && ({2'b0, sig_tz3(a[15:0])} < d_ba);
     x_zero = (x[22:16] == 7'd0);
     z_zero = (z[22:16] == 7'd0);
     z_spec = (z[22:16] == EXP_SPEC);
-    d      = a_big ? d_ab : d_ba;
     sub    = x[23] ^ z[23];
     // |x| >= |z|: a NaN or Inf z makes x one too, and a NaN z makes x a NaN.  So the result is
     // special when x is, NaN for a NaN x or for Inf - Inf, else the Inf x.  The sum is zero for
@@ -164,10 +167,8 @@ module f24_add
              sub:     sub,
              xf:      x[15:0],
              sig_z:   z_zero ? '0 : {1'b1, z[15:0]},
-             d:       d,
-             // Significand bit i of z sits at window bit i + 3 - d and falls out when i + 3 < d,
-             // so some one falls out when the lowest one (bit tz) does.
-             sticky:  !z_zero && ({2'b0, sig_tz3(z[15:0])} < d)};
+             d:       a_big ? d_ab : d_ba,
+             sticky:  a_big ? st_ab : st_ba};
   endfunction
 
   function automatic prep_t add_shift(input swap_t w);
