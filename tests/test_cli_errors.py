@@ -321,21 +321,19 @@ def _tool_params() -> list:
 
 #: Cases of the model drivers that reach their harness build before failing: run only when the
 #: harness is already built (a fresh checkout would otherwise build it here, minutes of work).
-_AFTER_BUILD = {"traverse_system unknown method", "traverse_system latency 0", "traverse_system size 0",
-                "dm_pipeline unknown scene", "dm_pipeline unknown method", "dm_pipeline size 0"}
+#: (dm_pipeline's main checks --scene, --method and --size before its build: its cases always run.)
+_AFTER_BUILD = {"traverse_system unknown method", "traverse_system latency 0", "traverse_system size 0"}
 
 
 @pytest.mark.parametrize("case", _tool_params())
 def test_tool_errors(files, case: str) -> None:
     tool, args, _ = TOOL_CASES[case]
     if case in _AFTER_BUILD:
-        from tb.harness import dm_pipeline, traverse_system
+        from tb.harness import traverse_system
 
-        # the variant the tool builds: traverse_system's main the one its runs use (checked
-        # under this suite's RTL_ENGINE_CHECKED=1), dm_pipeline's its --variant (default fast)
-        built = (traverse_system.is_built(traverse_system.default_variant())
-                 if "traverse_system" in tool else dm_pipeline.is_built("fast"))
-        if not built:
+        # the variant the tool builds: the one its runs use (checked under this suite's
+        # RTL_ENGINE_CHECKED=1)
+        if not traverse_system.is_built(traverse_system.default_variant()):
             pytest.skip("the harness is not built (the case would build it first)")
     cmd = tool.split() + [a.format(d=files) for a in args]
     p = run(*cmd)
