@@ -18,6 +18,7 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 
 from model import f24
 from tb.common import fp_unit
@@ -25,6 +26,8 @@ from tb.common import fp_unit
 #: The unit's default latency and every LAT it accepts.
 DEFAULT_LAT = 1
 LATS = (1, 2)
+#: The widths W tested: 20 (the design's), 12.
+WIDTHS = (20, 12)
 #: The LATs make test runs: every one (traverse_setup builds its boundary conversions at LAT CL:
 #: 2 at the design's float-unit depths, 1 at the paper's).
 USED_LATS = LATS
@@ -69,14 +72,11 @@ async def from_int_boundary_random_exhaustive(dut):
                   "= whole range, shuffled" if exhaustive else "random")
 
 
-def test_f24_from_int():
+@pytest.mark.parametrize("w", [pytest.param(w, id=f"w{w}") for w in WIDTHS])
+def test_f24_from_int(w: int) -> None:
+    """Every LAT under test at width W, in one build."""
     fp_unit.run_lats("f24_from_int", "test_f24_from_int", Path(__file__).parent,
-                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 20})
-
-
-def test_f24_from_int_w12():
-    fp_unit.run_lats("f24_from_int", "test_f24_from_int", Path(__file__).parent,
-                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 12})
+                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": w})
 
 
 def test_f24_from_int_lats():

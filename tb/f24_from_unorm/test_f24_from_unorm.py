@@ -14,6 +14,7 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 
 from model import f24
 from tb.common import fp_unit
@@ -21,6 +22,8 @@ from tb.common import fp_unit
 #: The unit's default latency and every LAT it accepts.
 DEFAULT_LAT = 1
 LATS = (1, 2)
+#: The widths W tested: 8 (the textures' unorm8), 16.
+WIDTHS = (8, 16)
 #: The LATs make test runs: the default only (the design builds the unit at its default).
 USED_LATS = (DEFAULT_LAT,)
 
@@ -39,14 +42,11 @@ async def from_unorm_all_codes(dut):
                   "0 mismatches", w, fp_unit.lat_list(lanes), n, 1 << w, rounds + 1)
 
 
-def test_f24_from_unorm_w8():
+@pytest.mark.parametrize("w", [pytest.param(w, id=f"w{w}") for w in WIDTHS])
+def test_f24_from_unorm(w: int) -> None:
+    """Every LAT under test at width W, in one build."""
     fp_unit.run_lats("f24_from_unorm", "test_f24_from_unorm", Path(__file__).parent,
-                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 8})
-
-
-def test_f24_from_unorm_w16():
-    fp_unit.run_lats("f24_from_unorm", "test_f24_from_unorm", Path(__file__).parent,
-                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 16})
+                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": w})
 
 
 def test_f24_from_unorm_lats():

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
+import pytest
 
 from model import f24, f24_vectors as vec
 from tb.common import fp_unit
@@ -22,6 +23,8 @@ from tb.common import fp_unit
 #: The unit's default latency and every LAT it accepts.
 DEFAULT_LAT = 1
 LATS = (1, 2)
+#: The widths W tested: 20, 8, and 9 (shade_unit's colour conversion, f24_to_index #(.W(9))).
+WIDTHS = (20, 8, 9)
 #: The LATs make test runs: the default only (the design builds the unit at its default).
 USED_LATS = (DEFAULT_LAT,)
 
@@ -65,20 +68,11 @@ async def to_index_random_and_directed(dut):
                   int(sat.sum()))
 
 
-def test_f24_to_index():
+@pytest.mark.parametrize("w", [pytest.param(w, id=f"w{w}") for w in WIDTHS])
+def test_f24_to_index(w: int) -> None:
+    """Every LAT under test at width W, in one build."""
     fp_unit.run_lats("f24_to_index", "test_f24_to_index", Path(__file__).parent,
-                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 20})
-
-
-def test_f24_to_index_w8():
-    fp_unit.run_lats("f24_to_index", "test_f24_to_index", Path(__file__).parent,
-                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 8})
-
-
-def test_f24_to_index_w9():
-    """W = 9: shade_unit's colour conversion (f24_to_index #(.W(9)))."""
-    fp_unit.run_lats("f24_to_index", "test_f24_to_index", Path(__file__).parent,
-                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": 9})
+                     fp_unit.lat_set(LATS, USED_LATS), DEFAULT_LAT, parameters={"W": w})
 
 
 def test_f24_to_index_lats():
