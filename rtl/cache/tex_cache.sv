@@ -53,10 +53,11 @@
 // ones; odd widths of a few texels are the worst).
 // Each sub-cache: SETS sets x WAYS ways of lines; set = la[1 +: S] ^ la[1 + S +: S] (S = log2 SETS,
 // an XOR fold, so that rows of power-of-two pitch spread over the sets), tag = la >> (1 + S).
-// The live bits (allocated since the reset) are flops; the tags and the reference counts are in
-// LUT RAM, one memory per sub-cache and way, the pseudo-LRU bits and the generation and error
-// bits that give each slot's valid, pending and error state one memory per sub-cache, each
-// written from one place (see "Directory" at the state); the lines are in block RAM
+// The live bits (allocated since the reset), the pseudo-LRU bits and the generation and error
+// bits that give each slot's valid, pending and error state are LUT RAM, one memory per
+// sub-cache; the tags and the reference counts two memories per sub-cache and way ({tag, inc}
+// and dec), block RAM by default (DIR_RAM); each memory is written from one place (see
+// "Directory" at the state); the lines are in block RAM
 // (cache_sdp_ram), per sub-cache one RAM per DATA_W lane of a window and one for the overlap
 // words, SETS * WAYS * NWIN deep (address {set, way, window}; see "data RAMs" in tex_cache_data).
 //
@@ -84,7 +85,8 @@
 //   clock 3   lookup, decide stage: hit or miss per sub-cache; a miss picks a victim way and an
 //             MSHR.  All or nothing: the pass cannot go while the FIFO is full, while an MSHR is
 //             missing for one of its misses, or while every way of a missed set is referenced;
-//             then it and the pass behind it are read again (a replay, see "pass queue").  The
+//             then, after a clock's wait, it and the pass behind it are read again (a replay,
+//             see tex_cache_front: the wait keeps the decision off the read address).  The
 //             queue's room is judged from its pointers, so the lookup's outcome steers no enable
 //             of the entry register or of the queue's entries in its own clock (only the
 //             queue's pointers and the stage valid bits).
@@ -163,6 +165,12 @@ module tex_cache
                                            // requests that can wait for memory at full rate
   parameter int unsigned ID_W       = 6,   // AXI ID width (> log2(MSHRS): the rest is the epoch)
   parameter int unsigned TAG_W      = 8,   // side-band width (req_tag_i -> rsp_tag_o)
+  /* verilator lint_off UNUSEDPARAM */  // (an attribute: read by synthesis only)
+  parameter string       DIR_RAM    = "block",  // ram_style of the tags and reference counts
+                                           // ("block": block RAM, 2 x 4 x WAYS RAMs of SETS
+                                           // words; "auto": Yosys's choice, LUT RAM; see
+                                           // "Directory")
+  /* verilator lint_on UNUSEDPARAM */
   parameter int unsigned WIN_WORDS  = 2    // data-RAM window: words a sub-cache reads per pass,
                                            // plus one (power of two >= 2; capped at the line's
                                            // words); DATA_W <= 32 * that
@@ -304,7 +312,7 @@ module tex_cache
   endfunction
 
   // ---------------------------------------------------------------- state
-  // Directory, in LUT RAM (g_dir below), each memory written from one place:
+  // Directory (g_dir below), each memory written from one place:
   //  - the live bits (per sub-cache, a word per set with a bit per way): a slot has been
   //    allocated since the reset.  Written by the commit (an allocation sets its slot's bit) and
   //    cleared after a reset by a sweep, one set per clock (SETS clocks, while req_ready_o is 0);
@@ -318,7 +326,9 @@ module tex_cache
   //    live slot is valid or has the error bit, never both.  An allocation takes a slot that is not
   //    pending (it is unreferenced), and a fill comes only for a pending one (stale beats from
   //    before a reset are dropped), so ag and fg never differ by more than the one allocation;
-  //  - the tags (per sub-cache and way), which count only with the valid bit;
+  //  - the tags (per sub-cache and way, in one memory with inc), which count only with the valid
+  //    bit.  Every reference writes its slot's tag with its count (a hit's slot already holds the
+  //    pass's tag), so the two need no separate write enables;
   //  - the reference count rc = inc - dec (modulo 2^RC_W) of a slot: the passes in the FIFO that
   //    read it.  inc counts at the commit (per sub-cache and way), dec at the head (likewise).  An
   //    allocation writes inc = dec + 1 (its own reference), so the pair is exact from the slot's
@@ -332,6 +342,12 @@ module tex_cache
   //    way's path, so every node of the tree has been written since the reset.
   // (The state bits were flops written by both the commit and the fill, 3 x NSUB x SETS x WAYS
   // of them read through wide multiplexers; in LUT RAM each memory has one writer.)
+  // The memories are read at the lookup's registered set (a_set, tex_cache_front), so a block RAM
+  // takes that register's input as its read address; its read then misses the write of the same
+  // edge, which Yosys's mapping forwards (the RAM is declared with an asynchronous read behind
+  // the register, so the RTL's behaviour is that of the LUT RAM): the same words in the same
+  // clocks with DIR_RAM "block" (2 x NSUB x WAYS block RAMs, 32 with the defaults, about 1,700
+  // LUT4 fewer) or "auto" (Yosys's choice: LUT RAM, for a device short of block RAM).
   logic              swp;          // the live bits are being cleared (after a reset; u_axi)
   logic [SET_W-1:0]  swp_set;      // the set cleared in this clock
 
@@ -659,7 +675,7 @@ module tex_cache
     .rsp_valid_o, .rsp_ready_i, .rsp_texel_o, .rsp_err_o, .rsp_tag_o);
 
   // ---------------------------------------------------------------- directory updates
-  // The LUT RAM part (see "Directory" at the state).  Per sub-cache: the commit touches the
+  // The RAM part (see "Directory" at the state).  Per sub-cache: the commit touches the
   // looked-up set's pseudo-LRU bits and takes a reference to the hit or victim way (an allocation
   // also writes the tag and the set's ag bits); the head releases the reference of each slot its
   // pass reads; a line's last beat writes its set's fg and bad bits (fg = ag: not pending).
@@ -725,24 +741,23 @@ module tex_cache
 `endif
 
     for (genvar w = 0; w < WAYS; w++) begin : g_way
-      logic [TAGB-1:0] tag_mem [SETS];
-      logic [RC_W-1:0] inc_mem [SETS];
-      logic [RC_W-1:0] dec_mem [SETS];
+      (* ram_style = DIR_RAM *) logic [TAGB+RC_W-1:0] ti_mem  [SETS];  // {tag, inc}
+      (* ram_style = DIR_RAM *) logic [RC_W-1:0]      dec_mem [SETS];
 
+      // (the tag is written with every reference: a hit's slot holds the pass's tag already,
+      // tex_cache_assert's commit_hit_tag, so tag and count share one write and one memory)
       always_ff @(posedge clk_i) begin
-        if (take && cm_pass_q.way[c] == WAY_W'(w)) begin
-          if (cm_alloc_q[c]) tag_mem[cm_pass_q.set[c]] <= cm_tag_q[c];
-          inc_mem[cm_pass_q.set[c]] <= cm_inc[c];
-        end
+        if (take && cm_pass_q.way[c] == WAY_W'(w))
+          ti_mem[cm_pass_q.set[c]] <= {cm_tag_q[c], cm_inc[c]};
         if (give && hd_q.way[c] == WAY_W'(w)) dec_mem[hd_q.set[c]] <= hd_q.rc[c];
       end
-      assign set_tag[c][w] = tag_mem[a_set[c]];
-      assign set_inc[c][w] = inc_mem[a_set[c]];
+      assign {set_tag[c][w], set_inc[c][w]} = ti_mem[a_set[c]];
       assign set_dec[c][w] = dec_mem[a_set[c]];
 
 `ifndef SYNTHESIS  // the memories' copies for tex_cache_assert (see vw_live)
-      assign vw_tag[c][w] = tag_mem;
-      assign vw_inc[c][w] = inc_mem;
+      for (genvar s = 0; s < SETS; s++) begin : g_vw
+        assign {vw_tag[c][w][s], vw_inc[c][w][s]} = ti_mem[s];
+      end
       assign vw_dec[c][w] = dec_mem;
 `endif
     end

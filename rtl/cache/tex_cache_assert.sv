@@ -83,6 +83,7 @@ module tex_cache_assert #(
   input logic [2:0]                         cm_n_q,       // the MSHRs it takes, registered
   input logic [NSUB-1:0][LA_W-1:0]          cm_la_q,
   input logic [NSUB-1:0][RC_W-1:0]          cm_inc_q,
+  input logic [NSUB-1:0][TAGB-1:0]          cm_tag_q,     // the pass's tags
   input logic [NSUB-1:0]                    cm_used,      // the committing pass's sub-caches
   input logic [NSUB-1:0][SET_W-1:0]         cm_set,       // ... and slots
   input logic [NSUB-1:0][WAY_W-1:0]         cm_way,
@@ -302,8 +303,8 @@ module tex_cache_assert #(
   // place that fails, for the message), so that each is one labelled assertion (a label inside
   // a loop would name several checks alike, which the formal front end refuses).
   logic lp_fl_ok, lp_pend_ok, lp_tag_ok, lp_victim_ok, lp_rc_ovf_ok, lp_inc_ok, lp_rc_unf_ok,
-        lp_line_ok, lp_mshr_ok, lp_uniq_ok, lp_rdcol_ok, lp_relc_ok;
-  int   lp_fl_m, lp_victim_c, lp_inc_c, lp_line_c, lp_mshr_m, lp_rdcol_c, lp_relc_c;
+        lp_line_ok, lp_mshr_ok, lp_uniq_ok, lp_rdcol_ok, lp_relc_ok, lp_htag_ok;
+  int   lp_fl_m, lp_victim_c, lp_inc_c, lp_line_c, lp_mshr_m, lp_rdcol_c, lp_relc_c, lp_htag_c;
   int   lp_pend_at [3];
   int   lp_tag_at [2];
   int   lp_uniq_at [2];
@@ -347,6 +348,8 @@ module tex_cache_assert #(
     lp_line_ok   = 1'b1;
     lp_victim_c  = 0;
     lp_inc_c     = 0;
+    lp_htag_ok   = 1'b1;
+    lp_htag_c    = 0;
     lp_line_c    = 0;
     lp_rdcol_ok  = 1'b1;
     lp_relc_ok   = 1'b1;
@@ -365,6 +368,11 @@ module tex_cache_assert #(
           && cm_inc_q[c] != dir_inc[c][cm_set[c]][cm_way[c]] + RC_W'(1) && lp_inc_ok) begin
         lp_inc_ok = 1'b0;
         lp_inc_c  = c;
+      end
+      if (cm_valid_q && cm_used[c] && !cm_alloc_q[c]
+          && cm_tag_q[c] != dir_tag[c][cm_set[c]][cm_way[c]] && lp_htag_ok) begin
+        lp_htag_ok = 1'b0;
+        lp_htag_c  = c;
       end
       if (h_pop && hd_used[c] && w_acc_q && w_sub_q == 2'(c) && w_set_q == hd_set[c]
           && w_way_q == hd_way[c] && lp_rdcol_ok) begin
@@ -502,6 +510,11 @@ module tex_cache_assert #(
       // The forwarded view is what the directory holds once the commit is written.
       commit_inc: assert (lp_inc_ok)
         else $error("tex_cache: sub-cache %0d commits a stale reference count", lp_inc_c);
+      // A hit's slot holds the pass's tag, so the commit's write of {tag, count} (one word per
+      // way) leaves the tag as it was.
+      commit_hit_tag: assert (lp_htag_ok)
+        else $error("tex_cache: sub-cache %0d commits a hit whose slot holds another tag",
+                    lp_htag_c);
       // The data RAMs' read of the head's slot is used (the clock after): no beat is written
       // into that slot in this clock (no_rw_check, as for the tag queue).
       data_read_no_collision: assert (lp_rdcol_ok)

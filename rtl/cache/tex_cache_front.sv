@@ -243,28 +243,32 @@ module tex_cache_front #(
   logic                       b_valid_q; // the decide stage holds a pass (pq_q[pq_rp_q])
   pq_t                        b_pass_q;
   logic                       replay;    // the decide stage drops its pass to read it again
+  logic                       replay_q;  // ... in the clock before: the read stage waits
   logic                       p_load;    // the next pass moves into the queue
 
   assign p_load  = rst_ni && s0_valid_q && (pq_wp_q - pq_rp_q) != 3'(PQ_DEPTH);
-  assign a_issue_o = pq_ip_q != pq_wp_q;
+  assign a_issue_o = pq_ip_q != pq_wp_q && !replay_q;
   assign a_tag_o   = a_pass.tag;
   assign a_pass  = pq_q[pq_ip_q[1:0]];
   assign replay  = b_valid_q && !e_fire_i;
 
   // The read stage's sets (the directory's read addresses) come from a register of their own,
-  // a_set_q = a_pass.set while a_issue_o, loaded with the entry the read stage takes next: three
-  // candidates from registers (the oldest entry for a replay, the one after pq_ip_q, or pq_ip_q
-  // again; an entry written in this clock from pq_d), of which the decision picks one.
-  logic [NSUB-1:0][SET_W-1:0] a_set_q, set_rp, set_next, set_hold;
+  // a_set_q = a_pass.set while a_issue_o, loaded with the entry the read stage takes next: two
+  // candidates from registers (the one after pq_ip_q, or pq_ip_q again; an entry written in
+  // this clock from pq_d).  The lookup's decision does not choose among them: a replay moves
+  // pq_ip_q back to the oldest entry and the read stage waits one clock (replay_q), in which
+  // a_set_q is loaded with that entry's sets.  So the register's input, which a directory in
+  // block RAM takes as its read address (tex_cache DIR_RAM), does not wait on the decision; a
+  // replay costs the clock of the wait.
+  logic [NSUB-1:0][SET_W-1:0] a_set_q, set_next, set_hold;
   always_comb begin
     logic [2:0] ip1;
     ip1      = pq_ip_q + 3'd1;
-    set_rp   = pq_q[pq_rp_q[1:0]].set;
     set_next = (ip1 == pq_wp_q) ? pq_d.set : pq_q[ip1[1:0]].set;
     set_hold = (pq_ip_q == pq_wp_q) ? pq_d.set : pq_q[pq_ip_q[1:0]].set;
   end
   always_ff @(posedge clk_i) begin
-    a_set_q <= replay ? set_rp : (a_issue_o ? set_next : set_hold);
+    a_set_q <= a_issue_o ? set_next : set_hold;
   end
 
   always_comb begin
@@ -286,12 +290,14 @@ module tex_cache_front #(
       pq_ip_q   <= '0;
       pq_rp_q   <= '0;
       b_valid_q <= 1'b0;
+      replay_q  <= 1'b0;
     end else begin
       if (p_load) pq_wp_q <= pq_wp_q + 3'd1;
       if (e_fire_i) pq_rp_q <= pq_rp_q + 3'd1;
       if (replay)       pq_ip_q <= pq_rp_q;  // (pq_rp_q does not move: no e_fire_i)
       else if (a_issue_o) pq_ip_q <= pq_ip_q + 3'd1;
       b_valid_q <= a_issue_o && !replay;
+      replay_q  <= replay;
     end
     if (p_load) pq_q[pq_wp_q[1:0]] <= pq_d;
     b_pass_q <= a_pass;

@@ -58,6 +58,9 @@ module dm_pipeline_fpga_top
   parameter int unsigned H_ID_W     = 4,
   parameter int unsigned T_ID_W     = 6,
   parameter int unsigned AXI_DATA_W = 64,
+  // the texture cache's tags and reference counts (dm_pipeline T_DIR_RAM): block RAM with one
+  // ring; LUT RAM with two, whose second ring and height cache leave too few block RAMs
+  parameter string       T_DIR_RAM  = (N_RINGS > 1) ? "auto" : "block",
   parameter int unsigned TRI_W      = (TRIS > 1) ? $clog2(TRIS) : 1
 ) (
   input  logic                   clk_i,
@@ -272,7 +275,7 @@ module dm_pipeline_fpga_top
     .m_rready(m_axi_t_rready));
 
   dm_pipeline #(.PIX_W(PIX_W), .SLOTS(SLOTS), .N_RINGS(N_RINGS), .TRIS(TRIS), .H_ID_W(H_ID_W),
-                .T_ID_W(T_ID_W), .AXI_DATA_W(AXI_DATA_W)) u_pipe (
+                .T_ID_W(T_ID_W), .AXI_DATA_W(AXI_DATA_W), .T_DIR_RAM(T_DIR_RAM)) u_pipe (
     .clk_i, .rst_ni(rst_nq),
     .cfg_method_i(cfg_method_q), .cfg_width_i(cfg_width_q), .cfg_height_i(cfg_height_q),
     .cfg_root_level_i(cfg_root_level_q), .cfg_bits16_i(cfg_bits16_q), .cfg_base_i(cfg_base_q),

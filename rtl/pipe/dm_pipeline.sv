@@ -78,6 +78,9 @@ module dm_pipeline
   parameter int unsigned T_SETS     = 32,   // tex_cache sets per sub-cache (4 sub-caches)
   parameter int unsigned T_WAYS     = 4,    // tex_cache ways: 4 x 32 x 4 x 128 B = 64 KiB
   parameter int unsigned T_WIN_WORDS = 2,   // tex_cache data-RAM window, words (+1 overlap word)
+  parameter string       T_DIR_RAM  = "block", // tex_cache's tags and reference counts: "block"
+                                            // (32 block RAMs) or "auto" (LUT RAM, about 1,700
+                                            // LUT4 more; tex_cache DIR_RAM)
   parameter int unsigned H_LINE_BYTES = 32, // height_cache line (one AXI burst per fill)
   parameter int unsigned H_SETS     = 512,  // height_cache sets per ring (power of two)
   parameter int unsigned H_WAYS     = 4,    // height_cache ways: 512 x 4 x 32 B = 64 KiB
@@ -513,7 +516,8 @@ module dm_pipeline
   logic [47:0]          tc_lookups;
 
   tex_cache #(.ADDR_W(TEX_ADDR_W), .DATA_W(AXI_DATA_W), .LINE_BYTES(T_LINE_BYTES), .SETS(T_SETS),
-              .WAYS(T_WAYS), .ID_W(T_ID_W), .TAG_W(TC_TAG_W), .WIN_WORDS(T_WIN_WORDS)) u_tc (
+              .WAYS(T_WAYS), .ID_W(T_ID_W), .TAG_W(TC_TAG_W), .WIN_WORDS(T_WIN_WORDS),
+              .DIR_RAM(T_DIR_RAM)) u_tc (
     .clk_i, .rst_ni,
     .req_valid_i(tc_req_valid), .req_ready_o(tc_req_ready),
     .req_addr_i(tc_req[4*TEX_ADDR_W-1:0]),  // [0] a00, [1] a01, [2] a10, [3] a11
