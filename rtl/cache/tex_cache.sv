@@ -754,11 +754,13 @@ module tex_cache
       assign {set_tag[c][w], set_inc[c][w]} = ti_mem[a_set[c]];
       assign set_dec[c][w] = dec_mem[a_set[c]];
 
-`ifndef SYNTHESIS  // the memories' copies for tex_cache_assert (see vw_live)
+`ifndef SYNTHESIS  // the memories' copies for tex_cache_assert (see vw_live; read word by
+                   // word: a memory with a ram_style attribute cannot be copied whole in the
+                   // formal front end)
       for (genvar s = 0; s < SETS; s++) begin : g_vw
         assign {vw_tag[c][w][s], vw_inc[c][w][s]} = ti_mem[s];
+        assign vw_dec[c][w][s] = dec_mem[s];
       end
-      assign vw_dec[c][w] = dec_mem;
 `endif
     end
   end
