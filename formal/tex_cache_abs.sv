@@ -19,7 +19,7 @@ module tex_cache
   parameter int unsigned ID_W       = 6,
   parameter int unsigned TAG_W      = 8,
   parameter int unsigned WIN_WORDS  = 2,
-  parameter string       DIR_RAM    = "block",
+  parameter string       DIR_RAM    = "auto",
   parameter int unsigned CAP        = 3    // requests held (>= 2)
 ) (
   input  logic                     clk_i,

@@ -56,8 +56,8 @@
 // The live bits (allocated since the reset), the pseudo-LRU bits and the generation and error
 // bits that give each slot's valid, pending and error state are LUT RAM, one memory per
 // sub-cache; the tags and the reference counts two memories per sub-cache and way ({tag, inc}
-// and dec), block RAM by default (DIR_RAM); each memory is written from one place (see
-// "Directory" at the state); the lines are in block RAM
+// and dec), LUT RAM by default, block RAM with DIR_RAM "block"; each memory is written from one
+// place (see "Directory" at the state); the lines are in block RAM
 // (cache_sdp_ram), per sub-cache one RAM per DATA_W lane of a window and one for the overlap
 // words, SETS * WAYS * NWIN deep (address {set, way, window}; see "data RAMs" in tex_cache_data).
 //
@@ -166,9 +166,9 @@ module tex_cache
   parameter int unsigned ID_W       = 6,   // AXI ID width (> log2(MSHRS): the rest is the epoch)
   parameter int unsigned TAG_W      = 8,   // side-band width (req_tag_i -> rsp_tag_o)
   /* verilator lint_off UNUSEDPARAM */  // (an attribute: read by synthesis only)
-  parameter string       DIR_RAM    = "block",  // ram_style of the tags and reference counts
-                                           // ("block": block RAM, 2 x 4 x WAYS RAMs of SETS
-                                           // words; "auto": Yosys's choice, LUT RAM; see
+  parameter string       DIR_RAM    = "auto",  // ram_style of the tags and reference counts
+                                           // ("auto": Yosys's choice, LUT RAM; "block": block
+                                           // RAM, 2 x 4 x WAYS RAMs of SETS words; see
                                            // "Directory")
   /* verilator lint_on UNUSEDPARAM */
   parameter int unsigned WIN_WORDS  = 2    // data-RAM window: words a sub-cache reads per pass,
@@ -346,8 +346,10 @@ module tex_cache
   // takes that register's input as its read address; its read then misses the write of the same
   // edge, which Yosys's mapping forwards (the RAM is declared with an asynchronous read behind
   // the register, so the RTL's behaviour is that of the LUT RAM): the same words in the same
-  // clocks with DIR_RAM "block" (2 x NSUB x WAYS block RAMs, 32 with the defaults, about 1,700
-  // LUT4 fewer) or "auto" (Yosys's choice: LUT RAM, for a device short of block RAM).
+  // clocks with DIR_RAM "auto" (Yosys's choice: LUT RAM) or "block" (2 x NSUB x WAYS block RAMs,
+  // 32 with the defaults, about 1,700 LUT4 fewer; the RAMs' read address then comes from the
+  // pass selection through the pass queue's bypass, and the RAMs lie spread over the device:
+  // docs/synthesis.md has the routes of both).
   logic              swp;          // the live bits are being cleared (after a reset; u_axi)
   logic [SET_W-1:0]  swp_set;      // the set cleared in this clock
 

@@ -58,9 +58,10 @@ module dm_pipeline_fpga_top
   parameter int unsigned H_ID_W     = 4,
   parameter int unsigned T_ID_W     = 6,
   parameter int unsigned AXI_DATA_W = 64,
-  // the texture cache's tags and reference counts (dm_pipeline T_DIR_RAM): block RAM with one
-  // ring; LUT RAM with two, whose second ring and height cache leave too few block RAMs
-  parameter string       T_DIR_RAM  = (N_RINGS > 1) ? "auto" : "block",
+  // the texture cache's tags and reference counts (dm_pipeline T_DIR_RAM): LUT RAM ("auto");
+  // "block" takes 32 EBRs for about 1,770 LUT4 fewer, but routed at 71.3 MHz against 79.2
+  // (docs/synthesis.md), and with two rings too few EBRs are left for it
+  parameter string       T_DIR_RAM  = "auto",
   parameter int unsigned TRI_W      = (TRIS > 1) ? $clog2(TRIS) : 1
 ) (
   input  logic                   clk_i,
