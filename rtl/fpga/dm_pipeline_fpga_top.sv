@@ -59,8 +59,8 @@ module dm_pipeline_fpga_top
   parameter int unsigned T_ID_W     = 6,
   parameter int unsigned AXI_DATA_W = 64,
   // the texture cache's tags and reference counts (dm_pipeline T_DIR_RAM): LUT RAM ("auto");
-  // "block" takes 32 EBRs for about 1,770 LUT4 fewer, but routed at 71.3 MHz against 79.2
-  // (docs/synthesis.md), and with two rings too few EBRs are left for it
+  // "block" takes 32 EBRs for fewer LUT4 but routes slower (docs/synthesis.md, "Where the area
+  // goes"), and with two rings too few EBRs are left for it
   parameter string       T_DIR_RAM  = "auto",
   parameter int unsigned TRI_W      = (TRIS > 1) ? $clog2(TRIS) : 1
 ) (

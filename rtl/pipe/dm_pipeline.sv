@@ -501,8 +501,8 @@ module dm_pipeline
   // return, is a normal-map request leaving its FIFO (into the slice), which is the room the
   // credit keeps: from registers (the FIFO's empty flag, the slice's ready_o).  With the
   // cache's handshake there instead, the return waited on the cache front's pass selection
-  // and ran to the count by the admission, far from the cache (a routed top's worst path,
-  // 14.04 ns with a wire of 5.24 ns).
+  // and ran to the count by the admission, far from the cache (once a routed top's worst
+  // path, docs/synthesis.md).
   localparam int unsigned RS_W = 1 + SLOT_W + REQ_W;  // {normal?, slot, request}
   logic [RS_W-1:0] tc_req;
 
