@@ -14,6 +14,12 @@ module tex_cache_front #(
   parameter int unsigned SET_W    = 5,   // log2 sets
   parameter int unsigned WW       = 2,   // words per data window (a power of two)
   parameter int unsigned PQ_DEPTH = 4,   // pass queue entries (4: binary pointers of 3 bits)
+  parameter bit          SET_BYPASS = 1'b1, // 1: a pass selected in a clock may be read in the
+                                         // next (its sets bypass the queue into a_set_o's
+                                         // register); 0: the register loads from the queue
+                                         // only, a clock later when the queue is empty (a
+                                         // directory in block RAM, whose read address is that
+                                         // register's input; tex_cache DIR_RAM)
   // derived (tex_cache's values)
   parameter int unsigned LA_W     = ADDR_W - OFF_W,           // line address width
   parameter int unsigned TAGB     = LA_W - 1 - SET_W,         // stored tag bits
@@ -245,30 +251,37 @@ module tex_cache_front #(
   logic                       replay;    // the decide stage drops its pass to read it again
   logic                       replay_q;  // ... in the clock before: the read stage waits
   logic                       p_load;    // the next pass moves into the queue
+  logic                       set_ok_q;  // a_set_q holds pq_ip_q's sets (below)
 
   assign p_load  = rst_ni && s0_valid_q && (pq_wp_q - pq_rp_q) != 3'(PQ_DEPTH);
-  assign a_issue_o = pq_ip_q != pq_wp_q && !replay_q;
+  assign a_issue_o = pq_ip_q != pq_wp_q && !replay_q && set_ok_q;
   assign a_tag_o   = a_pass.tag;
   assign a_pass  = pq_q[pq_ip_q[1:0]];
   assign replay  = b_valid_q && !e_fire_i;
 
   // The read stage's sets (the directory's read addresses) come from a register of their own,
-  // a_set_q = a_pass.set while a_issue_o, loaded with the entry the read stage takes next: two
-  // candidates from registers (the one after pq_ip_q, or pq_ip_q again; an entry written in
-  // this clock from pq_d).  The lookup's decision does not choose among them: a replay moves
-  // pq_ip_q back to the oldest entry and the read stage waits one clock (replay_q), in which
-  // a_set_q is loaded with that entry's sets.  So the register's input, which a directory in
-  // block RAM takes as its read address (tex_cache DIR_RAM), does not wait on the decision; a
-  // replay costs the clock of the wait.
-  logic [NSUB-1:0][SET_W-1:0] a_set_q, set_next, set_hold;
+  // a_set_q = a_pass.set while a_issue_o, loaded with the entry the read stage takes next: the
+  // one after pq_ip_q, or pq_ip_q again.  The lookup's decision does not choose between them: a
+  // replay moves pq_ip_q back to the oldest entry and the read stage waits one clock
+  // (replay_q), in which a_set_q is loaded with that entry's sets.  So the register's input,
+  // which a directory in block RAM takes as its read address (tex_cache DIR_RAM), does not wait
+  // on the decision; a replay costs the clock of the wait.
+  // An entry written in this clock: with SET_BYPASS its sets come from pq_d (the selection) into
+  // the register, so a pass may be read in the clock after its selection; without, the register
+  // loads from the queue's entries only (written in an earlier clock), and set_ok_q says it
+  // holds pq_ip_q's sets: a pass that enters an empty queue is read a clock later, the
+  // register's input is a read of the queue's LUT RAM and a 2:1 select, and the selection's
+  // logic ends at the queue's write port.
+  logic [NSUB-1:0][SET_W-1:0] a_set_q, set_next;
+  logic [2:0]                 set_ent;   // the entry a_set_q is loaded with
   always_comb begin
-    logic [2:0] ip1;
-    ip1      = pq_ip_q + 3'd1;
-    set_next = (ip1 == pq_wp_q) ? pq_d.set : pq_q[ip1[1:0]].set;
-    set_hold = (pq_ip_q == pq_wp_q) ? pq_d.set : pq_q[pq_ip_q[1:0]].set;
+    set_ent  = a_issue_o ? pq_ip_q + 3'd1 : pq_ip_q;
+    set_next = pq_q[set_ent[1:0]].set;
+    if (SET_BYPASS && set_ent == pq_wp_q) set_next = pq_d.set;
   end
   always_ff @(posedge clk_i) begin
-    a_set_q <= a_issue_o ? set_next : set_hold;
+    a_set_q <= set_next;
+    set_ok_q <= SET_BYPASS || (rst_ni && set_ent != pq_wp_q);  // (constant 1 with the bypass)
   end
 
   always_comb begin
