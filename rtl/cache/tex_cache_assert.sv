@@ -650,7 +650,7 @@ bind tex_cache tex_cache_assert #(
   .sl_v(u_front.sl_v), .sl_la(u_front.sl_la), .e_la(u_front.e_la), .e_sub(u_front.e_sub),
   .pq_wp_q(u_front.pq_wp_q), .pq_ip_q(u_front.pq_ip_q), .pq_rp_q(u_front.pq_rp_q),
   .a_set_q(a_set), .a_pass_set(u_front.a_pass.set), .b_valid_q(b_valid),
-  .b_is_oldest(u_front.b_pass_q == u_front.pq_q[u_front.pq_rp_q[1:0]]),
+  .b_is_oldest(u_front.b_pass_q == u_front.pq_oldest),
   .f_vld(u_lookup.f_vld), .f_pnd(u_lookup.f_pnd), .fw_idle(u_lookup.fw_idle),
   .out_push(u_data.out_push), .out_pop(u_data.out_pop), .out_cnt_q(u_data.out_cnt),
   .tq_wp_q(u_data.tq_wp_q), .tq_rp_q(u_data.tq_rp_q),

@@ -243,6 +243,11 @@ module tex_cache_front #(
   } pq_t;
 
   pq_t                        pq_q [PQ_DEPTH];
+  // The entries' sets are in flip-flops (pq_set_q, a packed array, so not a memory; pq_q's set
+  // fields are not read): read from the queue's LUT RAM, a_set_q would become that RAM's
+  // registered read port in synthesis, and a directory in block RAM would find no register to
+  // take as its read address.
+  logic [PQ_DEPTH-1:0][NSUB-1:0][SET_W-1:0] pq_set_q;
   logic [2:0]                 pq_wp_q, pq_ip_q, pq_rp_q;  // (one bit above the index: full / empty)
   pq_t                        pq_d;      // the selected pass as it is written
   pq_t                        a_pass;    // the pass the read stage takes (pq_q[pq_ip_q])
@@ -256,7 +261,18 @@ module tex_cache_front #(
   assign p_load  = rst_ni && s0_valid_q && (pq_wp_q - pq_rp_q) != 3'(PQ_DEPTH);
   assign a_issue_o = pq_ip_q != pq_wp_q && !replay_q && set_ok_q;
   assign a_tag_o   = a_pass.tag;
-  assign a_pass  = pq_q[pq_ip_q[1:0]];
+  // entry k of the queue: its word, with the sets from their flip-flops
+  function automatic pq_t pq_entry(input logic [1:0] k);
+    pq_t e;
+    e     = pq_q[k];
+    e.set = pq_set_q[k];
+    return e;
+  endfunction
+  assign a_pass = pq_entry(pq_ip_q[1:0]);
+  /* verilator lint_off UNUSEDSIGNAL */  // (read by the bound checks only)
+  pq_t pq_oldest;                        // the queue's oldest entry (decide_is_oldest)
+  /* verilator lint_on UNUSEDSIGNAL */
+  assign pq_oldest = pq_entry(pq_rp_q[1:0]);
   assign replay  = b_valid_q && !e_fire_i;
 
   // The read stage's sets (the directory's read addresses) come from a register of their own,
@@ -270,18 +286,19 @@ module tex_cache_front #(
   // the register, so a pass may be read in the clock after its selection; without, the register
   // loads from the queue's entries only (written in an earlier clock), and set_ok_q says it
   // holds pq_ip_q's sets: a pass that enters an empty queue is read a clock later, the
-  // register's input is a read of the queue's LUT RAM and a 2:1 select, and the selection's
-  // logic ends at the queue's write port.
+  // register's input is two selects of the queue's registers, and the selection's logic ends at
+  // the queue's write port.
   logic [NSUB-1:0][SET_W-1:0] a_set_q, set_next;
   logic [2:0]                 set_ent;   // the entry a_set_q is loaded with
   always_comb begin
     set_ent  = a_issue_o ? pq_ip_q + 3'd1 : pq_ip_q;
-    set_next = pq_q[set_ent[1:0]].set;
+    set_next = pq_set_q[set_ent[1:0]];
     if (SET_BYPASS && set_ent == pq_wp_q) set_next = pq_d.set;
   end
   always_ff @(posedge clk_i) begin
     a_set_q <= set_next;
     set_ok_q <= SET_BYPASS || (rst_ni && set_ent != pq_wp_q);  // (constant 1 with the bypass)
+    if (p_load) pq_set_q[pq_wp_q[1:0]] <= pq_d.set;
   end
 
   always_comb begin
