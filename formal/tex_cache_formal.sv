@@ -35,8 +35,7 @@ module tex_cache_formal #(
   parameter int unsigned MSHRS      = 4,
   parameter int unsigned FIFO_DEPTH = 4,
   parameter int unsigned ID_W       = 3,
-  parameter int unsigned TAG_W      = 2,
-  parameter string       DIR_RAM    = "auto"  // "block": the pass queue without its bypass
+  parameter int unsigned TAG_W      = 2
 ) (
   input logic                   clk_i,
   input logic                   rst_ni,
@@ -69,7 +68,7 @@ module tex_cache_formal #(
 
   tex_cache #(
     .ADDR_W(ADDR_W), .DATA_W(DATA_W), .LINE_BYTES(LINE_BYTES), .SETS(SETS), .WAYS(WAYS),
-    .MSHRS(MSHRS), .FIFO_DEPTH(FIFO_DEPTH), .ID_W(ID_W), .TAG_W(TAG_W), .DIR_RAM(DIR_RAM)
+    .MSHRS(MSHRS), .FIFO_DEPTH(FIFO_DEPTH), .ID_W(ID_W), .TAG_W(TAG_W)
   ) u_dut (
     .clk_i, .rst_ni,
     .req_valid_i, .req_ready_o(req_ready), .req_addr_i, .req_tag_i,

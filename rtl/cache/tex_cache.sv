@@ -165,11 +165,12 @@ module tex_cache
                                            // requests that can wait for memory at full rate
   parameter int unsigned ID_W       = 6,   // AXI ID width (> log2(MSHRS): the rest is the epoch)
   parameter int unsigned TAG_W      = 8,   // side-band width (req_tag_i -> rsp_tag_o)
+  /* verilator lint_off UNUSEDPARAM */  // (an attribute: read by synthesis only)
   parameter string       DIR_RAM    = "auto",  // ram_style of the tags and reference counts
                                            // ("auto": Yosys's choice, LUT RAM; "block": block
-                                           // RAM, 2 x 4 x WAYS RAMs of SETS words, and a pass
-                                           // entering an empty pass queue a clock later; see
+                                           // RAM, 2 x 4 x WAYS RAMs of SETS words; see
                                            // "Directory")
+  /* verilator lint_on UNUSEDPARAM */
   parameter int unsigned WIN_WORDS  = 2    // data-RAM window: words a sub-cache reads per pass,
                                            // plus one (power of two >= 2; capped at the line's
                                            // words); DATA_W <= 32 * that
@@ -344,11 +345,10 @@ module tex_cache
   // The memories are read at the lookup's registered set (a_set, tex_cache_front), so a block RAM
   // takes that register's input as its read address; its read then misses the write of the same
   // edge, which Yosys's mapping forwards (the RAM is declared with an asynchronous read behind
-  // the register, so the RTL's behaviour is that of the LUT RAM): the same words with DIR_RAM
-  // "auto" (Yosys's choice: LUT RAM) or "block" (2 x NSUB x WAYS block RAMs, 32 with the
-  // defaults).  With "block" the pass queue has no bypass (tex_cache_front SET_BYPASS 0): the
-  // RAMs' read address is a read of the queue, not the pass selection, since the RAMs lie spread
-  // over the device; a pass that enters an empty queue is looked up a clock later
+  // the register, so the RTL's behaviour is that of the LUT RAM): the same words in the same
+  // clocks with DIR_RAM "auto" (Yosys's choice: LUT RAM) or "block" (2 x NSUB x WAYS block RAMs,
+  // 32 with the defaults).  The register's input is a read of the pass queue's registers, not
+  // the pass selection (tex_cache_front), since the RAMs lie spread over the device
   // (docs/synthesis.md has the routes).
   logic              swp;          // the live bits are being cleared (after a reset; u_axi)
   logic [SET_W-1:0]  swp_set;      // the set cleared in this clock
@@ -424,8 +424,7 @@ module tex_cache
   logic                       e_fire;      // the decide stage's pass enters the FIFO
 
   tex_cache_front #(
-    .ADDR_W(ADDR_W), .OFF_W(OFF_W), .SET_W(SET_W), .WW(WW), .PQ_DEPTH(PQ_DEPTH),
-    .SET_BYPASS(DIR_RAM != "block")
+    .ADDR_W(ADDR_W), .OFF_W(OFF_W), .SET_W(SET_W), .WW(WW), .PQ_DEPTH(PQ_DEPTH)
   ) u_front (
     .clk_i, .rst_ni, .swp_i(swp),
     .req_valid_i, .req_ready_o, .req_addr_i,

@@ -14,12 +14,6 @@ module tex_cache_front #(
   parameter int unsigned SET_W    = 5,   // log2 sets
   parameter int unsigned WW       = 2,   // words per data window (a power of two)
   parameter int unsigned PQ_DEPTH = 4,   // pass queue entries (4: binary pointers of 3 bits)
-  parameter bit          SET_BYPASS = 1'b1, // 1: a pass selected in a clock may be read in the
-                                         // next (its sets bypass the queue into a_set_o's
-                                         // register); 0: the register loads from the queue
-                                         // only, a clock later when the queue is empty (a
-                                         // directory in block RAM, whose read address is that
-                                         // register's input; tex_cache DIR_RAM)
   // derived (tex_cache's values)
   parameter int unsigned LA_W     = ADDR_W - OFF_W,           // line address width
   parameter int unsigned TAGB     = LA_W - 1 - SET_W,         // stored tag bits
@@ -282,22 +276,22 @@ module tex_cache_front #(
   // (replay_q), in which a_set_q is loaded with that entry's sets.  So the register's input,
   // which a directory in block RAM takes as its read address (tex_cache DIR_RAM), does not wait
   // on the decision; a replay costs the clock of the wait.
-  // An entry written in this clock: with SET_BYPASS its sets come from pq_d (the selection) into
-  // the register, so a pass may be read in the clock after its selection; without, the register
-  // loads from the queue's entries only (written in an earlier clock), and set_ok_q says it
-  // holds pq_ip_q's sets: a pass that enters an empty queue is read a clock later, the
-  // register's input is two selects of the queue's registers, and the selection's logic ends at
-  // the queue's write port.
+  // The register loads from the queue's entries only (written in an earlier clock), not from the
+  // selection (pq_d) as the entry is written, and set_ok_q says it holds pq_ip_q's sets: a pass
+  // that enters an empty queue is read two clocks after its selection, not one, and the
+  // register's input is two selects of the queue's registers, so the selection's logic ends at
+  // the queue's write port (a directory in block RAM takes the register's input as its read
+  // address, and its RAMs lie spread over the device: tex_cache DIR_RAM).  The queue's three
+  // entries ahead of the decide stage keep one pass per clock going when it is not empty.
   logic [NSUB-1:0][SET_W-1:0] a_set_q, set_next;
   logic [2:0]                 set_ent;   // the entry a_set_q is loaded with
   always_comb begin
     set_ent  = a_issue_o ? pq_ip_q + 3'd1 : pq_ip_q;
     set_next = pq_set_q[set_ent[1:0]];
-    if (SET_BYPASS && set_ent == pq_wp_q) set_next = pq_d.set;
   end
   always_ff @(posedge clk_i) begin
     a_set_q <= set_next;
-    set_ok_q <= SET_BYPASS || (rst_ni && set_ent != pq_wp_q);  // (constant 1 with the bypass)
+    set_ok_q <= rst_ni && set_ent != pq_wp_q;
     if (p_load) pq_set_q[pq_wp_q[1:0]] <= pq_d.set;
   end
 

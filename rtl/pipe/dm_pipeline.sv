@@ -79,10 +79,8 @@ module dm_pipeline
   parameter int unsigned T_WAYS     = 4,    // tex_cache ways: 4 x 32 x 4 x 128 B = 64 KiB
   parameter int unsigned T_WIN_WORDS = 2,   // tex_cache data-RAM window, words (+1 overlap word)
   parameter string       T_DIR_RAM  = "auto", // tex_cache's tags and reference counts: "auto"
-                                            // (LUT RAM) or "block" (32 block RAMs, about 1,700
-                                            // LUT4 fewer, a texture request a clock later when
-                                            // the cache's pass queue is empty; tex_cache
-                                            // DIR_RAM)
+                                            // (LUT RAM) or "block" (32 block RAMs, about 1,650
+                                            // LUT4 fewer; tex_cache DIR_RAM)
   parameter int unsigned H_LINE_BYTES = 32, // height_cache line (one AXI burst per fill)
   parameter int unsigned H_SETS     = 512,  // height_cache sets per ring (power of two)
   parameter int unsigned H_WAYS     = 4,    // height_cache ways: 512 x 4 x 32 B = 64 KiB

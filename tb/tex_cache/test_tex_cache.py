@@ -67,12 +67,7 @@ CONFIGS = {
                             id_w=4, tag_w=6, win_words=4),
     # the default cache with 8-word windows (4 beats per window, the select from 36 words)
     "wide": TexCacheConfig(win_words=8),
-    # the default cache with its directory in block RAM: no bypass of the pass queue (a pass
-    # entering an empty queue is looked up a clock later; tex_cache_front SET_BYPASS 0)
-    "block": TexCacheConfig(),
 }
-#: RTL parameters beyond the model's configuration (synthesis attributes and what they imply).
-EXTRA_PARAMS: dict[str, dict[str, object]] = {"block": {"DIR_RAM": '"block"'}}
 BASES = (0x1000_0000, 0x1040_0000, 0x2000_0000)
 #: The RTL's simulation-only coverage points (sim_<name> in the bound tex_cache_assert, u_assert),
 #: counted per clock.
@@ -848,8 +843,8 @@ def test_model_passes():
 #: Stream-length factor per configuration (TC_SCALE in the environment overrides it): the small
 #: cache's 32-bit bus makes each quad cost several times more clocks.  make test runs SCALES,
 #: make test-long (TB_LONG=1) twice as long streams.
-SCALES = {"default": 0.5, "small": 0.25, "wide": 0.25, "block": 0.25}
-LONG_SCALES = {"default": 1.0, "small": 0.5, "wide": 0.5, "block": 0.5}
+SCALES = {"default": 0.5, "small": 0.25, "wide": 0.25}
+LONG_SCALES = {"default": 1.0, "small": 0.5, "wide": 0.5}
 
 
 def _run(name: str) -> None:
@@ -858,8 +853,7 @@ def _run(name: str) -> None:
     print(f"tex_cache-{name}: SEED={seed}")
     cfg = CONFIGS[name]
     scales = LONG_SCALES if runner.long_stimulus() else SCALES
-    runner.run("tex_cache", "test_tex_cache", HERE,
-               parameters=cfg.params() | EXTRA_PARAMS.get(name, {}),
+    runner.run("tex_cache", "test_tex_cache", HERE, parameters=cfg.params(),
                name=f"tex_cache-{name}",
                extra_env={"TC_CFG": json.dumps(cfg.__dict__), "SEED": str(seed),
                           "TC_SCALE": os.environ.get("TC_SCALE", str(scales[name]))})
@@ -879,12 +873,6 @@ def test_tex_cache_small():
 def test_tex_cache_wide():
     """The default cache with WIN_WORDS = 8 (dm_pipeline uses 2, the module's default)."""
     _run("wide")
-
-
-def test_tex_cache_block():
-    """The default cache with DIR_RAM "block" (dm_pipeline T_DIR_RAM): the pass queue without
-    its bypass, so the lookup's read stage takes its sets from the queue only."""
-    _run("block")
 
 
 if __name__ == "__main__":
