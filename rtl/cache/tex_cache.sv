@@ -79,10 +79,13 @@
 //             sub-cache, set indices, tags) moves into the pass queue (four entries) while it
 //             has room; a request of several passes stays in the entry register until its last
 //             one has moved.
-//   clock 2   lookup, read stage: the next pass in the queue reads the directory at its sets in
+//   clock 2   the read stage's set register is loaded with the pass's sets from the queue's
+//             registers (never from the selection: a pass behind another is loaded while
+//             that one is read, so one pass per clock; tex_cache_front).
+//   clock 3   lookup, read stage: the next pass in the queue reads the directory at its sets in
 //             the four sub-caches (tags, reference counts, pseudo-LRU and state bits) and
 //             compares each way's tag with its own.
-//   clock 3   lookup, decide stage: hit or miss per sub-cache; a miss picks a victim way and an
+//   clock 4   lookup, decide stage: hit or miss per sub-cache; a miss picks a victim way and an
 //             MSHR.  All or nothing: the pass cannot go while the FIFO is full, while an MSHR is
 //             missing for one of its misses, or while every way of a missed set is referenced;
 //             then, after a clock's wait, it and the pass behind it are read again (a replay,
@@ -90,18 +93,18 @@
 //             queue's room is judged from its pointers, so the lookup's outcome steers no enable
 //             of the entry register or of the queue's entries in its own clock (only the
 //             queue's pointers and the stage valid bits).
-//   clock 4   commit: the pass's directory writes (tags, references, pseudo-LRU, valid and
+//   clock 5   commit: the pass's directory writes (tags, references, pseudo-LRU, valid and
 //             pending bits), its MSHRs and line reads, and its push into the request FIFO
 //             (FIFO_DEPTH passes) happen from the commit register, so no write waits on the
 //             lookup's outcome in its own clock; the next passes' lookups see them forwarded.
-//   clock 5   head: when the lines of the head pass are present (no pending fill), the pass
+//   clock 6   head: when the lines of the head pass are present (no pending fill), the pass
 //             leaves the FIFO and reads the data RAMs (one window per sub-cache).  Its slots'
 //             pending and error bits are registers, loaded the clock before for the pass that
 //             is head now (see "head"), so the pop starts from flip-flops.
-//   clock 6   the data RAMs' words are registered (their 4.3 ns clock-to-out on the ECP5).
-//   clock 7   the texels are selected (and merged with earlier passes of the request).
-//   clock 8   rsp_valid_o (a 4-entry output buffer).
-// So a request that hits answers 8 clocks after its handshake; full throughput is one pass per
+//   clock 7   the data RAMs' words are registered (their 4.3 ns clock-to-out on the ECP5).
+//   clock 8   the texels are selected (and merged with earlier passes of the request).
+//   clock 9   rsp_valid_o (a 4-entry output buffer).
+// So a request that hits answers 9 clocks after its handshake; full throughput is one pass per
 // clock.  A miss answers 5 clocks after its line's last beat.  Sizing: the FIFO lets requests
 // run ahead of the head by FIFO_DEPTH passes, so it should exceed the memory latency plus a line's
 // beats and the queueing of bursts of misses; MSHRS about FIFO_DEPTH / 4.  Measured on camera

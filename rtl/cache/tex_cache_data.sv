@@ -254,7 +254,7 @@ module tex_cache_data #(
   // FIFO (per pass) nor through the answer path.  Block RAM, read through its registered port
   // every clock at the queue's head after this clock's pop, so rsp_tag_o comes from the RAM's
   // read register.  No read of the entry written in the same clock is ever used: a request is
-  // answered 8 clocks after its handshake at the earliest, so its tag has been in the RAM for 7
+  // answered 9 clocks after its handshake at the earliest, so its tag has been in the RAM for 8
   // clocks when its answer reaches the buffer's head (tex_cache_assert checks the distance).
   localparam int unsigned TQ_W = $clog2(TQ_DEPTH);
   (* ram_style = "block", no_rw_check *) logic [TAG_W-1:0] tq_mem [TQ_DEPTH];

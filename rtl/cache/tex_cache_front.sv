@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// tex_cache_front: the texture cache's request side (tex_cache.sv, "Pipeline" clocks 0 .. 3):
+// tex_cache_front: the texture cache's request side (tex_cache.sv, "Pipeline" clocks 0 .. 4):
 // the entry register that accepts a quad (with the row bits and which texels may share a read,
 // computed at the input), the pass selection that splits it into passes (one line and window
 // per sub-cache), and the pass queue from which the two-clock lookup (tex_cache_lookup) reads
@@ -212,8 +212,8 @@ module tex_cache_front #(
 
   // ---------------------------------------------------------------- pass queue
   // The passes selected and not yet in the FIFO: a queue of PQ_DEPTH entries (pq_q, LUT RAM:
-  // one write port, read asynchronously for the read stage's pass and its sets), written at
-  // pq_wp_q.  The lookup takes two clocks, a read stage and a decide stage (below):
+  // one write port, read asynchronously for the read stage's pass; their sets in flip-flops,
+  // pq_set_q, below), written at pq_wp_q.  The lookup takes two clocks, a read stage and a decide stage (below):
   // pq_ip_q is the next entry the read stage takes, pq_rp_q the oldest entry, the pass in the
   // decide stage when it holds one (b_valid_q), freed when that pass enters the FIFO (e_fire_i).
   // When the decide stage cannot let its pass go (the FIFO is full, an MSHR is missing, every way
@@ -222,8 +222,9 @@ module tex_cache_front #(
   // replay: two clocks per retry, and no outcome of the decision steers more than the pointers
   // and the stage valid bits).  A pass moves in while the queue has a free entry, judged from the
   // pointers alone, so neither the selection nor req_ready_o waits on the lookup's outcome in the
-  // same clock.  Three entries keep one pass per clock going (one deciding, one being read, one
-  // being selected); the fourth makes the pointers plain binary counters.
+  // same clock.  Four entries keep one pass per clock going (one deciding, one being read, one
+  // whose sets are being loaded into the read stage's set register, one being selected), and
+  // make the pointers plain binary counters.
   typedef struct packed {
     logic [NSUB-1:0]            v;     // sub-caches the pass reads
     logic [NSUB-1:0][SET_W-1:0] set;   // their lines' sets
@@ -281,8 +282,7 @@ module tex_cache_front #(
   // that enters an empty queue is read two clocks after its selection, not one, and the
   // register's input is two selects of the queue's registers, so the selection's logic ends at
   // the queue's write port (a directory in block RAM takes the register's input as its read
-  // address, and its RAMs lie spread over the device: tex_cache DIR_RAM).  The queue's three
-  // entries ahead of the decide stage keep one pass per clock going when it is not empty.
+  // address, and its RAMs lie spread over the device: tex_cache DIR_RAM).
   logic [NSUB-1:0][SET_W-1:0] a_set_q, set_next;
   logic [2:0]                 set_ent;   // the entry a_set_q is loaded with
   always_comb begin
